@@ -1,0 +1,1 @@
+"""The rocketsim command line (installed as ``rocketsim_cli``)."""

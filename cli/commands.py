@@ -1,0 +1,3 @@
+"""The list of commands: one import per command module."""
+
+ALL = []

@@ -1,0 +1,55 @@
+"""Every physical constant of the simulator, once, with its source.
+
+SI units throughout (m, kg, s, rad, K, Pa) unless a name says otherwise.
+Other modules import from here; no constant is written twice.
+"""
+
+import math
+
+# --- Mathematics and time ---------------------------------------------------
+DEG = math.pi / 180.0                      # rad per degree
+ARCSEC = DEG / 3600.0                      # rad per arcsecond
+SECONDS_PER_DAY = 86400.0
+J2000_JD = 2451545.0                       # Julian date of J2000.0 (TT)
+DAYS_PER_JULIAN_CENTURY = 36525.0
+DAYS_PER_JULIAN_MILLENNIUM = 365250.0
+AU = 149_597_870_700.0                     # m, IAU 2012 Resolution B2
+
+# --- Universal --------------------------------------------------------------
+G0 = 9.80665                               # m/s^2, standard gravity (CGPM 1901)
+GAS_CONSTANT_USSA = 8.31432                # J/(mol K), US Standard Atmosphere 1976
+STEFAN_BOLTZMANN = 5.670374419e-8          # W/(m^2 K^4), CODATA 2018
+
+# --- Earth: WGS84 ellipsoid (NIMA TR8350.2) and EGM96 J2 --------------------
+EARTH_MU = 3.986004418e14                  # m^3/s^2, WGS84 (with atmosphere)
+EARTH_RADIUS_EQ = 6_378_137.0              # m, WGS84 semi-major axis a
+EARTH_FLATTENING = 1.0 / 298.257223563     # WGS84 f
+EARTH_E2 = EARTH_FLATTENING * (2.0 - EARTH_FLATTENING)   # first eccentricity^2
+EARTH_RADIUS_POLAR = EARTH_RADIUS_EQ * (1.0 - EARTH_FLATTENING)  # m, b
+EARTH_J2 = 1.08262668e-3                   # EGM96 unnormalised C20 (negated)
+EARTH_OMEGA = 7.2921159e-5                 # rad/s, WGS84 rotation rate
+
+# Somigliana normal gravity on the WGS84 ellipsoid (NIMA TR8350.2, eq. 4-1)
+WGS84_GAMMA_EQ = 9.7803253359              # m/s^2 at the equator
+WGS84_SOMIGLIANA_K = 0.00193185265241
+WGS84_E2_SOMIGLIANA = 0.00669437999013
+
+# --- Moon (JPL DE430, GRAIL GL0660B) ----------------------------------------
+MOON_MU = 4.902800118e12                   # m^3/s^2
+MOON_RADIUS = 1_737_400.0                  # m, mean sphere
+MOON_J2 = 2.033053e-4
+
+# --- Mars (JPL DE440; IAU WGCCRE 2015 shape) ---------------------------------
+MARS_MU = 4.282837362e13                   # m^3/s^2
+MARS_RADIUS_EQ = 3_396_190.0               # m
+MARS_FLATTENING = 1.0 / 169.894
+MARS_J2 = 1.95545e-3
+
+# --- Sun (DE430) --------------------------------------------------------------
+SUN_MU = 1.32712440018e20                  # m^3/s^2
+
+# --- Integrator (physics model, "The integrator") ---------------------------
+STEP = 0.02                                # s, the flight model's fixed step
+MAX_HEADLESS_STEP = 0.1                    # s, largest step a headless run accepts
+GROUND_SUBSTEP_HEIGHT = 2.0                # m, below this height the step is split
+GROUND_SUBSTEPS = 4                        # sub-steps within GROUND_SUBSTEP_HEIGHT

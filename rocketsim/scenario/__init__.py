@@ -1,0 +1,1 @@
+"""Scenario files: pydantic models, units and YAML loading with precise errors."""

@@ -1,0 +1,111 @@
+"""Quantities in scenario files: SI numbers, or strings with a unit.
+
+A field declared with a dimension accepts a plain number (already SI) or a
+string ``"<number> <unit>"`` from the table below, and stores the SI value
+(angles in radians). Angles are the exception to "a bare number is SI": a bare
+number for an angle is refused, because ``latitude: 28.5`` is almost always
+meant in degrees and silently reading it as radians would fly from the wrong
+place. Write ``"28.5 deg"`` or ``"0.497 rad"``.
+
+The table is small on purpose; every unit is listed with its factor to SI.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from typing import Annotated, Any
+
+from pydantic import BeforeValidator, WithJsonSchema
+
+# dimension -> {unit spelling: factor to the SI unit}
+UNITS: dict[str, dict[str, float]] = {
+    "length": {"m": 1.0, "km": 1e3, "cm": 1e-2, "mm": 1e-3, "ft": 0.3048,
+               "mi": 1609.344, "nmi": 1852.0, "au": 149_597_870_700.0},
+    "mass": {"kg": 1.0, "g": 1e-3, "t": 1e3, "lb": 0.45359237},
+    "time": {"s": 1.0, "ms": 1e-3, "min": 60.0, "h": 3600.0, "d": 86400.0, "day": 86400.0,
+             "days": 86400.0},
+    "angle": {"rad": 1.0, "deg": math.pi / 180.0, "°": math.pi / 180.0,
+              "arcmin": math.pi / 10800.0, "arcsec": math.pi / 648000.0},
+    "speed": {"m/s": 1.0, "km/s": 1e3, "km/h": 1 / 3.6, "kn": 1852.0 / 3600.0, "ft/s": 0.3048},
+    "force": {"N": 1.0, "kN": 1e3, "MN": 1e6, "lbf": 4.4482216152605},
+    "pressure": {"Pa": 1.0, "hPa": 100.0, "kPa": 1e3, "MPa": 1e6, "bar": 1e5, "mbar": 100.0,
+                 "atm": 101325.0, "psi": 6894.757293168},
+    "temperature": {"K": 1.0},        # Celsius is an offset: handled below
+    "density": {"kg/m3": 1.0, "kg/m^3": 1.0, "g/cm3": 1000.0},
+    "area": {"m2": 1.0, "m^2": 1.0, "cm2": 1e-4},
+    "inertia": {"kg m2": 1.0, "kg*m^2": 1.0, "kg m^2": 1.0},
+    "angular_rate": {"rad/s": 1.0, "deg/s": math.pi / 180.0, "rpm": 2 * math.pi / 60.0},
+    "frequency": {"Hz": 1.0, "kHz": 1e3},
+    "specific_impulse": {"s": 1.0},
+    "mass_flow": {"kg/s": 1.0},
+    "acceleration": {"m/s2": 1.0, "m/s^2": 1.0, "g": 9.80665},
+    "dimensionless": {"": 1.0, "%": 0.01},
+}
+
+_QUANTITY = re.compile(r"^\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*(.*?)\s*$")
+
+
+class UnitError(ValueError):
+    """A quantity that could not be read; the message says what was expected."""
+
+
+def parse_quantity(value: Any, dimension: str) -> float:
+    """Return the SI value of ``value`` (number or ``"<number> <unit>"``)."""
+    if isinstance(value, bool):
+        raise UnitError(f"expected a {dimension}, got a boolean")
+    if isinstance(value, (int, float)):
+        if dimension == "angle":
+            raise UnitError("an angle needs a unit: write e.g. '28.5 deg' or '0.497 rad'")
+        return float(value)
+    if not isinstance(value, str):
+        raise UnitError(f"expected a {dimension} as a number or a string with a unit")
+    match = _QUANTITY.match(value)
+    if not match:
+        raise UnitError(f"expected '<number> <unit>' for a {dimension}, got {value!r}")
+    number, unit = float(match.group(1)), match.group(2)
+    if dimension == "temperature" and unit in ("C", "°C", "degC"):
+        return number + 273.15
+    table = UNITS[dimension]
+    if unit not in table:
+        if unit == "" and dimension != "angle":
+            return number
+        known = ", ".join(repr(u) for u in table if u)
+        raise UnitError(f"unknown unit {unit!r} for a {dimension}; use one of {known}")
+    return number * table[unit]
+
+
+def quantity(dimension: str, description: str = "") -> Any:
+    """A pydantic float type reading ``dimension`` quantities, stored in SI."""
+    if dimension not in UNITS:
+        raise KeyError(dimension)
+    units = ", ".join(u for u in UNITS[dimension] if u)
+    schema = {
+        "anyOf": [{"type": "number"}, {"type": "string"}],
+        "description": (f"{description} " if description else "")
+        + f"({dimension}: a number in SI or a string with one of: {units})",
+    }
+    if dimension == "angle":
+        schema = {"type": "string", "description": schema["description"].replace(
+            "a number in SI or ", "")}
+    return Annotated[float, BeforeValidator(lambda v: parse_quantity(v, dimension)),
+                     WithJsonSchema(schema)]
+
+
+Length = quantity("length")
+Mass = quantity("mass")
+Duration = quantity("time")
+Angle = quantity("angle")
+Speed = quantity("speed")
+Force = quantity("force")
+Pressure = quantity("pressure")
+Temperature = quantity("temperature")
+Density = quantity("density")
+Area = quantity("area")
+Inertia = quantity("inertia")
+AngularRate = quantity("angular_rate")
+Frequency = quantity("frequency")
+SpecificImpulse = quantity("specific_impulse")
+MassFlow = quantity("mass_flow")
+Acceleration = quantity("acceleration")
+Fraction = quantity("dimensionless")
