@@ -1,0 +1,107 @@
+"""The Sun, Earth, Moon and Mars at a TT instant: one call for the whole field.
+
+Positions in metres and velocities in m/s in the J2000 mean equatorial frame
+(``x`` to the J2000 equinox, ``z`` to the J2000 mean pole), relative to a
+chosen centre. Earth and Mars come from VSOP87D (heliocentric), the Moon from
+ELP2000-82B (geocentric), both precessed from the ecliptic and equinox of
+date with the IAU 1976 angles (see ``vsop87``, ``elp2000``, ``precession``).
+Time is TT, as a Julian date (``jd_tt``); for Earth rotation use UT1 and
+``rocketsim.timescales`` instead.
+
+    r, v = state("mars", jd_tt, center="earth")      # one instant: (3,), (3,)
+    r, v = state("mars", jd_array)                   # vectorised: (N, 3), (N, 3)
+    field = states(jd_tt, center="earth")            # {"sun": (r, v), ...}
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from rocketsim._jit import njit
+from rocketsim.constants import DAYS_PER_JULIAN_CENTURY, J2000_JD
+from rocketsim.ephemeris import elp2000, vsop87
+from rocketsim.ephemeris.precession import ecliptic_of_date_to_j2000
+
+BODIES = ("sun", "earth", "moon", "mars")
+_INDEX = {name: i for i, name in enumerate(BODIES)}
+
+
+@njit
+def heliocentric_kernel(jd_tt, earth, mars, moon):
+    """Heliocentric states of all four bodies at each of ``jd_tt`` (1-D).
+
+    ``earth``, ``mars``: VSOP87D tables ``(coord, power, A, B, C)``; ``moon``:
+    ELP tables ``(coord, mult, A)``. Returns ``(N, 4, 6)``: for each instant
+    and body of ``BODIES`` (sun, earth, moon, mars) ``x y z`` (m) and
+    ``vx vy vz`` (m/s), J2000 equatorial, relative to the Sun.
+    """
+    out = np.zeros((jd_tt.shape[0], 4, 6))
+    for n in range(jd_tt.shape[0]):
+        T = (jd_tt[n] - J2000_JD) / DAYS_PER_JULIAN_CENTURY
+        matrix, dmatrix = ecliptic_of_date_to_j2000(T)
+        re, ve = vsop87.state_kernel(earth[0], earth[1], earth[2], earth[3], earth[4],
+                                     T / 10.0, matrix, dmatrix)
+        rm, vm = vsop87.state_kernel(mars[0], mars[1], mars[2], mars[3], mars[4],
+                                     T / 10.0, matrix, dmatrix)
+        rl, vl = elp2000.state_kernel(moon[0], moon[1], moon[2], T, matrix, dmatrix)
+        for k in range(3):
+            out[n, 1, k] = re[k]
+            out[n, 1, 3 + k] = ve[k]
+            out[n, 2, k] = re[k] + rl[k]
+            out[n, 2, 3 + k] = ve[k] + vl[k]
+            out[n, 3, k] = rm[k]
+            out[n, 3, 3 + k] = vm[k]
+    return out
+
+
+def heliocentric_states(jd_tt, earth=None, mars=None, moon=None) -> np.ndarray:
+    """``(N, 4, 6)`` heliocentric states (see :func:`heliocentric_kernel`).
+
+    The tables default to the project's truncated ones; the tests and the
+    benchmark pass the full series here to measure the truncation.
+    """
+    jd = np.ascontiguousarray(np.atleast_1d(np.asarray(jd_tt, dtype=np.float64)))
+    if jd.ndim != 1:
+        jd = jd.ravel()
+    return heliocentric_kernel(jd, earth or vsop87.TABLES["earth"],
+                               mars or vsop87.TABLES["mars"], moon or elp2000.TABLE)
+
+
+def _check_body(name: str, what: str) -> int:
+    try:
+        return _INDEX[name]
+    except (KeyError, TypeError):
+        raise ValueError(f"unknown {what} {name!r}: expected one of {', '.join(BODIES)}") from None
+
+
+def state(body: str, jd_tt, center: str = "sun"):
+    """Position (m) and velocity (m/s) of ``body`` relative to ``center``.
+
+    ``body``, ``center`` in ``{"sun", "earth", "moon", "mars"}``; ``jd_tt`` a
+    Julian date in TT, a float or a 1-D array. J2000 mean equatorial frame.
+    Returns ``(r, v)``: shape ``(3,)`` each for a float, ``(N, 3)`` for an array.
+    """
+    i = _check_body(body, "body")
+    j = _check_body(center, "center")
+    scalar = np.ndim(jd_tt) == 0
+    helio = heliocentric_states(jd_tt)
+    relative = helio[:, i, :] - helio[:, j, :]
+    if scalar:
+        return relative[0, :3], relative[0, 3:]
+    return relative[:, :3], relative[:, 3:]
+
+
+def states(jd_tt, center: str = "earth") -> dict:
+    """``{body: (r, v)}`` for all four bodies relative to ``center`` (m, m/s).
+
+    One evaluation of every series for the n-body field; shapes as in
+    :func:`state` (the centre itself maps to zeros).
+    """
+    j = _check_body(center, "center")
+    scalar = np.ndim(jd_tt) == 0
+    helio = heliocentric_states(jd_tt)
+    relative = helio - helio[:, j:j + 1, :]
+    if scalar:
+        relative = relative[0]
+        return {name: (relative[i, :3], relative[i, 3:]) for i, name in enumerate(BODIES)}
+    return {name: (relative[:, i, :3], relative[:, i, 3:]) for i, name in enumerate(BODIES)}
