@@ -1,3 +1,6 @@
 """The list of commands: one import per command module."""
 
-ALL = []
+from rocketsim_cli.fly import fly
+from rocketsim_cli.validate import schema, validate
+
+ALL = [fly, validate, schema]

@@ -1,0 +1,44 @@
+"""``rocketsim fly``: fly a scenario and write its MCAP telemetry."""
+
+from __future__ import annotations
+
+import json
+import sys
+from pathlib import Path
+
+import click
+
+from rocketsim.scenario.load import load
+from rocketsim.sim.flight import fly as fly_scenario
+from rocketsim_cli.errors import reports_input_errors
+from rocketsim_cli.summary import format_summary
+
+
+@click.command()
+@click.argument("scenario", type=click.Path(dir_okay=False, path_type=Path))
+@click.option("-o", "--output", type=click.Path(dir_okay=False, path_type=Path), default=None,
+              help="MCAP file to write (default: the scenario's name with .mcap, here).")
+@click.option("--step", type=float, default=None, help="Integration step in s (at most 0.1).")
+@click.option("--duration", type=float, default=None, help="Mission time to fly in s (overrides the mission).")
+@click.option("--summary-json", type=click.Path(dir_okay=False, path_type=Path), default=None,
+              help="Also write the flight summary as JSON to this file.")
+@reports_input_errors
+def fly(scenario: Path, output: Path | None, step: float | None, duration: float | None,
+        summary_json: Path | None) -> None:
+    """Fly SCENARIO and write its telemetry as MCAP.
+
+    \b
+    Example:
+        rocketsim fly scenarios/iss-coast.yaml -o iss.mcap --summary-json iss.json
+    """
+    loaded = load(scenario)
+    output = output or Path(f"{scenario.stem}.mcap")
+    try:
+        summary = fly_scenario(loaded, output, step=step, duration=duration)
+    except KeyboardInterrupt:
+        click.echo(f"interrupted; telemetry so far is in {output}", err=True)
+        sys.exit(130)
+    click.echo(format_summary(summary))
+    click.echo(f"telemetry: {output}")
+    if summary_json is not None:
+        summary_json.write_text(json.dumps(summary, indent=2, allow_nan=True) + "\n")

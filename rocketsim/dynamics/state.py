@@ -1,0 +1,64 @@
+"""The state vector of one body and the parameters its derivative reads.
+
+State ``y`` (float64, length :data:`N_STATE`), in the inertial frame:
+
+======  =====  ==============================================================
+index   name   meaning
+======  =====  ==============================================================
+0:3     r      position of the centre of mass, m
+3:6     v      velocity of the centre of mass, m/s
+6:10    q      unit quaternion (w, x, y, z), body axes -> inertial frame
+10:13   w      body rates about the body axes, rad/s (x is the roll axis)
+======  =====  ==============================================================
+
+Later models append integrated quantities (propellant masses, engine spool
+states) after index 13 so that the same RK4 stages integrate them.
+
+Parameters ``p`` (float64, length :data:`N_PARAMS`) are what the derivative
+reads but does not integrate: the mass and the diagonal inertia of a rigid
+body, and the central body's gravity (mu, reference radius, J2). Index
+constants below are the only names for these slots.
+"""
+
+import numpy as np
+
+# state slots
+R = 0
+V = 3
+Q = 6
+W = 10
+N_STATE = 13
+
+# parameter slots
+P_MASS = 0          # kg
+P_IXX = 1           # kg m^2, roll
+P_IYY = 2           # kg m^2, pitch
+P_IZZ = 3           # kg m^2, yaw
+P_MU = 4            # m^3/s^2, central body
+P_RADIUS = 5        # m, central body's reference radius
+P_J2 = 6            # central body's J2 (0 for a point mass)
+P_POLAR_RADIUS = 7  # m, central body's polar radius (ground proximity)
+N_PARAMS = 8
+
+
+def make_state(r, v, q=(1.0, 0.0, 0.0, 0.0), w=(0.0, 0.0, 0.0)) -> np.ndarray:
+    """Assemble a state vector from position, velocity, attitude and rates."""
+    y = np.empty(N_STATE)
+    y[R:R + 3] = r
+    y[V:V + 3] = v
+    y[Q:Q + 4] = q
+    y[Q:Q + 4] /= np.linalg.norm(y[Q:Q + 4])
+    y[W:W + 3] = w
+    return y
+
+
+def make_params(mass, inertia, mu, radius, j2, polar_radius) -> np.ndarray:
+    """Assemble the parameter vector (SI units; ``inertia`` = (Ixx, Iyy, Izz))."""
+    p = np.empty(N_PARAMS)
+    p[P_MASS] = mass
+    p[P_IXX:P_IZZ + 1] = inertia
+    p[P_MU] = mu
+    p[P_RADIUS] = radius
+    p[P_J2] = j2
+    p[P_POLAR_RADIUS] = polar_radius
+    return p

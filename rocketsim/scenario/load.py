@@ -1,0 +1,157 @@
+"""Load a scenario and the files it references, with errors a user can act on.
+
+``load(path)`` reads the scenario YAML, resolves each referenced file
+(``vehicle``, ``site``, ``mission`` given as paths, and the ``program``)
+relative to the scenario file, validates everything with the pydantic models
+and returns a :class:`LoadedScenario`. Any problem raises one
+:class:`~rocketsim.errors.InputError` naming the file, line, column and field
+path, what was expected, and for a misspelt field the closest valid name.
+"""
+
+from __future__ import annotations
+
+import difflib
+import types
+import typing
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from pydantic import BaseModel, ValidationError
+
+from rocketsim.errors import InputError
+from rocketsim.scenario.models import MissionSpec, Scenario, SiteSpec, VehicleSpec
+from rocketsim.scenario.yaml_source import YamlSource, read_yaml
+
+# fields of a scenario that may be a path to a file of their own, and its model
+REFERENCED = {"vehicle": VehicleSpec, "site": SiteSpec, "mission": MissionSpec}
+
+
+@dataclass(frozen=True)
+class LoadedScenario:
+    """A validated scenario and every file it was read from.
+
+    ``files`` maps a role (``scenario``, ``vehicle``, ``site``, ``mission``,
+    ``program``) to the file's resolved path; these travel in the telemetry.
+    """
+
+    scenario: Scenario
+    path: Path
+    files: dict[str, Path] = field(default_factory=dict)
+
+    @property
+    def program_path(self) -> Path | None:
+        return self.files.get("program")
+
+
+def load(path: str | Path) -> LoadedScenario:
+    """Read and validate a scenario file and what it references."""
+    path = Path(path)
+    source = read_yaml(path)
+    data = source.data
+    if not isinstance(data, dict):
+        raise InputError("expected a YAML mapping of scenario fields", file=path, line=1, column=1)
+    files = {"scenario": path.resolve()}
+    data = dict(data)
+    for name, model in REFERENCED.items():
+        value = data.get(name)
+        if isinstance(value, str):
+            ref = _resolve(path, value, source, (name,))
+            data[name] = validate(read_yaml(ref), model)
+            files[name] = ref
+    program = data.get("program")
+    if isinstance(program, str):
+        ref = _resolve(path, program, source, ("program",))
+        data["program"] = ref
+        files["program"] = ref
+    scenario = validate(source, Scenario, data)
+    return LoadedScenario(scenario, path.resolve(), files)
+
+
+def _resolve(scenario_path: Path, reference: str, source: YamlSource, loc: tuple) -> Path:
+    ref = (scenario_path.parent / reference).resolve()
+    if not ref.is_file():
+        line, column = source.position(loc) or (None, None)
+        raise InputError(f"referenced file {reference!r} not found (looked for {ref})",
+                         file=scenario_path, line=line, column=column, field=".".join(map(str, loc)))
+    return ref
+
+
+def validate(source: YamlSource, model: type[BaseModel], data=None):
+    """Validate ``source``'s data (or ``data`` read from it) against ``model``.
+
+    Raises :class:`InputError` for the first problem, with its position.
+    """
+    try:
+        return model.model_validate(source.data if data is None else data)
+    except ValidationError as error:
+        raise _input_error(error, source, model) from None
+
+
+def _input_error(error: ValidationError, source: YamlSource, model: type[BaseModel]) -> InputError:
+    problems = error.errors(include_url=False)
+    # a misspelt field shows as an unknown one plus a missing one: name the
+    # misspelling first, since it is what the user has to fix
+    first = min(problems, key=lambda p: p["type"] != "extra_forbidden")
+    loc = _clean_loc(first["loc"])
+    line, column = source.position(loc) or (None, None)
+    message = _describe(first, loc, model)
+    if len(problems) > 1:
+        message += f" ({len(problems) - 1} more problem{'s' if len(problems) > 2 else ''} in this file)"
+    return InputError(message, file=source.path, line=line, column=column,
+                      field=".".join(str(part) for part in loc) or None)
+
+
+def _clean_loc(loc: tuple) -> tuple:
+    """Drop pydantic's internal location parts (validator and union tags)."""
+    return tuple(part for part in loc if not (isinstance(part, str) and ("[" in part or "-" in part)))
+
+
+def _describe(problem: dict, loc: tuple, model: type[BaseModel]) -> str:
+    kind = problem["type"]
+    message = problem["msg"]
+    if message.startswith("Value error, "):
+        message = message[len("Value error, "):]
+    if kind == "extra_forbidden":
+        allowed = _fields_at(model, loc[:-1])
+        message = f"unknown field {loc[-1]!r}"
+        close = difflib.get_close_matches(str(loc[-1]), allowed, n=1, cutoff=0.6)
+        if close:
+            message += f"; did you mean {close[0]!r}?"
+        elif allowed:
+            message += f"; expected one of: {', '.join(allowed)}"
+    elif kind == "missing":
+        message = f"missing required field {loc[-1]!r}" if loc else "missing required field"
+    else:
+        given = problem.get("input")
+        if not isinstance(given, (dict, list)):
+            message += f" (got {given!r})"
+    return message
+
+
+def _fields_at(model: type[BaseModel], loc: tuple) -> list[str]:
+    """Field names of the model found by following ``loc`` from ``model``."""
+    current: object = model
+    for part in loc:
+        if isinstance(part, int):
+            continue
+        submodel = _model_in(current)
+        if submodel is None or part not in submodel.model_fields:
+            return []
+        current = submodel.model_fields[part].annotation
+    found = _model_in(current)
+    return list(found.model_fields) if found else []
+
+
+def _model_in(annotation: object) -> type[BaseModel] | None:
+    """The pydantic model inside an annotation (through Optional, tuple, list)."""
+    if isinstance(annotation, type) and issubclass(annotation, BaseModel):
+        return annotation
+    origin = typing.get_origin(annotation)
+    if origin is typing.Annotated:
+        return _model_in(typing.get_args(annotation)[0])
+    if origin in (typing.Union, types.UnionType, list, tuple):
+        for arg in typing.get_args(annotation):
+            found = _model_in(arg)
+            if found is not None:
+                return found
+    return None

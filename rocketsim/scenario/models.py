@@ -1,0 +1,201 @@
+"""The shapes of scenario files, as pydantic v2 models.
+
+A scenario names a vehicle, a launch site, the day's weather, a mission and
+a flight-computer program. Each of ``vehicle``, ``site`` and ``mission`` is
+either written inline or given as a path to its own YAML file, resolved
+relative to the scenario file. Quantities are SI numbers or strings with a
+unit (``"400 km"``, ``"51.6 deg"``; see :mod:`rocketsim.scenario.units`);
+angles always carry a unit.
+
+Every model forbids unknown fields, so a misspelt field is an error (with a
+"did you mean"), never silently ignored. New capabilities add optional fields
+(``stages:`` on a vehicle, say) so existing files keep validating.
+"""
+
+from __future__ import annotations
+
+import datetime as dt
+from pathlib import Path
+from typing import Annotated, Optional, Union
+
+from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
+
+from rocketsim.constants import MAX_HEADLESS_STEP, STEP
+from rocketsim.scenario.units import Angle, Duration, Frequency, Inertia, Length, Mass, Speed
+
+PositiveMass = Annotated[Mass, Field(gt=0)]
+# a path to a YAML file of its own, resolved by the loader relative to the scenario
+FileReference = Annotated[str, Field(pattern=r"\.ya?ml$")]
+PositiveInertia = Annotated[Inertia, Field(gt=0)]
+
+
+class Strict(BaseModel):
+    """Base of every scenario model: unknown fields are errors."""
+
+    model_config = ConfigDict(extra="forbid", frozen=True)
+
+
+# --- vehicle ------------------------------------------------------------------
+
+class RigidBodySpec(Strict):
+    """A vehicle as one rigid body of constant mass (body x = roll axis, nose)."""
+
+    mass: PositiveMass = Field(description="total mass")
+    inertia: tuple[PositiveInertia, PositiveInertia, PositiveInertia] = Field(
+        description="principal moments of inertia about the centre of mass: roll (x), pitch (y), yaw (z)")
+    length: Annotated[Length, Field(gt=0)] = Field(1.0, description="overall length (for plots)")
+    diameter: Annotated[Length, Field(gt=0)] = Field(1.0, description="reference diameter")
+
+
+class VehicleSpec(Strict):
+    """A vehicle file. The foundation flies ``rigid_body``; staged vehicles come later."""
+
+    name: str
+    description: str = ""
+    source: str = Field("", description="where the figures come from")
+    rigid_body: RigidBodySpec
+
+
+# --- site ---------------------------------------------------------------------
+
+class SiteSpec(Strict):
+    """A launch site on the WGS84 ellipsoid."""
+
+    name: str
+    latitude: Angle = Field(description="geodetic latitude")
+    longitude: Angle = Field(description="longitude, east positive")
+    height: Length = Field(0.0, description="height of the pad above the WGS84 ellipsoid")
+    pad_azimuth: Angle = Field(1.5707963267948966, description="launch azimuth from north, default due east")
+    source: str = ""
+
+    @field_validator("latitude")
+    @classmethod
+    def _latitude_range(cls, value: float) -> float:
+        if not -1.5707963267948966 <= value <= 1.5707963267948966:
+            raise ValueError("latitude must be within -90 deg .. 90 deg")
+        return value
+
+
+# --- mission ------------------------------------------------------------------
+
+class OrbitStart(Strict):
+    """Start in orbit about Earth from classical elements at the mission epoch.
+
+    Give ``altitude`` (circular, above the equatorial radius) or
+    ``semi_major_axis`` (with ``eccentricity``).
+    """
+
+    altitude: Optional[Length] = None
+    semi_major_axis: Optional[Annotated[Length, Field(gt=0)]] = None
+    eccentricity: Annotated[float, Field(ge=0, lt=1)] = 0.0
+    inclination: Angle
+    raan: Angle = 0.0
+    arg_periapsis: Angle = 0.0
+    true_anomaly: Angle = 0.0
+
+    @model_validator(mode="after")
+    def _one_size(self) -> "OrbitStart":
+        if (self.altitude is None) == (self.semi_major_axis is None):
+            raise ValueError("give exactly one of 'altitude' or 'semi_major_axis'")
+        if self.altitude is not None and self.eccentricity != 0.0:
+            raise ValueError("'altitude' means a circular orbit: use 'semi_major_axis' with 'eccentricity'")
+        return self
+
+
+class StateStart(Strict):
+    """Start from a state vector in the inertial frame (ECI at the epoch)."""
+
+    position: tuple[Length, Length, Length]
+    velocity: tuple[Speed, Speed, Speed]
+
+
+class SiteStart(Strict):
+    """Start on the launch site, optionally moving relative to the ground.
+
+    ``velocity`` is east, north, up relative to the rotating Earth (a
+    free-flight release); the body's nose points along ``elevation`` above the
+    horizon towards the site's pad azimuth.
+    """
+
+    velocity: tuple[Speed, Speed, Speed] = (0.0, 0.0, 0.0)
+    elevation: Angle = Field(1.5707963267948966, description="nose elevation, default vertical")
+
+
+class StartSpec(Strict):
+    """Where the flight starts: exactly one of ``site``, ``orbit``, ``state``."""
+
+    site: Optional[SiteStart] = None
+    orbit: Optional[OrbitStart] = None
+    state: Optional[StateStart] = None
+
+    @model_validator(mode="after")
+    def _exactly_one(self) -> "StartSpec":
+        given = [name for name in ("site", "orbit", "state") if getattr(self, name) is not None]
+        if len(given) != 1:
+            raise ValueError("give exactly one of 'site', 'orbit' or 'state'"
+                             + (f" (got {', '.join(given)})" if given else ""))
+        return self
+
+
+class MissionSpec(Strict):
+    """What the flight is: when it starts, from where, and for how long."""
+
+    name: str = ""
+    epoch: dt.datetime = Field(description="UTC instant of mission time 0 (ISO 8601)")
+    dut1: Annotated[float, Field(ge=-0.9, le=0.9)] = Field(0.0, description="UT1 - UTC, s")
+    start: StartSpec
+    duration: Annotated[Duration, Field(gt=0)] = Field(description="mission time to fly")
+    initial_rates: tuple[float, float, float] = Field(
+        (0.0, 0.0, 0.0), description="body rates at the start, rad/s (roll, pitch, yaw)")
+
+    @field_validator("epoch")
+    @classmethod
+    def _utc(cls, value: dt.datetime) -> dt.datetime:
+        if value.tzinfo is None:
+            return value.replace(tzinfo=dt.timezone.utc)
+        return value.astimezone(dt.timezone.utc)
+
+
+# --- scenario -----------------------------------------------------------------
+
+class TelemetrySpec(Strict):
+    rate: Annotated[Frequency, Field(gt=0, le=50)] = Field(10.0, description="samples per second")
+
+
+class Scenario(Strict):
+    """A scenario file: what flies, from where, on which day, with which program."""
+
+    name: str
+    description: str = ""
+    vehicle: Union[VehicleSpec, FileReference] = Field(
+        description="the vehicle, inline or as a path to a vehicle file (relative to this file)")
+    site: Optional[Union[SiteSpec, FileReference]] = Field(
+        None, description="the launch site, inline or as a path to a site file")
+    mission: Union[MissionSpec, FileReference] = Field(
+        description="the mission, inline or as a path to a mission file")
+    program: Optional[Path] = Field(None, description="flight-computer program (Python file with main(fc))")
+    step: Annotated[Duration, Field(gt=0)] = Field(STEP, description="integration step, at most 0.1 s")
+    telemetry: TelemetrySpec = TelemetrySpec()
+    seed: int = Field(0, description="seed of every random stream of the run")
+
+    @field_validator("step")
+    @classmethod
+    def _step_limit(cls, value: float) -> float:
+        return check_step(value)
+
+    @model_validator(mode="after")
+    def _site_when_needed(self) -> "Scenario":
+        for name in ("vehicle", "site", "mission"):
+            if isinstance(getattr(self, name), str):
+                raise ValueError(f"'{name}' names a file: load scenarios with rocketsim.scenario.load")
+        if self.mission.start.site is not None and self.site is None:
+            raise ValueError("mission starts on a site: give 'site'")
+        return self
+
+
+def check_step(value: float) -> float:
+    """The headless step limit: any step up to 0.1 s, nothing larger."""
+    if value > MAX_HEADLESS_STEP:
+        raise ValueError(f"step {value:g} s is larger than the {MAX_HEADLESS_STEP:g} s a headless "
+                         "run accepts (the flight model flies 0.02 s)")
+    return value

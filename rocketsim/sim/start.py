@@ -1,0 +1,71 @@
+"""The state a flight starts from: on a launch site, in orbit, or a state vector.
+
+The inertial frame is the ECI of the mission epoch: ``z`` along Earth's spin
+axis, ``x`` through the Greenwich meridian at mission time 0. It is the J2000
+equatorial frame turned about its pole by the Greenwich mean sidereal time of
+the epoch (precession and nutation ignored), so an orbit's right ascension of
+the ascending node, given from the equinox in the mission file, becomes
+``raan - GMST(epoch)`` here.
+
+Body axes: ``x`` is the nose (roll axis). On a site the nose points at
+``elevation`` above the horizon towards the pad azimuth; ``z`` lies in the same
+vertical plane on the ground side (for a vertical vehicle it points opposite
+to the azimuth), ``y = z x x`` completes the right-handed set.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from rocketsim.constants import EARTH_MU, EARTH_RADIUS_EQ
+from rocketsim.frames.earth_fixed import ecef_to_eci_velocity
+from rocketsim.frames.elements import elements_to_state
+from rocketsim.frames.geodetic import enu_basis, geodetic_to_ecef
+from rocketsim.frames.quaternion import quat_from_matrix
+from rocketsim.scenario.models import MissionSpec, SiteSpec
+
+
+def site_attitude(site: SiteSpec, elevation: float) -> np.ndarray:
+    """Quaternion (body -> ECI at t = 0) of a vehicle on ``site``, nose at ``elevation``."""
+    east, north, up = enu_basis(site.latitude, site.longitude)
+    heading = math.sin(site.pad_azimuth) * east + math.cos(site.pad_azimuth) * north
+    nose = math.cos(elevation) * heading + math.sin(elevation) * up
+    belly = -math.sin(elevation) * heading + math.cos(elevation) * up
+    # ground side of the pitch plane: for a vertical vehicle, opposite the azimuth
+    z_axis = belly
+    y_axis = np.cross(z_axis, nose)
+    return quat_from_matrix(np.column_stack((nose, y_axis, z_axis)))
+
+
+def start_state(mission: MissionSpec, site: SiteSpec | None, gmst0: float):
+    """``(r, v, q)`` at mission time 0 in the ECI of the epoch (m, m/s, quaternion)."""
+    start = mission.start
+    if start.site is not None:
+        r = geodetic_to_ecef(site.latitude, site.longitude, site.height)   # ECI = ECEF at t = 0
+        east, north, up = enu_basis(site.latitude, site.longitude)
+        ground = start.site.velocity
+        v_ecef = ground[0] * east + ground[1] * north + ground[2] * up
+        v = ecef_to_eci_velocity(r, v_ecef, 0.0)
+        return r, v, site_attitude(site, start.site.elevation)
+    if start.orbit is not None:
+        orbit = start.orbit
+        a = orbit.semi_major_axis if orbit.altitude is None else EARTH_RADIUS_EQ + orbit.altitude
+        r, v = elements_to_state(a, orbit.eccentricity, orbit.inclination, orbit.raan - gmst0,
+                                 orbit.arg_periapsis, orbit.true_anomaly, EARTH_MU)
+        return np.asarray(r), np.asarray(v), prograde_attitude(r, v)
+    state = start.state
+    r = np.array(state.position, dtype=float)
+    v = np.array(state.velocity, dtype=float)
+    return r, v, prograde_attitude(r, v)
+
+
+def prograde_attitude(r, v) -> np.ndarray:
+    """Quaternion with the nose along ``v`` and ``z`` towards the centre (``-r``)."""
+    nose = np.asarray(v, dtype=float) / np.linalg.norm(v)
+    down = -np.asarray(r, dtype=float)
+    z_axis = down - (down @ nose) * nose
+    z_axis /= np.linalg.norm(z_axis)
+    y_axis = np.cross(z_axis, nose)
+    return quat_from_matrix(np.column_stack((nose, y_axis, z_axis)))

@@ -1,0 +1,271 @@
+"""The world of one run: its bodies, the step loop, events and telemetry.
+
+Everything with state lives here; the physics it calls is pure. Each step of
+``h`` seconds (20 ms by default):
+
+1. each awake program that is due runs once (it runs until it hands back);
+2. every flying body is advanced by RK4 (sub-stepped within 2 m of the ground);
+3. events are detected (impact);
+4. telemetry is sampled at the configured rate.
+
+Mission time is ``k h`` for the integer step count ``k``, never an
+accumulated sum. While no program is due and no sample is due, steps are
+batched inside the compiled kernel: bit-identical to stepping one at a time.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Callable
+
+import numpy as np
+
+from rocketsim.constants import DEG, EARTH_J2, EARTH_MU, EARTH_RADIUS_EQ, EARTH_RADIUS_POLAR
+from rocketsim.dynamics.rk4 import advance
+from rocketsim.dynamics.state import P_MASS, Q, R, V, W, make_params, make_state
+from rocketsim.flight.fc import FlightComputer
+from rocketsim.flight.program import ProgramRunner, load_program
+from rocketsim.frames.earth_fixed import eci_to_ecef, eci_to_ecef_velocity
+from rocketsim.frames.elements import Elements, state_to_elements
+from rocketsim.frames.geodetic import ecef_to_geodetic
+from rocketsim.scenario.load import LoadedScenario
+from rocketsim.scenario.models import check_step
+from rocketsim.errors import InputError
+from rocketsim.sim.start import start_state
+from rocketsim.timescales import Epoch
+
+
+@dataclass
+class Body:
+    """One body in flight: its state, parameters, program and record."""
+
+    name: str
+    y: np.ndarray
+    p: np.ndarray
+    runner: ProgramRunner | None = None
+    fc: FlightComputer | None = None
+    flying: bool = True
+    events: list[dict] = field(default_factory=list)
+    mu: float = EARTH_MU
+    _geodetic_at: float = math.nan
+    _geodetic: tuple = (math.nan, math.nan, math.nan)
+    t: float = 0.0
+
+    @property
+    def position(self) -> np.ndarray:
+        return self.y[R:R + 3]
+
+    @property
+    def velocity(self) -> np.ndarray:
+        return self.y[V:V + 3]
+
+    @property
+    def attitude(self) -> np.ndarray:
+        return self.y[Q:Q + 4]
+
+    @property
+    def body_rates(self) -> np.ndarray:
+        return self.y[W:W + 3]
+
+    @property
+    def mass(self) -> float:
+        return float(self.p[P_MASS])
+
+    def geodetic(self) -> tuple[float, float, float]:
+        """(latitude rad, longitude rad, height m) on WGS84, cached per step."""
+        if self._geodetic_at != self.t:
+            lat, lon, h = ecef_to_geodetic(eci_to_ecef(self.position, self.t))
+            self._geodetic = (float(lat), float(lon), float(h))
+            self._geodetic_at = self.t
+        return self._geodetic
+
+    def elements(self) -> Elements:
+        return state_to_elements(self.position, self.velocity, self.mu)
+
+
+class World:
+    """One run of a scenario. Build with :meth:`from_scenario`, then :meth:`run`."""
+
+    def __init__(self, epoch: Epoch, h: float, duration: float, bodies: list[Body]):
+        self.epoch = epoch
+        self.gmst0 = epoch.gmst()
+        self.h = h
+        self.duration = duration
+        self.n_steps = int(math.floor(duration / h + 1e-9))
+        self.bodies = bodies
+        self.k = 0
+        self.telemetry = None
+        self.sample_every = 1
+        self.on_progress: Callable[[float], None] | None = None
+
+    @property
+    def t(self) -> float:
+        """Mission time (s)."""
+        return self.k * self.h
+
+    @classmethod
+    def from_scenario(cls, loaded: LoadedScenario, step: float | None = None,
+                      duration: float | None = None) -> "World":
+        scenario = loaded.scenario
+        h = scenario.step if step is None else _checked_step(step)
+        mission = scenario.mission
+        epoch = Epoch.from_utc(mission.epoch, mission.dut1)
+        r, v, q = start_state(mission, scenario.site, epoch.gmst())
+        rigid = scenario.vehicle.rigid_body
+        body = Body(
+            name=_channel_name(scenario.vehicle.name),
+            y=make_state(r, v, q, mission.initial_rates),
+            p=make_params(rigid.mass, rigid.inertia, EARTH_MU, EARTH_RADIUS_EQ, EARTH_J2,
+                          EARTH_RADIUS_POLAR),
+        )
+        world = cls(epoch, h, mission.duration if duration is None else duration, [body])
+        world.sample_every = max(1, round(1.0 / (scenario.telemetry.rate * h)))
+        if loaded.program_path is not None:
+            main = load_program(loaded.program_path)
+            body.runner = ProgramRunner(main, loaded.program_path)
+            body.fc = FlightComputer(world, body)
+        return world
+
+    # --- records ------------------------------------------------------------
+    def log(self, body: Body, message: str) -> None:
+        if self.telemetry is not None:
+            self.telemetry.log(self.t, body.name, message)
+
+    def event(self, body: Body, name: str, figures: dict) -> None:
+        """Record an event of ``body`` at the body's own time (SI figures)."""
+        record = {"name": name, "time_s": body.t, **figures}
+        body.events.append(record)
+        if self.telemetry is not None:
+            self.telemetry.event(body.t, body.name, name, figures)
+
+    def sample(self, body: Body) -> dict:
+        """The telemetry message of ``body`` at its time (SI; degrees where named)."""
+        lat, lon, height = body.geodetic()
+        return {
+            "t": body.t,
+            "position": body.position.tolist(),
+            "velocity": body.velocity.tolist(),
+            "attitude": body.attitude.tolist(),
+            "body_rates": body.body_rates.tolist(),
+            "latitude_deg": lat / DEG,
+            "longitude_deg": lon / DEG,
+            "altitude": height,
+            "speed": float(np.linalg.norm(body.velocity)),
+            "orbit": self.orbit_summary(body),
+        }
+
+    def orbit_summary(self, body: Body) -> dict:
+        """Osculating elements with angles in degrees, RAAN from the equinox."""
+        el = body.elements()
+        return {
+            "semi_major_axis": el.a,
+            "eccentricity": el.e,
+            "inclination_deg": el.i / DEG,
+            "raan_deg": math.fmod(el.raan + self.gmst0, 2 * math.pi) / DEG,
+            "arg_periapsis_deg": el.argp / DEG,
+            "true_anomaly_deg": el.nu / DEG,
+            "periapsis_altitude": el.periapsis - EARTH_RADIUS_EQ,
+            "apoapsis_altitude": el.apoapsis - EARTH_RADIUS_EQ if math.isfinite(el.apoapsis) else None,
+            "period": el.period if math.isfinite(el.period) else None,
+        }
+
+    # --- the loop -----------------------------------------------------------
+    def run(self, telemetry=None) -> dict:
+        """Fly to the end of the mission (or until every body has landed or hit)."""
+        self.telemetry = telemetry
+        for body in self.bodies:
+            if telemetry is not None:
+                telemetry.add_body(body.name)
+        self._sample_all()
+        try:
+            while self.k < self.n_steps and any(b.flying for b in self.bodies):
+                self._run_programs()
+                n = self._batch_length()
+                for body in self.bodies:
+                    if body.flying:
+                        self._advance(body, n)
+                self.k += n
+                if self.k % self.sample_every == 0 or self.k >= self.n_steps:
+                    self._sample_all()
+                if self.on_progress is not None:
+                    self.on_progress(self.t)
+        finally:
+            for body in self.bodies:
+                if body.runner is not None:
+                    body.runner.close()
+        return self.summary()
+
+    def _run_programs(self) -> None:
+        t = self.t
+        for body in self.bodies:
+            if body.flying and body.runner is not None and body.runner.due(t):
+                body.runner.resume(body.fc)
+
+    def _batch_length(self) -> int:
+        """Steps that can be taken before anything needs deciding."""
+        n = min(self.n_steps - self.k, self.sample_every - self.k % self.sample_every)
+        for body in self.bodies:
+            runner = body.runner
+            if not body.flying or runner is None or runner.finished:
+                continue
+            if runner.waiting_on_predicate:
+                return 1
+            wake_steps = math.ceil((runner.wake_time() - self.t) / self.h - 1e-9)
+            n = min(n, max(1, wake_steps))
+        return max(1, n)
+
+    def _advance(self, body: Body, n: int) -> None:
+        y, taken = advance(body.y, self.k, self.h, n, body.p)
+        body.y = y
+        body.t = (self.k + taken) * self.h
+        if taken < n:
+            # the body went below the ground in its last step: it has hit
+            lat, lon, _ = body.geodetic()
+            ground_speed = np.linalg.norm(eci_to_ecef_velocity(body.position, body.velocity, body.t))
+            self.event(body, "impact", {"latitude_deg": lat / DEG, "longitude_deg": lon / DEG,
+                                        "speed_m_s": float(ground_speed)})
+            body.flying = False
+            if self.telemetry is not None:
+                self.telemetry.state(body.name, self.sample(body))
+
+    def _sample_all(self) -> None:
+        if self.telemetry is None:
+            return
+        for body in self.bodies:
+            if body.flying:
+                self.telemetry.state(body.name, self.sample(body))
+
+    def summary(self) -> dict:
+        """Events and final state of each body, SI units (degrees where named)."""
+        bodies = {}
+        for body in self.bodies:
+            lat, lon, height = body.geodetic()
+            bodies[body.name] = {
+                "events": body.events,
+                "final": {
+                    "time_s": body.t,
+                    "position_m": body.position.tolist(),
+                    "velocity_m_s": body.velocity.tolist(),
+                    "latitude_deg": lat / DEG,
+                    "longitude_deg": lon / DEG,
+                    "altitude_m": height,
+                    "speed_m_s": float(np.linalg.norm(body.velocity)),
+                },
+                "orbit": self.orbit_summary(body),
+            }
+        return {"epoch_utc": self.epoch.utc.isoformat(), "step_s": self.h,
+                "mission_time_s": self.t, "bodies": bodies}
+
+
+def _checked_step(step: float) -> float:
+    try:
+        return check_step(step)
+    except ValueError as error:
+        raise InputError(str(error), field="--step") from None
+
+
+def _channel_name(name: str) -> str:
+    return "".join(c if c.isalnum() or c in "-_" else "_" for c in name) or "vehicle"
+
+

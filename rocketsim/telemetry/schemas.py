@@ -1,0 +1,82 @@
+"""JSON schemas of the telemetry messages (one home for each message's shape).
+
+Every channel carries JSON messages described by a JSON Schema registered in
+the MCAP file, so Foxglove's Plot panel and any MCAP reader can use them.
+Units are SI and stated in each field's description; angles in telemetry
+are degrees where the field name ends in ``_deg``.
+"""
+
+from __future__ import annotations
+
+import json
+
+_VEC3 = {"type": "array", "items": {"type": "number"}, "minItems": 3, "maxItems": 3}
+
+BODY_STATE = {
+    "title": "rocketsim.BodyState",
+    "description": "State of one body at one instant (inertial frame: ECI of the mission epoch).",
+    "type": "object",
+    "properties": {
+        "t": {"type": "number", "description": "mission time, s"},
+        "position": {**_VEC3, "description": "centre of mass, ECI, m"},
+        "velocity": {**_VEC3, "description": "velocity, ECI, m/s"},
+        "attitude": {"type": "array", "items": {"type": "number"}, "minItems": 4, "maxItems": 4,
+                     "description": "unit quaternion (w, x, y, z), body axes -> ECI"},
+        "body_rates": {**_VEC3, "description": "body rates about x (roll), y, z, rad/s"},
+        "latitude_deg": {"type": "number", "description": "geodetic latitude (WGS84), deg"},
+        "longitude_deg": {"type": "number", "description": "longitude, east positive, deg"},
+        "altitude": {"type": "number", "description": "height above the WGS84 ellipsoid, m"},
+        "speed": {"type": "number", "description": "inertial speed, m/s"},
+        "orbit": {"$ref": "#/$defs/orbit"},
+    },
+    "required": ["t", "position", "velocity", "attitude", "body_rates", "latitude_deg",
+                 "longitude_deg", "altitude", "speed", "orbit"],
+    "$defs": {
+        "orbit": {
+            "type": "object",
+            "description": "osculating classical elements about the central body",
+            "properties": {
+                "semi_major_axis": {"type": "number", "description": "m (negative: hyperbola)"},
+                "eccentricity": {"type": "number"},
+                "inclination_deg": {"type": "number"},
+                "raan_deg": {"type": "number", "description": "from the equinox (J2000 axes), deg"},
+                "arg_periapsis_deg": {"type": "number"},
+                "true_anomaly_deg": {"type": "number"},
+                "periapsis_altitude": {"type": "number", "description": "above the equatorial radius, m"},
+                "apoapsis_altitude": {"type": ["number", "null"],
+                                      "description": "above the equatorial radius, m (null if unbound)"},
+                "period": {"type": ["number", "null"], "description": "s (null if unbound)"},
+            },
+        }
+    },
+}
+
+EVENT = {
+    "title": "rocketsim.Event",
+    "description": "Something that happened in flight, with its figures (SI units).",
+    "type": "object",
+    "properties": {
+        "t": {"type": "number", "description": "mission time, s"},
+        "body": {"type": "string"},
+        "name": {"type": "string"},
+        "figures": {"type": "object"},
+    },
+    "required": ["t", "body", "name", "figures"],
+}
+
+LOG = {
+    "title": "rocketsim.Log",
+    "description": "A line the flight program logged with fc.log().",
+    "type": "object",
+    "properties": {
+        "t": {"type": "number", "description": "mission time, s"},
+        "body": {"type": "string"},
+        "message": {"type": "string"},
+    },
+    "required": ["t", "body", "message"],
+}
+
+
+def schema_bytes(schema: dict) -> bytes:
+    """The schema as registered in the file (stable key order)."""
+    return json.dumps(schema, sort_keys=True, separators=(",", ":")).encode()
