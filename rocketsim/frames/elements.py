@@ -1,0 +1,201 @@
+"""Classical orbital elements <-> inertial state vector.
+
+Elements are those of Vallado, *Fundamentals of Astrodynamics and
+Applications* (4th ed., sec. 2.5-2.6, algorithms 9 and 10): semi-major axis
+``a`` (m; negative for a hyperbola, infinite for a parabola), eccentricity
+``e``, inclination ``i``, right ascension (longitude) of the ascending node
+``raan``, argument of periapsis ``argp`` and true anomaly ``nu`` (rad), all
+measured in the frame of ``r`` and ``v`` (ECI for Earth: equator and ``x``).
+
+Degenerate orbits get fixed conventions so that a round trip
+``elements_to_state(*state_to_elements(r, v, mu))`` always returns the state:
+
+* circular (``e < E_CIRCULAR``): ``argp = 0``, so ``nu`` is the argument of
+  latitude (from the ascending node);
+* equatorial (``sin i < SIN_I_EQUATORIAL``): ``raan = 0``, the node line is
+  the ``x`` axis, so ``argp`` is the longitude of periapsis (measured in the
+  direction of motion) and ``argp + nu`` the true longitude;
+* circular and equatorial: ``raan = argp = 0`` and ``nu`` is the true
+  longitude.
+
+Angles ``raan``, ``argp``, ``nu`` are returned in [0, 2 pi); ``i`` in [0, pi].
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import asdict, dataclass
+
+import numpy as np
+
+from rocketsim.constants import EARTH_MU
+
+E_CIRCULAR = 1e-11        # below this eccentricity an orbit is treated as circular
+SIN_I_EQUATORIAL = 1e-11  # below this sin(i) an orbit is treated as equatorial
+_TWO_PI = 2.0 * math.pi
+
+
+def _wrap(angle: float) -> float:
+    """Angle in [0, 2 pi)."""
+    w = math.fmod(angle, _TWO_PI)
+    if w < 0.0:
+        w += _TWO_PI
+    return 0.0 if w >= _TWO_PI else w
+
+
+@dataclass(frozen=True)
+class Elements:
+    """Classical orbital elements, SI units (m, rad) about a body of parameter ``mu``.
+
+    ``p`` (semi-latus rectum, m) is carried because it stays finite for a
+    parabola, whose ``a`` is infinite; left as nan it is computed from
+    ``a (1 - e^2)``.
+    """
+
+    a: float
+    e: float
+    i: float
+    raan: float
+    argp: float
+    nu: float
+    mu: float = EARTH_MU
+    p: float = math.nan
+
+    def __post_init__(self):
+        if math.isnan(self.p):
+            object.__setattr__(self, "p", self.a * (1.0 - self.e * self.e))
+
+    @property
+    def periapsis(self) -> float:
+        """Periapsis radius (m), ``p / (1 + e)``."""
+        return self.p / (1.0 + self.e)
+
+    @property
+    def apoapsis(self) -> float:
+        """Apoapsis radius (m), ``p / (1 - e)``; infinite unless elliptic."""
+        return self.p / (1.0 - self.e) if self.e < 1.0 else math.inf
+
+    @property
+    def period(self) -> float:
+        """Orbital period (s), ``2 pi sqrt(a^3 / mu)``; infinite unless elliptic."""
+        return _TWO_PI * math.sqrt(self.a**3 / self.mu) if self.e < 1.0 else math.inf
+
+    @property
+    def arglat(self) -> float:
+        """Argument of latitude ``u = argp + nu`` (rad, [0, 2 pi)), from the node."""
+        return _wrap(self.argp + self.nu)
+
+    @property
+    def true_longitude(self) -> float:
+        """True longitude ``raan + argp + nu`` (rad, [0, 2 pi)).
+
+        Measured from ``x`` to the node along the equator, then along the orbit
+        (for a retrograde orbit this is not the geometric angle from ``x``).
+        """
+        return _wrap(self.raan + self.argp + self.nu)
+
+    def as_dict(self) -> dict[str, float]:
+        """All elements and derived quantities as plain floats (SI).
+
+        ``apoapsis`` and ``period`` are ``inf`` for open orbits, and ``a`` for
+        a parabola; ``json.dumps`` writes them as ``Infinity``.
+        """
+        d = {k: float(v) for k, v in asdict(self).items()}
+        d.update(
+            periapsis=float(self.periapsis),
+            apoapsis=float(self.apoapsis),
+            period=float(self.period),
+            arglat=float(self.arglat),
+            true_longitude=float(self.true_longitude),
+        )
+        return d
+
+
+def _angle_about(u, w, axis) -> float:
+    """Angle (rad) from ``u`` to ``w``, positive right-handed about unit ``axis``."""
+    return math.atan2(float(np.dot(axis, np.cross(u, w))), float(np.dot(u, w)))
+
+
+def state_to_elements(r, v, mu: float = EARTH_MU) -> Elements:
+    """Classical elements of the state ``r`` (m), ``v`` (m/s) about a body of ``mu`` (m^3/s^2).
+
+    Vallado's RV2COE (algorithm 9) with every angle taken by ``atan2`` in the
+    orbit plane, so it is well conditioned near 0 and pi, and the conventions
+    of this module for circular and equatorial orbits.
+    """
+    r = np.asarray(r, dtype=float)
+    v = np.asarray(v, dtype=float)
+    rn = math.sqrt(float(r @ r))
+    v2 = float(v @ v)
+    h = np.cross(r, v)
+    hn = math.sqrt(float(h @ h))
+    h_hat = h / hn
+    e_vec = ((v2 - mu / rn) * r - float(r @ v) * v) / mu
+    e = math.sqrt(float(e_vec @ e_vec))
+    p = hn * hn / mu
+    energy = 0.5 * v2 - mu / rn
+    a = -mu / (2.0 * energy) if energy != 0.0 else math.inf
+    i = math.atan2(math.hypot(h[0], h[1]), h[2])
+
+    node = np.array([-h[1], h[0], 0.0])          # z x h
+    node_n = math.sqrt(float(node @ node))
+    if node_n < SIN_I_EQUATORIAL * hn:
+        raan = 0.0
+        node_hat = np.array([1.0, 0.0, 0.0])
+    else:
+        node_hat = node / node_n
+        raan = math.atan2(node_hat[1], node_hat[0])
+    if e < E_CIRCULAR:
+        argp = 0.0
+        peri_hat = node_hat
+    else:
+        peri_hat = e_vec / e
+        argp = _angle_about(node_hat, peri_hat, h_hat)
+    nu = _angle_about(peri_hat, r, h_hat)
+    return Elements(a=a, e=e, i=i, raan=_wrap(raan), argp=_wrap(argp), nu=_wrap(nu), mu=mu, p=p)
+
+
+def _perifocal_to_inertial(i: float, raan: float, argp: float) -> np.ndarray:
+    """Matrix ``R3(-raan) R1(-i) R3(-argp)`` whose columns are P, Q, W in inertial axes."""
+    co, so = math.cos(raan), math.sin(raan)
+    cw, sw = math.cos(argp), math.sin(argp)
+    ci, si = math.cos(i), math.sin(i)
+    return np.array([
+        [co * cw - so * sw * ci, -co * sw - so * cw * ci, so * si],
+        [so * cw + co * sw * ci, -so * sw + co * cw * ci, -co * si],
+        [sw * si, cw * si, ci],
+    ])
+
+
+def elements_to_state(a, e, i, raan, argp, nu, mu: float = EARTH_MU):
+    """Inertial ``(r, v)`` (m, m/s) of classical elements (m, rad) about ``mu`` (m^3/s^2).
+
+    Vallado's COE2RV (algorithm 10). ``a`` is negative for a hyperbola; the
+    parabola (``a`` infinite) is not accepted here. For the degenerate
+    orbits pass the conventions of this module (see its docstring).
+    """
+    p = a * (1.0 - e * e)
+    cn, sn = math.cos(nu), math.sin(nu)
+    radius = p / (1.0 + e * cn)
+    r_pqw = np.array([radius * cn, radius * sn, 0.0])
+    s = math.sqrt(mu / p)
+    v_pqw = np.array([-s * sn, s * (e + cn), 0.0])
+    m = _perifocal_to_inertial(i, raan, argp)
+    return m @ r_pqw, m @ v_pqw
+
+
+def time_to_apoapsis(r, v, mu: float = EARTH_MU) -> float:
+    """Time (s) until the next apoapsis of the state ``r`` (m), ``v`` (m/s); nan unless elliptic.
+
+    Kepler's equation: ``t = (pi - M) / n`` wrapped to one period, with ``M``
+    the mean anomaly. For a circular orbit it is the time to ``nu = pi``
+    under this module's convention (half a revolution past the node).
+    """
+    el = state_to_elements(r, v, mu)
+    if not el.e < 1.0:
+        return math.nan
+    half = 0.5 * el.nu
+    ecc_anom = 2.0 * math.atan2(math.sqrt(1.0 - el.e) * math.sin(half), math.sqrt(1.0 + el.e) * math.cos(half))
+    mean_anom = ecc_anom - el.e * math.sin(ecc_anom)
+    n = math.sqrt(mu / el.a**3)
+    return _wrap(math.pi - mean_anom) / n
