@@ -18,7 +18,7 @@ import numpy as np
 import pymap3d
 import pytest
 
-from rocketsim._jit import njit
+from numba import njit   # uncached on purpose: numba's disk cache misses edits to inlined callees
 from rocketsim.constants import EARTH_RADIUS_EQ, EARTH_RADIUS_POLAR
 from rocketsim.frames.geodetic import (
     ecef_to_geodetic,
@@ -116,7 +116,7 @@ def test_shapes_and_njit_agree():
     assert ecef_to_geodetic(r[1]) == ecef_to_geodetic_njit(*r[1])
     assert (lat[1], lon[1], h[1]) == ecef_to_geodetic_njit(*r[1])
 
-    @njit
+    @njit(cache=False)
     def height_in_kernel(x, y, z):           # a compiled caller, as the dynamics uses it
         return ecef_to_geodetic_njit(x, y, z)[2]
 

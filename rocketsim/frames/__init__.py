@@ -1,0 +1,7 @@
+"""Reference frames: quaternions, ECI <-> Earth-fixed, WGS84 geodetic, orbital elements.
+
+Modules: :mod:`~rocketsim.frames.quaternion` (compiled, scalar first),
+:mod:`~rocketsim.frames.earth_fixed`, :mod:`~rocketsim.frames.geodetic`,
+:mod:`~rocketsim.frames.elements`. Import functions from the module that
+computes them.
+"""
