@@ -53,3 +53,24 @@ STEP = 0.02                                # s, the flight model's fixed step
 MAX_HEADLESS_STEP = 0.1                    # s, largest step a headless run accepts
 GROUND_SUBSTEP_HEIGHT = 2.0                # m, below this height the step is split
 GROUND_SUBSTEPS = 4                        # sub-steps within GROUND_SUBSTEP_HEIGHT
+
+# --- Atmospheres (rocketsim.atmosphere) --------------------------------------
+# US Standard Atmosphere 1976 (NOAA-S/T 76-1562), section 1.2 and Table 2.
+USSA_R0 = 6_356_766.0                      # m, effective Earth radius for geopotential height
+USSA_M0 = 0.0289644                        # kg/mol, sea-level mean molar mass of air
+USSA_T0 = 288.15                           # K, sea-level temperature
+USSA_P0 = 101_325.0                        # Pa, sea-level pressure
+USSA_GAMMA = 1.40                          # ratio of specific heats of air
+USSA_BOLTZMANN = 1.380622e-23              # J/K, the standard's Boltzmann constant (p = N k T)
+USSA_SUTHERLAND_BETA = 1.458e-6            # kg/(m s K^0.5), viscosity law eq. 51
+USSA_SUTHERLAND_S = 110.4                  # K, Sutherland's constant, eq. 51
+# Moist air: ratio of the molar masses of water vapour and dry air (WMO-No. 8,
+# annex 4.B: epsilon = 0.621 98).
+WATER_AIR_MOLAR_RATIO = 0.62198
+# Mars atmosphere, NASA Glenn Research Center engineering model
+# (www.grc.nasa.gov/www/k-12/airplane/atmosmrm.html): the density formula's
+# gas constant 192.1 J/(kg K) (0.1921 in kPa units) and the 273.1 offset.
+MARS_GAS_CONSTANT_DENSITY = 192.1          # J/(kg K), Glenn model's density formula
+MARS_GAS_CONSTANT_SOUND = 188.92           # J/(kg K), CO2: 8.314 46 / 0.044 01 (speed of sound)
+MARS_CELSIUS_OFFSET = 273.1                # K, as written in the Glenn formula (not 273.15)
+MARS_GAMMA = 1.29                          # ratio of specific heats of CO2 near 200 K (+-0.02)

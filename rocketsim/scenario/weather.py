@@ -1,0 +1,107 @@
+"""The ``weather:`` section of a scenario, and the day's atmosphere table it gives.
+
+One of four kinds, chosen by ``kind``::
+
+    weather: {kind: standard}                       # US Standard Atmosphere 1976, calm
+    weather: {kind: sounding, file: soundings/72357_OUN_20110522_12Z.txt}
+    weather:                                        # or the same columns inline
+      kind: sounding
+      columns: {PRES: [966, 925, 850], HGHT: [345, 720, 1454], TEMP: [22.2, 20.4, 22.0]}
+    weather: {kind: random, seed: 7}                # a seeded random day
+    weather: {kind: classic, surface_temperature: "31 C"}   # standard shifted to the day
+
+A sounding ``file`` is resolved relative to the scenario (or weather) file;
+``.csv`` and ``.yaml`` files carry the Wyoming columns by name (see
+:mod:`rocketsim.atmosphere.sounding`), anything else is read as the
+University of Wyoming text listing.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Annotated, Literal, Optional, Union
+
+from pydantic import BaseModel, ConfigDict, Field, RootModel, model_validator
+
+from rocketsim.atmosphere.day import classic_profile, profile_table, standard_table
+from rocketsim.atmosphere.random_day import random_profile
+from rocketsim.atmosphere.sounding import COLUMNS, from_columns, read_sounding
+from rocketsim.atmosphere.table import AtmosphereTable
+from rocketsim.constants import USSA_P0
+from rocketsim.scenario.units import Pressure, Temperature
+
+
+class _Weather(BaseModel):
+    model_config = ConfigDict(extra="forbid", frozen=True)
+
+
+class StandardWeather(_Weather):
+    """The 1976 standard atmosphere, no wind."""
+
+    kind: Literal["standard"]
+
+
+class SoundingWeather(_Weather):
+    """A measured profile: a file, or the Wyoming columns written inline."""
+
+    kind: Literal["sounding"]
+    file: Optional[str] = Field(None, description="sounding file, relative to this file")
+    columns: Optional[dict[str, list[Optional[float]]]] = Field(
+        None, description="Wyoming columns by name (PRES hPa, HGHT m, TEMP C, ...)")
+
+    @model_validator(mode="after")
+    def _one_source(self) -> "SoundingWeather":
+        if (self.file is None) == (self.columns is None):
+            raise ValueError("give exactly one of 'file' and 'columns'")
+        if self.columns is not None:
+            unknown = [name for name in self.columns if name.upper() not in COLUMNS]
+            if unknown:
+                raise ValueError(f"unknown column {unknown[0]!r} (known: {', '.join(COLUMNS)})")
+        return self
+
+
+class RandomWeather(_Weather):
+    """A seeded random day (same seed, same day)."""
+
+    kind: Literal["random"]
+    seed: int = Field(description="seed of the day's random streams")
+
+
+class ClassicWeather(_Weather):
+    """A classic-range day: the standard atmosphere shifted by the day's surface temperature."""
+
+    kind: Literal["classic"]
+    surface_temperature: Annotated[Temperature, Field(gt=180.0, lt=340.0)] = Field(
+        description="sea-level temperature of the day (e.g. '31 C' or 304.15)")
+    surface_pressure: Annotated[Pressure, Field(gt=85_000.0, lt=110_000.0)] = Field(
+        USSA_P0, description="sea-level pressure of the day")
+
+
+Weather = Annotated[Union[StandardWeather, SoundingWeather, RandomWeather, ClassicWeather],
+                    Field(discriminator="kind")]
+
+
+class WeatherFile(RootModel[Weather]):
+    """A weather YAML file on its own: the ``weather:`` mapping at top level."""
+
+
+def build_atmosphere(weather: Weather, site_latitude: float, base_dir: str | Path
+                     ) -> AtmosphereTable:
+    """The day's 50 m :class:`AtmosphereTable` for ``weather`` at geodetic ``site_latitude``
+    (rad); a sounding ``file`` is resolved relative to ``base_dir``."""
+    if isinstance(weather, WeatherFile):
+        weather = weather.root
+    if isinstance(weather, StandardWeather):
+        return standard_table()
+    if isinstance(weather, SoundingWeather):
+        if weather.file is not None:
+            profile = read_sounding(Path(base_dir) / weather.file)
+        else:
+            columns = {k.upper(): [float("nan") if v is None else v for v in values]
+                       for k, values in weather.columns.items()}
+            profile = from_columns(columns, None, prefix="weather.columns.")
+    elif isinstance(weather, RandomWeather):
+        profile = random_profile(weather.seed, site_latitude)
+    else:
+        profile = classic_profile(weather.surface_temperature, weather.surface_pressure)
+    return profile_table(profile, site_latitude)
