@@ -255,7 +255,7 @@ class World:
                 "orbit": self.orbit_summary(body),
             }
         return {"epoch_utc": self.epoch.utc.isoformat(), "step_s": self.h,
-                "mission_time_s": self.t, "bodies": bodies}
+                "mission_time_s": max(b.t for b in self.bodies), "bodies": bodies}
 
 
 def _checked_step(step: float) -> float:

@@ -1,0 +1,67 @@
+"""Shared test helpers: write small scenarios into a temporary folder."""
+
+from __future__ import annotations
+
+import textwrap
+from pathlib import Path
+
+import pytest
+from click.testing import CliRunner
+
+ROOT = Path(__file__).resolve().parents[1]
+
+VEHICLE = """\
+name: probe
+rigid_body:
+  mass: 10 kg
+  inertia: [0.15, 0.12, 0.05]
+"""
+
+MISSION = """\
+epoch: 2026-11-26T12:00:00Z
+start:
+  orbit:
+    altitude: 415 km
+    inclination: 51.6 deg
+duration: {duration}
+"""
+
+
+@pytest.fixture
+def write(tmp_path):
+    """write(name, text) -> Path: a dedented file in the test's folder."""
+
+    def _write(name: str, text: str) -> Path:
+        path = tmp_path / name
+        path.parent.mkdir(parents=True, exist_ok=True)
+        path.write_text(textwrap.dedent(text))
+        return path
+
+    return _write
+
+
+@pytest.fixture
+def scenario(write):
+    """scenario(program_text=None, duration='10 s', extra='') -> Path of a coasting scenario."""
+
+    def _scenario(program: str | None = None, duration: str = "10 s", extra: str = "") -> Path:
+        write("vehicle.yaml", VEHICLE)
+        write("mission.yaml", MISSION.format(duration=duration))
+        text = "name: test\nvehicle: vehicle.yaml\nmission: mission.yaml\n" + extra
+        if program is not None:
+            write("program.py", program)
+            text += "program: program.py\n"
+        return write("scenario.yaml", text)
+
+    return _scenario
+
+
+@pytest.fixture
+def cli():
+    """cli(*args) -> click Result of ``rocketsim *args``."""
+    from rocketsim_cli.main import main
+
+    def _run(*args):
+        return CliRunner().invoke(main, [str(a) for a in args], catch_exceptions=False)
+
+    return _run

@@ -1,0 +1,103 @@
+"""The flight-computer scheduling contract (issue 2, item 7)."""
+
+import json
+
+import pytest
+
+from rocketsim.flight.program import ProgramError
+from rocketsim.scenario.load import load
+from rocketsim.sim.flight import fly
+from rocketsim.telemetry.reader import messages, metadata
+
+
+def logged(path):
+    return [m["message"] for _, _, m in messages(path, ["/log"])]
+
+
+def test_the_program_runs_exactly_once_per_step(scenario, tmp_path):
+    program = """
+    def main(fc):
+        while True:
+            fc.log(repr(fc.time))
+            fc.step()
+    """
+    out = tmp_path / "run.mcap"
+    fly(load(scenario(program, duration="1 s")), out)
+    times = [float(m) for m in logged(out)]
+    # one resume per 20 ms step, steps 0 .. 49, each once, at k * h exactly
+    assert times == [k * 0.02 for k in range(50)]
+
+
+def test_sleep_and_wait_until_wake_at_the_right_step(scenario, tmp_path):
+    program = """
+    def main(fc):
+        fc.sleep(1.0)
+        fc.log("woke", repr(fc.time))
+        fc.wait_until(lambda: fc.time >= 1.5)
+        fc.log("condition", repr(fc.time))
+        fc.sleep(0.0)
+        fc.log("zero sleep still yields", repr(fc.time))
+    """
+    out = tmp_path / "run.mcap"
+    fly(load(scenario(program, duration="3 s")), out)
+    assert logged(out) == ["woke 1.0", "condition 1.5", "zero sleep still yields 1.52"]
+
+
+def test_a_program_that_raises_names_its_file_and_line_and_leaves_readable_telemetry(scenario, cli, tmp_path):
+    program = """
+    def main(fc):
+        fc.sleep(0.5)
+        fc.log("about to fail")
+        return 1 / 0
+    """
+    path = scenario(program, duration="10 s")
+    out = tmp_path / "run.mcap"
+    result = cli("fly", path, "-o", out)
+    assert result.exit_code == 2
+    assert "Traceback" not in result.output
+    assert "program.py:5" in result.output and "ZeroDivisionError" in result.output
+    assert logged(out) == ["about to fail"]
+    states = list(messages(out, ["/probe/state"]))
+    assert states and states[-1][2]["t"] == pytest.approx(0.5)
+    outcome = metadata(out)["outcome"]
+    assert outcome["status"] == "error" and "ZeroDivisionError" in outcome["error"]
+
+
+def test_a_program_with_a_syntax_error_is_refused_before_flight(scenario, tmp_path):
+    path = scenario("def main(fc):\n    fc.step(\n")
+    with pytest.raises(ProgramError) as caught:
+        fly(load(path), tmp_path / "run.mcap")
+    assert caught.value.file.endswith("program.py") and caught.value.line is not None
+
+
+def test_a_program_without_main_is_refused(scenario, tmp_path):
+    with pytest.raises(ProgramError, match="main"):
+        fly(load(scenario("x = 1\n")), tmp_path / "run.mcap")
+
+
+def test_fc_step_outside_the_program_is_an_error(scenario, tmp_path):
+    program = """
+    def main(fc):
+        fc.wait_until(lambda: fc.step())
+    """
+    with pytest.raises(ProgramError, match="outside the flight program"):
+        fly(load(scenario(program)), tmp_path / "run.mcap")
+
+
+def test_summary_json_lists_events_final_state_and_orbit(scenario, cli, tmp_path):
+    program = """
+    def main(fc):
+        fc.sleep(2.0)
+        fc.event("checkpoint", altitude_m=fc.altitude)
+    """
+    out, summary_path = tmp_path / "run.mcap", tmp_path / "summary.json"
+    result = cli("fly", scenario(program), "-o", out, "--summary-json", summary_path)
+    assert result.exit_code == 0, result.output
+    summary = json.loads(summary_path.read_text())
+    body = summary["bodies"]["probe"]
+    assert [e["name"] for e in body["events"]] == ["checkpoint"]
+    assert body["events"][0]["time_s"] == pytest.approx(2.0)
+    assert 410e3 < body["events"][0]["altitude_m"] < 440e3
+    assert body["orbit"]["inclination_deg"] == pytest.approx(51.6, abs=0.01)
+    assert body["final"]["time_s"] == pytest.approx(10.0)
+    assert "checkpoint" in result.output

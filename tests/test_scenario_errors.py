@@ -1,0 +1,92 @@
+"""Bad input: one clear message naming file, line, column and field; exit 2; no traceback."""
+
+import pytest
+
+from rocketsim.errors import InputError
+from rocketsim.scenario.load import load
+from tests.conftest import MISSION, VEHICLE
+
+
+def assert_clean_error(result, *fragments):
+    assert result.exit_code == 2, result.output
+    assert "Traceback" not in result.output
+    for fragment in fragments:
+        assert fragment in result.output, result.output
+
+
+def test_misspelt_field_names_the_place_and_suggests_the_field(scenario, cli):
+    path = scenario()
+    path.with_name("mission.yaml").write_text(MISSION.format(duration="10 s").replace(
+        "inclination:", "inclinaton:"))
+    result = cli("fly", path, "-o", path.with_name("out.mcap"))
+    assert_clean_error(result, "mission.yaml:5:5", "start.orbit.inclinaton",
+                       "did you mean 'inclination'?")
+
+
+def test_missing_referenced_file(scenario, cli):
+    path = scenario()
+    path.with_name("vehicle.yaml").unlink()
+    result = cli("validate", path)
+    assert_clean_error(result, "scenario.yaml:2:1", "vehicle", "not found")
+
+
+def test_yaml_syntax_error_gives_line_and_column(write, cli):
+    path = write("broken.yaml", "name: x\nvehicle: [1, 2\nmission: m.yaml\n")
+    result = cli("validate", path)
+    assert_clean_error(result, "broken.yaml:3:", "YAML syntax error")
+
+
+def test_wrong_type(scenario, cli):
+    path = scenario()
+    path.with_name("vehicle.yaml").write_text(VEHICLE.replace("[0.15, 0.12, 0.05]", "heavy"))
+    result = cli("validate", path)
+    assert_clean_error(result, "vehicle.yaml:4:3", "rigid_body.inertia")
+
+
+def test_unknown_unit(scenario, cli):
+    path = scenario()
+    path.with_name("vehicle.yaml").write_text(VEHICLE.replace("10 kg", "10 stone"))
+    result = cli("validate", path)
+    assert_clean_error(result, "vehicle.yaml:3:3", "rigid_body.mass", "unknown unit 'stone'", "'kg'")
+
+
+def test_negative_mass(scenario, cli):
+    path = scenario()
+    path.with_name("vehicle.yaml").write_text(VEHICLE.replace("10 kg", "-10 kg"))
+    result = cli("validate", path)
+    assert_clean_error(result, "vehicle.yaml:3:3", "rigid_body.mass", "greater than 0")
+
+
+def test_angle_without_unit_is_refused(scenario, cli):
+    path = scenario()
+    path.with_name("mission.yaml").write_text(MISSION.format(duration="10 s").replace("51.6 deg", "51.6"))
+    result = cli("validate", path)
+    assert_clean_error(result, "mission.yaml:5:5", "inclination", "an angle needs a unit")
+
+
+def test_step_larger_than_a_tenth_of_a_second_in_the_file(scenario, cli):
+    path = scenario(extra="step: 0.2 s\n")
+    result = cli("fly", path, "-o", path.with_name("out.mcap"))
+    assert_clean_error(result, "scenario.yaml:4:1", "step", "larger than the 0.1 s")
+
+
+def test_step_larger_than_a_tenth_of_a_second_on_the_command_line(scenario, cli):
+    path = scenario()
+    result = cli("fly", path, "--step", "0.25", "-o", path.with_name("out.mcap"))
+    assert_clean_error(result, "--step", "larger than the 0.1 s")
+
+
+def test_the_error_is_an_input_error_for_library_callers(scenario):
+    path = scenario()
+    path.with_name("vehicle.yaml").write_text(VEHICLE.replace("10 kg", "-1 kg"))
+    with pytest.raises(InputError) as caught:
+        load(path)
+    assert (caught.value.line, caught.value.column, caught.value.field) == (3, 3, "rigid_body.mass")
+    assert caught.value.file.endswith("vehicle.yaml")
+
+
+def test_shipped_scenarios_validate(cli):
+    from tests.conftest import ROOT
+    files = sorted((ROOT / "scenarios").glob("*.yaml")) + sorted((ROOT / "vehicles").glob("*.yaml"))
+    result = cli("validate", *files)
+    assert result.exit_code == 0, result.output
