@@ -74,3 +74,8 @@ MARS_GAS_CONSTANT_DENSITY = 192.1          # J/(kg K), Glenn model's density for
 MARS_GAS_CONSTANT_SOUND = 188.92           # J/(kg K), CO2: 8.314 46 / 0.044 01 (speed of sound)
 MARS_CELSIUS_OFFSET = 273.1                # K, as written in the Glenn formula (not 273.15)
 MARS_GAMMA = 1.29                          # ratio of specific heats of CO2 near 200 K (+-0.02)
+# CO2 viscosity, Sutherland's law mu = mu0 (T/T0)^1.5 (T0 + S)/(T + S)
+# (F. M. White, Viscous Fluid Flow, 3rd ed., Table 1-2).
+CO2_VISCOSITY_REF = 1.370e-5               # Pa s at CO2_VISCOSITY_T0
+CO2_VISCOSITY_T0 = 273.0                   # K
+CO2_SUTHERLAND_S = 222.0                   # K

@@ -18,14 +18,17 @@ tropopause height     N(16.5 km - 7.5 km sin^2(lat), 0.75 km),        ~16.5 km t
                       clipped to +-3 sigma                            ~9 km polar
 sea-level pressure    N(1013.25 hPa, 10 hPa), clipped to +-3 sigma    synoptic spread
 surface temperature   N(300 K - 45 K sin^2(lat), 6 K), +-3 sigma      annual-mean zonal
-tropospheric lapse    U(5.5, 7.5) K/km                                moist to dry-ish
+tropopause temp.      N(195 K + 25 K sin^2(lat), 4 K), +-3 sigma      ~195 K tropics,
+                                                                      ~220 K polar
 surface rel. humidity U(20 %, 95 %), falling as exp(-z / 3 km)        boundary layer
 surface wind          Rayleigh(3 m/s), from U(0, 360°)                light to fresh
 jet stream            U(10, 60) m/s at the tropopause, Gaussian of    westerlies aloft
                       4 km half-width, from 270° + N(0, 30°)
 ====================  ==============================================  =================
 
-Above the tropopause the temperature is constant to 20 km.
+The temperature falls linearly from the surface to the tropopause (the lapse
+rate follows, about 6.4 K/km in the tropics, 5.5 at 45°) and stays constant
+above it to 20 km.
 """
 
 from __future__ import annotations
@@ -36,11 +39,12 @@ from rocketsim.atmosphere.sounding import (Sounding, mixing_ratio_from_vapour,
                                            saturation_vapour_pressure)
 from rocketsim.constants import USSA_P0
 
-QUANTITIES = ("tropopause", "pressure", "temperature", "lapse", "humidity", "wind")
+QUANTITIES = ("tropopause", "pressure", "temperature", "tropopause_temperature", "humidity",
+              "wind")
 TOP = 20_000.0                # m, top of the synthetic profile
 SPREADS = {                   # the documented spreads (1 sigma, or range)
     "tropopause_sigma": 750.0, "pressure_sigma": 1000.0, "temperature_sigma": 6.0,
-    "lapse_range": (0.0055, 0.0075), "humidity_range": (0.20, 0.95),
+    "tropopause_temperature_sigma": 4.0, "humidity_range": (0.20, 0.95),
     "surface_wind_scale": 3.0, "jet_range": (10.0, 60.0), "jet_direction_sigma": np.radians(30.0),
 }
 
@@ -63,7 +67,8 @@ def random_profile(seed: int, latitude: float) -> Sounding:
                                  SPREADS["tropopause_sigma"])
     p_sl = _clipped_normal(rng["pressure"], USSA_P0, SPREADS["pressure_sigma"])
     t_sl = _clipped_normal(rng["temperature"], 300.0 - 45.0 * s2, SPREADS["temperature_sigma"])
-    lapse = rng["lapse"].uniform(*SPREADS["lapse_range"])
+    t_tp = _clipped_normal(rng["tropopause_temperature"], 195.0 + 25.0 * s2,
+                           SPREADS["tropopause_temperature_sigma"])
     rh0 = rng["humidity"].uniform(*SPREADS["humidity_range"])
     wind = rng["wind"]
     surface_speed = wind.rayleigh(SPREADS["surface_wind_scale"])
@@ -72,7 +77,7 @@ def random_profile(seed: int, latitude: float) -> Sounding:
     jet_from = 1.5 * np.pi + SPREADS["jet_direction_sigma"] * wind.standard_normal()
 
     z = np.arange(0.0, TOP + 1.0, 250.0)
-    t = t_sl - lapse * np.minimum(z, tropopause)
+    t = t_sl + (t_tp - t_sl) * np.minimum(z, tropopause) / tropopause
     # A rough column pressure only for the humidity conversion (the table integrates its own).
     p_hpa = p_sl / 100.0 * np.exp(-z / 8_000.0)
     e = rh0 * np.exp(-z / 3_000.0) * saturation_vapour_pressure(t - 273.15)

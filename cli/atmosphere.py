@@ -1,0 +1,127 @@
+"""``rocketsim atmosphere``: print (and plot) the air of a day or of Mars."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import click
+import numpy as np
+
+from rocketsim.errors import InputError
+from rocketsim.scenario.units import UnitError, parse_quantity
+from rocketsim_cli.errors import reports_input_errors
+
+_COLUMNS = ("height_m", "temperature_K", "pressure_Pa", "density_kg_m3", "speed_of_sound_m_s")
+_WIND = ("wind_east_m_s", "wind_north_m_s")
+
+
+def _quantity(text: str, dimension: str, option: str) -> float:
+    try:
+        return parse_quantity(text if not _is_number(text) or dimension != "angle" else text,
+                              dimension)
+    except UnitError as error:
+        raise InputError(str(error), field=option) from None
+
+
+def _is_number(text: str) -> bool:
+    try:
+        float(text)
+    except ValueError:
+        return False
+    return True
+
+
+def _table(weather: Path | None, body: str, latitude: float):
+    if body == "mars":
+        if weather is not None:
+            raise InputError("--weather is for Earth; Mars has one mean atmosphere",
+                             field="--weather")
+        from rocketsim.atmosphere.mars import mars_table
+        return mars_table()
+    from rocketsim.scenario.weather import StandardWeather, WeatherFile, build_atmosphere
+    if weather is None:
+        return build_atmosphere(StandardWeather(kind="standard"), latitude, ".")
+    from rocketsim.scenario.load import validate
+    from rocketsim.scenario.yaml_source import read_yaml
+    model = validate(read_yaml(weather), WeatherFile)
+    return build_atmosphere(model, latitude, weather.resolve().parent)
+
+
+def _plot(path: Path, heights, rows, wind: bool, title: str) -> None:
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    km = heights / 1000.0
+    panels = [("temperature (K)", rows[1], False), ("pressure (Pa)", rows[2], True),
+              ("density (kg/m³)", rows[3], True)]
+    fig, axes = plt.subplots(1, 4 if wind else 3, figsize=(14 if wind else 11, 6), sharey=True)
+    for ax, (label, values, log) in zip(axes, panels):
+        ax.plot(values, km)
+        ax.set_xlabel(label)
+        if log:
+            ax.set_xscale("log")
+    if wind:
+        axes[3].plot(rows[5], km, label="east")
+        axes[3].plot(rows[6], km, label="north")
+        axes[3].set_xlabel("wind (m/s)")
+        axes[3].legend()
+    axes[0].set_ylabel("height (km)")
+    fig.suptitle(title)
+    fig.tight_layout()
+    fig.savefig(path)
+    plt.close(fig)
+
+
+@click.command()
+@click.option("--weather", type=click.Path(dir_okay=False, exists=True, path_type=Path),
+              help="weather YAML (kind: standard | sounding | random | classic)")
+@click.option("--body", type=click.Choice(["earth", "mars"]), default="earth", show_default=True)
+@click.option("--latitude", default="45 deg", show_default=True,
+              help="site geodetic latitude (gravity, random days)")
+@click.option("--from", "h_from", default="0 m", show_default=True, help="lowest height")
+@click.option("--to", "h_to", default="100 km", show_default=True, help="highest height")
+@click.option("--step", "h_step", default="1 km", show_default=True, help="height step")
+@click.option("--format", "fmt", type=click.Choice(["table", "csv"]), default="table",
+              show_default=True)
+@click.option("--plot", type=click.Path(dir_okay=False, path_type=Path),
+              help="also draw temperature, pressure, density and wind to this PNG")
+@reports_input_errors
+def atmosphere(weather, body, latitude, h_from, h_to, h_step, fmt, plot):
+    """Print the air against height: temperature, pressure, density, speed of sound
+    (and wind, when the day has any). Heights are geometric, above the reference
+    ellipsoid (Earth) or sphere (Mars); the air above 600 km is not tabulated.
+
+    \b
+    Examples:
+        rocketsim atmosphere --to 50km --step 5km
+        rocketsim atmosphere --weather scenarios/weather/oun.yaml --format csv
+        rocketsim atmosphere --body mars --to 150km --plot mars.png
+    """
+    lat = _quantity(latitude, "angle", "--latitude")
+    lo, hi = _quantity(h_from, "length", "--from"), _quantity(h_to, "length", "--to")
+    step = _quantity(h_step, "length", "--step")
+    if step <= 0 or hi < lo:
+        raise InputError("need --step > 0 and --to >= --from", field="--step")
+    if hi > 600_000.0:
+        raise InputError("the tables stop at 600 km (the flight model sees no air above)",
+                         field="--to")
+    if (hi - lo) / step > 1_000_000:
+        raise InputError("more than a million rows: use a larger --step", field="--step")
+    table = _table(weather, body, lat)
+    heights = lo + step * np.arange(int(np.floor((hi - lo) / step + 1e-9)) + 1)
+    rho, p, t, a, we, wn = table.at(heights)
+    wind = table.has_wind
+    rows = [heights, t, p, rho, a] + ([we, wn] if wind else [])
+    names = _COLUMNS + (_WIND if wind else ())
+    if fmt == "csv":
+        click.echo(",".join(names))
+        for values in zip(*rows):
+            click.echo(",".join(f"{v:.6g}" for v in values))
+    else:
+        click.echo("".join(f"{n:>16}" for n in names))
+        for values in zip(*rows):
+            click.echo("".join(f"{v:>16.6g}" for v in values))
+    if plot is not None:
+        title = "Mars" if body == "mars" else (str(weather) if weather else "US Standard 1976")
+        _plot(plot, heights, rows, wind, title)
+        click.echo(f"plot: {plot}", err=True)
