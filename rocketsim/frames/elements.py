@@ -28,6 +28,7 @@ from dataclasses import asdict, dataclass
 
 import numpy as np
 
+from rocketsim._jit import njit
 from rocketsim.constants import EARTH_MU
 
 E_CIRCULAR = 1e-11        # below this eccentricity an orbit is treated as circular
@@ -35,11 +36,10 @@ SIN_I_EQUATORIAL = 1e-11  # below this sin(i) an orbit is treated as equatorial
 _TWO_PI = 2.0 * math.pi
 
 
-def _wrap(angle: float) -> float:
+@njit
+def _wrap(angle):
     """Angle in [0, 2 pi)."""
-    w = math.fmod(angle, _TWO_PI)
-    if w < 0.0:
-        w += _TWO_PI
+    w = angle % _TWO_PI
     return 0.0 if w >= _TWO_PI else w
 
 
@@ -111,34 +111,35 @@ class Elements:
         return d
 
 
-def _angle_about(u, w, axis) -> float:
+@njit
+def _angle_about(u, w, axis):
     """Angle (rad) from ``u`` to ``w``, positive right-handed about unit ``axis``."""
-    return math.atan2(float(np.dot(axis, np.cross(u, w))), float(np.dot(u, w)))
+    return math.atan2(np.dot(axis, np.cross(u, w)), np.dot(u, w))
 
 
-def state_to_elements(r, v, mu: float = EARTH_MU) -> Elements:
-    """Classical elements of the state ``r`` (m), ``v`` (m/s) about a body of ``mu`` (m^3/s^2).
+@njit
+def elements_tuple(r, v, mu):
+    """``(a, e, i, raan, argp, nu, p)`` of the state ``r`` (m), ``v`` (m/s), compiled.
 
     Vallado's RV2COE (algorithm 9) with every angle taken by ``atan2`` in the
     orbit plane, so it is well conditioned near 0 and pi, and the conventions
-    of this module for circular and equatorial orbits.
+    of this module for circular and equatorial orbits. The compiled core of
+    :func:`state_to_elements`, for kernels and telemetry.
     """
-    r = np.asarray(r, dtype=float)
-    v = np.asarray(v, dtype=float)
-    rn = math.sqrt(float(r @ r))
-    v2 = float(v @ v)
+    rn = math.sqrt(np.dot(r, r))
+    v2 = np.dot(v, v)
     h = np.cross(r, v)
-    hn = math.sqrt(float(h @ h))
+    hn = math.sqrt(np.dot(h, h))
     h_hat = h / hn
-    e_vec = ((v2 - mu / rn) * r - float(r @ v) * v) / mu
-    e = math.sqrt(float(e_vec @ e_vec))
+    e_vec = ((v2 - mu / rn) * r - np.dot(r, v) * v) / mu
+    e = math.sqrt(np.dot(e_vec, e_vec))
     p = hn * hn / mu
     energy = 0.5 * v2 - mu / rn
     a = -mu / (2.0 * energy) if energy != 0.0 else math.inf
     i = math.atan2(math.hypot(h[0], h[1]), h[2])
 
     node = np.array([-h[1], h[0], 0.0])          # z x h
-    node_n = math.sqrt(float(node @ node))
+    node_n = math.sqrt(np.dot(node, node))
     if node_n < SIN_I_EQUATORIAL * hn:
         raan = 0.0
         node_hat = np.array([1.0, 0.0, 0.0])
@@ -152,7 +153,17 @@ def state_to_elements(r, v, mu: float = EARTH_MU) -> Elements:
         peri_hat = e_vec / e
         argp = _angle_about(node_hat, peri_hat, h_hat)
     nu = _angle_about(peri_hat, r, h_hat)
-    return Elements(a=a, e=e, i=i, raan=_wrap(raan), argp=_wrap(argp), nu=_wrap(nu), mu=mu, p=p)
+    return a, e, i, _wrap(raan), _wrap(argp), _wrap(nu), p
+
+
+def state_to_elements(r, v, mu: float = EARTH_MU) -> Elements:
+    """Classical elements of the state ``r`` (m), ``v`` (m/s) about a body of ``mu`` (m^3/s^2).
+
+    See :func:`elements_tuple` for the method and the conventions.
+    """
+    a, e, i, raan, argp, nu, p = elements_tuple(np.asarray(r, dtype=float), np.asarray(v, dtype=float),
+                                                float(mu))
+    return Elements(a=a, e=e, i=i, raan=raan, argp=argp, nu=nu, mu=mu, p=p)
 
 
 def _perifocal_to_inertial(i: float, raan: float, argp: float) -> np.ndarray:
