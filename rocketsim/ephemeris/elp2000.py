@@ -22,6 +22,7 @@ the Earth's flattening (A3, L') are added:
 from __future__ import annotations
 
 import math
+from typing import NamedTuple
 
 import numpy as np
 
@@ -34,7 +35,8 @@ from rocketsim.constants import (
     SECONDS_PER_DAY,
 )
 from rocketsim.ephemeris import _tables
-from rocketsim.ephemeris.precession import ecliptic_of_date_to_j2000, spherical_to_cartesian
+from rocketsim.ephemeris.precession import to_j2000, turn
+from rocketsim.ephemeris.sincos import sincos
 
 # Meeus (1998) eqs. 47.1-47.5: degrees, coefficients of T^0..T^4.
 MEAN_LONGITUDE = (218.3164477, 481267.88123421, -0.0015786, 1.0 / 538841.0, -1.0 / 65194000.0)
@@ -50,9 +52,33 @@ A3 = (313.45, 481266.484)
 ECCENTRICITY = (1.0, -0.002516, -0.0000074)
 MICRODEGREE = 1e-6 * DEG
 
-MAX_MULTIPLIER = 8     # largest |i| of D, l', l, F in the ELP main problem
 
-TABLE = (_tables.MOON_COORD, _tables.MOON_MULT, _tables.MOON_A)
+
+class Prepared(NamedTuple):
+    """An ELP2000-82B main-problem series laid out for the kernel.
+
+    The distinct argument multipliers (rows of ``i1..i4``) are evaluated once
+    each (longitude and distance share most of them); terms are sorted by
+    coordinate, ``start[c]:start[c+1]`` are the terms of coordinate ``c``.
+    """
+
+    mult: np.ndarray        # (4, U) distinct multipliers of D, l', l, F, as floats
+    start: np.ndarray       # (4,) coordinate boundaries
+    term_row: np.ndarray    # row of ``mult`` of each term
+    A: np.ndarray           # amplitude (arcsec, arcsec, km)
+
+
+def prepare(coord, mult, A) -> Prepared:
+    """Lay out a flat ELP series (``generate.ElpSeries`` fields)."""
+    order = np.argsort(np.asarray(coord), kind="stable")
+    rows, term_row = np.unique(np.asarray(mult)[order], axis=0, return_inverse=True)
+    start = np.searchsorted(np.asarray(coord)[order], np.arange(4))
+    return Prepared(np.ascontiguousarray(rows.T, dtype=np.float64), start.astype(np.int64),
+                    term_row.ravel().astype(np.int64),
+                    np.asarray(A, dtype=np.float64)[order])
+
+
+TABLE = prepare(_tables.MOON_COORD, _tables.MOON_MULT, _tables.MOON_A)
 
 
 @njit
@@ -86,57 +112,87 @@ def _add_sin(acc, amplitude, angle, angle_rate):
 
 
 @njit
-def lbd_kernel(coord, mult, A, T):
+def _sum_terms(first, last, row, A, value_row, rate_row):
+    """``sum A_k value_row[row_k]`` and ``sum A_k rate_row[row_k]`` over terms
+    ``first:last``, in two interleaved partial sums (combined in a fixed
+    order, so the bits are the same every run) to halve the chain of
+    dependent additions."""
+    v0 = v1 = d0 = d1 = 0.0
+    k = first
+    while k + 1 < last:
+        v0 += A[k] * value_row[row[k]]
+        d0 += A[k] * rate_row[row[k]]
+        v1 += A[k + 1] * value_row[row[k + 1]]
+        d1 += A[k + 1] * rate_row[row[k + 1]]
+        k += 2
+    if k < last:
+        v0 += A[k] * value_row[row[k]]
+        d0 += A[k] * rate_row[row[k]]
+    return v0 + v1, d0 + d1
+
+
+@njit
+def lbd_kernel(series, T, work):
     """Geocentric ``(lambda rad, beta rad, Delta km)`` and rates per century.
 
     Mean ecliptic and equinox of date; ``T`` in Julian centuries of TT.
-    ``exp(i k x)`` of each Delaunay argument is built once by multiplication,
-    so each term costs a product of four complex numbers, not a sine.
+    ``series``: a :class:`Prepared`; ``work``: a scratch array of shape at
+    least ``(4, number of distinct multiplier rows)``. Returns two 3-tuples.
+
+    Each distinct argument row ``u`` is evaluated once, with the eccentricity
+    factor of its ``l'`` multiplier folded in: ``E^p sin``, ``E^p cos`` and
+    their rates; each term is then one multiply-add per sum.
     """
     args, rates = fundamental_arguments(T)
     lp, dlp = args[0], rates[0]
+    two_pi = 2.0 * math.pi
+    d = args[1] % two_pi
+    m_ = args[2] % two_pi
+    l_ = args[3] % two_pi
+    f_ = args[4] % two_pi
     e = ECCENTRICITY[0] + T * (ECCENTRICITY[1] + T * ECCENTRICITY[2])
     de = ECCENTRICITY[1] + 2.0 * T * ECCENTRICITY[2]
-    n = MAX_MULTIPLIER
-    powers = np.empty((4, 2 * n + 1), dtype=np.complex128)
-    for j in range(4):
-        base = complex(math.cos(args[j + 1]), math.sin(args[j + 1]))
-        powers[j, n] = 1.0
-        for k in range(1, n + 1):
-            powers[j, n + k] = powers[j, n + k - 1] * base
-            powers[j, n - k] = powers[j, n + k].conjugate()
-    epow = np.empty(5)
-    depow = np.empty(5)
-    epow[0] = 1.0
-    depow[0] = 0.0
-    for k in range(1, 5):
-        epow[k] = epow[k - 1] * e
-        depow[k] = k * epow[k - 1] * de
-    value = np.zeros(3)
-    rate = np.zeros(3)
-    for k in range(A.shape[0]):
-        i1 = mult[k, 0]
-        i2 = mult[k, 1]
-        i3 = mult[k, 2]
-        i4 = mult[k, 3]
-        z = powers[0, n + i1] * powers[1, n + i2] * powers[2, n + i3] * powers[3, n + i4]
-        w = i1 * rates[1] + i2 * rates[2] + i3 * rates[3] + i4 * rates[4]
-        m = abs(i2)
-        a = A[k] * epow[m]
-        da = A[k] * depow[m]
-        c = coord[k]
-        if c == 2:
-            value[2] += a * z.real
-            rate[2] += da * z.real - a * w * z.imag
-        else:
-            value[c] += a * z.imag
-            rate[c] += da * z.imag + a * w * z.real
+    # rows of multipliers as 1-D arrays and rates as scalars: the loop then
+    # vectorises (no aliasing question between the tables and the work array)
+    m0 = series.mult[0]
+    m1 = series.mult[1]
+    m2 = series.mult[2]
+    m3 = series.mult[3]
+    r1 = rates[1]
+    r2 = rates[2]
+    r3 = rates[3]
+    r4 = rates[4]
+    sin_v = work[0]
+    sin_d = work[1]
+    cos_v = work[2]
+    cos_d = work[3]
+    for u in range(m0.shape[0]):
+        s, c = sincos(m0[u] * d + m1[u] * m_ + m2[u] * l_ + m3[u] * f_)
+        w = m0[u] * r1 + m1[u] * r2 + m2[u] * r3 + m3[u] * r4
+        p = abs(m1[u])                 # E^p, p = |i2| <= 4, and d(E^p)/dT
+        ep = 1.0
+        dep = 0.0
+        for _ in range(4):
+            if p >= 1.0:
+                dep = dep * e + ep * de
+                ep = ep * e
+                p -= 1.0
+        sin_v[u] = ep * s
+        sin_d[u] = dep * s + ep * w * c
+        cos_v[u] = ep * c
+        cos_d[u] = dep * c - ep * w * s
+    row = series.term_row
+    A = series.A
+    start = series.start
+    lon_sum, lon_rate = _sum_terms(start[0], start[1], row, A, sin_v, sin_d)
+    lat_sum, lat_rate = _sum_terms(start[1], start[2], row, A, sin_v, sin_d)
+    dist, dist_rate = _sum_terms(start[2], start[3], row, A, cos_v, cos_d)
     lon = np.zeros(2)
     lat = np.zeros(2)
-    lon[0] = lp + value[0] * ARCSEC
-    lon[1] = dlp + rate[0] * ARCSEC
-    lat[0] = value[1] * ARCSEC
-    lat[1] = rate[1] * ARCSEC
+    lon[0] = lp + lon_sum * ARCSEC
+    lon[1] = dlp + lon_rate * ARCSEC
+    lat[0] = lat_sum * ARCSEC
+    lat[1] = lat_rate * ARCSEC
     # Meeus's additive terms (1e-6 degree)
     f, df = args[4], rates[4]
     mp, dmp = args[3], rates[3]
@@ -152,37 +208,38 @@ def lbd_kernel(coord, mult, A, T):
     _add_sin(lat, 175.0 * MICRODEGREE, a1 + f, da1 + df)
     _add_sin(lat, 127.0 * MICRODEGREE, lp - mp, dlp - dmp)
     _add_sin(lat, -115.0 * MICRODEGREE, lp + mp, dlp + dmp)
-    out = np.empty(3)
-    out_rate = np.empty(3)
-    out[0] = lon[0]
-    out[1] = lat[0]
-    out[2] = value[2]
-    out_rate[0] = lon[1]
-    out_rate[1] = lat[1]
-    out_rate[2] = rate[2]
-    return out, out_rate
+    return (lon[0], lat[0], dist), (lon[1], lat[1], dist_rate)
 
 
 @njit
-def state_kernel(coord, mult, A, T, matrix, dmatrix):
-    """Geocentric position (m) and velocity (m/s) in the J2000 equatorial frame."""
-    value, rate = lbd_kernel(coord, mult, A, T)
+def state_kernel(series, T, m, dm, work):
+    """Geocentric position (m) and velocity (m/s), J2000 equatorial, 3-tuples.
+
+    ``T``: Julian centuries of TT; ``m``, ``dm``: ``precession.turn(T)``.
+    """
+    value, rate = lbd_kernel(series, T, work)
     per_second = 1.0 / (DAYS_PER_JULIAN_CENTURY * SECONDS_PER_DAY)
-    r, v = spherical_to_cartesian(value[0], value[1], value[2] * 1e3,
-                                  rate[0] * per_second, rate[1] * per_second,
-                                  rate[2] * 1e3 * per_second)
-    return matrix @ r, matrix @ v + (dmatrix @ r) * per_second
+    return to_j2000(m, dm, value[0], value[1], value[2] * 1e3, rate[0] * per_second,
+                    rate[1] * per_second, rate[2] * 1e3 * per_second,
+                    DAYS_PER_JULIAN_CENTURY * SECONDS_PER_DAY)
+
+
+def scratch(series: Prepared) -> np.ndarray:
+    """Work array for :func:`lbd_kernel`."""
+    return np.empty((4, series.mult.shape[1]))
 
 
 def geocentric_lbd(jd_tt: float) -> tuple[np.ndarray, np.ndarray]:
     """The Moon's ``(lambda rad, beta rad, Delta km)`` at ``jd_tt`` (TT), and
     their rates per day; mean ecliptic and equinox of date."""
-    value, rate = lbd_kernel(*TABLE, (jd_tt - J2000_JD) / DAYS_PER_JULIAN_CENTURY)
-    return value, rate / DAYS_PER_JULIAN_CENTURY
+    T = (jd_tt - J2000_JD) / DAYS_PER_JULIAN_CENTURY
+    value, rate = lbd_kernel(TABLE, T, scratch(TABLE))
+    return np.array(value), np.array(rate) / DAYS_PER_JULIAN_CENTURY
 
 
 def geocentric_state(jd_tt: float) -> tuple[np.ndarray, np.ndarray]:
     """The Moon's geocentric ``(r, v)``, m and m/s, J2000 mean equatorial."""
     T = (jd_tt - J2000_JD) / DAYS_PER_JULIAN_CENTURY
-    matrix, dmatrix = ecliptic_of_date_to_j2000(T)
-    return state_kernel(*TABLE, T, matrix, dmatrix)
+    m, dm = turn(T)
+    r, v = state_kernel(TABLE, T, m, dm, scratch(TABLE))
+    return np.array(r), np.array(v)

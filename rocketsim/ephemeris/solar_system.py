@@ -20,7 +20,7 @@ import numpy as np
 from rocketsim._jit import njit
 from rocketsim.constants import DAYS_PER_JULIAN_CENTURY, J2000_JD
 from rocketsim.ephemeris import elp2000, vsop87
-from rocketsim.ephemeris.precession import ecliptic_of_date_to_j2000
+from rocketsim.ephemeris.precession import turn
 
 BODIES = ("sun", "earth", "moon", "mars")
 _INDEX = {name: i for i, name in enumerate(BODIES)}
@@ -28,22 +28,21 @@ _INDEX = {name: i for i, name in enumerate(BODIES)}
 
 @njit
 def heliocentric_kernel(jd_tt, earth, mars, moon):
-    """Heliocentric states of all four bodies at each of ``jd_tt`` (1-D).
+    """Heliocentric states of all four bodies at each of ``jd_tt`` (1-D, TT).
 
-    ``earth``, ``mars``: VSOP87D tables ``(coord, power, A, B, C)``; ``moon``:
-    ELP tables ``(coord, mult, A)``. Returns ``(N, 4, 6)``: for each instant
-    and body of ``BODIES`` (sun, earth, moon, mars) ``x y z`` (m) and
-    ``vx vy vz`` (m/s), J2000 equatorial, relative to the Sun.
+    ``earth``, ``mars``: ``vsop87.Prepared`` series; ``moon``: an
+    ``elp2000.Prepared`` series. Returns ``(N, 4, 6)``: for each instant and
+    body of ``BODIES`` (sun, earth, moon, mars) ``x y z`` (m) and ``vx vy vz``
+    (m/s), J2000 equatorial, relative to the Sun (so the Sun's row is zero).
     """
     out = np.zeros((jd_tt.shape[0], 4, 6))
+    work = np.empty((4, max(earth.freq.shape[0], mars.freq.shape[0], moon.mult.shape[1])))
     for n in range(jd_tt.shape[0]):
         T = (jd_tt[n] - J2000_JD) / DAYS_PER_JULIAN_CENTURY
-        matrix, dmatrix = ecliptic_of_date_to_j2000(T)
-        re, ve = vsop87.state_kernel(earth[0], earth[1], earth[2], earth[3], earth[4],
-                                     T / 10.0, matrix, dmatrix)
-        rm, vm = vsop87.state_kernel(mars[0], mars[1], mars[2], mars[3], mars[4],
-                                     T / 10.0, matrix, dmatrix)
-        rl, vl = elp2000.state_kernel(moon[0], moon[1], moon[2], T, matrix, dmatrix)
+        m, dm = turn(T)
+        re, ve = vsop87.state_kernel(earth, T, m, dm, work)
+        rm, vm = vsop87.state_kernel(mars, T, m, dm, work)
+        rl, vl = elp2000.state_kernel(moon, T, m, dm, work)
         for k in range(3):
             out[n, 1, k] = re[k]
             out[n, 1, 3 + k] = ve[k]
@@ -57,12 +56,11 @@ def heliocentric_kernel(jd_tt, earth, mars, moon):
 def heliocentric_states(jd_tt, earth=None, mars=None, moon=None) -> np.ndarray:
     """``(N, 4, 6)`` heliocentric states (see :func:`heliocentric_kernel`).
 
-    The tables default to the project's truncated ones; the tests and the
-    benchmark pass the full series here to measure the truncation.
+    The series default to the project's truncated ones; the tests and the
+    benchmark pass the full series (``vsop87.prepare``, ``elp2000.prepare``)
+    here to measure the truncation.
     """
-    jd = np.ascontiguousarray(np.atleast_1d(np.asarray(jd_tt, dtype=np.float64)))
-    if jd.ndim != 1:
-        jd = jd.ravel()
+    jd = np.ascontiguousarray(np.asarray(jd_tt, dtype=np.float64).reshape(-1))
     return heliocentric_kernel(jd, earth or vsop87.TABLES["earth"],
                                mars or vsop87.TABLES["mars"], moon or elp2000.TABLE)
 

@@ -11,72 +11,137 @@ analytic derivative of the series, term by term:
 
     dX/dt = sum_alpha sum_k A_k [alpha t^(alpha-1) cos(.) - t^alpha C_k sin(.)]
 
-The truncated tables come from ``generate.py`` (rule stated there); the
-kernels take the tables as arguments so the full series (tests, benchmark)
-run through the same code.
+How it is evaluated: many terms share a frequency ``C`` (the Earth's 204
+terms have 123 frequencies), so :func:`prepare` writes each term as
+``P cos(C t) - Q sin(C t)`` with ``P = A cos B``, ``Q = A sin B`` and the
+kernel takes one sine/cosine pair per distinct frequency. The truncated
+tables come from ``generate.py`` (rule stated there); the kernels take the
+prepared tables as arguments, so the full series (tests, benchmark) run
+through the same code.
 """
 
 from __future__ import annotations
 
-import math
+from typing import NamedTuple
 
 import numpy as np
 
 from rocketsim._jit import njit
-from rocketsim.constants import AU, DAYS_PER_JULIAN_MILLENNIUM, J2000_JD, SECONDS_PER_DAY
+from rocketsim.constants import (
+    AU,
+    DAYS_PER_JULIAN_CENTURY,
+    DAYS_PER_JULIAN_MILLENNIUM,
+    J2000_JD,
+    SECONDS_PER_DAY,
+)
 from rocketsim.ephemeris import _tables
-from rocketsim.ephemeris.precession import ecliptic_of_date_to_j2000, spherical_to_cartesian
+from rocketsim.ephemeris.precession import to_j2000, turn
+from rocketsim.ephemeris.sincos import sincos
 
-MAX_POWER = 5          # VSOP87 series run to t^5
+MAX_POWER = 5                       # VSOP87 series run to t^5
+GROUPS = 3 * (MAX_POWER + 1)        # (coordinate, power) pairs
+MILLENNIA_PER_CENTURY = 0.1
+
+
+class Prepared(NamedTuple):
+    """A VSOP87D series laid out for the kernel (see module docstring).
+
+    Terms are sorted by group ``g = 6 * coord + power``; ``start[g]:start[g+1]``
+    are the terms of group ``g``; ``term_freq`` indexes ``freq``.
+    """
+
+    freq: np.ndarray        # distinct frequencies C, rad per millennium
+    start: np.ndarray       # (GROUPS + 1,) group boundaries
+    term_freq: np.ndarray   # frequency index of each term
+    P: np.ndarray           # A cos B
+    Q: np.ndarray           # A sin B
+    C: np.ndarray           # frequency of each term
+
+
+def prepare(coord, power, A, B, C) -> Prepared:
+    """Lay out a flat VSOP87D series (``generate.VsopSeries`` fields)."""
+    group = np.asarray(coord) * (MAX_POWER + 1) + np.asarray(power)
+    order = np.argsort(group, kind="stable")
+    freq, term_freq = np.unique(np.asarray(C)[order], return_inverse=True)
+    start = np.searchsorted(group[order], np.arange(GROUPS + 1))
+    a = np.asarray(A)[order]
+    b = np.asarray(B)[order]
+    return Prepared(freq, start.astype(np.int64), term_freq.astype(np.int64),
+                    a * np.cos(b), a * np.sin(b), np.asarray(C)[order].astype(np.float64))
+
 
 TABLES = {
-    "earth": (_tables.EARTH_COORD, _tables.EARTH_POWER, _tables.EARTH_A,
-              _tables.EARTH_B, _tables.EARTH_C),
-    "mars": (_tables.MARS_COORD, _tables.MARS_POWER, _tables.MARS_A,
-             _tables.MARS_B, _tables.MARS_C),
+    "earth": prepare(_tables.EARTH_COORD, _tables.EARTH_POWER, _tables.EARTH_A,
+                     _tables.EARTH_B, _tables.EARTH_C),
+    "mars": prepare(_tables.MARS_COORD, _tables.MARS_POWER, _tables.MARS_A,
+                    _tables.MARS_B, _tables.MARS_C),
 }
 
 
 @njit
-def lbr_kernel(coord, power, A, B, C, t):
-    """``(L, B, R)`` and their derivatives per Julian millennium at ``t``.
+def lbr_kernel(series, t, work):
+    """``(L, B, R)`` and their rates per Julian millennium at ``t`` (3-tuples).
 
-    ``t``: Julian millennia of TT from J2000. Returns two length-3 arrays:
-    ``(L rad, B rad, R au)`` and ``(dL/dt, dB/dt, dR/dt)`` per millennium.
+    ``series``: a :class:`Prepared`; ``t``: Julian millennia of TT from J2000;
+    ``work``: a scratch array of shape at least ``(2, len(series.freq))``.
+    ``L``, ``B`` in radians, ``R`` in au.
     """
-    tp = np.empty(MAX_POWER + 1)
-    dtp = np.empty(MAX_POWER + 1)
-    tp[0] = 1.0
-    dtp[0] = 0.0
-    for k in range(1, MAX_POWER + 1):
-        tp[k] = tp[k - 1] * t
-        dtp[k] = k * tp[k - 1]
-    value = np.zeros(3)
-    rate = np.zeros(3)
-    for k in range(A.shape[0]):
-        arg = B[k] + C[k] * t
-        c = math.cos(arg)
-        s = math.sin(arg)
-        p = power[k]
-        i = coord[k]
-        value[i] += A[k] * tp[p] * c
-        rate[i] += A[k] * (dtp[p] * c - tp[p] * C[k] * s)
-    return value, rate
+    freq = series.freq
+    sin_scratch = work[0]
+    cos_scratch = work[1]
+    for f in range(freq.shape[0]):
+        s, c = sincos(freq[f] * t)
+        sin_scratch[f] = s
+        cos_scratch[f] = c
+    start = series.start
+    index = series.term_freq
+    P = series.P
+    Q = series.Q
+    C = series.C
+    value0 = value1 = value2 = 0.0
+    rate0 = rate1 = rate2 = 0.0
+    for g in range(GROUPS):
+        if start[g] == start[g + 1]:
+            continue
+        s0 = 0.0
+        s1 = 0.0
+        for k in range(start[g], start[g + 1]):
+            c = cos_scratch[index[k]]
+            s = sin_scratch[index[k]]
+            s0 += P[k] * c - Q[k] * s          # A cos(B + C t)
+            s1 += C[k] * (Q[k] * c + P[k] * s)  # A C sin(B + C t)
+        coord = g // (MAX_POWER + 1)
+        p = g % (MAX_POWER + 1)
+        tp = t ** p
+        dtp = p * t ** (p - 1) if p > 0 else 0.0
+        if coord == 0:
+            value0 += tp * s0
+            rate0 += dtp * s0 - tp * s1
+        elif coord == 1:
+            value1 += tp * s0
+            rate1 += dtp * s0 - tp * s1
+        else:
+            value2 += tp * s0
+            rate2 += dtp * s0 - tp * s1
+    return (value0, value1, value2), (rate0, rate1, rate2)
 
 
 @njit
-def state_kernel(coord, power, A, B, C, t, matrix, dmatrix):
-    """Heliocentric position (m) and velocity (m/s) in the J2000 equatorial frame.
+def state_kernel(series, T, m, dm, work):
+    """Heliocentric position (m) and velocity (m/s), J2000 equatorial, 3-tuples.
 
-    ``matrix``/``dmatrix``: the ecliptic-of-date -> J2000 turn and its rate per
-    Julian century at the same instant (``precession.ecliptic_of_date_to_j2000``).
+    ``T``: Julian centuries of TT; ``m``, ``dm``: ``precession.turn(T)``.
     """
-    value, rate = lbr_kernel(coord, power, A, B, C, t)
+    value, rate = lbr_kernel(series, T * MILLENNIA_PER_CENTURY, work)
     per_second = 1.0 / (DAYS_PER_JULIAN_MILLENNIUM * SECONDS_PER_DAY)
-    r, v = spherical_to_cartesian(value[0], value[1], value[2] * AU,
-                                  rate[0] * per_second, rate[1] * per_second,
-                                  rate[2] * AU * per_second)
-    return matrix @ r, matrix @ v + (dmatrix @ r) * (10.0 * per_second)
+    return to_j2000(m, dm, value[0], value[1], value[2] * AU, rate[0] * per_second,
+                    rate[1] * per_second, rate[2] * AU * per_second,
+                    DAYS_PER_JULIAN_CENTURY * SECONDS_PER_DAY)
+
+
+def scratch(series: Prepared) -> np.ndarray:
+    """Work array for :func:`lbr_kernel`."""
+    return np.empty((2, series.freq.shape[0]))
 
 
 def heliocentric_lbr(body: str, jd_tt: float) -> tuple[np.ndarray, np.ndarray]:
@@ -85,13 +150,16 @@ def heliocentric_lbr(body: str, jd_tt: float) -> tuple[np.ndarray, np.ndarray]:
     Mean ecliptic and equinox of date; ``L``, ``B`` in radians, ``R`` in au.
     Returns the three values and their rates per day.
     """
+    series = TABLES[body]
     t = (jd_tt - J2000_JD) / DAYS_PER_JULIAN_MILLENNIUM
-    value, rate = lbr_kernel(*TABLES[body], t)
-    return value, rate / DAYS_PER_JULIAN_MILLENNIUM
+    value, rate = lbr_kernel(series, t, scratch(series))
+    return np.array(value), np.array(rate) / DAYS_PER_JULIAN_MILLENNIUM
 
 
 def heliocentric_state(body: str, jd_tt: float) -> tuple[np.ndarray, np.ndarray]:
     """Heliocentric ``(r, v)`` of ``body`` in m and m/s, J2000 mean equatorial."""
-    t = (jd_tt - J2000_JD) / DAYS_PER_JULIAN_MILLENNIUM
-    matrix, dmatrix = ecliptic_of_date_to_j2000(t * 10.0)
-    return state_kernel(*TABLES[body], t, matrix, dmatrix)
+    series = TABLES[body]
+    T = (jd_tt - J2000_JD) / DAYS_PER_JULIAN_CENTURY
+    m, dm = turn(T)
+    r, v = state_kernel(series, T, m, dm, scratch(series))
+    return np.array(r), np.array(v)
