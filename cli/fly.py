@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import signal
 import sys
 from pathlib import Path
 
@@ -11,7 +12,16 @@ import click
 from rocketsim.scenario.load import load
 from rocketsim.sim.flight import fly as fly_scenario
 from rocketsim_cli.errors import reports_input_errors
+from rocketsim_cli.progress import flight_progress
 from rocketsim_cli.summary import format_summary
+
+
+class _Terminated(BaseException):
+    """SIGTERM, raised in the main thread so the telemetry file is finished."""
+
+
+def _raise_terminated(signum, frame):
+    raise _Terminated
 
 
 @click.command()
@@ -27,17 +37,27 @@ def fly(scenario: Path, output: Path | None, step: float | None, duration: float
         summary_json: Path | None) -> None:
     """Fly SCENARIO and write its telemetry as MCAP.
 
+    Ctrl-C or SIGTERM stops the flight and still finishes the MCAP file
+    (exit status 130 or 143).
+
     \b
     Example:
         rocketsim fly scenarios/iss-coast.yaml -o iss.mcap --summary-json iss.json
     """
     loaded = load(scenario)
     output = output or Path(f"{scenario.stem}.mcap")
+    previous = signal.signal(signal.SIGTERM, _raise_terminated)
     try:
-        summary = fly_scenario(loaded, output, step=step, duration=duration)
+        with flight_progress(duration or loaded.scenario.mission.duration) as on_progress:
+            summary = fly_scenario(loaded, output, step=step, duration=duration, on_progress=on_progress)
     except KeyboardInterrupt:
-        click.echo(f"interrupted; telemetry so far is in {output}", err=True)
+        click.echo(f"\ninterrupted; telemetry so far is in {output}", err=True)
         sys.exit(130)
+    except _Terminated:
+        click.echo(f"\nterminated; telemetry so far is in {output}", err=True)
+        sys.exit(143)
+    finally:
+        signal.signal(signal.SIGTERM, previous)
     click.echo(format_summary(summary))
     click.echo(f"telemetry: {output}")
     if summary_json is not None:
