@@ -38,13 +38,10 @@ def _table(weather: Path | None, body: str, latitude: float):
                              field="--weather")
         from rocketsim.atmosphere.mars import mars_table
         return mars_table()
-    from rocketsim.scenario.weather import StandardWeather, WeatherFile, build_atmosphere
+    from rocketsim.scenario.weather import StandardWeather, build_atmosphere, load_weather
     if weather is None:
         return build_atmosphere(StandardWeather(kind="standard"), latitude, ".")
-    from rocketsim.scenario.load import validate
-    from rocketsim.scenario.yaml_source import read_yaml
-    model = validate(read_yaml(weather), WeatherFile)
-    return build_atmosphere(model, latitude, weather.resolve().parent)
+    return build_atmosphere(load_weather(weather), latitude, weather.resolve().parent)
 
 
 def _plot(path: Path, heights, rows, wind: bool, title: str) -> None:

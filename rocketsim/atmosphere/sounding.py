@@ -86,12 +86,13 @@ def _fill(values, heights):
 
 
 def from_columns(columns: dict, lines: dict | None, source: str = "",
-                 prefix: str = "") -> Sounding:
+                 prefix: str = "", header_line: int | None = None) -> Sounding:
     """A :class:`Sounding` from file-unit columns (lists of floats, NaN = blank).
 
     ``lines[name][i]`` is the line (1-based) of cell ``i`` of column ``name``
     for error messages (``lines=None``: cells are named ``NAME[i]`` instead,
-    for columns written inline in a scenario); ``source`` names the file.
+    for columns written inline in a scenario); ``source`` names the file and
+    ``header_line`` the line naming the columns (for a missing column).
     """
     def where(name, i):
         if lines is None:
@@ -101,11 +102,12 @@ def from_columns(columns: dict, lines: dict | None, source: str = "",
     for name in REQUIRED:
         if name not in columns:
             raise InputError(f"the sounding has no {name} column (needed: "
-                             f"{', '.join(REQUIRED)})", file=source or None, field=prefix + name)
+                             f"{', '.join(REQUIRED)})", file=source or None, line=header_line,
+                             field=prefix + name)
     if ("DRCT" in columns) != ("SKNT" in columns):
         missing = "SKNT" if "DRCT" in columns else "DRCT"
         raise InputError(f"wind needs both DRCT and SKNT; {missing} is missing",
-                         file=source or None, field=missing)
+                         file=source or None, line=header_line, field=prefix + missing)
     n = len(columns["HGHT"])
     for name, values in columns.items():
         if len(values) != n:
@@ -199,7 +201,7 @@ def parse_wyoming(text: str, source: str = "<sounding>") -> Sounding:
             cell = by_name[name]
             columns[name].append(_number(cell, source, k + 1, name) if cell.strip() else math.nan)
             where[name].append(k + 1)
-    return from_columns(columns, where, source)
+    return from_columns(columns, where, source, header_line=header + 1)
 
 
 def parse_csv(text: str, source: str = "<sounding>") -> Sounding:
@@ -223,7 +225,7 @@ def parse_csv(text: str, source: str = "<sounding>") -> Sounding:
         for name, cell in zip(names, row):
             columns[name].append(_number(cell, source, line, name) if cell.strip() else math.nan)
             where[name].append(line)
-    return from_columns(columns, where, source)
+    return from_columns(columns, where, source, header_line=head_line)
 
 
 def parse_yaml(text: str, source: str = "<sounding>") -> Sounding:
@@ -258,7 +260,7 @@ def parse_yaml(text: str, source: str = "<sounding>") -> Sounding:
             blank = item.value in ("", "~", "null") and item.tag.endswith("null")
             columns[name].append(math.nan if blank else _number(item.value, source, line, name))
             where[name].append(line)
-    return from_columns(columns, where, source)
+    return from_columns(columns, where, source, header_line=root.start_mark.line + 1)
 
 
 def read_sounding(path: str | Path) -> Sounding:

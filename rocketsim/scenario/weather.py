@@ -85,6 +85,25 @@ class WeatherFile(RootModel[Weather]):
     """A weather YAML file on its own: the ``weather:`` mapping at top level."""
 
 
+KINDS = {"standard": StandardWeather, "sounding": SoundingWeather, "random": RandomWeather,
+         "classic": ClassicWeather}
+
+
+def load_weather(path: str | Path):
+    """Read and validate a weather YAML file; errors name the file, line and field.
+
+    The model of the file's ``kind`` validates it directly, so error locations
+    carry no union tag and point at the line of the offending field.
+    """
+    from rocketsim.scenario.load import validate
+    from rocketsim.scenario.yaml_source import read_yaml
+    source = read_yaml(Path(path))
+    kind = source.data.get("kind") if isinstance(source.data, dict) else None
+    if kind in KINDS:
+        return validate(source, KINDS[kind])
+    return validate(source, WeatherFile).root
+
+
 def build_atmosphere(weather: Weather, site_latitude: float, base_dir: str | Path
                      ) -> AtmosphereTable:
     """The day's 50 m :class:`AtmosphereTable` for ``weather`` at geodetic ``site_latitude``
