@@ -21,6 +21,7 @@ from rocketsim.constants import EARTH_J2, EARTH_MU, EARTH_RADIUS_EQ, EARTH_RADIU
 from rocketsim.dynamics.rk4 import advance
 from rocketsim.dynamics.state import make_params, make_state
 from rocketsim.frames.elements import elements_to_state
+from tests.benchmarks.timing import best_of
 
 H = 0.02
 ROOT = Path(__file__).resolve().parents[2]
@@ -48,15 +49,6 @@ def numpy_rk4(y, h, n, inertia):
         y = y + h / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
         y[6:10] /= np.linalg.norm(y[6:10])
     return y
-
-
-def best_of(repeats, function):
-    best = math.inf
-    for _ in range(repeats):
-        start = time.perf_counter()
-        result = function()
-        best = min(best, time.perf_counter() - start)
-    return best, result
 
 
 def test_coasting_body_speed():

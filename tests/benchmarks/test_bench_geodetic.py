@@ -7,23 +7,14 @@ the ratio against pymap3d's numpy-vectorised ``ecef2geodetic`` on the same
 points measured in the same run (the baseline).
 """
 
-import time
 
 import numpy as np
 import pymap3d
 
+from tests.benchmarks.timing import best_of
 from rocketsim.frames.geodetic import _ecef_to_geodetic_rows, ecef_to_geodetic, geodetic_to_ecef
 
 N = 200_000
-
-
-def _best_of(fn, repeats=5):
-    best = float("inf")
-    for _ in range(repeats):
-        t0 = time.perf_counter()
-        out = fn()
-        best = min(best, time.perf_counter() - t0)
-    return best, out
 
 
 def test_bench_ecef_to_geodetic():
@@ -34,9 +25,9 @@ def test_bench_ecef_to_geodetic():
     r = np.ascontiguousarray(geodetic_to_ecef(lat, lon, h))
     _ecef_to_geodetic_rows(r[:10])            # compile (or load from cache) outside the timing
 
-    t_core, rows = _best_of(lambda: _ecef_to_geodetic_rows(r))
-    t_api, (_, _, h_api) = _best_of(lambda: ecef_to_geodetic(r))
-    t_ref, (_, _, h_ref) = _best_of(lambda: pymap3d.ecef2geodetic(r[:, 0], r[:, 1], r[:, 2], deg=False))
+    t_core, rows = best_of(5, lambda: _ecef_to_geodetic_rows(r))
+    t_api, (_, _, h_api) = best_of(5, lambda: ecef_to_geodetic(r))
+    t_ref, (_, _, h_ref) = best_of(5, lambda: pymap3d.ecef2geodetic(r[:, 0], r[:, 1], r[:, 2], deg=False))
 
     assert np.max(np.abs(rows[:, 2] - h)) < 1e-3
     assert np.max(np.abs(h_api - h_ref)) < 1e-3
