@@ -196,6 +196,18 @@ def load_full(data: Path = DEFAULT_DATA) -> tuple[dict[str, VsopSeries], ElpSeri
     return vsop, read_elp(data / "elp2000-82b")
 
 
+def prepared_full(data: Path = DEFAULT_DATA):
+    """The full series laid out for ``solar_system.heliocentric_states``:
+    ``(earth, mars, moon)``. For the tests and the benchmark, which measure
+    the truncation against them."""
+    from rocketsim.ephemeris import elp2000, vsop87
+
+    full_vsop, full_elp = load_full(data)
+    earth, mars = (vsop87.prepare(s.coord, s.power, s.A, s.B, s.C)
+                   for s in (full_vsop["earth"], full_vsop["mars"]))
+    return earth, mars, elp2000.prepare(full_elp.coord, full_elp.mult, full_elp.A)
+
+
 def main(argv: list[str] | None = None) -> int:
     argv = sys.argv[1:] if argv is None else argv
     if len(argv) > 1 or (argv and argv[0] in ("-h", "--help")):
