@@ -17,18 +17,9 @@ _WIND = ("wind_east_m_s", "wind_north_m_s")
 
 def _quantity(text: str, dimension: str, option: str) -> float:
     try:
-        return parse_quantity(text if not _is_number(text) or dimension != "angle" else text,
-                              dimension)
+        return parse_quantity(text, dimension)
     except UnitError as error:
         raise InputError(str(error), field=option) from None
-
-
-def _is_number(text: str) -> bool:
-    try:
-        float(text)
-    except ValueError:
-        return False
-    return True
 
 
 def _table(weather: Path | None, body: str, latitude: float):
@@ -91,8 +82,10 @@ def atmosphere(weather, body, latitude, h_from, h_to, h_step, fmt, plot):
     \b
     Examples:
         rocketsim atmosphere --to 50km --step 5km
-        rocketsim atmosphere --weather scenarios/weather/oun.yaml --format csv
+        rocketsim atmosphere --weather day.yaml --latitude "28.5 deg" --format csv
         rocketsim atmosphere --body mars --to 150km --plot mars.png
+    where day.yaml is a weather section, e.g. "kind: random" and "seed: 7"
+    on two lines, or "kind: sounding" and "file: 72357_OUN_20110522_12Z.txt".
     """
     lat = _quantity(latitude, "angle", "--latitude")
     lo, hi = _quantity(h_from, "length", "--from"), _quantity(h_to, "length", "--to")

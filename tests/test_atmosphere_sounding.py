@@ -91,6 +91,30 @@ def test_hydrostatic_pressure_matches_the_reported_pressure(day):
     assert err.max() < 0.005        # measured: 0.21 %
 
 
+def test_surface_density_is_that_of_moist_air(day):
+    # Moist air as a mixture of dry air and vapour (WMO-No. 8, annex 4.B):
+    # rho = (p - e) / (R_d T) + e / (R_v T), e = p w / (0.62198 + w), with R_d = R*/M_air,
+    # R_v = R*/M_water (M_air 28.9644, M_water 18.0153 g/mol).
+    p, t, w = 96_600.0, 295.35, 16.50e-3          # the fixture's surface level
+    e = p * w / (0.62198 + w)
+    rho = (p - e) / (8.31432 / 0.0289644 * t) + e / (8.31432 / 0.0180153 * t)
+    z0 = geometric_from_geopotential(345.0, NORMAN)
+    assert day.at([z0])[0][0] == pytest.approx(rho, rel=2e-5)
+    # ... 0.6 % lighter than dry air at the same p and T: humidity is not ignored.
+    assert rho < 0.995 * p / (8.31432 / 0.0289644 * t)
+
+
+def test_dew_point_gives_the_archive_mixing_ratio(tmp_path):
+    # The archive's MIXR column is computed independently from PRES and DWPT; ours from
+    # DWPT alone (Bolton 1980) must agree with it to its printed precision and a few %.
+    levels = _levels()
+    path = tmp_path / "dew.csv"
+    path.write_text("PRES,HGHT,TEMP,DWPT\n" + "".join(
+        f"{r[0]:g},{r[1]:g},{r[2]:g},{r[3]:g}\n" for r in levels))
+    ours = read_sounding(path).mixing_ratio * 1000.0
+    np.testing.assert_allclose(ours, levels[:, 5], rtol=0.03, atol=0.006)
+
+
 def test_geopotential_conversion_matches_the_standard_where_gravity_is_g0():
     lat = math.radians(45.5425)
     h = np.array([1_000.0, 16_000.0, 30_000.0])

@@ -54,6 +54,7 @@ def test_no_air_above_600_km_and_clamped_below_the_table(table):
     assert np.all(rho == 0.0) and np.all(p == 0.0) and np.all(t > 900.0)
     below = table.at([table.h0 - 2_000.0])
     assert below[0][0] == table.density[0] and below[1][0] == table.pressure[0]
+    assert all(np.isnan(v) for v in air_at(*table.arrays(), float("nan")))
 
 
 def test_scalar_compiled_lookup_equals_the_vectorised_one(table):
