@@ -1,0 +1,379 @@
+"""Launch windows: a departure x arrival grid of Lambert arcs, refined to the optima.
+
+For every pair (departure date, arrival date) of a grid the transfer arc is
+a Lambert solution (:func:`rocketsim.transfer.lambert`, zero revolutions,
+prograde) between the bodies' positions from the ephemeris; the burns at its
+ends are priced with :mod:`rocketsim.transfer.burns`. The grid is the
+porkchop plot; its local minima of the chosen objective (total Δv or C3),
+within the limits on C3, arrival v∞ and time of flight, are refined by a
+local minimiser (``scipy.optimize.minimize``, Nelder-Mead on the two dates)
+and returned as :class:`Window` objects.
+
+Targets (patched conics):
+
+* ``"mars"``: heliocentric arc from the Earth's centre at departure to
+  Mars' centre at arrival (the spheres of influence are points). C3 and the
+  departure asymptote's declination come from the excess velocity at Earth;
+  escape from a circular parking orbit, capture into the requested orbit.
+* ``"moon"``: geocentric arc from a circular parking orbit to the Moon's
+  centre (the Moon's motion from the ephemeris, its gravity ignored until
+  arrival). Assumes the parking orbit lies in the Moon's orbital plane at
+  arrival and the burn is made 179 degrees of transfer angle before the
+  arrival point (a near-Hohmann departure from periapsis; an exact 180
+  degrees would leave the plane undefined). C3 is the geocentric energy
+  ``v1^2 - 2 mu / r_park`` (negative: bound), the departure Δv is
+  ``|v1 - v_circular|``, the "declination" the Moon's at arrival, which the
+  parking orbit's inclination must reach.
+
+Dates are Julian dates in TT (``jd_tt``); times of flight in days. The
+ephemeris is a parameter ``ephemeris(body, jd_tt, center) -> (r, v)`` (m,
+m/s, J2000 equatorial, ``jd_tt`` an array giving ``(N, 3)``), by default
+:func:`rocketsim.ephemeris.solar_system.state`; the tests pass synthetic ones.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Callable
+
+import numpy as np
+
+from rocketsim.constants import (
+    EARTH_MU,
+    EARTH_RADIUS_EQ,
+    MARS_MU,
+    MARS_RADIUS_EQ,
+    MOON_MU,
+    MOON_RADIUS,
+    SECONDS_PER_DAY,
+    SUN_MU,
+)
+from rocketsim.errors import InputError
+from rocketsim.transfer.burns import asymptote_direction, c3, capture_dv, escape_dv_c3
+from rocketsim.transfer.lambert import lambert
+
+# Validity span of the project's truncated VSOP87D/ELP2000 series
+# (rocketsim/ephemeris/generate.py: "validity span 1950-2100"), as TT Julian
+# dates of 1950-01-01 and 2100-01-01.
+EPHEMERIS_SPAN_JD = (2433282.5, 2488069.5)
+
+MOON_TRANSFER_ANGLE = math.radians(179.0)
+
+
+@dataclass(frozen=True)
+class Target:
+    """How a transfer to a target is set up (see the module docstring)."""
+
+    name: str
+    center: str                 # body at the centre of the transfer arc
+    center_mu: float            # m^3/s^2
+    departure_mu: float         # body orbited before departure
+    departure_radius: float     # m, its equatorial radius (parking altitude origin)
+    arrival_body: str
+    arrival_mu: float
+    arrival_radius: float       # m
+    tof_days: tuple[float, float]   # default time-of-flight range searched
+
+
+TARGETS = {
+    "mars": Target("mars", "sun", SUN_MU, EARTH_MU, EARTH_RADIUS_EQ, "mars", MARS_MU,
+                   MARS_RADIUS_EQ, (90.0, 500.0)),
+    "moon": Target("moon", "earth", EARTH_MU, EARTH_MU, EARTH_RADIUS_EQ, "moon", MOON_MU,
+                   MOON_RADIUS, (2.0, 8.0)),
+}
+
+
+def target(name: str) -> Target:
+    """The :class:`Target` called ``name`` ("mars" or "moon")."""
+    try:
+        return TARGETS[str(name).lower()]
+    except KeyError:
+        raise InputError(f"unknown target {name!r}: expected one of {', '.join(TARGETS)}",
+                         field="target") from None
+
+
+def _default_ephemeris(body, jd_tt, center):
+    from rocketsim.ephemeris.solar_system import state
+    return state(body, jd_tt, center=center)
+
+
+@dataclass(frozen=True)
+class Orbits:
+    """Parking orbit at departure and capture orbit at arrival (altitudes, m)."""
+
+    parking_altitude: float = 200e3
+    capture_periapsis_altitude: float = 400e3
+    capture_apoapsis_altitude: float | None = None   # None: circular
+
+
+@dataclass
+class Arcs:
+    """Transfer arcs and burn prices over a grid (arrays of one common shape)."""
+
+    departure_jd: np.ndarray
+    arrival_jd: np.ndarray
+    tof_days: np.ndarray
+    c3: np.ndarray                  # m^2/s^2
+    vinf_departure: np.ndarray      # (..., 3) m/s
+    vinf_arrival: np.ndarray        # m/s (speed)
+    dv_departure: np.ndarray        # m/s
+    dv_arrival: np.ndarray          # m/s
+    rla: np.ndarray                 # rad
+    dla: np.ndarray                 # rad
+    valid: np.ndarray               # bool: a transfer was computed here
+
+    @property
+    def dv_total(self) -> np.ndarray:
+        return self.dv_departure + self.dv_arrival
+
+
+@dataclass(frozen=True)
+class Window:
+    """One launch window: the optimum of a basin of the porkchop plot."""
+
+    departure_jd_tt: float
+    arrival_jd_tt: float
+    tof_days: float
+    c3: float                       # m^2/s^2
+    vinf_departure: tuple[float, float, float]   # m/s, J2000 equatorial
+    vinf_arrival: float             # m/s
+    rla: float                      # rad
+    dla: float                      # rad
+    dv_departure: float             # m/s
+    dv_arrival: float               # m/s
+    dv_total: float                 # m/s
+
+
+@dataclass
+class Search:
+    """What :func:`search` found: the windows, best first, and the grid."""
+
+    target: Target
+    windows: list[Window]
+    grid: Arcs
+    objective: str
+    limits: dict = field(default_factory=dict)
+
+
+def check_dates(jd_tt, what: str) -> None:
+    """InputError if a TT Julian date lies outside the ephemeris span."""
+    jd = np.asarray(jd_tt, dtype=float)
+    lo, hi = EPHEMERIS_SPAN_JD
+    if np.any(jd < lo) or np.any(jd > hi):
+        raise InputError(f"{what} lies outside the span of the ephemerides, 1950-01-01 to "
+                         "2100-01-01", field=what)
+
+
+def arcs(departure_jd, arrival_jd, *, target_name: str = "mars", orbits: Orbits = Orbits(),
+         ephemeris: Callable | None = None, departure_states=None,
+         arrival_states=None) -> Arcs:
+    """Transfer arcs between every departure and arrival date (broadcast together).
+
+    ``departure_jd`` and ``arrival_jd`` are TT Julian dates that broadcast
+    (e.g. ``(N, 1)`` and ``(1, M)`` for a grid). Pairs with a time of flight
+    under one hour are marked invalid (their fields are NaN).
+    ``departure_states``/``arrival_states`` optionally give precomputed
+    ``(r, v)`` of the departure and arrival bodies at those dates.
+    """
+    tgt = target(target_name)
+    eph = ephemeris or _default_ephemeris
+    dep = np.asarray(departure_jd, dtype=float)
+    arr = np.asarray(arrival_jd, dtype=float)
+    shape = np.broadcast_shapes(dep.shape, arr.shape)
+    if departure_states is None:
+        departure_states = _states(eph, "earth", dep, tgt.center)
+    if arrival_states is None:
+        arrival_states = _states(eph, tgt.arrival_body, arr, tgt.center)
+    r_dep, v_dep = departure_states
+    r_arr, v_arr = arrival_states
+    tof = (arr - dep) * SECONDS_PER_DAY
+    tof_b = np.broadcast_to(tof, shape)
+    valid = tof_b > 3600.0
+    idx = np.nonzero(valid)
+    r_dep_b = np.broadcast_to(r_dep, shape + (3,))[idx]
+    v_dep_b = np.broadcast_to(v_dep, shape + (3,))[idx]
+    r_arr_b = np.broadcast_to(r_arr, shape + (3,))[idx]
+    v_arr_b = np.broadcast_to(v_arr, shape + (3,))[idx]
+
+    r_park = tgt.departure_radius + orbits.parking_altitude
+    if tgt.name == "moon":
+        r1, v_circ = _lunar_departure_points(r_arr_b, v_arr_b, r_park, tgt.center_mu)
+    else:
+        r1 = r_dep_b
+    v1, v2 = lambert(tgt.center_mu, r1, r_arr_b, tof_b[idx])
+
+    rp_cap = tgt.arrival_radius + orbits.capture_periapsis_altitude
+    ra_cap = (rp_cap if orbits.capture_apoapsis_altitude is None
+              else tgt.arrival_radius + orbits.capture_apoapsis_altitude)
+    vinf_arr = np.linalg.norm(v2 - v_arr_b, axis=-1)
+    if tgt.name == "moon":
+        vinf_dep = v1 - v_circ            # the departure burn itself
+        energy = np.sum(v1 * v1, axis=-1) - 2.0 * tgt.center_mu / r_park
+        dv_dep = np.linalg.norm(vinf_dep, axis=-1)
+        rla, dla = asymptote_direction(r_arr_b)
+    else:
+        vinf_dep = v1 - v_dep_b
+        energy = c3(vinf_dep)
+        dv_dep = escape_dv_c3(tgt.departure_mu, r_park, energy)
+        rla, dla = asymptote_direction(vinf_dep)
+    dv_arr = capture_dv(tgt.arrival_mu, rp_cap, ra_cap, vinf_arr)
+
+    def full(values, extra=()):
+        out = np.full(shape + extra, np.nan)
+        out[idx] = values
+        return out
+
+    return Arcs(np.broadcast_to(dep, shape), np.broadcast_to(arr, shape),
+                tof_b / SECONDS_PER_DAY, full(energy), full(vinf_dep, (3,)), full(vinf_arr),
+                full(dv_dep), full(dv_arr), full(rla), full(dla), valid)
+
+
+def _states(eph, body, jd, center):
+    flat = np.ascontiguousarray(jd, dtype=float).reshape(-1)
+    r, v = eph(body, flat, center)
+    r = np.asarray(r, dtype=float).reshape(jd.shape + (3,))
+    v = np.asarray(v, dtype=float).reshape(jd.shape + (3,))
+    return r, v
+
+
+def _lunar_departure_points(r_moon, v_moon, r_park, mu):
+    """Parking-orbit departure points 179 deg before the Moon, in its plane."""
+    h = np.cross(r_moon, v_moon)
+    h_hat = h / np.linalg.norm(h, axis=-1, keepdims=True)
+    u = r_moon / np.linalg.norm(r_moon, axis=-1, keepdims=True)
+    w = np.cross(h_hat, u)                       # direction of the Moon's motion
+    theta = MOON_TRANSFER_ANGLE
+    r1_hat = math.cos(theta) * u - math.sin(theta) * w
+    r1 = r_park * r1_hat
+    v_circ = math.sqrt(mu / r_park) * np.cross(h_hat, r1_hat)
+    return r1, v_circ
+
+
+def _objective_values(grid: Arcs, objective: str, limits: dict) -> np.ndarray:
+    values = grid.dv_total if objective == "dv" else grid.c3
+    values = np.where(grid.valid, values, np.inf)
+    ok = np.isfinite(values)
+    if limits.get("max_c3") is not None:
+        ok &= grid.c3 <= limits["max_c3"]
+    if limits.get("max_vinf_arrival") is not None:
+        ok &= grid.vinf_arrival <= limits["max_vinf_arrival"]
+    if limits.get("tof_days") is not None:
+        lo, hi = limits["tof_days"]
+        ok &= (grid.tof_days >= lo) & (grid.tof_days <= hi)
+    return np.where(ok, values, np.inf)
+
+
+def _local_minima(values: np.ndarray) -> list[tuple[int, int]]:
+    """Grid cells not larger than any of their 8 neighbours, all of them finite.
+
+    A cell on the edge of the grid or of the region within the limits is not
+    a minimum of the problem but of the box drawn around it, so it is skipped.
+    """
+    padded = np.pad(values, 1, constant_values=np.inf)
+    centre = padded[1:-1, 1:-1]
+    is_min = np.isfinite(centre)
+    n, m = values.shape
+    for di in (-1, 0, 1):
+        for dj in (-1, 0, 1):
+            if di == 0 and dj == 0:
+                continue
+            neighbour = padded[1 + di:1 + di + n, 1 + dj:1 + dj + m]
+            is_min &= np.isfinite(neighbour) & (centre <= neighbour)
+    cells = list(zip(*np.nonzero(is_min)))
+    cells.sort(key=lambda ij: values[ij])
+    return [(int(i), int(j)) for i, j in cells]
+
+
+def search(departure_jd, arrival_jd, *, target_name: str = "mars", objective: str = "dv",
+           orbits: Orbits = Orbits(), max_c3: float | None = None,
+           max_vinf_arrival: float | None = None, tof_days: tuple[float, float] | None = None,
+           count: int = 3, ephemeris: Callable | None = None,
+           progress: Callable[[int, int], None] | None = None) -> Search:
+    """The best windows over a grid of departure x arrival dates (TT Julian dates).
+
+    ``departure_jd`` (N,) and ``arrival_jd`` (M,) are the grid's axes.
+    ``objective`` is ``"dv"`` (total Δv: escape plus capture) or ``"c3"``.
+    Limits: ``max_c3`` (m^2/s^2), ``max_vinf_arrival`` (m/s), ``tof_days``
+    (min, max; default: the target's range). Returns at most ``count``
+    windows, best first, each refined by ``scipy.optimize.minimize`` from a
+    local minimum of the grid and kept within the limits. ``progress(done,
+    total)`` is called as rows of the grid are finished.
+    """
+    from scipy.optimize import minimize
+
+    if objective not in ("dv", "c3"):
+        raise InputError(f"objective must be 'dv' or 'c3', got {objective!r}", field="objective")
+    tgt = target(target_name)
+    eph = ephemeris or _default_ephemeris
+    dep = np.asarray(departure_jd, dtype=float).reshape(-1)
+    arr = np.asarray(arrival_jd, dtype=float).reshape(-1)
+    if dep.size == 0 or arr.size == 0:
+        raise InputError("the search grid is empty", field="dates")
+    if ephemeris is None:
+        check_dates(dep, "departure date")
+        check_dates(arr, "arrival date")
+    limits = {"max_c3": max_c3, "max_vinf_arrival": max_vinf_arrival,
+              "tof_days": tof_days if tof_days is not None else tgt.tof_days}
+
+    dep_states = _states(eph, "earth", dep, tgt.center)
+    arr_states = _states(eph, tgt.arrival_body, arr, tgt.center)
+    # Row blocks so that progress can be reported on long searches.
+    block = max(1, 20000 // max(1, arr.size))
+    rows = []
+    for start in range(0, dep.size, block):
+        stop = min(dep.size, start + block)
+        rows.append(arcs(dep[start:stop, None], arr[None, :], target_name=tgt.name,
+                         orbits=orbits, ephemeris=eph,
+                         departure_states=(dep_states[0][start:stop, None],
+                                           dep_states[1][start:stop, None]),
+                         arrival_states=(arr_states[0][None], arr_states[1][None])))
+        if progress is not None:
+            progress(stop, dep.size)
+    grid = Arcs(*(np.concatenate([getattr(r, f) for r in rows], axis=0)
+                  for f in Arcs.__dataclass_fields__))
+
+    values = _objective_values(grid, objective, limits)
+    step = max(float(np.median(np.diff(dep))) if dep.size > 1 else 1.0,
+               float(np.median(np.diff(arr))) if arr.size > 1 else 1.0)
+    lo_dep, hi_dep = dep[0], dep[-1]
+    lo_arr, hi_arr = arr[0], arr[-1]
+
+    def evaluate(point):
+        d, a = float(point[0]), float(point[1])
+        if not (lo_dep <= d <= hi_dep and lo_arr <= a <= hi_arr):
+            return None
+        one = arcs(np.array([d]), np.array([a]), target_name=tgt.name, orbits=orbits,
+                   ephemeris=eph)
+        return one
+
+    def cost(point):
+        one = evaluate(point)
+        if one is None:
+            return np.inf
+        return float(_objective_values(one, objective, limits)[0])
+
+    windows: list[Window] = []
+    for i, j in _local_minima(values):
+        if len(windows) >= count:
+            break
+        start = np.array([dep[i], arr[j]])
+        simplex = np.array([start, start + [step, 0.0], start + [0.0, step]])
+        result = minimize(cost, start, method="Nelder-Mead",
+                          options={"initial_simplex": simplex, "xatol": 1e-5,
+                                   "fatol": 1e-9, "maxiter": 400})
+        best = result.x if np.isfinite(result.fun) and result.fun <= values[i, j] else start
+        if any(abs(best[0] - w.departure_jd_tt) < 2.0 * step
+               and abs(best[1] - w.arrival_jd_tt) < 2.0 * step for w in windows):
+            continue
+        one = evaluate(best)
+        windows.append(Window(
+            departure_jd_tt=float(best[0]), arrival_jd_tt=float(best[1]),
+            tof_days=float(one.tof_days[0]), c3=float(one.c3[0]),
+            vinf_departure=tuple(float(x) for x in one.vinf_departure[0]),
+            vinf_arrival=float(one.vinf_arrival[0]), rla=float(one.rla[0]),
+            dla=float(one.dla[0]), dv_departure=float(one.dv_departure[0]),
+            dv_arrival=float(one.dv_arrival[0]), dv_total=float(one.dv_total[0])))
+    key = (lambda w: w.dv_total) if objective == "dv" else (lambda w: w.c3)
+    windows.sort(key=key)
+    return Search(tgt, windows, grid, objective, limits)
