@@ -73,9 +73,24 @@ WATER_AIR_MOLAR_RATIO = 0.62198
 MARS_GAS_CONSTANT_DENSITY = 192.1          # J/(kg K), Glenn model's density formula
 MARS_GAS_CONSTANT_SOUND = 188.92           # J/(kg K), CO2: 8.314 46 / 0.044 01 (speed of sound)
 MARS_CELSIUS_OFFSET = 273.1                # K, as written in the Glenn formula (not 273.15)
-MARS_GAMMA = 1.29                          # ratio of specific heats of CO2 near 200 K (+-0.02)
+# Ratio of specific heats of ideal-gas CO2 at 220 K, mid-range of the Martian
+# air (cp = 33.4 J/(mol K), NIST-JANAF): 1.29 at 300 K, 1.37 at 150 K, so
+# +-0.04 (+-1.5 % in the speed of sound).
+MARS_GAMMA = 1.33
 # CO2 viscosity, Sutherland's law mu = mu0 (T/T0)^1.5 (T0 + S)/(T + S)
 # (F. M. White, Viscous Fluid Flow, 3rd ed., Table 1-2).
 CO2_VISCOSITY_REF = 1.370e-5               # Pa s at CO2_VISCOSITY_T0
 CO2_VISCOSITY_T0 = 273.0                   # K
 CO2_SUTHERLAND_S = 222.0                   # K
+
+# --- Vehicles and engines (rocketsim.vehicle; physics model, "Thrust against
+# ambient pressure" and "Mass properties are recomputed every step") ---------
+UNUSABLE_PROPELLANT = 0.01                 # fraction of each stage's load that cannot be burned
+LIQUID_ROLL_INERTIA_FRACTION = 0.10        # share of a liquid column's own roll inertia counted
+ENGINE_TAIL_OFF = 0.25                     # s, shutdown to zero thrust
+# Summerfield criterion for free shock separation in an over-expanded nozzle:
+# the flow separates where the wall pressure falls below about 0.4 of the
+# ambient pressure, p_e < 0.4 p_a (M. Summerfield, C. R. Foster, W. C. Swan,
+# "Flow separation in overexpanded supersonic exhaust nozzles", Jet Propulsion
+# 24 (1954) 319-321; Sutton & Biblarz, Rocket Propulsion Elements, 9th ed., 3.3).
+SUMMERFIELD_SEPARATION_RATIO = 0.4

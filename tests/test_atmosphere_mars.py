@@ -4,6 +4,8 @@ Reference below 40 km: the NASA Glenn Research Center formulas, written out
 here from ../shared/spec/EQUATIONS.md (h in metres, T in °C, p in kPa):
 T = -31 - 0.000998 h (h <= 7000), -23.4 - 0.00222 h (h > 7000);
 p = 0.699 exp(-0.00009 h); rho = p / (0.1921 (T + 273.1)).
+The speed of sound is sqrt(gamma R T) with the published model's 188.92
+J/(kg K) and gamma = 1.33 (ideal-gas CO2 at 220 K, NIST-JANAF).
 Above 40 km: continuity of temperature and density and of their first
 derivatives at every joint (one-sided finite differences), hydrostatic
 balance above the 40-60 km hand-over band, and the named temperatures.
@@ -31,7 +33,7 @@ def test_glenn_formulas_to_rounding(h):
     assert air.temperature == pytest.approx(t, rel=1e-14)
     assert air.pressure == pytest.approx(p, rel=1e-14)
     assert air.density == pytest.approx(rho, rel=1e-14)
-    assert air.speed_of_sound == pytest.approx(math.sqrt(1.29 * 188.92 * t), rel=1e-14)
+    assert air.speed_of_sound == pytest.approx(math.sqrt(1.33 * 188.92 * t), rel=1e-14)
 
 
 def test_glenn_temperature_step_at_7_km_is_the_published_one():

@@ -31,7 +31,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from rocketsim.atmosphere.hydrostatic import integrate_log_pressure
+from rocketsim.atmosphere.hydrostatic import hermite, integrate_log_pressure
 from rocketsim.atmosphere.sounding import Sounding
 from rocketsim.atmosphere.table import STEP, AtmosphereTable, grid, make_table
 from rocketsim.atmosphere.ussa1976 import Z_86, sutherland_viscosity, us_standard_1976
@@ -46,7 +46,7 @@ STANDARD_LAPSE = 0.0065        # K/m, extrapolation below the lowest level (stan
 
 
 def geocentric_radius(lat):
-    """Distance (m) from the Earth's centre to the WGS84 ellipsoid at geodetic latitude ``lat`` (rad)."""
+    """Distance (m) from the Earth's centre to the WGS84 ellipsoid at geodetic ``lat`` (rad)."""
     a, b = EARTH_RADIUS_EQ, EARTH_RADIUS_POLAR
     c, s = np.cos(lat), np.sin(lat)
     return float(np.sqrt(((a * a * c) ** 2 + (b * b * s) ** 2) / ((a * c) ** 2 + (b * s) ** 2)))
@@ -123,7 +123,7 @@ def profile_table(sounding: Sounding, latitude: float) -> AtmosphereTable:
     rate = -gravity(half, latitude) * USSA_M0 / (GAS_CONSTANT_USSA * t_vm)
     log_p = integrate_log_pressure(low, rate[::2], rate[1::2], 0.0)
     # Anchor at the lowest level: ln p there equals the measured pressure.
-    log_p += np.log(sounding.pressure[0]) - _log_p_at(z_data[0], low, log_p, rate[::2])
+    log_p += np.log(sounding.pressure[0]) - hermite(low, log_p, rate[::2], z_data[0])
     p_low = np.exp(log_p)
 
     t, t_vm_rows, east, north = _profile_on(rows, sounding, z_data, z_b)
@@ -137,14 +137,6 @@ def profile_table(sounding: Sounding, latitude: float) -> AtmosphereTable:
                      np.sqrt(USSA_GAMMA * GAS_CONSTANT_USSA * t_vm_rows / USSA_M0))
     return make_table(rows[0], STEP, density, pressure, t, sound, sutherland_viscosity(t),
                       east, north)
-
-
-def _log_p_at(z, rows, log_p, rate):
-    """``ln p`` at ``z`` between rows: integrate from the row below with the mean slope."""
-    i = int(np.clip(np.searchsorted(rows, z, side="right") - 1, 0, len(rows) - 2))
-    f = (z - rows[i]) / (rows[i + 1] - rows[i])
-    slope = rate[i] + 0.5 * f * (rate[i + 1] - rate[i])
-    return log_p[i] + slope * (z - rows[i])
 
 
 def classic_profile(surface_temperature: float, surface_pressure: float = USSA_P0,

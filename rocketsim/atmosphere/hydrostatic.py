@@ -26,15 +26,20 @@ def integrate_log_pressure(z, rate, rate_mid, log_p0):
     return log_p0 + np.concatenate(([0.0], np.cumsum(steps)))
 
 
-def hermite(z_rows, y, dy, z):
-    """Cubic Hermite value at ``z`` of a function known with its slope at rows.
-
-    ``z_rows`` ascending (m); ``z`` inside ``[z_rows[0], z_rows[-1]]``.
+def hermite(z_rows, y, dy, z, slope=False):
+    """Cubic Hermite value (and with ``slope=True`` also the slope) at ``z`` of a
+    function known with its slope at rows ``z_rows`` (ascending, m); ``z`` is
+    clamped to ``[z_rows[0], z_rows[-1]]``.
     """
-    z = np.asarray(z, dtype=float)
+    z = np.clip(np.asarray(z, dtype=float), z_rows[0], z_rows[-1])
     i = np.clip(np.searchsorted(z_rows, z, side="right") - 1, 0, len(z_rows) - 2)
     h = z_rows[i + 1] - z_rows[i]
     t = (z - z_rows[i]) / h
     t2, t3 = t * t, t * t * t
-    return ((2 * t3 - 3 * t2 + 1) * y[i] + (t3 - 2 * t2 + t) * h * dy[i]
-            + (-2 * t3 + 3 * t2) * y[i + 1] + (t3 - t2) * h * dy[i + 1])
+    value = ((2 * t3 - 3 * t2 + 1) * y[i] + (t3 - 2 * t2 + t) * h * dy[i]
+             + (-2 * t3 + 3 * t2) * y[i + 1] + (t3 - t2) * h * dy[i + 1])
+    if not slope:
+        return value
+    d = ((6 * t2 - 6 * t) * (y[i] - y[i + 1]) / h + (3 * t2 - 4 * t + 1) * dy[i]
+         + (3 * t2 - 2 * t) * dy[i + 1])
+    return value, d

@@ -85,28 +85,13 @@ def glenn(h):
     return t_c + MARS_CELSIUS_OFFSET, p_kpa * 1000.0, rho
 
 
-def _hermite_segment(x, x0, x1, y0, y1, m0, m1):
-    """Cubic Hermite value and slope on [x0, x1]."""
-    w = x1 - x0
-    t = (x - x0) / w
-    y = ((2 * t**3 - 3 * t**2 + 1) * y0 + (t**3 - 2 * t**2 + t) * w * m0
-         + (-2 * t**3 + 3 * t**2) * y1 + (t**3 - t**2) * w * m1)
-    dy = ((6 * t**2 - 6 * t) * y0 + (3 * t**2 - 4 * t + 1) * w * m0
-          + (-6 * t**2 + 6 * t) * y1 + (3 * t**2 - 2 * t) * w * m1) / w
-    return y, dy
-
-
 def upper_temperature(h):
-    """Temperature (K) and its slope (K/m) above 40 km."""
-    h = np.asarray(h, dtype=float)
-    t40 = float(glenn(GLENN_TOP)[0])
-    lower = _hermite_segment(np.clip(h, GLENN_TOP, MESOPAUSE_HEIGHT), GLENN_TOP,
-                             MESOPAUSE_HEIGHT, t40, MESOPAUSE_TEMPERATURE, -0.00222, 0.0)
-    upper = _hermite_segment(np.clip(h, MESOPAUSE_HEIGHT, EXOBASE_HEIGHT), MESOPAUSE_HEIGHT,
-                             EXOBASE_HEIGHT, MESOPAUSE_TEMPERATURE, EXOSPHERE_TEMPERATURE, 0.0, 0.0)
-    t = np.where(h <= MESOPAUSE_HEIGHT, lower[0], upper[0])
-    dt = np.where(h <= MESOPAUSE_HEIGHT, lower[1], upper[1])
-    return t, np.where(h <= EXOBASE_HEIGHT, dt, 0.0)
+    """Temperature (K) and its slope (K/m) above 40 km: cubic Hermite through the Glenn 40 km
+    state, the mesopause and the exobase, constant above."""
+    rows = np.array([GLENN_TOP, MESOPAUSE_HEIGHT, EXOBASE_HEIGHT, TOP])
+    temps = np.array([float(glenn(GLENN_TOP)[0]), MESOPAUSE_TEMPERATURE, EXOSPHERE_TEMPERATURE,
+                      EXOSPHERE_TEMPERATURE])
+    return hermite(rows, temps, np.array([-0.00222, 0.0, 0.0, 0.0]), h, slope=True)
 
 
 def gravity(h):

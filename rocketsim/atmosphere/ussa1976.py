@@ -32,10 +32,12 @@ import functools
 from typing import NamedTuple
 
 import numpy as np
+from scipy.integrate import cumulative_trapezoid
 
 from rocketsim.atmosphere.hydrostatic import hermite
-from rocketsim.constants import (G0, GAS_CONSTANT_USSA, USSA_BOLTZMANN, USSA_GAMMA, USSA_M0, USSA_P0, USSA_R0,
-                                 USSA_SUTHERLAND_BETA, USSA_SUTHERLAND_S, USSA_T0)
+from rocketsim.constants import (G0, GAS_CONSTANT_USSA, USSA_BOLTZMANN, USSA_GAMMA, USSA_M0,
+                                 USSA_P0, USSA_R0, USSA_SUTHERLAND_BETA, USSA_SUTHERLAND_S,
+                                 USSA_T0)
 
 R_STAR = GAS_CONSTANT_USSA          # J/(mol K)
 Z_MIN = -5_000.0                    # m, lowest height the standard defines
@@ -133,8 +135,8 @@ def _lower(z):
     lapse, dh = _LAPSE[i], h - _H_BASE[i]
     tm = tb[i] + lapse * dh
     k = G0 * USSA_M0 / R_STAR
-    with np.errstate(divide="ignore", invalid="ignore"):
-        p_grad = pb[i] * (tb[i] / tm) ** np.where(lapse != 0.0, k / np.where(lapse != 0, lapse, 1), 0)
+    exponent = k / np.where(lapse != 0.0, lapse, 1.0)          # (unused where lapse is 0)
+    p_grad = pb[i] * (tb[i] / tm) ** exponent
     p_iso = pb[i] * np.exp(-k * dh / tb[i])
     return tm, np.where(lapse == 0.0, p_iso, p_grad)
 
@@ -157,9 +159,8 @@ def upper_temperature(z):
     return t, dt
 
 
-def _cumulative(y, z):
-    """Trapezoidal cumulative integral of y over z, starting at 0."""
-    return np.concatenate(([0.0], np.cumsum(0.5 * (y[1:] + y[:-1]) * np.diff(z))))
+# trapezoidal cumulative integral along the height grid, starting from 0
+_integral = functools.partial(cumulative_trapezoid, initial=0.0)
 
 
 def _flux_term(species, z):
@@ -186,26 +187,26 @@ def number_densities(z):
         k_eddy = np.where(z < 95_000.0, _K_EDDY,
                           np.where(z < 115_000.0,
                                    _K_EDDY * np.exp(1.0 - 4e8 / (4e8 - dz * dz)), 0.0))
-    n = {"N2": _N86["N2"] * (_T7 / t) * np.exp(-_cumulative(mean_m * g / (R_STAR * t), z))}
+    n = {"N2": _N86["N2"] * (_T7 / t) * np.exp(-_integral(mean_m * g / (R_STAR * t), x=z))}
     for s in ("O", "O2", "Ar", "He"):
         background = n["N2"] if s in ("O", "O2") else n["N2"] + n["O"] + n["O2"]
         d = _DIFF_A[s] / background * (t / 273.15) ** _DIFF_B[s]
         m_k = _MOLAR["N2"] if s == "O" else mean_m
         f = (g / (R_STAR * t)) * d / (d + k_eddy) * (
             _MOLAR[s] + m_k * k_eddy / d + _ALPHA[s] * R_STAR * dt / g) + _flux_term(s, z)
-        n[s] = _N86[s] * (_T7 / t) * np.exp(-_cumulative(f, z))
+        n[s] = _N86[s] * (_T7 / t) * np.exp(-_integral(f, x=z))
     # Hydrogen (eqs. 38-40): zero below 150 km, flux-limited 150-500 km, diffusive above.
     n_h = np.zeros_like(z)
     above = z >= 150_000.0
     zh, th = z[above], t[above]
     t500 = float(upper_temperature(np.array([500_000.0]))[0][0])
-    tau = _cumulative(_MOLAR["H"] * g[above] / (R_STAR * th), zh)
+    tau = _integral(_MOLAR["H"] * g[above] / (R_STAR * th), x=zh)
     tau = tau - np.interp(500_000.0, zh, tau)
     bg = sum(n[s][above] for s in ("N2", "O", "O2", "Ar", "He"))
     d_h = _DIFF_A["H"] / bg * (th / 273.15) ** _DIFF_B["H"]
     expo = 1.0 + _ALPHA["H"]
     integrand = _PHI_H / d_h * (th / t500) ** expo * np.exp(tau)
-    from_500 = _cumulative(integrand, zh)
+    from_500 = _integral(integrand, x=zh)
     from_500 = np.interp(500_000.0, zh, from_500) - from_500     # integral from z up to 500 km
     n_h[above] = (t500 / th) ** expo * np.exp(-tau) * (_N_H500 + np.where(zh <= 500_000.0,
                                                                           from_500, 0.0))
