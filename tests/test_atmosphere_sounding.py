@@ -224,3 +224,13 @@ def test_wyoming_heights_out_of_order_name_the_line():
     with pytest.raises(InputError) as caught:
         parse_wyoming("\n".join(text), "oun.txt")
     assert caught.value.line == 14 and "out of order" in caught.value.message
+
+
+def test_bad_yaml_cell_names_its_line(tmp_path):
+    path = tmp_path / "bad.yaml"
+    path.write_text("columns:\n  PRES: [966, 925]\n  HGHT: [345, 720]\n"
+                    "  TEMP:\n    - 22.2\n    - hot\n")
+    with pytest.raises(InputError) as caught:
+        read_sounding(path)
+    assert caught.value.line == 6 and caught.value.field == "TEMP"
+    assert f"{path}:6" in str(caught.value)
