@@ -16,7 +16,9 @@ import numpy as np
 import pytest
 
 from rocketsim.atmosphere.day import standard_table
-from rocketsim.atmosphere.table import TOP, air_at
+import pymap3d
+
+from rocketsim.atmosphere.table import TOP, air_at, wind_earth_fixed
 from rocketsim.atmosphere.ussa1976 import us_standard_1976
 
 
@@ -62,3 +64,10 @@ def test_scalar_compiled_lookup_equals_the_vectorised_one(table):
     many = np.array(table.at(heights))
     for j, h in enumerate(heights):
         assert np.array_equal(np.array(air_at(*table.arrays(), h)), many[:, j])
+
+
+@pytest.mark.parametrize("lat, lon", [(0.0, 0.0), (0.614, -1.703), (-1.2, 2.9)])
+def test_wind_as_an_earth_fixed_vector(lat, lon):
+    # Reference: pymap3d's ENU -> ECEF vector rotation (enu2uvw), an independent peer.
+    expected = pymap3d.enu2uvw(3.0, -4.0, 0.0, lat, lon, deg=False)
+    np.testing.assert_allclose(wind_earth_fixed(3.0, -4.0, lat, lon), expected, atol=1e-12)

@@ -23,6 +23,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from rocketsim._jit import njit
+from rocketsim.frames.geodetic import enu_basis
 
 STEP = 50.0                 # m, the table's row spacing
 TOP = 600_000.0             # m, the flight model sees no air above this height
@@ -129,3 +130,11 @@ def air_at_many(h0, dh, density, pressure, temperature, speed_of_sound, wind_eas
             h0, dh, density, pressure, temperature, speed_of_sound, wind_east, wind_north,
             heights[j])
     return out[0], out[1], out[2], out[3], out[4], out[5]
+
+
+@njit
+def wind_earth_fixed(wind_east, wind_north, lat, lon):
+    """The wind (m/s) as an Earth-fixed vector, from its east and north components at
+    geodetic ``lat`` and ``lon`` (rad) (the air moves horizontally: no vertical part)."""
+    basis = enu_basis(lat, lon)
+    return wind_east * basis[0] + wind_north * basis[1]
