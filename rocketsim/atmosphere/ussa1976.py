@@ -72,7 +72,7 @@ _PHI_H = 7.2e11                     # 1/(m^2 s), hydrogen vertical flux (eq. 39)
 _DIFF_A = {"O": 6.986e20, "O2": 4.863e20, "Ar": 4.487e20, "He": 1.700e21, "H": 3.305e21}
 _DIFF_B = {"O": 0.750, "O2": 0.750, "Ar": 0.870, "He": 0.691, "H": 0.500}
 _ALPHA = {"O": 0.0, "O2": 0.0, "Ar": 0.0, "He": -0.40, "H": -0.25}
-_K_EDDY = 120.0                     # m^2/s, eddy diffusion 86-95 km (eq. 7a)
+_K_EDDY = 120.0                     # m^2/s, eddy diffusion coefficient 86-95 km
 # Table 7: vertical flux terms v/(D+K) = Q (Z-U)^2 exp(-W (Z-U)^3) [+ q (u-Z)^2 exp(-w (u-Z)^3)]
 # in SI (Q, q, W, w per m^3; U, u in m); zero above 150 km.
 _FLUX = {"O": (-5.809644e-13, 56_903.11, 2.706240e-14),
@@ -181,12 +181,11 @@ def number_densities(z):
     """
     t, dt = upper_temperature(z)
     g = standard_gravity(z)
-    mean_m = np.where(z <= 100_000.0, USSA_M0, _MOLAR["N2"])   # M in eqs. 33, 36 (Table 6 note)
-    dz = z - 95_000.0
-    with np.errstate(divide="ignore", over="ignore"):
-        k_eddy = np.where(z < 95_000.0, _K_EDDY,
-                          np.where(z < 115_000.0,
-                                   _K_EDDY * np.exp(1.0 - 4e8 / (4e8 - dz * dz)), 0.0))
+    # M of the mixed column in eqs. 33 and 36: M0 up to 100 km, then that of N2
+    mean_m = np.where(z <= 100_000.0, USSA_M0, _MOLAR["N2"])
+    # eddy diffusion: 120 m^2/s to 95 km, falling to 0 at 115 km
+    x = np.clip(z - 95_000.0, 0.0, 19_999.0)
+    k_eddy = np.where(z < 115_000.0, _K_EDDY * np.exp(1.0 - 4e8 / (4e8 - x * x)), 0.0)
     n = {"N2": _N86["N2"] * (_T7 / t) * np.exp(-_integral(mean_m * g / (R_STAR * t), x=z))}
     for s in ("O", "O2", "Ar", "He"):
         background = n["N2"] if s in ("O", "O2") else n["N2"] + n["O"] + n["O2"]
