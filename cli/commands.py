@@ -1,7 +1,8 @@
 """The list of commands: one import per command module."""
 
 from rocketsim_cli.atmosphere import atmosphere
+from rocketsim_cli.ephemeris import ephemeris
 from rocketsim_cli.fly import fly
 from rocketsim_cli.validate import schema, validate
 
-ALL = [fly, validate, schema, atmosphere]
+ALL = [fly, validate, schema, atmosphere, ephemeris]

@@ -1,0 +1,103 @@
+"""``rocketsim ephemeris``: where the Sun, Earth, Moon or Mars is, date by date."""
+
+from __future__ import annotations
+
+import datetime as _dt
+import math
+
+import click
+import numpy as np
+
+from rocketsim.constants import AU
+from rocketsim.ephemeris.solar_system import BODIES, states
+from rocketsim.errors import InputError
+from rocketsim.scenario.units import UnitError, parse_quantity
+from rocketsim.timescales import Epoch
+from rocketsim_cli.errors import reports_input_errors
+
+MAX_ROWS = 200_000
+CSV_COLUMNS = "utc,tt_jd,x_km,y_km,z_km,vx_km_s,vy_km_s,vz_km_s"
+DEFAULT_CENTER = {"sun": "earth", "earth": "sun", "mars": "sun", "moon": "earth"}
+
+
+def _utc(text: str, option: str) -> _dt.datetime:
+    """An ISO 8601 date or date-time, read as UTC unless it names a zone."""
+    try:
+        moment = _dt.datetime.fromisoformat(text.strip())
+    except ValueError:
+        raise InputError(f"{text!r} is not a date: expected e.g. 2026-01-01 or "
+                         "2026-01-01T12:00:00Z", field=option) from None
+    if moment.tzinfo is None:
+        moment = moment.replace(tzinfo=_dt.timezone.utc)
+    return moment.astimezone(_dt.timezone.utc)
+
+
+def _instants(start: _dt.datetime, stop: _dt.datetime, step_text: str) -> list[_dt.datetime]:
+    try:
+        step = parse_quantity(step_text, "time")
+    except UnitError as error:
+        raise InputError(str(error), field="--step") from None
+    if not step > 0.0:
+        raise InputError(f"the step must be positive, got {step_text!r}", field="--step")
+    if stop < start:
+        raise InputError(f"--to ({stop:%Y-%m-%d %H:%M:%S}) is before --from "
+                         f"({start:%Y-%m-%d %H:%M:%S})", field="--to")
+    count = math.floor((stop - start).total_seconds() / step + 1e-9) + 1
+    if count > MAX_ROWS:
+        raise InputError(f"{count} rows: at most {MAX_ROWS}; use a larger step",
+                         field="--step")
+    return [start + _dt.timedelta(seconds=k * step) for k in range(count)]
+
+
+def _elongation_deg(sun: np.ndarray, body: np.ndarray) -> np.ndarray:
+    """Angle Sun-Earth-body (deg) from geocentric vectors (N, 3)."""
+    cos = np.sum(sun * body, axis=1) / (np.linalg.norm(sun, axis=1) * np.linalg.norm(body, axis=1))
+    return np.degrees(np.arccos(np.clip(cos, -1.0, 1.0)))
+
+
+@click.command()
+@click.option("--body", type=click.Choice(BODIES), required=True, help="the body to place")
+@click.option("--center", type=click.Choice(BODIES), default=None,
+              help="origin of the vectors [default: the Sun for the planets, the Earth "
+                   "for the Moon and the Sun]")
+@click.option("--from", "start", required=True, help="first UTC date, e.g. 2026-01-01")
+@click.option("--to", "stop", required=True, help="last UTC date (included when on a step)")
+@click.option("--step", default="1 d", show_default=True, help="time step, e.g. 10d, 6 h, 30 min")
+@click.option("--format", "fmt", type=click.Choice(["table", "csv"]), default="table",
+              show_default=True)
+@reports_input_errors
+def ephemeris(body, center, start, stop, step, fmt):
+    """Print where a body is: position and velocity (csv) or distances and
+    elongation (table), J2000 mean equatorial frame, from the truncated
+    VSOP87D / ELP2000-82B series. Dates are UTC; the series run on TT
+    (TT = UTC + Delta T, Espenak & Meeus).
+
+    \b
+    Example:
+        rocketsim ephemeris --body mars --from 2026-01-01 --to 2027-01-01 --step 10d
+        rocketsim ephemeris --body moon --from 2026-03-01 --to 2026-04-01 --format csv
+    """
+    center = center or DEFAULT_CENTER[body]
+    utc = _instants(_utc(start, "--from"), _utc(stop, "--to"), step)
+    jd_tt = np.array([Epoch.from_utc(moment).jd_tt() for moment in utc])
+    field = states(jd_tt, center="earth")
+    r = field[body][0] - field[center][0]
+    v = field[body][1] - field[center][1]
+    if fmt == "csv":
+        click.echo(CSV_COLUMNS)
+        for moment, jd, pos, vel in zip(utc, jd_tt, r / 1e3, v / 1e3):
+            click.echo(f"{moment:%Y-%m-%dT%H:%M:%SZ},{jd:.6f},{pos[0]:.3f},{pos[1]:.3f},"
+                       f"{pos[2]:.3f},{vel[0]:.6f},{vel[1]:.6f},{vel[2]:.6f}")
+        return
+    distance = np.linalg.norm(r, axis=1)
+    from_earth = np.linalg.norm(field[body][0], axis=1)
+    elongation = (_elongation_deg(field["sun"][0], field[body][0])
+                  if body not in ("earth", "sun") else None)
+    click.echo(f"# {body} from {center}, J2000 equatorial; elongation = angle Sun-Earth-{body}")
+    click.echo(f"{'utc':<20} {'tt_jd':>15} {'distance_km':>16} {'distance_au':>12} "
+               f"{'from_earth_km':>16} {'speed_km_s':>10} {'elongation_deg':>14}")
+    speed = np.linalg.norm(v, axis=1) / 1e3
+    for k, moment in enumerate(utc):
+        elong = f"{elongation[k]:14.3f}" if elongation is not None else f"{'-':>14}"
+        click.echo(f"{moment:%Y-%m-%d %H:%M:%S} {jd_tt[k]:15.6f} {distance[k] / 1e3:16.1f} "
+                   f"{distance[k] / AU:12.6f} {from_earth[k] / 1e3:16.1f} {speed[k]:10.4f} {elong}")
