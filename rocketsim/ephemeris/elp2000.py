@@ -95,20 +95,21 @@ def _poly_deg(c, T):
 
 @njit
 def fundamental_arguments(T):
-    """Meeus's ``L', D, M, M', F`` (rad) and their rates (rad per century)."""
-    values = np.empty(5)
-    rates = np.empty(5)
-    for i, c in enumerate((MEAN_LONGITUDE, ELONGATION, SUN_ANOMALY, MOON_ANOMALY,
-                           LATITUDE_ARGUMENT)):
-        values[i], rates[i] = _poly_deg(c, T)
-    return values, rates
+    """Meeus's ``L', D, M, M', F`` (rad) and their rates (rad per century),
+    as two 5-tuples."""
+    lp, dlp = _poly_deg(MEAN_LONGITUDE, T)
+    d, dd = _poly_deg(ELONGATION, T)
+    m, dm = _poly_deg(SUN_ANOMALY, T)
+    mp, dmp = _poly_deg(MOON_ANOMALY, T)
+    f, df = _poly_deg(LATITUDE_ARGUMENT, T)
+    return (lp, d, m, mp, f), (dlp, dd, dm, dmp, df)
 
 
 @njit
-def _add_sin(acc, amplitude, angle, angle_rate):
-    """Add ``amplitude * sin(angle)`` and its rate to ``acc = [value, rate]``."""
-    acc[0] += amplitude * math.sin(angle)
-    acc[1] += amplitude * math.cos(angle) * angle_rate
+def _sin_term(amplitude, angle, angle_rate):
+    """``amplitude * sin(angle)`` and its rate."""
+    s, c = sincos(angle)
+    return amplitude * s, amplitude * c * angle_rate
 
 
 @njit
@@ -152,6 +153,7 @@ def lbd_kernel(series, T, work):
     f_ = args[4] % two_pi
     e = ECCENTRICITY[0] + T * (ECCENTRICITY[1] + T * ECCENTRICITY[2])
     de = ECCENTRICITY[1] + 2.0 * T * ECCENTRICITY[2]
+    x = e - 1.0
     # rows of multipliers as 1-D arrays and rates as scalars: the loop then
     # vectorises (no aliasing question between the tables and the work array)
     m0 = series.mult[0]
@@ -169,14 +171,14 @@ def lbd_kernel(series, T, work):
     for u in range(m0.shape[0]):
         s, c = sincos(m0[u] * d + m1[u] * m_ + m2[u] * l_ + m3[u] * f_)
         w = m0[u] * r1 + m1[u] * r2 + m2[u] * r3 + m3[u] * r4
-        p = abs(m1[u])                 # E^p, p = |i2| <= 4, and d(E^p)/dT
-        ep = 1.0
-        dep = 0.0
-        for _ in range(4):
-            if p >= 1.0:
-                dep = dep * e + ep * de
-                ep = ep * e
-                p -= 1.0
+        # E^p and d(E^p)/dT for p = |i2| <= 4 by the (finite, exact) binomial
+        # expansion in x = E - 1: no branch, so the loop vectorises
+        p = abs(m1[u])
+        c2 = p * (p - 1.0) * 0.5
+        c3 = c2 * (p - 2.0) * (1.0 / 3.0)
+        c4 = c3 * (p - 3.0) * 0.25
+        ep = 1.0 + x * (p + x * (c2 + x * (c3 + x * c4)))
+        dep = de * (p + x * (2.0 * c2 + x * (3.0 * c3 + x * 4.0 * c4)))
         sin_v[u] = ep * s
         sin_d[u] = dep * s + ep * w * c
         cos_v[u] = ep * c
@@ -187,28 +189,28 @@ def lbd_kernel(series, T, work):
     lon_sum, lon_rate = _sum_terms(start[0], start[1], row, A, sin_v, sin_d)
     lat_sum, lat_rate = _sum_terms(start[1], start[2], row, A, sin_v, sin_d)
     dist, dist_rate = _sum_terms(start[2], start[3], row, A, cos_v, cos_d)
-    lon = np.zeros(2)
-    lat = np.zeros(2)
-    lon[0] = lp + lon_sum * ARCSEC
-    lon[1] = dlp + lon_rate * ARCSEC
-    lat[0] = lat_sum * ARCSEC
-    lat[1] = lat_rate * ARCSEC
+    lon = lp + lon_sum * ARCSEC
+    dlon = dlp + lon_rate * ARCSEC
+    lat = lat_sum * ARCSEC
+    dlat = lat_rate * ARCSEC
     # Meeus's additive terms (1e-6 degree)
     f, df = args[4], rates[4]
     mp, dmp = args[3], rates[3]
     a1, da1 = _poly_deg(A1, T)
     a2, da2 = _poly_deg(A2, T)
     a3, da3 = _poly_deg(A3, T)
-    _add_sin(lon, 3958.0 * MICRODEGREE, a1, da1)
-    _add_sin(lon, 1962.0 * MICRODEGREE, lp - f, dlp - df)
-    _add_sin(lon, 318.0 * MICRODEGREE, a2, da2)
-    _add_sin(lat, -2235.0 * MICRODEGREE, lp, dlp)
-    _add_sin(lat, 382.0 * MICRODEGREE, a3, da3)
-    _add_sin(lat, 175.0 * MICRODEGREE, a1 - f, da1 - df)
-    _add_sin(lat, 175.0 * MICRODEGREE, a1 + f, da1 + df)
-    _add_sin(lat, 127.0 * MICRODEGREE, lp - mp, dlp - dmp)
-    _add_sin(lat, -115.0 * MICRODEGREE, lp + mp, dlp + dmp)
-    return (lon[0], lat[0], dist), (lon[1], lat[1], dist_rate)
+    for amplitude, angle, rate in ((3958.0, a1, da1), (1962.0, lp - f, dlp - df),
+                                   (318.0, a2, da2)):
+        v, dv = _sin_term(amplitude * MICRODEGREE, angle, rate)
+        lon += v
+        dlon += dv
+    for amplitude, angle, rate in ((-2235.0, lp, dlp), (382.0, a3, da3),
+                                   (175.0, a1 - f, da1 - df), (175.0, a1 + f, da1 + df),
+                                   (127.0, lp - mp, dlp - dmp), (-115.0, lp + mp, dlp + dmp)):
+        v, dv = _sin_term(amplitude * MICRODEGREE, angle, rate)
+        lat += v
+        dlat += dv
+    return (lon, lat, dist), (dlon, dlat, dist_rate)
 
 
 @njit

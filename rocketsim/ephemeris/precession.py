@@ -28,6 +28,7 @@ import numpy as np
 
 from rocketsim._jit import njit
 from rocketsim.constants import ARCSEC, DAYS_PER_JULIAN_CENTURY, J2000_JD
+from rocketsim.ephemeris.sincos import sincos
 
 # Lieske et al. 1977 polynomial coefficients, arcseconds (constant, T, T^2, T^3)
 ZETA = (0.0, 2306.2181, 0.30188, 0.017998)
@@ -56,8 +57,7 @@ def precession_angles(T):
 @njit
 def _rotation(axis, angle):
     """Frame rotation R_axis(angle) (axis 0, 1, 2) and d/dangle, as 9-tuples."""
-    c = math.cos(angle)
-    s = math.sin(angle)
+    s, c = sincos(angle)
     if axis == 0:
         return (1.0, 0.0, 0.0, 0.0, c, s, 0.0, -s, c), \
             (0.0, 0.0, 0.0, 0.0, -s, c, 0.0, -c, -s)
@@ -149,10 +149,8 @@ def spherical_to_cartesian(lon, lat, dist, dlon, dlat, ddist):
     ``lon``, ``lat`` in radians, ``dist`` in any length unit; the rates in the
     same units per any time unit, which the velocity then carries.
     """
-    cl = math.cos(lon)
-    sl = math.sin(lon)
-    cb = math.cos(lat)
-    sb = math.sin(lat)
+    sl, cl = sincos(lon)
+    sb, cb = sincos(lat)
     r = (dist * cb * cl, dist * cb * sl, dist * sb)
     v = (ddist * cb * cl - dist * sb * cl * dlat - dist * cb * sl * dlon,
          ddist * cb * sl - dist * sb * sl * dlat + dist * cb * cl * dlon,
