@@ -14,7 +14,7 @@ from rocketsim.scenario.models import Scenario
 from rocketsim.scenario.yaml_source import read_yaml
 
 # file kinds by the top-level field only that kind has
-_KINDS = {"rigid_body": "vehicle", "latitude": "site", "start": "mission"}
+_KINDS = {"rigid_body": "vehicle", "stages": "vehicle", "latitude": "site", "start": "mission"}
 
 
 @click.command()
@@ -23,7 +23,7 @@ def validate(files: tuple[Path, ...]) -> None:
     """Check scenario, vehicle, site or mission FILES; exit 2 if any is invalid.
 
     The kind of each file is recognised from its fields (a scenario has
-    'mission', a vehicle 'rigid_body', a site 'latitude', a mission 'start').
+    'mission', a vehicle 'rigid_body' or 'stages', a site 'latitude', a mission 'start').
 
     \b
     Example:

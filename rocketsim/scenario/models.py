@@ -22,6 +22,7 @@ from pydantic import BaseModel, ConfigDict, Field, field_validator, model_valida
 
 from rocketsim.constants import MAX_HEADLESS_STEP, STEP
 from rocketsim.scenario.units import Angle, Duration, Frequency, Inertia, Length, Mass, Speed
+from rocketsim.scenario.vehicle import FairingSpec, PayloadSpec, StageSpec, check_staged
 
 PositiveMass = Annotated[Mass, Field(gt=0)]
 # a path to a YAML file of its own, resolved by the loader relative to the scenario
@@ -48,12 +49,27 @@ class RigidBodySpec(Strict):
 
 
 class VehicleSpec(Strict):
-    """A vehicle file. The foundation flies ``rigid_body``; staged vehicles come later."""
+    """A vehicle file: exactly one of ``rigid_body`` (constant mass) or ``stages``
+    (listed bottom to top, see :mod:`rocketsim.scenario.vehicle`)."""
 
     name: str
     description: str = ""
     source: str = Field("", description="where the figures come from")
-    rigid_body: RigidBodySpec
+    rigid_body: Optional[RigidBodySpec] = None
+    stages: Optional[list[StageSpec]] = Field(None, description="the stages, bottom to top")
+    payload: Optional[PayloadSpec] = None
+    fairing: Optional[FairingSpec] = None
+    engines: Optional[object] = Field(None, description="not allowed here: engines belong to a stage")
+
+    @model_validator(mode="after")
+    def _one_kind(self) -> "VehicleSpec":
+        if (self.rigid_body is None) == (self.stages is None):
+            raise ValueError("give exactly one of 'rigid_body' or 'stages'")
+        if self.stages is not None:
+            check_staged(self.stages, self.engines)
+        elif self.engines is not None or self.payload is not None or self.fairing is not None:
+            raise ValueError("'engines', 'payload' and 'fairing' go with 'stages', not 'rigid_body'")
+        return self
 
 
 # --- site ---------------------------------------------------------------------
