@@ -32,7 +32,6 @@ import functools
 from typing import NamedTuple
 
 import numpy as np
-from scipy.integrate import cumulative_trapezoid
 
 from rocketsim.atmosphere.hydrostatic import hermite
 from rocketsim.constants import (G0, GAS_CONSTANT_USSA, USSA_BOLTZMANN, USSA_GAMMA, USSA_M0,
@@ -159,8 +158,15 @@ def upper_temperature(z):
     return t, dt
 
 
-# trapezoidal cumulative integral along the height grid, starting from 0
-_integral = functools.partial(cumulative_trapezoid, initial=0.0)
+def _integral(y, x):
+    """Trapezoidal cumulative integral of ``y`` along ``x``, starting from 0.
+
+    scipy's ``cumulative_trapezoid`` (imported here, not at module load:
+    scipy.integrate costs a second of start-up that a flight without
+    weather should not pay).
+    """
+    from scipy.integrate import cumulative_trapezoid
+    return cumulative_trapezoid(y, x=x, initial=0.0)
 
 
 def _flux_term(species, z):

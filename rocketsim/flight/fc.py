@@ -104,6 +104,55 @@ class FlightComputer:
         """Longitude, east positive, rad."""
         return self._body.geodetic()[1]
 
+    # --- the air (the day's weather at the vehicle) -------------------------
+    @property
+    def air_density(self) -> float:
+        """Density of the air at the vehicle, kg/m^3 (zero above 600 km)."""
+        return self._air()[0]
+
+    @property
+    def air_pressure(self) -> float:
+        """Static pressure of the air at the vehicle, Pa (zero above 600 km)."""
+        return self._air()[1]
+
+    @property
+    def air_temperature(self) -> float:
+        """Temperature of the air at the vehicle, K."""
+        return self._air()[2]
+
+    @property
+    def speed_of_sound(self) -> float:
+        """Speed of sound at the vehicle, m/s."""
+        return self._air()[3]
+
+    @property
+    def wind(self) -> np.ndarray:
+        """The wind at the vehicle (air velocity over the ground), ECI, m/s."""
+        return self._air()[4].copy()
+
+    @property
+    def air_velocity(self) -> np.ndarray:
+        """Velocity relative to the air, ``v - omega_E x r - wind``, ECI, m/s."""
+        return self._air()[5].copy()
+
+    @property
+    def airspeed(self) -> float:
+        """Speed relative to the air, m/s."""
+        return float(np.linalg.norm(self._air()[5]))
+
+    @property
+    def mach(self) -> float:
+        """Airspeed over the local speed of sound."""
+        return self.airspeed / self.speed_of_sound
+
+    @property
+    def dynamic_pressure(self) -> float:
+        """``q = rho |v_air|^2 / 2``, Pa."""
+        return 0.5 * self.air_density * self.airspeed ** 2
+
+    def _air(self):
+        return self._body.air(self._world.atmosphere)
+
     @property
     def orbit(self) -> Elements:
         """Osculating orbital elements about the central body (ECI axes)."""

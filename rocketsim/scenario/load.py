@@ -20,6 +20,7 @@ from pydantic import BaseModel, ValidationError
 
 from rocketsim.errors import InputError
 from rocketsim.scenario.models import MissionSpec, Scenario, SiteSpec, VehicleSpec
+from rocketsim.scenario.weather import load_weather
 from rocketsim.scenario.yaml_source import YamlSource, read_yaml
 
 # fields of a scenario that may be a path to a file of their own, and its model
@@ -31,7 +32,8 @@ class LoadedScenario:
     """A validated scenario and every file it was read from.
 
     ``files`` maps a role (``scenario``, ``vehicle``, ``site``, ``mission``,
-    ``program``) to the file's resolved path; these travel in the telemetry.
+    ``weather``, ``sounding``, ``program``) to the file's resolved path;
+    these travel in the telemetry.
     """
 
     scenario: Scenario
@@ -41,6 +43,14 @@ class LoadedScenario:
     @property
     def program_path(self) -> Path | None:
         return self.files.get("program")
+
+    def atmosphere(self):
+        """The day's 50 m atmosphere table (the standard atmosphere without weather)."""
+        from rocketsim.scenario.weather import StandardWeather, build_atmosphere
+        site = self.scenario.site
+        weather = self.scenario.weather or StandardWeather(kind="standard")
+        base_dir = (self.files.get("weather") or self.path).parent
+        return build_atmosphere(weather, site.latitude if site else 0.0, base_dir)
 
 
 def load(path: str | Path) -> LoadedScenario:
@@ -58,12 +68,24 @@ def load(path: str | Path) -> LoadedScenario:
             ref = _resolve(path, value, source, (name,))
             data[name] = validate(read_yaml(ref), model)
             files[name] = ref
+    weather = data.get("weather")
+    weather_source = source
+    if isinstance(weather, str):
+        ref = _resolve(path, weather, source, ("weather",))
+        weather_source = read_yaml(ref)
+        data["weather"] = load_weather(ref)
+        files["weather"] = ref
     program = data.get("program")
     if isinstance(program, str):
         ref = _resolve(path, program, source, ("program",))
         data["program"] = ref
         files["program"] = ref
     scenario = validate(source, Scenario, data)
+    sounding = getattr(scenario.weather, "file", None)
+    if sounding is not None:
+        # a sounding file is relative to the file that names it
+        loc = ("file",) if "weather" in files else ("weather", "file")
+        files["sounding"] = _resolve(weather_source.path, sounding, weather_source, loc)
     return LoadedScenario(scenario, path.resolve(), files)
 
 
@@ -88,17 +110,24 @@ def validate(source: YamlSource, model: type[BaseModel], data=None):
 
 
 def _input_error(error: ValidationError, source: YamlSource, model: type[BaseModel]) -> InputError:
+    # a field that is "inline or a file name" fails twice when it is wrong:
+    # drop the file-name branch's complaint when the inline one explains more
     problems = error.errors(include_url=False)
+    problems = [p for p in problems if not {"str", "constrained-str"} & set(p["loc"])] or problems
     # a misspelt field shows as an unknown one plus a missing one: name the
     # misspelling first, since it is what the user has to fix
     first = min(problems, key=lambda p: p["type"] != "extra_forbidden")
     loc = _clean_loc(first["loc"])
     line, column = source.position(loc) or (None, None)
-    message = _describe(first, loc, model)
+    # name the field as written; a missing field is not written, so add its name
+    written = source.written_path(loc)
+    if first["type"] == "missing" and loc and written[-1:] != loc[-1:]:
+        written += loc[-1:]
+    message = _describe(first, written, model)
     if len(problems) > 1:
         message += f" ({len(problems) - 1} more problem{'s' if len(problems) > 2 else ''} in this file)"
     return InputError(message, file=source.path, line=line, column=column,
-                      field=".".join(str(part) for part in loc) or None)
+                      field=".".join(str(part) for part in written) or None)
 
 
 def _clean_loc(loc: tuple) -> tuple:

@@ -21,6 +21,7 @@ from typing import Annotated, Optional, Union
 from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
 
 from rocketsim.constants import MAX_HEADLESS_STEP, STEP
+from rocketsim.scenario.weather import Weather
 from rocketsim.scenario.units import Angle, Duration, Frequency, Inertia, Length, Mass, Speed
 from rocketsim.scenario.vehicle import FairingSpec, PayloadSpec, StageSpec, check_staged
 
@@ -189,6 +190,9 @@ class Scenario(Strict):
         None, description="the launch site, inline or as a path to a site file")
     mission: Union[MissionSpec, FileReference] = Field(
         description="the mission, inline or as a path to a mission file")
+    weather: Optional[Union[Weather, FileReference]] = Field(
+        None, description="the day's weather, inline or as a path to a weather file; "
+        "default: the US Standard Atmosphere 1976, calm")
     program: Optional[Path] = Field(None, description="flight-computer program (Python file with main(fc))")
     step: Annotated[Duration, Field(gt=0)] = Field(STEP, description="integration step, at most 0.1 s")
     telemetry: TelemetrySpec = TelemetrySpec()
@@ -201,7 +205,7 @@ class Scenario(Strict):
 
     @model_validator(mode="after")
     def _site_when_needed(self) -> "Scenario":
-        for name in ("vehicle", "site", "mission"):
+        for name in ("vehicle", "site", "mission", "weather"):
             if isinstance(getattr(self, name), str):
                 raise ValueError(f"'{name}' names a file: load scenarios with rocketsim.scenario.load")
         if self.mission.start.site is not None and self.site is None:

@@ -27,14 +27,22 @@ class YamlSource:
         self.data = data
         self.positions = positions
 
+    def written_path(self, loc: tuple) -> tuple:
+        """The part of ``loc`` that names places written in the file.
+
+        Validation locations can carry parts the file does not contain (a
+        discriminated union's tag, for one): those are skipped, so
+        ``('weather', 'random', 'seed')`` becomes ``('weather', 'seed')``.
+        """
+        path: tuple = ()
+        for part in loc:
+            if path + (part,) in self.positions:
+                path += (part,)
+        return path
+
     def position(self, loc: tuple) -> Position | None:
-        """Position of the deepest written ancestor of ``loc`` (None if none)."""
-        loc = tuple(loc)
-        while loc:
-            if loc in self.positions:
-                return self.positions[loc]
-            loc = loc[:-1]
-        return self.positions.get(())
+        """Line and column of the deepest written place along ``loc``."""
+        return self.positions.get(self.written_path(tuple(loc)))
 
 
 def read_yaml(path: Path) -> YamlSource:

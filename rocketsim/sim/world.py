@@ -26,7 +26,9 @@ from rocketsim.dynamics.rk4 import advance
 from rocketsim.dynamics.state import P_MASS, Q, R, V, W, make_params, make_state
 from rocketsim.flight.fc import FlightComputer
 from rocketsim.flight.program import ProgramRunner, load_program
-from rocketsim.frames.earth_fixed import eci_to_ecef, eci_to_ecef_velocity
+from rocketsim.atmosphere.relative_wind import air_velocity
+from rocketsim.atmosphere.table import air_at, wind_earth_fixed
+from rocketsim.frames.earth_fixed import ecef_to_eci, eci_to_ecef, eci_to_ecef_velocity
 from rocketsim.frames.elements import Elements, state_to_elements
 from rocketsim.frames.geodetic import ecef_to_geodetic
 from rocketsim.scenario.load import LoadedScenario
@@ -50,6 +52,8 @@ class Body:
     mu: float = EARTH_MU
     _geodetic_at: float = math.nan
     _geodetic: tuple = (math.nan, math.nan, math.nan)
+    _air_at: float = math.nan
+    _air_cache: tuple = ()
     t: float = 0.0
 
     @property
@@ -80,6 +84,18 @@ class Body:
             self._geodetic_at = self.t
         return self._geodetic
 
+    def air(self, table) -> tuple:
+        """(density, pressure, temperature, speed of sound, wind ECI, air velocity ECI)
+        from the day's table at the body's height, cached per step (SI units)."""
+        if self._air_at != self.t:
+            lat, lon, height = self.geodetic()
+            rho, p, temperature, sound, east, north = air_at(*table.arrays(), height)
+            wind = ecef_to_eci(wind_earth_fixed(east, north, lat, lon), self.t)
+            self._air_cache = (rho, p, temperature, sound, wind,
+                               air_velocity(self.position, self.velocity, wind))
+            self._air_at = self.t
+        return self._air_cache
+
     def elements(self) -> Elements:
         return state_to_elements(self.position, self.velocity, self.mu)
 
@@ -87,7 +103,8 @@ class Body:
 class World:
     """One run of a scenario. Build with :meth:`from_scenario`, then :meth:`run`."""
 
-    def __init__(self, epoch: Epoch, h: float, duration: float, bodies: list[Body]):
+    def __init__(self, epoch: Epoch, h: float, duration: float, bodies: list[Body],
+                 atmosphere: Callable[[], object] | None = None):
         self.epoch = epoch
         self.gmst0 = epoch.gmst()
         self.h = h
@@ -98,6 +115,15 @@ class World:
         self.telemetry = None
         self.sample_every = 1
         self.on_progress: Callable[[float], None] | None = None
+        self._build_atmosphere = atmosphere
+        self._atmosphere = None
+
+    @property
+    def atmosphere(self):
+        """The day's :class:`~rocketsim.atmosphere.table.AtmosphereTable`, built on first use."""
+        if self._atmosphere is None and self._build_atmosphere is not None:
+            self._atmosphere = self._build_atmosphere()
+        return self._atmosphere
 
     @property
     def t(self) -> float:
@@ -119,7 +145,8 @@ class World:
             p=make_params(rigid.mass, rigid.inertia, EARTH_MU, EARTH_RADIUS_EQ, EARTH_J2,
                           EARTH_RADIUS_POLAR),
         )
-        world = cls(epoch, h, mission.duration if duration is None else duration, [body])
+        world = cls(epoch, h, mission.duration if duration is None else duration, [body],
+                    atmosphere=loaded.atmosphere)
         world.sample_every = max(1, round(1.0 / (scenario.telemetry.rate * h)))
         if loaded.program_path is not None:
             main = load_program(loaded.program_path)
