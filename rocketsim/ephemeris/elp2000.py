@@ -36,7 +36,7 @@ from rocketsim.constants import (
 )
 from rocketsim.ephemeris import _tables
 from rocketsim.ephemeris.precession import to_j2000, turn
-from rocketsim.ephemeris.sincos import sincos
+from rocketsim.ephemeris.sincos import expand, sincos, sum_recipe
 
 # Meeus (1998) eqs. 47.1-47.5: degrees, coefficients of T^0..T^4.
 MEAN_LONGITUDE = (218.3164477, 481267.88123421, -0.0015786, 1.0 / 538841.0, -1.0 / 65194000.0)
@@ -66,6 +66,10 @@ class Prepared(NamedTuple):
     start: np.ndarray       # (4,) coordinate boundaries
     term_row: np.ndarray    # row of ``mult`` of each term
     A: np.ndarray           # amplitude (arcsec, arcsec, km)
+    direct: np.ndarray      # rows whose sin/cos are computed ...
+    derived: np.ndarray     # ... and those built as the sum of two others
+    pair_a: np.ndarray      # (``sincos.sum_recipe``)
+    pair_b: np.ndarray
 
 
 def prepare(coord, mult, A) -> Prepared:
@@ -73,9 +77,13 @@ def prepare(coord, mult, A) -> Prepared:
     order = np.argsort(np.asarray(coord), kind="stable")
     rows, term_row = np.unique(np.asarray(mult)[order], axis=0, return_inverse=True)
     start = np.searchsorted(np.asarray(coord)[order], np.arange(4))
+    # a row is the sum of two others when its key is: key = sum i_j 100^j is
+    # exact and one-to-one for |i_j| < 50; visit the rows shortest first
+    keys = rows @ (100.0 ** np.arange(4))
+    recipe = sum_recipe(keys, 0.5, np.argsort(np.abs(rows).sum(axis=1), kind="stable"))
     return Prepared(np.ascontiguousarray(rows.T, dtype=np.float64), start.astype(np.int64),
                     term_row.ravel().astype(np.int64),
-                    np.asarray(A, dtype=np.float64)[order])
+                    np.asarray(A, dtype=np.float64)[order], *recipe)
 
 
 TABLE = prepare(_tables.MOON_COORD, _tables.MOON_MULT, _tables.MOON_A)
@@ -138,7 +146,7 @@ def lbd_kernel(series, T, work):
 
     Mean ecliptic and equinox of date; ``T`` in Julian centuries of TT.
     ``series``: a :class:`Prepared`; ``work``: a scratch array of shape at
-    least ``(4, number of distinct multiplier rows)``. Returns two 3-tuples.
+    least ``(7, number of distinct multiplier rows)``. Returns two 3-tuples.
 
     Each distinct argument row ``u`` is evaluated once, with the eccentricity
     factor of its ``l'`` multiplier folded in: ``E^p sin``, ``E^p cos`` and
@@ -168,8 +176,17 @@ def lbd_kernel(series, T, work):
     sin_d = work[1]
     cos_v = work[2]
     cos_d = work[3]
+    phase = work[4]
+    sin_row = work[5]
+    cos_row = work[6]
+    direct = series.direct
+    for k in range(direct.shape[0]):
+        u = direct[k]
+        phase[u] = m0[u] * d + m1[u] * m_ + m2[u] * l_ + m3[u] * f_
+    expand(phase, direct, series.derived, series.pair_a, series.pair_b, sin_row, cos_row)
     for u in range(m0.shape[0]):
-        s, c = sincos(m0[u] * d + m1[u] * m_ + m2[u] * l_ + m3[u] * f_)
+        s = sin_row[u]
+        c = cos_row[u]
         w = m0[u] * r1 + m1[u] * r2 + m2[u] * r3 + m3[u] * r4
         # E^p and d(E^p)/dT for p = |i2| <= 4 by the (finite, exact) binomial
         # expansion in x = E - 1: no branch, so the loop vectorises
@@ -228,7 +245,7 @@ def state_kernel(series, T, m, dm, work):
 
 def scratch(series: Prepared) -> np.ndarray:
     """Work array for :func:`lbd_kernel`."""
-    return np.empty((4, series.mult.shape[1]))
+    return np.empty((7, series.mult.shape[1]))
 
 
 def geocentric_lbd(jd_tt: float) -> tuple[np.ndarray, np.ndarray]:

@@ -21,6 +21,8 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from rocketsim._jit import njit
 
 TWO_OVER_PI = 2.0 / math.pi
@@ -50,3 +52,74 @@ def sincos(x):
     sign_s = 1.0 if q < 2.0 else -1.0          # quadrants 2, 3: sin < 0
     sign_c = 1.0 if q == 0.0 or q == 3.0 else -1.0   # quadrants 1, 2: cos < 0
     return sign_s * (c if odd else s), sign_c * (s if odd else c)
+
+
+# --- Building many phases from a few ------------------------------------------
+# The series' frequencies are integer combinations of a few mean motions, so
+# most phases are the sum of two others: sin/cos of a sum then costs four
+# products instead of a reduction and two polynomials.
+
+def sum_recipe(keys: np.ndarray, tolerance: float, order: np.ndarray | None = None):
+    """Plan to get ``sin``/``cos`` of every ``keys[i] * x`` from a few sincos.
+
+    ``keys``: the phases' multipliers (frequencies, or integer rows encoded
+    as numbers); ``order``: the order to visit them (default ascending).
+    Each key equal (within ``tolerance``) to the sum of two keys visited
+    before it is *derived* from that pair (the pair of least depth, so error
+    chains stay short); the others are *direct*. Returns int64 arrays
+    ``(direct, derived, pair_a, pair_b)``: ``derived[k] = pair_a[k] +
+    pair_b[k]``, listed in an order where both parts come first.
+    """
+    keys = np.asarray(keys, dtype=np.float64)
+    order = np.argsort(keys, kind="stable") if order is None else np.asarray(order)
+    depth = np.zeros(len(keys), dtype=np.int64)
+    seen: list[int] = []
+    direct, derived, pair_a, pair_b = [], [], [], []
+    for i in order:
+        best = None
+        if len(seen) > 1:
+            done = np.array(seen)
+            values = keys[done]
+            sort = np.argsort(values)
+            sorted_values = values[sort]
+            want = keys[i] - values
+            at = np.clip(np.searchsorted(sorted_values, want), 1, len(done) - 1)
+            for shift in (-1, 0):
+                j = at + shift
+                hit = np.abs(sorted_values[j] - want) <= tolerance
+                for a, b in zip(done[hit], done[sort[j[hit]]]):
+                    cost = max(depth[a], depth[b])
+                    if best is None or cost < best[0]:
+                        best = (cost, a, b)
+        if best is None:
+            direct.append(i)
+        else:
+            depth[i] = best[0] + 1
+            derived.append(i)
+            pair_a.append(best[1])
+            pair_b.append(best[2])
+        seen.append(i)
+    # by depth, so that consecutive derivations do not wait for each other
+    by_depth = np.argsort(depth[np.array(derived, dtype=np.int64)], kind="stable")
+    derived, pair_a, pair_b = (np.array(x, dtype=np.int64)[by_depth]
+                               for x in (derived, pair_a, pair_b))
+    return np.array(direct, dtype=np.int64), derived, pair_a, pair_b
+
+
+@njit
+def expand(phase, direct, derived, pair_a, pair_b, sin_out, cos_out):
+    """Fill ``sin_out``/``cos_out`` with sin/cos of ``phase`` by a
+    :func:`sum_recipe` plan: sincos for the direct ones, angle addition
+    ``sin(a + b) = sin a cos b + cos a sin b`` (and cos) for the rest.
+    ``phase`` need only be right at the direct indices."""
+    for k in range(direct.shape[0]):
+        i = direct[k]
+        s, c = sincos(phase[i])
+        sin_out[i] = s
+        cos_out[i] = c
+    for k in range(derived.shape[0]):
+        i = derived[k]
+        a = pair_a[k]
+        b = pair_b[k]
+        sin_out[i] = sin_out[a] * cos_out[b] + cos_out[a] * sin_out[b]
+        cos_out[i] = cos_out[a] * cos_out[b] - sin_out[a] * sin_out[b]

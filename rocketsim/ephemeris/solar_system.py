@@ -36,7 +36,7 @@ def heliocentric_kernel(jd_tt, earth, mars, moon):
     (m/s), J2000 equatorial, relative to the Sun (so the Sun's row is zero).
     """
     out = np.zeros((jd_tt.shape[0], 4, 6))
-    work = np.empty((4, max(earth.freq.shape[0], mars.freq.shape[0], moon.mult.shape[1])))
+    work = np.empty((7, max(earth.freq.shape[0], mars.freq.shape[0], moon.mult.shape[1])))
     for n in range(jd_tt.shape[0]):
         T = (jd_tt[n] - J2000_JD) / DAYS_PER_JULIAN_CENTURY
         m, dm = turn(T)
@@ -53,6 +53,35 @@ def heliocentric_kernel(jd_tt, earth, mars, moon):
     return out
 
 
+# The project's truncated series, frozen into the compiled code as constants
+# (no unboxing of a dozen arrays per call; the kernel cache is keyed on the
+# hash of every source file, _tables.py included, so it cannot go stale).
+_EARTH = vsop87.TABLES["earth"]
+_MARS = vsop87.TABLES["mars"]
+_MOON = elp2000.TABLE
+
+
+@njit
+def _truncated_many(jd_tt):
+    return heliocentric_kernel(jd_tt, _EARTH, _MARS, _MOON)
+
+
+@njit
+def _truncated_one(jd_tt, center):
+    """``(4, 6)`` states relative to body ``center`` at one instant."""
+    one = np.empty(1)
+    one[0] = jd_tt
+    out = heliocentric_kernel(one, _EARTH, _MARS, _MOON)[0]
+    if center != 0:
+        for i in range(4):
+            if i != center:
+                for k in range(6):
+                    out[i, k] -= out[center, k]
+        for k in range(6):
+            out[center, k] = 0.0
+    return out
+
+
 def heliocentric_states(jd_tt, earth=None, mars=None, moon=None) -> np.ndarray:
     """``(N, 4, 6)`` heliocentric states (see :func:`heliocentric_kernel`).
 
@@ -61,8 +90,9 @@ def heliocentric_states(jd_tt, earth=None, mars=None, moon=None) -> np.ndarray:
     here to measure the truncation.
     """
     jd = np.ascontiguousarray(np.asarray(jd_tt, dtype=np.float64).reshape(-1))
-    return heliocentric_kernel(jd, earth or vsop87.TABLES["earth"],
-                               mars or vsop87.TABLES["mars"], moon or elp2000.TABLE)
+    if earth is None and mars is None and moon is None:
+        return _truncated_many(jd)
+    return heliocentric_kernel(jd, earth or _EARTH, mars or _MARS, moon or _MOON)
 
 
 def _check_body(name: str, what: str) -> int:
@@ -81,11 +111,11 @@ def state(body: str, jd_tt, center: str = "sun"):
     """
     i = _check_body(body, "body")
     j = _check_body(center, "center")
-    scalar = np.ndim(jd_tt) == 0
+    if np.ndim(jd_tt) == 0:
+        relative = _truncated_one(float(jd_tt), j)
+        return relative[i, :3], relative[i, 3:]
     helio = heliocentric_states(jd_tt)
     relative = helio[:, i, :] - helio[:, j, :]
-    if scalar:
-        return relative[0, :3], relative[0, 3:]
     return relative[:, :3], relative[:, 3:]
 
 
@@ -96,10 +126,12 @@ def states(jd_tt, center: str = "earth") -> dict:
     :func:`state` (the centre itself maps to zeros).
     """
     j = _check_body(center, "center")
-    scalar = np.ndim(jd_tt) == 0
+    if np.ndim(jd_tt) == 0:
+        relative = _truncated_one(float(jd_tt), j)
+        return {"sun": (relative[0, :3], relative[0, 3:]),
+                "earth": (relative[1, :3], relative[1, 3:]),
+                "moon": (relative[2, :3], relative[2, 3:]),
+                "mars": (relative[3, :3], relative[3, 3:])}
     helio = heliocentric_states(jd_tt)
     relative = helio - helio[:, j:j + 1, :]
-    if scalar:
-        relative = relative[0]
-        return {name: (relative[i, :3], relative[i, 3:]) for i, name in enumerate(BODIES)}
     return {name: (relative[:, i, :3], relative[:, i, 3:]) for i, name in enumerate(BODIES)}

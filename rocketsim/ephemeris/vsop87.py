@@ -14,7 +14,10 @@ analytic derivative of the series, term by term:
 How it is evaluated: many terms share a frequency ``C`` (the Earth's 204
 terms have 123 frequencies), so :func:`prepare` writes each term as
 ``P cos(C t) - Q sin(C t)`` with ``P = A cos B``, ``Q = A sin B`` and the
-kernel takes one sine/cosine pair per distinct frequency. The truncated
+kernel needs one sine/cosine pair per distinct frequency; and most
+frequencies are the sum of two others (94 of the Earth's 123, 331 of Mars's
+356), whose pair then comes from the angle-addition formulas
+(``sincos.sum_recipe``). The truncated
 tables come from ``generate.py`` (rule stated there); the kernels take the
 prepared tables as arguments, so the full series (tests, benchmark) run
 through the same code.
@@ -36,11 +39,15 @@ from rocketsim.constants import (
 )
 from rocketsim.ephemeris import _tables
 from rocketsim.ephemeris.precession import to_j2000, turn
-from rocketsim.ephemeris.sincos import sincos
+from rocketsim.ephemeris.sincos import expand, sum_recipe
 
 MAX_POWER = 5                       # VSOP87 series run to t^5
 GROUPS = 3 * (MAX_POWER + 1)        # (coordinate, power) pairs
 MILLENNIA_PER_CENTURY = 0.1
+# Two frequencies whose sum matches a third within this (rad per millennium;
+# the files give C to 1e-10) build its sine and cosine: the phase error is
+# below 1e-9 rad over the span.
+FREQUENCY_TOLERANCE = 1e-8
 
 
 class Prepared(NamedTuple):
@@ -56,6 +63,10 @@ class Prepared(NamedTuple):
     P: np.ndarray           # A cos B
     Q: np.ndarray           # A sin B
     C: np.ndarray           # frequency of each term
+    direct: np.ndarray      # frequencies whose sin/cos are computed ...
+    derived: np.ndarray     # ... and those built as the sum of two others
+    pair_a: np.ndarray      # (``sincos.sum_recipe``)
+    pair_b: np.ndarray
 
 
 def prepare(coord, power, A, B, C) -> Prepared:
@@ -67,7 +78,8 @@ def prepare(coord, power, A, B, C) -> Prepared:
     a = np.asarray(A)[order]
     b = np.asarray(B)[order]
     return Prepared(freq, start.astype(np.int64), term_freq.astype(np.int64),
-                    a * np.cos(b), a * np.sin(b), np.asarray(C)[order].astype(np.float64))
+                    a * np.cos(b), a * np.sin(b), np.asarray(C)[order].astype(np.float64),
+                    *sum_recipe(freq, FREQUENCY_TOLERANCE))
 
 
 TABLES = {
@@ -79,20 +91,46 @@ TABLES = {
 
 
 @njit
+def _group_sums(first, last, index, P, Q, C, sin_f, cos_f):
+    """``sum A cos(B + C t)`` and ``sum A C sin(B + C t)`` over terms
+    ``first:last``, in two interleaved partial sums (combined in a fixed
+    order: the same bits every run) to halve the chain of dependent adds."""
+    a0 = a1 = b0 = b1 = 0.0
+    k = first
+    while k + 1 < last:
+        c = cos_f[index[k]]
+        s = sin_f[index[k]]
+        a0 += P[k] * c - Q[k] * s
+        b0 += C[k] * (Q[k] * c + P[k] * s)
+        c = cos_f[index[k + 1]]
+        s = sin_f[index[k + 1]]
+        a1 += P[k + 1] * c - Q[k + 1] * s
+        b1 += C[k + 1] * (Q[k + 1] * c + P[k + 1] * s)
+        k += 2
+    if k < last:
+        c = cos_f[index[k]]
+        s = sin_f[index[k]]
+        a0 += P[k] * c - Q[k] * s
+        b0 += C[k] * (Q[k] * c + P[k] * s)
+    return a0 + a1, b0 + b1
+
+
+@njit
 def lbr_kernel(series, t, work):
     """``(L, B, R)`` and their rates per Julian millennium at ``t`` (3-tuples).
 
     ``series``: a :class:`Prepared`; ``t``: Julian millennia of TT from J2000;
-    ``work``: a scratch array of shape at least ``(2, len(series.freq))``.
+    ``work``: a scratch array of shape at least ``(3, len(series.freq))``.
     ``L``, ``B`` in radians, ``R`` in au.
     """
     freq = series.freq
     sin_scratch = work[0]
     cos_scratch = work[1]
-    for f in range(freq.shape[0]):
-        s, c = sincos(freq[f] * t)
-        sin_scratch[f] = s
-        cos_scratch[f] = c
+    phase = work[2]
+    direct = series.direct
+    for k in range(direct.shape[0]):
+        phase[direct[k]] = freq[direct[k]] * t
+    expand(phase, direct, series.derived, series.pair_a, series.pair_b, sin_scratch, cos_scratch)
     start = series.start
     index = series.term_freq
     P = series.P
@@ -103,13 +141,8 @@ def lbr_kernel(series, t, work):
     for g in range(GROUPS):
         if start[g] == start[g + 1]:
             continue
-        s0 = 0.0
-        s1 = 0.0
-        for k in range(start[g], start[g + 1]):
-            c = cos_scratch[index[k]]
-            s = sin_scratch[index[k]]
-            s0 += P[k] * c - Q[k] * s          # A cos(B + C t)
-            s1 += C[k] * (Q[k] * c + P[k] * s)  # A C sin(B + C t)
+        s0, s1 = _group_sums(start[g], start[g + 1], index, P, Q, C,
+                             sin_scratch, cos_scratch)
         coord = g // (MAX_POWER + 1)
         p = g % (MAX_POWER + 1)
         tp = t ** p
@@ -141,7 +174,7 @@ def state_kernel(series, T, m, dm, work):
 
 def scratch(series: Prepared) -> np.ndarray:
     """Work array for :func:`lbr_kernel`."""
-    return np.empty((2, series.freq.shape[0]))
+    return np.empty((3, series.freq.shape[0]))
 
 
 def heliocentric_lbr(body: str, jd_tt: float) -> tuple[np.ndarray, np.ndarray]:
