@@ -31,7 +31,7 @@ from rocketsim.transfer._broadcast import flat_rows
 _MAX_ITER = 60
 
 
-@njit(inline="always")
+@njit
 def stumpff(z):
     """Stumpff functions ``(C(z), S(z))``; series for |z| < 1."""
     if z > 1.0:
@@ -53,7 +53,7 @@ def stumpff(z):
     return c, s
 
 
-@njit(inline="always")
+@njit
 def _propagate_one(mu, r0, v0, dt, r_out, v_out):
     """Propagate one state by dt (s); returns the iteration count (-1: failed)."""
     r0n = math.sqrt(r0[0] ** 2 + r0[1] ** 2 + r0[2] ** 2)

@@ -54,7 +54,7 @@ NO_SOLUTION = 1        # time of flight shorter than the M-revolution minimum
 NOT_CONVERGED = 2
 
 
-@njit(inline="always")
+@njit
 def _hyp2f1_battin(z):
     """Gauss hypergeometric 2F1(3, 1; 5/2; z) for |z| < 1 by its series."""
     term = 1.0
@@ -69,7 +69,7 @@ def _hyp2f1_battin(z):
     return total
 
 
-@njit(inline="always")
+@njit
 def _tof(x, lam, m):
     """Non-dimensional time of flight T(x; lambda, M) (eqs. 18, 20)."""
     one_minus_x2 = 1.0 - x * x
@@ -91,7 +91,7 @@ def _tof(x, lam, m):
     return (psi / root - x + lam * y) / one_minus_x2
 
 
-@njit(inline="always")
+@njit
 def _tof_derivatives(x, t, lam, m):
     """dT/dx, d2T/dx2, d3T/dx3 at x where T(x) = t (eq. 22)."""
     if abs(x - 1.0) < _PARABOLA_BAND:
@@ -109,7 +109,7 @@ def _tof_derivatives(x, t, lam, m):
     return d1, d2, d3
 
 
-@njit(inline="always")
+@njit
 def _householder(t_target, x0, lam, m, tol):
     """Solve T(x) = t_target from x0; returns (x, iterations, converged)."""
     x = x0
@@ -134,7 +134,7 @@ def _householder(t_target, x0, lam, m, tol):
     return x, _MAX_ITER, False
 
 
-@njit(inline="always")
+@njit
 def _minimum_tof(lam, m):
     """x and T of the minimum time of flight of M revolutions (Halley on dT/dx)."""
     x = 0.0
@@ -156,7 +156,7 @@ def _minimum_tof(lam, m):
     return x, t
 
 
-@njit(inline="always")
+@njit
 def _find_x(lam, t, m, low_path):
     """The root x of T(x) = t on the requested branch; (x, iterations, status)."""
     if m == 0:
@@ -197,7 +197,7 @@ def _find_x(lam, t, m, low_path):
     return x, iters, OK if ok else NOT_CONVERGED
 
 
-@njit(inline="always")
+@njit
 def _solve_one(mu, r1, r2, tof, m, prograde, low_path, v1, v2):
     """One Lambert problem (Izzo, Algorithm 1); writes v1, v2; returns (iters, status)."""
     r1n = math.sqrt(r1[0] ** 2 + r1[1] ** 2 + r1[2] ** 2)
