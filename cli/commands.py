@@ -4,5 +4,6 @@ from rocketsim_cli.atmosphere import atmosphere
 from rocketsim_cli.ephemeris import ephemeris
 from rocketsim_cli.fly import fly
 from rocketsim_cli.validate import schema, validate
+from rocketsim_cli.vehicle import vehicle
 
-ALL = [fly, validate, schema, atmosphere, ephemeris]
+ALL = [fly, validate, schema, atmosphere, ephemeris, vehicle]

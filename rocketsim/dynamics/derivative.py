@@ -11,19 +11,57 @@ No Coriolis or centrifugal terms: the frame is inertial. The foundation's
 rigid body carries no forces or torques but gravity (point mass + J2 of the
 central body); later models add thrust, aerodynamics, RCS and contact to
 ``F`` and ``tau`` here, evaluated at every RK4 stage.
+
+A staged vehicle passes ``veh``, its
+:class:`~rocketsim.vehicle.build.VehicleArrays`: then the mass and inertia
+come from the propellant left in its tanks (``y[13:]``), not from ``p``, and
+its engines add thrust and torque and drain the tanks, all at every stage
+(the ambient pressure for the thrust is looked up at the radial height in the
+vehicle's atmosphere table). The rate of change of the inertia and the jet
+damping it causes are not modelled. Without ``veh`` (``None``, the rigid body)
+that branch is compiled away and the coasting derivative is unchanged.
 """
+
+import math
 
 import numpy as np
 
 from rocketsim._jit import njit
+from rocketsim.atmosphere.table import air_at
 from rocketsim.bodies.gravity import point_mass_j2
-from rocketsim.dynamics.state import P_IXX, P_IYY, P_IZZ, P_J2, P_MU, P_RADIUS, Q, R, V, W
+from rocketsim.dynamics.state import (P_IXX, P_IYY, P_IZZ, P_J2, P_MU, P_POLAR_RADIUS, P_RADIUS, Q,
+                                      R, V, W)
 from rocketsim.frames.quaternion import quat_multiply
+from rocketsim.vehicle.engines import engine_forces
+from rocketsim.vehicle.mass_properties import mass_properties
 
 
 @njit
-def derivative(t, y, p, dy):
-    """Write ``dy/dt`` of state ``y`` at mission time ``t`` (s) into ``dy``."""
+def radial_height(y, p):
+    """Height (m) above the central body's ellipsoid, measured along the radius.
+
+    ``|r| - a b / sqrt(b^2 cos^2 phi_c + a^2 sin^2 phi_c)`` (phi_c geocentric
+    latitude, a and b the equatorial and polar radii). Within a few metres of
+    the surface it differs from the geodetic height by less than 0.1 mm, and
+    it has the same sign: it serves the ground-proximity and impact tests
+    (telemetry and programs read the geodetic height) and the ambient
+    pressure of the engines (a few metres off at altitude: negligible).
+    """
+    rho2 = y[R] ** 2 + y[R + 1] ** 2
+    z2 = y[R + 2] ** 2
+    r2 = rho2 + z2
+    a = p[P_RADIUS]
+    b = p[P_POLAR_RADIUS]
+    return math.sqrt(r2) - a * b / math.sqrt((b * b * rho2 + a * a * z2) / r2)
+
+
+@njit
+def derivative(t, y, p, dy, veh=None):
+    """Write ``dy/dt`` of state ``y`` at mission time ``t`` (s) into ``dy``.
+
+    ``veh``: the arrays of a staged vehicle, or None for a rigid body of
+    constant mass and inertia ``p``.
+    """
     ax, ay, az = point_mass_j2(y[R], y[R + 1], y[R + 2], p[P_MU], p[P_RADIUS], p[P_J2])
     dy[R] = y[V]
     dy[R + 1] = y[V + 1]
@@ -37,11 +75,29 @@ def derivative(t, y, p, dy):
     for k in range(4):
         dy[Q + k] = 0.5 * dq[k]
 
-    ixx, iyy, izz = p[P_IXX], p[P_IYY], p[P_IZZ]
-    # Euler: I w' = tau - w x (I w); tau = 0 for the foundation's rigid body
-    hx, hy, hz = ixx * wx, iyy * wy, izz * wz
-    dy[W] = -(wy * hz - wz * hy) / ixx
-    dy[W + 1] = -(wz * hx - wx * hz) / iyy
-    dy[W + 2] = -(wx * hy - wy * hx) / izz
     for k in range(13, y.shape[0]):
         dy[k] = 0.0
+    ixx, iyy, izz = p[P_IXX], p[P_IYY], p[P_IZZ]
+    mx = my = mz = 0.0
+    if veh is not None:
+        n_tanks = veh.tank_bottom.shape[0]
+        mass, x_cm, ixx, iyy, izz = mass_properties(veh.fixed, veh.tank_bottom, veh.tank_radius,
+                                                    veh.tank_density, y[13:13 + n_tanks])
+        p_a = air_at(veh.air_h0, veh.air_dh, veh.air_density, veh.air_pressure, veh.air_temperature,
+                     veh.air_speed_of_sound, veh.air_wind_east, veh.air_wind_north,
+                     radial_height(y, p))[1]
+        fx, fy, fz, mx, my, mz = engine_forces(t, y, dy, veh.first_tank, veh.first_clock, veh.eng,
+                                               veh.cmd, veh.stage, veh.tank_share, p_a, x_cm)
+        # body force -> inertial: v + 2w (u x v) + 2 u x (u x v), q = (w, u)
+        qw, ux, uy, uz = y[Q], y[Q + 1], y[Q + 2], y[Q + 3]
+        tx = 2.0 * (uy * fz - uz * fy)
+        ty = 2.0 * (uz * fx - ux * fz)
+        tz = 2.0 * (ux * fy - uy * fx)
+        dy[V] += (fx + qw * tx + (uy * tz - uz * ty)) / mass
+        dy[V + 1] += (fy + qw * ty + (uz * tx - ux * tz)) / mass
+        dy[V + 2] += (fz + qw * tz + (ux * ty - uy * tx)) / mass
+    # Euler: I w' = tau - w x (I w)
+    hx, hy, hz = ixx * wx, iyy * wy, izz * wz
+    dy[W] = (mx - (wy * hz - wz * hy)) / ixx
+    dy[W + 1] = (my - (wz * hx - wx * hz)) / iyy
+    dy[W + 2] = (mz - (wx * hy - wy * hx)) / izz

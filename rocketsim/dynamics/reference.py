@@ -16,18 +16,20 @@ from rocketsim.dynamics.derivative import derivative
 
 
 def integrate_reference(y0, t0: float, t1: float, p, *, rtol: float = 1e-12, atol: float = 1e-12,
-                        method: str = "DOP853", t_eval=None):
+                        method: str = "DOP853", t_eval=None, veh=None):
     """Integrate the state ``y0`` from ``t0`` to ``t1`` (s) with error control.
 
     Returns the state at ``t1`` (or at each of ``t_eval``, shape (N, len(y0))).
     The quaternion is not renormalised along the way: a tight tolerance keeps
-    its norm to the tolerance.
+    its norm to the tolerance. ``veh``: a staged vehicle's arrays (see
+    :func:`rocketsim.dynamics.derivative.derivative`); a stage running dry is
+    not handled here, so integrate up to the cut-off at most.
     """
     p = np.asarray(p, dtype=float)
 
     def rhs(t, y):
         dy = np.empty_like(y)
-        derivative(t, y, p, dy)
+        derivative(t, y, p, dy, veh)
         return dy
 
     solution = solve_ivp(rhs, (t0, t1), np.asarray(y0, dtype=float), method=method,

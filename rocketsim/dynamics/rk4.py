@@ -5,6 +5,19 @@ a fixed step (20 ms by default, any headless step up to 0.1 s). Within 2 m of
 the ground the step is split into four equal sub-steps so stiff contact stays
 stable. The attitude quaternion is normalised after each (sub-)step, not
 inside the stages (EQUATIONS.md, "Equations of motion").
+
+Every function takes an optional ``veh``, the arrays of a staged vehicle
+(:class:`~rocketsim.vehicle.build.VehicleArrays`): its engines and mass
+properties are then evaluated at each of the four stages. A stage whose
+usable propellant runs out inside a step is handled exactly: the step is
+split at the instant the propellant left reaches the unusable reserve
+(found by a safeguarded secant on the length of the first part, to 1e-13 of
+the stage's load), the stage is marked dry in ``veh.stage`` with that
+instant (its engines stop at once), and the rest of the step is flown
+without them. Steps are also split at every kink of an engine's thrust (end
+of dead time, spool-up, tail-off, slews), so a burn converges at fourth
+order through them. Without ``veh`` the rigid-body kernels are compiled
+exactly as before.
 """
 
 import math
@@ -12,13 +25,16 @@ import math
 import numpy as np
 
 from rocketsim._jit import njit
-from rocketsim.constants import GROUND_SUBSTEP_HEIGHT, GROUND_SUBSTEPS
-from rocketsim.dynamics.derivative import derivative
-from rocketsim.dynamics.state import P_POLAR_RADIUS, P_RADIUS, Q, R
+from rocketsim.constants import GROUND_SUBSTEP_HEIGHT, GROUND_SUBSTEPS, UNUSABLE_PROPELLANT
+from rocketsim.dynamics.derivative import derivative, radial_height
+from rocketsim.dynamics.state import P_RADIUS, Q, R
+from rocketsim.vehicle.engines import S_DRY, S_DRY_AT, S_RESERVE, S_TANK0, S_TANKS, next_kink
+
+DRY_TOLERANCE = 1e-13      # relative to the stage's load: where the split of a step is placed
 
 
 @njit
-def rk4_step(y, t, h, p):
+def rk4_step(y, t, h, p, veh=None):
     """One classical RK4 step of size ``h`` (s) from ``(t, y)``; returns the new state."""
     n = y.shape[0]
     k1 = np.empty(n)
@@ -26,16 +42,16 @@ def rk4_step(y, t, h, p):
     k3 = np.empty(n)
     k4 = np.empty(n)
     tmp = np.empty(n)
-    derivative(t, y, p, k1)
+    derivative(t, y, p, k1, veh)
     for i in range(n):
         tmp[i] = y[i] + 0.5 * h * k1[i]
-    derivative(t + 0.5 * h, tmp, p, k2)
+    derivative(t + 0.5 * h, tmp, p, k2, veh)
     for i in range(n):
         tmp[i] = y[i] + 0.5 * h * k2[i]
-    derivative(t + 0.5 * h, tmp, p, k3)
+    derivative(t + 0.5 * h, tmp, p, k3, veh)
     for i in range(n):
         tmp[i] = y[i] + h * k3[i]
-    derivative(t + h, tmp, p, k4)
+    derivative(t + h, tmp, p, k4, veh)
     out = np.empty(n)
     for i in range(n):
         out[i] = y[i] + h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i])
@@ -43,24 +59,6 @@ def rk4_step(y, t, h, p):
     for i in range(4):
         out[Q + i] /= norm
     return out
-
-
-@njit
-def radial_height(y, p):
-    """Height (m) above the central body's ellipsoid, measured along the radius.
-
-    ``|r| - a b / sqrt(b^2 cos^2 phi_c + a^2 sin^2 phi_c)`` (phi_c geocentric
-    latitude, a and b the equatorial and polar radii). Within a few metres of
-    the surface it differs from the geodetic height by less than 0.1 mm, and
-    it has the same sign: it serves the ground-proximity and impact tests
-    (telemetry and programs read the geodetic height).
-    """
-    rho2 = y[R] ** 2 + y[R + 1] ** 2
-    z2 = y[R + 2] ** 2
-    r2 = rho2 + z2
-    a = p[P_RADIUS]
-    b = p[P_POLAR_RADIUS]
-    return math.sqrt(r2) - a * b / math.sqrt((b * b * rho2 + a * a * z2) / r2)
 
 
 @njit
@@ -77,18 +75,98 @@ def near_ground(y, p):
 
 
 @njit
-def step(y, t, h, p):
+def stage_left(y, veh, s):
+    """Propellant (kg) above the unusable reserve in stage ``s`` of state ``y``."""
+    k0 = veh.first_tank + int(veh.stage[s, S_TANK0])
+    left = -veh.stage[s, S_RESERVE]
+    for k in range(int(veh.stage[s, S_TANKS])):
+        left += y[k0 + k]
+    return left
+
+
+@njit
+def _first_dry(y, veh):
+    """Index of a stage not yet marked dry whose usable propellant is gone in ``y``, or -1."""
+    for s in range(veh.stage.shape[0]):
+        if veh.stage[s, S_DRY] < 0.5 and veh.stage[s, S_TANKS] > 0 and stage_left(y, veh, s) < 0.0:
+            return s
+    return -1
+
+
+@njit
+def _dry_instant(y, t, h, p, veh, s, left_at_h):
+    """Length of the part of the step from ``(t, y)`` after which stage ``s`` is dry.
+
+    Safeguarded secant (Illinois) on ``g(x) = stage_left(rk4_step(y, t, x))``,
+    ``g(0) > 0 > g(h)``, to :data:`DRY_TOLERANCE` of the stage's load.
+    """
+    a, ga = 0.0, stage_left(y, veh, s)
+    if ga <= 0.0:
+        return 0.0
+    b, gb = h, left_at_h
+    tolerance = DRY_TOLERANCE * veh.stage[s, S_RESERVE] / UNUSABLE_PROPELLANT
+    x = b
+    for _ in range(100):
+        x = b - gb * (b - a) / (gb - ga)
+        if not a < x < b:
+            x = 0.5 * (a + b)
+        gx = stage_left(rk4_step(y, t, x, p, veh), veh, s)
+        if abs(gx) <= tolerance:
+            return x
+        if gx > 0.0:
+            a, ga = x, gx
+            gb *= 0.5
+        else:
+            b, gb = x, gx
+            ga *= 0.5
+    return x
+
+
+@njit
+def _powered_step(y, t, h, p, veh):
+    """An RK4 step of a staged vehicle, split at engine kinks and where a stage runs dry.
+
+    The step is cut at every instant an engine's thrust has a kink
+    (:func:`~rocketsim.vehicle.engines.next_kink`) and at the instant a stage's
+    usable propellant is gone; each part is one RK4 step over a smooth stretch.
+    """
+    done = 0.0
+    while True:
+        rest = h - done
+        part = next_kink(t + done, rest, y, veh.first_clock, veh.eng, veh.cmd, veh.stage)
+        trial = rk4_step(y, t + done, part, p, veh)
+        s = _first_dry(trial, veh)
+        if s >= 0:
+            part = _dry_instant(y, t + done, part, p, veh, s, stage_left(trial, veh, s))
+            trial = rk4_step(y, t + done, part, p, veh)
+            veh.stage[s, S_DRY] = 1.0
+            veh.stage[s, S_DRY_AT] = t + done + part
+        y = trial
+        if part == rest:
+            return y
+        done += part
+
+
+@njit
+def _one_step(y, t, h, p, veh):
+    if veh is None:
+        return rk4_step(y, t, h, p)
+    return _powered_step(y, t, h, p, veh)
+
+
+@njit
+def step(y, t, h, p, veh=None):
     """Advance one flight-model step of ``h`` seconds (sub-stepped near the ground)."""
     if near_ground(y, p):
         sub = h / GROUND_SUBSTEPS
         for k in range(GROUND_SUBSTEPS):
-            y = rk4_step(y, t + k * sub, sub, p)
+            y = _one_step(y, t + k * sub, sub, p, veh)
         return y
-    return rk4_step(y, t, h, p)
+    return _one_step(y, t, h, p, veh)
 
 
 @njit
-def advance(y, k0, h, n_steps, p):
+def advance(y, k0, h, n_steps, p, veh=None):
     """Advance up to ``n_steps`` flight-model steps; returns ``(y, steps_taken)``.
 
     Step ``k`` starts at mission time ``k h`` (``k`` counted from ``k0``, so
@@ -98,7 +176,7 @@ def advance(y, k0, h, n_steps, p):
     its central body's ellipsoid (an impact).
     """
     for k in range(n_steps):
-        y = step(y, (k0 + k) * h, h, p)
+        y = step(y, (k0 + k) * h, h, p, veh)
         if radial_height(y, p) < 0.0:
             return y, k + 1
     return y, n_steps
