@@ -17,7 +17,12 @@ terms have 123 frequencies), so :func:`prepare` writes each term as
 kernel needs one sine/cosine pair per distinct frequency; and most
 frequencies are the sum of two others (94 of the Earth's 123, 331 of Mars's
 356), whose pair then comes from the angle-addition formulas
-(``sincos.sum_recipe``). The truncated
+(``sincos.sum_recipe``).
+
+The heliocentric states (:func:`heliocentric_state`) move ``L, B`` from
+VSOP87's dynamical ecliptic to FK5 (Meeus 1998, eq. 32.3) before turning
+them to the J2000 equator with the IAU 1976 angles; :func:`heliocentric_lbr`
+returns the series' own ``L, B, R``. The truncated
 tables come from ``generate.py`` (rule stated there); the kernels take the
 prepared tables as arguments, so the full series (tests, benchmark) run
 through the same code.
@@ -25,21 +30,24 @@ through the same code.
 
 from __future__ import annotations
 
+import math
 from typing import NamedTuple
 
 import numpy as np
 
 from rocketsim._jit import njit
 from rocketsim.constants import (
+    ARCSEC,
     AU,
     DAYS_PER_JULIAN_CENTURY,
     DAYS_PER_JULIAN_MILLENNIUM,
+    DEG,
     J2000_JD,
     SECONDS_PER_DAY,
 )
 from rocketsim.ephemeris import _tables
 from rocketsim.ephemeris.precession import to_j2000, turn
-from rocketsim.ephemeris.sincos import expand, sum_recipe
+from rocketsim.ephemeris.sincos import expand, sincos, sum_recipe
 
 MAX_POWER = 5                       # VSOP87 series run to t^5
 GROUPS = 3 * (MAX_POWER + 1)        # (coordinate, power) pairs
@@ -160,16 +168,46 @@ def lbr_kernel(series, t, work):
 
 
 @njit
+def fk5_correction(lon, lat, dlon, dlat, T):
+    """VSOP87's dynamical ecliptic and equinox -> FK5 (Meeus 1998, eq. 32.3).
+
+    ``L' = L - 1.397 deg T - 0.00031 deg T^2``;
+    ``dL = -0.09033" + 0.03916" (cos L' + sin L') tan B``,
+    ``dB = +0.03916" (cos L' - sin L')``. ``lon``, ``lat`` in rad with their
+    rates per century; returns ``(dL, dB, d(dL)/dT, d(dB)/dT)``. Without it
+    the Earth sits ~70 km (0.09") off the FK5/J2000 frame of the IAU 1976
+    precession.
+    """
+    lp = lon - (1.397 * T + 0.00031 * T * T) * DEG
+    dlp = dlon - (1.397 + 0.00062 * T) * DEG
+    s, c = sincos(lp)
+    tan_b = math.tan(lat)
+    sec2_b = 1.0 + tan_b * tan_b
+    k = 0.03916 * ARCSEC
+    d_lon = -0.09033 * ARCSEC + k * (c + s) * tan_b
+    d_lat = k * (c - s)
+    rate_lon = k * ((c - s) * dlp * tan_b + (c + s) * sec2_b * dlat)
+    rate_lat = -k * (s + c) * dlp
+    return d_lon, d_lat, rate_lon, rate_lat
+
+
+@njit
 def state_kernel(series, T, m, dm, work):
     """Heliocentric position (m) and velocity (m/s), J2000 equatorial, 3-tuples.
 
     ``T``: Julian centuries of TT; ``m``, ``dm``: ``precession.turn(T)``.
+    The series' ``L, B`` get :func:`fk5_correction` before the turn.
     """
     value, rate = lbr_kernel(series, T * MILLENNIA_PER_CENTURY, work)
+    # rates per millennium -> per century for the correction
+    d_lon, d_lat, rate_lon, rate_lat = fk5_correction(
+        value[0], value[1], rate[0] * MILLENNIA_PER_CENTURY, rate[1] * MILLENNIA_PER_CENTURY, T)
     per_second = 1.0 / (DAYS_PER_JULIAN_MILLENNIUM * SECONDS_PER_DAY)
-    return to_j2000(m, dm, value[0], value[1], value[2] * AU, rate[0] * per_second,
-                    rate[1] * per_second, rate[2] * AU * per_second,
-                    DAYS_PER_JULIAN_CENTURY * SECONDS_PER_DAY)
+    per_second_century = 1.0 / (DAYS_PER_JULIAN_CENTURY * SECONDS_PER_DAY)
+    return to_j2000(m, dm, value[0] + d_lon, value[1] + d_lat, value[2] * AU,
+                    rate[0] * per_second + rate_lon * per_second_century,
+                    rate[1] * per_second + rate_lat * per_second_century,
+                    rate[2] * AU * per_second, DAYS_PER_JULIAN_CENTURY * SECONDS_PER_DAY)
 
 
 def scratch(series: Prepared) -> np.ndarray:
