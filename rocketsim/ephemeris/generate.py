@@ -25,13 +25,13 @@ or below a bound:
   for ``L`` and ``B``, au for ``R``; 4e-6 au is 598 km): the dropped terms
   can move ``L``, ``B`` or ``R`` by at most that much over the span. The
   actual error is smaller because the dropped terms do not all peak
-  together: 254 km for the Earth and 191 km for Mars at most over 1950-2100
-  (measured in ``tests/test_ephemeris_vsop87.py``).
+  together: at most 265 km for the Earth and 252 km for Mars over 1950-2100
+  (sampled every 10 days; ``tests/test_ephemeris_vsop87.py`` checks < 300 km).
 * ELP2000-82B: the amplitudes are constants (the eccentricity factor ``E`` is
   within 0.04 % of 1 over the span), so a term weighs ``|A|``. Bounds:
   ``ELP_BOUND_ARCSEC`` = 0.5 arcsec in longitude and latitude and
-  ``ELP_BOUND_KM`` = 1 km in distance; measured errors over 1950-2100: 0.09",
-  0.11" and 0.22 km.
+  ``ELP_BOUND_KM`` = 1 km in distance; measured errors over 1950-2100
+  (every 10 days): 0.15", 0.15" and 0.31 km.
 
 The physics model's truncation kept 198 terms for the Earth, 787 for Mars
 and 235/198/154 for the Moon; these bounds land near those counts (the counts
