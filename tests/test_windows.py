@@ -1,0 +1,134 @@
+"""The launch-window search: on circular coplanar orbits, where the Hohmann
+transfer is the analytic answer, and on the project's ephemerides for the
+late-2026 Earth-Mars window.
+
+References:
+- Hohmann transfer between circular coplanar orbits (Curtis, *Orbital
+  Mechanics for Engineering Students*, section 8.2): the minimum-C3
+  departure to reach Mars' orbit is the half ellipse tangent to both
+  orbits, with v_inf = sqrt(mu/r1) (sqrt(2 r2/(r1+r2)) - 1) at Earth and
+  sqrt(mu/r2) (1 - sqrt(2 r1/(r1+r2))) at Mars, and time of flight
+  pi sqrt(a^3/mu). With Mars placed to arrive 180 deg after a departure on
+  a chosen day, the search must find that day and that transfer.
+- The 2026 Earth-Mars opportunity: Burke, Falck & McGuire (2010),
+  "Interplanetary Mission Design Handbook: Earth-to-Mars Mission
+  Opportunities 2026 to 2045", NASA/TM-2010-216764 (NASA Glenn), the 2026
+  ballistic porkchop: minimum launch energy near C3 = 9 km^2/s^2 for a
+  launch at the start of November 2026 and an arrival in the late summer of
+  2027. Those figures are as recalled from the handbook's 2026 plot, which
+  could not be re-read here, so the test's bounds are kept wide: C3 between
+  8 and 11 km^2/s^2, launch between 15 October and 30 November 2026,
+  arrival between 15 July and 15 October 2027.
+"""
+
+import datetime as dt
+import math
+
+import numpy as np
+import pytest
+
+from rocketsim.constants import AU, EARTH_MU, EARTH_RADIUS_EQ, MARS_MU, MARS_RADIUS_EQ, SUN_MU
+from rocketsim.errors import InputError
+from rocketsim.timescales import Epoch
+from rocketsim.transfer import windows
+from rocketsim.transfer.burns import capture_dv, escape_dv
+
+R_EARTH_ORBIT = 1.0 * AU
+R_MARS_ORBIT = 1.524 * AU
+JD0 = 2461000.5
+DAY = 86400.0
+A_TRANSFER = 0.5 * (R_EARTH_ORBIT + R_MARS_ORBIT)
+TOF_HOHMANN = math.pi * math.sqrt(A_TRANSFER ** 3 / SUN_MU) / DAY           # days
+VINF_EARTH = math.sqrt(SUN_MU / R_EARTH_ORBIT) * (math.sqrt(R_MARS_ORBIT / A_TRANSFER) - 1.0)
+VINF_MARS = math.sqrt(SUN_MU / R_MARS_ORBIT) * (1.0 - math.sqrt(R_EARTH_ORBIT / A_TRANSFER))
+DEPARTURE_DAY = 100.0        # days after JD0: when the Hohmann alignment occurs
+
+
+def circular_ephemeris(body, jd_tt, center):
+    """Earth and Mars on circular orbits in the xy plane, phased so that a
+    Hohmann transfer leaving on JD0 + DEPARTURE_DAY meets Mars."""
+    assert center == "sun"
+    jd = np.asarray(jd_tt, dtype=float)
+    t = (jd - JD0) * DAY
+    if body == "earth":
+        radius, phase0 = R_EARTH_ORBIT, 0.0
+    elif body == "mars":
+        radius = R_MARS_ORBIT
+        n_earth = math.sqrt(SUN_MU / R_EARTH_ORBIT ** 3)
+        n_mars = math.sqrt(SUN_MU / R_MARS_ORBIT ** 3)
+        arrival = (DEPARTURE_DAY + TOF_HOHMANN) * DAY
+        phase0 = n_earth * DEPARTURE_DAY * DAY + math.pi - n_mars * arrival
+    else:
+        raise AssertionError(body)
+    n = math.sqrt(SUN_MU / radius ** 3)
+    angle = phase0 + n * t
+    r = radius * np.stack([np.cos(angle), np.sin(angle), np.zeros_like(angle)], axis=-1)
+    v = radius * n * np.stack([-np.sin(angle), np.cos(angle), np.zeros_like(angle)], axis=-1)
+    return r, v
+
+
+def synthetic_search(**options):
+    departure = JD0 + np.arange(40.0, 160.0, 2.0)
+    arrival = JD0 + np.arange(200.0, 420.0, 2.0)
+    return windows.search(departure, arrival, ephemeris=circular_ephemeris, **options)
+
+
+def test_minimum_c3_is_the_hohmann_transfer():
+    found = synthetic_search(objective="c3", count=1)
+    best = found.windows[0]
+    assert best.c3 == pytest.approx(VINF_EARTH ** 2, rel=1e-6)
+    assert best.vinf_arrival == pytest.approx(VINF_MARS, rel=1e-4)
+    # C3 is flat (quadratic) at its minimum: the dates to a few hours.
+    assert best.departure_jd_tt - JD0 == pytest.approx(DEPARTURE_DAY, abs=0.2)
+    assert best.tof_days == pytest.approx(TOF_HOHMANN, abs=0.2)
+    assert best.dla == pytest.approx(0.0, abs=1e-9)        # coplanar: no declination
+
+
+def test_minimum_total_dv_is_the_hohmann_transfer():
+    orbits = windows.Orbits(parking_altitude=300e3, capture_periapsis_altitude=400e3,
+                            capture_apoapsis_altitude=33_000e3)
+    found = synthetic_search(objective="dv", orbits=orbits, count=2)
+    best = found.windows[0]
+    expected = (escape_dv(EARTH_MU, EARTH_RADIUS_EQ + 300e3, VINF_EARTH)
+                + capture_dv(MARS_MU, MARS_RADIUS_EQ + 400e3, MARS_RADIUS_EQ + 33_000e3, VINF_MARS))
+    assert best.dv_total == pytest.approx(expected, rel=1e-6)
+    assert best.departure_jd_tt - JD0 == pytest.approx(DEPARTURE_DAY, abs=0.2)
+    # Only one basin in this grid: no second window is invented on its rim.
+    assert len(found.windows) == 1
+
+
+def test_limits_exclude_windows_and_progress_is_reported():
+    calls = []
+    found = synthetic_search(objective="c3", max_c3=0.9 * VINF_EARTH ** 2,
+                             progress=lambda done, total: calls.append((done, total)))
+    assert found.windows == []
+    assert calls and calls[-1][0] == calls[-1][1] == 60
+    found = synthetic_search(objective="c3", max_vinf_arrival=0.99 * VINF_MARS)
+    assert found.windows == []
+
+
+def test_unknown_target_and_dates_outside_the_ephemerides_are_input_errors():
+    with pytest.raises(InputError, match="unknown target 'venus'"):
+        windows.search([JD0], [JD0 + 200], target_name="venus")
+    with pytest.raises(InputError, match="outside the span"):
+        windows.search(np.array([2488100.5]), np.array([2488300.5]))
+    with pytest.raises(InputError, match="objective"):
+        windows.search([JD0], [JD0 + 200], objective="time", ephemeris=circular_ephemeris)
+
+
+def jd_tt_of(year, month, day):
+    return Epoch.from_utc(dt.datetime(year, month, day)).jd_tt()
+
+
+def test_late_2026_earth_mars_window_on_the_project_ephemerides():
+    departure = jd_tt_of(2026, 8, 1) + np.arange(0.0, 180.0, 2.0)
+    arrival = jd_tt_of(2027, 3, 1) + np.arange(0.0, 330.0, 2.0)
+    found = windows.search(departure, arrival, objective="c3", count=2)
+    best = found.windows[0]
+    c3_km2_s2 = best.c3 / 1e6
+    print(f"\n2026 Earth-Mars minimum C3 {c3_km2_s2:.2f} km^2/s^2, launch JD(TT) "
+          f"{best.departure_jd_tt:.2f}, {best.tof_days:.1f} days, arrival v_inf "
+          f"{best.vinf_arrival / 1e3:.2f} km/s, DLA {math.degrees(best.dla):.1f} deg")
+    assert 8.0 < c3_km2_s2 < 11.0
+    assert jd_tt_of(2026, 10, 15) < best.departure_jd_tt < jd_tt_of(2026, 11, 30)
+    assert jd_tt_of(2027, 7, 15) < best.arrival_jd_tt < jd_tt_of(2027, 10, 15)
