@@ -68,18 +68,18 @@ def _truncated_many(jd_tt):
 
 @njit
 def _truncated_one(jd_tt, center):
-    """``(4, 6)`` states relative to body ``center`` at one instant."""
+    """Positions ``(4, 3)`` and velocities ``(4, 3)`` of the bodies of
+    ``BODIES`` relative to body number ``center``, at one instant."""
     one = np.empty(1)
     one[0] = jd_tt
-    out = heliocentric_kernel(one, _EARTH, _MARS, _MOON)[0]
-    if center != 0:
-        for i in range(4):
-            if i != center:
-                for k in range(6):
-                    out[i, k] -= out[center, k]
-        for k in range(6):
-            out[center, k] = 0.0
-    return out
+    helio = heliocentric_kernel(one, _EARTH, _MARS, _MOON)[0]
+    r = np.empty((4, 3))
+    v = np.empty((4, 3))
+    for i in range(4):
+        for k in range(3):
+            r[i, k] = helio[i, k] - helio[center, k]
+            v[i, k] = helio[i, 3 + k] - helio[center, 3 + k]
+    return r, v
 
 
 def heliocentric_states(jd_tt, earth=None, mars=None, moon=None) -> np.ndarray:
@@ -112,8 +112,8 @@ def state(body: str, jd_tt, center: str = "sun"):
     i = _check_body(body, "body")
     j = _check_body(center, "center")
     if np.ndim(jd_tt) == 0:
-        relative = _truncated_one(float(jd_tt), j)
-        return relative[i, :3], relative[i, 3:]
+        r, v = _truncated_one(float(jd_tt), j)
+        return r[i], v[i]
     helio = heliocentric_states(jd_tt)
     relative = helio[:, i, :] - helio[:, j, :]
     return relative[:, :3], relative[:, 3:]
@@ -127,11 +127,9 @@ def states(jd_tt, center: str = "earth") -> dict:
     """
     j = _check_body(center, "center")
     if np.ndim(jd_tt) == 0:
-        relative = _truncated_one(float(jd_tt), j)
-        return {"sun": (relative[0, :3], relative[0, 3:]),
-                "earth": (relative[1, :3], relative[1, 3:]),
-                "moon": (relative[2, :3], relative[2, 3:]),
-                "mars": (relative[3, :3], relative[3, 3:])}
+        r, v = _truncated_one(float(jd_tt), j)
+        return {"sun": (r[0], v[0]), "earth": (r[1], v[1]), "moon": (r[2], v[2]),
+                "mars": (r[3], v[3])}
     helio = heliocentric_states(jd_tt)
     relative = helio - helio[:, j:j + 1, :]
     return {name: (relative[:, i, :3], relative[:, i, 3:]) for i, name in enumerate(BODIES)}
