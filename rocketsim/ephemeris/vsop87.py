@@ -146,6 +146,9 @@ def lbr_kernel(series, t, work):
     C = series.C
     value0 = value1 = value2 = 0.0
     rate0 = rate1 = rate2 = 0.0
+    t2 = t * t
+    powers = (1.0, t, t2, t2 * t, t2 * t2, t2 * t2 * t)          # t^p, p = 0..5
+    dpowers = (0.0, 1.0, 2.0 * t, 3.0 * t2, 4.0 * t2 * t, 5.0 * t2 * t2)
     for g in range(GROUPS):
         if start[g] == start[g + 1]:
             continue
@@ -153,8 +156,8 @@ def lbr_kernel(series, t, work):
                              sin_scratch, cos_scratch)
         coord = g // (MAX_POWER + 1)
         p = g % (MAX_POWER + 1)
-        tp = t ** p
-        dtp = p * t ** (p - 1) if p > 0 else 0.0
+        tp = powers[p]
+        dtp = dpowers[p]
         if coord == 0:
             value0 += tp * s0
             rate0 += dtp * s0 - tp * s1
