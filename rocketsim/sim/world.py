@@ -36,6 +36,7 @@ from rocketsim.scenario.models import check_step
 from rocketsim.errors import InputError
 from rocketsim.sim.start import start_state
 from rocketsim.timescales import Epoch
+from rocketsim.vehicle.build import VehicleModel, build
 
 
 @dataclass
@@ -55,6 +56,7 @@ class Body:
     _air_at: float = math.nan
     _air_cache: tuple = ()
     t: float = 0.0
+    vehicle: VehicleModel | None = None     # a staged vehicle: mass and engines from its arrays
 
     @property
     def position(self) -> np.ndarray:
@@ -74,6 +76,8 @@ class Body:
 
     @property
     def mass(self) -> float:
+        if self.vehicle is not None:
+            return float(self.vehicle.mass_properties(self.y)[0])
         return float(self.p[P_MASS])
 
     def geodetic(self) -> tuple[float, float, float]:
@@ -142,11 +146,15 @@ class World:
         body = Body(
             name=_channel_name(scenario.vehicle.name),
             y=make_state(r, v, q, mission.initial_rates),
-            p=make_params(rigid.mass, rigid.inertia, EARTH_MU, EARTH_RADIUS_EQ, EARTH_J2,
-                          EARTH_RADIUS_POLAR),
+            p=make_params(rigid.mass if rigid else 1.0, rigid.inertia if rigid else (1.0, 1.0, 1.0),
+                          EARTH_MU, EARTH_RADIUS_EQ, EARTH_J2, EARTH_RADIUS_POLAR),
         )
         world = cls(epoch, h, mission.duration if duration is None else duration, [body],
                     atmosphere=loaded.atmosphere)
+        if rigid is None:
+            # staged (issue 4): tanks and engine clocks extend the state; p's mass is unused
+            body.vehicle = build(scenario.vehicle, air=world.atmosphere)
+            body.y = body.vehicle.state(r, v, q, mission.initial_rates)
         world.sample_every = max(1, round(1.0 / (scenario.telemetry.rate * h)))
         if loaded.program_path is not None:
             main = load_program(loaded.program_path)
@@ -243,7 +251,10 @@ class World:
         return max(1, n)
 
     def _advance(self, body: Body, n: int) -> None:
-        y, taken = advance(body.y, self.k, self.h, n, body.p)
+        if body.vehicle is None:
+            y, taken = advance(body.y, self.k, self.h, n, body.p)
+        else:
+            y, taken = advance(body.y, self.k, self.h, n, body.p, body.vehicle.arrays)
         body.y = y
         body.t = (self.k + taken) * self.h
         if taken < n:
