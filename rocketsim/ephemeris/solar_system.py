@@ -8,6 +8,11 @@ date with the IAU 1976 angles (see ``vsop87``, ``elp2000``, ``precession``).
 Time is TT, as a Julian date (``jd_tt``); for Earth rotation use UT1 and
 ``rocketsim.timescales`` instead.
 
+Accuracy (the truncation, measured against the full series over 1950-2100,
+the span the truncation rule was set for): Earth 265 km, Mars 252 km, the
+Moon 0.15" / 0.15" / 0.31 km about the Earth. Outside that span the dropped
+``t^alpha`` terms grow and nothing is certified.
+
     r, v = state("mars", jd_tt, center="earth")      # one instant: (3,), (3,)
     r, v = state("mars", jd_array)                   # vectorised: (N, 3), (N, 3)
     field = states(jd_tt, center="earth")            # {"sun": (r, v), ...}
