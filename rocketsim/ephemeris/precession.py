@@ -22,7 +22,6 @@ Angles are in radians, times in Julian centuries unless a name says so.
 
 from __future__ import annotations
 
-
 import numpy as np
 
 from rocketsim._jit import njit
