@@ -19,6 +19,9 @@ References:
   could not be re-read here, so the test's bounds are kept wide: C3 between
   8 and 11 km^2/s^2, launch between 15 October and 30 November 2026,
   arrival between 15 July and 15 October 2027.
+- ``rocketsim windows``: the same window through the command line, a lunar
+  transfer against the Hohmann ellipse to the Moon's distance, and bad input
+  (exit status 2, one line, no traceback).
 """
 
 import datetime as dt
@@ -132,3 +135,94 @@ def test_late_2026_earth_mars_window_on_the_project_ephemerides():
     assert 8.0 < c3_km2_s2 < 11.0
     assert jd_tt_of(2026, 10, 15) < best.departure_jd_tt < jd_tt_of(2026, 11, 30)
     assert jd_tt_of(2027, 7, 15) < best.arrival_jd_tt < jd_tt_of(2027, 10, 15)
+
+
+# --- the command line ----------------------------------------------------------
+
+# The json keys issue 8 names.
+JSON_KEYS = ("departure_utc", "arrival_utc", "tof_days", "c3_km2_s2", "vinf_arrival_km_s",
+             "dv_total_km_s")
+
+
+def run_cli(*args):
+    from click.testing import CliRunner
+
+    from rocketsim_cli.main import main
+    return CliRunner().invoke(main, ["windows", *args])
+
+
+def test_cli_json_lists_the_2026_window_and_writes_plot_and_fragment(tmp_path):
+    import json
+
+    import yaml
+
+    plot = tmp_path / "porkchop.png"
+    fragment = tmp_path / "mars-2026.yaml"
+    result = run_cli("--target", "mars", "--from", "2026-09-15", "--to", "2026-12-15",
+                     "--step", "3d", "--tof", "150:400", "--by", "c3", "--format", "json",
+                     "--plot", str(plot), "--mission-fragment", str(fragment))
+    assert result.exit_code == 0, result.output
+    rows = json.loads(result.stdout)
+    assert rows and set(JSON_KEYS) <= set(rows[0])
+    best = rows[0]
+    assert 8.0 < best["c3_km2_s2"] < 11.0
+    assert best["departure_utc"].startswith(("2026-10", "2026-11"))
+    assert best["tof_days"] == pytest.approx(
+        (dt.datetime.fromisoformat(best["arrival_utc"].replace("Z", "+00:00"))
+         - dt.datetime.fromisoformat(best["departure_utc"].replace("Z", "+00:00"))
+         ).total_seconds() / DAY, abs=2e-3)
+    assert plot.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    data = yaml.safe_load(fragment.read_text())
+    assert data["mission"]["epoch"] == best["departure_utc"]
+    assert data["departure_burn"]["c3_km2_s2"] == pytest.approx(best["c3_km2_s2"], abs=1e-4)
+    vinf = np.array(data["departure_burn"]["v_infinity_km_s"])
+    assert np.dot(vinf, vinf) == pytest.approx(best["c3_km2_s2"], rel=1e-5)
+
+
+
+def test_cli_moon_patched_conic_is_a_hohmann_transfer_to_the_moons_distance():
+    # Analytic reference: the Hohmann ellipse from the 200 km parking orbit
+    # to the Moon's distance at arrival (vis-viva, Curtis section 6.2). The
+    # search's arc leaves 179 deg before the Moon, so it must come within a
+    # fraction of a percent of the Hohmann departure burn, C3 and duration.
+    import json
+
+    from rocketsim.ephemeris.solar_system import state
+
+    result = run_cli("--target", "moon", "--from", "2026-12-01", "--to", "2026-12-10",
+                     "--step", "6h", "--format", "json")
+    assert result.exit_code == 0, result.output
+    best = json.loads(result.stdout)[0]
+    arrival = dt.datetime.fromisoformat(best["arrival_utc"].replace("Z", "+00:00"))
+    r_moon, _ = state("moon", Epoch.from_utc(arrival).jd_tt(), center="earth")
+    rp = EARTH_RADIUS_EQ + 200e3
+    ra = float(np.linalg.norm(r_moon))
+    a = 0.5 * (rp + ra)
+    v_perigee = math.sqrt(EARTH_MU * (2 / rp - 1 / a))
+    assert best["dv_departure_km_s"] * 1e3 == pytest.approx(
+        v_perigee - math.sqrt(EARTH_MU / rp), rel=1e-3)
+    assert best["c3_km2_s2"] * 1e6 == pytest.approx(v_perigee ** 2 - 2 * EARTH_MU / rp, rel=1e-3)
+    assert best["tof_days"] == pytest.approx(math.pi * math.sqrt(a ** 3 / EARTH_MU) / DAY, abs=0.2)
+    assert 0.6 < best["vinf_arrival_km_s"] < 1.2
+
+
+@pytest.mark.parametrize("args, message", [
+    (("--target", "mars", "--from", "2026-12-01", "--to", "2026-11-01"), "before --from"),
+    (("--target", "mars", "--from", "2101-01-01"), "outside the span"),
+    (("--target", "mars", "--capture-orbit", "400km x 100km"), "apoapsis"),
+    (("--target", "mars", "--tof", "300:100"), "--tof"),
+    (("--target", "mars", "--max-c3", "-4"), "--max-c3"),
+    (("--target", "mars", "--from", "next tuesday"), "not a date"),
+    (("--target", "venus",), "venus"),
+])
+def test_cli_bad_input_exits_2_with_one_clear_line(args, message):
+    result = run_cli(*args)
+    assert result.exit_code == 2
+    assert message in result.output
+    assert "Traceback" not in result.output
+
+
+def test_cli_help_shows_an_example():
+    result = run_cli("--help")
+    assert result.exit_code == 0
+    assert "rocketsim windows --target mars" in result.output

@@ -160,9 +160,11 @@ def check_dates(jd_tt, what: str) -> None:
     """InputError if a TT Julian date lies outside the ephemeris span."""
     jd = np.asarray(jd_tt, dtype=float)
     lo, hi = EPHEMERIS_SPAN_JD
-    if np.any(jd < lo) or np.any(jd > hi):
-        raise InputError(f"{what} lies outside the span of the ephemerides, 1950-01-01 to "
-                         "2100-01-01", field=what)
+    outside = (jd < lo) | (jd > hi)
+    if np.any(outside):
+        bad = float(jd[outside].ravel()[0])
+        raise InputError(f"JD(TT) {bad:.1f} lies outside the span of the ephemerides, "
+                         "1950-01-01 to 2100-01-01", field=what)
 
 
 def arcs(departure_jd, arrival_jd, *, target_name: str = "mars", orbits: Orbits = Orbits(),
