@@ -114,3 +114,19 @@ def test_vehicle_table_and_plot(cli, tmp_path):
 
 def test_vehicle_command_refuses_a_rigid_body(cli):
     assert_clean_error(cli("vehicle", VEHICLES / "cubesat-6u.yaml"), "stages", "rigid-body")
+
+
+def test_methalox_stages_carry_their_oxidiser_aft():
+    """Physics model: "methalox stages carry their oxidiser aft" (the LOX tank is the lower)."""
+    from rocketsim.scenario.load import validate
+    from rocketsim.scenario.models import VehicleSpec
+    from rocketsim.scenario.yaml_source import read_yaml
+    found = 0
+    for path in VEHICLES.glob("*.yaml"):
+        spec = validate(read_yaml(path), VehicleSpec)
+        for stage in spec.stages or []:
+            kinds = {t.propellant: t for t in stage.tanks}
+            if "LCH4" in kinds:
+                found += 1
+                assert kinds["LOX"].position + kinds["LOX"].length <= kinds["LCH4"].position
+    assert found == 2
