@@ -1,6 +1,7 @@
 """The flight-computer scheduling contract (issue 2, item 7)."""
 
 import json
+import re
 
 import pytest
 
@@ -101,3 +102,24 @@ def test_summary_json_lists_events_final_state_and_orbit(scenario, cli, tmp_path
     assert body["orbit"]["inclination_deg"] == pytest.approx(51.6, abs=0.01)
     assert body["final"]["time_s"] == pytest.approx(10.0)
     assert "checkpoint" in result.output
+
+
+def test_a_program_that_never_hands_back_is_stopped_by_its_cpu_budget(scenario, cli, tmp_path):
+    program = """
+    def main(fc):
+        fc.sleep(0.2)
+        while True:
+            try:
+                pass
+            except Exception:
+                pass
+    """
+    path = scenario(program, duration="10 s", extra="program_cpu_budget: 0.3 s\n")
+    out = tmp_path / "run.mcap"
+    result = cli("fly", path, "-o", out)
+    assert result.exit_code == 2
+    # stopped somewhere inside the endless loop (lines 4 to 8 of the program)
+    assert re.search(r"program\.py:[4-8]: the program ran 0\.3 s of CPU time", result.output)
+    states = list(messages(out, ["/probe/state"]))
+    assert states[-1][2]["t"] == pytest.approx(0.2)          # telemetry intact up to the stop
+    assert metadata(out)["outcome"]["status"] == "error"

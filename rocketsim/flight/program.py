@@ -14,6 +14,9 @@ The scheduling contract (decided here because it shapes the step loop):
 * An exception in the program ends the flight with a :class:`ProgramError`
   naming the program's file and line; the telemetry written so far stays
   readable.
+* A program that keeps control for more than its CPU budget in one step
+  (default 1 s, ``program_cpu_budget`` in the scenario) is stopped the same
+  way: an endless loop cannot hang the simulator.
 
 The program runs in a greenlet in the simulator's own thread, so switching
 is cheap (about a microsecond) and strictly alternating: the run is
@@ -22,7 +25,10 @@ deterministic.
 
 from __future__ import annotations
 
+import signal
+import threading
 import traceback
+from contextlib import contextmanager
 from pathlib import Path
 from typing import Callable
 
@@ -35,8 +41,42 @@ from rocketsim.errors import InputError
 WAKE_TOLERANCE = 1e-9
 
 
+DEFAULT_CPU_BUDGET = 1.0   # s of CPU time one step of a program may use
+
+
 class ProgramError(InputError):
     """The flight program raised: names its file, line and the exception."""
+
+
+class ProgramOverBudget(BaseException):
+    """Raised inside a program that used up its CPU budget for one step.
+
+    A BaseException, so a program's ``except Exception`` cannot swallow it.
+    """
+
+
+@contextmanager
+def cpu_budget(seconds: float):
+    """Raise :class:`ProgramOverBudget` in this thread after ``seconds`` of CPU time.
+
+    Uses the process's virtual (user CPU) interval timer, so a program that
+    never hands back control is stopped however busy the machine is. Only
+    the main thread can take signals: elsewhere no budget is enforced.
+    """
+    if seconds <= 0 or threading.current_thread() is not threading.main_thread():
+        yield
+        return
+
+    def expire(signum, frame):
+        raise ProgramOverBudget
+
+    previous = signal.signal(signal.SIGVTALRM, expire)
+    signal.setitimer(signal.ITIMER_VIRTUAL, seconds)
+    try:
+        yield
+    finally:
+        signal.setitimer(signal.ITIMER_VIRTUAL, 0.0)
+        signal.signal(signal.SIGVTALRM, previous)
 
 
 def load_program(path: Path) -> Callable:
@@ -62,12 +102,17 @@ def load_program(path: Path) -> Callable:
     return main
 
 
-def _program_error(error: BaseException, path: Path) -> ProgramError:
+def _program_error(error: BaseException, path: Path, budget: float = 0.0) -> ProgramError:
     """A :class:`ProgramError` pointing at the deepest line of ``path`` in the traceback."""
     line = None
     for frame in traceback.extract_tb(error.__traceback__):
         if Path(frame.filename) == path:
             line = frame.lineno
+    if isinstance(error, ProgramOverBudget):
+        return ProgramError(f"the program ran {budget:g} s of CPU time in one step without handing "
+                            "back control (fc.step(), fc.sleep() or fc.wait_until()); is it in an "
+                            "endless loop? (raise the limit with 'program_cpu_budget')",
+                            file=path, line=line)
     text = "".join(traceback.format_exception_only(type(error), error)).strip()
     return ProgramError(f"the program raised {text}", file=path, line=line)
 
@@ -75,8 +120,9 @@ def _program_error(error: BaseException, path: Path) -> ProgramError:
 class ProgramRunner:
     """Runs one program's ``main(fc)`` step by step in a greenlet."""
 
-    def __init__(self, main: Callable, path: Path):
+    def __init__(self, main: Callable, path: Path, cpu_budget: float = DEFAULT_CPU_BUDGET):
         self.path = Path(path)
+        self.cpu_budget = cpu_budget
         self._main = main
         self._greenlet: greenlet.greenlet | None = None
         self._wake_time = 0.0
@@ -91,9 +137,11 @@ class ProgramRunner:
         if self._predicate is None:
             return True
         try:
-            ready = bool(self._predicate())
-        except Exception as error:  # noqa: BLE001
-            raise _program_error(error, self.path) from None
+            with cpu_budget(self.cpu_budget):
+                ready = bool(self._predicate())
+        except (Exception, ProgramOverBudget) as error:  # noqa: BLE001
+            self.finished = True
+            raise _program_error(error, self.path, self.cpu_budget) from None
         if ready:
             self._predicate = None
         return ready
@@ -116,10 +164,11 @@ class ProgramRunner:
         else:
             args = ()
         try:
-            self._greenlet.switch(*args)
-        except Exception as error:  # noqa: BLE001
+            with cpu_budget(self.cpu_budget):
+                self._greenlet.switch(*args)
+        except (Exception, ProgramOverBudget) as error:  # noqa: BLE001
             self.finished = True
-            raise _program_error(error, self.path) from None
+            raise _program_error(error, self.path, self.cpu_budget) from None
         if self._greenlet.dead:
             self.finished = True
 

@@ -195,6 +195,8 @@ class Scenario(Strict):
         "default: the US Standard Atmosphere 1976, calm")
     program: Optional[Path] = Field(None, description="flight-computer program (Python file with main(fc))")
     step: Annotated[Duration, Field(gt=0)] = Field(STEP, description="integration step, at most 0.1 s")
+    program_cpu_budget: Annotated[Duration, Field(gt=0)] = Field(
+        1.0, description="CPU time the program may use in one step before it is stopped")
     telemetry: TelemetrySpec = TelemetrySpec()
     seed: int = Field(0, description="seed of every random stream of the run")
 

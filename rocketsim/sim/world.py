@@ -158,7 +158,7 @@ class World:
         world.sample_every = max(1, round(1.0 / (scenario.telemetry.rate * h)))
         if loaded.program_path is not None:
             main = load_program(loaded.program_path)
-            body.runner = ProgramRunner(main, loaded.program_path)
+            body.runner = ProgramRunner(main, loaded.program_path, scenario.program_cpu_budget)
             body.fc = FlightComputer(world, body)
         return world
 
