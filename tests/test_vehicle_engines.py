@@ -204,3 +204,14 @@ def test_vacuum_nozzle_runs_separated_at_sea_level():
     flags = E.separated(a.eng, a.cmd, 0.0, USSA_P0)
     assert list(flags) == [False] * 9 + [True]               # Merlin Vacuum only
     assert not E.separated(a.eng, a.cmd, 0.0, 0.0).any()
+
+
+def test_mass_flow_instead_of_isp_gives_the_same_engine():
+    """mdot = T_vac / (g0 Isp): 100 kN at 300 s is 33.9908 kg/s (EQUATIONS.md)."""
+    engine = dict(single_stage()["stages"][0]["engines"][0])
+    del engine["isp_vacuum"]
+    by_flow = build(spec(single_stage(engines=[dict(engine, mass_flow=100e3 / (G0 * 300))])))
+    by_isp = build(spec(single_stage()))
+    assert np.allclose(by_flow.arrays.eng, by_isp.arrays.eng, rtol=1e-15, atol=0)
+    with pytest.raises(ValueError, match="exactly one of 'isp_vacuum' or 'mass_flow'"):
+        spec(single_stage(engines=[dict(engine, mass_flow=1.0, isp_vacuum="300 s")]))

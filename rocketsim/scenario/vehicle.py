@@ -34,7 +34,7 @@ from typing import Annotated, Optional
 from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
 from pydantic_core import InitErrorDetails, PydanticCustomError, ValidationError
 
-from rocketsim.constants import G0
+from rocketsim.constants import ENGINE_TAIL_OFF, G0
 from rocketsim.scenario.units import (Angle, AngularRate, Area, Density, Duration, Force, Fraction,
                                       Length, Mass, MassFlow, Pressure, SpecificImpulse)
 
@@ -122,7 +122,7 @@ class EngineSpec(_Strict):
     ignition_delay: Annotated[Duration, Field(ge=0.2, le=0.5)] = Field(
         0.3, description="dead time from the ignition command to first thrust (0.2-0.5 s)")
     spool_up: Annotated[Duration, Field(gt=0)] = Field(1.0, description="time from first thrust to full thrust")
-    tail_off: Annotated[Duration, Field(gt=0)] = Field(0.25, description="time from shutdown to no thrust")
+    tail_off: Annotated[Duration, Field(gt=0)] = Field(ENGINE_TAIL_OFF, description="time from shutdown to no thrust")
     restarts: Annotated[int, Field(ge=0)] = Field(0, description="ignitions allowed after the first")
 
     @field_validator("isp_vacuum", "mass_flow")
