@@ -335,6 +335,12 @@ def search(departure_jd, arrival_jd, *, target_name: str = "mars", objective: st
     grid = Arcs(*(np.concatenate([getattr(r, f) for r in rows], axis=0)
                   for f in Arcs.__dataclass_fields__))
 
+    # Opportunities are the basins of the unconstrained objective inside the
+    # grid; the limits then only accept or reject their optima. A minimum
+    # made by a limit cutting the porkchop (say at the longest time of
+    # flight allowed) is not an opportunity, unless no basin's optimum is
+    # within the limits: then the constrained optimum is the one window.
+    free = _objective_values(grid, objective, {})
     values = _objective_values(grid, objective, limits)
     step = max(float(np.median(np.diff(dep))) if dep.size > 1 else 1.0,
                float(np.median(np.diff(arr))) if arr.size > 1 else 1.0)
@@ -345,37 +351,58 @@ def search(departure_jd, arrival_jd, *, target_name: str = "mars", objective: st
         d, a = float(point[0]), float(point[1])
         if not (lo_dep <= d <= hi_dep and lo_arr <= a <= hi_arr):
             return None
-        one = arcs(np.array([d]), np.array([a]), target_name=tgt.name, orbits=orbits,
-                   ephemeris=eph)
-        return one
+        return arcs(np.array([d]), np.array([a]), target_name=tgt.name, orbits=orbits,
+                    ephemeris=eph)
 
-    def cost(point):
-        one = evaluate(point)
-        if one is None:
-            return np.inf
-        return float(_objective_values(one, objective, limits)[0])
+    def refine(i, j, within):
+        """Optimum from grid cell (i, j) of the objective under ``within``.
 
-    windows: list[Window] = []
-    for i, j in _local_minima(values):
-        if len(windows) >= count:
-            break
-        start = np.array([dep[i], arr[j]])
+        Nelder-Mead in (departure, time of flight), both kept inside their
+        bounds (the grid's dates, and the time-of-flight limit if it is in
+        ``within``), so that an optimum on a time-of-flight limit is found
+        along it; other limits count as infinite cost.
+        """
+        tof_lo, tof_hi = within.get("tof_days") or (-np.inf, np.inf)
+
+        def cost(x):
+            one = evaluate((x[0], x[0] + x[1]))
+            return np.inf if one is None else float(_objective_values(one, objective, within)[0])
+        start = np.array([dep[i], arr[j] - dep[i]])
+        bounds = [(lo_dep, hi_dep), (max(tof_lo, lo_arr - hi_dep), min(tof_hi, hi_arr - lo_dep))]
+        start = np.clip(start, [b[0] for b in bounds], [b[1] for b in bounds])
         simplex = np.array([start, start + [step, 0.0], start + [0.0, step]])
-        result = minimize(cost, start, method="Nelder-Mead",
+        simplex = np.clip(simplex, [b[0] for b in bounds], [b[1] for b in bounds])
+        result = minimize(cost, start, method="Nelder-Mead", bounds=bounds,
                           options={"initial_simplex": simplex, "xatol": 1e-5,
-                                   "fatol": 1e-9, "maxiter": 400})
-        best = result.x if np.isfinite(result.fun) and result.fun <= values[i, j] else start
-        if any(abs(best[0] - w.departure_jd_tt) < 2.0 * step
-               and abs(best[1] - w.arrival_jd_tt) < 2.0 * step for w in windows):
-            continue
-        one = evaluate(best)
-        windows.append(Window(
-            departure_jd_tt=float(best[0]), arrival_jd_tt=float(best[1]),
+                                   "fatol": 1e-9, "maxiter": 600})
+        best = result.x if np.isfinite(result.fun) and result.fun <= cost(start) else start
+        return np.array([best[0], best[0] + best[1]])
+
+    def window_at(point):
+        one = evaluate(point)
+        return Window(
+            departure_jd_tt=float(point[0]), arrival_jd_tt=float(point[1]),
             tof_days=float(one.tof_days[0]), c3=float(one.c3[0]),
             vinf_departure=tuple(float(x) for x in one.vinf_departure[0]),
             vinf_arrival=float(one.vinf_arrival[0]), rla=float(one.rla[0]),
             dla=float(one.dla[0]), dv_departure=float(one.dv_departure[0]),
-            dv_arrival=float(one.dv_arrival[0]), dv_total=float(one.dv_total[0])))
+            dv_arrival=float(one.dv_arrival[0]), dv_total=float(one.dv_total[0]))
+
+    windows: list[Window] = []
+    for i, j in _local_minima(free):
+        if len(windows) >= count:
+            break
+        best = refine(i, j, {})
+        one = evaluate(best)
+        if not np.isfinite(_objective_values(one, objective, limits)[0]):
+            continue                                  # this basin's optimum breaks a limit
+        if any(abs(best[0] - w.departure_jd_tt) < 2.0 * step
+               and abs(best[1] - w.arrival_jd_tt) < 2.0 * step for w in windows):
+            continue
+        windows.append(window_at(best))
+    if not windows and np.isfinite(values).any():
+        i, j = np.unravel_index(int(np.argmin(values)), values.shape)
+        windows.append(window_at(refine(int(i), int(j), limits)))
     key = (lambda w: w.dv_total) if objective == "dv" else (lambda w: w.c3)
     windows.sort(key=key)
     return Search(tgt, windows, grid, objective, limits)
