@@ -100,6 +100,20 @@ def test_minimum_total_dv_is_the_hohmann_transfer():
     assert len(found.windows) == 1
 
 
+def test_a_time_of_flight_limit_gives_the_optimum_along_it():
+    # Hohmann takes ~259 days here; capped at 200 days the best C3 lies on
+    # the cap. Reference: a brute-force sweep of departure days along
+    # tof = 200 d at 0.01-day spacing.
+    found = synthetic_search(objective="c3", tof_days=(100.0, 200.0))
+    assert len(found.windows) == 1
+    best = found.windows[0]
+    assert best.tof_days == pytest.approx(200.0, abs=1e-6)
+    sweep = JD0 + np.arange(60.0, 140.0, 0.01)
+    along = windows.arcs(sweep, sweep + 200.0, ephemeris=circular_ephemeris)
+    assert best.c3 == pytest.approx(np.nanmin(along.c3), rel=1e-7)
+    assert best.c3 > 1.05 * VINF_EARTH ** 2
+
+
 def test_limits_exclude_windows_and_progress_is_reported():
     calls = []
     found = synthetic_search(objective="c3", max_c3=0.9 * VINF_EARTH ** 2,
