@@ -14,6 +14,14 @@ Laguerre for the solution of Kepler's equation", Celestial Mechanics 39:199),
 which converges from a crude start for every conic; the state follows from
 the Lagrange coefficients f, g, fdot, gdot. Elliptic propagation first removes
 whole periods, so long arcs keep the variable small and the accuracy.
+Far along a hyperbola Kepler's equation is evaluated in a cancellation-free
+form (see ``_propagate_one``).
+
+Accuracy: 1e-12 of the distance or better on ellipses, parabolas and ordinary
+hyperbolas (tests/test_kepler.py, against DOP853). Not on a hyperbola that
+dives to within about 1e-4 of its end radii of the centre and out again: there
+the final position r = f r0 + g v0 is the difference of two terms thousands of
+times larger than itself and keeps only about 8 digits.
 
 Units: SI (m, s, m/s, m^3/s^2), any inertial frame.
 """
