@@ -65,6 +65,12 @@ def test_throttle_range_outside_zero_one(write, cli, throttle):
                        "0 <= min <= max <= 1")
 
 
+def test_engines_without_tanks(write, cli):
+    no_tanks = GOOD[:GOOD.index("    tanks:")] + GOOD[GOOD.index("    engines:"):]
+    path = write("v.yaml", no_tanks)
+    assert_clean_error(cli("validate", path), "v.yaml:7:", "stages.0.engines", "no tanks")
+
+
 def test_rigid_body_and_stages_together(write, cli):
     path = write("v.yaml", GOOD + "rigid_body:\n  mass: 1 kg\n  inertia: [1, 1, 1]\n")
     assert_clean_error(cli("validate", path), "v.yaml:1:", "exactly one of 'rigid_body' or 'stages'")

@@ -201,6 +201,9 @@ class StageSpec(_Strict):
                 raise field_error(("point_masses", i, "position"),
                                   f"point mass {part.name!r} sits above the top of stage {self.name!r}",
                                   part.position)
+        if self.engines and not self.tanks:
+            raise field_error(("engines",), f"stage {self.name!r} has engines but no tanks to feed "
+                              "them (list its propellant under 'tanks')", None)
         for i, engine in enumerate(self.engines):
             if engine.position > self.length * (1 + 1e-12):
                 raise field_error(("engines", i, "position"),

@@ -132,7 +132,9 @@ def build(spec, first: int = 0, last: int | None = None, air=None) -> VehicleMod
         centre = base + (0.5 * st.length if st.structure_centre is None else st.structure_centre)
         add_fixed(fixed, st.structure_mass, centre, *shell(st.structure_mass, radius, st.length))
         load = st.propellant_mass
-        stage_rows.append((UNUSABLE_PROPELLANT * load, 0.0, len(tank_names), len(st.tanks), math.nan))
+        # a stage loaded with nothing starts dry: its engines cannot light
+        stage_rows.append((UNUSABLE_PROPELLANT * load, 0.0 if load > 0 else 1.0, len(tank_names),
+                           len(st.tanks), math.nan))
         for tank in st.tanks:
             bottom = base + tank.position
             add_fixed(fixed, tank.wall_mass, bottom + 0.5 * tank.length,
