@@ -111,7 +111,7 @@ def spool_fraction(on, level, clock, dead, spool, tail):
 @njit
 def slew(x0, target, rate, elapsed):
     """Where a value moving from ``x0`` towards ``target`` at ``rate`` per second is after ``elapsed`` s."""
-    step = rate * elapsed
+    step = rate * max(elapsed, 0.0)
     if target > x0:
         return min(target, x0 + step)
     return max(target, x0 - step)
@@ -123,7 +123,7 @@ def slew2(a0, b0, a, b, rate, elapsed):
     da = a - a0
     db = b - b0
     distance = math.sqrt(da * da + db * db)
-    travel = rate * elapsed
+    travel = rate * max(elapsed, 0.0)
     if travel >= distance:
         return a, b
     k = travel / distance
