@@ -16,7 +16,7 @@ from rocketsim.scenario.models import VehicleSpec
 from rocketsim.scenario.yaml_source import read_yaml
 from rocketsim.vehicle import engines as E
 from rocketsim.vehicle.build import build
-from rocketsim.vehicle.staging import separate
+from rocketsim.vehicle.staging import jettison_fairing, separate
 
 F9 = Path(__file__).resolve().parents[1] / "vehicles" / "falcon9-block5.yaml"
 
@@ -43,3 +43,21 @@ def test_separation_conserves_centre_of_mass_and_momentum():
                        rtol=1e-14)
     assert lower.arrays.stage[0, E.S_DRY] == 1.0 and upper.arrays.stage[0, E.S_DRY] == 0.0
     assert np.array_equal(y_u[upper.tanks], whole.tank_load[2:])
+
+
+def test_fairing_jettison_conserves_centre_of_mass_and_momentum():
+    spec = validate(read_yaml(F9), VehicleSpec)
+    whole = build(spec)
+    (_, _), (upper, y_u) = separate(spec, whole, whole.state([EARTH_RADIUS_EQ + 110e3, 0.0, 0.0],
+                                                             [0.0, 2500.0, 800.0], w=(0.0, 0.02, 0.0)), 1)
+    (bare, y_b), fairing = jettison_fairing(spec, upper, y_u, 1)
+    m, m_b = upper.mass_properties(y_u)[0], bare.mass_properties(y_b)[0]
+    assert m - m_b == pytest.approx(1900.0, rel=1e-12) and fairing["mass"] == 1900.0
+    assert np.allclose((m_b * y_b[:3] + 1900.0 * fairing["position"]) / m, y_u[:3], rtol=0, atol=1e-8)
+    assert np.allclose((m_b * y_b[3:6] + 1900.0 * fairing["velocity"]) / m, y_u[3:6], rtol=0, atol=1e-10)
+    # thin shell, r = 2.6 m, L = 13.1 m: Ixx = m r^2, Iyy = m (r^2/2 + L^2/12)
+    assert fairing["inertia"] == pytest.approx((1900 * 2.6 ** 2, 1900 * (2.6 ** 2 / 2 + 13.1 ** 2 / 12),
+                                                1900 * (2.6 ** 2 / 2 + 13.1 ** 2 / 12)), rel=1e-14)
+    assert not bare.has_fairing and bare.length == pytest.approx(13.8 + 6.0)
+    with pytest.raises(ValueError):
+        jettison_fairing(spec, bare, y_b, 1)

@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import math
 from collections import namedtuple
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from functools import lru_cache
 
 import numpy as np
@@ -51,6 +51,8 @@ class VehicleModel:
     tank_stage: np.ndarray          # int, stage of each tank
     length: float                   # m, base of the stack to the nose
     arrays: VehicleArrays
+    engine_groups: list[str] = field(default_factory=list)   # "stage/group" of each engine
+    has_fairing: bool = False
 
     @property
     def n_tanks(self) -> int:
@@ -105,10 +107,11 @@ def _standard_air():
     return standard_table().arrays()
 
 
-def build(spec, first: int = 0, last: int | None = None, air=None) -> VehicleModel:
+def build(spec, first: int = 0, last: int | None = None, air=None, fairing: bool = True) -> VehicleModel:
     """The runtime model of stages ``first..last`` (inclusive, bottom to top) of ``spec``.
 
-    Payload and fairing are included when the top stage is. ``air`` is an
+    Payload and fairing are included when the top stage is (the fairing only
+    while ``fairing`` is true: False after its jettison). ``air`` is an
     :class:`~rocketsim.atmosphere.table.AtmosphereTable` for the ambient
     pressure; by default the US Standard Atmosphere 1976.
     """
@@ -123,7 +126,7 @@ def build(spec, first: int = 0, last: int | None = None, air=None) -> VehicleMod
 
     fixed = np.zeros(N_FIXED)
     tank_bottom, tank_radius, tank_density, tank_load, tank_share, tank_stage = [], [], [], [], [], []
-    tank_names, engine_names, eng_rows = [], [], []
+    tank_names, engine_names, engine_groups, eng_rows = [], [], [], []
     stage_rows, stage_base, dry = [], [], []
     base = 0.0
     for s, st in enumerate(chosen):
@@ -151,6 +154,7 @@ def build(spec, first: int = 0, last: int | None = None, air=None) -> VehicleMod
                 x = base + group.position
                 add_fixed(fixed, group.mass, x, y=py, z=pz)
                 engine_names.append(f"{st.name}/{group.name}" + (f"/{k + 1}" if group.count > 1 else ""))
+                engine_groups.append(f"{st.name}/{group.name}")
                 row = np.zeros(E.N_ENG)
                 row[E.E_STAGE], row[E.E_X], row[E.E_Y], row[E.E_Z] = s, x, py, pz
                 row[E.E_THRUST] = group.thrust_vacuum
@@ -172,11 +176,12 @@ def build(spec, first: int = 0, last: int | None = None, air=None) -> VehicleMod
     if top and spec.payload is not None:
         pl = spec.payload
         add_fixed(fixed, pl.mass, base + 0.5 * pl.length, *solid_cylinder(pl.mass, 0.5 * pl.diameter, pl.length))
-    if top and spec.fairing is not None:
+    with_fairing = top and fairing and spec.fairing is not None
+    if with_fairing:
         fr = spec.fairing
         add_fixed(fixed, fr.mass, base + 0.5 * fr.length, *shell(fr.mass, 0.5 * fr.diameter, fr.length))
     length = base + (max(spec.payload.length if spec.payload else 0.0,
-                         spec.fairing.length if spec.fairing else 0.0) if top else 0.0)
+                         spec.fairing.length if with_fairing else 0.0) if top else 0.0)
 
     eng = np.array(eng_rows, dtype=float).reshape(len(eng_rows), E.N_ENG)
     cmd = np.zeros((len(eng_rows), E.N_CMD))
@@ -191,7 +196,8 @@ def build(spec, first: int = 0, last: int | None = None, air=None) -> VehicleMod
     return VehicleModel(spec.name if first == 0 and top else f"{spec.name}[{chosen[0].name}..{chosen[-1].name}]",
                         [st.name for st in chosen], tank_names, engine_names,
                         _f(stage_base), _f([st.length for st in chosen]), _f([st.diameter for st in chosen]),
-                        _f(dry), _f(tank_load), np.array(tank_stage, dtype=np.int64), length, arrays)
+                        _f(dry), _f(tank_load), np.array(tank_stage, dtype=np.int64), length, arrays,
+                        engine_groups, with_fairing)
 
 
 def _f(values) -> np.ndarray:

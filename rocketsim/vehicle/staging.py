@@ -17,6 +17,8 @@ payload and fairing, stations from its own base). Each part gets:
 
 So the parts' mass-weighted positions and momenta add up to the stack's,
 exactly up to rounding (no separation impulse: springs or pushers are events).
+:func:`jettison_fairing` does the same for the fairing, which becomes a rigid
+body (a thin shell).
 """
 
 from __future__ import annotations
@@ -27,6 +29,7 @@ from rocketsim.dynamics.state import N_STATE, Q, R, V, W
 from rocketsim.frames.quaternion import quat_rotate
 from rocketsim.vehicle.build import VehicleModel, build
 from rocketsim.vehicle.engines import S_DRY, S_DRY_AT
+from rocketsim.vehicle.mass_properties import shell
 
 
 def separate(spec, whole: VehicleModel, y: np.ndarray, k: int, air=None):
@@ -40,7 +43,7 @@ def separate(spec, whole: VehicleModel, y: np.ndarray, k: int, air=None):
     if not 0 < k < len(spec.stages):
         raise ValueError(f"no stage boundary below stage {k}")
     lower = build(spec, 0, k - 1, air=air)
-    upper = build(spec, k, air=air)
+    upper = build(spec, k, air=air, fairing=whole.has_fairing)
     x_cm = whole.mass_properties(y)[1]
     parts = []
     tank0 = engine0 = 0
@@ -51,14 +54,47 @@ def separate(spec, whole: VehicleModel, y: np.ndarray, k: int, air=None):
         clocks = slice(N_STATE + whole.n_tanks + engine0, N_STATE + whole.n_tanks + engine0 + part.n_engines)
         y_part[part.tanks] = y[tanks]
         y_part[part.clocks] = y[clocks]
-        part.arrays.cmd[:] = whole.arrays.cmd[engine0:engine0 + part.n_engines]
-        for column in (S_DRY, S_DRY_AT):
-            part.arrays.stage[:, column] = whole.arrays.stage[stage0:stage0 + len(part.stage_names), column]
-        offset = np.array([base + part.mass_properties(y_part)[1] - x_cm, 0.0, 0.0])
-        w = y[W:W + 3]
-        y_part[R:R + 3] = y[R:R + 3] + quat_rotate(y[Q:Q + 4], offset)
-        y_part[V:V + 3] = y[V:V + 3] + quat_rotate(y[Q:Q + 4], np.cross(w, offset))
+        _copy_commands(whole, part, engine0, stage0)
+        y_part[R:R + 3], y_part[V:V + 3] = moved(y, base + part.mass_properties(y_part)[1] - x_cm)
         parts.append((part, y_part))
         tank0 += part.n_tanks
         engine0 += part.n_engines
     return parts[0], parts[1]
+
+
+def jettison_fairing(spec, model: VehicleModel, y: np.ndarray, first: int, air=None):
+    """Drop the fairing of ``model`` (stages ``first..top`` of ``spec`` with its fairing).
+
+    Returns ``((model_without, y_without), fairing)`` with ``fairing`` a dict of
+    the fairing as a rigid body: ``mass`` (kg), ``inertia`` (Ixx, Iyy, Izz about
+    its centre, kg m^2; a thin shell), ``position`` and ``velocity`` (of its
+    centre, same frame as ``y``), ``attitude`` and ``rates`` (the stack's).
+    """
+    if not model.has_fairing or model.stage_names != [s.name for s in spec.stages[first:]]:
+        raise ValueError("jettison_fairing() needs the model of stages first..top with its fairing")
+    without = build(spec, first, air=air, fairing=False)
+    y_new = y.copy()
+    _copy_commands(model, without, 0, 0)
+    x_cm = model.mass_properties(y)[1]
+    y_new[R:R + 3], y_new[V:V + 3] = moved(y, without.mass_properties(y_new)[1] - x_cm)
+    f = spec.fairing
+    own_ixx, own_iyy = shell(f.mass, 0.5 * f.diameter, f.length)
+    top = float(model.stage_base[-1] + spec.stages[-1].length)
+    r, v = moved(y, top + 0.5 * f.length - x_cm)
+    fairing = {"mass": f.mass, "inertia": (own_ixx, own_iyy, own_iyy), "position": r, "velocity": v,
+               "attitude": y[Q:Q + 4].copy(), "rates": y[W:W + 3].copy()}
+    return (without, y_new), fairing
+
+
+def moved(y: np.ndarray, dx: float):
+    """Position and velocity of the point ``dx`` (m) ahead of the centre of mass along body x."""
+    offset = np.array([dx, 0.0, 0.0])
+    return (y[R:R + 3] + quat_rotate(y[Q:Q + 4], offset),
+            y[V:V + 3] + quat_rotate(y[Q:Q + 4], np.cross(y[W:W + 3], offset)))
+
+
+def _copy_commands(source: VehicleModel, part: VehicleModel, engine0: int, stage0: int) -> None:
+    """Engine commands and stage dry flags of ``part``, from ``source`` from engine/stage 0 on."""
+    part.arrays.cmd[:] = source.arrays.cmd[engine0:engine0 + part.n_engines]
+    for column in (S_DRY, S_DRY_AT):
+        part.arrays.stage[:, column] = source.arrays.stage[stage0:stage0 + len(part.stage_names), column]

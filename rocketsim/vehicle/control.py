@@ -1,0 +1,93 @@
+"""Engine commands and readings of one staged vehicle, by engine, group or stage name.
+
+A thin layer over the arrays the integrator reads (:mod:`.engines`), for the
+flight computer and the world: commands are given between steps and held for
+the step; readings are evaluated at a given time and ambient pressure with
+the same compiled functions the derivative uses.
+
+``which`` selects engines: ``None`` (all), an index, a stage name
+(``"booster"``), a group name (``"booster/Merlin 1D ring"`` or just
+``"Merlin 1D ring"``), an engine name (``"booster/Merlin 1D ring/3"``), or a
+list of those.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from rocketsim.vehicle import engines as E
+from rocketsim.vehicle.build import VehicleModel
+
+
+class Propulsion:
+    """The engines of ``model`` (a :class:`~rocketsim.vehicle.build.VehicleModel`)."""
+
+    def __init__(self, model: VehicleModel):
+        self.model = model
+        self.a = model.arrays
+
+    def select(self, which=None) -> list[int]:
+        """Engine indices named by ``which`` (see the module); ValueError if it names none."""
+        n = self.model.n_engines
+        if which is None:
+            return list(range(n))
+        if isinstance(which, (list, tuple)):
+            return sorted({e for item in which for e in self.select(item)})
+        if isinstance(which, (int, np.integer)):
+            if not 0 <= which < n:
+                raise ValueError(f"no engine {which} (the vehicle has {n})")
+            return [int(which)]
+        names, groups = self.model.engine_names, self.model.engine_groups
+        stages = self.model.stage_names
+        found = [e for e in range(n) if which in (names[e], groups[e], groups[e].split("/", 1)[1])
+                 or (which in stages and int(self.a.eng[e, E.E_STAGE]) == stages.index(which))]
+        if not found:
+            raise ValueError(f"no engine, group or stage named {which!r}; engines: {', '.join(names)}")
+        return found
+
+    def ignite(self, y: np.ndarray, which=None) -> list[str]:
+        """Command ignition; returns the names of the engines that accepted it (not already
+        on, stage not dry, an ignition left)."""
+        return [self.model.engine_names[e] for e in self.select(which)
+                if E.ignite(y, self.a.eng, self.a.cmd, self.a.stage, e, self.a.first_clock)]
+
+    def shutdown(self, y: np.ndarray, which=None) -> list[str]:
+        """Command shutdown (tail-off follows); returns the names of the engines that were on."""
+        return [self.model.engine_names[e] for e in self.select(which)
+                if E.shutdown(y, self.a.eng, self.a.cmd, e, self.a.first_clock)]
+
+    def throttle(self, t: float, value: float, which=None) -> None:
+        """Command a throttle (clipped to each engine's range) at mission time ``t`` (s)."""
+        for e in self.select(which):
+            E.command_throttle(self.a.eng, self.a.cmd, e, t, value)
+
+    def gimbal(self, t: float, gy: float, gz: float, which=None) -> None:
+        """Command a gimbal deflection (rad; towards body +y and +z), clipped to each cone."""
+        for e in self.select(which):
+            E.command_gimbal(self.a.eng, self.a.cmd, e, t, gy, gz)
+
+    def states(self, y: np.ndarray, t: float, p_a: float) -> list[dict]:
+        """Each engine at time ``t`` and ambient pressure ``p_a`` (Pa): on, spool fraction,
+        throttle flown, gimbal (rad), thrust (N), mass flow (kg/s), ignitions left, separated."""
+        a, out = self.a, []
+        separated = E.separated(a.eng, a.cmd, t, p_a)
+        for e, name in enumerate(self.model.engine_names):
+            f, tau, gy, gz = E.engine_state(t, e, y[a.first_clock + e], a.eng, a.cmd, p_a)
+            if a.stage[int(a.eng[e, E.E_STAGE]), E.S_DRY] > 0.5:
+                f = 0.0
+            out.append({
+                "name": name,
+                "on": bool(a.cmd[e, E.C_ON] > 0.5),
+                "spool": f,
+                "throttle": tau,
+                "gimbal_rad": (gy, gz),
+                "thrust_N": max(0.0, f * (tau * a.eng[e, E.E_THRUST] - p_a * a.eng[e, E.E_AREA])),
+                "mass_flow_kg_s": f * tau * a.eng[e, E.E_MDOT],
+                "ignitions_left": int(a.eng[e, E.E_IGNITIONS] - a.cmd[e, E.C_IGNITED]),
+                "separated": bool(separated[e]),
+            })
+        return out
+
+    def propellant(self, y: np.ndarray) -> dict[str, float]:
+        """Propellant left in each tank (kg), by ``stage/tank`` name."""
+        return dict(zip(self.model.tank_names, (float(m) for m in y[self.model.tanks])))
