@@ -8,6 +8,7 @@ error logged as an event.
 from __future__ import annotations
 
 import json
+import os
 from pathlib import Path
 
 from rocketsim import __version__
@@ -26,7 +27,8 @@ def fly(loaded: LoadedScenario, out: str | Path, *, step: float | None = None,
     world = World.from_scenario(loaded, step=step, duration=duration)
     world.on_progress = on_progress
     epoch_ns = round(world.epoch.utc.timestamp() * 1e9)
-    with TelemetryWriter(out, epoch_ns) as telemetry:
+    program = loaded.program_path
+    with TelemetryWriter(out, epoch_ns, program.name if program else "") as telemetry:
         telemetry.metadata("rocketsim", {
             "version": __version__,
             "scenario": loaded.scenario.name,
@@ -38,11 +40,32 @@ def fly(loaded: LoadedScenario, out: str | Path, *, step: float | None = None,
         for role, path in loaded.files.items():
             telemetry.attach(f"{role}/{path.name}", path.read_bytes(),
                              "text/x-python" if path.suffix == ".py" else "application/yaml")
+        # where each file sits relative to the scenario's folder, so a replay
+        # can lay the attachments out again and re-fly the run
+        telemetry.metadata("files", {role: Path(os.path.relpath(path, loaded.path.parent)).as_posix()
+                                     for role, path in loaded.files.items()})
         try:
             summary = world.run(telemetry)
-        except BaseException as error:
+        except BaseException as caught:
+            error = _signal_behind(caught)
+            telemetry.error(world.t, f"{type(error).__name__}: {error}" if str(error) else type(error).__name__)
             telemetry.metadata("outcome", {"status": "error", "error": str(error) or type(error).__name__})
+            if error is not caught:
+                raise error from None
             raise
         telemetry.metadata("outcome", {"status": "ok"})
         telemetry.metadata("summary", {"json": json.dumps(summary, allow_nan=True)})
     return summary
+
+
+def _signal_behind(error: BaseException) -> BaseException:
+    """The Ctrl-C (or other non-Exception signal) behind ``error``, else ``error``.
+
+    A signal handler that raises while a compiled kernel is being called
+    surfaces as ``SystemError: ... returned a result with an exception set``
+    whose cause is the signal's exception: the caller must see the signal.
+    """
+    cause = error.__cause__
+    if isinstance(error, SystemError) and cause is not None and not isinstance(cause, Exception):
+        return cause
+    return error

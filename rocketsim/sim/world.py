@@ -26,11 +26,9 @@ from rocketsim.dynamics.rk4 import advance
 from rocketsim.dynamics.state import P_MASS, Q, R, V, W, make_params, make_state
 from rocketsim.flight.fc import FlightComputer
 from rocketsim.flight.program import ProgramRunner, load_program
-from rocketsim.atmosphere.relative_wind import air_velocity
-from rocketsim.atmosphere.table import air_at, wind_earth_fixed
-from rocketsim.frames.earth_fixed import ecef_to_eci, eci_to_ecef, eci_to_ecef_velocity
-from rocketsim.frames.elements import Elements, state_to_elements
-from rocketsim.frames.geodetic import ecef_to_geodetic
+from rocketsim.flight.readings import StateView
+from rocketsim.flight.sensors import Sensors
+from rocketsim.frames.earth_fixed import eci_to_ecef_velocity
 from rocketsim.scenario.load import LoadedScenario
 from rocketsim.scenario.models import check_step
 from rocketsim.errors import InputError
@@ -51,11 +49,10 @@ class Body:
     flying: bool = True
     events: list[dict] = field(default_factory=list)
     mu: float = EARTH_MU
-    _geodetic_at: float = math.nan
-    _geodetic: tuple = (math.nan, math.nan, math.nan)
-    _air_at: float = math.nan
-    _air_cache: tuple = ()
     t: float = 0.0
+    atmosphere: Callable[[], object] | None = None    # the day's table, built on first use
+    sensors: Sensors | None = None
+    _view: StateView | None = None
     vehicle: VehicleModel | None = None     # a staged vehicle: mass and engines from its arrays
 
     @property
@@ -80,28 +77,13 @@ class Body:
             return float(self.vehicle.mass_properties(self.y)[0])
         return float(self.p[P_MASS])
 
-    def geodetic(self) -> tuple[float, float, float]:
-        """(latitude rad, longitude rad, height m) on WGS84, cached per step."""
-        if self._geodetic_at != self.t:
-            lat, lon, h = ecef_to_geodetic(eci_to_ecef(self.position, self.t))
-            self._geodetic = (float(lat), float(lon), float(h))
-            self._geodetic_at = self.t
-        return self._geodetic
-
-    def air(self, table) -> tuple:
-        """(density, pressure, temperature, speed of sound, wind ECI, air velocity ECI)
-        from the day's table at the body's height, cached per step (SI units)."""
-        if self._air_at != self.t:
-            lat, lon, height = self.geodetic()
-            rho, p, temperature, sound, east, north = air_at(*table.arrays(), height)
-            wind = ecef_to_eci(wind_earth_fixed(east, north, lat, lon), self.t)
-            self._air_cache = (rho, p, temperature, sound, wind,
-                               air_velocity(self.position, self.velocity, wind))
-            self._air_at = self.t
-        return self._air_cache
-
-    def elements(self) -> Elements:
-        return state_to_elements(self.position, self.velocity, self.mu)
+    def view(self) -> StateView:
+        """The truth's readings at the body's time (one view per step)."""
+        if self._view is None or self._view.t != self.t:
+            self._view = StateView(self.t, self.position.copy(), self.velocity.copy(),
+                                   self.attitude.copy(), self.body_rates.copy(), self.atmosphere,
+                                   self.mu)
+        return self._view
 
 
 class World:
@@ -151,6 +133,8 @@ class World:
         )
         world = cls(epoch, h, mission.duration if duration is None else duration, [body],
                     atmosphere=loaded.atmosphere)
+        body.atmosphere = lambda: world.atmosphere
+        body.sensors = Sensors(scenario.seed, body.name, scenario.sensors, h)
         if rigid is None:
             # staged (issue 4): tanks and engine clocks extend the state; p's mass is unused
             body.vehicle = build(scenario.vehicle, air=world.atmosphere)
@@ -176,7 +160,7 @@ class World:
 
     def sample(self, body: Body) -> dict:
         """The telemetry message of ``body`` at its time (SI; degrees where named)."""
-        lat, lon, height = body.geodetic()
+        lat, lon, height = body.view().geodetic
         return {
             "t": body.t,
             "position": body.position.tolist(),
@@ -192,7 +176,7 @@ class World:
 
     def orbit_summary(self, body: Body) -> dict:
         """Osculating elements with angles in degrees, RAAN from the equinox."""
-        el = body.elements()
+        el = body.view().orbit
         return {
             "semi_major_axis": el.a,
             "eccentricity": el.e,
@@ -213,6 +197,7 @@ class World:
             if telemetry is not None:
                 telemetry.add_body(body.name)
         self._sample_all()
+        self._prepare_programs()
         try:
             while self.k < self.n_steps and any(b.flying for b in self.bodies):
                 self._run_programs()
@@ -230,6 +215,15 @@ class World:
                 if body.runner is not None:
                     body.runner.close()
         return self.summary()
+
+    def _prepare_programs(self) -> None:
+        """Compute every reading once before the first step, outside any program's
+        CPU budget: the day's air table is built and the compiled kernels behind
+        the readings are loaded (or compiled, on a cold cache) here, not in the
+        program's first step."""
+        for body in self.bodies:
+            if body.runner is not None:
+                body.fc.warm_up()
 
     def _run_programs(self) -> None:
         t = self.t
@@ -259,7 +253,7 @@ class World:
         body.t = (self.k + taken) * self.h
         if taken < n:
             # the body went below the ground in its last step: it has hit
-            lat, lon, _ = body.geodetic()
+            lat, lon, _ = body.view().geodetic
             ground_speed = np.linalg.norm(eci_to_ecef_velocity(body.position, body.velocity, body.t))
             self.event(body, "impact", {"latitude_deg": lat / DEG, "longitude_deg": lon / DEG,
                                         "speed_m_s": float(ground_speed)})
@@ -278,7 +272,7 @@ class World:
         """Events and final state of each body, SI units (degrees where named)."""
         bodies = {}
         for body in self.bodies:
-            lat, lon, height = body.geodetic()
+            lat, lon, height = body.view().geodetic
             bodies[body.name] = {
                 "events": body.events,
                 "final": {

@@ -19,7 +19,9 @@ from pathlib import Path
 from mcap.writer import CompressionType, Writer
 
 from rocketsim import __version__
-from rocketsim.telemetry.schemas import BODY_STATE, EVENT, LOG, schema_bytes
+from rocketsim.frames.earth_fixed import earth_rotation_angle
+from rocketsim.telemetry import foxglove
+from rocketsim.telemetry.schemas import BODY_STATE, EVENT, flatten, scalar_schema, schema_bytes
 
 PROFILE = ""
 LIBRARY = f"rocketsim {__version__}"
@@ -31,9 +33,13 @@ def encode(message: dict) -> bytes:
 
 
 class TelemetryWriter:
-    """One MCAP telemetry file: a state channel per body, events and logs."""
+    """One MCAP telemetry file: per body its state, Foxglove transform and
+    location, and scalars; the events; the program's log; the Earth's turn.
 
-    def __init__(self, path: str | Path, epoch_ns: int):
+    ``program_file`` names the program in the ``file`` field of its log lines.
+    """
+
+    def __init__(self, path: str | Path, epoch_ns: int, program_file: str = ""):
         self.path = Path(path)
         self._file = open(self.path, "wb")
         self._writer = Writer(self._file, compression=CompressionType.ZSTD)
@@ -43,8 +49,12 @@ class TelemetryWriter:
         self._channels: dict[str, int] = {}
         self._sequence = 0
         self._closed = False
+        self._program_file = program_file
         self._events = self._channel("/events", EVENT)
-        self._logs = self._channel("/log", LOG)
+        self._event_lines = self._channel("/events/log", foxglove.LOG)
+        self._logs = self._channel("/log", foxglove.LOG)
+        self._earth = self._channel("/earth/transform", foxglove.FRAME_TRANSFORM)
+        self._earth_at = None
 
     def _channel(self, topic: str, schema: dict) -> int:
         title = schema["title"]
@@ -57,23 +67,59 @@ class TelemetryWriter:
         return channel
 
     def add_body(self, name: str) -> None:
-        """Open the state channel ``/<name>/state`` for a body."""
+        """Open the channels of a body: ``/<name>/state``, ``/<name>/transform``
+        (foxglove.FrameTransform), ``/<name>/location`` (foxglove.LocationFix);
+        ``/<name>/scalars`` opens with the body's first state."""
         self._channel(f"/{name}/state", BODY_STATE)
+        self._channel(f"/{name}/transform", foxglove.FRAME_TRANSFORM)
+        self._channel(f"/{name}/location", foxglove.LOCATION_FIX)
 
-    def _write(self, channel: int, t: float, message: dict) -> None:
-        stamp = self._epoch_ns + round(t * 1e9)
+    def _stamp(self, t: float) -> int:
+        return self._epoch_ns + round(t * 1e9)
+
+    def _write(self, channel: int, stamp: int, message: dict) -> None:
         self._writer.add_message(channel_id=channel, log_time=stamp, publish_time=stamp,
                                  data=encode(message), sequence=self._sequence)
         self._sequence += 1
 
     def state(self, body: str, message: dict) -> None:
-        self._write(self._channels[f"/{body}/state"], message["t"], message)
+        """A body's state message, and the Foxglove and scalar messages drawn from it."""
+        t = message["t"]
+        stamp = self._stamp(t)
+        channels = self._channels
+        self._write(channels[f"/{body}/state"], stamp, message)
+        if self._earth_at != t:
+            self._write(self._earth, stamp, foxglove.earth_transform(stamp, earth_rotation_angle(t)))
+            self._earth_at = t
+        self._write(channels[f"/{body}/transform"], stamp, foxglove.frame_transform(
+            stamp, foxglove.INERTIAL_FRAME, body, message["position"], message["attitude"]))
+        self._write(channels[f"/{body}/location"], stamp, foxglove.location_fix(
+            stamp, body, message["latitude_deg"], message["longitude_deg"], message["altitude"]))
+        scalars = flatten(message)
+        topic = f"/{body}/scalars"
+        if topic not in channels:
+            self._channel(topic, scalar_schema(body, scalars))
+        self._write(channels[topic], stamp, scalars)
 
     def event(self, t: float, body: str, name: str, figures: dict) -> None:
-        self._write(self._events, t, {"t": t, "body": body, "name": name, "figures": figures})
+        """An event with its figures (SI), and its line in ``/events/log``."""
+        stamp = self._stamp(t)
+        self._write(self._events, stamp, {"t": t, "body": body, "name": name, "figures": figures})
+        text = name + "".join(f" {k}={v}" for k, v in figures.items())
+        self._write(self._event_lines, stamp,
+                    foxglove.log_line(stamp, foxglove.INFO, text, body, "", t, body))
 
     def log(self, t: float, body: str, message: str) -> None:
-        self._write(self._logs, t, {"t": t, "body": body, "message": message})
+        """A line the program logged."""
+        stamp = self._stamp(t)
+        self._write(self._logs, stamp, foxglove.log_line(
+            stamp, foxglove.INFO, message, body, self._program_file, t, body))
+
+    def error(self, t: float, message: str) -> None:
+        """The error that ended a flight (program exception, Ctrl-C...), in ``/events/log``."""
+        stamp = self._stamp(t)
+        self._write(self._event_lines, stamp, foxglove.log_line(
+            stamp, foxglove.ERROR, message, "rocketsim", "", t, ""))
 
     def attach(self, name: str, data: bytes, media_type: str = "text/plain") -> None:
         """Attach a file (scenario, vehicle, program...) to the log."""
