@@ -12,7 +12,10 @@ index   name   meaning
 ======  =====  ==============================================================
 
 Later models append integrated quantities (propellant masses, engine spool
-states) after index 13 so that the same RK4 stages integrate them.
+states) after index 13 so that the same RK4 stages integrate them. A staged
+vehicle (:mod:`rocketsim.vehicle.build`) appends the propellant mass of each
+of its tanks (kg) and then the clock of each of its engines (s since its last
+ignition or shutdown command).
 
 Parameters ``p`` (float64, length :data:`N_PARAMS`) are what the derivative
 reads but does not integrate: the mass and the diagonal inertia of a rigid
