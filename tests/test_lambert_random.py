@@ -15,11 +15,9 @@ directions and radii 0.5-5 (ratio up to 10), a fifth of them within 1e-3 to
 T = sqrt(2 mu / s^3) tof from 0.03 (strongly hyperbolic) to 30 (long
 ellipses).
 
-Extreme hyperbolas that dive to within 1 % of the smaller end radius of the
-centre (about 10 % of the draws at T < 0.3) are left out of the round trip:
-there the propagation's own f-and-g sum r = f r0 + g v0 cancels and the
-reference, not the solver, loses digits (lamberthub agrees with our
-velocities to 1e-15 there; see the peer test, which keeps them).
+That includes hyperbolas that swing within 1e-5 of their end radii past the
+centre (short near-180-degree transfers), which the propagator follows in
+the hyperbolic anomaly rather than with f and g.
 """
 
 import numpy as np
@@ -69,12 +67,12 @@ def test_round_trip_zero_revolutions_within_1e_10(prograde):
     rng, r1, r2, s = random_problems(1)
     tof = 10.0 ** rng.uniform(-1.5, 1.5, N) / np.sqrt(2.0 / s ** 3)
     v1, v2, iterations = lambert_detailed(1.0, r1, r2, tof, prograde=prograde)
-    flyable = periapsis(r1, v1) > 0.01 * np.minimum(np.linalg.norm(r1, axis=1),
-                                                    np.linalg.norm(r2, axis=1))
-    assert flyable.mean() > 0.85
-    miss = relative_miss(r1[flyable], v1[flyable], tof[flyable], r2[flyable])
+    miss = relative_miss(r1, v1, tof, r2)
+    close = periapsis(r1, v1) < 0.01 * np.minimum(np.linalg.norm(r1, axis=1),
+                                                  np.linalg.norm(r2, axis=1))
     print(f"\nzero-rev round trip, prograde={prograde}: worst {miss.max():.2e} of the distance "
-          f"over {flyable.sum()} problems (near-180 deg: {flyable[:N // 5].sum()})")
+          f"over {N} problems ({N // 5} within 1e-3 rad of 180 deg, {close.sum()} passing "
+          f"within 1 % of the smaller radius of the centre)")
     assert miss.max() < 1e-10
     hist = np.bincount(iterations, minlength=8)
     print("Householder iterations (count per 0, 1, 2, ...):", hist.tolist())
@@ -119,8 +117,6 @@ def test_agrees_with_lamberthub_on_10000_problems():
     tof = 10.0 ** rng.uniform(-1.5, 1.5, N) / np.sqrt(2.0 / s ** 3)
     v1, v2 = lambert(1.0, r1, r2, tof)
     near_180 = np.arange(N) < N // 5
-    flyable = periapsis(r1, v1) > 0.01 * np.minimum(np.linalg.norm(r1, axis=1),
-                                                    np.linalg.norm(r2, axis=1))
 
     def compare(solver, indices):
         differences, failures, peer_v1 = {}, 0, {}
@@ -148,7 +144,7 @@ def test_agrees_with_lamberthub_on_10000_problems():
               f"{max(near):.1e} within 1e-3 rad of it")
         assert max(far) < 1e-9
         assert failures < 0.05 * (len(differences) + failures)
-        disputed = [i for i, d in differences.items() if d > 1e-9 and flyable[i]]
+        disputed = [i for i, d in differences.items() if d > 1e-9]
         for i in disputed:
             assert near_180[i]
             ours = relative_miss(r1[i:i + 1], v1[i:i + 1], tof[i:i + 1], r2[i:i + 1])[0]

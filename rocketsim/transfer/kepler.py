@@ -14,14 +14,13 @@ Laguerre for the solution of Kepler's equation", Celestial Mechanics 39:199),
 which converges from a crude start for every conic; the state follows from
 the Lagrange coefficients f, g, fdot, gdot. Elliptic propagation first removes
 whole periods, so long arcs keep the variable small and the accuracy.
-Far along a hyperbola Kepler's equation is evaluated in a cancellation-free
-form (see ``_propagate_one``).
+Far along a hyperbola (more than one unit of hyperbolic anomaly) both
+Kepler's equation and the final state are written in the hyperbolic anomaly
+instead: there f r0 + g v0 would be the small difference of two large terms
+(a transfer that swings close past the centre kept only 8 digits that way).
 
-Accuracy: 1e-12 of the distance or better on ellipses, parabolas and ordinary
-hyperbolas (tests/test_kepler.py, against DOP853). Not on a hyperbola that
-dives to within about 1e-4 of its end radii of the centre and out again: there
-the final position r = f r0 + g v0 is the difference of two terms thousands of
-times larger than itself and keeps only about 8 digits.
+Accuracy: about 1e-12 of the distance on ellipses, parabolas and hyperbolas
+alike (tests/test_kepler.py against DOP853; tests/test_lambert_random.py).
 
 Units: SI (m, s, m/s, m^3/s^2), any inertial frame.
 """
@@ -62,6 +61,46 @@ def stumpff(z):
 
 
 @njit
+def _hyperbola_state(mu, r0, r0n, hx, hy, hz, alpha, a_plus, neg_a, dh, r_out, v_out):
+    """State after a change dh of hyperbolic anomaly, without f and g.
+
+    Far along a hyperbola that swings close past the centre, r = f r0 + g v0
+    is the small difference of two large terms. Instead: the anomalies
+    H0 = log(A+ / e) and H1 = H0 + dh, the true anomalies from
+    tan(nu/2) = sqrt((e+1)/(e-1)) tanh(H/2), the radius
+    r = |a| ((e - 1) + 2 e sinh^2(H/2)) and the velocity's radial and
+    transverse parts, placed in the plane by the angle swept from r0 (Battin,
+    *An Introduction to the Mathematics and Methods of Astrodynamics*, 4.5).
+    """
+    h2 = hx * hx + hy * hy + hz * hz
+    h = math.sqrt(h2)
+    e2_minus_1 = -alpha * h2 / mu
+    e = math.sqrt(1.0 + e2_minus_1)
+    e_minus_1 = e2_minus_1 / (e + 1.0)
+    h0 = math.log(a_plus / e)
+    h1 = h0 + dh
+    k = math.sqrt((e + 1.0) / e_minus_1)
+    nu0 = 2.0 * math.atan(k * math.tanh(0.5 * h0))
+    nu1 = 2.0 * math.atan(k * math.tanh(0.5 * h1))
+    swept = nu1 - nu0
+    sh = math.sinh(0.5 * h1)
+    r1 = neg_a * (e_minus_1 + 2.0 * e * sh * sh)
+    ux, uy, uz = r0[0] / r0n, r0[1] / r0n, r0[2] / r0n
+    nx, ny, nz = hx / h, hy / h, hz / h
+    sx, sy, sz = ny * uz - nz * uy, nz * ux - nx * uz, nx * uy - ny * ux
+    c = math.cos(swept)
+    s = math.sin(swept)
+    rhx, rhy, rhz = c * ux + s * sx, c * uy + s * sy, c * uz + s * sz
+    thx, thy, thz = -s * ux + c * sx, -s * uy + c * sy, -s * uz + c * sz
+    v_radial = mu / h * e * math.sin(nu1)
+    v_transverse = h / r1
+    r_out[0], r_out[1], r_out[2] = r1 * rhx, r1 * rhy, r1 * rhz
+    v_out[0] = v_radial * rhx + v_transverse * thx
+    v_out[1] = v_radial * rhy + v_transverse * thy
+    v_out[2] = v_radial * rhz + v_transverse * thz
+
+
+@njit
 def _propagate_one(mu, r0, v0, dt, r_out, v_out):
     """Propagate one state by dt (s); returns the iteration count (-1: failed)."""
     r0n = math.sqrt(r0[0] ** 2 + r0[1] ** 2 + r0[2] ** 2)
@@ -96,11 +135,11 @@ def _propagate_one(mu, r0, v0, dt, r_out, v_out):
     neg_a = 0.0
     a_plus = 0.0
     a_minus = 0.0
+    hx = r0[1] * v0[2] - r0[2] * v0[1]
+    hy = r0[2] * v0[0] - r0[0] * v0[2]
+    hz = r0[0] * v0[1] - r0[1] * v0[0]
     if alpha < 0.0:
         neg_a = -1.0 / alpha
-        hx = r0[1] * v0[2] - r0[2] * v0[1]
-        hy = r0[2] * v0[0] - r0[0] * v0[2]
-        hz = r0[0] * v0[1] - r0[1] * v0[0]
         ecc2 = 1.0 - alpha * (hx * hx + hy * hy + hz * hz) / mu
         q = sigma0 * math.sqrt(-alpha)
         if q >= 0.0:
@@ -155,6 +194,10 @@ def _propagate_one(mu, r0, v0, dt, r_out, v_out):
             # iteration then stalls (iters stays at this count).
             iters = it + 1
     z = alpha * chi * chi
+    if z < -1.0:
+        _hyperbola_state(mu, r0, r0n, hx, hy, hz, alpha, a_plus, neg_a, chi / root_neg_a,
+                         r_out, v_out)
+        return iters
     c, s = stumpff(z)
     chi2 = chi * chi
     f_lag = 1.0 - chi2 * c / r0n
