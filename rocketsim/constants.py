@@ -94,3 +94,26 @@ ENGINE_TAIL_OFF = 0.25                     # s, shutdown to zero thrust
 # "Flow separation in overexpanded supersonic exhaust nozzles", Jet Propulsion
 # 24 (1954) 319-321; Sutton & Biblarz, Rocket Propulsion Elements, 9th ed., 3.3).
 SUMMERFIELD_SEPARATION_RATIO = 0.4
+
+# --- Rails, cruise rails, the n-body field (physics model, "Rails: the same
+# step, a cheaper derivative", "Cruise rails: RK4 sized by the turn", "The
+# n-body field"; EQUATIONS.md "Cruise rails") ---------------------------------
+RAILS_FLOOR = 151_000.0                    # m, a sleeping body goes on rails above this height
+NBODY_HOLD = 5.0                           # s of mission time the other bodies' positions are held
+CRUISE_TURN_PER_SUBSTEP = 0.02             # rad, a cruise sub-step turns the path by about this
+CRUISE_MIN_SUBSTEP = 5.0                   # s, a cruise sub-step never lasts less
+CRUISE_MAX_STEP = 3600.0                   # s, longest cruise step
+CRUISE_MAX_TURN = 0.5 * DEG                # rad, most a cruise step may turn the path
+CRUISE_CLEARANCE = 2_000_000.0             # m, clearance shell above every body's radius
+SUN_RADIUS = 695_700_000.0                 # m, IAU 2015 Resolution B3 nominal solar radius
+# Semi-major axes for the spheres of influence r_SOI = a (mu/mu_parent)^(2/5):
+# Earth-Moon barycentre and Mars, E. M. Standish, "Keplerian Elements for
+# Approximate Positions of the Major Planets" (JPL SSD), Table 1 (J2000);
+# the Moon's mean distance, NASA Moon Fact Sheet (0.3844e6 km).
+EARTH_ORBIT_A = 1.00000261 * AU            # m
+MARS_ORBIT_A = 1.52371034 * AU             # m
+MOON_ORBIT_A = 384_400_000.0               # m
+# Solar radiation pressure: total solar irradiance at 1 AU, 1361 W/m^2
+# (G. Kopp & J. Lean, GRL 38, L01706, 2011), over c (SI exact).
+SPEED_OF_LIGHT = 299_792_458.0             # m/s
+SOLAR_IRRADIANCE_1AU = 1361.0              # W/m^2

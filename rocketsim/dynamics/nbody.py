@@ -1,0 +1,277 @@
+"""The n-body field about a central body: its point mass and J2, every other body's pull.
+
+From EQUATIONS.md ("Gravity", N-body field), with the central body ``c``,
+the other bodies ``k`` at ``s_k`` from ``c`` and the vehicle at ``r`` from
+``c``::
+
+    a = a_c(r) + sum_k mu_k [ (s_k - r)/|s_k - r|^3  -  s_k/|s_k|^3 ]
+
+``a_c`` is the central body's point mass plus J2 about the frame's ``z``
+axis (:func:`rocketsim.bodies.gravity.point_mass_j2`), so the frame's ``z``
+must be the central body's pole: Earth's ECI, or the IAU-pole frame a
+sphere-of-influence handover sets up (:mod:`rocketsim.dynamics.soi`). The
+first term in the brackets is the body's pull on the vehicle (direct), the
+second its pull on the central body, with which the frame falls (indirect).
+Solar radiation pressure (a flat absorber facing the Sun,
+``a = (S/c) (AU/d)^2 C_R A/m`` away from the Sun) is implemented and off
+unless the field's SRP coefficient is set.
+
+A field is described by one float64 array ``fp`` (:func:`make_field`): the
+central body's index in :data:`rocketsim.ephemeris.solar_system.BODIES`
+(sun 0, earth 1, moon 2, mars 3), the TT Julian date of mission time 0, the
+SRP coefficient ``C_R A/m`` (m^2/kg, 0 = off), the rotation frame -> J2000
+(row-major) and each body's mu (0 = not in the field). The central body's
+own mu, radius and J2 come from the state's parameters ``p`` as in
+:func:`rocketsim.dynamics.derivative.derivative`.
+
+In the flight model the other bodies' positions are computed once per
+:data:`~rocketsim.constants.NBODY_HOLD` (5 s) of mission time and held,
+quantised on mission time (:func:`held_bodies`), so a run stays bit-identical
+however its steps are batched. Cruise rails evaluate them at every stage.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from rocketsim._jit import njit
+from rocketsim.bodies.gravity import point_mass_j2
+from rocketsim.atmosphere.table import air_at
+from rocketsim.constants import (AU, EARTH_MU, EARTH_OMEGA, MARS_MU, MOON_MU, NBODY_HOLD, SECONDS_PER_DAY,
+                                 SOLAR_IRRADIANCE_1AU, SPEED_OF_LIGHT, SUN_MU)
+from rocketsim.dynamics.derivative import derivative, radial_height
+from rocketsim.dynamics.state import P_J2, P_MU, P_RADIUS, Q, R, V
+from rocketsim.ephemeris.solar_system import BODIES, _truncated_one
+
+# field slots
+F_CENTER = 0      # index of the central body in BODIES
+F_JD0 = 1         # TT Julian date of mission time 0
+F_SRP = 2         # C_R A / m, m^2/kg (0: no radiation pressure)
+F_ROT = 3         # 9 slots: rotation frame -> J2000, row-major
+F_MU = 12         # 4 slots: mu of sun, earth, moon, mars in the field (0: left out)
+F_DRAG = 16       # C_D A / m, m^2/kg, point-mass drag of the rails about Earth (0: none)
+N_FIELD = 17
+
+MU = {"sun": SUN_MU, "earth": EARTH_MU, "moon": MOON_MU, "mars": MARS_MU}
+EARTH_INDEX = BODIES.index("earth")
+SRP_1AU = SOLAR_IRRADIANCE_1AU / SPEED_OF_LIGHT     # N/m^2, radiation pressure at 1 AU
+
+
+def make_field(center: str, jd0_tt: float, rotation=None, bodies=BODIES,
+               srp: float = 0.0, drag: float = 0.0) -> np.ndarray:
+    """The field array about ``center`` ("sun", "earth", "moon" or "mars").
+
+    ``jd0_tt``: TT Julian date of mission time 0; ``rotation``: 3x3 matrix
+    taking frame components to J2000 equatorial ones (identity by default);
+    ``bodies``: names of the bodies whose pull is felt (the centre's own entry
+    is ignored: its pull is ``a_c``); ``srp``: ``C_R A/m`` in m^2/kg, 0 = off;
+    ``drag``: ``C_D A/m`` in m^2/kg of the rails' point-mass drag (Earth only).
+    """
+    fp = np.zeros(N_FIELD)
+    fp[F_CENTER] = BODIES.index(center)
+    fp[F_JD0] = jd0_tt
+    fp[F_SRP] = srp
+    fp[F_DRAG] = drag
+    fp[F_ROT:F_ROT + 9] = (np.eye(3) if rotation is None else np.asarray(rotation, float)).reshape(9)
+    for name in bodies:
+        fp[F_MU + BODIES.index(name)] = MU[name]
+    return fp
+
+
+@njit
+def bodies_at(fp, t):
+    """Positions (4, 3) m and velocities (4, 3) m/s of the Sun, Earth, Moon, Mars
+    relative to the field's centre, frame axes, at mission time ``t`` (s)."""
+    r, v = _truncated_one(fp[F_JD0] + t / SECONDS_PER_DAY, int(fp[F_CENTER]))
+    s = np.empty((4, 3))
+    u = np.empty((4, 3))
+    for i in range(4):
+        for k in range(3):
+            # frame = M^T J2000, M row-major in fp
+            s[i, k] = (fp[F_ROT + k] * r[i, 0] + fp[F_ROT + 3 + k] * r[i, 1]
+                       + fp[F_ROT + 6 + k] * r[i, 2])
+            u[i, k] = (fp[F_ROT + k] * v[i, 0] + fp[F_ROT + 3 + k] * v[i, 1]
+                       + fp[F_ROT + 6 + k] * v[i, 2])
+    return s, u
+
+
+@njit
+def hold_time(t):
+    """The mission time (s) whose body positions are held at ``t``: ``t`` rounded
+    down to a multiple of :data:`NBODY_HOLD`."""
+    return math.floor(t / NBODY_HOLD) * NBODY_HOLD
+
+
+@njit
+def held_bodies(fp, t):
+    """Body positions (4, 3) held for the 5 s bucket of mission time ``t``."""
+    return bodies_at(fp, hold_time(t))[0]
+
+
+@njit
+def perturbation(x, y, z, s, fp):
+    """Acceleration (m/s^2, frame axes) at ``(x, y, z)`` from every body but the
+    centre (direct minus indirect term) plus radiation pressure when on."""
+    ax = ay = az = 0.0
+    c = int(fp[F_CENTER])
+    for k in range(4):
+        mu = fp[F_MU + k]
+        if k == c or mu == 0.0:
+            continue
+        dx = s[k, 0] - x
+        dy = s[k, 1] - y
+        dz = s[k, 2] - z
+        d2 = dx * dx + dy * dy + dz * dz
+        d3 = d2 * math.sqrt(d2)
+        s2 = s[k, 0] * s[k, 0] + s[k, 1] * s[k, 1] + s[k, 2] * s[k, 2]
+        s3 = s2 * math.sqrt(s2)
+        ax += mu * (dx / d3 - s[k, 0] / s3)
+        ay += mu * (dy / d3 - s[k, 1] / s3)
+        az += mu * (dz / d3 - s[k, 2] / s3)
+    if fp[F_SRP] != 0.0:
+        # from the Sun to the vehicle (the Sun is at s[0], or at the origin when central)
+        ux = x - s[0, 0]
+        uy = y - s[0, 1]
+        uz = z - s[0, 2]
+        d2 = ux * ux + uy * uy + uz * uz
+        d = math.sqrt(d2)
+        k = SRP_1AU * AU * AU / d2 * fp[F_SRP] / d
+        ax += k * ux
+        ay += k * uy
+        az += k * uz
+    return ax, ay, az
+
+
+@njit
+def field_acceleration(x, y, z, s, fp, p):
+    """The whole field (m/s^2): central point mass + J2 (``p``) plus :func:`perturbation`."""
+    ax, ay, az = point_mass_j2(x, y, z, p[P_MU], p[P_RADIUS], p[P_J2])
+    tx, ty, tz = perturbation(x, y, z, s, fp)
+    return ax + tx, ay + ty, az + tz
+
+
+def field(r, t: float, fp, p, held: bool = True) -> np.ndarray:
+    """Acceleration (3,) m/s^2 at ``r`` (m, frame axes) at mission time ``t`` (s).
+
+    ``held``: the flight model's 5 s hold of the other bodies; False evaluates
+    them at ``t`` itself (cruise rails).
+    """
+    fp = np.asarray(fp, dtype=float)
+    s = held_bodies(fp, t) if held else bodies_at(fp, t)[0]
+    return np.array(field_acceleration(float(r[0]), float(r[1]), float(r[2]), s, fp,
+                                       np.asarray(p, dtype=float)))
+
+
+@njit
+def awake_derivative(t, y, p, s, fp, dy, veh=None):
+    """The flight model's derivative in the n-body field: :func:`derivative`
+    (central body, engines, Euler) plus the other bodies held at ``s``."""
+    derivative(t, y, p, dy, veh)
+    tx, ty, tz = perturbation(y[R], y[R + 1], y[R + 2], s, fp)
+    dy[V] += tx
+    dy[V + 1] += ty
+    dy[V + 2] += tz
+
+
+def no_air():
+    """Placeholder air table (the arguments of ``air_at`` before the height) for
+    fields without drag."""
+    zero = np.zeros(2)
+    return (0.0, 1.0, zero, zero, zero, zero, zero, zero)
+
+
+@njit
+def translational_derivative(y, p, s, fp, air, dy):
+    """Position and velocity rates only (``dy[0:6]``): the field, and about Earth
+    point-mass drag ``-1/2 rho |v_air| v_air C_D A/m`` when ``fp[F_DRAG]`` is set
+    (``v_air = v - omega_E x r``; density from the day's table ``air`` at the
+    radial height; none above 600 km)."""
+    ax, ay, az = point_mass_j2(y[R], y[R + 1], y[R + 2], p[P_MU], p[P_RADIUS], p[P_J2])
+    tx, ty, tz = perturbation(y[R], y[R + 1], y[R + 2], s, fp)
+    dy[R] = y[V]
+    dy[R + 1] = y[V + 1]
+    dy[R + 2] = y[V + 2]
+    dy[V] = ax + tx
+    dy[V + 1] = ay + ty
+    dy[V + 2] = az + tz
+    if fp[F_DRAG] != 0.0 and fp[F_CENTER] == EARTH_INDEX:
+        rho = air_at(air[0], air[1], air[2], air[3], air[4], air[5], air[6], air[7],
+                     radial_height(y, p))[0]
+        if rho > 0.0:
+            wx = y[V] + EARTH_OMEGA * y[R + 1]
+            wy = y[V + 1] - EARTH_OMEGA * y[R]
+            wz = y[V + 2]
+            k = -0.5 * rho * math.sqrt(wx * wx + wy * wy + wz * wz) * fp[F_DRAG]
+            dy[V] += k * wx
+            dy[V + 1] += k * wy
+            dy[V + 2] += k * wz
+
+
+@njit
+def _rates(t, y, p, s, fp, air, dy, veh, full, live):
+    if live:
+        s = bodies_at(fp, t)[0]
+    if full:
+        awake_derivative(t, y, p, s, fp, dy, veh)
+    else:
+        translational_derivative(y, p, s, fp, air, dy)
+
+
+@njit
+def field_rk4_step(y, t, h, p, s, fp, air, full=True, live=False, veh=None):
+    """One classical RK4 step of ``h`` s in the field.
+
+    ``s``: the other bodies' held positions (:func:`held_bodies`); with
+    ``live`` they are evaluated at every stage instead (cruise rails).
+    ``full``: the whole state by :func:`awake_derivative` (quaternion
+    normalised after the step); otherwise only ``y[0:6]`` by
+    :func:`translational_derivative` (``air``: its drag table) and the rest
+    copied. Each position and velocity component goes through the same
+    operations either way, so a body on rails and an awake coasting one stay
+    bit-identical (without drag).
+    """
+    n = y.shape[0]
+    m = n if full else 6
+    k1 = np.zeros(n)
+    k2 = np.zeros(n)
+    k3 = np.zeros(n)
+    k4 = np.zeros(n)
+    tmp = y.copy()
+    _rates(t, y, p, s, fp, air, k1, veh, full, live)
+    for i in range(m):
+        tmp[i] = y[i] + 0.5 * h * k1[i]
+    _rates(t + 0.5 * h, tmp, p, s, fp, air, k2, veh, full, live)
+    for i in range(m):
+        tmp[i] = y[i] + 0.5 * h * k2[i]
+    _rates(t + 0.5 * h, tmp, p, s, fp, air, k3, veh, full, live)
+    for i in range(m):
+        tmp[i] = y[i] + h * k3[i]
+    _rates(t + h, tmp, p, s, fp, air, k4, veh, full, live)
+    out = y.copy()
+    for i in range(m):
+        out[i] = y[i] + h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i])
+    if full:
+        norm = math.sqrt(out[Q] ** 2 + out[Q + 1] ** 2 + out[Q + 2] ** 2 + out[Q + 3] ** 2)
+        for i in range(4):
+            out[Q + i] /= norm
+    return out
+
+
+@njit
+def advance_awake(y, k0, h, n_steps, p, fp, air):
+    """Advance a coasting rigid body ``n_steps`` flight-model steps in the field.
+
+    Step ``k`` starts at mission time ``(k0 + k) h``; the other bodies are held
+    per 5 s bucket of that time (:func:`held_bodies`). Returns the new state.
+    """
+    bucket = -1.0
+    s = np.zeros((4, 3))
+    for k in range(n_steps):
+        t = (k0 + k) * h
+        if hold_time(t) != bucket:
+            bucket = hold_time(t)
+            s = bodies_at(fp, bucket)[0]
+        y = field_rk4_step(y, t, h, p, s, fp, air, True)
+    return y
