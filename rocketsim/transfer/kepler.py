@@ -69,8 +69,9 @@ def _hyperbola_state(mu, r0, r0n, hx, hy, hz, alpha, a_plus, neg_a, dh, r_out, v
     H0 = log(A+ / e) and H1 = H0 + dh, the true anomalies from
     tan(nu/2) = sqrt((e+1)/(e-1)) tanh(H/2), the radius
     r = |a| ((e - 1) + 2 e sinh^2(H/2)) and the velocity's radial and
-    transverse parts, placed in the plane by the angle swept from r0 (Battin,
-    *An Introduction to the Mathematics and Methods of Astrodynamics*, 4.5).
+    transverse parts, placed in the plane by the angle swept from r0 (the
+    hyperbolic-anomaly relations of the conic; e.g. Battin, *An Introduction
+    to the Mathematics and Methods of Astrodynamics*, ch. 4).
     """
     h2 = hx * hx + hy * hy + hz * hz
     h = math.sqrt(h2)
