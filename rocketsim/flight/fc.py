@@ -1,11 +1,15 @@
 """``fc``: what a flight program sees of its vehicle, and how it hands back control.
 
-This is the foundation's part of the flight-computer API: the scheduling calls
-(:meth:`FlightComputer.step`, :meth:`~FlightComputer.sleep`,
-:meth:`~FlightComputer.wait_until`), logging and events, and the readings of
-the vehicle's state. All values are SI (m, s, kg, rad) unless a name ends in
-``_deg``; vectors are numpy arrays in the inertial frame (ECI of the mission
-epoch) unless stated.
+The scheduling calls (:meth:`FlightComputer.step`, :meth:`~FlightComputer.sleep`,
+:meth:`~FlightComputer.wait_until`), logging and events, and the readings.
+All values are SI (m, s, kg, rad, Pa) unless a name ends in ``_deg``; vectors
+are numpy arrays in the inertial frame (ECI of the mission epoch).
+
+Readings come from the navigation estimate: the truth when the scenario's
+``sensors`` is ``truth`` (the default), else the truth with the errors of
+:mod:`rocketsim.flight.sensors`, drawn once per step; everything derived
+(altitude, the orbit, directions, air data) inherits them. The physics always
+runs on the truth.
 """
 
 from __future__ import annotations
@@ -14,7 +18,9 @@ from typing import TYPE_CHECKING, Callable
 
 import numpy as np
 
+from rocketsim.flight.readings import StateView
 from rocketsim.frames.elements import Elements
+from rocketsim.frames.quaternion import quat_from_axis_angle, quat_multiply
 
 if TYPE_CHECKING:  # pragma: no cover
     from rocketsim.sim.world import Body, World
@@ -26,6 +32,8 @@ class FlightComputer:
     def __init__(self, world: "World", body: "Body"):
         self._world = world
         self._body = body
+        self._nav: StateView | None = None
+        self._air_data: dict[str, float] = {}
 
     # --- timing -------------------------------------------------------------
     def step(self) -> None:
@@ -53,7 +61,45 @@ class FlightComputer:
         """Record a named event with its figures (numbers or strings)."""
         self._world.event(self._body, str(name), figures)
 
-    # --- readings -----------------------------------------------------------
+    # --- the navigation estimate -----------------------------------------------
+    def _view(self) -> StateView:
+        body = self._body
+        if self._nav is not None and self._nav.t == body.t:
+            return self._nav
+        truth = body.view()
+        sensors = body.sensors
+        self._air_data = {}
+        if sensors is None or sensors.perfect:
+            self._nav = truth
+            return truth
+        k = self._world.k
+        tilt = sensors.vector("attitude", (0.0, 0.0, 0.0), k)
+        angle = float(np.linalg.norm(tilt))
+        q = truth.attitude if angle == 0.0 else quat_multiply(
+            truth.attitude, quat_from_axis_angle(tilt / angle, angle))
+        self._nav = StateView(body.t, sensors.vector("position", truth.position, k),
+                              sensors.vector("velocity", truth.velocity, k), q,
+                              sensors.vector("rates", truth.body_rates, k), body.atmosphere, body.mu)
+        return self._nav
+
+    def warm_up(self) -> None:
+        """Read everything once (builds the air table, loads compiled kernels)."""
+        view = self._view()
+        for name in ("euler", "air", "orbit", "gravity", "effective_gravity", "angle_of_attack",
+                     "time_to_apoapsis", "vertical_speed", "horizontal_speed", "mach"):
+            getattr(view, name)
+
+    def _air(self, name: str, value: Callable[[], float]) -> float:
+        """An air-data reading with its sensor error, drawn once per step."""
+        self._view()
+        if name not in self._air_data:
+            sensors = self._body.sensors
+            truth = value()
+            self._air_data[name] = truth if sensors is None or sensors.perfect else \
+                sensors.scalar(name, truth, self._world.k)
+        return self._air_data[name]
+
+    # --- time ---------------------------------------------------------------
     @property
     def time(self) -> float:
         """Mission time, s since the epoch (liftoff)."""
@@ -64,96 +110,206 @@ class FlightComputer:
         """UTC as a timezone-aware datetime (leap seconds ignored)."""
         return self._world.epoch.utc_at(self._world.t)
 
+    # --- where and how fast -------------------------------------------------
     @property
     def position(self) -> np.ndarray:
         """Centre-of-mass position, ECI, m."""
-        return self._body.position.copy()
+        return self._view().position.copy()
 
     @property
     def velocity(self) -> np.ndarray:
-        """Inertial velocity, ECI, m/s."""
-        return self._body.velocity.copy()
+        """Orbital (inertial) velocity, ECI, m/s."""
+        return self._view().velocity.copy()
 
+    @property
+    def surface_velocity(self) -> np.ndarray:
+        """Velocity relative to the rotating Earth, ECI axes, m/s."""
+        return self._view().surface_velocity.copy()
+
+    @property
+    def vertical_speed(self) -> float:
+        """Rate of climb relative to the ground, m/s."""
+        return self._view().vertical_speed
+
+    @property
+    def horizontal_speed(self) -> float:
+        """Speed over the ground, m/s."""
+        return self._view().horizontal_speed
+
+    @property
+    def altitude(self) -> float:
+        """Height above the WGS84 ellipsoid, m."""
+        return self._view().geodetic[2]
+
+    @property
+    def radar_altitude(self) -> float:
+        """Height above the ground (the ellipsoid: no terrain), with the radar's error, m."""
+        return self._air("radar_altitude", lambda: self._body.view().geodetic[2])
+
+    @property
+    def latitude(self) -> float:
+        """Geodetic latitude, rad."""
+        return self._view().geodetic[0]
+
+    @property
+    def longitude(self) -> float:
+        """Longitude, east positive, rad."""
+        return self._view().geodetic[1]
+
+    # --- directions (unit vectors, ECI) ----------------------------------------
+    @property
+    def prograde(self) -> np.ndarray:
+        return self._view().prograde
+
+    @property
+    def retrograde(self) -> np.ndarray:
+        return -self._view().prograde
+
+    @property
+    def surface_prograde(self) -> np.ndarray:
+        return self._view().surface_prograde
+
+    @property
+    def surface_retrograde(self) -> np.ndarray:
+        return -self._view().surface_prograde
+
+    @property
+    def normal(self) -> np.ndarray:
+        """Orbit normal, ``r x v`` direction."""
+        return self._view().normal
+
+    @property
+    def radial(self) -> np.ndarray:
+        """Radial out, from the Earth's centre."""
+        return self._view().radial
+
+    # --- attitude -----------------------------------------------------------
     @property
     def attitude(self) -> np.ndarray:
         """Unit quaternion (w, x, y, z), body axes -> ECI."""
-        return self._body.attitude.copy()
+        return self._view().attitude.copy()
 
     @property
     def body_rates(self) -> np.ndarray:
         """Body rates about x (roll), y, z, rad/s."""
-        return self._body.body_rates.copy()
+        return self._view().body_rates.copy()
 
+    @property
+    def pitch(self) -> float:
+        """Nose elevation above the local horizon, rad."""
+        return self._view().euler[0]
+
+    @property
+    def heading(self) -> float:
+        """Nose azimuth from north towards east, rad, [0, 2 pi)."""
+        return self._view().euler[1]
+
+    @property
+    def roll(self) -> float:
+        """Turn about the nose from the belly-to-the-ground attitude, rad."""
+        return self._view().euler[2]
+
+    # --- the air -------------------------------------------------------------
+    @property
+    def air_density(self) -> float:
+        """Density of the air at the vehicle, kg/m^3 (zero above 600 km)."""
+        return self._air("air_density", lambda: self._view().air[0])
+
+    @property
+    def air_pressure(self) -> float:
+        """Static pressure of the air at the vehicle, Pa (zero above 600 km)."""
+        return self._air("air_pressure", lambda: self._view().air[1])
+
+    @property
+    def air_temperature(self) -> float:
+        """Temperature of the air at the vehicle, K."""
+        return self._view().air[2]
+
+    @property
+    def speed_of_sound(self) -> float:
+        """Speed of sound at the vehicle, m/s."""
+        return self._view().air[3]
+
+    @property
+    def wind(self) -> np.ndarray:
+        """The wind at the vehicle (air velocity over the ground), ECI, m/s."""
+        return self._view().air[4].copy()
+
+    @property
+    def air_velocity(self) -> np.ndarray:
+        """Velocity relative to the air, ``v - omega_E x r - wind``, ECI, m/s."""
+        return self._view().air[5].copy()
+
+    @property
+    def airspeed(self) -> float:
+        """Speed relative to the air, m/s."""
+        return self._air("airspeed", lambda: self._view().airspeed)
+
+    @property
+    def mach(self) -> float:
+        """Airspeed over the local speed of sound."""
+        return self._air("mach", lambda: self._view().mach)
+
+    @property
+    def dynamic_pressure(self) -> float:
+        """``q = rho |v_air|^2 / 2``, Pa."""
+        return self._air("dynamic_pressure", lambda: self._view().dynamic_pressure)
+
+    @property
+    def angle_of_attack(self) -> float:
+        """Angle between the nose and the air-relative velocity, rad."""
+        return self._air("angle_of_attack", lambda: self._view().angle_of_attack)
+
+    # --- mass, gravity, orbit ---------------------------------------------------
     @property
     def mass(self) -> float:
         """Current mass, kg."""
         return self._body.mass
 
     @property
-    def altitude(self) -> float:
-        """Height above the WGS84 ellipsoid, m."""
-        return self._body.geodetic()[2]
+    def gravity(self) -> float:
+        """Magnitude of the local gravitational field (point mass + J2), m/s^2."""
+        return self._view().gravity
 
     @property
-    def latitude(self) -> float:
-        """Geodetic latitude, rad."""
-        return self._body.geodetic()[0]
+    def effective_gravity(self) -> float:
+        """Gravity less the centrifugal term of the inertial horizontal speed, m/s^2.
 
-    @property
-    def longitude(self) -> float:
-        """Longitude, east positive, rad."""
-        return self._body.geodetic()[1]
+        9.78 on the pad at the equator, nearly zero in orbit.
+        """
+        return self._view().effective_gravity
 
-    # --- the air (the day's weather at the vehicle) -------------------------
-    @property
-    def air_density(self) -> float:
-        """Density of the air at the vehicle, kg/m^3 (zero above 600 km)."""
-        return self._air()[0]
-
-    @property
-    def air_pressure(self) -> float:
-        """Static pressure of the air at the vehicle, Pa (zero above 600 km)."""
-        return self._air()[1]
-
-    @property
-    def air_temperature(self) -> float:
-        """Temperature of the air at the vehicle, K."""
-        return self._air()[2]
-
-    @property
-    def speed_of_sound(self) -> float:
-        """Speed of sound at the vehicle, m/s."""
-        return self._air()[3]
-
-    @property
-    def wind(self) -> np.ndarray:
-        """The wind at the vehicle (air velocity over the ground), ECI, m/s."""
-        return self._air()[4].copy()
-
-    @property
-    def air_velocity(self) -> np.ndarray:
-        """Velocity relative to the air, ``v - omega_E x r - wind``, ECI, m/s."""
-        return self._air()[5].copy()
-
-    @property
-    def airspeed(self) -> float:
-        """Speed relative to the air, m/s."""
-        return float(np.linalg.norm(self._air()[5]))
-
-    @property
-    def mach(self) -> float:
-        """Airspeed over the local speed of sound."""
-        return self.airspeed / self.speed_of_sound
-
-    @property
-    def dynamic_pressure(self) -> float:
-        """``q = rho |v_air|^2 / 2``, Pa."""
-        return 0.5 * self.air_density * self.airspeed ** 2
-
-    def _air(self):
-        return self._body.air(self._world.atmosphere)
+    effectiveGravity = effective_gravity   # the name programs of the original simulator use
 
     @property
     def orbit(self) -> Elements:
         """Osculating orbital elements about the central body (ECI axes)."""
-        return self._body.elements()
+        return self._view().orbit
+
+    @property
+    def apoapsis(self) -> float:
+        """Apoapsis altitude above the equatorial radius, m (inf if unbound)."""
+        return self._view().apoapsis_altitude
+
+    @property
+    def periapsis(self) -> float:
+        """Periapsis altitude above the equatorial radius, m."""
+        return self._view().periapsis_altitude
+
+    @property
+    def inclination(self) -> float:
+        return self._view().orbit.i
+
+    @property
+    def eccentricity(self) -> float:
+        return self._view().orbit.e
+
+    @property
+    def period(self) -> float:
+        """Orbital period, s (inf if unbound)."""
+        return self._view().orbit.period
+
+    @property
+    def time_to_apoapsis(self) -> float:
+        """Time to the next apoapsis, s (nan if unbound)."""
+        return self._view().time_to_apoapsis

@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import datetime as dt
 from pathlib import Path
-from typing import Annotated, Optional, Union
+from typing import Annotated, Literal, Optional, Union
 
 from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
 
@@ -199,6 +199,9 @@ class Scenario(Strict):
         1.0, description="CPU time the program may use in one step before it is stopped")
     telemetry: TelemetrySpec = TelemetrySpec()
     seed: int = Field(0, description="seed of every random stream of the run")
+    sensors: Literal["truth", "realistic", "hard"] = Field(
+        "truth", description="what programs read: the true state, or a navigation estimate "
+        "with realistic (or three times larger, 'hard') sensor errors")
 
     @field_validator("step")
     @classmethod

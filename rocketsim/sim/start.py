@@ -9,8 +9,10 @@ the ascending node, given from the equinox in the mission file, becomes
 
 Body axes: ``x`` is the nose (roll axis). On a site the nose points at
 ``elevation`` above the horizon towards the pad azimuth; ``z`` lies in the same
-vertical plane on the ground side (for a vertical vehicle it points opposite
-to the azimuth), ``y = z x x`` completes the right-handed set.
+vertical plane on the ground side of the horizon (for a vertical vehicle it
+points along the azimuth, downrange; level, it points down), and
+``y = z x x`` completes the right-handed set: roll 0 in
+:mod:`rocketsim.flight.readings`.
 """
 
 from __future__ import annotations
@@ -32,9 +34,7 @@ def site_attitude(site: SiteSpec, elevation: float) -> np.ndarray:
     east, north, up = enu_basis(site.latitude, site.longitude)
     heading = math.sin(site.pad_azimuth) * east + math.cos(site.pad_azimuth) * north
     nose = math.cos(elevation) * heading + math.sin(elevation) * up
-    belly = -math.sin(elevation) * heading + math.cos(elevation) * up
-    # ground side of the pitch plane: for a vertical vehicle, opposite the azimuth
-    z_axis = belly
+    z_axis = math.sin(elevation) * heading - math.cos(elevation) * up
     y_axis = np.cross(z_axis, nose)
     return quat_from_matrix(np.column_stack((nose, y_axis, z_axis)))
 

@@ -1,0 +1,200 @@
+"""Sensor errors: a wandering bias (first-order Gauss-Markov) plus white noise.
+
+Physics model, "Sensors"; EQUATIONS.md gives the discrete bias process::
+
+    b[k+1] = exp(-dt/tau) b[k] + sigma_b sqrt(1 - exp(-2 dt/tau)) n[k],   n ~ N(0, 1)
+
+Every measured quantity (and every axis of a vector) has its own random
+stream, spawned from the run's seed by a stable key (the quantity's name), so
+adding a sensor never changes another's numbers. Streams are drawn in blocks
+for speed; a block is a deterministic function of the seed, the key and the
+block's index, so the numbers do not depend on how they are consumed.
+
+The error budget (1 sigma; ``hard`` triples every figure). Where the physics
+model gives a figure it is quoted; the correlation times inside the model's
+"30-60 s" and the white-noise parts it leaves open are this project's
+choices:
+
+=================  =============================  =========  ==================
+quantity           bias sigma                     tau (s)    white sigma
+=================  =============================  =========  ==================
+position (3 axes)  2 m                            30/45/60   0.5 m
+velocity (3 axes)  0.01 m/s                       30/45/60   0.003 m/s
+attitude (3 axes)  0.03 deg                       60         0.005 deg
+body rates         0.0005 deg/s                   60         0.01 deg/s
+radar altitude     --                             --         0.2 % + 0.05 m
+q, rho, p          1 % (of the value)             60         0.2 %
+airspeed, Mach     0.5 %                          60         0.1 %
+angle of attack    0.2 deg                        60         0.05 deg
+accelerometers     0.1 % (of the value)           60         0.02 %
+propellant gauge   0.2 % of what is left          60         0.05 %
+=================  =============================  =========  ==================
+"""
+
+from __future__ import annotations
+
+import math
+import zlib
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.signal import lfilter
+
+from rocketsim.constants import DEG
+
+BLOCK = 4096            # samples drawn at a time per stream
+
+LEVELS = {"truth": 0.0, "realistic": 1.0, "hard": 3.0}
+
+
+@dataclass(frozen=True)
+class ErrorSpec:
+    """One quantity's error: bias sigma and correlation time, white sigma.
+
+    ``relative`` errors scale with the measured value; ``floor`` is an
+    absolute white-noise part added in quadrature-free sum (radar: 0.2 % + 5 cm).
+    """
+
+    bias: float
+    tau: float
+    white: float
+    relative: bool = False
+    floor: float = 0.0
+
+
+ERRORS: dict[str, ErrorSpec] = {
+    "position.x": ErrorSpec(2.0, 30.0, 0.5),
+    "position.y": ErrorSpec(2.0, 45.0, 0.5),
+    "position.z": ErrorSpec(2.0, 60.0, 0.5),
+    "velocity.x": ErrorSpec(0.01, 30.0, 0.003),
+    "velocity.y": ErrorSpec(0.01, 45.0, 0.003),
+    "velocity.z": ErrorSpec(0.01, 60.0, 0.003),
+    "attitude.x": ErrorSpec(0.03 * DEG, 60.0, 0.005 * DEG),
+    "attitude.y": ErrorSpec(0.03 * DEG, 60.0, 0.005 * DEG),
+    "attitude.z": ErrorSpec(0.03 * DEG, 60.0, 0.005 * DEG),
+    "rates.x": ErrorSpec(0.0005 * DEG, 60.0, 0.01 * DEG),
+    "rates.y": ErrorSpec(0.0005 * DEG, 60.0, 0.01 * DEG),
+    "rates.z": ErrorSpec(0.0005 * DEG, 60.0, 0.01 * DEG),
+    "radar_altitude": ErrorSpec(0.0, 1.0, 0.002, relative=True, floor=0.05),
+    "dynamic_pressure": ErrorSpec(0.01, 60.0, 0.002, relative=True),
+    "air_density": ErrorSpec(0.01, 60.0, 0.002, relative=True),
+    "air_pressure": ErrorSpec(0.01, 60.0, 0.002, relative=True),
+    "airspeed": ErrorSpec(0.005, 60.0, 0.001, relative=True),
+    "mach": ErrorSpec(0.005, 60.0, 0.001, relative=True),
+    "angle_of_attack": ErrorSpec(0.2 * DEG, 60.0, 0.05 * DEG),
+    "acceleration": ErrorSpec(0.001, 60.0, 0.0002, relative=True),
+    "propellant": ErrorSpec(0.002, 60.0, 0.0005, relative=True),
+}
+
+
+def stream_key(name: str) -> int:
+    """A stable integer key of a quantity's name (CRC-32; the same on every machine)."""
+    return zlib.crc32(name.encode("utf-8"))
+
+
+class ErrorStream:
+    """The bias and white noise of one quantity, sample by sample (one per step).
+
+    The bias starts from its stationary distribution (``N(0, sigma_b^2)``),
+    so statistics hold from the first step. Levels scale every sigma.
+    """
+
+    def __init__(self, seed: int, name: str, spec: ErrorSpec, dt: float, level: float):
+        self.spec = spec
+        self._seed = seed
+        self._key = stream_key(name)
+        self._phi = math.exp(-dt / spec.tau)
+        self._sigma = spec.bias * level
+        self._drive = self._sigma * math.sqrt(1.0 - self._phi ** 2)
+        self._white = spec.white * level
+        self._floor = spec.floor * level
+        self._block = 0
+        self._last = 0.0
+        self._rows = np.empty((3, 0))
+        self._next = 0
+
+    def _refill(self) -> None:
+        """Draw the next block: biases, white noise, absolute white noise."""
+        sequence = np.random.SeedSequence(entropy=self._seed, spawn_key=(self._key, self._block))
+        draws = np.random.Generator(np.random.PCG64(sequence)).standard_normal((3, BLOCK))
+        if self._block == 0:
+            initial = (self._sigma - self._drive) * draws[0, 0]     # b[0] = sigma_b n[0]
+        else:
+            initial = self._phi * self._last
+        biases, _ = lfilter([self._drive], [1.0, -self._phi], draws[0], zi=[initial])
+        self._last = biases[-1]
+        self._rows = np.vstack((biases, draws[1] * self._white, draws[2] * self._floor))
+        self._block += 1
+        self._next = 0
+
+    def sample(self) -> tuple[float, float, float]:
+        """The next ``(bias, white, absolute white)``."""
+        if self._next >= self._rows.shape[1]:
+            self._refill()
+        k = self._next
+        self._next += 1
+        return float(self._rows[0, k]), float(self._rows[1, k]), float(self._rows[2, k])
+
+    @property
+    def index(self) -> int:
+        """Step index of the next sample."""
+        return (self._block - 1) * BLOCK + self._next if self._block else 0
+
+    def at(self, k: int) -> tuple[float, float, float]:
+        """The error of step ``k`` (steps are read in increasing order; the
+        samples of steps nobody read are drawn and passed over, so step k's
+        error is the same whoever reads when)."""
+        skip = k - self.index
+        if skip < 0:
+            raise ValueError(f"sensor step {k} was already read (next is {self.index})")
+        if skip:
+            self.series(skip)
+        return self.sample()
+
+    def series(self, n: int) -> np.ndarray:
+        """The next ``n`` samples as rows (bias, white, absolute white), shape (3, n).
+
+        The same numbers :meth:`sample` would give one at a time (for studies
+        of the error statistics over long holds).
+        """
+        parts = []
+        while n > 0:
+            if self._next >= self._rows.shape[1]:
+                self._refill()
+            take = min(n, self._rows.shape[1] - self._next)
+            parts.append(self._rows[:, self._next:self._next + take])
+            self._next += take
+            n -= take
+        return np.hstack(parts)
+
+    def measure(self, truth: float, k: int | None = None) -> float:
+        """``truth`` with the error of step ``k`` (default: the next sample)."""
+        bias, white, floor = self.sample() if k is None else self.at(k)
+        if self.spec.relative:
+            return truth * (1.0 + bias + white) + floor
+        return truth + bias + white + floor
+
+
+class Sensors:
+    """All of one body's error streams, at a level (``truth``, ``realistic``, ``hard``)."""
+
+    def __init__(self, seed: int, body: str, level: str, dt: float):
+        if level not in LEVELS:
+            raise ValueError(f"unknown sensor level {level!r}; use one of {', '.join(LEVELS)}")
+        self.level = level
+        scale = LEVELS[level]
+        self.streams = {name: ErrorStream(seed, f"{body}/{name}", spec, dt, scale)
+                        for name, spec in ERRORS.items()}
+
+    @property
+    def perfect(self) -> bool:
+        return self.level == "truth"
+
+    def vector(self, name: str, truth, k: int | None = None) -> np.ndarray:
+        """A 3-vector measured axis by axis (``name.x``, ``.y``, ``.z``) at step ``k``."""
+        return np.array([self.streams[f"{name}.{axis}"].measure(value, k)
+                         for axis, value in zip("xyz", truth)])
+
+    def scalar(self, name: str, truth: float, k: int | None = None) -> float:
+        """One quantity measured at step ``k``."""
+        return self.streams[name].measure(truth, k)

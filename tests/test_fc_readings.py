@@ -1,0 +1,98 @@
+"""What a program reads: gravity, attitude angles, speeds, and sensor errors."""
+
+import json
+import math
+
+import numpy as np
+import pytest
+
+from rocketsim.scenario.load import load
+from rocketsim.sim.flight import fly
+from rocketsim.telemetry.reader import messages, raw_messages
+from tests.conftest import VEHICLE
+
+RECORD = """
+import math
+def main(fc):
+    fc.event("readings", g=fc.gravity, g_eff=fc.effectiveGravity, pitch=fc.pitch,
+             heading=fc.heading, roll=fc.roll, vs=fc.vertical_speed, hs=fc.horizontal_speed,
+             alt=fc.altitude)
+"""
+
+
+def pad_scenario(write, latitude="0 deg", elevation="90 deg", velocity="[0, 0, 0]"):
+    write("vehicle.yaml", VEHICLE)
+    write("program.py", RECORD)
+    return write("scenario.yaml", f"""\
+        name: pad
+        vehicle: vehicle.yaml
+        site: {{name: pad, latitude: {latitude}, longitude: 10 deg, pad_azimuth: 90 deg}}
+        program: program.py
+        mission:
+          epoch: 2026-11-26T12:00:00Z
+          start: {{site: {{elevation: {elevation}, velocity: {velocity}}}}}
+          duration: 0.02 s
+        """)
+
+
+def readings(path, tmp_path):
+    summary = fly(load(path), tmp_path / "run.mcap")
+    return summary["bodies"]["probe"]["events"][0]
+
+
+def test_effective_gravity_on_the_pad_at_the_equator(write, tmp_path):
+    """Issue 6: 9.78 m/s^2 on the pad at the equator (+-0.01). Reference:
+    WGS84 normal gravity at the equator, 9.7803 m/s^2, is gravity less the
+    centrifugal omega^2 a = 0.0339 m/s^2; the effective gravity of a vehicle
+    at rest on the pad is exactly that difference."""
+    r = readings(pad_scenario(write), tmp_path)
+    assert r["g_eff"] == pytest.approx(9.78, abs=0.01)
+    assert r["g"] - r["g_eff"] == pytest.approx(7.2921159e-5 ** 2 * 6378137.0, rel=1e-6)
+
+
+def test_effective_gravity_is_nearly_zero_in_a_circular_orbit(scenario, tmp_path):
+    """Issue 6: below 0.05 m/s^2 in a circular orbit (J2 leaves a little)."""
+    path = scenario(RECORD, duration="0.02 s")
+    events = fly(load(path), tmp_path / "run.mcap")["bodies"]["probe"]["events"]
+    assert abs(events[0]["g_eff"]) < 0.05
+
+
+def test_attitude_angles_on_the_pad(write, tmp_path):
+    """Nose 30 deg above the horizon towards the east: pitch 30, heading 90, roll 0."""
+    r = readings(pad_scenario(write, latitude="28.5 deg", elevation="30 deg"), tmp_path)
+    assert math.degrees(r["pitch"]) == pytest.approx(30.0, abs=1e-9)
+    assert math.degrees(r["heading"]) == pytest.approx(90.0, abs=1e-9)
+    assert r["roll"] == pytest.approx(0.0, abs=1e-9)
+
+
+def test_vertical_and_horizontal_speed_are_relative_to_the_ground(write, tmp_path):
+    r = readings(pad_scenario(write, velocity="[30 m/s, 40 m/s, 100 m/s]"), tmp_path)
+    assert r["vs"] == pytest.approx(100.0, abs=1e-9)
+    assert r["hs"] == pytest.approx(50.0, abs=1e-9)
+
+
+NAVIGATE = """
+def main(fc):
+    while True:
+        fc.log(repr([float(x) for x in fc.position]))
+        fc.step()
+"""
+
+
+def test_realistic_sensors_change_what_the_program_reads_not_the_physics(scenario, tmp_path):
+    """The position a program reads carries the 2 m (1 sigma) navigation error;
+    the physics runs on the truth: the state telemetry of a truth run and of a
+    realistic run is bit-identical, and two seeds read different noise."""
+    runs = {}
+    for name, extra in [("truth", ""), ("realistic", "sensors: realistic\n"),
+                        ("seed2", "sensors: realistic\nseed: 2\n")]:
+        out = tmp_path / f"{name}.mcap"
+        fly(load(scenario(NAVIGATE, duration="20 s", extra=extra)), out)
+        runs[name] = out
+    states = {k: [m for m in raw_messages(v) if m[0] == "/probe/state"] for k, v in runs.items()}
+    assert states["truth"] == states["realistic"] == states["seed2"]
+    read = {k: np.array([json.loads(m["message"]) for _, _, m in messages(v, ["/log"])])
+            for k, v in runs.items()}
+    error = read["realistic"] - read["truth"]
+    assert 0.3 < np.abs(error).max() < 10.0           # metres: a 2 m-class error
+    assert not np.array_equal(read["realistic"], read["seed2"])
