@@ -3,8 +3,9 @@
 from rocketsim_cli.atmosphere import atmosphere
 from rocketsim_cli.ephemeris import ephemeris
 from rocketsim_cli.fly import fly
+from rocketsim_cli.replay import replay
 from rocketsim_cli.validate import schema, validate
 from rocketsim_cli.vehicle import vehicle
 from rocketsim_cli.windows import windows
 
-ALL = [fly, validate, schema, atmosphere, ephemeris, vehicle, windows]
+ALL = [fly, validate, schema, atmosphere, ephemeris, vehicle, windows, replay]

@@ -22,8 +22,10 @@ from typing import Callable
 import numpy as np
 
 from rocketsim.constants import DEG, EARTH_J2, EARTH_MU, EARTH_RADIUS_EQ, EARTH_RADIUS_POLAR
+from rocketsim.bodies.gravity import point_mass_j2
+from rocketsim.dynamics.derivative import derivative
 from rocketsim.dynamics.rk4 import advance
-from rocketsim.dynamics.state import P_MASS, Q, R, V, W, make_params, make_state
+from rocketsim.dynamics.state import P_J2, P_MASS, P_MU, P_RADIUS, Q, R, V, W, make_params, make_state
 from rocketsim.flight.fc import FlightComputer
 from rocketsim.flight.program import ProgramRunner, load_program
 from rocketsim.flight.readings import StateView
@@ -172,6 +174,26 @@ class World:
             "altitude": height,
             "speed": float(np.linalg.norm(body.velocity)),
             "orbit": self.orbit_summary(body),
+            **self.flight_quantities(body),
+        }
+
+    def flight_quantities(self, body: Body) -> dict:
+        """Mass (kg); inertial acceleration |dv/dt| and sensed acceleration
+        |dv/dt - g| (m/s^2, from the derivative the integrator uses); airspeed
+        (m/s), Mach and dynamic pressure (Pa) in the day's air."""
+        dy = np.zeros_like(body.y)
+        derivative(body.t, body.y, body.p, dy, None if body.vehicle is None else body.vehicle.arrays)
+        x, y, z = body.position
+        gravity = point_mass_j2(x, y, z, body.p[P_MU], body.p[P_RADIUS], body.p[P_J2])
+        acceleration = dy[V:V + 3]
+        view = body.view()
+        return {
+            "mass": body.mass,
+            "acceleration": float(np.linalg.norm(acceleration)),
+            "sensed_acceleration": float(np.linalg.norm(acceleration - np.array(gravity))),
+            "airspeed": view.airspeed,
+            "mach": view.mach,
+            "dynamic_pressure": view.dynamic_pressure,
         }
 
     def orbit_summary(self, body: Body) -> dict:

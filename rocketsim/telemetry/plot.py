@@ -1,0 +1,108 @@
+"""Draw a run from its telemetry: one PNG with a panel per quantity.
+
+Altitude, speed, dynamic pressure, acceleration, throttle, attitude and the
+ground track on a latitude/longitude map frame. A quantity the telemetry does
+not carry (throttle before powered flight exists, q in a vacuum run) gets an
+empty panel that says so. Reads the file only; matplotlib is imported here,
+lazily, with the non-interactive Agg backend.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from rocketsim.telemetry.replay import read_run, table
+
+
+def _column(columns: dict, key: str) -> np.ndarray | None:
+    values = columns.get(key)
+    if values is None or all(v is None for v in values):
+        return None
+    return np.array([np.nan if v is None else v for v in values], dtype=float)
+
+
+def plot_run(path: str | Path, out: str | Path) -> Path:
+    """Draw the run in ``path`` to the PNG ``out``; return ``out``."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    run = read_run(path)
+    tables = {body: table(path, body) for body in run.bodies}
+    figure, axes = plt.subplots(3, 3, figsize=(15, 11))
+    panels = {
+        "altitude": (axes[0, 0], "altitude", 1e-3, "altitude, km"),
+        "speed": (axes[0, 1], "speed", 1.0, "inertial speed, m/s"),
+        "airspeed": (axes[0, 1], "airspeed", 1.0, "airspeed, m/s"),
+        "q": (axes[0, 2], "dynamic_pressure", 1e-3, "dynamic pressure q, kPa"),
+        "acceleration": (axes[1, 0], "sensed_acceleration", 1.0, "sensed acceleration, m/s^2"),
+        "throttle": (axes[1, 1], "throttle", 1.0, "throttle"),
+        "mach": (axes[1, 2], "mach", 1.0, "Mach"),
+    }
+    drawn = set()
+    for body, columns in tables.items():
+        t = _column(columns, "t")
+        if t is None:
+            continue
+        for name, (ax, key, scale, label) in panels.items():
+            y = _column(columns, key)
+            if y is not None:
+                ax.plot(t, y * scale, label=f"{body} {key}" if name in ("speed", "airspeed") else body)
+                ax.set_ylabel(label)
+                drawn.add(id(ax))
+        quaternion = [_column(columns, f"attitude_{c}") for c in "wxyz"]
+        if all(q is not None for q in quaternion):
+            for c, q in zip("wxyz", quaternion):
+                axes[2, 0].plot(t, q, label=f"{body} q{c}")
+            axes[2, 0].set_ylabel("attitude quaternion (body -> ECI)")
+            drawn.add(id(axes[2, 0]))
+        lat, lon = _column(columns, "latitude_deg"), _column(columns, "longitude_deg")
+        if lat is not None and lon is not None:
+            # break the line where it wraps at the antimeridian
+            lon = lon.copy()
+            lon[1:][np.abs(np.diff(lon)) > 180.0] = np.nan
+            axes[2, 1].plot(lon, lat, label=body)
+            axes[2, 1].plot(lon[:1], lat[:1], "o")
+            drawn.add(id(axes[2, 1]))
+    for event in run.events:
+        axes[0, 0].axvline(event["t"], color="grey", lw=0.6, ls=":")
+        axes[0, 0].annotate(event["name"], (event["t"], 1.0), xycoords=("data", "axes fraction"),
+                            rotation=90, va="top", fontsize=7)
+    track = axes[2, 1]
+    track.set_xlim(-180, 180)
+    track.set_ylim(-90, 90)
+    track.set_xticks(range(-180, 181, 60))
+    track.set_yticks(range(-90, 91, 30))
+    track.grid(True, lw=0.4)
+    track.set_aspect("equal")
+    track.set_xlabel("longitude, deg")
+    track.set_ylabel("latitude, deg")
+    track.set_title("ground track")
+    axes[2, 2].axis("off")
+    axes[2, 2].text(0, 1, _caption(run), va="top", family="monospace", fontsize=8)
+    for ax in axes.flat[:8]:
+        if ax is track:
+            continue
+        if id(ax) in drawn:
+            ax.set_xlabel("mission time, s")
+            ax.grid(True, lw=0.4)
+            ax.legend(fontsize=7)
+        else:
+            ax.text(0.5, 0.5, "not in this run's telemetry", ha="center", va="center",
+                    transform=ax.transAxes, color="grey")
+    info = run.metadata.get("rocketsim", {})
+    figure.suptitle(f"{info.get('scenario', Path(path).stem)}  (epoch {info.get('epoch_utc', '?')})")
+    figure.tight_layout()
+    figure.savefig(out, dpi=80)
+    plt.close(figure)
+    return Path(out)
+
+
+def _caption(run) -> str:
+    lines = [f"{len(run.events)} events, {len(run.logs)} log lines"]
+    lines += [f"T+{e['t']:.1f} s {e['body']}: {e['name']}" for e in run.events[:12]]
+    if run.problem:
+        lines.append("file damaged: partial data")
+    return "\n".join(lines)
