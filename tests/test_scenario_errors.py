@@ -90,3 +90,21 @@ def test_shipped_scenarios_validate(cli):
     files = sorted((ROOT / "scenarios").glob("*.yaml")) + sorted((ROOT / "vehicles").glob("*.yaml"))
     result = cli("validate", *files)
     assert result.exit_code == 0, result.output
+
+
+def test_yaml_merge_keys_work_and_bad_values_are_input_errors(write, cli):
+    """YAML merge keys (<<: *anchor) are applied as PyYAML applies them; a
+    value YAML cannot construct is an input error with its line, not a traceback."""
+    vehicle = write("vehicle.yaml", """\
+        defaults: &body {mass: 10 kg, inertia: [0.15, 0.12, 0.05]}
+        name: probe
+        rigid_body:
+          <<: *body
+          length: 0.3 m
+        """)
+    result = cli("validate", vehicle)
+    assert_clean_error(result, "vehicle.yaml:1:1", "unknown field 'defaults'")
+    vehicle.write_text(vehicle.read_text().replace("defaults: &body", "name2: &body").replace(
+        "name: probe", "name: !!python/name:os.system probe"))
+    result = cli("validate", vehicle)
+    assert_clean_error(result, "vehicle.yaml:2:")

@@ -72,9 +72,10 @@ def read_yaml(path: Path) -> YamlSource:
 def _construct(node: yaml.Node, loc: tuple, positions: dict, path: Path) -> Any:
     positions.setdefault(loc, (node.start_mark.line + 1, node.start_mark.column + 1))
     if isinstance(node, yaml.MappingNode):
+        _flatten_merge_keys(node, path)
         result: dict = {}
         for key_node, value_node in node.value:
-            key = _scalar(key_node) if isinstance(key_node, yaml.ScalarNode) else None
+            key = _scalar(key_node, path) if isinstance(key_node, yaml.ScalarNode) else None
             if not isinstance(key, (str, int, float, bool)):
                 raise InputError("a mapping key must be a plain name", file=path,
                                  line=key_node.start_mark.line + 1,
@@ -88,12 +89,30 @@ def _construct(node: yaml.Node, loc: tuple, positions: dict, path: Path) -> Any:
         return result
     if isinstance(node, yaml.SequenceNode):
         return [_construct(item, loc + (i,), positions, path) for i, item in enumerate(node.value)]
-    return _scalar(node)
+    return _scalar(node, path)
 
 
-def _scalar(node: yaml.ScalarNode) -> Any:
+def _flatten_merge_keys(node: yaml.MappingNode, path: Path) -> None:
+    """Apply YAML merge keys (``<<: *defaults``) in place, as PyYAML's loader does."""
+    loader = yaml.SafeLoader("")
+    try:
+        loader.flatten_mapping(node)
+    except yaml.MarkedYAMLError as error:
+        mark = error.problem_mark
+        raise InputError(f"YAML merge key: {error.problem}", file=path,
+                         line=mark.line + 1 if mark else None,
+                         column=mark.column + 1 if mark else None) from None
+    finally:
+        loader.dispose()
+
+
+def _scalar(node: yaml.ScalarNode, path: Path) -> Any:
     loader = yaml.SafeLoader("")
     try:
         return loader.construct_object(node, deep=True)
+    except yaml.MarkedYAMLError as error:
+        mark = error.problem_mark or node.start_mark
+        raise InputError(f"YAML value: {error.problem}", file=path,
+                         line=mark.line + 1, column=mark.column + 1) from None
     finally:
         loader.dispose()
