@@ -117,3 +117,22 @@ MOON_ORBIT_A = 384_400_000.0               # m
 # (G. Kopp & J. Lean, GRL 38, L01706, 2011), over c (SI exact).
 SPEED_OF_LIGHT = 299_792_458.0             # m/s
 SOLAR_IRRADIANCE_1AU = 1361.0              # W/m^2
+
+# --- Aerodynamics, heating, structure, contact (issue 5; physics model,
+# "Aerodynamics, propulsion and heating, in brief"; EQUATIONS.md) -------------
+# Sutton-Graves stagnation-point heating q = k sqrt(rho / r_n) v^3 (SI, W/m^2):
+# K. Sutton & R. A. Graves, "A general stagnation-point convective heating
+# equation for arbitrary gas mixtures", NASA TR R-376 (1971); the constants
+# for air and for the Mars (CO2) mixture as quoted in EQUATIONS.md.
+SUTTON_GRAVES_EARTH = 1.7415e-4            # kg^0.5 / m (SI units of the relation)
+SUTTON_GRAVES_MARS = 1.9027e-4
+HEAT_SHIELD_LIMIT = 2400.0                 # K, a lumped heat shield fails above this
+STRUCTURE_Q_ALPHA_LIMIT = 250_000.0        # Pa deg, bending load q alpha that breaks the vehicle
+STRUCTURE_AXIAL_LIMIT_G = 15.0             # axial load (in g0) that breaks the vehicle
+# Specific heat of air at constant pressure for the hot-wall enthalpy ratio
+# h_w / h_0 (ideal diatomic gas, 7/2 R/M with the US 1976 constants: 1004.7).
+AIR_CP = 1004.7                            # J/(kg K)
+CO2_CP = 846.0                             # J/(kg K), CO2 near 300 K (NIST webbook)
+# Coulomb friction of a contact is regularised below this sliding speed
+# (F = -mu N v_t / sqrt(v_t^2 + eps^2)): a choice, not a physical figure.
+FRICTION_REGULARISATION = 0.05             # m/s

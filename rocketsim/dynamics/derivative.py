@@ -28,11 +28,16 @@ import numpy as np
 
 from rocketsim._jit import njit
 from rocketsim.atmosphere.table import air_at
+from rocketsim.constants import EARTH_OMEGA, FRICTION_REGULARISATION
 from rocketsim.bodies.gravity import point_mass_j2
 from rocketsim.dynamics.state import (P_IXX, P_IYY, P_IZZ, P_J2, P_MU, P_POLAR_RADIUS, P_RADIUS, Q,
                                       R, V, W)
 from rocketsim.frames.quaternion import quat_multiply
+from rocketsim.vehicle.aero import A_ON, A_REACH, body_aero
+from rocketsim.vehicle.contact import contact_forces
 from rocketsim.vehicle.engines import engine_forces
+from rocketsim.vehicle.grid_fins import grid_fin_forces
+from rocketsim.vehicle.rcs import rcs_forces
 from rocketsim.vehicle.mass_properties import mass_properties
 
 
@@ -53,6 +58,46 @@ def radial_height(y, p):
     a = p[P_RADIUS]
     b = p[P_POLAR_RADIUS]
     return math.sqrt(r2) - a * b / math.sqrt((b * b * rho2 + a * a * z2) / r2)
+
+
+@njit
+def body_air_velocity(y, wind):
+    """Air-relative velocity of the centre of mass (m/s) in body axes:
+    ``q* (v - omega_E x r - wind) q`` (EQUATIONS.md), ``wind`` inertial (m/s)."""
+    ax = y[V] + EARTH_OMEGA * y[R + 1] - wind[0]
+    ay = y[V + 1] - EARTH_OMEGA * y[R] - wind[1]
+    az = y[V + 2] - wind[2]
+    qw, ux, uy, uz = y[Q], -y[Q + 1], -y[Q + 2], -y[Q + 3]
+    tx = 2.0 * (uy * az - uz * ay)
+    ty = 2.0 * (uz * ax - ux * az)
+    tz = 2.0 * (ux * ay - uy * ax)
+    return (ax + qw * tx + (uy * tz - uz * ty), ay + qw * ty + (uz * tx - ux * tz),
+            az + qw * tz + (ux * ty - uy * tx))
+
+
+@njit
+def _aero_and_contact(t, y, p, dy, rho, sound, x_cm, aero, fx, fy, fz, mx, my, mz):
+    """Add the body's aerodynamics, grid fins, RCS and ground contact (body axes, about
+    the centre of mass) to the engines' force and moment ``(fx..mz)``."""
+    wx, wy, wz = y[W], y[W + 1], y[W + 2]
+    if rho > 0.0:
+        u, v, w = body_air_velocity(y, aero.wind)
+        a = body_aero(u, v, w, wx, wy, wz, rho, sound, fx, x_cm, aero.ref, aero.seg, aero.fin,
+                      aero.ca_nf, aero.ca_tf)
+        fx, fy, fz, mx, my, mz = fx + a[0], fy + a[1], fz + a[2], mx + a[3], my + a[4], mz + a[5]
+        if aero.grid.shape[0] > 0:
+            a = grid_fin_forces(t, u, v, w, wx, wy, wz, rho, sound, x_cm, aero.grid, aero.grid_cmd)
+            fx, fy, fz, mx, my, mz = fx + a[0], fy + a[1], fz + a[2], mx + a[3], my + a[4], mz + a[5]
+    if aero.rcs.shape[0] > 0:
+        a = rcs_forces(y, dy, x_cm, aero.rcs, aero.rcs_cmd)
+        fx, fy, fz, mx, my, mz = fx + a[0], fy + a[1], fz + a[2], mx + a[3], my + a[4], mz + a[5]
+    # contact only within reach of the ground (a cheap bound first)
+    r = math.sqrt(y[R] ** 2 + y[R + 1] ** 2 + y[R + 2] ** 2)
+    if r - p[P_RADIUS] < aero.ref[A_REACH] and radial_height(y, p) < aero.ref[A_REACH]:
+        a = contact_forces(y, x_cm, p[P_RADIUS], p[P_POLAR_RADIUS], EARTH_OMEGA, aero.contact,
+                           FRICTION_REGULARISATION)
+        fx, fy, fz, mx, my, mz = fx + a[0], fy + a[1], fz + a[2], mx + a[3], my + a[4], mz + a[5]
+    return fx, fy, fz, mx, my, mz
 
 
 @njit
@@ -83,11 +128,15 @@ def derivative(t, y, p, dy, veh=None):
         n_tanks = veh.tank_bottom.shape[0]
         mass, x_cm, ixx, iyy, izz = mass_properties(veh.fixed, veh.tank_bottom, veh.tank_radius,
                                                     veh.tank_density, y[13:13 + n_tanks])
-        p_a = air_at(veh.air_h0, veh.air_dh, veh.air_density, veh.air_pressure, veh.air_temperature,
-                     veh.air_speed_of_sound, veh.air_wind_east, veh.air_wind_north,
-                     radial_height(y, p))[1]
+        rho, p_a, _, sound, _, _ = air_at(veh.air_h0, veh.air_dh, veh.air_density, veh.air_pressure,
+                                          veh.air_temperature, veh.air_speed_of_sound,
+                                          veh.air_wind_east, veh.air_wind_north, radial_height(y, p))
         fx, fy, fz, mx, my, mz = engine_forces(t, y, dy, veh.first_tank, veh.first_clock, veh.eng,
                                                veh.cmd, veh.stage, veh.tank_share, p_a, x_cm)
+        aero = veh.aero
+        if aero.ref[A_ON] > 0.5:
+            fx, fy, fz, mx, my, mz = _aero_and_contact(t, y, p, dy, rho, sound, x_cm, aero,
+                                                       fx, fy, fz, mx, my, mz)
         # body force -> inertial: v + 2w (u x v) + 2 u x (u x v), q = (w, u)
         qw, ux, uy, uz = y[Q], y[Q + 1], y[Q + 2], y[Q + 3]
         tx = 2.0 * (uy * fz - uz * fy)

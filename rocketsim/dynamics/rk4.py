@@ -25,9 +25,12 @@ import math
 import numpy as np
 
 from rocketsim._jit import njit
-from rocketsim.constants import GROUND_SUBSTEP_HEIGHT, GROUND_SUBSTEPS, UNUSABLE_PROPELLANT
+from rocketsim.atmosphere.table import air_at, wind_earth_fixed
+from rocketsim.constants import EARTH_OMEGA, GROUND_SUBSTEP_HEIGHT, GROUND_SUBSTEPS, UNUSABLE_PROPELLANT
 from rocketsim.dynamics.derivative import derivative, radial_height
 from rocketsim.dynamics.state import P_RADIUS, Q, R
+from rocketsim.frames.geodetic import ecef_to_geodetic_njit
+from rocketsim.vehicle.aero import A_REACH, A_WIND
 from rocketsim.vehicle.engines import S_DRY, S_DRY_AT, S_RESERVE, S_TANK0, S_TANKS, next_kink
 
 DRY_TOLERANCE = 1e-13      # relative to the stage's load: where the split of a step is placed
@@ -62,16 +65,39 @@ def rk4_step(y, t, h, p, veh=None):
 
 
 @njit
-def near_ground(y, p):
+def near_ground(y, p, reach=0.0):
     """True when the body is within 2 m of its central body's reference ellipsoid.
 
-    The bound ``|r| - a`` (a = equatorial radius) rules out almost every step
-    before :func:`radial_height` is computed.
+    ``reach`` (m): how far from the centre of mass a part that can touch the
+    ground may be (a vehicle's legs, base and nose; 0 for a point): the test
+    is then on the centre of mass's height less ``reach``, so the sub-steps
+    begin before any of those parts is 2 m above the ground. The bound
+    ``|r| - a`` (a = equatorial radius) rules out almost every step before
+    :func:`radial_height` is computed.
     """
     r = math.sqrt(y[R] ** 2 + y[R + 1] ** 2 + y[R + 2] ** 2)
-    if r - p[P_RADIUS] > GROUND_SUBSTEP_HEIGHT:
+    if r - p[P_RADIUS] > GROUND_SUBSTEP_HEIGHT + reach:
         return False
-    return radial_height(y, p) < GROUND_SUBSTEP_HEIGHT
+    return radial_height(y, p) < GROUND_SUBSTEP_HEIGHT + reach
+
+
+@njit
+def hold_wind(y, t, veh):
+    """Sample the day's wind at the vehicle's position at time ``t`` (s) and hold it
+    (inertial, m/s) in ``veh.aero.wind`` for the step (physics model, "The integrator")."""
+    theta = EARTH_OMEGA * t
+    c = math.cos(theta)
+    s = math.sin(theta)
+    x = c * y[R] + s * y[R + 1]
+    yy = -s * y[R] + c * y[R + 1]
+    lat, lon, h = ecef_to_geodetic_njit(x, yy, y[R + 2])
+    east, north = air_at(veh.air_h0, veh.air_dh, veh.air_density, veh.air_pressure,
+                         veh.air_temperature, veh.air_speed_of_sound, veh.air_wind_east,
+                         veh.air_wind_north, h)[4:6]
+    wind = wind_earth_fixed(east, north, lat, lon)
+    veh.aero.wind[0] = c * wind[0] - s * wind[1]
+    veh.aero.wind[1] = s * wind[0] + c * wind[1]
+    veh.aero.wind[2] = wind[2]
 
 
 @njit
@@ -156,8 +182,16 @@ def _one_step(y, t, h, p, veh):
 
 @njit
 def step(y, t, h, p, veh=None):
-    """Advance one flight-model step of ``h`` seconds (sub-stepped near the ground)."""
-    if near_ground(y, p):
+    """Advance one flight-model step of ``h`` seconds (sub-stepped near the ground).
+
+    A vehicle with wind in its day's air samples it here, once per step.
+    """
+    reach = 0.0
+    if veh is not None:
+        reach = veh.aero.ref[A_REACH]
+        if veh.aero.ref[A_WIND] > 0.5:
+            hold_wind(y, t, veh)
+    if near_ground(y, p, reach):
         sub = h / GROUND_SUBSTEPS
         for k in range(GROUND_SUBSTEPS):
             y = _one_step(y, t + k * sub, sub, p, veh)

@@ -23,6 +23,7 @@ from pydantic import BaseModel, ConfigDict, Field, field_validator, model_valida
 from rocketsim.constants import MAX_HEADLESS_STEP, STEP
 from rocketsim.scenario.weather import Weather
 from rocketsim.scenario.units import Angle, Duration, Frequency, Inertia, Length, Mass, Speed
+from rocketsim.scenario.aero_spec import AeroSpec
 from rocketsim.scenario.vehicle import FairingSpec, PayloadSpec, StageSpec, check_staged
 
 PositiveMass = Annotated[Mass, Field(gt=0)]
@@ -61,6 +62,7 @@ class VehicleSpec(Strict):
     payload: Optional[PayloadSpec] = None
     fairing: Optional[FairingSpec] = None
     engines: Optional[object] = Field(None, description="not allowed here: engines belong to a stage")
+    aero: Optional[AeroSpec] = Field(None, description="aerodynamics and ground contact (staged vehicles)")
 
     @model_validator(mode="after")
     def _one_kind(self) -> "VehicleSpec":
@@ -68,8 +70,9 @@ class VehicleSpec(Strict):
             raise ValueError("give exactly one of 'rigid_body' or 'stages'")
         if self.stages is not None:
             check_staged(self.stages, self.engines)
-        elif self.engines is not None or self.payload is not None or self.fairing is not None:
-            raise ValueError("'engines', 'payload' and 'fairing' go with 'stages', not 'rigid_body'")
+        elif (self.engines is not None or self.payload is not None or self.fairing is not None
+              or self.aero is not None):
+            raise ValueError("'engines', 'payload', 'fairing' and 'aero' go with 'stages', not 'rigid_body'")
         return self
 
 

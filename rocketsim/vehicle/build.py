@@ -24,6 +24,7 @@ import numpy as np
 from rocketsim.constants import G0, UNUSABLE_PROPELLANT
 from rocketsim.dynamics.state import N_STATE, make_state
 from rocketsim.vehicle import engines as E
+from rocketsim.vehicle.aero_build import build_aero
 from rocketsim.vehicle.mass_properties import (N_FIXED, add_fixed, mass_properties, shell,
                                                solid_cylinder)
 
@@ -32,7 +33,7 @@ VehicleArrays = namedtuple("VehicleArrays", [
     "fixed", "tank_bottom", "tank_radius", "tank_density", "tank_share", "eng", "cmd", "stage",
     "first_tank", "first_clock",
     "air_h0", "air_dh", "air_density", "air_pressure", "air_temperature", "air_speed_of_sound",
-    "air_wind_east", "air_wind_north"])
+    "air_wind_east", "air_wind_north", "aero"])
 
 
 @dataclass
@@ -188,11 +189,13 @@ def build(spec, first: int = 0, last: int | None = None, air=None, fairing: bool
     cmd[:, E.C_TAU0] = eng[:, E.E_TAU_MAX]          # throttle rests at the top of its range
     cmd[:, E.C_TAU] = eng[:, E.E_TAU_MAX]
     h0, dh, density, pressure, temperature, sos, we, wn = _standard_air() if air is None else air.arrays()
+    aero = build_aero(spec, chosen, stage_base, top, with_fairing, tank_names,
+                      bool(np.any(we != 0.0) or np.any(wn != 0.0)))
     arrays = VehicleArrays(
         fixed, _f(tank_bottom), _f(tank_radius), _f(tank_density), _f(tank_share), eng, cmd,
         np.array(stage_rows, dtype=float).reshape(len(chosen), E.N_STAGE),
         N_STATE, N_STATE + len(tank_names),
-        float(h0), float(dh), density, pressure, temperature, sos, we, wn)
+        float(h0), float(dh), density, pressure, temperature, sos, we, wn, aero)
     return VehicleModel(spec.name if first == 0 and top else f"{spec.name}[{chosen[0].name}..{chosen[-1].name}]",
                         [st.name for st in chosen], tank_names, engine_names,
                         _f(stage_base), _f([st.length for st in chosen]), _f([st.diameter for st in chosen]),

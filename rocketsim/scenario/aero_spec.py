@@ -1,0 +1,134 @@
+"""The ``aero:`` section of a staged vehicle file: shape, fins, grid fins, legs, RCS, heat shield.
+
+Optional: a vehicle without it flies without aerodynamics or ground contact
+(as every vehicle did before issue 5). Positions are heights above the base
+of the named stage (as everywhere in a vehicle file); a leg's foot may sit
+below its stage's base (negative). The body's outline is the stack of the
+stages' cylinders, then the payload fairing (or payload) on top; the top
+``nose.length`` of it is the nose. See :mod:`rocketsim.vehicle.aero` for the
+models these figures feed.
+"""
+
+from __future__ import annotations
+
+from typing import Annotated, Literal, Optional
+
+from pydantic import BaseModel, ConfigDict, Field, field_validator
+
+from rocketsim.scenario.units import (Angle, AngularRate, Area, Force, Length, Mass,
+                                      SpecificImpulse, Temperature)
+
+PositiveLength = Annotated[Length, Field(gt=0)]
+NonNegativeLength = Annotated[Length, Field(ge=0)]
+
+
+class _Strict(BaseModel):
+    model_config = ConfigDict(extra="forbid", frozen=True)
+
+
+class NoseSpec(_Strict):
+    """The nose: the top ``length`` of the body, a cone or a tangent ogive (or blunt: no nose lift)."""
+
+    length: NonNegativeLength = Field(description="length of the nose, from its base to the tip")
+    shape: Literal["cone", "ogive", "blunt"] = "ogive"
+
+
+class FinSetSpec(_Strict):
+    """A set of 3 or 4 flat trapezoidal fins (Barrowman's normal-force slope and centre of pressure)."""
+
+    stage: str = Field(description="name of the stage the fins are on")
+    count: Annotated[int, Field(ge=3, le=4)] = 4
+    position: Length = Field(description="height of the root chord's leading (upper) edge above the stage base")
+    root_chord: PositiveLength
+    tip_chord: NonNegativeLength
+    span: PositiveLength = Field(description="from the body to the tip")
+    sweep: NonNegativeLength = Field(0.0, description="axial distance from the root's to the tip's leading edge")
+
+
+class GridFinSpec(_Strict):
+    """Grid fins on arms round the stage (``count`` evenly spaced from body +y)."""
+
+    stage: str
+    count: Annotated[int, Field(ge=2)] = 4
+    position: Length = Field(description="height of the fins' centre above the stage base")
+    radius: PositiveLength = Field(description="distance of each fin's centre of pressure from the axis")
+    area: Annotated[Area, Field(gt=0)] = Field(description="frontal (reference) area of one fin")
+    max_deflection: Annotated[Angle, Field(gt=0)] = Field(0.349, description="deflection limit (default 20 deg)")
+    rate: Annotated[AngularRate, Field(gt=0)] = Field(1.047, description="slew limit (default 60 deg/s)")
+    stall: Annotated[Angle, Field(gt=0)] = Field(0.436, description="stall angle of the lattice (default 25 deg)")
+
+
+class LegSpec(_Strict):
+    """Landing legs: ``count`` feet on a ring, each a stiff spring with damping and friction."""
+
+    stage: str
+    count: Annotated[int, Field(ge=3)] = 4
+    position: Length = Field(description="height of the feet above the stage base (negative: below it)")
+    radius: PositiveLength = Field(description="radius of the ring of feet")
+    stiffness: Annotated[float, Field(gt=0)] = Field(description="spring stiffness of one leg, N/m")
+    damping: Annotated[float, Field(ge=0)] = Field(description="damping of one leg, N s/m")
+    friction: Annotated[float, Field(ge=0)] = Field(0.6, description="Coulomb friction coefficient")
+
+
+class ThrusterSpec(_Strict):
+    """One reaction-control thruster, drawing from one of its stage's tanks."""
+
+    stage: str
+    tank: str = Field(description="name of the tank (of that stage) it draws from")
+    position: Length = Field(description="height above the stage base")
+    y: Length = 0.0
+    z: Length = 0.0
+    direction: tuple[float, float, float] = Field(description="thrust direction in body axes (normalised)")
+    thrust: Annotated[Force, Field(gt=0)]
+    isp: Annotated[SpecificImpulse, Field(gt=0)]
+
+    @field_validator("direction")
+    @classmethod
+    def _nonzero(cls, value):
+        if sum(c * c for c in value) == 0.0:
+            raise ValueError("a thruster's direction must not be zero")
+        return value
+
+
+class HeatShieldSpec(_Strict):
+    """A heat shield as one lumped thermal mass at the stagnation point."""
+
+    nose_radius: PositiveLength = Field(description="effective nose radius for Sutton-Graves")
+    mass: Annotated[Mass, Field(gt=0)]
+    specific_heat: Annotated[float, Field(gt=0)] = Field(description="J/(kg K)")
+    area: Annotated[Area, Field(gt=0)] = Field(description="heated (and radiating) area")
+    emissivity: Annotated[float, Field(gt=0, le=1)] = 0.85
+    initial_temperature: Annotated[Temperature, Field(gt=0)] = 290.0
+
+
+class AeroSpec(_Strict):
+    """Aerodynamics and ground contact of a staged vehicle."""
+
+    nose: NoseSpec = NoseSpec(length=0.0, shape="blunt")
+    segments: Annotated[int, Field(ge=10, le=200)] = Field(20, description="body segments for the crossflow")
+    axial_nose_first: Optional[list[tuple[float, float]]] = Field(
+        None, description="(Mach, C_A) pairs, increasing Mach; default the physics model's table")
+    axial_tail_first: Optional[list[tuple[float, float]]] = Field(
+        None, description="(Mach, C_A) pairs, increasing Mach; default the physics model's table")
+    fins: list[FinSetSpec] = []
+    grid_fins: list[GridFinSpec] = []
+    legs: list[LegSpec] = []
+    body_contact_stiffness: Annotated[float, Field(gt=0)] = Field(
+        2.0e7, description="N/m, the body's ends and engine bells touching the ground")
+    body_contact_damping: Annotated[float, Field(ge=0)] = Field(2.0e5, description="N s/m")
+    rcs: list[ThrusterSpec] = []
+    heat_shield: Optional[HeatShieldSpec] = None
+
+    @field_validator("axial_nose_first", "axial_tail_first")
+    @classmethod
+    def _table(cls, value):
+        if value is None:
+            return value
+        if len(value) < 2:
+            raise ValueError("an axial table needs at least two (Mach, C_A) rows")
+        machs = [m for m, _ in value]
+        if any(b <= a for a, b in zip(machs, machs[1:])) or machs[0] < 0:
+            raise ValueError("an axial table's Mach numbers must start at 0 or above and increase")
+        if any(c < 0 for _, c in value):
+            raise ValueError("an axial coefficient cannot be negative")
+        return value

@@ -1,0 +1,203 @@
+"""A vehicle's ``aero:`` section becomes flat arrays, once, for the compiled derivative.
+
+:func:`build_aero` is called by :func:`rocketsim.vehicle.build.build` for the
+stages it builds; the result travels in ``VehicleArrays.aero``
+(:class:`AeroArrays`). Parts of stages that are not built (a separated
+booster's grid fins, seen from the upper stack) are left out. A vehicle
+without an ``aero:`` section gets arrays with ``ref[A_ON] = 0`` and no parts:
+the derivative then skips aerodynamics and contact.
+
+The body's outline is the stack of stage cylinders, then the fairing (or the
+payload) on top; the top ``nose.length`` of it tapers to the tip as a cone or
+a tangent ogive. The crossflow segments divide the whole length equally, each
+with the diameter at its middle.
+"""
+
+from __future__ import annotations
+
+import math
+from collections import namedtuple
+
+import numpy as np
+
+from rocketsim.constants import G0
+from rocketsim.dynamics.state import N_STATE
+from rocketsim.errors import InputError
+from rocketsim.vehicle import aero as A
+from rocketsim.vehicle import contact as K
+from rocketsim.vehicle import grid_fins as G
+from rocketsim.vehicle import rcs as RC
+
+AeroArrays = namedtuple("AeroArrays", [
+    "ref", "seg", "fin", "ca_nf", "ca_tf", "grid", "grid_cmd", "rcs", "rcs_cmd", "contact", "wind"])
+
+
+def _table(rows, default_mach, default_ca) -> np.ndarray:
+    if rows is None:
+        return np.ascontiguousarray(np.column_stack((default_mach, default_ca)))
+    return np.ascontiguousarray(np.array(rows, dtype=float).reshape(-1, 2))
+
+
+def _empty(n_cols: int) -> np.ndarray:
+    return np.zeros((0, n_cols))
+
+
+def no_aero() -> AeroArrays:
+    """Arrays of a vehicle without aerodynamics or contact."""
+    return AeroArrays(np.zeros(A.N_REF), _empty(3), _empty(2), _table(None, A.NOSE_FIRST_MACH, A.NOSE_FIRST_CA),
+                      _table(None, A.TAIL_FIRST_MACH, A.TAIL_FIRST_CA), _empty(G.N_GRID),
+                      _empty(G.N_GRID_CMD), _empty(RC.N_RCS), np.zeros(0), _empty(K.N_CONTACT), np.zeros(3))
+
+
+def outline(stages, top_parts, nose_length: float, nose_shape: str):
+    """``diameter(x)`` (m) of the body at station ``x`` (m) and its length.
+
+    ``stages``: (base, length, diameter) of each stage bottom to top;
+    ``top_parts``: (length, diameter) of what sits on the top stage.
+    """
+    pieces = list(stages)
+    top = pieces[-1][0] + pieces[-1][1]
+    for length, diameter in top_parts:
+        pieces.append((top, length, diameter))
+    total = max(b + l for b, l, _ in pieces)
+    nose_base = total - nose_length
+
+    def cylinder(x):
+        for base, length, diameter in reversed(pieces):
+            if base <= x <= base + length + 1e-12:
+                return diameter
+        return pieces[0][2]
+
+    base_d = cylinder(max(nose_base - 1e-9, 0.0))
+
+    def diameter(x):
+        if nose_length <= 0.0 or x < nose_base:
+            return cylinder(x)
+        s = (total - x) / nose_length          # 1 at the nose's base, 0 at the tip
+        if nose_shape == "cone":
+            return base_d * s
+        if nose_shape == "ogive":
+            # tangent ogive of radius R, base radius r, length L: rho = R cos(.) ...
+            r = 0.5 * base_d
+            big = (r * r + nose_length ** 2) / (2 * r)
+            xi = nose_length * s                # distance from the tip
+            return 2.0 * (math.sqrt(big * big - (nose_length - xi) ** 2) + r - big)
+        return base_d
+    return diameter, total, nose_base, base_d
+
+
+def nose_centre_of_pressure(diameter, tip: float, length: float, base_d: float) -> float:
+    """Station (m) of the slender-body lift of a nose: ``tip - (L - V / S_base)``."""
+    n = 400
+    xs = tip - length + (np.arange(n) + 0.5) * length / n
+    volume = sum(math.pi * diameter(x) ** 2 / 4 for x in xs) * length / n
+    return tip - (length - volume / (math.pi * base_d ** 2 / 4))
+
+
+def barrowman(fin, body_d: float) -> tuple[float, float]:
+    """``(C_N_alpha per rad on the body's cross-section, centre of pressure aft of the
+    root's leading edge, m)`` of a fin set: J. S. Barrowman, "The practical calculation of
+    the aerodynamic characteristics of slender finned vehicles", NASA/Catholic Univ.
+    thesis (1967), eqs. for fins with body interference ``1 + r / (s + r)``."""
+    cr, ct, s, xt = fin.root_chord, fin.tip_chord, fin.span, fin.sweep
+    mid = math.hypot(s, xt + 0.5 * ct - 0.5 * cr)
+    r = 0.5 * body_d
+    cna = (1.0 + r / (s + r)) * 4.0 * fin.count * (s / body_d) ** 2 / (
+        1.0 + math.sqrt(1.0 + (2.0 * mid / (cr + ct)) ** 2))
+    xf = xt / 3.0 * (cr + 2.0 * ct) / (cr + ct) + (cr + ct - cr * ct / (cr + ct)) / 6.0
+    return cna, xf
+
+
+def build_aero(spec, chosen, stage_base, top: bool, with_fairing: bool, tank_names, has_wind: bool) -> AeroArrays:
+    """The :class:`AeroArrays` of stages ``chosen`` (their specs, bottom to top) based at
+    ``stage_base`` (m); ``top``: the top stage is among them (payload and fairing too)."""
+    aero = getattr(spec, "aero", None)
+    if aero is None:
+        return no_aero()
+    names = [st.name for st in chosen]
+    base_of = dict(zip(names, stage_base))
+    top_parts = []
+    if top and with_fairing:
+        top_parts.append((spec.fairing.length, spec.fairing.diameter))
+    elif top and spec.payload is not None:
+        top_parts.append((spec.payload.length, spec.payload.diameter))
+    stages = [(b, st.length, st.diameter) for b, st in zip(stage_base, chosen)]
+    nose_len = aero.nose.length if top else 0.0
+    shape = aero.nose.shape if top else "blunt"
+    diameter, total, nose_base, base_d = outline(stages, top_parts, nose_len, shape)
+    d_max = max(max(d for _, _, d in stages), max((d for _, d in top_parts), default=0.0))
+    area = math.pi * d_max ** 2 / 4
+
+    ref = np.zeros(A.N_REF)
+    ref[A.A_ON] = 1.0
+    ref[A.A_AREA] = area
+    ref[A.A_ETA] = float(np.interp(total / d_max, A.EFFICIENCY_FINENESS, A.EFFICIENCY_SUBSONIC))
+    if nose_len > 0.0 and shape != "blunt":
+        ref[A.A_NOSE_X] = nose_centre_of_pressure(diameter, total, nose_len, base_d)
+        ref[A.A_NOSE_AREA] = math.pi * base_d ** 2 / 4
+    ref[A.A_BASE_AREA] = math.pi * chosen[0].diameter ** 2 / 4
+    ref[A.A_WIND] = 1.0 if has_wind else 0.0
+
+    n = aero.segments
+    dx = total / n
+    seg = np.array([((i + 0.5) * dx, dx, diameter((i + 0.5) * dx)) for i in range(n)])
+
+    fins = []
+    for k, fin, base in _built(spec, aero.fins, base_of, "fins"):
+        d = diameter(base + fin.position)
+        cna, xf = barrowman(fin, d)
+        fins.append((base + fin.position - xf, cna * math.pi * d ** 2 / 4))
+
+    grid = []
+    for k, g, base in _built(spec, aero.grid_fins, base_of, "grid_fins"):
+        for j in range(g.count):
+            grid.append((base + g.position, 2 * math.pi * j / g.count, g.radius, g.area,
+                         g.max_deflection, g.rate, g.stall))
+
+    rcs = []
+    for k, th, base in _built(spec, aero.rcs, base_of, "rcs"):
+        key = f"{th.stage}/{th.tank}"
+        if key not in tank_names:
+            raise InputError(f"thruster {k + 1} draws from tank {th.tank!r}, which stage "
+                             f"{th.stage!r} does not have", field=f"aero.rcs[{k}].tank")
+        d = np.array(th.direction, dtype=float)
+        d /= np.linalg.norm(d)
+        rcs.append((base + th.position, th.y, th.z, *d, th.thrust, th.thrust / (G0 * th.isp),
+                    N_STATE + tank_names.index(key)))
+
+    contact = []
+    for k, leg, base in _built(spec, aero.legs, base_of, "legs"):
+        for j in range(leg.count):
+            phi = 2 * math.pi * (j + 0.5) / leg.count
+            contact.append((base + leg.position, leg.radius * math.cos(phi),
+                            leg.radius * math.sin(phi), leg.stiffness, leg.damping, leg.friction))
+    # the body: a ring at the base (engine bells, skirt), a ring below the nose and the tip
+    kb, cb = aero.body_contact_stiffness, aero.body_contact_damping
+    for x, r in ((0.0, 0.5 * chosen[0].diameter), (nose_base, 0.5 * base_d)):
+        for j in range(4):
+            phi = 0.5 * math.pi * j
+            contact.append((x, r * math.cos(phi), r * math.sin(phi), kb, cb, 0.6))
+    contact.append((total, 0.0, 0.0, kb, cb, 0.6))
+    contact = np.array(contact, dtype=float).reshape(-1, K.N_CONTACT)
+    reach = max(math.sqrt(max(x * x, (x - total) ** 2) + y * y + z * z) for x, y, z in contact[:, :3])
+    ref[A.A_REACH] = reach
+
+    return AeroArrays(
+        ref, np.ascontiguousarray(seg),
+        np.array(fins, dtype=float).reshape(-1, 2),
+        _table(aero.axial_nose_first, A.NOSE_FIRST_MACH, A.NOSE_FIRST_CA),
+        _table(aero.axial_tail_first, A.TAIL_FIRST_MACH, A.TAIL_FIRST_CA),
+        np.array(grid, dtype=float).reshape(-1, G.N_GRID), np.zeros((len(grid), G.N_GRID_CMD)),
+        np.array(rcs, dtype=float).reshape(-1, RC.N_RCS), np.zeros(len(rcs)),
+        np.ascontiguousarray(contact), np.zeros(3))
+
+
+def _built(spec, parts, base_of, label):
+    """``(index, part, base of its stage)`` for the parts on stages being built; a part
+    naming no stage of the vehicle is an input error."""
+    for k, part in enumerate(parts):
+        if part.stage in base_of:
+            yield k, part, base_of[part.stage]
+        elif part.stage not in [st.name for st in spec.stages]:
+            raise InputError(f"no stage is named {part.stage!r} (stages: "
+                             f"{', '.join(st.name for st in spec.stages)})", field=f"aero.{label}[{k}].stage")

@@ -1,0 +1,117 @@
+"""Ground contact: legs, engine bells and the body's ends as springs on the ellipsoid, compiled.
+
+Physics model ("The integrator": within 2 m of the ground the step is split
+into four sub-steps "so that stiff leg springs and friction stay stable"; the
+issue's contact model). Each contact point ``i`` is fixed in the body at
+``(x, y, z)`` (m; x a station above the base). Its height ``h`` above the
+central body's ellipsoid is measured along the radius (as
+:func:`~rocketsim.dynamics.derivative.radial_height`); below the surface it
+is pushed out along the ellipsoid's normal ``n`` and dragged by friction::
+
+    N   = max(0, -k h - c v_n)                 (a spring and a damper that never pull)
+    F_t = -mu N v_t / sqrt(|v_t|^2 + eps^2)    (Coulomb friction, regularised)
+
+with ``v`` the point's velocity relative to the ground, which turns with the
+body at ``omega_E`` about the inertial z axis, ``v_n = v.n`` and ``v_t`` the
+rest. The damper and friction only take energy out; the spring stores it.
+``eps`` is :data:`~rocketsim.constants.FRICTION_REGULARISATION`.
+
+A spring this stiff (a natural frequency of a few hundred rad/s) is what the
+sub-steps are for: classical RK4 is stable for ``|lambda| h < 2.78``, so a
+5 ms sub-step holds it and a 20 ms step does not.
+"""
+
+from __future__ import annotations
+
+import math
+
+from rocketsim._jit import njit
+from rocketsim.vehicle.aero import moment_about_cm
+
+# columns of AeroArrays.contact
+K_X, K_Y, K_Z, K_STIFF, K_DAMP, K_MU = 0, 1, 2, 3, 4, 5
+N_CONTACT = 6
+
+
+@njit
+def point_height(px, py, pz, a, b):
+    """Height (m) of the point ``(px, py, pz)`` (m) above the ellipsoid (a, b), along the radius."""
+    rho2 = px * px + py * py
+    z2 = pz * pz
+    r2 = rho2 + z2
+    return math.sqrt(r2) - a * b / math.sqrt((b * b * rho2 + a * a * z2) / r2)
+
+
+@njit
+def contact_forces(y, x_cm, a, b, spin, contact, eps):
+    """Force (N, body axes) and moment (N m about the centre of mass) of the ground.
+
+    ``y`` the state (inertial position, velocity, attitude ``q`` body ->
+    inertial, body rates), ``a``/``b`` the ellipsoid's radii (m), ``spin`` the
+    ground's rotation rate about inertial z (rad/s).
+    """
+    fx = fy = fz = mx = my = mz = 0.0
+    qw, ux, uy, uz = y[6], y[7], y[8], y[9]
+    wx, wy, wz = y[10], y[11], y[12]
+    for i in range(contact.shape[0]):
+        bx = contact[i, K_X] - x_cm
+        by = contact[i, K_Y]
+        bz = contact[i, K_Z]
+        # the point in inertial axes: r + q b
+        tx = 2.0 * (uy * bz - uz * by)
+        ty = 2.0 * (uz * bx - ux * bz)
+        tz = 2.0 * (ux * by - uy * bx)
+        ox = bx + qw * tx + (uy * tz - uz * ty)
+        oy = by + qw * ty + (uz * tx - ux * tz)
+        oz = bz + qw * tz + (ux * ty - uy * tx)
+        px = y[0] + ox
+        py = y[1] + oy
+        pz = y[2] + oz
+        h = point_height(px, py, pz, a, b)
+        if h >= 0.0:
+            continue
+        # velocity of the point relative to the turning ground: v + q (w x b) - spin z x p
+        cx = wy * bz - wz * by
+        cy = wz * bx - wx * bz
+        cz = wx * by - wy * bx
+        tx = 2.0 * (uy * cz - uz * cy)
+        ty = 2.0 * (uz * cx - ux * cz)
+        tz = 2.0 * (ux * cy - uy * cx)
+        vx = y[3] + cx + qw * tx + (uy * tz - uz * ty) + spin * py
+        vy = y[4] + cy + qw * ty + (uz * tx - ux * tz) - spin * px
+        vz = y[5] + cz + qw * tz + (ux * ty - uy * tx)
+        # ellipsoid normal
+        nx = px / (a * a)
+        ny = py / (a * a)
+        nz = pz / (b * b)
+        nn = math.sqrt(nx * nx + ny * ny + nz * nz)
+        nx /= nn
+        ny /= nn
+        nz /= nn
+        vn = vx * nx + vy * ny + vz * nz
+        normal = -contact[i, K_STIFF] * h - contact[i, K_DAMP] * vn
+        if normal <= 0.0:
+            continue
+        sx = vx - vn * nx
+        sy = vy - vn * ny
+        sz = vz - vn * nz
+        slip = math.sqrt(sx * sx + sy * sy + sz * sz + eps * eps)
+        k = -contact[i, K_MU] * normal / slip
+        gx = normal * nx + k * sx
+        gy = normal * ny + k * sy
+        gz = normal * nz + k * sz
+        # back to body axes: q* g
+        tx = 2.0 * (-uy * gz + uz * gy)
+        ty = 2.0 * (-uz * gx + ux * gz)
+        tz = 2.0 * (-ux * gy + uy * gx)
+        ex = gx + qw * tx + (-uy * tz + uz * ty)
+        ey = gy + qw * ty + (-uz * tx + ux * tz)
+        ez = gz + qw * tz + (-ux * ty + uy * tx)
+        fx += ex
+        fy += ey
+        fz += ez
+        m = moment_about_cm(bx, by, bz, ex, ey, ez)
+        mx += m[0]
+        my += m[1]
+        mz += m[2]
+    return fx, fy, fz, mx, my, mz
