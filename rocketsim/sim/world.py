@@ -184,16 +184,17 @@ class World:
         dy = np.zeros_like(body.y)
         derivative(body.t, body.y, body.p, dy, None if body.vehicle is None else body.vehicle.arrays)
         x, y, z = body.position
-        gravity = point_mass_j2(x, y, z, body.p[P_MU], body.p[P_RADIUS], body.p[P_J2])
-        acceleration = dy[V:V + 3]
-        view = body.view()
+        gx, gy, gz = point_mass_j2(x, y, z, body.p[P_MU], body.p[P_RADIUS], body.p[P_J2])
+        ax, ay, az = dy[V:V + 3].tolist()
+        rho, _, _, sound, _, air_velocity = body.view().air
+        airspeed = math.sqrt(air_velocity @ air_velocity)
         return {
             "mass": body.mass,
-            "acceleration": float(np.linalg.norm(acceleration)),
-            "sensed_acceleration": float(np.linalg.norm(acceleration - np.array(gravity))),
-            "airspeed": view.airspeed,
-            "mach": view.mach,
-            "dynamic_pressure": view.dynamic_pressure,
+            "acceleration": math.sqrt(ax * ax + ay * ay + az * az),
+            "sensed_acceleration": math.hypot(ax - gx, ay - gy, az - gz),
+            "airspeed": airspeed,
+            "mach": airspeed / sound,
+            "dynamic_pressure": 0.5 * rho * airspeed * airspeed,
         }
 
     def orbit_summary(self, body: Body) -> dict:

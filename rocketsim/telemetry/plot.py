@@ -71,10 +71,18 @@ def plot_run(path: str | Path, out: str | Path) -> Path:
         axes[0, 0].annotate(event["name"], (event["t"], 1.0), xycoords=("data", "axes fraction"),
                             rotation=90, va="top", fontsize=7)
     track = axes[2, 1]
-    track.set_xlim(-180, 180)
-    track.set_ylim(-90, 90)
-    track.set_xticks(range(-180, 181, 60))
-    track.set_yticks(range(-90, 91, 30))
+    lats = [v for c in tables.values() for v in c.get("latitude_deg", []) if v is not None]
+    lons = [v for c in tables.values() for v in c.get("longitude_deg", []) if v is not None]
+    if lats and max(lats) - min(lats) < 20 and max(lons) - min(lons) < 20:
+        # a short track: zoom on it (the frame stays latitude/longitude degrees)
+        pad = max(0.05, 0.2 * max(max(lats) - min(lats), max(lons) - min(lons)))
+        track.set_xlim(min(lons) - pad, max(lons) + pad)
+        track.set_ylim(min(lats) - pad, max(lats) + pad)
+    else:
+        track.set_xlim(-180, 180)
+        track.set_ylim(-90, 90)
+        track.set_xticks(range(-180, 181, 60))
+        track.set_yticks(range(-90, 91, 30))
     track.grid(True, lw=0.4)
     track.set_aspect("equal")
     track.set_xlabel("longitude, deg")

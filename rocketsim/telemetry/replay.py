@@ -21,6 +21,7 @@ from dataclasses import dataclass, field
 from pathlib import Path, PurePosixPath
 from typing import Iterator
 
+from mcap.exceptions import EndOfFile
 from mcap.reader import make_reader
 from mcap.records import Attachment, Channel, Message, Metadata, Schema
 from mcap.stream_reader import StreamReader
@@ -108,32 +109,98 @@ def _read_indexed(path: Path) -> Run:
     return run
 
 
+class _Break(Exception):
+    """Where and why a damaged file stops being readable."""
+
+
+_MAGIC = b"\x89MCAP0\r\n"
+_CHUNK = 0x06
+
+
+def records(path: str | Path) -> Iterator:
+    """Every readable record of an MCAP file in file order, chunks opened.
+
+    A file cut inside a chunk still gives the messages of that chunk's
+    readable part (zstd decompresses a frame's prefix). Raises
+    :class:`_Break` after the last readable record of a damaged file.
+    """
+    import io
+    import struct
+
+    data = Path(path).read_bytes()
+    if not data.startswith(_MAGIC):
+        raise _Break("it does not start as an MCAP file")
+    at, whole = len(_MAGIC), []
+    while at + 9 <= len(data):
+        opcode, length = struct.unpack_from("<BQ", data, at)
+        if at + 9 + length > len(data):
+            break
+        whole.append(data[at:at + 9 + length])
+        at += 9 + length
+    try:
+        yield from StreamReader(io.BytesIO(b"".join(whole)), skip_magic=True, validate_crcs=True).records
+    except EndOfFile:
+        pass                    # the end of the complete records
+    except Exception as error:
+        raise _Break(f"a record is corrupt ({type(error).__name__}: {error})") from None
+    if at >= len(data) - len(_MAGIC) and data.endswith(_MAGIC):
+        return
+    if at + 9 <= len(data) and data[at] == _CHUNK:
+        yield from _partial_chunk(data[at + 9:])
+    raise _Break(f"the file is cut short at byte {len(data)} (inside a record that starts at byte {at})")
+
+
+def _partial_chunk(body: bytes) -> Iterator:
+    """The complete records at the start of a chunk cut short (zstd or uncompressed)."""
+    import io
+    import struct
+
+    try:
+        (compression_length,) = struct.unpack_from("<I", body, 28)
+        compression = body[32:32 + compression_length].decode()
+        start = 32 + compression_length + 8
+        if compression == "zstd":
+            import zstandard
+            inner = zstandard.ZstdDecompressor().decompressobj().decompress(body[start:])
+        elif compression == "":
+            inner = body[start:]
+        else:
+            return
+    except Exception:
+        return
+    try:
+        yield from StreamReader(io.BytesIO(inner), skip_magic=True).records
+    except Exception:
+        return
+
+
 def _read_streamed(path: Path) -> Run:
     run = Run(path)
     channels: dict[int, str] = {}
     last_state: dict[str, bytes] = {}
     try:
-        with open(path, "rb") as stream:
-            for record in StreamReader(stream, validate_crcs=True).records:
-                if isinstance(record, Channel):
-                    channels[record.id] = record.topic
-                    run.counts.setdefault(record.topic, 0)
-                elif isinstance(record, Message):
-                    topic = channels.get(record.channel_id, f"#{record.channel_id}")
-                    run.counts[topic] = run.counts.get(topic, 0) + 1
-                    run.start_ns = record.log_time if run.start_ns is None else min(run.start_ns, record.log_time)
-                    run.end_ns = record.log_time if run.end_ns is None else max(run.end_ns, record.log_time)
-                    if topic in TEXT_TOPICS:
-                        _keep_text(run, topic, record.data)
-                    elif _is_state(topic):
-                        last_state[topic] = record.data
-                elif isinstance(record, Metadata):
-                    run.metadata[record.name] = dict(record.metadata)
-                elif isinstance(record, Attachment):
-                    run.attachments[record.name] = bytes(record.data)
-        run.problem = "the file ends without its summary section (the flight was cut off or the file truncated)"
+        for record in records(path):
+            if isinstance(record, Channel):
+                channels[record.id] = record.topic
+                run.counts.setdefault(record.topic, 0)
+            elif isinstance(record, Message):
+                topic = channels.get(record.channel_id, f"#{record.channel_id}")
+                run.counts[topic] = run.counts.get(topic, 0) + 1
+                run.start_ns = record.log_time if run.start_ns is None else min(run.start_ns, record.log_time)
+                run.end_ns = record.log_time if run.end_ns is None else max(run.end_ns, record.log_time)
+                if topic in TEXT_TOPICS:
+                    _keep_text(run, topic, record.data)
+                elif _is_state(topic):
+                    last_state[topic] = record.data
+            elif isinstance(record, Metadata):
+                run.metadata[record.name] = dict(record.metadata)
+            elif isinstance(record, Attachment):
+                run.attachments[record.name] = bytes(record.data)
+        run.problem = "the file ends without its summary section"
+    except _Break as error:
+        run.problem = f"{error}; {sum(run.counts.values())} messages read"
     except Exception as error:
-        run.problem = f"unreadable past this point: {type(error).__name__}: {error}".rstrip(": ")
+        run.problem = f"unreadable ({type(error).__name__}: {error}); {sum(run.counts.values())} messages read"
     for topic, data in last_state.items():
         try:
             run.final[topic[1:-len(STATE_SUFFIX)]] = json.loads(data)
@@ -185,12 +252,11 @@ def states(path: str | Path, body: str) -> Iterator[dict]:
         pass
     channel_id = None
     try:
-        with open(path, "rb") as stream:
-            for record in StreamReader(stream, validate_crcs=True).records:
-                if isinstance(record, Channel) and record.topic == topic:
-                    channel_id = record.id
-                elif isinstance(record, Message) and record.channel_id == channel_id:
-                    yield json.loads(record.data)
+        for record in records(path):
+            if isinstance(record, Channel) and record.topic == topic:
+                channel_id = record.id
+            elif isinstance(record, Message) and record.channel_id == channel_id:
+                yield json.loads(record.data)
     except Exception:
         return
 
@@ -318,12 +384,11 @@ def _messages(path: Path) -> Iterator[tuple[str, int, bytes]]:
     """(topic, log time, data) in file order, up to any break."""
     channels: dict[int, str] = {}
     try:
-        with open(path, "rb") as stream:
-            for record in StreamReader(stream).records:
-                if isinstance(record, Channel):
-                    channels[record.id] = record.topic
-                elif isinstance(record, Message):
-                    yield channels.get(record.channel_id, ""), record.log_time, bytes(record.data)
+        for record in records(path):
+            if isinstance(record, Channel):
+                channels[record.id] = record.topic
+            elif isinstance(record, Message):
+                yield channels.get(record.channel_id, ""), record.log_time, bytes(record.data)
     except Exception:
         return
 

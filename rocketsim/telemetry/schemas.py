@@ -75,35 +75,3 @@ def schema_bytes(schema: dict) -> bytes:
     """The schema as registered in the file (stable key order)."""
     return json.dumps(schema, sort_keys=True, separators=(",", ":")).encode()
 
-
-def scalar_schema(body: str, example: dict) -> dict:
-    """Schema of ``/<body>/scalars``: every scalar of a state message, flat, so
-    each is one line in Foxglove's Plot panel (``orbit.x`` becomes ``orbit_x``).
-
-    ``example`` is the body's first flattened message; fields that arrive
-    with richer vehicles (throttle, propellant...) are listed when present.
-    """
-    described = dict(BODY_STATE["properties"])
-    described.update({f"orbit_{k}": v for k, v in BODY_STATE["$defs"]["orbit"]["properties"].items()})
-    properties = {key: {"type": ["number", "null"],
-                        **({"description": described[key]["description"]}
-                           if "description" in described.get(key, {}) else {})}
-                  for key in example}
-    return {"title": f"rocketsim.Scalars.{body}",
-            "description": f"Scalars of {body} (SI units; degrees where named), one per field.",
-            "type": "object", "properties": properties, "required": ["t"]}
-
-
-def flatten(message: dict) -> dict:
-    """The scalars of a state message: its numbers, and the orbit's as ``orbit_*``."""
-    flat = {}
-    for key, value in message.items():
-        if isinstance(value, dict):
-            flat.update({f"{key}_{k}": v for k, v in value.items() if _scalar(v)})
-        elif _scalar(value):
-            flat[key] = value
-    return flat
-
-
-def _scalar(value) -> bool:
-    return value is None or (isinstance(value, (int, float)) and not isinstance(value, bool))

@@ -14,6 +14,7 @@ finished on success, on a program error and on Ctrl-C alike.
 from __future__ import annotations
 
 import json
+import math
 from pathlib import Path
 
 from mcap.writer import CompressionType, Writer
@@ -21,9 +22,12 @@ from mcap.writer import CompressionType, Writer
 from rocketsim import __version__
 from rocketsim.frames.earth_fixed import earth_rotation_angle
 from rocketsim.telemetry import foxglove
-from rocketsim.telemetry.schemas import BODY_STATE, EVENT, flatten, scalar_schema, schema_bytes
+from rocketsim.telemetry.schemas import BODY_STATE, EVENT, schema_bytes
 
 PROFILE = ""
+# Uncompressed bytes per chunk: about 18 s of one body at 10 Hz. Memory held
+# while flying is one chunk; a file cut short loses at most the last one.
+CHUNK_SIZE = 256 * 1024
 LIBRARY = f"rocketsim {__version__}"
 
 
@@ -34,7 +38,7 @@ def encode(message: dict) -> bytes:
 
 class TelemetryWriter:
     """One MCAP telemetry file: per body its state, Foxglove transform and
-    location, and scalars; the events; the program's log; the Earth's turn.
+    location; the events; the program's log; the Earth's turn.
 
     ``program_file`` names the program in the ``file`` field of its log lines.
     """
@@ -42,7 +46,7 @@ class TelemetryWriter:
     def __init__(self, path: str | Path, epoch_ns: int, program_file: str = ""):
         self.path = Path(path)
         self._file = open(self.path, "wb")
-        self._writer = Writer(self._file, compression=CompressionType.ZSTD)
+        self._writer = Writer(self._file, chunk_size=CHUNK_SIZE, compression=CompressionType.ZSTD)
         self._writer.start(profile=PROFILE, library=LIBRARY)
         self._epoch_ns = epoch_ns
         self._schemas = {}
@@ -68,8 +72,11 @@ class TelemetryWriter:
 
     def add_body(self, name: str) -> None:
         """Open the channels of a body: ``/<name>/state``, ``/<name>/transform``
-        (foxglove.FrameTransform), ``/<name>/location`` (foxglove.LocationFix);
-        ``/<name>/scalars`` opens with the body's first state."""
+        (foxglove.FrameTransform) and ``/<name>/location`` (foxglove.LocationFix).
+
+        Every scalar of the state message is a JSON-schema'd field that
+        Foxglove's Plot panel reads by path (``/<name>/state.altitude``,
+        ``.orbit.eccentricity``, ``.position[0]``): no second copy is written."""
         self._channel(f"/{name}/state", BODY_STATE)
         self._channel(f"/{name}/transform", foxglove.FRAME_TRANSFORM)
         self._channel(f"/{name}/location", foxglove.LOCATION_FIX)
@@ -83,23 +90,21 @@ class TelemetryWriter:
         self._sequence += 1
 
     def state(self, body: str, message: dict) -> None:
-        """A body's state message, and the Foxglove and scalar messages drawn from it."""
+        """A body's state message, and the Foxglove messages drawn from it."""
         t = message["t"]
         stamp = self._stamp(t)
         channels = self._channels
         self._write(channels[f"/{body}/state"], stamp, message)
-        if self._earth_at != t:
+        second = math.floor(t)
+        if self._earth_at != second:
+            # once per second of mission time: Foxglove interpolates between
+            # transforms, and the Earth turns 0.004 deg in a second
             self._write(self._earth, stamp, foxglove.earth_transform(stamp, earth_rotation_angle(t)))
-            self._earth_at = t
+            self._earth_at = second
         self._write(channels[f"/{body}/transform"], stamp, foxglove.frame_transform(
             stamp, foxglove.INERTIAL_FRAME, body, message["position"], message["attitude"]))
         self._write(channels[f"/{body}/location"], stamp, foxglove.location_fix(
             stamp, body, message["latitude_deg"], message["longitude_deg"], message["altitude"]))
-        scalars = flatten(message)
-        topic = f"/{body}/scalars"
-        if topic not in channels:
-            self._channel(topic, scalar_schema(body, scalars))
-        self._write(channels[topic], stamp, scalars)
 
     def event(self, t: float, body: str, name: str, figures: dict) -> None:
         """An event with its figures (SI), and its line in ``/events/log``."""

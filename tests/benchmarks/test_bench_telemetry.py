@@ -1,0 +1,102 @@
+"""Benchmark (issue 10): what telemetry costs, and how fast a run is summarised.
+
+Printed (run with ``pytest -s``):
+1. a flight's wall time with 10 Hz telemetry over the same flight without
+   any (``World.run(None)``: no samples, no file) -- target at most 1.10.
+   Two flights: the shipped spaceport-ballistic mission (its program runs
+   every 20 ms step) and a program-less orbital coast (steps batched in
+   the compiled kernel, so the sampling is nearly all the work);
+2. ``rocketsim replay``'s summary of a one-hour 10 Hz flight's MCAP
+   (target under 1 s), against reading every message of the same file.
+Nothing asserts a time; the checks are that both flights end in the same
+state and that the summary counts every message.
+"""
+
+from pathlib import Path
+
+import numpy as np
+from mcap.reader import make_reader
+
+from rocketsim.scenario.load import load
+from rocketsim.sim.flight import fly
+from rocketsim.sim.world import World
+from rocketsim.telemetry.replay import read_run
+from rocketsim.telemetry.writer import TelemetryWriter
+from tests.benchmarks.timing import best_of
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+def _on_off(loaded, duration, out):
+    def off():
+        world = World.from_scenario(loaded, duration=duration)
+        world.run(None)
+        return world.bodies[0].y.copy()
+
+    def on():
+        fly(loaded, out, duration=duration)
+        return out
+
+    off()                                   # compile and warm both paths
+    fly(loaded, out, duration=1.0)
+    t_off, y_off = best_of(3, off)
+    t_on, _ = best_of(3, on)
+    return t_off, t_on, y_off
+
+
+def _report(name, duration, t_off, t_on):
+    print(f"\n{name}: {duration:g} s flown in {t_off * 1e3:.1f} ms without telemetry, "
+          f"{t_on * 1e3:.1f} ms with 10 Hz telemetry: ratio {t_on / t_off:.2f} "
+          f"({(t_on - t_off) / (duration * 10) * 1e6:.0f} us per sample)")
+
+
+def test_telemetry_on_versus_off(tmp_path, scenario):
+    shipped = load(ROOT / "scenarios" / "spaceport-ballistic.yaml")
+    t_off, t_on, y_off = _on_off(shipped, 20.0, tmp_path / "ballistic.mcap")
+    _report("spaceport-ballistic (program every step)", 20.0, t_off, t_on)
+    with open(tmp_path / "ballistic.mcap", "rb") as stream:
+        last = list(make_reader(stream).iter_messages(topics=["/sounding-payload/state"]))[-1]
+    import json
+    assert json.loads(last[2].data)["position"] == y_off[:3].tolist()   # same flight either way
+
+    coast = load(scenario(duration="600 s"))
+    t_off, t_on, _ = _on_off(coast, 600.0, tmp_path / "coast.mcap")
+    _report("orbital coast, no program (kernel batches 5 steps per sample)", 600.0, t_off, t_on)
+
+
+def _one_hour_file(path: Path) -> int:
+    """A 10 Hz hour of a circular orbit, through the real writer (no flight needed)."""
+    n = 36_001
+    with TelemetryWriter(path, 1_795_694_400 * 10**9) as telemetry:
+        telemetry.add_body("probe")
+        for k in range(n):
+            t = k / 10
+            angle = 2 * np.pi * t / 5554.0
+            position = [6.793e6 * np.cos(angle), 6.793e6 * np.sin(angle), 0.0]
+            telemetry.state("probe", {
+                "t": t, "position": position, "velocity": [0.0, 7660.0, 0.0],
+                "attitude": [1.0, 0.0, 0.0, 0.0], "body_rates": [0.0, 0.0, 0.0],
+                "latitude_deg": 0.0, "longitude_deg": float(np.degrees(angle)) % 360 - 180,
+                "altitude": 415e3, "speed": 7660.0, "orbit": {"eccentricity": 0.0}})
+            if k % 6000 == 0:
+                telemetry.event(t, "probe", "mark", {"k": k})
+                telemetry.log(t, "probe", f"line {k}")
+    return n
+
+
+def test_replay_summary_of_a_one_hour_flight(tmp_path):
+    path = tmp_path / "hour.mcap"
+    n = _one_hour_file(path)
+    t_summary, run = best_of(3, lambda: read_run(path))
+
+    def read_all():
+        with open(path, "rb") as stream:
+            return sum(1 for _ in make_reader(stream).iter_messages())
+
+    t_all, total = best_of(1, read_all)
+    print(f"\nreplay summary of a one-hour 10 Hz MCAP ({path.stat().st_size / 1e6:.1f} MB, "
+          f"{total} messages): {t_summary * 1e3:.0f} ms; reading every message: "
+          f"{t_all * 1e3:.0f} ms (ratio {t_summary / t_all:.2f})")
+    assert run.problem is None and run.counts["/probe/state"] == n
+    assert sum(run.counts.values()) == total and len(run.events) == 7
+    assert run.final["probe"]["t"] == 3600.0

@@ -1,0 +1,185 @@
+"""``rocketsim replay``: summary, safety of shared files, damaged files, --verify."""
+
+import json
+import shutil
+from pathlib import Path
+
+import pytest
+from click.testing import CliRunner
+from mcap.reader import make_reader
+from mcap.writer import CompressionType, Writer
+
+from rocketsim.scenario.load import load
+from rocketsim.sim.flight import fly
+from rocketsim.telemetry.replay import UntrustedProgram, lay_out, read_run, verify
+
+ROOT = Path(__file__).resolve().parents[1]
+
+PROGRAM = """
+def main(fc):
+    fc.log("coasting")
+    fc.sleep(1.0)
+    fc.event("marker", altitude_m=fc.altitude)
+"""
+
+# Writes a file when imported and when run: proof of execution.
+MALICIOUS = """
+from pathlib import Path
+Path({proof!r}).write_text("imported")
+
+def main(fc):
+    Path({proof!r}).write_text("ran")
+"""
+
+
+def replay(*args):
+    from rocketsim_cli.main import main
+    return CliRunner().invoke(main, ["replay", *map(str, args)], catch_exceptions=False)
+
+
+@pytest.fixture
+def run_file(scenario, tmp_path):
+    out = tmp_path / "run.mcap"
+    fly(load(scenario(PROGRAM, duration="3 s")), out)
+    return out
+
+
+def test_summary_lists_outcome_bodies_events_and_files(run_file):
+    result = replay(run_file)
+    assert result.exit_code == 0, result.output
+    text = result.output
+    assert "scenario test" in text and "outcome: ok" in text
+    assert "probe: 31 states" in text and "last: T+3.00 s" in text
+    assert "T+1.00 s  probe: marker" in text
+    assert "program/program.py" in text and "not executed" in text
+    assert "program log: 1 lines, last: coasting" in text
+
+
+def test_nothing_from_a_shared_program_runs_without_trust(scenario, tmp_path):
+    proof = tmp_path / "proof.txt"
+    out = tmp_path / "shared.mcap"
+    path = scenario(MALICIOUS.format(proof=str(proof)), duration="1 s")
+    fly(load(path), out)
+    assert proof.read_text() == "ran"            # flying it did run it
+    proof.unlink()
+    shutil.rmtree(tmp_path / "__pycache__", ignore_errors=True)
+    path.with_name("program.py").unlink()        # only the shared file is left
+    assert replay(out).exit_code == 0
+    assert replay(out, "--export", "csv", tmp_path / "tables", "--plot", tmp_path / "p.png").exit_code == 0
+    refused = replay(out, "--verify")
+    assert refused.exit_code == 2 and "--trust" in refused.output
+    with pytest.raises(UntrustedProgram):
+        verify(out)
+    assert not proof.exists()                    # nothing executed it
+    trusted = replay(out, "--verify", "--trust")
+    assert "executing the program program/program.py" in trusted.output
+    assert trusted.exit_code == 0 and "bit-identical" in trusted.output
+    assert proof.read_text() == "ran"            # --trust did
+
+
+def test_verify_trust_on_a_shipped_mission_is_bit_identical(tmp_path):
+    out = tmp_path / "ballistic.mcap"
+    fly(load(ROOT / "scenarios" / "spaceport-ballistic.yaml"), out, duration=12.0)
+    result = replay(out, "--verify", "--trust")
+    assert result.exit_code == 0, result.output
+    assert "verify: bit-identical" in result.output
+
+
+def _rewrite(source: Path, target: Path, change):
+    """Copy an MCAP record for record, letting ``change(index, topic, data)`` edit a message."""
+    with open(source, "rb") as stream, open(target, "wb") as sink:
+        reader = make_reader(stream)
+        writer = Writer(sink, compression=CompressionType.ZSTD)
+        writer.start()
+        summary = reader.get_summary()
+        schemas = {i: writer.register_schema(s.name, s.encoding, s.data) for i, s in summary.schemas.items()}
+        channels = {i: writer.register_channel(c.topic, c.message_encoding, schemas[c.schema_id])
+                    for i, c in summary.channels.items()}
+        for index, (_, channel, message) in enumerate(reader.iter_messages(log_time_order=False)):
+            writer.add_message(channels[message.channel_id], message.log_time,
+                               change(index, channel.topic, bytes(message.data)), message.publish_time)
+        for attachment in reader.iter_attachments():
+            writer.add_attachment(attachment.create_time, attachment.log_time, attachment.name,
+                                  attachment.media_type, attachment.data)
+        for record in reader.iter_metadata():
+            writer.add_metadata(record.name, record.metadata)
+        writer.finish()
+
+
+def test_a_run_edited_by_one_byte_is_caught_at_that_message(run_file, tmp_path):
+    edited = tmp_path / "edited.mcap"
+    target = {}
+
+    def change(index, topic, data):
+        if topic == "/probe/state" and b'"t":2.0,' in data:
+            target.update(index=index)
+            position = data.index(b'"position":[') + len(b'"position":[')
+            digit = data[position + 2:position + 3]
+            return data[:position + 2] + (b"1" if digit != b"1" else b"2") + data[position + 3:]
+        return data
+
+    _rewrite(run_file, edited, change)
+    assert target
+    verdict = verify(edited, trust=True)
+    assert not verdict.identical
+    assert verdict.difference["index"] == target["index"]
+    assert verdict.difference["topic"] == "/probe/state"
+    assert verdict.difference["field"] == "position_x"
+    result = replay(edited, "--verify", "--trust")
+    assert result.exit_code == 1 and f"DIFFERS at message {target['index']} (/probe/state" in result.output
+    # the untouched copy is identical
+    same = tmp_path / "same.mcap"
+    _rewrite(run_file, same, lambda i, t, d: d)
+    assert verify(same, trust=True).identical
+
+
+def test_a_file_cut_at_half_is_an_error_with_a_summary_of_what_is_readable(scenario, tmp_path):
+    run_file = tmp_path / "long.mcap"
+    fly(load(scenario(PROGRAM, duration="120 s")), run_file)          # several chunks
+    data = run_file.read_bytes()
+    cut = tmp_path / "cut.mcap"
+    cut.write_bytes(data[:len(data) // 2])
+    result = replay(cut)
+    assert result.exit_code == 2
+    assert "damaged" in result.stderr and "Traceback" not in result.stderr
+    assert "scenario test" in result.stdout           # the metadata at the start is readable
+    run = read_run(cut)
+    states = run.counts.get("/probe/state", 0)
+    assert run.problem and 300 < states < 1201
+    assert run.final["probe"]["t"] == pytest.approx((states - 1) / 10)    # the last readable state
+    assert f"probe: {states} states" in result.stdout
+
+
+def test_a_corrupted_file_is_an_error_not_a_traceback(run_file, tmp_path):
+    data = bytearray(run_file.read_bytes())
+    middle = len(data) // 2
+    data[middle:middle + 64] = bytes(64)
+    bad = tmp_path / "bad.mcap"
+    bad.write_bytes(bytes(data))
+    result = replay(bad)
+    assert result.exit_code == 2
+    not_mcap = tmp_path / "not.mcap"
+    not_mcap.write_text("hello")
+    assert replay(not_mcap).exit_code == 2
+    assert replay(tmp_path / "missing.mcap").exit_code == 2
+
+
+def test_a_program_exception_leaves_a_readable_file_with_the_error(scenario, tmp_path):
+    out = tmp_path / "failed.mcap"
+    program = "def main(fc):\n    fc.sleep(0.5)\n    raise ValueError('bad gain')\n"
+    with pytest.raises(Exception, match="bad gain"):
+        fly(load(scenario(program, duration="3 s")), out)
+    result = replay(out)
+    assert result.exit_code == 0
+    assert "outcome: error" in result.output and "error at T+0.50 s: " in result.output
+    assert "bad gain" in result.output
+
+
+def test_lay_out_keeps_the_files_inside_the_folder(run_file, tmp_path):
+    run = read_run(run_file)
+    run.metadata["files"] = dict(run.metadata["files"], vehicle="../../../../etc/vehicle.yaml")
+    scenario = lay_out(run, tmp_path / "files")
+    assert (tmp_path / "files").resolve() in scenario.resolve().parents
+    run.metadata["files"]["vehicle"] = "/etc/vehicle.yaml"
+    with pytest.raises(ValueError):
+        lay_out(run, tmp_path / "other")

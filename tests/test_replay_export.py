@@ -1,0 +1,104 @@
+"""``rocketsim replay --export`` and ``--plot``: tables equal to the MCAP, a drawn PNG."""
+
+import csv
+import json
+import sys
+
+import numpy as np
+import pytest
+from click.testing import CliRunner
+from mcap.reader import make_reader
+
+from rocketsim.scenario.load import load
+from rocketsim.sim.flight import fly
+from tests.run_files import write_scenario
+
+PROGRAM = """
+def main(fc):
+    fc.sleep(2.0)
+    fc.event("marker", altitude_m=fc.altitude)
+"""
+
+AXES = {"position": "xyz", "velocity": "xyz", "body_rates": "xyz", "attitude": "wxyz"}
+
+
+def replay(*args):
+    from rocketsim_cli.main import main
+    return CliRunner().invoke(main, ["replay", *map(str, args)], catch_exceptions=False)
+
+
+@pytest.fixture(scope="module")
+def run_file(tmp_path_factory):
+    folder = tmp_path_factory.mktemp("export")
+    scenario = write_scenario(folder, PROGRAM, "5 s")
+    out = folder / "run.mcap"
+    fly(load(scenario), out)
+    return out
+
+
+def mcap_states(path):
+    """The state messages straight from the mcap reader (the reference)."""
+    with open(path, "rb") as stream:
+        return [json.loads(m.data) for _, _, m in make_reader(stream).iter_messages(topics=["/probe/state"])]
+
+
+def expected_value(message, column):
+    """The value of a CSV column in a state message, found by hand."""
+    if column in message:
+        return message[column]
+    key, _, part = column.rpartition("_")
+    if key in AXES:
+        return message[key][AXES[key].index(part)]
+    assert column.startswith("orbit_")
+    return message["orbit"][column[len("orbit_"):]]
+
+
+def test_csv_rows_and_values_equal_the_mcap(run_file, tmp_path):
+    result = replay(run_file, "--export", "csv", tmp_path / "tables")
+    assert result.exit_code == 0, result.output
+    with open(tmp_path / "tables" / "probe.csv", newline="") as stream:
+        rows = list(csv.DictReader(stream))
+    states = mcap_states(run_file)
+    assert len(rows) == len(states) == 51
+    for row, message in zip(rows, states):
+        assert set(row) >= {"t", "position_x", "attitude_w", "orbit_eccentricity", "altitude"}
+        for column, text in row.items():
+            value = expected_value(message, column)
+            assert (text == "" if value is None else float(text) == value), column   # every digit kept
+    with open(tmp_path / "tables" / "events.csv", newline="") as stream:
+        events = list(csv.DictReader(stream))
+    assert [(e["t"], e["name"]) for e in events] == [("2.0", "marker")]
+    assert json.loads(events[0]["figures"])["altitude_m"] == pytest.approx(states[20]["altitude"])
+
+
+def test_parquet_rows_and_values_equal_the_mcap(run_file, tmp_path):
+    pyarrow_parquet = pytest.importorskip("pyarrow.parquet")
+    assert replay(run_file, "--export", "parquet", tmp_path / "pq").exit_code == 0
+    table = pyarrow_parquet.read_table(tmp_path / "pq" / "probe.parquet").to_pydict()
+    states = mcap_states(run_file)
+    assert len(table["t"]) == len(states)
+    for column, values in table.items():
+        assert values == [expected_value(m, column) for m in states], column
+
+
+def test_parquet_without_pyarrow_is_a_clear_error(run_file, tmp_path, monkeypatch):
+    monkeypatch.setitem(sys.modules, "pyarrow", None)         # as if not installed
+    monkeypatch.setitem(sys.modules, "pyarrow.parquet", None)
+    result = replay(run_file, "--export", "parquet", tmp_path / "pq")
+    assert result.exit_code == 2
+    assert "pyarrow" in result.output and "rocketsim[parquet]" in result.output
+    assert "Traceback" not in result.output
+
+
+def test_plot_writes_a_png_that_is_not_blank(run_file, tmp_path):
+    from matplotlib.image import imread
+    out = tmp_path / "flight.png"
+    result = replay(run_file, "--plot", out)
+    assert result.exit_code == 0, result.output
+    pixels = imread(out)[..., :3]
+    assert pixels.shape[0] > 400 and pixels.shape[1] > 600
+    drawn = np.any(pixels < 0.9, axis=-1)
+    assert 0.01 < drawn.mean() < 0.6                            # axes, text and lines, not a blank page
+    # the default colour of the first line (matplotlib C0, #1f77b4) is on the page
+    blue = np.all(np.abs(pixels - np.array([0x1f, 0x77, 0xb4]) / 255) < 0.05, axis=-1)
+    assert blue.sum() > 200
