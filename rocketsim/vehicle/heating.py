@@ -1,0 +1,62 @@
+"""Stagnation-point heating and a heat shield as one lumped thermal mass.
+
+Physics model ("Heating by the Sutton-Graves stagnation-point relation ...,
+reduced for a hot wall, with radiative cooling, and a heat shield treated as a
+single lumped mass with a 2 400 K limit"); EQUATIONS.md::
+
+    q_cold = k sqrt(rho / r_n) v^3                (W/m^2; K. Sutton & R. A. Graves,
+                                                   NASA TR R-376, 1971)
+    q_hot  = q_cold (1 - h_w / h_0)               hot-wall reduction: the wall's
+             h_w = c_p T_w,  h_0 = c_p T + v^2/2  enthalpy against the flow's total
+                                                  (M. E. Tauber, NASA TP-2914, 1989, eq. 1)
+    m c dT/dt = A (q_hot - eps sigma T^4)         lumped shield, radiating from the same area
+
+``k`` is :data:`~rocketsim.constants.SUTTON_GRAVES_EARTH` in air and
+:data:`~rocketsim.constants.SUTTON_GRAVES_MARS` in CO2; ``r_n`` the effective
+nose radius (m), ``rho`` (kg/m^3) and ``v`` (m/s) the free stream's density
+and the air-relative speed. Exceeding
+:data:`~rocketsim.constants.HEAT_SHIELD_LIMIT` is a failure (an event of the
+world).
+"""
+
+from __future__ import annotations
+
+import math
+
+from rocketsim._jit import njit
+from rocketsim.constants import STEFAN_BOLTZMANN
+
+
+@njit
+def sutton_graves(rho, speed, nose_radius, k):
+    """Cold-wall stagnation-point convective heat flux (W/m^2)."""
+    if rho <= 0.0:
+        return 0.0
+    return k * math.sqrt(rho / nose_radius) * speed ** 3
+
+
+@njit
+def hot_wall_factor(wall_temperature, air_temperature, speed, cp):
+    """``1 - h_w / h_0`` (0 when the wall is as hot as the flow's total enthalpy)."""
+    total = cp * air_temperature + 0.5 * speed * speed
+    return max(0.0, 1.0 - cp * wall_temperature / total)
+
+
+@njit
+def shield_rate(temperature, rho, speed, air_temperature, nose_radius, k, cp, emissivity,
+                area, heat_capacity):
+    """dT/dt (K/s) of a lumped shield of ``heat_capacity = m c`` (J/K) and ``area`` (m^2)."""
+    q = sutton_graves(rho, speed, nose_radius, k) * hot_wall_factor(temperature, air_temperature, speed, cp)
+    return area * (q - emissivity * STEFAN_BOLTZMANN * temperature ** 4) / heat_capacity
+
+
+@njit
+def advance_shield(temperature, h, rho, speed, air_temperature, nose_radius, k, cp, emissivity,
+                   area, heat_capacity):
+    """The shield's temperature (K) after ``h`` seconds at the given flow (held): one RK4 step."""
+    args = (rho, speed, air_temperature, nose_radius, k, cp, emissivity, area, heat_capacity)
+    k1 = shield_rate(temperature, *args)
+    k2 = shield_rate(temperature + 0.5 * h * k1, *args)
+    k3 = shield_rate(temperature + 0.5 * h * k2, *args)
+    k4 = shield_rate(temperature + h * k3, *args)
+    return temperature + h / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4)
