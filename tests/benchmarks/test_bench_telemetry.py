@@ -39,8 +39,11 @@ def _on_off(loaded, duration, out):
 
     off()                                   # compile and warm both paths
     fly(loaded, out, duration=1.0)
-    t_off, y_off = best_of(3, off)
-    t_on, _ = best_of(3, on)
+    t_off = t_on = float("inf")
+    for _ in range(3):                      # alternate, so a busy machine slows both alike
+        t, y_off = best_of(1, off)
+        t_off = min(t_off, t)
+        t_on = min(t_on, best_of(1, on)[0])
     return t_off, t_on, y_off
 
 
@@ -52,16 +55,16 @@ def _report(name, duration, t_off, t_on):
 
 def test_telemetry_on_versus_off(tmp_path, scenario):
     shipped = load(ROOT / "scenarios" / "spaceport-ballistic.yaml")
-    t_off, t_on, y_off = _on_off(shipped, 20.0, tmp_path / "ballistic.mcap")
-    _report("spaceport-ballistic (program every step)", 20.0, t_off, t_on)
+    t_off, t_on, y_off = _on_off(shipped, 30.0, tmp_path / "ballistic.mcap")
+    _report("spaceport-ballistic (program every step)", 30.0, t_off, t_on)
     with open(tmp_path / "ballistic.mcap", "rb") as stream:
         last = list(make_reader(stream).iter_messages(topics=["/sounding-payload/state"]))[-1]
     import json
     assert json.loads(last[2].data)["position"] == y_off[:3].tolist()   # same flight either way
 
-    coast = load(scenario(duration="600 s"))
-    t_off, t_on, _ = _on_off(coast, 600.0, tmp_path / "coast.mcap")
-    _report("orbital coast, no program (kernel batches 5 steps per sample)", 600.0, t_off, t_on)
+    coast = load(scenario(duration="300 s"))
+    t_off, t_on, _ = _on_off(coast, 300.0, tmp_path / "coast.mcap")
+    _report("orbital coast, no program (kernel batches 5 steps per sample)", 300.0, t_off, t_on)
 
 
 def _one_hour_file(path: Path) -> int:
