@@ -21,6 +21,7 @@ import numpy as np
 from rocketsim.flight.readings import StateView
 from rocketsim.frames.elements import Elements
 from rocketsim.frames.quaternion import quat_from_axis_angle, quat_multiply
+from rocketsim.vehicle.control import Propulsion
 
 if TYPE_CHECKING:  # pragma: no cover
     from rocketsim.sim.world import Body, World
@@ -33,7 +34,8 @@ class FlightComputer:
         self._world = world
         self._body = body
         self._nav: StateView | None = None
-        self._air_data: dict[str, float] = {}
+        self._readings: dict[str, float] = {}
+        self._engines: Propulsion | None = None
 
     # --- timing -------------------------------------------------------------
     def step(self) -> None:
@@ -68,7 +70,7 @@ class FlightComputer:
             return self._nav
         truth = body.view()
         sensors = body.sensors
-        self._air_data = {}
+        self._readings = {}
         if sensors is None or sensors.perfect:
             self._nav = truth
             return truth
@@ -89,15 +91,15 @@ class FlightComputer:
                      "time_to_apoapsis", "vertical_speed", "horizontal_speed", "mach"):
             getattr(view, name)
 
-    def _air(self, name: str, value: Callable[[], float]) -> float:
-        """An air-data reading with its sensor error, drawn once per step."""
+    def _measured(self, name: str, value: Callable[[], float]) -> float:
+        """A scalar reading with its sensor's error (air data, radar, gauges), once per step."""
         self._view()
-        if name not in self._air_data:
+        if name not in self._readings:
             sensors = self._body.sensors
             truth = value()
-            self._air_data[name] = truth if sensors is None or sensors.perfect else \
+            self._readings[name] = truth if sensors is None or sensors.perfect else \
                 sensors.scalar(name, truth, self._world.k)
-        return self._air_data[name]
+        return self._readings[name]
 
     # --- time ---------------------------------------------------------------
     @property
@@ -144,7 +146,7 @@ class FlightComputer:
     @property
     def radar_altitude(self) -> float:
         """Height above the ground (the ellipsoid: no terrain), with the radar's error, m."""
-        return self._air("radar_altitude", lambda: self._body.view().geodetic[2])
+        return self._measured("radar_altitude", lambda: self._body.view().geodetic[2])
 
     @property
     def latitude(self) -> float:
@@ -213,12 +215,12 @@ class FlightComputer:
     @property
     def air_density(self) -> float:
         """Density of the air at the vehicle, kg/m^3 (zero above 600 km)."""
-        return self._air("air_density", lambda: self._view().air[0])
+        return self._measured("air_density", lambda: self._view().air[0])
 
     @property
     def air_pressure(self) -> float:
         """Static pressure of the air at the vehicle, Pa (zero above 600 km)."""
-        return self._air("air_pressure", lambda: self._view().air[1])
+        return self._measured("air_pressure", lambda: self._view().air[1])
 
     @property
     def air_temperature(self) -> float:
@@ -243,22 +245,69 @@ class FlightComputer:
     @property
     def airspeed(self) -> float:
         """Speed relative to the air, m/s."""
-        return self._air("airspeed", lambda: self._view().airspeed)
+        return self._measured("airspeed", lambda: self._view().airspeed)
 
     @property
     def mach(self) -> float:
         """Airspeed over the local speed of sound."""
-        return self._air("mach", lambda: self._view().mach)
+        return self._measured("mach", lambda: self._view().mach)
 
     @property
     def dynamic_pressure(self) -> float:
         """``q = rho |v_air|^2 / 2``, Pa."""
-        return self._air("dynamic_pressure", lambda: self._view().dynamic_pressure)
+        return self._measured("dynamic_pressure", lambda: self._view().dynamic_pressure)
 
     @property
     def angle_of_attack(self) -> float:
         """Angle between the nose and the air-relative velocity, rad."""
-        return self._air("angle_of_attack", lambda: self._view().angle_of_attack)
+        return self._measured("angle_of_attack", lambda: self._view().angle_of_attack)
+
+    # --- engines ------------------------------------------------------------
+    def _propulsion(self):
+        body = self._body
+        if body.vehicle is None:
+            raise ValueError(f"{body.name} has no engines (a rigid_body vehicle)")
+        if self._engines is None or self._engines.model is not body.vehicle:
+            self._engines = Propulsion(body.vehicle)
+        return self._engines
+
+    def ignite(self, which=None) -> list[str]:
+        """Command ignition of all engines, or of an engine, group or stage by name
+        (``"booster"``, ``"Merlin 1D ring"``, ``"booster/Merlin 1D ring/3"``) or index.
+        Thrust follows after the ignition dead time and spool-up. Returns the
+        engines that accepted (not already on, propellant left, an ignition left)."""
+        return self._propulsion().ignite(self._body.y, which)
+
+    def shutdown(self, which=None) -> list[str]:
+        """Command engines off (the tail-off follows); returns the engines that were on."""
+        return self._propulsion().shutdown(self._body.y, which)
+
+    def throttle(self, value: float, which=None) -> None:
+        """Command a throttle (0-1 of vacuum thrust, clipped to each engine's range and
+        reached at its slew rate)."""
+        self._propulsion().throttle(self._world.t, float(value), which)
+
+    @property
+    def engines(self) -> list[dict]:
+        """Each engine now: name, on, spool, throttle, gimbal_rad, thrust_N,
+        mass_flow_kg_s, ignitions_left, separated (flow separation)."""
+        body = self._body
+        return self._propulsion().states(body.y, self._world.t, body.view().air[1])
+
+    @property
+    def thrust(self) -> float:
+        """Total thrust of all engines now, N."""
+        if self._body.vehicle is None:
+            return 0.0
+        return float(sum(e["thrust_N"] for e in self.engines))
+
+    @property
+    def propellant(self) -> dict[str, float]:
+        """Propellant left per tank (``stage/tank`` -> kg), with the gauge's error."""
+        if self._body.vehicle is None:
+            return {}
+        levels = self._propulsion().propellant(self._body.y)
+        return {name: self._measured(f"propellant/{name}", lambda m=mass: m) for name, mass in levels.items()}
 
     # --- mass, gravity, orbit ---------------------------------------------------
     @property

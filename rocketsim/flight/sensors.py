@@ -182,9 +182,17 @@ class Sensors:
         if level not in LEVELS:
             raise ValueError(f"unknown sensor level {level!r}; use one of {', '.join(LEVELS)}")
         self.level = level
-        scale = LEVELS[level]
-        self.streams = {name: ErrorStream(seed, f"{body}/{name}", spec, dt, scale)
-                        for name, spec in ERRORS.items()}
+        self._seed, self._body, self._dt, self._scale = seed, body, dt, LEVELS[level]
+        self.streams: dict[str, ErrorStream] = {}
+
+    def stream(self, name: str) -> ErrorStream:
+        """The stream of quantity ``name``; ``kind/detail`` names (``propellant/stage/tank``)
+        take the error of ``kind`` and a stream of their own."""
+        if name not in self.streams:
+            spec = ERRORS[name.split("/", 1)[0]]
+            self.streams[name] = ErrorStream(self._seed, f"{self._body}/{name}", spec, self._dt,
+                                             self._scale)
+        return self.streams[name]
 
     @property
     def perfect(self) -> bool:
@@ -192,9 +200,9 @@ class Sensors:
 
     def vector(self, name: str, truth, k: int | None = None) -> np.ndarray:
         """A 3-vector measured axis by axis (``name.x``, ``.y``, ``.z``) at step ``k``."""
-        return np.array([self.streams[f"{name}.{axis}"].measure(value, k)
+        return np.array([self.stream(f"{name}.{axis}").measure(value, k)
                          for axis, value in zip("xyz", truth)])
 
     def scalar(self, name: str, truth: float, k: int | None = None) -> float:
         """One quantity measured at step ``k``."""
-        return self.streams[name].measure(truth, k)
+        return self.stream(name).measure(truth, k)
