@@ -56,6 +56,10 @@ def fly(scenario: Path, output: Path | None, step: float | None, duration: float
     except _Terminated:
         click.echo(f"\nterminated; telemetry so far is in {output}", err=True)
         sys.exit(143)
+    except OSError as error:
+        click.echo(f"\nerror: {error}; what was written to {output} is readable with "
+                   f"'rocketsim replay {output}'", err=True)
+        sys.exit(1)
     finally:
         signal.signal(signal.SIGTERM, previous)
     click.echo(format_summary(summary))

@@ -183,3 +183,40 @@ def test_lay_out_keeps_the_files_inside_the_folder(run_file, tmp_path):
     run.metadata["files"]["vehicle"] = "/etc/vehicle.yaml"
     with pytest.raises(ValueError):
         lay_out(run, tmp_path / "other")
+
+
+class _FullDisk:
+    """A file that takes ``budget`` bytes, then fails as a full disk does (ENOSPC)."""
+
+    def __init__(self, path, budget):
+        self._file = open(path, "wb")
+        self._left = budget
+
+    def write(self, data):
+        if len(data) > self._left:
+            self._file.write(bytes(data[:self._left]))
+            self._left = 0
+            import errno
+            import os
+            raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
+        self._left -= len(data)
+        return self._file.write(data)
+
+    def __getattr__(self, name):
+        return getattr(self._file, name)
+
+
+def test_a_full_disk_leaves_what_was_written_readable(scenario, tmp_path, monkeypatch):
+    import rocketsim.telemetry.writer as writer_module
+    out = tmp_path / "full.mcap"
+    monkeypatch.setattr(writer_module, "open", lambda path, mode: _FullDisk(path, 600_000), raising=False)
+    with pytest.raises(OSError, match="No space left"):
+        fly(load(scenario(PROGRAM, duration="300 s")), out)       # ~1 MB: the disk fills mid-flight
+    monkeypatch.undo()
+    run = read_run(out)
+    assert run.problem and "cut short" in run.problem
+    assert run.metadata["rocketsim"]["scenario"] == "test"
+    assert 200 < run.counts["/probe/state"] < 3001
+    assert run.events[0]["name"] == "marker"
+    result = replay(out)
+    assert result.exit_code == 2 and "marker" in result.output

@@ -48,8 +48,11 @@ def fly(loaded: LoadedScenario, out: str | Path, *, step: float | None = None,
             summary = world.run(telemetry)
         except BaseException as caught:
             error = _signal_behind(caught)
-            telemetry.error(world.t, f"{type(error).__name__}: {error}" if str(error) else type(error).__name__)
-            telemetry.metadata("outcome", {"status": "error", "error": str(error) or type(error).__name__})
+            try:
+                telemetry.error(world.t, f"{type(error).__name__}: {error}" if str(error) else type(error).__name__)
+                telemetry.metadata("outcome", {"status": "error", "error": str(error) or type(error).__name__})
+            except OSError:
+                pass        # a full disk takes no more: what was written stays readable
             if error is not caught:
                 raise error from None
             raise

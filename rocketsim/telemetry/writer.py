@@ -156,5 +156,11 @@ class TelemetryWriter:
     def __enter__(self) -> "TelemetryWriter":
         return self
 
-    def __exit__(self, *exc) -> None:
-        self.close()
+    def __exit__(self, exc_type, exc, traceback) -> None:
+        if exc_type is None:
+            self.close()
+            return
+        try:
+            self.close()
+        except OSError:
+            pass            # a full disk: the error already on its way is the one to report
