@@ -220,3 +220,28 @@ def test_a_full_disk_leaves_what_was_written_readable(scenario, tmp_path, monkey
     assert run.events[0]["name"] == "marker"
     result = replay(out)
     assert result.exit_code == 2 and "marker" in result.output
+
+
+def test_the_writer_streams_to_disk_with_bounded_memory(tmp_path):
+    """Memory held while writing grows by the chunk index only (~a few hundred
+    bytes per 256 KiB chunk), not with the messages: a long cruise streams."""
+    import tracemalloc
+    from rocketsim.telemetry.writer import TelemetryWriter
+    state = {"t": 0.0, "position": [6.8e6, 0.0, 0.0], "velocity": [0.0, 7.6e3, 0.0],
+             "attitude": [1.0, 0.0, 0.0, 0.0], "body_rates": [0.0, 0.0, 0.0], "latitude_deg": 0.0,
+             "longitude_deg": 0.0, "altitude": 4.2e5, "speed": 7.6e3, "orbit": {"eccentricity": 0.0}}
+    tracemalloc.start()
+    try:
+        with TelemetryWriter(tmp_path / "long.mcap", 0) as telemetry:
+            telemetry.add_body("probe")
+            held = []
+            for k in range(8_000):
+                telemetry.state("probe", dict(state, t=k / 10))
+                if k in (3_000, 7_999):
+                    held.append(tracemalloc.get_traced_memory()[0])
+    finally:
+        tracemalloc.stop()
+    written = (tmp_path / "long.mcap").stat().st_size
+    grown_per_sample = (held[1] - held[0]) / 5_000
+    assert written > 500_000               # several chunks
+    assert grown_per_sample < 40, grown_per_sample          # a sample is ~700 bytes of JSON
