@@ -262,6 +262,15 @@ class FlightComputer:
         """Angle between the nose and the air-relative velocity, rad."""
         return self._measured("angle_of_attack", lambda: self._view().angle_of_attack)
 
+    # --- staging ------------------------------------------------------------
+    def stage(self) -> str:
+        """Separate the lowest stage now; this program flies on with the upper stack.
+
+        The stage becomes a body of its own (flown by its program from the
+        scenario's ``programs:``, if any). Returns its name.
+        """
+        return self._world.separate(self._body).name
+
     # --- engines ------------------------------------------------------------
     def _propulsion(self):
         body = self._body

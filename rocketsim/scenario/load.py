@@ -44,6 +44,12 @@ class LoadedScenario:
     def program_path(self) -> Path | None:
         return self.files.get("program")
 
+    @property
+    def stage_program_paths(self) -> dict[str, Path]:
+        """Programs of separating stages, by stage name."""
+        return {role.split("/", 1)[1]: path for role, path in self.files.items()
+                if role.startswith("program/")}
+
     def atmosphere(self):
         """The day's 50 m atmosphere table (the standard atmosphere without weather)."""
         from rocketsim.scenario.weather import StandardWeather, build_atmosphere
@@ -80,7 +86,24 @@ def load(path: str | Path) -> LoadedScenario:
         ref = _resolve(path, program, source, ("program",))
         data["program"] = ref
         files["program"] = ref
+    programs = data.get("programs")
+    if isinstance(programs, dict):
+        resolved = {}
+        for stage, reference in programs.items():
+            if isinstance(reference, str):
+                resolved[stage] = _resolve(path, reference, source, ("programs", stage))
+                files[f"program/{stage}"] = resolved[stage]
+            else:
+                resolved[stage] = reference
+        data["programs"] = resolved
     scenario = validate(source, Scenario, data)
+    stages = [s.name for s in scenario.vehicle.stages or []]
+    for stage in scenario.programs:
+        if stage not in stages:
+            line, column = source.position(("programs", stage)) or (None, None)
+            raise InputError(f"no stage named {stage!r} in vehicle {scenario.vehicle.name!r}"
+                             + (f" (stages: {', '.join(stages)})" if stages else ""),
+                             file=path, line=line, column=column, field=f"programs.{stage}")
     sounding = getattr(scenario.weather, "file", None)
     if sounding is not None:
         # a sounding file is relative to the file that names it

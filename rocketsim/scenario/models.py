@@ -197,6 +197,9 @@ class Scenario(Strict):
         None, description="the day's weather, inline or as a path to a weather file; "
         "default: the US Standard Atmosphere 1976, calm")
     program: Optional[Path] = Field(None, description="flight-computer program (Python file with main(fc))")
+    programs: dict[str, Path] = Field(
+        default_factory=dict, description="programs of stages that separate: stage name -> "
+        "program file; a stage without one coasts as a body nobody flies")
     step: Annotated[Duration, Field(gt=0)] = Field(STEP, description="integration step, at most 0.1 s")
     program_cpu_budget: Annotated[Duration, Field(gt=0)] = Field(
         1.0, description="CPU time the program may use in one step before it is stopped")

@@ -36,7 +36,9 @@ from rocketsim.scenario.models import check_step
 from rocketsim.errors import InputError
 from rocketsim.sim.start import start_state
 from rocketsim.timescales import Epoch
+from rocketsim.scenario.models import VehicleSpec
 from rocketsim.vehicle.build import VehicleModel, build
+from rocketsim.vehicle.staging import separate
 
 
 @dataclass
@@ -56,6 +58,7 @@ class Body:
     sensors: Sensors | None = None
     _view: StateView | None = None
     vehicle: VehicleModel | None = None     # a staged vehicle: mass and engines from its arrays
+    stack: VehicleSpec | None = None        # the stages this body still carries (to separate)
 
     @property
     def position(self) -> np.ndarray:
@@ -105,6 +108,10 @@ class World:
         self.on_progress: Callable[[float], None] | None = None
         self._build_atmosphere = atmosphere
         self._atmosphere = None
+        self.seed = 0
+        self.sensor_level = "truth"
+        self.stage_programs: dict[str, object] = {}      # stage name -> (main, path)
+        self.program_cpu_budget = 1.0
 
     @property
     def atmosphere(self):
@@ -141,12 +148,55 @@ class World:
             # staged (issue 4): tanks and engine clocks extend the state; p's mass is unused
             body.vehicle = build(scenario.vehicle, air=world.atmosphere)
             body.y = body.vehicle.state(r, v, q, mission.initial_rates)
+            body.stack = scenario.vehicle
         world.sample_every = max(1, round(1.0 / (scenario.telemetry.rate * h)))
+        world.seed, world.sensor_level = scenario.seed, scenario.sensors
+        world.program_cpu_budget = scenario.program_cpu_budget
+        for stage, path in loaded.stage_program_paths.items():
+            world.stage_programs[stage] = (load_program(path), path)
         if loaded.program_path is not None:
-            main = load_program(loaded.program_path)
-            body.runner = ProgramRunner(main, loaded.program_path, scenario.program_cpu_budget)
-            body.fc = FlightComputer(world, body)
+            world._attach_program(body, load_program(loaded.program_path), loaded.program_path)
         return world
+
+    def _attach_program(self, body: Body, main, path) -> None:
+        body.runner = ProgramRunner(main, path, self.program_cpu_budget)
+        body.fc = FlightComputer(self, body)
+
+    # --- staging ------------------------------------------------------------
+    def separate(self, body: Body) -> Body:
+        """Separate the lowest stage of ``body``: ``body`` flies on as the upper stack,
+        the stage becomes a body of its own (its own channels, and its own program
+        when the scenario's ``programs:`` names one for it). Returns the new body.
+
+        Centre of mass and momentum of the two parts add up to the stack's
+        (:func:`rocketsim.vehicle.staging.separate`); no separation impulse.
+        """
+        stack = body.stack
+        if body.vehicle is None or stack is None or len(stack.stages) < 2:
+            raise ValueError(f"{body.name} has no stage left to separate")
+        (lower, y_lower), (upper, y_upper) = separate(stack, body.vehicle, body.y, 1,
+                                                      air=self.atmosphere)
+        stage = stack.stages[0].name
+        names = {b.name for b in self.bodies}
+        name = _channel_name(stage)
+        while name in names:
+            name += "_"
+        new = Body(name=name, y=y_lower, p=body.p.copy(), vehicle=lower, t=body.t, mu=body.mu,
+                   atmosphere=body.atmosphere,
+                   sensors=Sensors(self.seed, name, self.sensor_level, self.h))
+        body.vehicle, body.y, body._view = upper, y_upper, None
+        body.stack = stack.model_copy(update={"stages": stack.stages[1:]})
+        self.bodies.append(new)
+        if self.telemetry is not None:
+            self.telemetry.add_body(new.name)
+            self.telemetry.state(new.name, self.sample(new))
+        figures = {"stage": stage, "mass_kg": new.mass, "upper_mass_kg": body.mass}
+        self.event(body, "separation", {**figures, "separated_body": new.name})
+        self.event(new, "separation", {**figures, "from_body": body.name})
+        if stage in self.stage_programs:
+            self._attach_program(new, *self.stage_programs[stage])
+            new.fc.warm_up()
+        return new
 
     # --- records ------------------------------------------------------------
     def log(self, body: Body, message: str) -> None:
