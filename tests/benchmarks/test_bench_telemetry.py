@@ -12,9 +12,9 @@ Nothing asserts a time; the checks are that both flights end in the same
 state and that the summary counts every message.
 """
 
+import math
 from pathlib import Path
 
-import numpy as np
 from mcap.reader import make_reader
 
 from rocketsim.scenario.load import load
@@ -40,7 +40,7 @@ def _on_off(loaded, duration, out):
     off()                                   # compile and warm both paths
     fly(loaded, out, duration=1.0)
     t_off = t_on = float("inf")
-    for _ in range(3):                      # alternate, so a busy machine slows both alike
+    for _ in range(2):                      # alternate, so a busy machine slows both alike
         t, y_off = best_of(1, off)
         t_off = min(t_off, t)
         t_on = min(t_on, best_of(1, on)[0])
@@ -55,16 +55,16 @@ def _report(name, duration, t_off, t_on):
 
 def test_telemetry_on_versus_off(tmp_path, scenario):
     shipped = load(ROOT / "scenarios" / "spaceport-ballistic.yaml")
-    t_off, t_on, y_off = _on_off(shipped, 30.0, tmp_path / "ballistic.mcap")
-    _report("spaceport-ballistic (program every step)", 30.0, t_off, t_on)
+    t_off, t_on, y_off = _on_off(shipped, 20.0, tmp_path / "ballistic.mcap")
+    _report("spaceport-ballistic (program every step)", 20.0, t_off, t_on)
     with open(tmp_path / "ballistic.mcap", "rb") as stream:
         last = list(make_reader(stream).iter_messages(topics=["/sounding-payload/state"]))[-1]
     import json
     assert json.loads(last[2].data)["position"] == y_off[:3].tolist()   # same flight either way
 
-    coast = load(scenario(duration="300 s"))
-    t_off, t_on, _ = _on_off(coast, 300.0, tmp_path / "coast.mcap")
-    _report("orbital coast, no program (kernel batches 5 steps per sample)", 300.0, t_off, t_on)
+    coast = load(scenario(duration="150 s"))
+    t_off, t_on, _ = _on_off(coast, 150.0, tmp_path / "coast.mcap")
+    _report("orbital coast, no program (kernel batches 5 steps per sample)", 150.0, t_off, t_on)
 
 
 def _one_hour_file(path: Path) -> int:
@@ -74,12 +74,12 @@ def _one_hour_file(path: Path) -> int:
         telemetry.add_body("probe")
         for k in range(n):
             t = k / 10
-            angle = 2 * np.pi * t / 5554.0
-            position = [6.793e6 * np.cos(angle), 6.793e6 * np.sin(angle), 0.0]
+            angle = 2 * math.pi * t / 5554.0
+            position = [6.793e6 * math.cos(angle), 6.793e6 * math.sin(angle), 0.0]
             telemetry.state("probe", {
                 "t": t, "position": position, "velocity": [0.0, 7660.0, 0.0],
                 "attitude": [1.0, 0.0, 0.0, 0.0], "body_rates": [0.0, 0.0, 0.0],
-                "latitude_deg": 0.0, "longitude_deg": float(np.degrees(angle)) % 360 - 180,
+                "latitude_deg": 0.0, "longitude_deg": math.degrees(angle) % 360 - 180,
                 "altitude": 415e3, "speed": 7660.0, "orbit": {"eccentricity": 0.0}})
             if k % 6000 == 0:
                 telemetry.event(t, "probe", "mark", {"k": k})
@@ -92,14 +92,15 @@ def test_replay_summary_of_a_one_hour_flight(tmp_path):
     n = _one_hour_file(path)
     t_summary, run = best_of(3, lambda: read_run(path))
 
-    def read_all():
+    def open_summary():
         with open(path, "rb") as stream:
-            return sum(1 for _ in make_reader(stream).iter_messages())
+            return make_reader(stream).get_summary()
 
-    t_all, total = best_of(1, read_all)
+    t_open, summary = best_of(3, open_summary)
+    total = summary.statistics.message_count
     print(f"\nreplay summary of a one-hour 10 Hz MCAP ({path.stat().st_size / 1e6:.1f} MB, "
-          f"{total} messages): {t_summary * 1e3:.0f} ms; reading every message: "
-          f"{t_all * 1e3:.0f} ms (ratio {t_summary / t_all:.2f})")
+          f"{total} messages): {t_summary * 1e3:.0f} ms (target < 1000 ms); opening the file's "
+          f"summary section alone: {t_open * 1e3:.1f} ms (ratio {t_summary / t_open:.1f})")
     assert run.problem is None and run.counts["/probe/state"] == n
     assert sum(run.counts.values()) == total and len(run.events) == 7
     assert run.final["probe"]["t"] == 3600.0
