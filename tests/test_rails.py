@@ -165,3 +165,16 @@ def test_held_attitude_stays_fixed_and_rails_stop_at_the_floor():
     _, taken = rails.advance_rails(low, 0, 0.02, 500, EARTH_P, EARTH_FIELD, NO_AIR,
                                    EARTH_P[1:4], rails.FREE)
     assert taken == 1                            # below 151 km the body must wake
+
+
+def test_batched_rails_are_bit_identical_to_single_steps():
+    y0 = leo(400e3)
+    y0[10:13] = (0.5, 0.1, -0.05)
+    inertia = np.array(INERTIA)
+    batched, _ = rails.advance_rails(y0, 0, 0.02, 300, EARTH_P, EARTH_FIELD, NO_AIR, inertia,
+                                     rails.FREE)
+    y = y0
+    for k in range(300):
+        y = rails.rails_step(y, k * 0.02, 0.02, EARTH_P, np.zeros((4, 3)), EARTH_FIELD, NO_AIR,
+                             inertia, rails.FREE)
+    np.testing.assert_array_equal(batched, y)

@@ -56,8 +56,8 @@ def turn_constants(y, inertia, dt):
     and the transverse body rates turn at ``-omega_s`` (Landau & Lifshitz,
     Mechanics, section 36; Goldstein, Classical Mechanics, section 5.6).
     Returns ``(a, b, c, s)``: the quaternions ``q_H`` and ``q_x`` (tuples) and
-    the cosine and sine of the rates' turn. The map is the same for every
-    step of one torque-free motion, so a batch of steps computes it once.
+    the cosine and sine of the rates' turn. The map is rebuilt from each
+    step's state (not once per batch), so batching never changes a bit.
     """
     i1, it = inertia[0], inertia[1]
     hx, hy, hz = quat_rotate(y[Q:Q + 4], np.array((i1 * y[W], it * y[W + 1], it * y[W + 2])))
@@ -123,6 +123,7 @@ def advance_rails(y, k0, h, n_steps, p, fp, air, inertia, mode, floor=RAILS_FLOO
 
     Step ``k`` starts at mission time ``(k0 + k) h``; other bodies in the field
     are held per 5 s bucket (as :func:`rocketsim.dynamics.nbody.advance_awake`).
+    Bit-identical to calling :func:`rails_step` once per step.
     Stops early, after the step that took the body below ``floor`` (m over the
     central body's ellipsoid, :func:`rails_floor`): it must wake up.
     """
@@ -134,19 +135,13 @@ def advance_rails(y, k0, h, n_steps, p, fp, air, inertia, mode, floor=RAILS_FLOO
     for k in range(4):
         if fp[F_MU + k] != 0.0 and k != int(fp[F_CENTER]):
             third = True
-    if mode == HELD:
-        y[W] = 0.0
-        y[W + 1] = 0.0
-        y[W + 2] = 0.0
-    a, b, c, sn = turn_constants(y, inertia, h)
     for k in range(n_steps):
         t = (k0 + k) * h
         if third and hold_time(t) != bucket:
             bucket = hold_time(t)
             s = bodies_at(fp, bucket)[0]
         translational_rk4(y, h, p, s, fp, air, pos)
-        if mode == FREE:
-            apply_turn(y, a, b, c, sn)
+        turn_attitude(y, inertia, h, mode)
         if radial_height(y, p) < floor:
             return y, k + 1
     return y, n_steps
