@@ -134,5 +134,6 @@ STRUCTURE_AXIAL_LIMIT_G = 15.0             # axial load (in g0) that breaks the 
 AIR_CP = 1004.7                            # J/(kg K)
 CO2_CP = 846.0                             # J/(kg K), CO2 near 300 K (NIST webbook)
 # Coulomb friction of a contact is regularised below this sliding speed
-# (F = -mu N v_t / sqrt(v_t^2 + eps^2)): a choice, not a physical figure.
-FRICTION_REGULARISATION = 0.05             # m/s
+# (F = -mu N v_t / sqrt(v_t^2 + eps^2)): a default for legs that give none; a
+# numerical choice (stability at the 5 ms sub-step), not a physical figure.
+FRICTION_REGULARISATION = 0.3              # m/s

@@ -28,7 +28,7 @@ import numpy as np
 
 from rocketsim._jit import njit
 from rocketsim.atmosphere.table import air_at
-from rocketsim.constants import EARTH_OMEGA, FRICTION_REGULARISATION
+from rocketsim.constants import EARTH_OMEGA
 from rocketsim.bodies.gravity import point_mass_j2
 from rocketsim.dynamics.state import (P_IXX, P_IYY, P_IZZ, P_J2, P_MU, P_POLAR_RADIUS, P_RADIUS, Q,
                                       R, V, W)
@@ -94,8 +94,7 @@ def _aero_and_contact(t, y, p, dy, rho, sound, x_cm, aero, fx, fy, fz, mx, my, m
     # contact only within reach of the ground (a cheap bound first)
     r = math.sqrt(y[R] ** 2 + y[R + 1] ** 2 + y[R + 2] ** 2)
     if r - p[P_RADIUS] < aero.ref[A_REACH] and radial_height(y, p) < aero.ref[A_REACH]:
-        a = contact_forces(y, x_cm, p[P_RADIUS], p[P_POLAR_RADIUS], EARTH_OMEGA, aero.contact,
-                           FRICTION_REGULARISATION)
+        a = contact_forces(y, x_cm, p[P_RADIUS], p[P_POLAR_RADIUS], EARTH_OMEGA, aero.contact)
         fx, fy, fz, mx, my, mz = fx + a[0], fy + a[1], fz + a[2], mx + a[3], my + a[4], mz + a[5]
     return fx, fy, fz, mx, my, mz
 

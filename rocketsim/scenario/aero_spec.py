@@ -15,7 +15,8 @@ from typing import Annotated, Literal, Optional
 
 from pydantic import BaseModel, ConfigDict, Field, field_validator
 
-from rocketsim.scenario.units import (Angle, AngularRate, Area, Force, Length, Mass,
+from rocketsim.constants import FRICTION_REGULARISATION
+from rocketsim.scenario.units import (Angle, AngularRate, Area, Force, Length, Mass, Speed,
                                       SpecificImpulse, Temperature)
 
 PositiveLength = Annotated[Length, Field(gt=0)]
@@ -68,6 +69,9 @@ class LegSpec(_Strict):
     stiffness: Annotated[float, Field(gt=0)] = Field(description="spring stiffness of one leg, N/m")
     damping: Annotated[float, Field(ge=0)] = Field(description="damping of one leg, N s/m")
     friction: Annotated[float, Field(ge=0)] = Field(0.6, description="Coulomb friction coefficient")
+    friction_speed: Annotated[Speed, Field(gt=0)] = Field(
+        FRICTION_REGULARISATION, description="sliding speed below which friction is regularised "
+        "(a damper of mu N / speed; keep mu N r^2 / (speed I_roll) under ~400 /s)")
 
 
 class ThrusterSpec(_Strict):

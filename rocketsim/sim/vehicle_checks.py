@@ -30,7 +30,8 @@ from rocketsim.bodies.gravity import point_mass_j2
 from rocketsim.constants import (AIR_CP, CO2_CP, DEG, HEAT_SHIELD_LIMIT, MARS_MU,
                                  SUTTON_GRAVES_EARTH, SUTTON_GRAVES_MARS)
 from rocketsim.dynamics.derivative import derivative
-from rocketsim.dynamics.state import P_J2, P_MU, P_POLAR_RADIUS, P_RADIUS, Q, R, V
+from rocketsim.dynamics.state import P_J2, P_MU, P_POLAR_RADIUS, P_RADIUS, Q, R, V, W
+from rocketsim.flight.readings import StateView
 from rocketsim.frames.earth_fixed import eci_to_ecef
 from rocketsim.frames.quaternion import quat_rotate
 from rocketsim.vehicle.aero import A_REACH
@@ -47,6 +48,7 @@ class VehicleChecks:
         self.temperature = heat_shield.initial_temperature if heat_shield is not None else math.nan
         self.pad = None if pad_ecef is None else np.asarray(pad_ecef, dtype=float)
         self.touched_down = False
+        self.previous = None        # (t, y) before the last step, for the touchdown figures
 
     def every_step(self, body) -> bool:
         """True while the body must be stepped one step at a time (in the air or near the ground)."""
@@ -64,11 +66,16 @@ class VehicleChecks:
         if body.flying and not self.touched_down and self._touching(body):
             self.touched_down = True
             world.event(body, "touchdown", self.touchdown_figures(body, view))
+        self.previous = (body.t, body.y.copy())
 
     # --- the checks ------------------------------------------------------------
     def _structure(self, world, body, view) -> None:
+        # flight loads only: thrust, air and RCS. The legs are idealised stiff
+        # springs (a real leg's stroke crushes); their impact is not the structure's.
+        arrays = body.vehicle.arrays
+        in_flight = arrays._replace(aero=arrays.aero._replace(contact=arrays.aero.contact[:0]))
         dy = np.zeros_like(body.y)
-        derivative(body.t, body.y, body.p, dy, body.vehicle.arrays)
+        derivative(body.t, body.y, body.p, dy, in_flight)
         x, y, z = body.position
         gravity = np.array(point_mass_j2(x, y, z, body.p[P_MU], body.p[P_RADIUS], body.p[P_J2]))
         sensed = dy[V:V + 3] - gravity
@@ -95,16 +102,34 @@ class VehicleChecks:
         return heights.size > 0 and float(heights.min()) <= 0.0
 
     def touchdown_figures(self, body, view) -> dict:
-        """Vertical and horizontal speed over the ground, tilt and distance to the pad."""
-        up = view.enu[2]                                   # ECI axes
-        axis = quat_rotate(body.attitude, np.array([1.0, 0.0, 0.0]))
+        """Vertical and horizontal speed over the ground, tilt and distance to the pad, at
+        the instant the first contact point reached the ground.
+
+        The step that touched down has already compressed the legs (by up to
+        ``|v| h``), so the figures come from the state before that step, carried
+        to the ground at the vertical acceleration the derivative gave there
+        (gravity, thrust, drag): ``v_td = -sqrt(v^2 - 2 a h_lowest)``.
+        """
+        if self.previous is not None:
+            t0, y0 = self.previous
+            before = StateView(t0, y0[R:R + 3].copy(), y0[V:V + 3].copy(), y0[Q:Q + 4].copy(),
+                               y0[W:W + 3].copy(), body.atmosphere, body.mu)
+            dy = np.zeros_like(y0)
+            derivative(t0, y0, body.p, dy, body.vehicle.arrays)
+            up = before.enu[2]
+            lowest = max(float(contact_heights(y0, body.p, body.vehicle).min()), 0.0)
+            vertical = -math.sqrt(max(before.vertical_speed ** 2 - 2.0 * float(dy[V:V + 3] @ up) * lowest, 0.0))
+            view, attitude = before, y0[Q:Q + 4]
+        else:
+            up, vertical, attitude = view.enu[2], view.vertical_speed, body.attitude
+        axis = quat_rotate(attitude, np.array([1.0, 0.0, 0.0]))
         tilt = math.acos(max(-1.0, min(1.0, float(axis @ up))))
-        figures = {"vertical_speed_m_s": view.vertical_speed,
+        figures = {"vertical_speed_m_s": vertical,
                    "horizontal_speed_m_s": view.horizontal_speed,
                    "tilt_deg": tilt / DEG}
         if self.pad is not None:
-            offset = eci_to_ecef(body.position, body.t) - self.pad
-            up_ecef = eci_to_ecef(up, body.t)
+            offset = eci_to_ecef(view.position, view.t) - self.pad
+            up_ecef = eci_to_ecef(up, view.t)
             figures["distance_to_pad_m"] = float(np.linalg.norm(offset - (offset @ up_ecef) * up_ecef))
         return figures
 

@@ -20,7 +20,7 @@ from collections import namedtuple
 
 import numpy as np
 
-from rocketsim.constants import G0
+from rocketsim.constants import FRICTION_REGULARISATION, G0
 from rocketsim.dynamics.state import N_STATE
 from rocketsim.errors import InputError
 from rocketsim.vehicle import aero as A
@@ -170,14 +170,15 @@ def build_aero(spec, chosen, stage_base, top: bool, with_fairing: bool, tank_nam
         for j in range(leg.count):
             phi = 2 * math.pi * (j + 0.5) / leg.count
             contact.append((base + leg.position, leg.radius * math.cos(phi),
-                            leg.radius * math.sin(phi), leg.stiffness, leg.damping, leg.friction))
+                            leg.radius * math.sin(phi), leg.stiffness, leg.damping, leg.friction,
+                            leg.friction_speed))
     # the body: a ring at the base (engine bells, skirt), a ring below the nose and the tip
     kb, cb = aero.body_contact_stiffness, aero.body_contact_damping
     for x, r in ((0.0, 0.5 * chosen[0].diameter), (nose_base, 0.5 * base_d)):
         for j in range(4):
             phi = 0.5 * math.pi * j
-            contact.append((x, r * math.cos(phi), r * math.sin(phi), kb, cb, 0.6))
-    contact.append((total, 0.0, 0.0, kb, cb, 0.6))
+            contact.append((x, r * math.cos(phi), r * math.sin(phi), kb, cb, 0.6, FRICTION_REGULARISATION))
+    contact.append((total, 0.0, 0.0, kb, cb, 0.6, FRICTION_REGULARISATION))
     contact = np.array(contact, dtype=float).reshape(-1, K.N_CONTACT)
     reach = max(math.sqrt(max(x * x, (x - total) ** 2) + y * y + z * z) for x, y, z in contact[:, :3])
     ref[A.A_REACH] = reach

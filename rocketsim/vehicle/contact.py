@@ -14,11 +14,18 @@ is pushed out along the ellipsoid's normal ``n`` and dragged by friction::
 with ``v`` the point's velocity relative to the ground, which turns with the
 body at ``omega_E`` about the inertial z axis, ``v_n = v.n`` and ``v_t`` the
 rest. The damper and friction only take energy out; the spring stores it.
-``eps`` is :data:`~rocketsim.constants.FRICTION_REGULARISATION`.
+``eps`` (m/s, per point) regularises Coulomb's law: below it friction acts as
+a damper of ``mu N / eps`` (default
+:data:`~rocketsim.constants.FRICTION_REGULARISATION`).
 
 A spring this stiff (a natural frequency of a few hundred rad/s) is what the
-sub-steps are for: classical RK4 is stable for ``|lambda| h < 2.78``, so a
-5 ms sub-step holds it and a 20 ms step does not.
+sub-steps are for: classical RK4 is stable for ``|lambda| h`` up to about 2.8
+(2.78 on the real axis, 2.83 on the imaginary), so a 5 ms sub-step holds a
+mode of 250 rad/s and a 20 ms step does not. Every mode counts: the rocking
+of the body on its legs (``k r^2 / I``), and friction's damping ``mu N r^2 /
+(eps I_roll)`` about the vertical, which for a squat vehicle with wide legs is
+the stiffest of all; a vehicle file must keep each ``|lambda|`` below about
+2 / 5 ms = 400 /s (this is why ``eps`` is a figure of the leg).
 """
 
 from __future__ import annotations
@@ -29,8 +36,8 @@ from rocketsim._jit import njit
 from rocketsim.vehicle.aero import moment_about_cm
 
 # columns of AeroArrays.contact
-K_X, K_Y, K_Z, K_STIFF, K_DAMP, K_MU = 0, 1, 2, 3, 4, 5
-N_CONTACT = 6
+K_X, K_Y, K_Z, K_STIFF, K_DAMP, K_MU, K_EPS = 0, 1, 2, 3, 4, 5, 6
+N_CONTACT = 7
 
 
 @njit
@@ -43,7 +50,7 @@ def point_height(px, py, pz, a, b):
 
 
 @njit
-def contact_forces(y, x_cm, a, b, spin, contact, eps):
+def contact_forces(y, x_cm, a, b, spin, contact):
     """Force (N, body axes) and moment (N m about the centre of mass) of the ground.
 
     ``y`` the state (inertial position, velocity, attitude ``q`` body ->
@@ -95,6 +102,7 @@ def contact_forces(y, x_cm, a, b, spin, contact, eps):
         sx = vx - vn * nx
         sy = vy - vn * ny
         sz = vz - vn * nz
+        eps = contact[i, K_EPS]
         slip = math.sqrt(sx * sx + sy * sy + sz * sz + eps * eps)
         k = -contact[i, K_MU] * normal / slip
         gx = normal * nx + k * sx

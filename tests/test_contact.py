@@ -1,0 +1,147 @@
+"""Ground contact (issue 5): a lander dropped onto its legs on the WGS84 ground.
+
+References: energy (the rotating-frame Jacobi energy of a body on a turning
+Earth can only fall when the ground's forces are springs, dampers and
+friction); the static deflection of a spring ``m gamma / (n k)`` with
+``gamma`` Somigliana's normal gravity (WGS84, EQUATIONS.md: the
+surface's effective gravity, gravity plus centrifugal, normal to the
+ellipsoid); free fall ``v = sqrt(v0^2 + 2 gamma h)``; and the stability limit
+of classical RK4 (|lambda h| about 2.8; e.g. Hairer & Wanner, Solving ODEs II,
+fig. IV.2.1).
+"""
+
+import math
+
+import numpy as np
+import pytest
+
+from rocketsim.constants import EARTH_J2, EARTH_MU, EARTH_OMEGA, EARTH_RADIUS_EQ
+from rocketsim.dynamics.rk4 import rk4_step, step
+from rocketsim.frames.geodetic import enu_basis, geodetic_to_ecef
+from rocketsim.frames.quaternion import quat_from_matrix
+from rocketsim.sim.vehicle_checks import VehicleChecks, contact_heights
+from rocketsim.vehicle.build import build
+from tests.aero_vehicles import corotating, earth_params, shipped
+
+LAT, LON = math.radians(28.5), math.radians(-80.6)
+K_LEG = 8.5e7                      # N/m, vehicles/lander.yaml
+N_LEGS = 4
+
+
+def somigliana(lat):
+    """Normal gravity on the WGS84 ellipsoid (m/s^2), EQUATIONS.md."""
+    s2 = math.sin(lat) ** 2
+    return 9.7803253359 * (1 + 0.00193185265241 * s2) / math.sqrt(1 - 0.00669437999013 * s2)
+
+
+@pytest.fixture(scope="module")
+def lander():
+    model = build(shipped("lander.yaml"))
+    mass, x_cm = model.mass_properties(model.state([0, 0, 0], [0, 0, 0]))[:2]
+    enu = enu_basis(LAT, LON)
+    up = enu[2]
+    axes = np.column_stack((up, enu[0], np.cross(up, enu[0])))        # body x up
+    # the feet are 1.2 m below the base: the centre of mass 2 m + 1.2 m + x_cm up
+    r = np.array(geodetic_to_ecef(LAT, LON, 2.0 + 1.2 + x_cm))
+    y = model.state(r, corotating(r) - 2.0 * up, q=quat_from_matrix(axes),
+                    w=axes.T @ np.array([0.0, 0.0, EARTH_OMEGA]))
+    return model, y, mass, up
+
+
+def jacobi_energy(model, y, p, mass):
+    """Energy in the frame turning with the ground: relative kinetic energy, gravity (point mass
+    + J2) and centrifugal potential, and the legs' springs (J)."""
+    r = y[0:3]
+    v = y[3:6] - corotating(r)
+    rn = np.linalg.norm(r)
+    s = r[2] / rn
+    potential = (-EARTH_MU / rn + EARTH_MU * EARTH_J2 * EARTH_RADIUS_EQ ** 2 * (3 * s * s - 1) / (2 * rn ** 3)
+                 - 0.5 * EARTH_OMEGA ** 2 * (r[0] ** 2 + r[1] ** 2))
+    h = contact_heights(y, p, model)[:N_LEGS]
+    return 0.5 * mass * v @ v + mass * potential + 0.5 * K_LEG * np.sum(np.minimum(h, 0.0) ** 2)
+
+
+def test_lander_dropped_from_2_m_at_2_m_s_settles_on_its_legs(lander):
+    model, y, mass, up = lander
+    p = earth_params()
+    assert contact_heights(y, p, model)[:N_LEGS] == pytest.approx(2.0, abs=1e-4)
+    energies = [jacobi_energy(model, y, p, mass)]
+    for k in range(150):                                   # 3 s at 20 ms (sub-stepped near the ground)
+        y = step(y, 0.02 * k, 0.02, p, model.arrays)
+        energies.append(jacobi_energy(model, y, p, mass))
+    # energy never increases (float64 resolution of ~1e12 J: 1 mJ), and the drop's
+    # kinetic and potential energy has gone into the dampers
+    assert np.max(np.diff(energies)) < 1e-3
+    assert energies[0] - energies[-1] == pytest.approx(0.5 * mass * (2.0 ** 2 + 2 * somigliana(LAT) * 2.0),
+                                                       rel=0.01)
+    # at rest, each leg compressed by its share of the weight (1 mm tolerance required;
+    # it holds to 1e-7 m)
+    deflection = -contact_heights(y, p, model)[:N_LEGS]
+    static = mass * somigliana(LAT) / (N_LEGS * K_LEG)
+    assert np.max(np.abs(deflection - static)) < 1e-3
+    assert deflection == pytest.approx(static, rel=1e-3)
+    assert np.linalg.norm(y[3:6] - corotating(y[0:3])) < 1e-4
+
+
+def test_the_same_drop_at_20_ms_without_sub_steps_is_unstable(lander):
+    # lambda h of the legs' modes at 20 ms (vertical 150 rad/s -> 3.0, rocking 245 ->
+    # 4.9) lies outside RK4's stability region: the contact pumps energy in.
+    model, y, mass, up = lander
+    p = earth_params()
+    e0 = jacobi_energy(model, y, p, mass)
+    peak = -math.inf
+    for k in range(100):
+        y = rk4_step(y, 0.02 * k, 0.02, p, model.arrays)
+        peak = max(peak, jacobi_energy(model, y, p, mass))
+    assert peak > e0 + 1e6                  # megajoules from nowhere: the lander is thrown off
+
+
+class _World:
+    def __init__(self):
+        self.events = []
+
+    def event(self, body, name, figures):
+        self.events.append((name, figures))
+
+
+class _Body:
+    def __init__(self, model, y, p):
+        self.vehicle, self.y, self.p, self.t, self.flying = model, y, p, 0.0, True
+        self.mu = EARTH_MU
+        from rocketsim.atmosphere.day import standard_table
+        table = standard_table()
+        self.atmosphere = lambda: table
+
+    @property
+    def position(self):
+        return self.y[0:3]
+
+    @property
+    def attitude(self):
+        return self.y[6:10]
+
+    def view(self):
+        from rocketsim.flight.readings import StateView
+        return StateView(self.t, self.y[0:3].copy(), self.y[3:6].copy(), self.y[6:10].copy(),
+                         self.y[10:13].copy(), self.atmosphere, self.mu)
+
+
+def test_touchdown_event_reports_speed_tilt_and_distance_to_the_pad(lander):
+    model, y, mass, up = lander
+    p = earth_params()
+    pad = np.array(geodetic_to_ecef(LAT, LON, 0.0)) + 3.0 * enu_basis(LAT, LON)[0]   # 3 m east
+    checks = VehicleChecks(pad_ecef=pad)
+    body, world = _Body(model, y, p), _World()
+    for k in range(60):
+        checks.after_step(world, body, 0.02)
+        body.y = step(body.y, 0.02 * k, 0.02, p, model.arrays)
+        body.t = 0.02 * (k + 1)
+    names = [name for name, _ in world.events]
+    assert names == ["touchdown"]
+    figures = world.events[0][1]
+    # free fall over the last 2 m: sqrt(2^2 + 2 gamma 2); the air (tail-first C_A 0.85 on
+    # the 4.2 m base, ~250 N against 148 kN of weight) takes about 0.2 % off
+    assert figures["vertical_speed_m_s"] == pytest.approx(-math.sqrt(4.0 + 4.0 * somigliana(LAT)), rel=4e-3)
+    assert figures["horizontal_speed_m_s"] < 1e-3          # Coriolis over the fall: 2 omega v t ~ 4e-4
+    assert figures["tilt_deg"] < 1e-6
+    assert figures["distance_to_pad_m"] == pytest.approx(3.0, abs=1e-3)
