@@ -34,8 +34,8 @@ def plot_run(path: str | Path, out: str | Path) -> Path:
     figure, axes = plt.subplots(3, 3, figsize=(15, 11))
     panels = {
         "altitude": (axes[0, 0], "altitude", 1e-3, "altitude, km"),
-        "speed": (axes[0, 1], "speed", 1.0, "inertial speed, m/s"),
-        "airspeed": (axes[0, 1], "airspeed", 1.0, "airspeed, m/s"),
+        "speed": (axes[0, 1], "speed", 1.0, "speed, m/s"),
+        "airspeed": (axes[0, 1], "airspeed", 1.0, "speed, m/s"),
         "q": (axes[0, 2], "dynamic_pressure", 1e-3, "dynamic pressure q, kPa"),
         "acceleration": (axes[1, 0], "sensed_acceleration", 1.0, "sensed acceleration, m/s^2"),
         "throttle": (axes[1, 1], "throttle", 1.0, "throttle"),
@@ -49,7 +49,7 @@ def plot_run(path: str | Path, out: str | Path) -> Path:
         for name, (ax, key, scale, label) in panels.items():
             y = _column(columns, key)
             if y is not None:
-                ax.plot(t, y * scale, label=f"{body} {key}" if name in ("speed", "airspeed") else body)
+                ax.plot(t, y * scale, label={"speed": f"{body} inertial", "airspeed": f"{body} air-relative"}.get(name, body))
                 ax.set_ylabel(label)
                 drawn.add(id(ax))
         quaternion = [_column(columns, f"attitude_{c}") for c in "wxyz"]
