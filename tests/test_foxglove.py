@@ -120,3 +120,16 @@ def test_registered_schemas_use_foxgloves_names(run):
     names = {schema for schema, *_ in run}
     assert {"foxglove.FrameTransform", "foxglove.LocationFix", "foxglove.Log", "rocketsim.BodyState",
             "rocketsim.Event"} == names
+
+
+def test_messages_also_validate_against_the_schemas_registered_in_the_file(tmp_path, scenario):
+    out = tmp_path / "run.mcap"
+    fly(load(scenario(PROGRAM.replace('raise RuntimeError("boom")', 'fc.log("done")'), duration="2 s")), out)
+    with open(out, "rb") as stream:
+        reader = make_reader(stream)
+        checked = set()
+        for schema, channel, message in reader.iter_messages():
+            jsonschema.validate(json.loads(message.data), json.loads(schema.data))
+            checked.add(schema.name)
+    assert checked == {"foxglove.FrameTransform", "foxglove.LocationFix", "foxglove.Log",
+                       "rocketsim.BodyState", "rocketsim.Event"}
