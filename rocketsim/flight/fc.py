@@ -21,6 +21,7 @@ import numpy as np
 from rocketsim.flight.readings import StateView
 from rocketsim.frames.elements import Elements
 from rocketsim.frames.quaternion import quat_from_axis_angle, quat_multiply
+from rocketsim.flight.autopilot import MODES, AttitudeCommand, steer
 from rocketsim.vehicle.control import Propulsion
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -261,6 +262,43 @@ class FlightComputer:
     def angle_of_attack(self) -> float:
         """Angle between the nose and the air-relative velocity, rad."""
         return self._measured("angle_of_attack", lambda: self._view().angle_of_attack)
+
+    # --- attitude (the autopilot steers with the engines' gimbals) --------------
+    def point(self, pitch: float, heading: float) -> None:
+        """Point the nose ``pitch`` rad above the local horizon, ``heading`` rad from north."""
+        self._body.attitude_command = AttitudeCommand(pitch=float(pitch), heading=float(heading))
+
+    def point_at(self, vector, frame: str = "eci") -> None:
+        """Point the nose along ``vector``: in ``"eci"`` axes, or ``"local"`` (east, north, up)."""
+        v = np.asarray(vector, dtype=float)
+        if frame == "local":
+            v = v @ self._view().enu
+        elif frame != "eci":
+            raise ValueError(f"unknown frame {frame!r}; use 'eci' or 'local'")
+        norm = float(np.linalg.norm(v))
+        if not norm > 0:
+            raise ValueError("fc.point_at() needs a non-zero vector")
+        self._body.attitude_command = AttitudeCommand(direction=v / norm)
+
+    def hold(self, mode: str) -> None:
+        """Follow a direction of the flight: one of prograde, retrograde, surface_prograde,
+        surface_retrograde, normal, antinormal, radial, antiradial."""
+        if mode not in MODES:
+            raise ValueError(f"unknown attitude mode {mode!r}; use one of {', '.join(MODES)}")
+        self._body.attitude_command = AttitudeCommand(mode=mode)
+
+    def release(self) -> None:
+        """Stop steering (the gimbals stay where they are)."""
+        self._body.attitude_command = None
+
+    def autopilot(self) -> None:
+        """Run the autopilot for this step (the world calls it once per step)."""
+        command = self._body.attitude_command
+        if command is None or self._body.vehicle is None:
+            return
+        body = self._body
+        steer(command, self._view(), body.vehicle, self._propulsion(), body.y, self._world.t,
+              body.view().air[1])
 
     # --- staging ------------------------------------------------------------
     def stage(self) -> str:

@@ -59,6 +59,7 @@ class Body:
     _view: StateView | None = None
     vehicle: VehicleModel | None = None     # a staged vehicle: mass and engines from its arrays
     stack: VehicleSpec | None = None        # the stages this body still carries (to separate)
+    attitude_command: object | None = None  # what the autopilot steers to (fc.point, hold...)
 
     @property
     def position(self) -> np.ndarray:
@@ -274,6 +275,7 @@ class World:
         try:
             while self.k < self.n_steps and any(b.flying for b in self.bodies):
                 self._run_programs()
+                self._run_autopilots()
                 n = self._batch_length()
                 for body in self.bodies:
                     if body.flying:
@@ -304,8 +306,15 @@ class World:
             if body.flying and body.runner is not None and body.runner.due(t):
                 body.runner.resume(body.fc)
 
+    def _run_autopilots(self) -> None:
+        for body in self.bodies:
+            if body.flying and body.attitude_command is not None and body.fc is not None:
+                body.fc.autopilot()
+
     def _batch_length(self) -> int:
         """Steps that can be taken before anything needs deciding."""
+        if any(b.flying and b.attitude_command is not None for b in self.bodies):
+            return 1                        # the autopilot runs once per step
         n = min(self.n_steps - self.k, self.sample_every - self.k % self.sample_every)
         for body in self.bodies:
             runner = body.runner
