@@ -21,11 +21,14 @@ from typing import Callable
 
 import numpy as np
 
-from rocketsim.constants import DEG, EARTH_J2, EARTH_MU, EARTH_RADIUS_EQ, EARTH_RADIUS_POLAR
+from rocketsim.constants import DEG, RAILS_FLOOR, EARTH_J2, EARTH_MU, EARTH_RADIUS_EQ, EARTH_RADIUS_POLAR
 from rocketsim.bodies.gravity import point_mass_j2
-from rocketsim.dynamics.derivative import derivative
+from rocketsim.dynamics.derivative import derivative, radial_height
+from rocketsim.dynamics.nbody import make_field, no_air
+from rocketsim.dynamics.rails import FREE, advance_rails
 from rocketsim.dynamics.rk4 import advance
-from rocketsim.dynamics.state import P_J2, P_MASS, P_MU, P_RADIUS, Q, R, V, W, make_params, make_state
+from rocketsim.dynamics.state import (P_IXX, P_IYY, P_IZZ, P_J2, P_MASS, P_MU, P_RADIUS, Q, R, V,
+                                      W, make_params, make_state)
 from rocketsim.flight.fc import FlightComputer
 from rocketsim.flight.program import ProgramRunner, load_program
 from rocketsim.flight.readings import StateView
@@ -34,11 +37,19 @@ from rocketsim.frames.earth_fixed import eci_to_ecef_velocity
 from rocketsim.scenario.load import LoadedScenario
 from rocketsim.scenario.models import check_step
 from rocketsim.errors import InputError
+from rocketsim.frames.geodetic import geodetic_to_ecef
 from rocketsim.sim.start import start_state
+from rocketsim.sim.vehicle_checks import VehicleChecks
 from rocketsim.timescales import Epoch
 from rocketsim.scenario.models import VehicleSpec
 from rocketsim.vehicle.build import VehicleModel, build
 from rocketsim.vehicle.staging import separate
+
+
+# parking-orbit rails about Earth: Kepler + J2, no third bodies (issue 9); a rigid
+# body has no aerodynamics awake, so none on rails either
+_RAILS_FIELD = make_field("earth", 0.0, bodies=())
+_NO_AIR = no_air()
 
 
 @dataclass
@@ -58,6 +69,7 @@ class Body:
     sensors: Sensors | None = None
     _view: StateView | None = None
     vehicle: VehicleModel | None = None     # a staged vehicle: mass and engines from its arrays
+    checks: VehicleChecks | None = None     # breakup, heat shield, touchdown (a vehicle with aero:)
     stack: VehicleSpec | None = None        # the stages this body still carries (to separate)
     attitude_command: object | None = None  # what the autopilot steers to (fc.point, hold...)
 
@@ -149,6 +161,10 @@ class World:
             # staged (issue 4): tanks and engine clocks extend the state; p's mass is unused
             body.vehicle = build(scenario.vehicle, air=world.atmosphere)
             body.y = body.vehicle.state(r, v, q, mission.initial_rates)
+            if scenario.vehicle.aero is not None:
+                site = scenario.site
+                pad = None if site is None else geodetic_to_ecef(site.latitude, site.longitude, site.height)
+                body.checks = VehicleChecks(scenario.vehicle.aero.heat_shield, pad_ecef=pad)
             body.stack = scenario.vehicle
         world.sample_every = max(1, round(1.0 / (scenario.telemetry.rate * h)))
         world.seed, world.sensor_level = scenario.seed, scenario.sensors
@@ -313,6 +329,8 @@ class World:
 
     def _batch_length(self) -> int:
         """Steps that can be taken before anything needs deciding."""
+        if any(b.flying and b.checks is not None and b.checks.every_step(b) for b in self.bodies):
+            return 1                        # limits, heating and touchdown are checked every step
         if any(b.flying and b.attitude_command is not None for b in self.bodies):
             return 1                        # the autopilot runs once per step
         n = min(self.n_steps - self.k, self.sample_every - self.k % self.sample_every)
@@ -326,14 +344,36 @@ class World:
             n = min(n, max(1, wake_steps))
         return max(1, n)
 
+    def _on_rails(self, body: Body) -> bool:
+        """Sleep rails (issue 9) for a rigid body nobody flies or whose program sleeps
+        beyond the next step, axisymmetric (the exact torque-free attitude), above
+        the rails floor. Staged vehicles stay awake until the flight computer can
+        say their engines, RCS and ullage are off and the autopilot has settled."""
+        runner = body.runner
+        asleep = runner is None or runner.finished or (
+            not runner.waiting_on_predicate and runner.wake_time() - self.t > self.h * (1 + 1e-9))
+        return (asleep and body.vehicle is None and body.p[P_IYY] == body.p[P_IZZ]
+                and radial_height(body.y, body.p) > RAILS_FLOOR)
+
     def _advance(self, body: Body, n: int) -> None:
+        k0 = self.k
+        if self._on_rails(body):
+            # same step, same orbit to the bit; stops below the floor and wakes for the rest
+            body.y, done = advance_rails(body.y, k0, self.h, n, body.p, _RAILS_FIELD, _NO_AIR,
+                                         body.p[P_IXX:P_IZZ + 1], FREE)
+            k0, n = k0 + done, n - done
+        if n == 0:
+            body.t = k0 * self.h
+            return
         if body.vehicle is None:
-            y, taken = advance(body.y, self.k, self.h, n, body.p)
+            y, taken = advance(body.y, k0, self.h, n, body.p)
         else:
-            y, taken = advance(body.y, self.k, self.h, n, body.p, body.vehicle.arrays)
+            y, taken = advance(body.y, k0, self.h, n, body.p, body.vehicle.arrays)
         body.y = y
-        body.t = (self.k + taken) * self.h
-        if taken < n:
+        body.t = (k0 + taken) * self.h
+        if body.checks is not None:
+            body.checks.after_step(self, body, self.h)
+        if taken < n and body.flying:
             # the body went below the ground in its last step: it has hit
             lat, lon, _ = body.view().geodetic
             ground_speed = np.linalg.norm(eci_to_ecef_velocity(body.position, body.velocity, body.t))
