@@ -245,3 +245,20 @@ def test_the_writer_streams_to_disk_with_bounded_memory(tmp_path):
     grown_per_sample = (held[1] - held[0]) / 5_000
     assert written > 500_000               # several chunks
     assert grown_per_sample < 40, grown_per_sample          # a sample is ~700 bytes of JSON
+
+
+def test_an_interrupted_flight_is_a_complete_file_that_says_so(scenario, tmp_path):
+    out = tmp_path / "stopped.mcap"
+
+    def ctrl_c(t):
+        if t >= 1.5:
+            raise KeyboardInterrupt
+
+    with pytest.raises(KeyboardInterrupt):
+        fly(load(scenario(PROGRAM, duration="1 h")), out, on_progress=ctrl_c)
+    run = read_run(out)
+    assert run.problem is None                                 # summary and index were written
+    assert run.metadata["outcome"]["status"] == "error"
+    assert run.errors[-1]["message"] == "KeyboardInterrupt" and run.errors[-1]["t"] == pytest.approx(1.5)
+    result = replay(out)
+    assert result.exit_code == 0 and "outcome: error (KeyboardInterrupt)" in result.output
