@@ -1,0 +1,425 @@
+"""The world of one run: its bodies, the step loop, events and telemetry.
+
+Everything with state lives here; the physics it calls is pure. Each step of
+``h`` seconds (20 ms by default):
+
+1. each awake program that is due runs once (it runs until it hands back);
+2. every flying body is advanced by RK4 (sub-stepped within 2 m of the ground);
+3. events are detected (impact);
+4. telemetry is sampled at the configured rate.
+
+Mission time is ``k h`` for the integer step count ``k``, never an
+accumulated sum. While no program is due and no sample is due, steps are
+batched inside the compiled kernel: bit-identical to stepping one at a time.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Callable
+
+import numpy as np
+
+from rocketsim.constants import DEG, RAILS_FLOOR, EARTH_J2, EARTH_MU, EARTH_RADIUS_EQ, EARTH_RADIUS_POLAR
+from rocketsim.bodies.gravity import point_mass_j2
+from rocketsim.dynamics.derivative import derivative, radial_height
+from rocketsim.dynamics.nbody import make_field, no_air
+from rocketsim.dynamics.rails import FREE, advance_rails
+from rocketsim.dynamics.rk4 import advance
+from rocketsim.dynamics.state import (P_IXX, P_IYY, P_IZZ, P_J2, P_MASS, P_MU, P_RADIUS, Q, R, V,
+                                      W, make_params, make_state)
+from rocketsim.flight.fc import FlightComputer
+from rocketsim.flight.program import ProgramRunner, load_program
+from rocketsim.flight.readings import StateView
+from rocketsim.flight.sensors import Sensors
+from rocketsim.frames.earth_fixed import eci_to_ecef_velocity
+from rocketsim.scenario.load import LoadedScenario
+from rocketsim.scenario.models import check_step
+from rocketsim.errors import InputError
+from rocketsim.frames.geodetic import geodetic_to_ecef
+from rocketsim.sim.start import start_state
+from rocketsim.sim.vehicle_checks import VehicleChecks
+from rocketsim.timescales import Epoch
+from rocketsim.scenario.models import VehicleSpec
+from rocketsim.vehicle.build import VehicleModel, build
+from rocketsim.vehicle.staging import separate
+
+
+# parking-orbit rails about Earth: Kepler + J2, no third bodies (issue 9); a rigid
+# body has no aerodynamics awake, so none on rails either
+_RAILS_FIELD = make_field("earth", 0.0, bodies=())
+_NO_AIR = no_air()
+
+
+@dataclass
+class Body:
+    """One body in flight: its state, parameters, program and record."""
+
+    name: str
+    y: np.ndarray
+    p: np.ndarray
+    runner: ProgramRunner | None = None
+    fc: FlightComputer | None = None
+    flying: bool = True
+    events: list[dict] = field(default_factory=list)
+    mu: float = EARTH_MU
+    t: float = 0.0
+    atmosphere: Callable[[], object] | None = None    # the day's table, built on first use
+    sensors: Sensors | None = None
+    _view: StateView | None = None
+    vehicle: VehicleModel | None = None     # a staged vehicle: mass and engines from its arrays
+    checks: VehicleChecks | None = None     # breakup, heat shield, touchdown (a vehicle with aero:)
+    stack: VehicleSpec | None = None        # the stages this body still carries (to separate)
+    attitude_command: object | None = None  # what the autopilot steers to (fc.point, hold...)
+
+    @property
+    def position(self) -> np.ndarray:
+        return self.y[R:R + 3]
+
+    @property
+    def velocity(self) -> np.ndarray:
+        return self.y[V:V + 3]
+
+    @property
+    def attitude(self) -> np.ndarray:
+        return self.y[Q:Q + 4]
+
+    @property
+    def body_rates(self) -> np.ndarray:
+        return self.y[W:W + 3]
+
+    @property
+    def mass(self) -> float:
+        if self.vehicle is not None:
+            return float(self.vehicle.mass_properties(self.y)[0])
+        return float(self.p[P_MASS])
+
+    def view(self) -> StateView:
+        """The truth's readings at the body's time (one view per step)."""
+        if self._view is None or self._view.t != self.t:
+            self._view = StateView(self.t, self.position.copy(), self.velocity.copy(),
+                                   self.attitude.copy(), self.body_rates.copy(), self.atmosphere,
+                                   self.mu)
+        return self._view
+
+
+class World:
+    """One run of a scenario. Build with :meth:`from_scenario`, then :meth:`run`."""
+
+    def __init__(self, epoch: Epoch, h: float, duration: float, bodies: list[Body],
+                 atmosphere: Callable[[], object] | None = None):
+        self.epoch = epoch
+        self.gmst0 = epoch.gmst()
+        self.h = h
+        self.duration = duration
+        self.n_steps = int(math.floor(duration / h + 1e-9))
+        self.bodies = bodies
+        self.k = 0
+        self.telemetry = None
+        self.sample_every = 1
+        self.on_progress: Callable[[float], None] | None = None
+        self._build_atmosphere = atmosphere
+        self._atmosphere = None
+        self.seed = 0
+        self.sensor_level = "truth"
+        self.stage_programs: dict[str, object] = {}      # stage name -> (main, path)
+        self.program_cpu_budget = 1.0
+
+    @property
+    def atmosphere(self):
+        """The day's :class:`~rocketsim.atmosphere.table.AtmosphereTable`, built on first use."""
+        if self._atmosphere is None and self._build_atmosphere is not None:
+            self._atmosphere = self._build_atmosphere()
+        return self._atmosphere
+
+    @property
+    def t(self) -> float:
+        """Mission time (s)."""
+        return self.k * self.h
+
+    @classmethod
+    def from_scenario(cls, loaded: LoadedScenario, step: float | None = None,
+                      duration: float | None = None) -> "World":
+        scenario = loaded.scenario
+        h = scenario.step if step is None else _checked_step(step)
+        mission = scenario.mission
+        epoch = Epoch.from_utc(mission.epoch, mission.dut1)
+        r, v, q = start_state(mission, scenario.site, epoch.gmst())
+        rigid = scenario.vehicle.rigid_body
+        body = Body(
+            name=_channel_name(scenario.vehicle.name),
+            y=make_state(r, v, q, mission.initial_rates),
+            p=make_params(rigid.mass if rigid else 1.0, rigid.inertia if rigid else (1.0, 1.0, 1.0),
+                          EARTH_MU, EARTH_RADIUS_EQ, EARTH_J2, EARTH_RADIUS_POLAR),
+        )
+        world = cls(epoch, h, mission.duration if duration is None else duration, [body],
+                    atmosphere=loaded.atmosphere)
+        body.atmosphere = lambda: world.atmosphere
+        body.sensors = Sensors(scenario.seed, body.name, scenario.sensors, h)
+        if rigid is None:
+            # staged (issue 4): tanks and engine clocks extend the state; p's mass is unused
+            body.vehicle = build(scenario.vehicle, air=world.atmosphere)
+            body.y = body.vehicle.state(r, v, q, mission.initial_rates)
+            if scenario.vehicle.aero is not None:
+                site = scenario.site
+                pad = None if site is None else geodetic_to_ecef(site.latitude, site.longitude, site.height)
+                body.checks = VehicleChecks(scenario.vehicle.aero.heat_shield, pad_ecef=pad)
+            body.stack = scenario.vehicle
+        world.sample_every = max(1, round(1.0 / (scenario.telemetry.rate * h)))
+        world.seed, world.sensor_level = scenario.seed, scenario.sensors
+        world.program_cpu_budget = scenario.program_cpu_budget
+        for stage, path in loaded.stage_program_paths.items():
+            world.stage_programs[stage] = (load_program(path), path)
+        if loaded.program_path is not None:
+            world._attach_program(body, load_program(loaded.program_path), loaded.program_path)
+        return world
+
+    def _attach_program(self, body: Body, main, path) -> None:
+        body.runner = ProgramRunner(main, path, self.program_cpu_budget)
+        body.fc = FlightComputer(self, body)
+
+    # --- staging ------------------------------------------------------------
+    def separate(self, body: Body) -> Body:
+        """Separate the lowest stage of ``body``: ``body`` flies on as the upper stack,
+        the stage becomes a body of its own (its own channels, and its own program
+        when the scenario's ``programs:`` names one for it). Returns the new body.
+
+        Centre of mass and momentum of the two parts add up to the stack's
+        (:func:`rocketsim.vehicle.staging.separate`); no separation impulse.
+        """
+        stack = body.stack
+        if body.vehicle is None or stack is None or len(stack.stages) < 2:
+            raise ValueError(f"{body.name} has no stage left to separate")
+        (lower, y_lower), (upper, y_upper) = separate(stack, body.vehicle, body.y, 1,
+                                                      air=self.atmosphere)
+        stage = stack.stages[0].name
+        names = {b.name for b in self.bodies}
+        name = _channel_name(stage)
+        while name in names:
+            name += "_"
+        new = Body(name=name, y=y_lower, p=body.p.copy(), vehicle=lower, t=body.t, mu=body.mu,
+                   atmosphere=body.atmosphere,
+                   sensors=Sensors(self.seed, name, self.sensor_level, self.h))
+        body.vehicle, body.y, body._view = upper, y_upper, None
+        body.stack = stack.model_copy(update={"stages": stack.stages[1:]})
+        self.bodies.append(new)
+        if self.telemetry is not None:
+            self.telemetry.add_body(new.name)
+            self.telemetry.state(new.name, self.sample(new))
+        figures = {"stage": stage, "mass_kg": new.mass, "upper_mass_kg": body.mass}
+        self.event(body, "separation", {**figures, "separated_body": new.name})
+        self.event(new, "separation", {**figures, "from_body": body.name})
+        if stage in self.stage_programs:
+            self._attach_program(new, *self.stage_programs[stage])
+            new.fc.warm_up()
+        return new
+
+    # --- records ------------------------------------------------------------
+    def log(self, body: Body, message: str) -> None:
+        if self.telemetry is not None:
+            self.telemetry.log(self.t, body.name, message)
+
+    def event(self, body: Body, name: str, figures: dict) -> None:
+        """Record an event of ``body`` at the body's own time (SI figures)."""
+        record = {"name": name, "time_s": body.t, **figures}
+        body.events.append(record)
+        if self.telemetry is not None:
+            self.telemetry.event(body.t, body.name, name, figures)
+
+    def sample(self, body: Body) -> dict:
+        """The telemetry message of ``body`` at its time (SI; degrees where named)."""
+        lat, lon, height = body.view().geodetic
+        return {
+            "t": body.t,
+            "position": body.position.tolist(),
+            "velocity": body.velocity.tolist(),
+            "attitude": body.attitude.tolist(),
+            "body_rates": body.body_rates.tolist(),
+            "latitude_deg": lat / DEG,
+            "longitude_deg": lon / DEG,
+            "altitude": height,
+            "speed": float(np.linalg.norm(body.velocity)),
+            "orbit": self.orbit_summary(body),
+            **self.flight_quantities(body),
+        }
+
+    def flight_quantities(self, body: Body) -> dict:
+        """Mass (kg); inertial acceleration |dv/dt| and sensed acceleration
+        |dv/dt - g| (m/s^2, from the derivative the integrator uses); airspeed
+        (m/s), Mach and dynamic pressure (Pa) in the day's air."""
+        dy = np.zeros_like(body.y)
+        derivative(body.t, body.y, body.p, dy, None if body.vehicle is None else body.vehicle.arrays)
+        x, y, z = body.position
+        gx, gy, gz = point_mass_j2(x, y, z, body.p[P_MU], body.p[P_RADIUS], body.p[P_J2])
+        ax, ay, az = dy[V:V + 3].tolist()
+        rho, _, _, sound, _, air_velocity = body.view().air
+        airspeed = math.sqrt(air_velocity @ air_velocity)
+        return {
+            "mass": body.mass,
+            "acceleration": math.sqrt(ax * ax + ay * ay + az * az),
+            "sensed_acceleration": math.hypot(ax - gx, ay - gy, az - gz),
+            "airspeed": airspeed,
+            "mach": airspeed / sound,
+            "dynamic_pressure": 0.5 * rho * airspeed * airspeed,
+        }
+
+    def orbit_summary(self, body: Body) -> dict:
+        """Osculating elements with angles in degrees, RAAN from the equinox."""
+        el = body.view().orbit
+        return {
+            "semi_major_axis": el.a,
+            "eccentricity": el.e,
+            "inclination_deg": el.i / DEG,
+            "raan_deg": math.fmod(el.raan + self.gmst0, 2 * math.pi) / DEG,
+            "arg_periapsis_deg": el.argp / DEG,
+            "true_anomaly_deg": el.nu / DEG,
+            "periapsis_altitude": el.periapsis - EARTH_RADIUS_EQ,
+            "apoapsis_altitude": el.apoapsis - EARTH_RADIUS_EQ if math.isfinite(el.apoapsis) else None,
+            "period": el.period if math.isfinite(el.period) else None,
+        }
+
+    # --- the loop -----------------------------------------------------------
+    def run(self, telemetry=None) -> dict:
+        """Fly to the end of the mission (or until every body has landed or hit)."""
+        self.telemetry = telemetry
+        for body in self.bodies:
+            if telemetry is not None:
+                telemetry.add_body(body.name)
+        self._sample_all()
+        self._prepare_programs()
+        try:
+            while self.k < self.n_steps and any(b.flying for b in self.bodies):
+                self._run_programs()
+                self._run_autopilots()
+                n = self._batch_length()
+                for body in self.bodies:
+                    if body.flying:
+                        self._advance(body, n)
+                self.k += n
+                if self.k % self.sample_every == 0 or self.k >= self.n_steps:
+                    self._sample_all()
+                if self.on_progress is not None:
+                    self.on_progress(self.t)
+        finally:
+            for body in self.bodies:
+                if body.runner is not None:
+                    body.runner.close()
+        return self.summary()
+
+    def _prepare_programs(self) -> None:
+        """Compute every reading once before the first step, outside any program's
+        CPU budget: the day's air table is built and the compiled kernels behind
+        the readings are loaded (or compiled, on a cold cache) here, not in the
+        program's first step."""
+        for body in self.bodies:
+            if body.runner is not None:
+                body.fc.warm_up()
+
+    def _run_programs(self) -> None:
+        t = self.t
+        for body in self.bodies:
+            if body.flying and body.runner is not None and body.runner.due(t):
+                body.runner.resume(body.fc)
+
+    def _run_autopilots(self) -> None:
+        for body in self.bodies:
+            if body.flying and body.attitude_command is not None and body.fc is not None:
+                body.fc.autopilot()
+
+    def _batch_length(self) -> int:
+        """Steps that can be taken before anything needs deciding."""
+        if any(b.flying and b.checks is not None and b.checks.every_step(b) for b in self.bodies):
+            return 1                        # limits, heating and touchdown are checked every step
+        if any(b.flying and b.attitude_command is not None for b in self.bodies):
+            return 1                        # the autopilot runs once per step
+        n = min(self.n_steps - self.k, self.sample_every - self.k % self.sample_every)
+        for body in self.bodies:
+            runner = body.runner
+            if not body.flying or runner is None or runner.finished:
+                continue
+            if runner.waiting_on_predicate:
+                return 1
+            wake_steps = math.ceil((runner.wake_time() - self.t) / self.h - 1e-9)
+            n = min(n, max(1, wake_steps))
+        return max(1, n)
+
+    def _on_rails(self, body: Body) -> bool:
+        """Sleep rails (issue 9) for a rigid body nobody flies or whose program sleeps
+        beyond the next step, axisymmetric (the exact torque-free attitude), above
+        the rails floor. Staged vehicles stay awake until the flight computer can
+        say their engines, RCS and ullage are off and the autopilot has settled."""
+        runner = body.runner
+        asleep = runner is None or runner.finished or (
+            not runner.waiting_on_predicate and runner.wake_time() - self.t > self.h * (1 + 1e-9))
+        return (asleep and body.vehicle is None and body.p[P_IYY] == body.p[P_IZZ]
+                and radial_height(body.y, body.p) > RAILS_FLOOR)
+
+    def _advance(self, body: Body, n: int) -> None:
+        k0 = self.k
+        if self._on_rails(body):
+            # same step, same orbit to the bit; stops below the floor and wakes for the rest
+            body.y, done = advance_rails(body.y, k0, self.h, n, body.p, _RAILS_FIELD, _NO_AIR,
+                                         body.p[P_IXX:P_IZZ + 1], FREE)
+            k0, n = k0 + done, n - done
+        if n == 0:
+            body.t = k0 * self.h
+            return
+        if body.vehicle is None:
+            y, taken = advance(body.y, k0, self.h, n, body.p)
+        else:
+            y, taken = advance(body.y, k0, self.h, n, body.p, body.vehicle.arrays)
+        body.y = y
+        body.t = (k0 + taken) * self.h
+        if body.checks is not None:
+            body.checks.after_step(self, body, self.h)
+        if taken < n and body.flying:
+            # the body went below the ground in its last step: it has hit
+            lat, lon, _ = body.view().geodetic
+            ground_speed = np.linalg.norm(eci_to_ecef_velocity(body.position, body.velocity, body.t))
+            self.event(body, "impact", {"latitude_deg": lat / DEG, "longitude_deg": lon / DEG,
+                                        "speed_m_s": float(ground_speed)})
+            body.flying = False
+            if self.telemetry is not None:
+                self.telemetry.state(body.name, self.sample(body))
+
+    def _sample_all(self) -> None:
+        if self.telemetry is None:
+            return
+        for body in self.bodies:
+            if body.flying:
+                self.telemetry.state(body.name, self.sample(body))
+
+    def summary(self) -> dict:
+        """Events and final state of each body, SI units (degrees where named)."""
+        bodies = {}
+        for body in self.bodies:
+            lat, lon, height = body.view().geodetic
+            bodies[body.name] = {
+                "events": body.events,
+                "final": {
+                    "time_s": body.t,
+                    "position_m": body.position.tolist(),
+                    "velocity_m_s": body.velocity.tolist(),
+                    "latitude_deg": lat / DEG,
+                    "longitude_deg": lon / DEG,
+                    "altitude_m": height,
+                    "speed_m_s": float(np.linalg.norm(body.velocity)),
+                },
+                "orbit": self.orbit_summary(body),
+            }
+        return {"epoch_utc": self.epoch.utc.isoformat(), "step_s": self.h,
+                "mission_time_s": max(b.t for b in self.bodies), "bodies": bodies}
+
+
+def _checked_step(step: float) -> float:
+    try:
+        return check_step(step)
+    except ValueError as error:
+        raise InputError(str(error), field="--step") from None
+
+
+def _channel_name(name: str) -> str:
+    return "".join(c if c.isalnum() or c in "-_" else "_" for c in name) or "vehicle"
+
+
