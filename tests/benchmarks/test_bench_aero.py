@@ -1,0 +1,153 @@
+"""Benchmark (issue 5): the full derivative of a nine-engine first stage in the atmosphere.
+
+Target: at most 30 us per evaluation (gravity, air table, axial + crossflow
+aero over 20 segments, four grid fins, nine engines, mass properties), so a
+20 ms step stays under about 130 us. Printed, all measured in this run: that
+derivative, the foundation's coasting rigid-body derivative and their ratio;
+the per-part breakdown (each part called alone in a compiled loop); and a
+whole RK4 step. Run with ``pytest -s tests/benchmarks``. Nothing here asserts
+a time; the check is that the derivative's aerodynamic share equals the sum of
+its parts.
+"""
+
+import math
+
+import numba
+import numpy as np
+
+from rocketsim.atmosphere.table import air_at
+from rocketsim.constants import EARTH_J2, EARTH_MU, EARTH_RADIUS_EQ, EARTH_RADIUS_POLAR
+from rocketsim.dynamics.derivative import body_air_velocity, derivative, radial_height
+from rocketsim.dynamics.rk4 import advance
+from rocketsim.dynamics.state import V, make_params
+from rocketsim.vehicle import engines as E
+from rocketsim.vehicle import grid_fins as G
+from rocketsim.vehicle.aero import body_aero
+from rocketsim.vehicle.build import build
+from rocketsim.vehicle.mass_properties import mass_properties
+from tests.aero_vehicles import corotating, earth_params, pitch_quaternion, shipped
+from tests.benchmarks.timing import best_of
+
+
+@numba.njit
+def _full(n, y, p, dy, veh):
+    total = 0.0
+    for i in range(n):
+        derivative(1e-6 * i, y, p, dy, veh)
+        total += dy[V]
+    return total
+
+
+@numba.njit
+def _coast(n, y, p, dy):
+    total = 0.0
+    for i in range(n):
+        derivative(1e-6 * i, y, p, dy)
+        total += dy[V]
+    return total
+
+
+@numba.njit
+def _mass(n, y, veh):
+    total = 0.0
+    for i in range(n):
+        total += mass_properties(veh.fixed, veh.tank_bottom, veh.tank_radius, veh.tank_density,
+                                 y[13:13 + veh.tank_bottom.shape[0]])[1]
+    return total
+
+
+@numba.njit
+def _air(n, y, p, veh):
+    total = 0.0
+    for i in range(n):
+        total += air_at(veh.air_h0, veh.air_dh, veh.air_density, veh.air_pressure, veh.air_temperature,
+                        veh.air_speed_of_sound, veh.air_wind_east, veh.air_wind_north,
+                        radial_height(y, p) + 1e-9 * i)[0]
+    return total
+
+
+@numba.njit
+def _engines(n, y, dy, veh):
+    total = 0.0
+    for i in range(n):
+        total += E.engine_forces(1e-6 * i, y, dy, veh.first_tank, veh.first_clock, veh.eng, veh.cmd, veh.stage,
+                                 veh.tank_share, 26_000.0, 20.0)[0]
+    return total
+
+
+@numba.njit
+def _body(n, y, veh):
+    a = veh.aero
+    total = 0.0
+    for i in range(n):
+        u, v, w = body_air_velocity(y, a.wind)
+        total += body_aero(u, v, w, y[10], y[11], y[12], 0.41, 299.5, 7e6, 20.0 + 1e-9 * i, a.ref, a.seg,
+                           a.fin, a.ca_nf, a.ca_tf)[2]
+    return total
+
+
+@numba.njit
+def _grid(n, y, veh):
+    a = veh.aero
+    total = 0.0
+    for i in range(n):
+        u, v, w = body_air_velocity(y, a.wind)
+        total += G.grid_fin_forces(1e-6 * i, u, v, w, y[10], y[11], y[12], 0.41, 299.5, 20.0, a.grid,
+                                   a.grid_cmd)[2]
+    return total
+
+
+def test_first_stage_derivative_in_the_atmosphere():
+    booster = build(shipped("falcon9-block5.yaml"), last=0)
+    a = booster.arrays
+    assert a.aero.seg.shape[0] >= 10 and a.aero.grid.shape[0] == 4 and booster.n_engines == 9
+    r = np.array([EARTH_RADIUS_EQ + 10e3, 0.0, 0.0])
+    y = booster.state(r, corotating(r) + np.array([300.0, 20.0, 0.0]), q=pitch_quaternion(math.radians(4.0)),
+                      w=(0.01, 0.02, -0.01))
+    for e in range(9):
+        E.ignite(y, a.eng, a.cmd, a.stage, e, a.first_clock)
+    y[booster.clocks] = 10.0
+    G.command(a.aero.grid, a.aero.grid_cmd, 0.0, math.radians(3.0), math.radians(-2.0), math.radians(1.0))
+    p = earth_params()
+    rigid = make_params(5e5, (2e5, 1e8, 1e8), EARTH_MU, EARTH_RADIUS_EQ, EARTH_J2, EARTH_RADIUS_POLAR)
+    y13 = np.ascontiguousarray(y[:13])
+    dy, dy13 = np.zeros_like(y), np.zeros(13)
+    for f, args in ((_full, (y, p, dy, a)), (_coast, (y13, rigid, dy13)), (_mass, (y, a)), (_air, (y, p, a)),
+                    (_engines, (y, dy, a)), (_body, (y, a)), (_grid, (y, a))):
+        f(10, *args)
+
+    n = 100_000
+    per = lambda f, *args: best_of(3, lambda: f(n, *args))[0] / n * 1e6
+    t_full = per(_full, y, p, dy, a)
+    t_coast = per(_coast, y13, rigid, dy13)
+    parts = {"mass properties": per(_mass, y, a), "air table": per(_air, y, p, a),
+             "9 engines": per(_engines, y, dy, a), "body aero (20 segments)": per(_body, y, a),
+             "4 grid fins": per(_grid, y, a)}
+    print(f"\n[aero] full first-stage derivative in the air: {t_full:.2f} us (target <= 30 us); "
+          f"coasting derivative {t_coast:.3f} us; ratio {t_full / t_coast:.1f}x")
+    print("[aero] parts: " + "; ".join(f"{k} {v:.2f} us" for k, v in parts.items())
+          + f"; rest (gravity, quaternion, rotations) {t_full - sum(parts.values()):.2f} us")
+
+    steps = 500
+    t_step = best_of(3, lambda: advance(y, 0, 0.02, steps, p, a))[0] / steps * 1e6
+    t_coast_step = best_of(3, lambda: advance(y13, 0, 0.02, steps, rigid))[0] / steps * 1e6
+    print(f"[aero] RK4 step (20 ms) of the burning stage in the air: {t_step:.1f} us "
+          f"(target ~130 us); coasting step {t_coast_step:.2f} us; ratio {t_step / t_coast_step:.1f}x")
+
+    # correctness: the aerodynamic share of the derivative is the sum of the parts (body axes)
+    bare = a._replace(aero=a.aero._replace(ref=a.aero.ref * 0.0))
+    dy0 = np.zeros_like(y)
+    derivative(0.0, y, p, dy, a)
+    derivative(0.0, y, p, dy0, bare)
+    mass, x_cm = booster.mass_properties(y)[:2]
+    rho, _, _, sound = air_at(*a[10:18], radial_height(y, p))[:4]
+    thrust = E.engine_forces(0.0, y, np.zeros_like(y), a.first_tank, a.first_clock, a.eng, a.cmd, a.stage,
+                             a.tank_share, air_at(*a[10:18], radial_height(y, p))[1], x_cm)[0]
+    u, v, w = body_air_velocity(y, a.aero.wind)
+    f1 = body_aero(u, v, w, y[10], y[11], y[12], rho, sound, thrust, x_cm, a.aero.ref, a.aero.seg, a.aero.fin,
+                   a.aero.ca_nf, a.aero.ca_tf)
+    f2 = G.grid_fin_forces(0.0, u, v, w, y[10], y[11], y[12], rho, sound, x_cm, a.aero.grid, a.aero.grid_cmd)
+    force_body = np.array(f1[:3]) + np.array(f2[:3])
+    from rocketsim.frames.quaternion import quat_rotate
+    expected = quat_rotate(y[6:10], force_body) / mass
+    assert np.allclose(dy[V:V + 3] - dy0[V:V + 3], expected, rtol=1e-9, atol=1e-12)
