@@ -68,7 +68,8 @@ def _in_field(fp, k):
 
 @njit
 def _closing_time(rx, ry, rz, vx, vy, vz, distance):
-    """Time (s) for the range ``|r|`` to fall by ``distance`` at its current rate (inf if opening)."""
+    """Time (s) for the range ``|r|`` to fall by ``distance`` at its current rate
+    (inf if it is opening)."""
     d = math.sqrt(rx * rx + ry * ry + rz * rz)
     closing = -(rx * vx + ry * vy + rz * vz) / d
     if closing <= 0.0:

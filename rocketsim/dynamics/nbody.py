@@ -39,8 +39,8 @@ import numpy as np
 from rocketsim._jit import njit
 from rocketsim.bodies.gravity import point_mass_j2
 from rocketsim.atmosphere.table import air_at
-from rocketsim.constants import (AU, EARTH_MU, EARTH_OMEGA, MARS_MU, MOON_MU, NBODY_HOLD, SECONDS_PER_DAY,
-                                 SOLAR_IRRADIANCE_1AU, SPEED_OF_LIGHT, SUN_MU)
+from rocketsim.constants import (AU, EARTH_MU, EARTH_OMEGA, MARS_MU, MOON_MU, NBODY_HOLD,
+                                 SECONDS_PER_DAY, SOLAR_IRRADIANCE_1AU, SPEED_OF_LIGHT, SUN_MU)
 from rocketsim.dynamics.derivative import derivative, radial_height
 from rocketsim.dynamics.state import P_J2, P_MU, P_RADIUS, Q, R, V
 from rocketsim.ephemeris.solar_system import BODIES, _truncated_one
@@ -74,7 +74,8 @@ def make_field(center: str, jd0_tt: float, rotation=None, bodies=BODIES,
     fp[F_JD0] = jd0_tt
     fp[F_SRP] = srp
     fp[F_DRAG] = drag
-    fp[F_ROT:F_ROT + 9] = (np.eye(3) if rotation is None else np.asarray(rotation, float)).reshape(9)
+    rotation = np.eye(3) if rotation is None else np.asarray(rotation, dtype=float)
+    fp[F_ROT:F_ROT + 9] = rotation.reshape(9)
     for name in bodies:
         fp[F_MU + BODIES.index(name)] = MU[name]
     return fp

@@ -25,7 +25,7 @@ import numpy as np
 
 from rocketsim.bodies.orientation import pole_and_meridian
 from rocketsim.constants import (EARTH_MU, EARTH_ORBIT_A, MARS_MU, MARS_ORBIT_A, MOON_MU,
-                                 MOON_ORBIT_A, SUN_MU)
+                                 MOON_ORBIT_A, SECONDS_PER_DAY, SUN_MU)
 from rocketsim.dynamics.nbody import F_CENTER, F_JD0, F_ROT, bodies_at
 from rocketsim.ephemeris.solar_system import BODIES
 
@@ -93,7 +93,7 @@ def handover(r, v, fp, t: float, new_center: str, gmst0: float = 0.0):
     """
     fp = np.asarray(fp, dtype=float)
     old_rot = fp[F_ROT:F_ROT + 9].reshape(3, 3)
-    jd = fp[F_JD0] + t / 86400.0
+    jd = fp[F_JD0] + t / SECONDS_PER_DAY
     new_rot = frame_rotation(new_center, jd, gmst0)
     s, u = bodies_at(fp, t)
     j = BODIES.index(new_center)
