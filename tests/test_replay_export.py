@@ -67,8 +67,12 @@ def test_csv_rows_and_values_equal_the_mcap(run_file, tmp_path):
             assert (text == "" if value is None else float(text) == value), column   # every digit kept
     with open(tmp_path / "tables" / "events.csv", newline="") as stream:
         events = list(csv.DictReader(stream))
-    assert [(e["t"], e["name"]) for e in events] == [("2.0", "marker")]
-    assert json.loads(events[0]["figures"])["altitude_m"] == pytest.approx(states[20]["altitude"])
+    marker = [e for e in events if e["name"] == "marker"]
+    assert [e["t"] for e in marker] == ["2.0"]
+    assert json.loads(marker[0]["figures"])["altitude_m"] == pytest.approx(states[20]["altitude"])
+    with open(run_file, "rb") as stream:                    # every event of the file, in order
+        recorded = [json.loads(m.data) for _, _, m in make_reader(stream).iter_messages(topics=["/events"])]
+    assert [(float(e["t"]), e["name"]) for e in events] == [(e["t"], e["name"]) for e in recorded]
 
 
 def test_parquet_rows_and_values_equal_the_mcap(run_file, tmp_path):
