@@ -323,11 +323,17 @@ class FlightComputer:
         (``"booster"``, ``"Merlin 1D ring"``, ``"booster/Merlin 1D ring/3"``) or index.
         Thrust follows after the ignition dead time and spool-up. Returns the
         engines that accepted (not already on, propellant left, an ignition left)."""
-        return self._propulsion().ignite(self._body.y, which)
+        names = self._propulsion().ignite(self._body.y, which)
+        if names:
+            self._world.event(self._body, "ignition", {"engines": names})
+        return names
 
     def shutdown(self, which=None) -> list[str]:
         """Command engines off (the tail-off follows); returns the engines that were on."""
-        return self._propulsion().shutdown(self._body.y, which)
+        names = self._propulsion().shutdown(self._body.y, which)
+        if names:
+            self._world.event(self._body, "shutdown", {"engines": names})
+        return names
 
     def throttle(self, value: float, which=None) -> None:
         """Command a throttle (0-1 of vacuum thrust, clipped to each engine's range and

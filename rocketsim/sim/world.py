@@ -39,6 +39,7 @@ from rocketsim.scenario.models import check_step
 from rocketsim.errors import InputError
 from rocketsim.frames.geodetic import geodetic_to_ecef
 from rocketsim.sim.start import start_state
+from rocketsim.sim.flight_events import FlightEvents
 from rocketsim.sim.vehicle_checks import VehicleChecks
 from rocketsim.timescales import Epoch
 from rocketsim.scenario.models import VehicleSpec
@@ -70,6 +71,7 @@ class Body:
     _view: StateView | None = None
     vehicle: VehicleModel | None = None     # a staged vehicle: mass and engines from its arrays
     checks: VehicleChecks | None = None     # breakup, heat shield, touchdown (a vehicle with aero:)
+    watch: FlightEvents | None = None       # liftoff, max-Q, MECO/SECO, orbit
     stack: VehicleSpec | None = None        # the stages this body still carries (to separate)
     attitude_command: object | None = None  # what the autopilot steers to (fc.point, hold...)
 
@@ -166,6 +168,8 @@ class World:
                 pad = None if site is None else geodetic_to_ecef(site.latitude, site.longitude, site.height)
                 body.checks = VehicleChecks(scenario.vehicle.aero.heat_shield, pad_ecef=pad)
             body.stack = scenario.vehicle
+        body.watch = FlightEvents(world, body, on_ground=mission.start.site is not None,
+                                  stage_names=[s.name for s in scenario.vehicle.stages or []])
         world.sample_every = max(1, round(1.0 / (scenario.telemetry.rate * h)))
         world.seed, world.sensor_level = scenario.seed, scenario.sensors
         world.program_cpu_budget = scenario.program_cpu_budget
@@ -203,6 +207,12 @@ class World:
                    sensors=Sensors(self.seed, name, self.sensor_level, self.h))
         body.vehicle, body.y, body._view = upper, y_upper, None
         body.stack = stack.model_copy(update={"stages": stack.stages[1:]})
+        if body.checks is not None:         # the stage is a vehicle with aero of its own
+            new.checks = VehicleChecks(stack.aero.heat_shield, pad_ecef=body.checks.pad)
+        if body.watch is not None:
+            new.watch = FlightEvents(self, new, on_ground=False, stage_names=body.watch.stage_names)
+            new.watch.dry_seen = set(body.watch.dry_seen)
+            new.watch.max_q_done = body.watch.max_q_done
         self.bodies.append(new)
         if self.telemetry is not None:
             self.telemetry.add_body(new.name)
@@ -296,6 +306,8 @@ class World:
                 for body in self.bodies:
                     if body.flying:
                         self._advance(body, n)
+                    if body.flying and body.watch is not None:
+                        body.watch.after_step()
                 self.k += n
                 if self.k % self.sample_every == 0 or self.k >= self.n_steps:
                     self._sample_all()
