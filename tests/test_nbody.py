@@ -134,3 +134,9 @@ def test_handover_keeps_the_heliocentric_state_to_1e_9(new_center):
     np.testing.assert_allclose(r_back, r, rtol=1e-9 * np.linalg.norm(r) / np.min(np.abs(r)))
     np.testing.assert_allclose(v_back, v, rtol=1e-9 * np.linalg.norm(v) / np.min(np.abs(v)))
     np.testing.assert_array_equal(fp_back, fp)
+
+
+def test_central_params_carry_each_bodys_gravity():
+    p = soi.central_params(EARTH_P, "moon")
+    np.testing.assert_array_equal(p, MOON_P)
+    np.testing.assert_array_equal(soi.central_params(p, "earth"), EARTH_P)

@@ -37,8 +37,9 @@ from rocketsim.constants import (CRUISE_CLEARANCE, CRUISE_MAX_STEP, CRUISE_MAX_T
 from rocketsim.dynamics.nbody import (F_CENTER, F_MU, bodies_at, field_acceleration,
                                       field_rk4_step)
 from rocketsim.dynamics.rails import FREE, turn_attitude
-from rocketsim.dynamics.soi import SOI_BY_INDEX
+from rocketsim.dynamics.soi import SOI_BY_INDEX, central_body, central_params, handover
 from rocketsim.dynamics.state import P_MU, R, V
+from rocketsim.ephemeris.solar_system import BODIES
 from rocketsim.transfer.kepler import _propagate_one
 
 DONE = 0          # reached the requested end
@@ -201,3 +202,28 @@ def advance_cruise(y, k0, h, k_end, p, fp, air, inertia):
         if outside_soi(y, k * h, fp):
             return y, k, SOI, count
     return y, k, DONE, count
+
+
+def cruise_through(y, k0: int, h: float, k_end: int, p, fp, air, inertia, gmst0: float = 0.0):
+    """Cruise from step ``k0`` to ``k_end``, handing over at every sphere of influence.
+
+    Each :data:`SOI` stop re-centres the state, the parameters' central
+    gravity and the field on the new body (:func:`rocketsim.dynamics.soi.handover`)
+    and the cruise goes on. Returns ``(y, k, p, fp, reason, handovers)``:
+    where and why it stopped (:data:`DONE` or :data:`ENCOUNTER`), the
+    parameters and field it ended in, and ``(k, body)`` for every handover.
+    """
+    handovers = []
+    k = k0
+    while True:
+        new = central_body(y[R:R + 3], fp, k * h)
+        if new != BODIES[int(fp[F_CENTER])]:
+            r, v, fp = handover(y[R:R + 3], y[V:V + 3], fp, k * h, new, gmst0)
+            y = y.copy()
+            y[R:R + 3] = r
+            y[V:V + 3] = v
+            p = central_params(p, new)
+            handovers.append((k, new))
+        y, k, reason, _ = advance_cruise(y, k, h, k_end, p, fp, air, inertia)
+        if reason != SOI:
+            return y, k, p, fp, reason, handovers

@@ -24,9 +24,12 @@ import math
 import numpy as np
 
 from rocketsim.bodies.orientation import pole_and_meridian
-from rocketsim.constants import (EARTH_MU, EARTH_ORBIT_A, MARS_MU, MARS_ORBIT_A, MOON_MU,
-                                 MOON_ORBIT_A, SECONDS_PER_DAY, SUN_MU)
+from rocketsim.constants import (EARTH_J2, EARTH_MU, EARTH_ORBIT_A, EARTH_RADIUS_EQ,
+                                 EARTH_RADIUS_POLAR, MARS_FLATTENING, MARS_J2, MARS_MU,
+                                 MARS_ORBIT_A, MARS_RADIUS_EQ, MOON_J2, MOON_MU, MOON_ORBIT_A,
+                                 MOON_RADIUS, SECONDS_PER_DAY, SUN_MU, SUN_RADIUS)
 from rocketsim.dynamics.nbody import F_CENTER, F_JD0, F_ROT, bodies_at
+from rocketsim.dynamics.state import P_J2, P_MU, P_POLAR_RADIUS, P_RADIUS
 from rocketsim.ephemeris.solar_system import BODIES
 
 PARENT = {"earth": "sun", "moon": "earth", "mars": "sun"}
@@ -46,6 +49,20 @@ SOI = {name: soi_radius(name) for name in BODIES}
 SOI_BY_INDEX = np.array([SOI[name] for name in BODIES])
 # the bodies whose SOI lies inside each body's (its children)
 CHILDREN = {"sun": ("earth", "mars"), "earth": ("moon",), "moon": (), "mars": ()}
+
+
+# mu (m^3/s^2), reference radius (m), J2 and polar radius (m) of each central body
+CENTRAL = {"sun": (SUN_MU, SUN_RADIUS, 0.0, SUN_RADIUS),
+           "earth": (EARTH_MU, EARTH_RADIUS_EQ, EARTH_J2, EARTH_RADIUS_POLAR),
+           "moon": (MOON_MU, MOON_RADIUS, MOON_J2, MOON_RADIUS),
+           "mars": (MARS_MU, MARS_RADIUS_EQ, MARS_J2, MARS_RADIUS_EQ * (1.0 - MARS_FLATTENING))}
+
+
+def central_params(p, body: str) -> np.ndarray:
+    """A copy of the parameter vector ``p`` with ``body``'s gravity as the centre's."""
+    out = np.array(p, dtype=float)
+    out[P_MU], out[P_RADIUS], out[P_J2], out[P_POLAR_RADIUS] = CENTRAL[body]
+    return out
 
 
 def frame_rotation(body: str, jd_tt: float, gmst0: float = 0.0) -> np.ndarray:
