@@ -359,13 +359,14 @@ class World:
     def _on_rails(self, body: Body) -> bool:
         """Sleep rails (issue 9) for a rigid body nobody flies or whose program sleeps
         beyond the next step, axisymmetric (the exact torque-free attitude), above
-        the rails floor. Staged vehicles stay awake until the flight computer can
-        say their engines, RCS and ullage are off and the autopilot has settled."""
+        the rails floor, with no attitude command. Staged vehicles and held
+        attitudes stay awake until the flight computer can say the engines, RCS
+        and ullage are off and the autopilot has settled on its command."""
         runner = body.runner
         asleep = runner is None or runner.finished or (
             not runner.waiting_on_predicate and runner.wake_time() - self.t > self.h * (1 + 1e-9))
-        return (asleep and body.vehicle is None and body.p[P_IYY] == body.p[P_IZZ]
-                and radial_height(body.y, body.p) > RAILS_FLOOR)
+        return (asleep and body.vehicle is None and body.attitude_command is None
+                and body.p[P_IYY] == body.p[P_IZZ] and radial_height(body.y, body.p) > RAILS_FLOOR)
 
     def _advance(self, body: Body, n: int) -> None:
         k0 = self.k
