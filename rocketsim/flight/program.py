@@ -66,17 +66,19 @@ def cpu_budget(seconds: float):
     if seconds <= 0 or threading.current_thread() is not threading.main_thread():
         yield
         return
-
-    def expire(signum, frame):
-        raise ProgramOverBudget
-
-    previous = signal.signal(signal.SIGVTALRM, expire)
+    if signal.getsignal(signal.SIGVTALRM) is not _expire:
+        # installed once: the handler only acts while the timer is armed, and
+        # re-installing it around every step would cost more than the step
+        signal.signal(signal.SIGVTALRM, _expire)
     signal.setitimer(signal.ITIMER_VIRTUAL, seconds)
     try:
         yield
     finally:
         signal.setitimer(signal.ITIMER_VIRTUAL, 0.0)
-        signal.signal(signal.SIGVTALRM, previous)
+
+
+def _expire(signum, frame):
+    raise ProgramOverBudget
 
 
 def load_program(path: Path) -> Callable:

@@ -17,6 +17,8 @@ seconds of mission time, a scalar or an (N,) array matched row by row.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from rocketsim.constants import EARTH_OMEGA
@@ -38,6 +40,11 @@ def _rotate_z(vec, angle):
     ``angle`` is a scalar or (N,). Returns ``R3(angle) vec``:
     ``x' = cos a x + sin a y``, ``y' = -sin a x + cos a y``, ``z' = z``.
     """
+    if np.ndim(angle) == 0 and np.shape(vec) == (3,):
+        # one vector: plain floats, a few times faster than the array path
+        c, s = math.cos(angle), math.sin(angle)
+        x, y = float(vec[0]), float(vec[1])
+        return np.array((c * x + s * y, -s * x + c * y, float(vec[2])))
     vec = np.asarray(vec, dtype=float)
     angle = np.asarray(angle, dtype=float)
     c = np.cos(angle)
