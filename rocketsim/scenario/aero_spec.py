@@ -136,3 +136,20 @@ class AeroSpec(_Strict):
         if any(c < 0 for _, c in value):
             raise ValueError("an axial coefficient cannot be negative")
         return value
+
+
+def check_aero(aero: AeroSpec | None, stages) -> None:
+    """Every part of ``aero`` names a stage of the vehicle (and a thruster a tank of its
+    stage); raises a located ValidationError (relative to the vehicle)."""
+    if aero is None or stages is None:
+        return
+    from rocketsim.scenario.vehicle import field_error
+    by_name = {st.name: st for st in stages}
+    for label in ("fins", "grid_fins", "legs", "rcs"):
+        for i, part in enumerate(getattr(aero, label)):
+            if part.stage not in by_name:
+                raise field_error(("aero", label, i, "stage"), f"no stage is named {part.stage!r} "
+                                  f"(stages: {', '.join(by_name)})", part.stage)
+            if label == "rcs" and part.tank not in [t.name for t in by_name[part.stage].tanks]:
+                raise field_error(("aero", label, i, "tank"), f"stage {part.stage!r} has no tank named "
+                                  f"{part.tank!r}", part.tank)

@@ -23,7 +23,7 @@ from pydantic import BaseModel, ConfigDict, Field, field_validator, model_valida
 from rocketsim.constants import MAX_HEADLESS_STEP, STEP
 from rocketsim.scenario.weather import Weather
 from rocketsim.scenario.units import Angle, Duration, Frequency, Inertia, Length, Mass, Speed
-from rocketsim.scenario.aero_spec import AeroSpec
+from rocketsim.scenario.aero_spec import AeroSpec, check_aero
 from rocketsim.scenario.vehicle import FairingSpec, PayloadSpec, StageSpec, check_staged
 
 PositiveMass = Annotated[Mass, Field(gt=0)]
@@ -70,6 +70,7 @@ class VehicleSpec(Strict):
             raise ValueError("give exactly one of 'rigid_body' or 'stages'")
         if self.stages is not None:
             check_staged(self.stages, self.engines)
+            check_aero(self.aero, self.stages)
         elif (self.engines is not None or self.payload is not None or self.fairing is not None
               or self.aero is not None):
             raise ValueError("'engines', 'payload', 'fairing' and 'aero' go with 'stages', not 'rigid_body'")
