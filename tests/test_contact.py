@@ -145,3 +145,33 @@ def test_touchdown_event_reports_speed_tilt_and_distance_to_the_pad(lander):
     assert figures["horizontal_speed_m_s"] < 1e-3          # Coriolis over the fall: 2 omega v t ~ 4e-4
     assert figures["tilt_deg"] < 1e-6
     assert figures["distance_to_pad_m"] == pytest.approx(3.0, abs=1e-3)
+
+
+def test_the_world_reports_touchdown_and_the_lander_rests(write):
+    # The same drop flown by World from a scenario: the site's height puts the feet 2 m
+    # above the ellipsoid (the ground is the WGS84 ellipsoid; terrain is not modelled).
+    from rocketsim.scenario.load import load
+    from rocketsim.sim.world import World
+    from tests.aero_vehicles import ROOT
+    model = build(shipped("lander.yaml"))
+    x_cm = model.mass_properties(model.state([0, 0, 0], [0, 0, 0]))[1]
+    write("site.yaml", f"name: flat\nlatitude: 28.5 deg\nlongitude: -80.6 deg\nheight: {2.0 + 1.2 + x_cm} m\n")
+    write("mission.yaml", "epoch: 2026-11-26T12:00:00Z\nstart:\n  site:\n    velocity: [0 m/s, 0 m/s, -2 m/s]\n"
+                          "duration: 2 s\n")
+    path = write("drop.yaml", f"name: drop\nvehicle: {ROOT / 'vehicles' / 'lander.yaml'}\nsite: site.yaml\n"
+                              "mission: mission.yaml\n")
+    summary = World.from_scenario(load(path)).run()
+    (body,) = summary["bodies"].values()
+    events = {e["name"]: e for e in body["events"]}
+    assert "touchdown" in events and "impact" not in events and "breakup" not in events
+    assert events["touchdown"]["vertical_speed_m_s"] == pytest.approx(-math.sqrt(4.0 + 4.0 * somigliana(LAT)),
+                                                                      rel=4e-3)
+    # the pad is the site, straight below the start (Coriolis moves it by millimetres)
+    assert events["touchdown"]["distance_to_pad_m"] < 0.01
+    assert body["final"]["altitude_m"] == pytest.approx(1.2 + x_cm - mass_static(model, x_cm), abs=2e-3)
+
+
+def mass_static(model, x_cm):
+    """Static compression of the legs (m) under the lander's weight."""
+    mass = model.mass_properties(model.state([0, 0, 0], [0, 0, 0]))[0]
+    return mass * somigliana(LAT) / (N_LEGS * K_LEG)
