@@ -175,3 +175,38 @@ def mass_static(model, x_cm):
     """Static compression of the legs (m) under the lander's weight."""
     mass = model.mass_properties(model.state([0, 0, 0], [0, 0, 0]))[0]
     return mass * somigliana(LAT) / (N_LEGS * K_LEG)
+
+
+@pytest.mark.parametrize("tilt_deg, tips", [(14.0, False), (23.0, True)])
+def test_a_booster_standing_tilted_on_its_legs_rights_itself_or_tips_over(tilt_deg, tips):
+    # Statics: a body on a ring of feet tips over when its centre of mass passes over the
+    # edge between two feet, at atan(r cos(45 deg) / height of the centre of mass above
+    # the feet): 18.2 deg for the nearly empty shipped booster (legs on an 8.5 m ring, 1 m
+    # below the base). Below it the legs bring it back; beyond it it falls onto its side.
+    from rocketsim.dynamics.rk4 import advance
+    from rocketsim.frames.quaternion import quat_rotate
+    model = build(shipped("falcon9-block5.yaml"), last=0)
+    p = earth_params()
+    prop = np.array([500.0, 1000.0])
+    x_cm = model.mass_properties(model.state([0, 0, 0], [0, 0, 0], propellant=prop))[1]
+    critical = math.degrees(math.atan(8.5 * math.cos(math.pi / 4) / (x_cm + 1.0)))
+    assert (tilt_deg > critical) == tips
+    enu = enu_basis(LAT, LON)
+    up, north = enu[2], enu[1]
+    tilt = math.radians(tilt_deg)
+    bx = math.cos(tilt) * up + math.sin(tilt) * north
+    bz = -math.sin(tilt) * up + math.cos(tilt) * north
+    axes = np.column_stack((bx, np.cross(bz, bx), bz))
+    q, w = quat_from_matrix(axes), axes.T @ np.array([0.0, 0.0, EARTH_OMEGA])
+    r = np.array(geodetic_to_ecef(LAT, LON, 30.0))
+    lowest = contact_heights(model.state(r, corotating(r), q=q, w=w, propellant=prop), p, model).min()
+    r = r - (lowest - 5e-4) * up                           # the downhill feet just touching
+    y = model.state(r, corotating(r), q=q, w=w, propellant=prop)
+    tilts = []
+    for s in range(8):                                     # 8 s
+        y, _ = advance(y, 50 * s, 0.02, 50, p, model.arrays)
+        tilts.append(math.degrees(math.acos(quat_rotate(y[6:10], np.array([1.0, 0.0, 0.0])) @ up)))
+    if tips:
+        assert max(tilts) > 80.0
+    else:
+        assert max(tilts) < tilt_deg and tilts[-1] < 8.0
