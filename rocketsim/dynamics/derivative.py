@@ -20,6 +20,14 @@ its engines add thrust and torque and drain the tanks, all at every stage
 vehicle's atmosphere table). The rate of change of the inertia and the jet
 damping it causes are not modelled. Without ``veh`` (``None``, the rigid body)
 that branch is compiled away and the coasting derivative is unchanged.
+
+A vehicle with an ``aero:`` section (``veh.aero.ref[A_ON]``) also gets, at
+every stage, its aerodynamics from the air at the stage's height (axial,
+segment crossflow, nose lift, fins: :mod:`rocketsim.vehicle.aero`), its grid
+fins (:mod:`~rocketsim.vehicle.grid_fins`), its RCS thrusters
+(:mod:`~rocketsim.vehicle.rcs`, draining their tanks) and, within reach of
+the ground, its contact forces (:mod:`~rocketsim.vehicle.contact`). The air
+moves with the ground plus the wind held for the step in ``veh.aero.wind``.
 """
 
 import math
