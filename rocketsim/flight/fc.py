@@ -49,6 +49,20 @@ class FlightComputer:
             raise ValueError(f"fc.sleep() needs a duration >= 0 s, got {seconds!r}")
         self._body.runner.hand_back(self._world.t + max(seconds, self._world.h))
 
+    def cruise(self, seconds: float) -> None:
+        """Hand control back for ``seconds`` and allow cruise rails meanwhile.
+
+        Far from every body (outside the central body's 2 000 km clearance
+        shell) the vehicle is then advanced by RK4 steps sized by how fast its
+        path turns (up to an hour each) instead of 20 ms ones; it falls back
+        to 20 ms steps before an encounter and when it leaves the central
+        body's sphere of influence. Example: ``fc.cruise(3 * 86400)``.
+        """
+        if not seconds >= 0:
+            raise ValueError(f"fc.cruise() needs a duration >= 0 s, got {seconds!r}")
+        self._body.cruise_until = self._world.t + max(seconds, self._world.h)
+        self._body.runner.hand_back(self._body.cruise_until)
+
     def wait_until(self, predicate: Callable[[], bool]) -> None:
         """Hand control back until ``predicate()`` is true (checked once per step)."""
         if not callable(predicate):

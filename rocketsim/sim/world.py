@@ -24,6 +24,7 @@ import numpy as np
 from rocketsim.constants import DEG, RAILS_FLOOR, EARTH_J2, EARTH_MU, EARTH_RADIUS_EQ, EARTH_RADIUS_POLAR
 from rocketsim.bodies.gravity import point_mass_j2
 from rocketsim.dynamics.derivative import derivative, radial_height
+from rocketsim.dynamics.cruise import DONE, SOI, advance_cruise, plan_step
 from rocketsim.dynamics.nbody import make_field, no_air
 from rocketsim.dynamics.rails import FREE, advance_rails
 from rocketsim.dynamics.rk4 import advance
@@ -74,6 +75,7 @@ class Body:
     watch: FlightEvents | None = None       # liftoff, max-Q, MECO/SECO, orbit
     stack: VehicleSpec | None = None        # the stages this body still carries (to separate)
     attitude_command: object | None = None  # what the autopilot steers to (fc.point, hold...)
+    cruise_until: float = -math.inf         # mission time fc.cruise allows cruise rails until
 
     @property
     def position(self) -> np.ndarray:
@@ -123,6 +125,8 @@ class World:
         self.on_progress: Callable[[float], None] | None = None
         self._build_atmosphere = atmosphere
         self._atmosphere = None
+        self._field = None                  # cruise rails' field, built on first use
+        self._cruise_batch = False          # the last batch was one cruise step
         self.seed = 0
         self.sensor_level = "truth"
         self.stage_programs: dict[str, object] = {}      # stage name -> (main, path)
@@ -309,7 +313,7 @@ class World:
                     if body.flying and body.watch is not None:
                         body.watch.after_step()
                 self.k += n
-                if self.k % self.sample_every == 0 or self.k >= self.n_steps:
+                if self.k % self.sample_every == 0 or self.k >= self.n_steps or self._cruise_batch:
                     self._sample_all()
                 if self.on_progress is not None:
                     self.on_progress(self.t)
@@ -341,11 +345,18 @@ class World:
 
     def _batch_length(self) -> int:
         """Steps that can be taken before anything needs deciding."""
+        self._cruise_batch = False
         if any(b.flying and b.checks is not None and b.checks.every_step(b) for b in self.bodies):
             return 1                        # limits, heating and touchdown are checked every step
         if any(b.flying and b.attitude_command is not None for b in self.bodies):
             return 1                        # the autopilot runs once per step
         n = min(self.n_steps - self.k, self.sample_every - self.k % self.sample_every)
+        flying = [b for b in self.bodies if b.flying]
+        cruise = [self._cruise_steps(b) for b in flying if self._cruising(b)]
+        self._cruise_batch = len(cruise) == len(flying) and all(c > 0 for c in cruise)
+        if self._cruise_batch:
+            # every body cruises: one cruise step per batch, sampled at its end
+            n = min([self.n_steps - self.k] + cruise)
         for body in self.bodies:
             runner = body.runner
             if not body.flying or runner is None or runner.finished:
@@ -368,9 +379,49 @@ class World:
         return (asleep and body.vehicle is None and body.attitude_command is None
                 and body.p[P_IYY] == body.p[P_IZZ] and radial_height(body.y, body.p) > RAILS_FLOOR)
 
+    def _cruising(self, body: Body) -> bool:
+        """fc.cruise allows cruise rails now (they run wherever no shell is near:
+        a body inside one flies 20 ms steps and cruises again once clear)."""
+        return body.cruise_until > self.t and body.attitude_command is None
+
+    def _cruise_steps(self, body: Body) -> int:
+        """Flight-model steps of ``body``'s next cruise step (0: it cannot cruise here)."""
+        k_end = self.k + math.ceil((body.cruise_until - self.t) / self.h - 1e-9)
+        steps, _, reason = plan_step(body.y, self.k, self.h, k_end, body.p, self._cruise_field())
+        return steps if reason == DONE else 0
+
+    def _cruise_field(self) -> np.ndarray:
+        """The field cruise rails integrate: the awake flight's own (Earth's point mass
+        and J2 in the mission's ECI) until the world flies the n-body field."""
+        if self._field is None:
+            self._field = make_field("earth", self.epoch.jd_tt(), bodies=())
+        return self._field
+
+    def _cruise(self, body: Body, n: int) -> int:
+        """Cruise ``body`` up to ``n`` steps; returns the steps taken (the rest fly awake)."""
+        p = body.p
+        if body.vehicle is None:
+            inertia = p[P_IXX:P_IZZ + 1]
+        else:
+            _, _, ixx, iyy, _ = body.vehicle.mass_properties(body.y)
+            inertia = np.array((ixx, iyy, iyy))
+        y, k, reason, _ = advance_cruise(body.y, self.k, self.h, self.k + n, p,
+                                         self._cruise_field(), _NO_AIR, inertia)
+        if body.vehicle is not None:
+            y[body.vehicle.clocks] += (k - self.k) * self.h     # engine clocks run on
+        body.y = y
+        if reason == SOI:
+            # the world flies in Earth's frame only (so far): no handover, 20 ms steps on
+            body.cruise_until = -math.inf
+            self.event(body, "cruise_end", {"reason": "left the sphere of influence"})
+        return k - self.k
+
     def _advance(self, body: Body, n: int) -> None:
         k0 = self.k
-        if self._on_rails(body):
+        if self._cruising(body):
+            done = self._cruise(body, n)
+            k0, n = k0 + done, n - done
+        if n > 0 and self._on_rails(body):
             # same step, same orbit to the bit; stops below the floor and wakes for the rest
             body.y, done = advance_rails(body.y, k0, self.h, n, body.p, _RAILS_FIELD, _NO_AIR,
                                          body.p[P_IXX:P_IZZ + 1], FREE)
