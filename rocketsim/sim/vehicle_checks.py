@@ -25,11 +25,12 @@ import math
 
 import numpy as np
 
-from rocketsim.atmosphere.table import TOP
+from rocketsim._jit import njit
+from rocketsim.atmosphere.table import TOP, air_at
 from rocketsim.bodies.gravity import point_mass_j2
 from rocketsim.constants import (AIR_CP, CO2_CP, DEG, HEAT_SHIELD_LIMIT, MARS_MU,
                                  SUTTON_GRAVES_EARTH, SUTTON_GRAVES_MARS)
-from rocketsim.dynamics.derivative import derivative
+from rocketsim.dynamics.derivative import body_air_velocity, derivative, radial_height
 from rocketsim.dynamics.state import P_J2, P_MU, P_POLAR_RADIUS, P_RADIUS, Q, R, V, W
 from rocketsim.flight.readings import StateView
 from rocketsim.frames.earth_fixed import eci_to_ecef
@@ -37,6 +38,7 @@ from rocketsim.frames.quaternion import quat_rotate
 from rocketsim.vehicle.aero import A_REACH
 from rocketsim.vehicle.contact import K_X, K_Y, K_Z, point_height
 from rocketsim.vehicle.heating import advance_shield, sutton_graves
+from rocketsim.vehicle.mass_properties import mass_properties
 from rocketsim.vehicle.limits import breakup
 
 
@@ -49,6 +51,7 @@ class VehicleChecks:
         self.pad = None if pad_ecef is None else np.asarray(pad_ecef, dtype=float)
         self.touched_down = False
         self.previous = None        # (t, y) before the last step, for the touchdown figures
+        self._arrays = self._in_flight = None
 
     def every_step(self, body) -> bool:
         """True while the body must be stepped one step at a time (in the air or near the ground)."""
@@ -57,33 +60,22 @@ class VehicleChecks:
 
     def after_step(self, world, body, h: float) -> None:
         """Run the checks on the body's new state (after a step of ``h`` seconds)."""
-        view = body.view()
-        rho, _, air_temperature, _, _, v_air = view.air
-        if rho > 0.0:
-            self._structure(world, body, view)
-            if body.flying and self.shield is not None:
-                self._heat(world, body, rho, float(np.linalg.norm(v_air)), air_temperature, h)
-        if body.flying and not self.touched_down and self._touching(body):
-            self.touched_down = True
-            world.event(body, "touchdown", self.touchdown_figures(body, view))
-        self.previous = (body.t, body.y.copy())
-
-    # --- the checks ------------------------------------------------------------
-    def _structure(self, world, body, view) -> None:
-        # flight loads only: thrust, air and RCS. The legs are idealised stiff
-        # springs (a real leg's stroke crushes); their impact is not the structure's.
         arrays = body.vehicle.arrays
-        in_flight = arrays._replace(aero=arrays.aero._replace(contact=arrays.aero.contact[:0]))
-        dy = np.zeros_like(body.y)
-        derivative(body.t, body.y, body.p, dy, in_flight)
-        x, y, z = body.position
-        gravity = np.array(point_mass_j2(x, y, z, body.p[P_MU], body.p[P_RADIUS], body.p[P_J2]))
-        sensed = dy[V:V + 3] - gravity
-        axial = float(quat_rotate(body.attitude, np.array([1.0, 0.0, 0.0])) @ sensed)
-        figures = breakup(view.dynamic_pressure, view.angle_of_attack, axial)
+        if self._arrays is not arrays:          # a new model (staging): flight loads without contact
+            self._arrays = arrays
+            self._in_flight = arrays._replace(aero=arrays.aero._replace(contact=arrays.aero.contact[:0]))
+        rho, air_temperature, speed, q, alpha, axial, lowest = step_figures(
+            body.t, body.y, body.p, arrays, self._in_flight)
+        figures = breakup(q, alpha, axial)
         if figures is not None:
             world.event(body, "breakup", figures)
             body.flying = False
+        if body.flying and rho > 0.0 and self.shield is not None:
+            self._heat(world, body, rho, speed, air_temperature, h)
+        if body.flying and not self.touched_down and lowest <= 0.0:
+            self.touched_down = True
+            world.event(body, "touchdown", self.touchdown_figures(body, body.view()))
+        self.previous = (body.t, body.y.copy())
 
     def _heat(self, world, body, rho, speed, air_temperature, h) -> None:
         s = self.shield
@@ -96,10 +88,6 @@ class VehicleChecks:
                 "temperature_k": self.temperature,
                 "heat_flux_w_m2": sutton_graves(rho, speed, s.nose_radius, k)})
             body.flying = False
-
-    def _touching(self, body) -> bool:
-        heights = contact_heights(body.y, body.p, body.vehicle)
-        return heights.size > 0 and float(heights.min()) <= 0.0
 
     def touchdown_figures(self, body, view) -> dict:
         """Vertical and horizontal speed over the ground, tilt and distance to the pad, at
@@ -144,3 +132,43 @@ def contact_heights(y, p, vehicle) -> np.ndarray:
         px, py, pz = y[R:R + 3] + offset
         out[i] = point_height(px, py, pz, p[P_RADIUS], p[P_POLAR_RADIUS])
     return out
+
+
+@njit
+def step_figures(t, y, p, veh, in_flight):
+    """What the checks read after a step, in one compiled call: ``(density kg/m^3, air
+    temperature K, airspeed m/s, dynamic pressure Pa, total angle of attack rad, sensed
+    acceleration along body x m/s^2 from the flight loads (``in_flight``: the vehicle's
+    arrays without its contact points), height of the lowest contact point m)``.
+
+    The air moves with the ground and the wind held for the step (as the derivative
+    sees it); the angle of attack is measured from the nose.
+    """
+    n_tanks = veh.tank_bottom.shape[0]
+    x_cm = mass_properties(veh.fixed, veh.tank_bottom, veh.tank_radius, veh.tank_density,
+                           y[13:13 + n_tanks])[1]
+    rho, _, temperature, _, _, _ = air_at(veh.air_h0, veh.air_dh, veh.air_density, veh.air_pressure,
+                                          veh.air_temperature, veh.air_speed_of_sound, veh.air_wind_east,
+                                          veh.air_wind_north, radial_height(y, p))
+    u, v, w = body_air_velocity(y, veh.aero.wind)
+    speed = math.sqrt(u * u + v * v + w * w)
+    alpha = math.acos(max(-1.0, min(1.0, u / speed))) if speed > 0.0 else 0.0
+    dy = np.zeros(y.shape[0])
+    derivative(t, y, p, dy, in_flight)
+    gx, gy, gz = point_mass_j2(y[R], y[R + 1], y[R + 2], p[P_MU], p[P_RADIUS], p[P_J2])
+    sx, sy, sz = dy[V] - gx, dy[V + 1] - gy, dy[V + 2] - gz
+    # body x in inertial axes: first column of the rotation of q
+    qw, qx, qy, qz = y[Q], y[Q + 1], y[Q + 2], y[Q + 3]
+    ax = 1.0 - 2.0 * (qy * qy + qz * qz)
+    ay = 2.0 * (qx * qy + qw * qz)
+    az = 2.0 * (qx * qz - qw * qy)
+    lowest = math.inf
+    c = veh.aero.contact
+    for i in range(c.shape[0]):
+        bx, by, bz = c[i, K_X] - x_cm, c[i, K_Y], c[i, K_Z]
+        # q b (rotation matrix rows)
+        ox = (1.0 - 2.0 * (qy * qy + qz * qz)) * bx + 2.0 * (qx * qy - qw * qz) * by + 2.0 * (qx * qz + qw * qy) * bz
+        oy = 2.0 * (qx * qy + qw * qz) * bx + (1.0 - 2.0 * (qx * qx + qz * qz)) * by + 2.0 * (qy * qz - qw * qx) * bz
+        oz = 2.0 * (qx * qz - qw * qy) * bx + 2.0 * (qy * qz + qw * qx) * by + (1.0 - 2.0 * (qx * qx + qy * qy)) * bz
+        lowest = min(lowest, point_height(y[R] + ox, y[R + 1] + oy, y[R + 2] + oz, p[P_RADIUS], p[P_POLAR_RADIUS]))
+    return rho, temperature, speed, 0.5 * rho * speed * speed, alpha, sx * ax + sy * ay + sz * az, lowest
