@@ -305,3 +305,35 @@ def test_rcs_is_felt_in_the_derivative():
 def test_standard_table_used_by_the_tests_is_the_us_1976():
     # guard for the figures above: sea-level density of US 1976 is 1.2250 kg/m^3
     assert standard_table().at(0.0)[0][0] == pytest.approx(1.2250, rel=1e-4)
+
+
+def test_the_derivative_shields_the_base_with_the_engines_own_thrust():
+    # Tail first with the centre engine burning (a landing burn): the axial aerodynamic force
+    # the derivative applies is the bare tail-first one times exp(-C_T), C_T = T / (q S)
+    # with T the engines' thrust at that instant (Korzun et al. trend; plume_shielding).
+    from rocketsim.vehicle import engines as E
+    from rocketsim.atmosphere.table import air_at
+    from rocketsim.dynamics.derivative import body_air_velocity, radial_height
+    model = build(shipped("falcon9-block5.yaml"), last=0)
+    a = model.arrays
+    r = np.array([EARTH_RADIUS_EQ + 8e3, 0.0, 0.0])
+    y = model.state(r, corotating(r) + np.array([-450.0, 0.0, 0.0]), propellant=np.array([2e4, 4e4]))
+    E.ignite(y, a.eng, a.cmd, a.stage, 0, a.first_clock)           # the centre engine
+    y[model.clocks] = 10.0
+    p = earth_params()
+    no_fins = a._replace(aero=a.aero._replace(grid=a.aero.grid[:0], grid_cmd=a.aero.grid_cmd[:0]))
+    bare = a._replace(aero=a.aero._replace(ref=a.aero.ref * 0.0))
+    dy, dy0 = np.zeros_like(y), np.zeros_like(y)
+    derivative(0.0, y, p, dy, no_fins)
+    derivative(0.0, y, p, dy0, bare)
+    mass, x_cm = model.mass_properties(y)[:2]
+    aero_x = (dy[3] - dy0[3]) * mass                       # body x = ECI x here
+    rho, p_a, _, sound = air_at(*a[10:18], radial_height(y, p))[:4]
+    thrust = E.engine_forces(0.0, y, np.zeros_like(y), a.first_tank, a.first_clock, a.eng, a.cmd, a.stage,
+                             a.tank_share, p_a, x_cm)[0]
+    u, v, w = body_air_velocity(y, a.aero.wind)
+    q = 0.5 * rho * (u * u + v * v + w * w)
+    area = a.aero.ref[A.A_AREA]
+    bare_axial = q * area * np.interp(abs(u) / sound, A.TAIL_FIRST_MACH, A.TAIL_FIRST_CA)
+    assert thrust > 0.0 and u < 0.0 and 0.5 < thrust / (q * area) < 5.0
+    assert aero_x == pytest.approx(bare_axial * math.exp(-thrust / (q * area)), rel=1e-9)
