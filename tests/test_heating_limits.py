@@ -181,3 +181,20 @@ def test_a_16_g_burn_breaks_the_vehicle():
             assert figures["axial_load_g"] == pytest.approx(thrust / (mass * G0), rel=1e-12)
         else:
             assert world.events == []
+
+
+def test_on_mars_the_shield_heats_with_the_co2_constant():
+    # EQUATIONS.md: k = 1.9027e-4 in CO2 (Sutton & Graves 1971); the body's central body
+    # decides which (the air table here is Earth's: only the constant is under test)
+    from rocketsim.constants import MARS_MU
+    shield = {"nose_radius": "0.3 m", "mass": "20 kg", "specific_heat": 1000.0, "area": "0.2 m2",
+              "initial_temperature": "2399.9 K"}
+    model, body = _entry_body(7000.0, 60e3, shield)
+    body.mu = MARS_MU
+    checks = VehicleChecks(heat_shield=HeatShieldSpec.model_validate(shield))
+    world = _World()
+    checks.after_step(world, body, 0.02)
+    rho = standard_table().at(60e3)[0][0]
+    speed = np.linalg.norm(body.y[3:6] - corotating(body.y[0:3]))
+    assert world.events[0][1]["heat_flux_w_m2"] == pytest.approx(1.9027e-4 * math.sqrt(rho / 0.3) * speed ** 3,
+                                                                 rel=1e-4)
