@@ -188,7 +188,7 @@ def test_on_mars_the_shield_heats_with_the_co2_constant():
     # decides which (the air table here is Earth's: only the constant is under test)
     from rocketsim.constants import MARS_MU
     shield = {"nose_radius": "0.3 m", "mass": "20 kg", "specific_heat": 1000.0, "area": "0.2 m2",
-              "initial_temperature": "2399.9 K"}
+              "initial_temperature": "2399.95 K"}   # one step adds ~0.09 K
     model, body = _entry_body(7000.0, 60e3, shield)
     body.mu = MARS_MU
     checks = VehicleChecks(heat_shield=HeatShieldSpec.model_validate(shield))
