@@ -194,6 +194,8 @@ class Scenario(Strict):
         None, description="the launch site, inline or as a path to a site file")
     mission: Union[MissionSpec, FileReference] = Field(
         description="the mission, inline or as a path to a mission file")
+    payload: Optional[PayloadSpec] = Field(
+        None, description="this mission's payload, in place of the vehicle file's")
     weather: Optional[Union[Weather, FileReference]] = Field(
         None, description="the day's weather, inline or as a path to a weather file; "
         "default: the US Standard Atmosphere 1976, calm")
@@ -220,6 +222,10 @@ class Scenario(Strict):
         for name in ("vehicle", "site", "mission", "weather"):
             if isinstance(getattr(self, name), str):
                 raise ValueError(f"'{name}' names a file: load scenarios with rocketsim.scenario.load")
+        if self.payload is not None:
+            if self.vehicle.stages is None:
+                raise ValueError("'payload' goes with a staged vehicle")
+            object.__setattr__(self, "vehicle", self.vehicle.model_copy(update={"payload": self.payload}))
         if self.mission.start.site is not None and self.site is None:
             raise ValueError("mission starts on a site: give 'site'")
         return self

@@ -69,3 +69,13 @@ def prograde_attitude(r, v) -> np.ndarray:
     z_axis /= np.linalg.norm(z_axis)
     y_axis = np.cross(z_axis, nose)
     return quat_from_matrix(np.column_stack((nose, y_axis, z_axis)))
+
+
+def standing_on_ground(r, up, x_cm: float, x_lowest: float) -> np.ndarray:
+    """Centre-of-mass position of a vehicle standing upright on the ground point ``r``.
+
+    ``up`` is the local vertical (unit), ``x_cm`` the centre of mass and
+    ``x_lowest`` the lowest contact point (legs' feet, or the base), both body-x
+    stations (m): the feet touch the ground with the springs unloaded.
+    """
+    return np.asarray(r, dtype=float) + (x_cm - x_lowest) * np.asarray(up, dtype=float)

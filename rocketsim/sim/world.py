@@ -38,8 +38,8 @@ from rocketsim.frames.earth_fixed import eci_to_ecef_velocity
 from rocketsim.scenario.load import LoadedScenario
 from rocketsim.scenario.models import check_step
 from rocketsim.errors import InputError
-from rocketsim.frames.geodetic import geodetic_to_ecef
-from rocketsim.sim.start import start_state
+from rocketsim.frames.geodetic import enu_basis, geodetic_to_ecef
+from rocketsim.sim.start import standing_on_ground, start_state
 from rocketsim.sim.flight_events import FlightEvents
 from rocketsim.sim.vehicle_checks import VehicleChecks
 from rocketsim.timescales import Epoch
@@ -167,6 +167,14 @@ class World:
             # staged (issue 4): tanks and engine clocks extend the state; p's mass is unused
             body.vehicle = build(scenario.vehicle, air=world.atmosphere)
             body.y = body.vehicle.state(r, v, q, mission.initial_rates)
+            site_start = mission.start.site
+            contact = body.vehicle.arrays.aero.contact
+            if site_start is not None and len(contact) and site_start.elevation == math.pi / 2 \
+                    and not any(site_start.velocity):
+                # upright on the pad: feet on the ground, not the centre of mass
+                up = enu_basis(scenario.site.latitude, scenario.site.longitude)[2]
+                x_cm = body.vehicle.mass_properties(body.y)[1]
+                body.y[R:R + 3] = standing_on_ground(r, up, x_cm, float(contact[:, 0].min()))
             if scenario.vehicle.aero is not None:
                 site = scenario.site
                 pad = None if site is None else geodetic_to_ecef(site.latitude, site.longitude, site.height)
