@@ -24,27 +24,10 @@ from rocketsim.vehicle import engines as E
 from rocketsim.vehicle import grid_fins as G
 from rocketsim.vehicle.aero import body_aero
 from rocketsim.vehicle.build import build
+from tests.benchmarks.derivative_loops import coasting_derivative_calls, powered_derivative_calls
 from rocketsim.vehicle.mass_properties import mass_properties
 from tests.aero_vehicles import corotating, earth_params, pitch_quaternion, shipped
 from tests.benchmarks.timing import best_of
-
-
-@numba.njit
-def _full(n, y, p, dy, veh):
-    total = 0.0
-    for i in range(n):
-        derivative(1e-6 * i, y, p, dy, veh)
-        total += dy[V]
-    return total
-
-
-@numba.njit
-def _coast(n, y, p, dy):
-    total = 0.0
-    for i in range(n):
-        derivative(1e-6 * i, y, p, dy)
-        total += dy[V]
-    return total
 
 
 @numba.njit
@@ -112,14 +95,14 @@ def test_first_stage_derivative_in_the_atmosphere():
     rigid = make_params(5e5, (2e5, 1e8, 1e8), EARTH_MU, EARTH_RADIUS_EQ, EARTH_J2, EARTH_RADIUS_POLAR)
     y13 = np.ascontiguousarray(y[:13])
     dy, dy13 = np.zeros_like(y), np.zeros(13)
-    for f, args in ((_full, (y, p, dy, a)), (_coast, (y13, rigid, dy13)), (_mass, (y, a)), (_air, (y, p, a)),
+    for f, args in ((powered_derivative_calls, (y, p, dy, a)), (coasting_derivative_calls, (y13, rigid, dy13)), (_mass, (y, a)), (_air, (y, p, a)),
                     (_engines, (y, dy, a)), (_body, (y, a)), (_grid, (y, a))):
         f(10, *args)
 
     n = 100_000
     per = lambda f, *args: best_of(3, lambda: f(n, *args))[0] / n * 1e6
-    t_full = per(_full, y, p, dy, a)
-    t_coast = per(_coast, y13, rigid, dy13)
+    t_full = per(powered_derivative_calls, y, p, dy, a)
+    t_coast = per(coasting_derivative_calls, y13, rigid, dy13)
     parts = {"mass properties": per(_mass, y, a), "air table": per(_air, y, p, a),
              "9 engines": per(_engines, y, dy, a), "body aero (20 segments)": per(_body, y, a),
              "4 grid fins": per(_grid, y, a)}

@@ -13,7 +13,6 @@ import math
 import time
 from pathlib import Path
 
-import numba
 import numpy as np
 
 from rocketsim.atmosphere.day import standard_table
@@ -26,26 +25,9 @@ from rocketsim.scenario.models import VehicleSpec
 from rocketsim.scenario.yaml_source import read_yaml
 from rocketsim.vehicle import engines as E
 from rocketsim.vehicle.build import build
+from tests.benchmarks.derivative_loops import coasting_derivative_calls, powered_derivative_calls
 
 ROOT = Path(__file__).resolve().parents[2]
-
-
-@numba.njit
-def _powered_calls(n, y, p, dy, veh):
-    total = 0.0
-    for i in range(n):
-        derivative(1e-6 * i, y, p, dy, veh)
-        total += dy[V]
-    return total
-
-
-@numba.njit
-def _coast_calls(n, y, p, dy):
-    total = 0.0
-    for i in range(n):
-        derivative(1e-6 * i, y, p, dy)
-        total += dy[V]
-    return total
 
 
 def best_of(repeats, function):
@@ -69,12 +51,12 @@ def test_mass_properties_and_nine_engines_per_stage():
     rigid = make_params(5e5, (2e5, 1e8, 1e8), EARTH_MU, EARTH_RADIUS_EQ, EARTH_J2, EARTH_RADIUS_POLAR)
     y13 = np.ascontiguousarray(y[:13])
     dy, dy13 = np.zeros_like(y), np.zeros(13)
-    _powered_calls(10, y, p, dy, a)
-    _coast_calls(10, y13, rigid, dy13)
+    powered_derivative_calls(10, y, p, dy, a)
+    coasting_derivative_calls(10, y13, rigid, dy13)
 
     n = 200_000
-    t_powered = best_of(3, lambda: _powered_calls(n, y, p, dy, a)) / n
-    t_coast = best_of(3, lambda: _coast_calls(n, y13, rigid, dy13)) / n
+    t_powered = best_of(3, lambda: powered_derivative_calls(n, y, p, dy, a)) / n
+    t_coast = best_of(3, lambda: coasting_derivative_calls(n, y13, rigid, dy13)) / n
     print(f"\n[vehicle] derivative with mass properties + 9 engines: {t_powered * 1e6:.3f} us/stage; "
           f"coasting derivative {t_coast * 1e6:.3f} us/stage; ratio {t_powered / t_coast:.1f}x; "
           f"the vehicle's own share {(t_powered - t_coast) * 1e6:.3f} us (target <= 10 us)")
