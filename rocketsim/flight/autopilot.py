@@ -93,13 +93,12 @@ def steer(command: AttitudeCommand, view, vehicle, propulsion, y: np.ndarray, t:
     """Command the gimbals of ``vehicle``'s firing engines for one step; returns ``(g_y, g_z)``."""
     error = attitude_error(view.axes, command.target(view))
     _, x_cm, _, iyy, izz = vehicle.mass_properties(y)
-    states = propulsion.states(y, t, ambient_pressure)
-    eng = vehicle.arrays.eng
-    firing = [e for e, s in enumerate(states) if s["thrust_N"] > 0.0]
-    thrust = sum(states[e]["thrust_N"] for e in firing)
-    if not firing or thrust <= 0.0:
+    each = propulsion.thrusts(y, t, ambient_pressure)
+    firing = np.flatnonzero(each > 0.0)
+    thrust = float(each.sum())
+    if not len(firing) or thrust <= 0.0:
         return 0.0, 0.0
-    lever = sum(states[e]["thrust_N"] * (x_cm - eng[e, E.E_X]) for e in firing) / thrust
+    lever = float(each @ (x_cm - vehicle.arrays.eng[:, E.E_X])) / thrust
     gy, gz = gimbal_command(error, view.body_rates, iyy, izz, thrust, lever)
-    propulsion.gimbal(t, gy, gz, firing)
+    propulsion.gimbal(t, gy, gz, [int(e) for e in firing])
     return gy, gz

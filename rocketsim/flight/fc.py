@@ -364,9 +364,10 @@ class FlightComputer:
     @property
     def thrust(self) -> float:
         """Total thrust of all engines now, N."""
-        if self._body.vehicle is None:
+        body = self._body
+        if body.vehicle is None:
             return 0.0
-        return float(sum(e["thrust_N"] for e in self.engines))
+        return float(self._propulsion().thrusts(body.y, self._world.t, body.view().air[1]).sum())
 
     @property
     def propellant(self) -> dict[str, float]:

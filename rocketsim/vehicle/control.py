@@ -71,6 +71,7 @@ class Propulsion:
         throttle flown, gimbal (rad), thrust (N), mass flow (kg/s), ignitions left, separated."""
         a, out = self.a, []
         separated = E.separated(a.eng, a.cmd, t, p_a)
+        thrust = self.thrusts(y, t, p_a)
         for e, name in enumerate(self.model.engine_names):
             f, tau, gy, gz = E.engine_state(t, e, y[a.first_clock + e], a.eng, a.cmd, p_a)
             if a.stage[int(a.eng[e, E.E_STAGE]), E.S_DRY] > 0.5:
@@ -81,12 +82,17 @@ class Propulsion:
                 "spool": f,
                 "throttle": tau,
                 "gimbal_rad": (gy, gz),
-                "thrust_N": max(0.0, f * (tau * a.eng[e, E.E_THRUST] - p_a * a.eng[e, E.E_AREA])),
+                "thrust_N": float(thrust[e]),
                 "mass_flow_kg_s": f * tau * a.eng[e, E.E_MDOT],
                 "ignitions_left": int(a.eng[e, E.E_IGNITIONS] - a.cmd[e, E.C_IGNITED]),
                 "separated": bool(separated[e]),
             })
         return out
+
+    def thrusts(self, y: np.ndarray, t: float, p_a: float) -> np.ndarray:
+        """Thrust (N) of every engine at time ``t`` and ambient pressure ``p_a`` (Pa)."""
+        a = self.a
+        return E.thrusts(t, y, a.first_clock, a.eng, a.cmd, a.stage, p_a)
 
     def propellant(self, y: np.ndarray) -> dict[str, float]:
         """Propellant left in each tank (kg), by ``stage/tank`` name."""

@@ -196,6 +196,20 @@ def engine_forces(t, y, dy, first_tank, first_clock, eng, cmd, stage, tank_share
     return fx, fy, fz, mx, my, mz
 
 
+@njit
+def thrusts(t, y, first_clock, eng, cmd, stage, p_a):
+    """Thrust (N) of every engine at time ``t`` and ambient pressure ``p_a``:
+    ``f (tau T_vac - p_a A_e)``, zero when negative or the engine's stage is dry
+    (the same figure :func:`engine_forces` applies), for readings and the autopilot."""
+    out = np.zeros(eng.shape[0])
+    for e in range(eng.shape[0]):
+        if stage[int(eng[e, E_STAGE]), S_DRY] > 0.5:
+            continue
+        f, tau, gy, gz = engine_state(t, e, y[first_clock + e], eng, cmd, p_a)
+        out[e] = max(0.0, f * (tau * eng[e, E_THRUST] - p_a * eng[e, E_AREA]))
+    return out
+
+
 def separated(eng: np.ndarray, cmd: np.ndarray, t: float, p_a: float) -> np.ndarray:
     """Which engines run with separated nozzle flow at ambient pressure ``p_a`` (Pa):
     the exit pressure at the throttle flown is below the Summerfield limit."""
