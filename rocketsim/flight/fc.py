@@ -314,6 +314,23 @@ class FlightComputer:
         steer(command, self._view(), body.vehicle, self._propulsion(), body.y, self._world.t,
               body.view().air[1])
 
+    # --- the mission -----------------------------------------------------------
+    @property
+    def target(self):
+        """The mission's target (``fc.target.orbit.altitude``, ``.inclination``; SI)."""
+        return self._world.target
+
+    @property
+    def pad_azimuth(self) -> float:
+        """The launch site's pad azimuth from north, rad (nan without a site)."""
+        return self._world.pad_azimuth
+
+    @property
+    def stages(self) -> list[str]:
+        """Names of the stages still attached, bottom first (empty for a rigid body)."""
+        vehicle = self._body.vehicle
+        return list(vehicle.stage_names) if vehicle is not None else []
+
     # --- staging ------------------------------------------------------------
     def stage(self) -> str:
         """Separate the lowest stage now; this program flies on with the upper stack.

@@ -158,6 +158,19 @@ class StartSpec(Strict):
         return self
 
 
+class TargetOrbit(Strict):
+    """The orbit a mission aims for (programs read it as ``fc.target``)."""
+
+    altitude: Annotated[Length, Field(gt=0)] = Field(description="circular altitude above the equatorial radius")
+    inclination: Angle
+
+
+class TargetSpec(Strict):
+    """What the mission aims for."""
+
+    orbit: Optional[TargetOrbit] = None
+
+
 class MissionSpec(Strict):
     """What the flight is: when it starts, from where, and for how long."""
 
@@ -168,6 +181,7 @@ class MissionSpec(Strict):
     duration: Annotated[Duration, Field(gt=0)] = Field(description="mission time to fly")
     initial_rates: tuple[float, float, float] = Field(
         (0.0, 0.0, 0.0), description="body rates at the start, rad/s (roll, pitch, yaw)")
+    target: TargetSpec = Field(TargetSpec(), description="what the mission aims for")
 
     @field_validator("epoch")
     @classmethod

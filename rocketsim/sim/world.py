@@ -131,6 +131,8 @@ class World:
         self.sensor_level = "truth"
         self.stage_programs: dict[str, object] = {}      # stage name -> (main, path)
         self.program_cpu_budget = 1.0
+        self.target = None                  # the mission's target (TargetSpec)
+        self.pad_azimuth = math.nan
 
     @property
     def atmosphere(self):
@@ -184,6 +186,8 @@ class World:
                                   stage_names=[s.name for s in scenario.vehicle.stages or []])
         world.sample_every = max(1, round(1.0 / (scenario.telemetry.rate * h)))
         world.seed, world.sensor_level = scenario.seed, scenario.sensors
+        world.target = mission.target
+        world.pad_azimuth = scenario.site.pad_azimuth if scenario.site else math.nan
         world.program_cpu_budget = scenario.program_cpu_budget
         for stage, path in loaded.stage_program_paths.items():
             world.stage_programs[stage] = (load_program(path), path)
