@@ -45,3 +45,8 @@ def test_max_q_is_where_the_physics_model_quotes_it(flight):
     assert max_q["q_Pa"] == pytest.approx(36.4e3, rel=0.10)
     assert max_q["mach"] == pytest.approx(1.51, rel=0.10)
     assert max_q["altitude_m"] == pytest.approx(11.0e3, abs=2e3)
+
+
+def test_standing_on_the_pad_is_not_a_touchdown(flight):
+    """The vehicle starts on its legs: no touchdown until it has flown."""
+    assert "touchdown" not in events(flight)

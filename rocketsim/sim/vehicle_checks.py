@@ -41,6 +41,8 @@ from rocketsim.vehicle.heating import advance_shield, sutton_graves
 from rocketsim.vehicle.mass_properties import mass_properties
 from rocketsim.vehicle.limits import breakup
 
+AIRBORNE_CLEARANCE = 1.0       # m: lowest contact point this high = in the air (a bounce is not a new flight)
+
 
 class VehicleChecks:
     """Per-body state of the checks; ``pad_ecef`` the target pad (Earth-fixed, m) or None."""
@@ -49,7 +51,7 @@ class VehicleChecks:
         self.shield = heat_shield
         self.temperature = heat_shield.initial_temperature if heat_shield is not None else math.nan
         self.pad = None if pad_ecef is None else np.asarray(pad_ecef, dtype=float)
-        self.touched_down = False
+        self.touched_down = True     # a vehicle only touches down after being in the air
         self.previous = None        # (t, y) before the last step, for the touchdown figures
         self._arrays = self._in_flight = None
 
@@ -72,7 +74,9 @@ class VehicleChecks:
             body.flying = False
         if body.flying and rho > 0.0 and self.shield is not None:
             self._heat(world, body, rho, speed, air_temperature, h)
-        if body.flying and not self.touched_down and lowest <= 0.0:
+        if lowest > AIRBORNE_CLEARANCE:
+            self.touched_down = False       # in the air: the next contact is a touchdown
+        elif body.flying and not self.touched_down and lowest <= 0.0 and self.previous is not None:
             self.touched_down = True
             world.event(body, "touchdown", self.touchdown_figures(body, body.view()))
         self.previous = (body.t, body.y.copy())
