@@ -38,8 +38,8 @@ import zlib
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.signal import lfilter
 
+from rocketsim._jit import njit
 from rocketsim.constants import DEG
 
 BLOCK = 4096            # samples drawn at a time per stream
@@ -92,6 +92,19 @@ def stream_key(name: str) -> int:
     return zlib.crc32(name.encode("utf-8"))
 
 
+@njit
+def _gauss_markov(phi, drive, normals, initial):
+    """The bias recursion ``b[k] = phi b[k-1] + drive n[k]`` over a block, with
+    ``phi b[-1]`` given as ``initial`` (the first-order Gauss-Markov process)."""
+    out = np.empty(normals.shape[0])
+    previous = initial
+    for k in range(normals.shape[0]):
+        previous = drive * normals[k] + previous
+        out[k] = previous
+        previous = phi * previous
+    return out
+
+
 class ErrorStream:
     """The bias and white noise of one quantity, sample by sample (one per step).
 
@@ -121,7 +134,7 @@ class ErrorStream:
             initial = (self._sigma - self._drive) * draws[0, 0]     # b[0] = sigma_b n[0]
         else:
             initial = self._phi * self._last
-        biases, _ = lfilter([self._drive], [1.0, -self._phi], draws[0], zi=[initial])
+        biases = _gauss_markov(self._phi, self._drive, draws[0], initial)
         self._last = biases[-1]
         self._rows = np.vstack((biases, draws[1] * self._white, draws[2] * self._floor))
         self._block += 1

@@ -5,9 +5,9 @@ One :class:`FlightEvents` watches one body; the world calls
 
 * ``liftoff`` — a body that started on a site has risen 1 m above its
   starting height (figures: mass).
-* ``max_q`` — the peak of the dynamic pressure, reported once ``q`` has
-  fallen 5 % below a peak of at least 1 kPa (figures at the peak: q, Mach,
-  altitude).
+* ``max_q`` — the peak of the dynamic pressure on a staged vehicle,
+  reported once ``q`` has fallen 5 % below a peak of at least 1 kPa (figures
+  at the peak: q, Mach, altitude).
 * ``stage_dry`` — a stage's usable propellant is gone (the engine model
   flags the instant); named ``MECO`` for the vehicle's first stage and
   ``SECO`` for its second when that is how the burn ends.
@@ -52,8 +52,8 @@ class FlightEvents:
         if not self.lifted and view.geodetic[2] > self.start_height + LIFTOFF_HEIGHT:
             self.lifted = True
             self.world.event(body, "liftoff", {"mass_kg": body.mass})
-        self._max_q(view)
-        if body.vehicle is not None:
+        if body.vehicle is not None:        # a rigid body feels no air: no max-Q to watch
+            self._max_q(view)
             self._stages_dry()
         if not self.in_orbit and self.lifted:
             self._orbit(view)
