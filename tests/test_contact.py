@@ -210,3 +210,25 @@ def test_a_booster_standing_tilted_on_its_legs_rights_itself_or_tips_over(tilt_d
         assert max(tilts) > 80.0
     else:
         assert max(tilts) < tilt_deg and tilts[-1] < 8.0
+
+
+def test_touchdown_distance_is_measured_to_the_mission_target_pad(write):
+    """The same drop with a target pad 10 m north of the site: the touchdown's
+    distance to the pad is 10 m (a meridian arc of 10 m is 10/M rad of
+    latitude, M = a(1 - e^2)/(1 - e^2 sin^2 lat)^1.5, WGS84)."""
+    from rocketsim.constants import EARTH_E2, EARTH_RADIUS_EQ
+    from rocketsim.scenario.load import load
+    from rocketsim.sim.world import World
+    from tests.aero_vehicles import ROOT
+    model = build(shipped("lander.yaml"))
+    x_cm = model.mass_properties(model.state([0, 0, 0], [0, 0, 0]))[1]
+    meridian = EARTH_RADIUS_EQ * (1 - EARTH_E2) / (1 - EARTH_E2 * math.sin(LAT) ** 2) ** 1.5
+    pad_lat = math.degrees(LAT + 10.0 / meridian)
+    write("site.yaml", f"name: flat\nlatitude: 28.5 deg\nlongitude: -80.6 deg\nheight: {2.0 + 1.2 + x_cm} m\n")
+    write("mission.yaml", "epoch: 2026-11-26T12:00:00Z\nstart:\n  site:\n    velocity: [0 m/s, 0 m/s, -2 m/s]\n"
+                          f"duration: 1 s\ntarget:\n  pad: {{latitude: {pad_lat!r} deg, longitude: -80.6 deg}}\n")
+    path = write("drop.yaml", f"name: drop\nvehicle: {ROOT / 'vehicles' / 'lander.yaml'}\nsite: site.yaml\n"
+                              "mission: mission.yaml\n")
+    (body,) = World.from_scenario(load(path)).run()["bodies"].values()
+    touchdown = {e["name"]: e for e in body["events"]}["touchdown"]
+    assert touchdown["distance_to_pad_m"] == pytest.approx(10.0, abs=0.02)

@@ -165,10 +165,20 @@ class TargetOrbit(Strict):
     inclination: Angle
 
 
+class TargetPad(Strict):
+    """A landing pad on the WGS84 ellipsoid (the ground; no terrain)."""
+
+    name: str = "pad"
+    latitude: Angle
+    longitude: Angle
+
+
 class TargetSpec(Strict):
-    """What the mission aims for."""
+    """What the mission aims for: an orbit, a landing pad (touchdown distances are
+    measured to it; without one, to the launch site), or both."""
 
     orbit: Optional[TargetOrbit] = None
+    pad: Optional[TargetPad] = None
 
 
 class MissionSpec(Strict):

@@ -178,8 +178,11 @@ class World:
                 x_cm = body.vehicle.mass_properties(body.y)[1]
                 body.y[R:R + 3] = standing_on_ground(r, up, x_cm, float(contact[:, 0].min()))
             if scenario.vehicle.aero is not None:
-                site = scenario.site
-                pad = None if site is None else geodetic_to_ecef(site.latitude, site.longitude, site.height)
+                site, target_pad = scenario.site, mission.target.pad
+                if target_pad is not None:
+                    pad = geodetic_to_ecef(target_pad.latitude, target_pad.longitude, 0.0)
+                else:
+                    pad = None if site is None else geodetic_to_ecef(site.latitude, site.longitude, site.height)
                 body.checks = VehicleChecks(scenario.vehicle.aero.heat_shield, pad_ecef=pad)
             body.stack = scenario.vehicle
         body.watch = FlightEvents(world, body, on_ground=mission.start.site is not None,
