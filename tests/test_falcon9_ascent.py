@@ -31,10 +31,11 @@ def test_orbit_reached_with_periapsis_and_inclination_on_target(flight):
 
 def test_the_ascent_events_come_in_order(flight):
     names = [e["name"] for e in flight["bodies"]["falcon9-block5"]["events"]]
-    order = ["ignition", "liftoff", "max_q", "MECO", "separation", "ignition", "shutdown", "orbit"]
+    order = ["ignition", "liftoff", "max_q", "MECO", "separation", "ignition", "fairing jettison",
+             "shutdown", "orbit"]
     remaining = iter(names)
     assert all(name in remaining for name in order), names      # a subsequence, in order
-    assert "booster" in flight["bodies"]
+    assert "booster" in flight["bodies"] and "fairing" in flight["bodies"]
 
 
 def test_max_q_is_where_the_physics_model_quotes_it(flight):

@@ -78,3 +78,21 @@ def test_a_program_for_a_stage_the_vehicle_lacks_is_refused(write, cli):
     result = cli("validate", path)
     assert result.exit_code == 2
     assert "scenario.yaml:4:" in result.output and "no stage named 'boster'" in result.output
+
+
+def test_the_fairing_is_jettisoned_into_a_body_of_its_own(write):
+    """Conservation again: mass and momentum of the stack and the fairing add up
+    to the stack's before; the fairing's mass is the vehicle file's (1 900 kg)."""
+    world = World.from_scenario(load(scenario_with_programs(write)))
+    stack = world.bodies[0]
+    mass, momentum = stack.mass, stack.mass * stack.velocity.copy()
+    fairing = world.jettison_fairing(stack)
+    assert fairing.name == "fairing" and fairing.mass == pytest.approx(1900.0)
+    assert stack.mass + fairing.mass == pytest.approx(mass, rel=1e-12)
+    both = stack.mass * stack.velocity + fairing.mass * fairing.velocity
+    assert np.allclose(both, momentum, rtol=1e-12, atol=1e-6)
+    assert [e["name"] for e in stack.events] == ["fairing jettison"]
+    with pytest.raises(ValueError, match="no fairing"):
+        world.jettison_fairing(stack)
+    booster = world.separate(stack)                     # staging still works without it
+    assert booster.name == "booster"

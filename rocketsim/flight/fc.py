@@ -340,6 +340,10 @@ class FlightComputer:
         """
         return self._world.separate(self._body).name
 
+    def jettison_fairing(self) -> str:
+        """Drop the payload fairing (it becomes a body of its own); returns its name."""
+        return self._world.jettison_fairing(self._body).name
+
     # --- engines ------------------------------------------------------------
     def _propulsion(self):
         body = self._body

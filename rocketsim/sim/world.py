@@ -45,7 +45,7 @@ from rocketsim.sim.vehicle_checks import VehicleChecks
 from rocketsim.timescales import Epoch
 from rocketsim.scenario.models import VehicleSpec
 from rocketsim.vehicle.build import VehicleModel, build
-from rocketsim.vehicle.staging import separate
+from rocketsim.vehicle.staging import jettison_fairing, separate
 
 
 # parking-orbit rails about Earth: Kepler + J2, no third bodies (issue 9); a rigid
@@ -203,6 +203,41 @@ class World:
         body.fc = FlightComputer(self, body)
 
     # --- staging ------------------------------------------------------------
+    def jettison_fairing(self, body: Body) -> Body:
+        """Drop ``body``'s payload fairing: it becomes a rigid body of its own (a thin
+        shell) with its own channels; centre of mass and momentum are conserved
+        (:func:`rocketsim.vehicle.staging.jettison_fairing`). Returns the new body."""
+        stack = body.stack
+        if body.vehicle is None or stack is None or not body.vehicle.has_fairing:
+            raise ValueError(f"{body.name} has no fairing to jettison")
+        (without, y_without), fairing = jettison_fairing(stack, body.vehicle, body.y, 0,
+                                                         air=self.atmosphere)
+        body.vehicle, body.y, body._view = without, y_without, None
+        body.stack = stack.model_copy(update={"fairing": None})
+        new = self._add_body("fairing", make_state(fairing["position"], fairing["velocity"],
+                                                   fairing["attitude"], fairing["rates"]),
+                             make_params(fairing["mass"], fairing["inertia"], EARTH_MU, EARTH_RADIUS_EQ,
+                                         EARTH_J2, EARTH_RADIUS_POLAR), body)
+        self.event(body, "fairing jettison", {"fairing_mass_kg": fairing["mass"], "fairing_body": new.name})
+        return new
+
+    def _add_body(self, name: str, y: np.ndarray, p: np.ndarray, parent: Body,
+                  vehicle: VehicleModel | None = None) -> Body:
+        """A new body split from ``parent`` now: a unique channel name, the parent's
+        air and sensors level, its telemetry channels and first sample."""
+        names = {b.name for b in self.bodies}
+        name = _channel_name(name)
+        while name in names:
+            name += "_"
+        new = Body(name=name, y=y, p=p, vehicle=vehicle, t=parent.t, mu=parent.mu,
+                   atmosphere=parent.atmosphere,
+                   sensors=Sensors(self.seed, name, self.sensor_level, self.h))
+        self.bodies.append(new)
+        if self.telemetry is not None:
+            self.telemetry.add_body(new.name)
+            self.telemetry.state(new.name, self.sample(new))
+        return new
+
     def separate(self, body: Body) -> Body:
         """Separate the lowest stage of ``body``: ``body`` flies on as the upper stack,
         the stage becomes a body of its own (its own channels, and its own program
@@ -217,25 +252,15 @@ class World:
         (lower, y_lower), (upper, y_upper) = separate(stack, body.vehicle, body.y, 1,
                                                       air=self.atmosphere)
         stage = stack.stages[0].name
-        names = {b.name for b in self.bodies}
-        name = _channel_name(stage)
-        while name in names:
-            name += "_"
-        new = Body(name=name, y=y_lower, p=body.p.copy(), vehicle=lower, t=body.t, mu=body.mu,
-                   atmosphere=body.atmosphere,
-                   sensors=Sensors(self.seed, name, self.sensor_level, self.h))
         body.vehicle, body.y, body._view = upper, y_upper, None
-        body.stack = stack.model_copy(update={"stages": stack.stages[1:]})
+        body.stack = upper_stack(stack)
+        new = self._add_body(stage, y_lower, body.p.copy(), body, vehicle=lower)
         if body.checks is not None:         # the stage is a vehicle with aero of its own
             new.checks = VehicleChecks(stack.aero.heat_shield, pad_ecef=body.checks.pad)
         if body.watch is not None:
             new.watch = FlightEvents(self, new, on_ground=False, stage_names=body.watch.stage_names)
             new.watch.dry_seen = set(body.watch.dry_seen)
             new.watch.max_q_done = body.watch.max_q_done
-        self.bodies.append(new)
-        if self.telemetry is not None:
-            self.telemetry.add_body(new.name)
-            self.telemetry.state(new.name, self.sample(new))
         figures = {"stage": stage, "mass_kg": new.mass, "upper_mass_kg": body.mass}
         self.event(body, "separation", {**figures, "separated_body": new.name})
         self.event(new, "separation", {**figures, "from_body": body.name})
@@ -489,6 +514,20 @@ class World:
             }
         return {"epoch_utc": self.epoch.utc.isoformat(), "step_s": self.h,
                 "mission_time_s": max(b.t for b in self.bodies), "bodies": bodies}
+
+
+def upper_stack(stack: VehicleSpec) -> VehicleSpec:
+    """The vehicle file of what is left when the lowest stage of ``stack`` separates:
+    its stages from the second up, with the aerodynamic parts (fins, grid fins,
+    legs, thrusters) of the stages that remain."""
+    stages = stack.stages[1:]
+    aero = stack.aero
+    if aero is not None:
+        names = {s.name for s in stages}
+        aero = aero.model_copy(update={
+            part: [item for item in getattr(aero, part) if item.stage in names]
+            for part in ("fins", "grid_fins", "legs", "rcs")})
+    return stack.model_copy(update={"stages": stages, "aero": aero})
 
 
 def _checked_step(step: float) -> float:

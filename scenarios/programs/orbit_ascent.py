@@ -10,7 +10,7 @@ program flies any two-stage vehicle from any site:
    site's pad azimuth);
 3. a gravity turn (holding surface prograde) to first-stage burn-out,
    throttling back through max-Q;
-4. staging, then direct insertion: the upper stage pitches so that a
+4. staging, then direct insertion (dropping the fairing above 110 km): the upper stage pitches so that a
    critically damped loop drives altitude to the target and vertical speed
    to zero while the rest of its thrust builds horizontal speed, with a
    cross-track term that trims the inclination, until the periapsis clears
@@ -29,6 +29,7 @@ KICK = math.radians(84.0)      # pitch after the kick
 KICK_HEIGHT = 300.0            # m above the pad
 KICK_TIME = 10.0               # s held before the gravity turn
 Q_LIMIT = 33e3                 # Pa: throttle back above this dynamic pressure
+FAIRING_ALTITUDE = 110e3       # m: above this the air is thin enough to drop the fairing
 
 
 def main(fc):
@@ -54,7 +55,14 @@ def main(fc):
     fc.sleep(2.0)
     fc.ignite(upper)
     fc.throttle(1.0)
+    fairing_on = True
     while fc.periapsis < 0.95 * target.altitude:
+        if fairing_on and fc.altitude > FAIRING_ALTITUDE:
+            fairing_on = False
+            try:
+                fc.jettison_fairing()
+            except ValueError:          # a vehicle without one
+                pass
         steer(fc, insertion_pitch(fc, hold_altitude), target.inclination)
         fc.step()
     fc.shutdown()
