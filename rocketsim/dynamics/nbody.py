@@ -189,11 +189,7 @@ def translational_acceleration(x, y, z, vx, vy, vz, p, s, fp, air, pos):
     point-mass drag ``-1/2 rho |v_air| v_air C_D A/m`` (``v_air = v - omega_E x r``;
     density from the day's table ``air`` at the radial height, none above
     600 km). ``pos``: a scratch array of 3. Returns m/s^2, frame axes."""
-    ax, ay, az = point_mass_j2(x, y, z, p[P_MU], p[P_RADIUS], p[P_J2])
-    tx, ty, tz = perturbation(x, y, z, s, fp)
-    ax += tx
-    ay += ty
-    az += tz
+    ax, ay, az = field_acceleration(x, y, z, s, fp, p)
     if fp[F_DRAG] != 0.0 and fp[F_CENTER] == EARTH_INDEX:
         pos[0] = x
         pos[1] = y

@@ -27,13 +27,14 @@ import numpy as np
 from rocketsim.atmosphere.relative_wind import air_velocity
 from rocketsim.atmosphere.table import air_at, wind_earth_fixed
 from rocketsim.bodies.gravity import gravity
-from rocketsim.constants import EARTH_MU, EARTH_OMEGA, EARTH_RADIUS_EQ
+from rocketsim.constants import EARTH_MU, EARTH_RADIUS_EQ
 from rocketsim.frames.earth_fixed import ecef_to_eci, eci_to_ecef
 from rocketsim.frames.elements import Elements, state_to_elements, time_to_apoapsis
 from rocketsim.frames.geodetic import ecef_to_geodetic, enu_basis
 from rocketsim.frames.quaternion import quat_to_matrix
 
 _VERTICAL = math.cos(0.01 * math.pi / 180.0)
+_CALM = np.zeros(3)             # no wind: the air velocity is then the surface velocity
 
 
 class StateView:
@@ -67,8 +68,7 @@ class StateView:
     @cached_property
     def surface_velocity(self) -> np.ndarray:
         """Velocity relative to the rotating Earth, ECI axes (m/s)."""
-        r = self.position
-        return self.velocity - EARTH_OMEGA * np.array([-r[1], r[0], 0.0])
+        return air_velocity(self.position, self.velocity, _CALM)
 
     @property
     def vertical_speed(self) -> float:

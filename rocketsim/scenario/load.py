@@ -140,7 +140,7 @@ def _input_error(error: ValidationError, source: YamlSource, model: type[BaseMod
     # a misspelt field shows as an unknown one plus a missing one: name the
     # misspelling first, since it is what the user has to fix
     first = min(problems, key=lambda p: p["type"] != "extra_forbidden")
-    loc = _clean_loc(first["loc"])
+    loc = tuple(first["loc"])
     line, column = source.position(loc) or (None, None)
     # name the field as written; a missing field is not written, so add its name
     written = source.written_path(loc)
@@ -151,11 +151,6 @@ def _input_error(error: ValidationError, source: YamlSource, model: type[BaseMod
         message += f" ({len(problems) - 1} more problem{'s' if len(problems) > 2 else ''} in this file)"
     return InputError(message, file=source.path, line=line, column=column,
                       field=".".join(str(part) for part in written) or None)
-
-
-def _clean_loc(loc: tuple) -> tuple:
-    """Drop pydantic's internal location parts (validator and union tags)."""
-    return tuple(part for part in loc if not (isinstance(part, str) and ("[" in part or "-" in part)))
 
 
 def _describe(problem: dict, loc: tuple, model: type[BaseModel]) -> str:

@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import math
 
+from rocketsim.atmosphere.table import TOP
 from rocketsim.constants import DEG, EARTH_RADIUS_EQ
 from rocketsim.vehicle.engines import C_ON, E_STAGE, E_TAIL, S_DRY, S_DRY_AT
 
@@ -114,4 +115,4 @@ def coasting(model, y, t: float) -> bool:
 
 def body_has_no_air(view) -> bool:
     """True above the flight model's air (600 km): no dynamic pressure to watch."""
-    return view.geodetic[2] > 600e3 or math.isnan(view.geodetic[2])
+    return view.geodetic[2] > TOP or math.isnan(view.geodetic[2])
