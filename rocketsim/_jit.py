@@ -10,13 +10,18 @@ numba's cache checks only the source file of the function it compiled, not
 the functions that function calls from other modules: after an edit to
 ``bodies/gravity.py`` a cached ``dynamics/derivative.py`` kernel would still
 run the old gravity. So the cache lives in a folder named for a hash of the
-whole library's source (``~/.cache/rocketsim/numba-<hash>``, or below
-``$ROCKETSIM_CACHE_DIR``): any change to any module starts a fresh cache.
-Hashing the sources costs about a millisecond at import.
+source of every module that compiles a kernel and of every library module
+those import, followed to closure (``~/.cache/rocketsim/numba-<hash>``, or
+below ``$ROCKETSIM_CACHE_DIR``): a change to any module a kernel could read
+(its functions or its module-level constants) starts a fresh cache, while
+an edit to the pure-Python layers (the simulation loop, the flight computer,
+scenarios, telemetry) keeps the compiled kernels. Hashing costs a few
+milliseconds at import.
 """
 
 import hashlib
 import os
+import re
 from pathlib import Path
 
 import numba
@@ -25,10 +30,40 @@ from numba import njit as _numba_njit
 _OPTIONS = {"cache": True, "fastmath": False, "error_model": "numpy"}
 
 
+_IMPORT = re.compile(r"^\s*(?:from\s+(rocketsim(?:\.\w+)*)\s+import\s+([\w ,()]+)|import\s+(rocketsim(?:\.\w+)*))",
+                     re.M)
+
+
+def _kernel_sources(package: Path) -> list[Path]:
+    """The modules that compile kernels and every library module they import, transitively."""
+    paths = {}
+    for path in package.rglob("*.py"):
+        name = path.relative_to(package).with_suffix("").as_posix().replace("/", ".")
+        paths[name.removesuffix("__init__").rstrip(".")] = path
+    texts = {name: path.read_text() for name, path in paths.items()}
+
+    def imported(text: str) -> set[str]:
+        found = set()
+        for match in _IMPORT.finditer(text):
+            module = (match.group(1) or match.group(3)).removeprefix("rocketsim").lstrip(".")
+            names = re.split(r"[\s,()]+", match.group(2) or "")
+            found |= {candidate for candidate in [module] + [f"{module}.{n}".lstrip(".") for n in names if n]
+                      if candidate in texts}
+        return found
+
+    todo = [name for name, text in texts.items() if "njit" in text]
+    closure = set(todo)
+    while todo:
+        for name in imported(texts[todo.pop()]) - closure:
+            closure.add(name)
+            todo.append(name)
+    return sorted(paths[name] for name in closure)
+
+
 def _source_hash() -> str:
     digest = hashlib.sha256(numba.__version__.encode())
     package = Path(__file__).resolve().parent
-    for path in sorted(package.rglob("*.py")):
+    for path in _kernel_sources(package):
         digest.update(path.relative_to(package).as_posix().encode())
         digest.update(path.read_bytes())
     return digest.hexdigest()[:16]

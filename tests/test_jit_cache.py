@@ -1,0 +1,34 @@
+"""The compiled-kernel cache key covers exactly what a kernel can read.
+
+numba caches a kernel by its own file only; `rocketsim._jit` names the cache
+folder for a hash of every kernel module and of the library modules those
+import. The key must change when gravity changes (a kernel inlines it) and
+must not change when the pure-Python simulation loop changes.
+"""
+
+from pathlib import Path
+
+import rocketsim
+from rocketsim._jit import _kernel_sources
+
+PACKAGE = Path(rocketsim.__file__).resolve().parent
+
+
+def _names():
+    return {path.relative_to(PACKAGE).as_posix() for path in _kernel_sources(PACKAGE)}
+
+
+def test_every_kernel_module_and_its_imports_are_hashed():
+    names = _names()
+    kernel_modules = {path.relative_to(PACKAGE).as_posix() for path in PACKAGE.rglob("*.py")
+                      if "njit" in path.read_text()}
+    assert kernel_modules <= names
+    # derivative.py inlines gravity and reads the state layout and constants.
+    assert {"bodies/gravity.py", "dynamics/state.py", "constants.py"} <= names
+
+
+def test_pure_python_layers_do_not_invalidate_the_cache():
+    names = _names()
+    for module in ("sim/world.py", "flight/fc.py", "flight/autopilot.py", "scenario/models.py",
+                   "telemetry/writer.py"):
+        assert module not in names
