@@ -107,9 +107,9 @@ def describe(run: Run) -> str:
         final = run.final.get(body)
         lines.append(f"{body}: {run.counts[f'/{body}/state']} states")
         if final:
-            lines.append(f"  last: T+{final['t']:.2f} s, altitude {final['altitude'] / 1e3:.3f} km, "
-                         f"lat {final['latitude_deg']:.4f} deg, lon {final['longitude_deg']:.4f} deg, "
-                         f"speed {final['speed']:.2f} m/s")
+            lines.append(f"  last: T+{final['t']:.2f} s, altitude {_number(final['altitude'], 1e3, 3)} km, "
+                         f"lat {_number(final['latitude_deg'], 1, 4)} deg, "
+                         f"lon {_number(final['longitude_deg'], 1, 4)} deg, speed {_number(final['speed'], 1, 2)} m/s")
     lines.append(f"events ({len(run.events)}):")
     for event in run.events:
         figures = ", ".join(f"{k} {v:.6g}" if isinstance(v, float) else f"{k} {v}"
@@ -120,6 +120,11 @@ def describe(run: Run) -> str:
         lines.append(f"error at T+{error.get('t', float('nan')):.2f} s: {error['message']}")
     lines.append(f"program log: {len(run.logs)} lines" + (f", last: {run.logs[-1]['message']}" if run.logs else ""))
     return "\n".join(lines)
+
+
+def _number(value, scale: float, digits: int) -> str:
+    """``value / scale`` to ``digits`` decimals; a non-finite number (JSON null) reads "nan"."""
+    return "nan" if value is None else f"{value / scale:.{digits}f}"
 
 
 def _utc(ns: int) -> str:

@@ -53,6 +53,7 @@ STEP = 0.02                                # s, the flight model's fixed step
 MAX_HEADLESS_STEP = 0.1                    # s, largest step a headless run accepts
 GROUND_SUBSTEP_HEIGHT = 2.0                # m, below this height the step is split
 GROUND_SUBSTEPS = 4                        # sub-steps within GROUND_SUBSTEP_HEIGHT
+GROUND_SUBSTEP_MAX = 0.005                 # s, longest sub-step there at any step size
 
 # --- Atmospheres (rocketsim.atmosphere) --------------------------------------
 # US Standard Atmosphere 1976 (NOAA-S/T 76-1562), section 1.2 and Table 2.

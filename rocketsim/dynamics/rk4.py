@@ -18,6 +18,12 @@ without them. Steps are also split at every kink of an engine's thrust (end
 of dead time, spool-up, tail-off, slews), so a burn converges at fourth
 order through them. Without ``veh`` the rigid-body kernels are compiled
 exactly as before.
+
+On the classic range (``p[P_CLASSIC] = 1``) the same step flies the original
+model: each RK4 step's start is the hold of
+:func:`~rocketsim.dynamics.derivative.held_derivative` (thrust, mass and the
+density above 86 km held for the step), which makes powered flight first
+order in the step; everything else here is the same code.
 """
 
 import math
@@ -26,9 +32,11 @@ import numpy as np
 
 from rocketsim._jit import njit
 from rocketsim.atmosphere.table import air_at, wind_earth_fixed
-from rocketsim.constants import EARTH_OMEGA, GROUND_SUBSTEP_HEIGHT, GROUND_SUBSTEPS, UNUSABLE_PROPELLANT
-from rocketsim.dynamics.derivative import derivative, radial_height
-from rocketsim.dynamics.state import P_RADIUS, Q, R
+from rocketsim.constants import (EARTH_OMEGA, GROUND_SUBSTEP_HEIGHT, GROUND_SUBSTEP_MAX, GROUND_SUBSTEPS,
+                                UNUSABLE_PROPELLANT)
+from rocketsim.dynamics.derivative import held_derivative, radial_height
+from rocketsim.dynamics.state import N_PARAMS, P_RADIUS, Q, R
+from rocketsim.dynamics.third_bodies import hold_field
 from rocketsim.frames.geodetic import ecef_to_geodetic_njit
 from rocketsim.vehicle.aero import A_REACH, A_WIND
 from rocketsim.vehicle.engines import S_DRY, S_DRY_AT, S_RESERVE, S_TANK0, S_TANKS, next_kink
@@ -45,16 +53,17 @@ def rk4_step(y, t, h, p, veh=None):
     k3 = np.empty(n)
     k4 = np.empty(n)
     tmp = np.empty(n)
-    derivative(t, y, p, k1, veh)
+    # the step's start is the hold of the classic range's model (ignored by the realistic one)
+    held_derivative(t, y, p, k1, veh, t, y)
     for i in range(n):
         tmp[i] = y[i] + 0.5 * h * k1[i]
-    derivative(t + 0.5 * h, tmp, p, k2, veh)
+    held_derivative(t + 0.5 * h, tmp, p, k2, veh, t, y)
     for i in range(n):
         tmp[i] = y[i] + 0.5 * h * k2[i]
-    derivative(t + 0.5 * h, tmp, p, k3, veh)
+    held_derivative(t + 0.5 * h, tmp, p, k3, veh, t, y)
     for i in range(n):
         tmp[i] = y[i] + h * k3[i]
-    derivative(t + h, tmp, p, k4, veh)
+    held_derivative(t + h, tmp, p, k4, veh, t, y)
     out = np.empty(n)
     for i in range(n):
         out[i] = y[i] + h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i])
@@ -184,16 +193,23 @@ def _one_step(y, t, h, p, veh):
 def step(y, t, h, p, veh=None):
     """Advance one flight-model step of ``h`` seconds (sub-stepped near the ground).
 
-    A vehicle with wind in its day's air samples it here, once per step.
+    A vehicle with wind in its day's air samples it here, once per step; a body
+    in the n-body field holds the other bodies' positions here (per 5 s bucket
+    of the step's start time, :func:`~rocketsim.dynamics.third_bodies.hold_field`).
     """
+    if p.shape[0] > N_PARAMS:
+        hold_field(p, t)            # the other bodies of an n-body field, held per 5 s
     reach = 0.0
     if veh is not None:
         reach = veh.aero.ref[A_REACH]
         if veh.aero.ref[A_WIND] > 0.5:
             hold_wind(y, t, veh)
     if near_ground(y, p, reach):
-        sub = h / GROUND_SUBSTEPS
-        for k in range(GROUND_SUBSTEPS):
+        # four 5 ms sub-steps at 20 ms; a larger headless step keeps sub-steps of 5 ms
+        # at most, so stiff legs stay inside RK4's stability region
+        n_sub = max(GROUND_SUBSTEPS, int(math.ceil(h / GROUND_SUBSTEP_MAX - 1e-9)))
+        sub = h / n_sub
+        for k in range(n_sub):
             y = _one_step(y, t + k * sub, sub, p, veh)
         return y
     return _one_step(y, t, h, p, veh)
