@@ -9,7 +9,8 @@ From EQUATIONS.md ("Equations of motion")::
 
 No Coriolis or centrifugal terms: the frame is inertial. The foundation's
 rigid body carries no forces or torques but gravity (point mass + J2 of the
-central body); later models add thrust, aerodynamics, RCS and contact to
+central body, plus the other bodies' pull when ``p`` carries an n-body field:
+:mod:`rocketsim.dynamics.third_bodies`); later models add thrust, aerodynamics, RCS and contact to
 ``F`` and ``tau`` here, evaluated at every RK4 stage.
 
 A staged vehicle passes ``veh``, its
@@ -36,10 +37,12 @@ import numpy as np
 
 from rocketsim._jit import njit
 from rocketsim.atmosphere.table import air_at
+from rocketsim.atmosphere.ussa1976 import Z_86
 from rocketsim.constants import EARTH_OMEGA
 from rocketsim.bodies.gravity import point_mass_j2
-from rocketsim.dynamics.state import (P_IXX, P_IYY, P_IZZ, P_J2, P_MU, P_POLAR_RADIUS, P_RADIUS, Q,
-                                      R, V, W)
+from rocketsim.dynamics.state import (N_PARAMS, P_CLASSIC, P_IXX, P_IYY, P_IZZ, P_J2, P_MU,
+                                      P_POLAR_RADIUS, P_RADIUS, Q, R, V, W)
+from rocketsim.dynamics.third_bodies import held_perturbation
 from rocketsim.frames.quaternion import quat_multiply
 from rocketsim.vehicle.aero import A_ON, A_REACH, body_aero
 from rocketsim.vehicle.contact import contact_forces
@@ -112,9 +115,30 @@ def derivative(t, y, p, dy, veh=None):
     """Write ``dy/dt`` of state ``y`` at mission time ``t`` (s) into ``dy``.
 
     ``veh``: the arrays of a staged vehicle, or None for a rigid body of
-    constant mass and inertia ``p``.
+    constant mass and inertia ``p``. Nothing is held: this is the model's
+    derivative at ``(t, y)`` (:func:`held_derivative` with ``(t, y)`` as the hold).
+    """
+    held_derivative(t, y, p, dy, veh, t, y)
+
+
+@njit
+def held_derivative(t, y, p, dy, veh, t_held, y_held):
+    """:func:`derivative` inside an RK4 step that started at ``(t_held, y_held)``.
+
+    The realistic model (``p[P_CLASSIC] == 0``) ignores the hold: everything
+    is evaluated at ``(t, y)``. On the classic range (``p[P_CLASSIC] == 1``,
+    the original model, physics model "The integrator") a staged vehicle's
+    engines (thrust, torque, mass flow, and the ambient pressure they see),
+    its mass properties and, when the step starts above 86 km, the air
+    density are those at the step's start, held for the four stages; powered
+    flight is then first order in the step. Gravity, the rest of the air and
+    the aerodynamics, RCS and contact are evaluated at every stage either way.
     """
     ax, ay, az = point_mass_j2(y[R], y[R + 1], y[R + 2], p[P_MU], p[P_RADIUS], p[P_J2])
+    if p.shape[0] > N_PARAMS:
+        # the n-body field the body carries: the other bodies held for the step
+        tx, ty, tz = held_perturbation(y[R], y[R + 1], y[R + 2], p)
+        ax, ay, az = ax + tx, ay + ty, az + tz
     dy[R] = y[V]
     dy[R + 1] = y[V + 1]
     dy[R + 2] = y[V + 2]
@@ -132,13 +156,22 @@ def derivative(t, y, p, dy, veh=None):
     ixx, iyy, izz = p[P_IXX], p[P_IYY], p[P_IZZ]
     mx = my = mz = 0.0
     if veh is not None:
+        classic = p[P_CLASSIC] > 0.5
+        t_e, y_e = (t_held, y_held) if classic else (t, y)     # engines and mass read these
         n_tanks = veh.tank_bottom.shape[0]
         mass, x_cm, ixx, iyy, izz = mass_properties(veh.fixed, veh.tank_bottom, veh.tank_radius,
-                                                    veh.tank_density, y[13:13 + n_tanks])
+                                                    veh.tank_density, y_e[13:13 + n_tanks])
         rho, p_a, _, sound, _, _ = air_at(veh.air_h0, veh.air_dh, veh.air_density, veh.air_pressure,
                                           veh.air_temperature, veh.air_speed_of_sound,
                                           veh.air_wind_east, veh.air_wind_north, radial_height(y, p))
-        fx, fy, fz, mx, my, mz = engine_forces(t, y, dy, veh.first_tank, veh.first_clock, veh.eng,
+        if classic:
+            h_held = radial_height(y_held, p)
+            rho_held, p_a = air_at(veh.air_h0, veh.air_dh, veh.air_density, veh.air_pressure,
+                                   veh.air_temperature, veh.air_speed_of_sound, veh.air_wind_east,
+                                   veh.air_wind_north, h_held)[:2]
+            if h_held > Z_86:
+                rho = rho_held
+        fx, fy, fz, mx, my, mz = engine_forces(t_e, y_e, dy, veh.first_tank, veh.first_clock, veh.eng,
                                                veh.cmd, veh.stage, veh.tank_share, p_a, x_cm)
         aero = veh.aero
         if aero.ref[A_ON] > 0.5:

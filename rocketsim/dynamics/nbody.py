@@ -28,6 +28,9 @@ In the flight model the other bodies' positions are computed once per
 :data:`~rocketsim.constants.NBODY_HOLD` (5 s) of mission time and held,
 quantised on mission time (:func:`held_bodies`), so a run stays bit-identical
 however its steps are batched. Cruise rails evaluate them at every stage.
+The slots, the bodies' positions and the perturbation itself live in
+:mod:`rocketsim.dynamics.third_bodies` (below the derivative, which adds them
+for a body that carries its field).
 """
 
 from __future__ import annotations
@@ -39,24 +42,14 @@ import numpy as np
 from rocketsim._jit import njit
 from rocketsim.bodies.gravity import point_mass_j2
 from rocketsim.atmosphere.table import air_at
-from rocketsim.constants import (AU, EARTH_MU, EARTH_OMEGA, MARS_MU, MOON_MU, NBODY_HOLD,
-                                 SECONDS_PER_DAY, SOLAR_IRRADIANCE_1AU, SPEED_OF_LIGHT, SUN_MU)
+from rocketsim.constants import EARTH_OMEGA
 from rocketsim.dynamics.derivative import derivative, radial_height
 from rocketsim.dynamics.state import P_J2, P_MU, P_RADIUS, Q, R, V
-from rocketsim.ephemeris.solar_system import BODIES, _truncated_one
+from rocketsim.dynamics.third_bodies import (  # noqa: F401  (the field's slots and pull live there)
+    EARTH_INDEX, F_CENTER, F_DRAG, F_JD0, F_MU, F_ROT, F_SRP, MU, N_FIELD, SRP_1AU, bodies_at,
+    held_bodies, hold_time, perturbation)
+from rocketsim.ephemeris.solar_system import BODIES
 
-# field slots
-F_CENTER = 0      # index of the central body in BODIES
-F_JD0 = 1         # TT Julian date of mission time 0
-F_SRP = 2         # C_R A / m, m^2/kg (0: no radiation pressure)
-F_ROT = 3         # 9 slots: rotation frame -> J2000, row-major
-F_MU = 12         # 4 slots: mu of sun, earth, moon, mars in the field (0: left out)
-F_DRAG = 16       # C_D A / m, m^2/kg, point-mass drag of the rails about Earth (0: none)
-N_FIELD = 17
-
-MU = {"sun": SUN_MU, "earth": EARTH_MU, "moon": MOON_MU, "mars": MARS_MU}
-EARTH_INDEX = BODIES.index("earth")
-SRP_1AU = SOLAR_IRRADIANCE_1AU / SPEED_OF_LIGHT     # N/m^2, radiation pressure at 1 AU
 
 
 def make_field(center: str, jd0_tt: float, rotation=None, bodies=BODIES,
@@ -79,70 +72,6 @@ def make_field(center: str, jd0_tt: float, rotation=None, bodies=BODIES,
     for name in bodies:
         fp[F_MU + BODIES.index(name)] = MU[name]
     return fp
-
-
-@njit
-def bodies_at(fp, t):
-    """Positions (4, 3) m and velocities (4, 3) m/s of the Sun, Earth, Moon, Mars
-    relative to the field's centre, frame axes, at mission time ``t`` (s)."""
-    r, v = _truncated_one(fp[F_JD0] + t / SECONDS_PER_DAY, int(fp[F_CENTER]))
-    s = np.empty((4, 3))
-    u = np.empty((4, 3))
-    for i in range(4):
-        for k in range(3):
-            # frame = M^T J2000, M row-major in fp
-            s[i, k] = (fp[F_ROT + k] * r[i, 0] + fp[F_ROT + 3 + k] * r[i, 1]
-                       + fp[F_ROT + 6 + k] * r[i, 2])
-            u[i, k] = (fp[F_ROT + k] * v[i, 0] + fp[F_ROT + 3 + k] * v[i, 1]
-                       + fp[F_ROT + 6 + k] * v[i, 2])
-    return s, u
-
-
-@njit
-def hold_time(t):
-    """The mission time (s) whose body positions are held at ``t``: ``t`` rounded
-    down to a multiple of :data:`NBODY_HOLD`."""
-    return math.floor(t / NBODY_HOLD) * NBODY_HOLD
-
-
-@njit
-def held_bodies(fp, t):
-    """Body positions (4, 3) held for the 5 s bucket of mission time ``t``."""
-    return bodies_at(fp, hold_time(t))[0]
-
-
-@njit
-def perturbation(x, y, z, s, fp):
-    """Acceleration (m/s^2, frame axes) at ``(x, y, z)`` from every body but the
-    centre (direct minus indirect term) plus radiation pressure when on."""
-    ax = ay = az = 0.0
-    c = int(fp[F_CENTER])
-    for k in range(4):
-        mu = fp[F_MU + k]
-        if k == c or mu == 0.0:
-            continue
-        dx = s[k, 0] - x
-        dy = s[k, 1] - y
-        dz = s[k, 2] - z
-        d2 = dx * dx + dy * dy + dz * dz
-        d3 = d2 * math.sqrt(d2)
-        s2 = s[k, 0] * s[k, 0] + s[k, 1] * s[k, 1] + s[k, 2] * s[k, 2]
-        s3 = s2 * math.sqrt(s2)
-        ax += mu * (dx / d3 - s[k, 0] / s3)
-        ay += mu * (dy / d3 - s[k, 1] / s3)
-        az += mu * (dz / d3 - s[k, 2] / s3)
-    if fp[F_SRP] != 0.0:
-        # from the Sun to the vehicle (the Sun is at s[0], or at the origin when central)
-        ux = x - s[0, 0]
-        uy = y - s[0, 1]
-        uz = z - s[0, 2]
-        d2 = ux * ux + uy * uy + uz * uz
-        d = math.sqrt(d2)
-        k = SRP_1AU * AU * AU / d2 * fp[F_SRP] / d
-        ax += k * ux
-        ay += k * uy
-        az += k * uz
-    return ax, ay, az
 
 
 @njit
