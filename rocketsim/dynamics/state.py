@@ -19,7 +19,10 @@ ignition or shutdown command).
 
 Parameters ``p`` (float64, length :data:`N_PARAMS`) are what the derivative
 reads but does not integrate: the mass and the diagonal inertia of a rigid
-body, and the central body's gravity (mu, reference radius, J2). Index
+body, the central body's gravity (mu, reference radius, J2), and which model
+flies the body (:data:`P_CLASSIC`: 1 on the classic range, whose original
+model holds a staged vehicle's thrust, mass and upper-air density for the
+step; see :func:`rocketsim.dynamics.derivative.held_derivative`). Index
 constants below are the only names for these slots.
 """
 
@@ -41,7 +44,8 @@ P_MU = 4            # m^3/s^2, central body
 P_RADIUS = 5        # m, central body's reference radius
 P_J2 = 6            # central body's J2 (0 for a point mass)
 P_POLAR_RADIUS = 7  # m, central body's polar radius (ground proximity)
-N_PARAMS = 8
+P_CLASSIC = 8       # 1: the classic range's original model (held for the step), 0: realistic
+N_PARAMS = 9
 
 
 def make_state(r, v, q=(1.0, 0.0, 0.0, 0.0), w=(0.0, 0.0, 0.0)) -> np.ndarray:
@@ -55,8 +59,9 @@ def make_state(r, v, q=(1.0, 0.0, 0.0, 0.0), w=(0.0, 0.0, 0.0)) -> np.ndarray:
     return y
 
 
-def make_params(mass, inertia, mu, radius, j2, polar_radius) -> np.ndarray:
-    """Assemble the parameter vector (SI units; ``inertia`` = (Ixx, Iyy, Izz))."""
+def make_params(mass, inertia, mu, radius, j2, polar_radius, classic=False) -> np.ndarray:
+    """Assemble the parameter vector (SI units; ``inertia`` = (Ixx, Iyy, Izz));
+    ``classic``: fly the classic range's original model (:data:`P_CLASSIC`)."""
     p = np.empty(N_PARAMS)
     p[P_MASS] = mass
     p[P_IXX:P_IZZ + 1] = inertia
@@ -64,4 +69,5 @@ def make_params(mass, inertia, mu, radius, j2, polar_radius) -> np.ndarray:
     p[P_RADIUS] = radius
     p[P_J2] = j2
     p[P_POLAR_RADIUS] = polar_radius
+    p[P_CLASSIC] = 1.0 if classic else 0.0
     return p
