@@ -1,7 +1,8 @@
 """Draw a run from its telemetry: one PNG with a panel per quantity.
 
 Altitude, speed, dynamic pressure, acceleration, throttle, attitude and the
-ground track on a latitude/longitude map frame. A quantity the telemetry does
+ground track on a latitude/longitude map with the coastlines
+(:mod:`rocketsim.telemetry.land`). A quantity the telemetry does
 not carry (throttle before powered flight exists, q in a vacuum run) gets an
 empty panel that says so. Reads the file only; matplotlib is imported here,
 lazily, with the non-interactive Agg backend.
@@ -13,6 +14,7 @@ from pathlib import Path
 
 import numpy as np
 
+from rocketsim.telemetry.land import draw_coastline
 from rocketsim.telemetry.replay import read_run, table
 
 
@@ -83,6 +85,7 @@ def plot_run(path: str | Path, out: str | Path) -> Path:
         track.set_ylim(-90, 90)
         track.set_xticks(range(-180, 181, 60))
         track.set_yticks(range(-90, 91, 30))
+    draw_coastline(track, track.get_xlim(), track.get_ylim())
     track.grid(True, lw=0.4)
     track.set_aspect("equal")
     track.set_xlabel("longitude, deg")
