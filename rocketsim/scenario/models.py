@@ -192,6 +192,10 @@ class MissionSpec(Strict):
     initial_rates: tuple[float, float, float] = Field(
         (0.0, 0.0, 0.0), description="body rates at the start, rad/s (roll, pitch, yaw)")
     target: TargetSpec = Field(TargetSpec(), description="what the mission aims for")
+    gravity: Literal["earth", "n-body"] = Field(
+        "earth", description="earth: Earth's point mass and J2 (flights near Earth); n-body: "
+        "the central body's point mass and J2 plus the Sun, Earth, Moon and Mars, handing "
+        "over from sphere of influence to sphere of influence (Moon and Mars missions)")
 
     @field_validator("epoch")
     @classmethod

@@ -21,12 +21,12 @@ from typing import Callable
 
 import numpy as np
 
-from rocketsim.constants import DEG, RAILS_FLOOR, EARTH_J2, EARTH_MU, EARTH_RADIUS_EQ, EARTH_RADIUS_POLAR
+from rocketsim.constants import DEG, EARTH_J2, EARTH_MU, EARTH_RADIUS_EQ, EARTH_RADIUS_POLAR
 from rocketsim.bodies.gravity import point_mass_j2
 from rocketsim.dynamics.derivative import derivative, radial_height
 from rocketsim.dynamics.cruise import DONE, SOI, advance_cruise, plan_step
 from rocketsim.dynamics.nbody import make_field, no_air
-from rocketsim.dynamics.rails import FREE, advance_rails
+from rocketsim.dynamics.rails import FREE, advance_rails, rails_floor
 from rocketsim.dynamics.rk4 import advance
 from rocketsim.dynamics.state import (P_IXX, P_IYY, P_IZZ, P_J2, P_MASS, P_MU, P_RADIUS, Q, R, V,
                                       W, make_params, make_state)
@@ -39,6 +39,9 @@ from rocketsim.scenario.load import LoadedScenario
 from rocketsim.scenario.models import check_step
 from rocketsim.errors import InputError
 from rocketsim.frames.geodetic import enu_basis, geodetic_to_ecef
+from rocketsim.sim.central import air_arrays_about, next_center, nbody_field, recentre
+from rocketsim.dynamics.soi import central_params
+from rocketsim.dynamics.third_bodies import field_of, with_field
 from rocketsim.sim.start import standing_on_ground, start_state
 from rocketsim.sim.flight_events import FlightEvents
 from rocketsim.sim.vehicle_checks import VehicleChecks
@@ -76,6 +79,7 @@ class Body:
     stack: VehicleSpec | None = None        # the stages this body still carries (to separate)
     attitude_command: object | None = None  # what the autopilot steers to (fc.point, hold...)
     cruise_until: float = -math.inf         # mission time fc.cruise allows cruise rails until
+    central: str = "earth"                  # the body whose frame and gravity it flies in
 
     @property
     def position(self) -> np.ndarray:
@@ -163,6 +167,8 @@ class World:
         )
         world = cls(epoch, h, mission.duration if duration is None else duration, [body],
                     atmosphere=loaded.atmosphere)
+        if mission.gravity == "n-body":
+            body.p = with_field(body.p, nbody_field("earth", epoch.jd_tt(), world.gmst0))
         body.atmosphere = lambda: world.atmosphere
         body.sensors = Sensors(scenario.seed, body.name, scenario.sensors, h)
         if rigid is None:
@@ -229,9 +235,14 @@ class World:
         name = _channel_name(name)
         while name in names:
             name += "_"
+        fp = field_of(parent.p)
+        if fp is not None:              # the parent's central body and field
+            p = with_field(central_params(p, parent.central), fp)
         new = Body(name=name, y=y, p=p, vehicle=vehicle, t=parent.t, mu=parent.mu,
-                   atmosphere=parent.atmosphere,
+                   atmosphere=parent.atmosphere, central=parent.central,
                    sensors=Sensors(self.seed, name, self.sensor_level, self.h))
+        if vehicle is not None and parent.central != "earth":
+            self._fly_in_air_of(new)
         self.bodies.append(new)
         if self.telemetry is not None:
             self.telemetry.add_body(new.name)
@@ -295,6 +306,7 @@ class World:
             "altitude": height,
             "speed": float(np.linalg.norm(body.velocity)),
             "orbit": self.orbit_summary(body),
+            "central_body": body.central,
             **self.flight_quantities(body),
         }
 
@@ -319,17 +331,22 @@ class World:
         }
 
     def orbit_summary(self, body: Body) -> dict:
-        """Osculating elements with angles in degrees, RAAN from the equinox."""
+        """Osculating elements about the central body with angles in degrees, RAAN
+        from the equinox (about Earth) or from the node of the body's equator on
+        the J2000 equator (about the Moon and Mars); altitudes over the central
+        body's equatorial radius."""
         el = body.view().orbit
+        radius = body.p[P_RADIUS]
+        node = self.gmst0 if body.central == "earth" else 0.0
         return {
             "semi_major_axis": el.a,
             "eccentricity": el.e,
             "inclination_deg": el.i / DEG,
-            "raan_deg": math.fmod(el.raan + self.gmst0, 2 * math.pi) / DEG,
+            "raan_deg": math.fmod(el.raan + node, 2 * math.pi) / DEG,
             "arg_periapsis_deg": el.argp / DEG,
             "true_anomaly_deg": el.nu / DEG,
-            "periapsis_altitude": el.periapsis - EARTH_RADIUS_EQ,
-            "apoapsis_altitude": el.apoapsis - EARTH_RADIUS_EQ if math.isfinite(el.apoapsis) else None,
+            "periapsis_altitude": el.periapsis - radius,
+            "apoapsis_altitude": el.apoapsis - radius if math.isfinite(el.apoapsis) else None,
             "period": el.period if math.isfinite(el.period) else None,
         }
 
@@ -417,7 +434,8 @@ class World:
         asleep = runner is None or runner.finished or (
             not runner.waiting_on_predicate and runner.wake_time() - self.t > self.h * (1 + 1e-9))
         return (asleep and body.vehicle is None and body.attitude_command is None
-                and body.p[P_IYY] == body.p[P_IZZ] and radial_height(body.y, body.p) > RAILS_FLOOR)
+                and body.p[P_IYY] == body.p[P_IZZ]
+                and radial_height(body.y, body.p) > rails_floor(body.central))
 
     def _cruising(self, body: Body) -> bool:
         """fc.cruise allows cruise rails now (they run wherever no shell is near:
@@ -427,15 +445,54 @@ class World:
     def _cruise_steps(self, body: Body) -> int:
         """Flight-model steps of ``body``'s next cruise step (0: it cannot cruise here)."""
         k_end = self.k + math.ceil((body.cruise_until - self.t) / self.h - 1e-9)
-        steps, _, reason = plan_step(body.y, self.k, self.h, k_end, body.p, self._cruise_field())
+        steps, _, reason = plan_step(body.y, self.k, self.h, k_end, body.p, self._cruise_field(body))
         return steps if reason == DONE else 0
 
-    def _cruise_field(self) -> np.ndarray:
-        """The field cruise rails integrate: the awake flight's own (Earth's point mass
-        and J2 in the mission's ECI) until the world flies the n-body field."""
+    def _cruise_field(self, body: Body) -> np.ndarray:
+        """The field cruise rails integrate: the awake flight's own (the n-body field
+        ``body`` carries, or Earth's point mass and J2 in the mission's ECI)."""
+        fp = field_of(body.p)
+        if fp is not None:
+            return fp
         if self._field is None:
             self._field = make_field("earth", self.epoch.jd_tt(), bodies=())
         return self._field
+
+    def _rails_field(self, body: Body) -> np.ndarray:
+        """The field of sleep rails: the n-body field the body carries (so a sleeping
+        body follows the awake path to the bit), else Kepler + J2 about Earth."""
+        fp = field_of(body.p)
+        return _RAILS_FIELD if fp is None else fp
+
+    def _watch_soi(self, body: Body) -> None:
+        """Hand ``body`` over to the body whose sphere of influence it has crossed into."""
+        new = next_center(body.y, body.p, body.t)
+        if new is not None:
+            self._hand_over(body, new)
+
+    def _hand_over(self, body: Body, new: str) -> None:
+        """Re-centre ``body`` on ``new`` now (:func:`rocketsim.sim.central.recentre`):
+        a sample in the old frame, the handover event, a sample in the new one."""
+        old = body.central
+        if self.telemetry is not None:
+            self.telemetry.state(body.name, self.sample(body))
+        body.y, body.p = recentre(body.y, body.p, body.t, new, self.gmst0)
+        body.central, body.mu, body._view = new, float(body.p[P_MU]), None
+        if body.vehicle is not None:
+            self._fly_in_air_of(body)
+        self.event(body, "soi_handover", {"from": old, "to": new})
+        if self.telemetry is not None:
+            self.telemetry.state(body.name, self.sample(body))
+
+    def _fly_in_air_of(self, body: Body) -> None:
+        """Give a staged vehicle the air of its central body (none about the Moon)."""
+        arrays = body.vehicle.arrays
+        h0, dh, density, pressure, temperature, sound, east, north = air_arrays_about(
+            body.central, self.atmosphere)
+        body.vehicle.arrays = arrays._replace(
+            air_h0=h0, air_dh=dh, air_density=density, air_pressure=pressure,
+            air_temperature=temperature, air_speed_of_sound=sound, air_wind_east=east,
+            air_wind_north=north)
 
     def _cruise(self, body: Body, n: int) -> int:
         """Cruise ``body`` up to ``n`` steps; returns the steps taken (the rest fly awake)."""
@@ -445,15 +502,22 @@ class World:
         else:
             _, _, ixx, iyy, _ = body.vehicle.mass_properties(body.y)
             inertia = np.array((ixx, iyy, iyy))
-        y, k, reason, _ = advance_cruise(body.y, self.k, self.h, self.k + n, p,
-                                         self._cruise_field(), _NO_AIR, inertia)
-        if body.vehicle is not None:
-            y[body.vehicle.clocks] += (k - self.k) * self.h     # engine clocks run on
-        body.y = y
-        if reason == SOI:
-            # the world flies in Earth's frame only (so far): no handover, 20 ms steps on
-            body.cruise_until = -math.inf
-            self.event(body, "cruise_end", {"reason": "left the sphere of influence"})
+        k = self.k
+        while k < self.k + n:
+            y, k_end, reason, _ = advance_cruise(body.y, k, self.h, self.k + n, p,
+                                                 self._cruise_field(body), _NO_AIR, inertia)
+            if body.vehicle is not None:
+                y[body.vehicle.clocks] += (k_end - k) * self.h     # engine clocks run on
+            body.y, body.t, k = y, k_end * self.h, k_end
+            if reason != SOI:
+                break
+            new = next_center(body.y, body.p, body.t)
+            if new is None:     # no field to hand over in: 20 ms steps on
+                body.cruise_until = -math.inf
+                self.event(body, "cruise_end", {"reason": "left the sphere of influence"})
+                break
+            self._hand_over(body, new)
+            p = body.p
         return k - self.k
 
     def _advance(self, body: Body, n: int) -> None:
@@ -463,11 +527,13 @@ class World:
             k0, n = k0 + done, n - done
         if n > 0 and self._on_rails(body):
             # same step, same orbit to the bit; stops below the floor and wakes for the rest
-            body.y, done = advance_rails(body.y, k0, self.h, n, body.p, _RAILS_FIELD, _NO_AIR,
-                                         body.p[P_IXX:P_IZZ + 1], FREE)
+            body.y, done = advance_rails(body.y, k0, self.h, n, body.p, self._rails_field(body),
+                                         _NO_AIR, body.p[P_IXX:P_IZZ + 1], FREE,
+                                         rails_floor(body.central))
             k0, n = k0 + done, n - done
         if n == 0:
             body.t = k0 * self.h
+            self._watch_soi(body)
             return
         if body.vehicle is None:
             y, taken = advance(body.y, k0, self.h, n, body.p)
@@ -475,6 +541,7 @@ class World:
             y, taken = advance(body.y, k0, self.h, n, body.p, body.vehicle.arrays)
         body.y = y
         body.t = (k0 + taken) * self.h
+        self._watch_soi(body)
         if body.checks is not None:
             body.checks.after_step(self, body, self.h)
         if taken < n and body.flying:

@@ -14,7 +14,10 @@ _VEC3 = {"type": "array", "items": {"type": "number"}, "minItems": 3, "maxItems"
 
 BODY_STATE = {
     "title": "rocketsim.BodyState",
-    "description": "State of one body at one instant (inertial frame: ECI of the mission epoch).",
+    "description": "State of one body at one instant, in the frame of its central body: "
+                   "the ECI of the mission epoch about Earth; about the Moon and Mars (n-body "
+                   "missions) the body's IAU pole as z and the node of its equator on the J2000 "
+                   "equator as x, fixed at the sphere-of-influence handover.",
     "type": "object",
     "properties": {
         "t": {"type": "number", "description": "mission time, s"},
@@ -28,6 +31,9 @@ BODY_STATE = {
         "altitude": {"type": "number", "description": "height above the WGS84 ellipsoid, m"},
         "speed": {"type": "number", "description": "inertial speed, m/s"},
         "orbit": {"$ref": "#/$defs/orbit"},
+        "central_body": {"type": "string", "enum": ["sun", "earth", "moon", "mars"],
+                         "description": "the body the position, velocity and orbit are about; "
+                         "at a handover the state is sampled in both frames at the same t"},
         "mass": {"type": "number", "description": "kg"},
         "acceleration": {"type": "number", "description": "inertial acceleration |dv/dt|, m/s^2"},
         "sensed_acceleration": {"type": "number",
@@ -49,9 +55,11 @@ BODY_STATE = {
                 "raan_deg": {"type": "number", "description": "from the equinox (J2000 axes), deg"},
                 "arg_periapsis_deg": {"type": "number"},
                 "true_anomaly_deg": {"type": "number"},
-                "periapsis_altitude": {"type": "number", "description": "above the equatorial radius, m"},
+                "periapsis_altitude": {"type": "number",
+                                       "description": "above the central body's equatorial radius, m"},
                 "apoapsis_altitude": {"type": ["number", "null"],
-                                      "description": "above the equatorial radius, m (null if unbound)"},
+                                      "description": "above the central body's equatorial radius, m "
+                                      "(null if unbound)"},
                 "period": {"type": ["number", "null"], "description": "s (null if unbound)"},
             },
         }

@@ -1,0 +1,100 @@
+"""Which body a flying body falls about, and the handover from one to the next.
+
+A body that flies in the n-body field (a mission with ``gravity: n-body``)
+carries its field in its parameters (:func:`rocketsim.dynamics.third_bodies.with_field`):
+the central body's point mass and J2, and the Sun, Earth, Moon and Mars as
+other bodies. Crossing a sphere of influence (:mod:`rocketsim.dynamics.soi`)
+re-centres the frame on the new body with its IAU pole as ``z``
+(:func:`recentre`): position and velocity are the same vectors seen from the
+new centre in the new axes, the attitude quaternion (body -> frame) is turned
+by the same change of axes, the body rates (body axes) and everything else
+are untouched.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from rocketsim.atmosphere.mars import mars_table
+from rocketsim.dynamics.nbody import F_CENTER, F_ROT, make_field
+from rocketsim.dynamics.soi import (_ORBIT, CHILDREN, SOI, central_body, central_params, frame_rotation,
+                                   handover)
+from rocketsim.dynamics.state import Q, R, V
+from rocketsim.dynamics.third_bodies import bodies_at, field_of, with_field
+from rocketsim.ephemeris.solar_system import BODIES
+from rocketsim.frames.quaternion import quat_from_matrix, quat_multiply
+
+# |r| (m) from a centre beyond which a handover is possible: its own sphere, or
+# half the orbital radius of the nearest child (the Moon comes no closer to Earth
+# than 356 000 km, so nothing can enter its 66 000 km sphere within 192 000 km)
+WATCH_RADIUS = {name: min([SOI[name]] + [0.5 * _ORBIT[child][0] for child in CHILDREN[name]])
+                for name in BODIES}
+
+
+def nbody_field(center: str, jd0_tt: float, gmst0: float, jd_tt_now: float | None = None) -> np.ndarray:
+    """The full field (Sun, Earth, Moon, Mars) about ``center`` in its frame: Earth's
+    ECI of the mission epoch (``gmst0``, rad) or the IAU-pole frame fixed at
+    ``jd_tt_now`` (TT Julian date; default: mission time 0)."""
+    jd = jd0_tt if jd_tt_now is None else jd_tt_now
+    return make_field(center, jd0_tt, rotation=frame_rotation(center, jd, gmst0))
+
+
+def center_name(p) -> str:
+    """Name of the central body of a parameter vector (Earth without a field)."""
+    fp = field_of(p)
+    return "earth" if fp is None else BODIES[int(fp[F_CENTER])]
+
+
+def next_center(y, p, t: float) -> str | None:
+    """The body whose sphere of influence ``y`` (frame of ``p``'s field) has entered
+    or fallen back into at mission time ``t`` (s), or None while it stays put.
+    Cheap while the body is well inside its centre's sphere and far from any child."""
+    fp = field_of(p)
+    if fp is None:
+        return None
+    center = BODIES[int(fp[F_CENTER])]
+    r = y[R:R + 3]
+    if math.sqrt(r @ r) < WATCH_RADIUS[center]:
+        return None
+    new = central_body(r, fp, t)
+    return None if new == center else new
+
+
+def recentre(y, p, t: float, new: str, gmst0: float):
+    """``(y, p)`` re-centred on ``new`` at mission time ``t`` (s): position,
+    velocity and attitude in the new frame (:func:`rocketsim.dynamics.soi.handover`),
+    the parameters' central gravity and field the new body's. ``y`` and ``p``
+    are not modified."""
+    fp = field_of(p)
+    r, v, fp_new = handover(y[R:R + 3], y[V:V + 3], fp, t, new, gmst0)
+    turn = fp_new[F_ROT:F_ROT + 9].reshape(3, 3).T @ fp[F_ROT:F_ROT + 9].reshape(3, 3)
+    out = np.array(y, dtype=float)
+    out[R:R + 3] = r
+    out[V:V + 3] = v
+    q = quat_multiply(quat_from_matrix(turn), out[Q:Q + 4])
+    out[Q:Q + 4] = q / np.linalg.norm(q)
+    return out, with_field(central_params(p, new), fp_new)
+
+
+def to_frame(r, v, p_from, p_to, t: float):
+    """Position (m) and velocity (m/s) in the frame of ``p_from``'s field re-expressed
+    in the frame of ``p_to``'s (both carrying fields) at mission time ``t`` (s)."""
+    fa, fb = field_of(p_from), field_of(p_to)
+    s, u = bodies_at(fa, t)
+    j = int(fb[F_CENTER])
+    rot = fb[F_ROT:F_ROT + 9].reshape(3, 3).T @ fa[F_ROT:F_ROT + 9].reshape(3, 3)
+    return rot @ (np.asarray(r, float) - s[j]), rot @ (np.asarray(v, float) - u[j])
+
+
+def air_arrays_about(center: str, earth_air):
+    """The air table arrays (:meth:`AtmosphereTable.arrays`) a vehicle flies through
+    about ``center``: the day's (``earth_air``) about Earth, the Mars reference
+    atmosphere about Mars, none (zero density and pressure) elsewhere."""
+    if center == "earth":
+        return earth_air.arrays()
+    if center == "mars":
+        return mars_table().arrays()
+    zero = np.zeros(2)
+    return (0.0, 1.0e6, zero, zero, zero, np.ones(2), zero, zero)
