@@ -18,7 +18,8 @@ latitude, :func:`profile_table` builds the :class:`AtmosphereTable`:
    level's measured pressure: ``d ln p/dz = -g(z) M0 / (R* T_v)`` with the
    virtual temperature ``T_v = T (1 + w/eps) / (1 + w)`` (``w`` mixing ratio)
    and WGS84 normal gravity at the site's latitude falling off as the inverse
-   square of the distance from the centre. Between 80 and 86 km the
+   square of the distance from the centre (on the classic range, the 1976
+   standard's own gravity instead: ``standard_gravity``). Between 80 and 86 km the
    standard's ``M/M0`` enters through its molecular-scale temperature.
 4. Above 86 km the air is the standard's, with pressure and density scaled by
    the day's-to-standard pressure ratio at 86 km (continuous there).
@@ -35,8 +36,9 @@ from rocketsim.atmosphere.hydrostatic import hermite, integrate_log_pressure
 from rocketsim.atmosphere.sounding import Sounding
 from rocketsim.atmosphere.table import STEP, AtmosphereTable, grid, make_table
 from rocketsim.atmosphere.ussa1976 import Z_86, sutherland_viscosity, us_standard_1976
+from rocketsim.atmosphere.ussa1976 import standard_gravity as ussa_gravity
 from rocketsim.constants import (EARTH_RADIUS_EQ, EARTH_RADIUS_POLAR, G0, GAS_CONSTANT_USSA,
-                                 USSA_GAMMA, USSA_M0, USSA_P0, WATER_AIR_MOLAR_RATIO)
+                                 USSA_GAMMA, USSA_M0, USSA_P0, USSA_R0, WATER_AIR_MOLAR_RATIO)
 from rocketsim.frames.geodetic import normal_gravity
 
 BLEND_DEPTH = 5_000.0          # m, depth of the blend into the standard atmosphere
@@ -111,16 +113,31 @@ def _profile_on(z, sounding, z_data, z_b):
     return t, t_vm, east, north
 
 
-def profile_table(sounding: Sounding, latitude: float) -> AtmosphereTable:
-    """The day's :class:`AtmosphereTable` from a profile at geodetic ``latitude`` (rad)."""
-    z_data = (geometric_from_geopotential(sounding.height, latitude) if sounding.geopotential
-              else np.asarray(sounding.height, dtype=float))
+def profile_table(sounding: Sounding, latitude: float, standard_gravity: bool = False
+                  ) -> AtmosphereTable:
+    """The day's :class:`AtmosphereTable` from a profile at geodetic ``latitude`` (rad).
+
+    ``standard_gravity``: the classic range's hydrostatics (physics model: "on
+    real sites the hydrostatics use WGS84 normal gravity at the site's latitude
+    rather than standard gravity"): ``g = g0 (r0 / (r0 + z))^2`` with the 1976
+    standard's ``r0`` (its eq. 17) in place of :func:`gravity`, so a classic
+    day's pressure follows the standard's own barometric law.
+    """
+    if standard_gravity:
+        r0 = USSA_R0
+        z_data = (r0 * np.asarray(sounding.height, dtype=float)
+                  / (r0 - np.asarray(sounding.height, dtype=float)) if sounding.geopotential
+                  else np.asarray(sounding.height, dtype=float))
+    else:
+        z_data = (geometric_from_geopotential(sounding.height, latitude) if sounding.geopotential
+                  else np.asarray(sounding.height, dtype=float))
     z_b = min(float(z_data[-1]), BLEND_START_MAX)
     rows = grid(min(float(z_data[0]) - 500.0, LOWEST))
     low = rows[rows <= Z_86]
     half = np.arange(2 * len(low) - 1) * (STEP / 2.0) + low[0]   # rows and midpoints
     _, t_vm, _, _ = _profile_on(half, sounding, z_data, z_b)
-    rate = -gravity(half, latitude) * USSA_M0 / (GAS_CONSTANT_USSA * t_vm)
+    g = ussa_gravity(half) if standard_gravity else gravity(half, latitude)
+    rate = -g * USSA_M0 / (GAS_CONSTANT_USSA * t_vm)
     log_p = integrate_log_pressure(low, rate[::2], rate[1::2], 0.0)
     # Anchor at the lowest level: ln p there equals the measured pressure.
     log_p += np.log(sounding.pressure[0]) - hermite(low, log_p, rate[::2], z_data[0])

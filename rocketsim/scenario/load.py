@@ -2,7 +2,9 @@
 
 ``load(path)`` reads the scenario YAML, resolves each referenced file
 (``vehicle``, ``site``, ``mission`` given as paths, and the ``program``)
-relative to the scenario file, validates everything with the pydantic models
+relative to the scenario file (``site: classic`` names no file: it is the
+classic range generated from the scenario's seed,
+:mod:`rocketsim.scenario.classic_range`), validates everything with the pydantic models
 and returns a :class:`LoadedScenario`. Any problem raises one
 :class:`~rocketsim.errors.InputError` naming the file, line, column and field
 path, what was expected, and for a misspelt field the closest valid name.
@@ -19,6 +21,7 @@ from pathlib import Path
 from pydantic import BaseModel, ValidationError
 
 from rocketsim.errors import InputError
+from rocketsim.scenario.classic_range import CLASSIC
 from rocketsim.scenario.models import MissionSpec, Scenario, SiteSpec, VehicleSpec
 from rocketsim.scenario.weather import load_weather
 from rocketsim.scenario.yaml_source import YamlSource, read_yaml
@@ -56,7 +59,8 @@ class LoadedScenario:
         site = self.scenario.site
         weather = self.scenario.weather or StandardWeather(kind="standard")
         base_dir = (self.files.get("weather") or self.path).parent
-        return build_atmosphere(weather, site.latitude if site else 0.0, base_dir)
+        return build_atmosphere(weather, site.latitude if site else 0.0, base_dir,
+                                standard_gravity=site is not None and site.model == CLASSIC)
 
 
 def load(path: str | Path) -> LoadedScenario:
@@ -70,7 +74,7 @@ def load(path: str | Path) -> LoadedScenario:
     data = dict(data)
     for name, model in REFERENCED.items():
         value = data.get(name)
-        if isinstance(value, str):
+        if isinstance(value, str) and not (name == "site" and value == CLASSIC):
             ref = _resolve(path, value, source, (name,))
             data[name] = validate(read_yaml(ref), model)
             files[name] = ref

@@ -21,6 +21,7 @@ from typing import Annotated, Literal, Optional, Union
 from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
 
 from rocketsim.constants import MAX_HEADLESS_STEP, STEP
+from rocketsim.scenario.classic_range import CLASSIC, classic_site
 from rocketsim.scenario.weather import Weather
 from rocketsim.scenario.units import Angle, Duration, Frequency, Inertia, Length, Mass, Speed
 from rocketsim.scenario.aero_spec import AeroSpec, check_aero
@@ -88,6 +89,13 @@ class SiteSpec(Strict):
     height: Length = Field(0.0, description="height of the pad above the WGS84 ellipsoid")
     pad_azimuth: Angle = Field(1.5707963267948966, description="launch azimuth from north, default due east")
     source: str = ""
+    model: Literal["realistic", "classic"] = Field(
+        "realistic", description="the physics model flown from this site: 'classic' is the classic "
+        "range's original model (thrust, mass and the density above 86 km held for the step; "
+        "standard-gravity hydrostatics; weather standard or classic)")
+    pads: list["TargetPad"] = Field(
+        default_factory=list, description="landing zones and drone ships a mission can name "
+        "as its target pad (target: {pad: <name>})")
 
     @field_validator("latitude")
     @classmethod
@@ -178,7 +186,8 @@ class TargetSpec(Strict):
     measured to it; without one, to the launch site), or both."""
 
     orbit: Optional[TargetOrbit] = None
-    pad: Optional[TargetPad] = None
+    pad: Optional[Union[TargetPad, str]] = Field(
+        None, description="a pad, or the name of one of the site's pads")
 
 
 class MissionSpec(Strict):
@@ -240,6 +249,16 @@ class Scenario(Strict):
         "truth", description="what programs read: the true state, or a navigation estimate "
         "with realistic (or three times larger, 'hard') sensor errors")
 
+    @model_validator(mode="before")
+    @classmethod
+    def _classic_range(cls, data):
+        """``site: classic``: the procedural range generated from the scenario's seed."""
+        if isinstance(data, dict) and data.get("site") == CLASSIC:
+            seed = data.get("seed", 0)
+            if isinstance(seed, int) and not isinstance(seed, bool):
+                data = {**data, "site": classic_site(seed)}
+        return data
+
     @field_validator("step")
     @classmethod
     def _step_limit(cls, value: float) -> float:
@@ -256,6 +275,20 @@ class Scenario(Strict):
             object.__setattr__(self, "vehicle", self.vehicle.model_copy(update={"payload": self.payload}))
         if self.mission.start.site is not None and self.site is None:
             raise ValueError("mission starts on a site: give 'site'")
+        pad = self.mission.target.pad
+        if isinstance(pad, str):
+            found = [p for p in (self.site.pads if self.site else []) if p.name == pad]
+            if not found:
+                names = ", ".join(p.name for p in self.site.pads) if self.site else ""
+                raise ValueError(f"target pad {pad!r} is not one of the site's pads"
+                                 + (f" ({names})" if names else " (the site lists none)"))
+            target = self.mission.target.model_copy(update={"pad": found[0]})
+            object.__setattr__(self, "mission", self.mission.model_copy(update={"target": target}))
+        if self.site is not None and self.site.model == CLASSIC and \
+                getattr(self.weather, "kind", "standard") not in ("standard", CLASSIC):
+            raise ValueError("the classic range flies the original model's air: weather kind "
+                             "'standard' or 'classic' (the standard shifted by the day's "
+                             f"surface temperature), not {self.weather.kind!r}")
         return self
 
 

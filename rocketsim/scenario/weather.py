@@ -104,10 +104,11 @@ def load_weather(path: str | Path):
     return validate(source, WeatherFile).root
 
 
-def build_atmosphere(weather: Weather, site_latitude: float, base_dir: str | Path
-                     ) -> AtmosphereTable:
+def build_atmosphere(weather: Weather, site_latitude: float, base_dir: str | Path,
+                     standard_gravity: bool = False) -> AtmosphereTable:
     """The day's 50 m :class:`AtmosphereTable` for ``weather`` at geodetic ``site_latitude``
-    (rad); a sounding ``file`` is resolved relative to ``base_dir``."""
+    (rad); a sounding ``file`` is resolved relative to ``base_dir``. ``standard_gravity``:
+    the classic range's hydrostatics (:func:`~rocketsim.atmosphere.day.profile_table`)."""
     if isinstance(weather, WeatherFile):
         weather = weather.root
     if isinstance(weather, StandardWeather):
@@ -123,4 +124,4 @@ def build_atmosphere(weather: Weather, site_latitude: float, base_dir: str | Pat
         profile = random_profile(weather.seed, site_latitude)
     else:
         profile = classic_profile(weather.surface_temperature, weather.surface_pressure)
-    return profile_table(profile, site_latitude)
+    return profile_table(profile, site_latitude, standard_gravity)

@@ -41,7 +41,8 @@ from rocketsim.errors import InputError
 from rocketsim.frames.geodetic import enu_basis, geodetic_to_ecef
 from rocketsim.sim.central import air_arrays_about, next_center, nbody_field, recentre
 from rocketsim.dynamics.soi import central_params
-from rocketsim.dynamics.third_bodies import field_of, with_field
+from rocketsim.dynamics.third_bodies import bodies_at, field_of, with_field
+from rocketsim.ephemeris.solar_system import BODIES
 from rocketsim.sim.start import standing_on_ground, start_state
 from rocketsim.sim.flight_events import FlightEvents
 from rocketsim.sim.vehicle_checks import VehicleChecks
@@ -130,6 +131,7 @@ class World:
         self._build_atmosphere = atmosphere
         self._atmosphere = None
         self._field = None                  # cruise rails' field, built on first use
+        self._ephemeris = None              # the bodies' positions about Earth (body_state)
         self._cruise_batch = False          # the last batch was one cruise step
         self.seed = 0
         self.sensor_level = "truth"
@@ -163,7 +165,9 @@ class World:
             name=_channel_name(scenario.vehicle.name),
             y=make_state(r, v, q, mission.initial_rates),
             p=make_params(rigid.mass if rigid else 1.0, rigid.inertia if rigid else (1.0, 1.0, 1.0),
-                          EARTH_MU, EARTH_RADIUS_EQ, EARTH_J2, EARTH_RADIUS_POLAR),
+                          EARTH_MU, EARTH_RADIUS_EQ, EARTH_J2, EARTH_RADIUS_POLAR,
+                          # the classic range's original model (held for the step); stages inherit p
+                          classic=scenario.site is not None and scenario.site.model == "classic"),
         )
         world = cls(epoch, h, mission.duration if duration is None else duration, [body],
                     atmosphere=loaded.atmosphere)
@@ -457,6 +461,19 @@ class World:
         if self._field is None:
             self._field = make_field("earth", self.epoch.jd_tt(), bodies=())
         return self._field
+
+    def body_state(self, body: Body, name: str, t: float | None = None):
+        """Position (m) and velocity (m/s) of the Sun, Earth, Moon or Mars relative to
+        ``body``'s central body, in its frame's axes, at mission time ``t`` (s; default
+        the body's time): the ephemeris of the n-body field."""
+        fp = field_of(body.p)
+        if fp is None:
+            if self._ephemeris is None:
+                self._ephemeris = nbody_field("earth", self.epoch.jd_tt(), self.gmst0)
+            fp = self._ephemeris
+        s, u = bodies_at(fp, body.t if t is None else float(t))
+        j = BODIES.index(name)
+        return s[j].copy(), u[j].copy()
 
     def _rails_field(self, body: Body) -> np.ndarray:
         """The field of sleep rails: the n-body field the body carries (so a sleeping
