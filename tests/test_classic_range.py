@@ -89,9 +89,11 @@ def test_site_classic_in_a_scenario_and_its_pads_as_targets(tmp_path):
     real = load(ROOT / "scenarios" / "falcon9-leo.yaml")
     assert World.from_scenario(real, duration=1.0).bodies[0].p[P_CLASSIC] == 0.0
     bad = tmp_path / "bad.yaml"
-    bad.write_text(CLASSIC_ASCENT.read_text().replace("seed: 11", "seed: 11\nweather_: 1"))
-    with pytest.raises(InputError):
+    bad.write_text("name: bad\nsite: clasic\nvehicle: {name: v, rigid_body: {mass: 1, inertia: [1, 1, 1]}}\n"
+                   "mission: {epoch: 2026-11-26T15:00:00Z, start: {site: {}}, duration: 1}\n")
+    with pytest.raises(InputError, match="neither a site file .* nor 'classic'") as caught:
         load(bad)
+    assert caught.value.field == "site"
 
 
 # --- the original model's switches ---------------------------------------------

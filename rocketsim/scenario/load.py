@@ -75,6 +75,11 @@ def load(path: str | Path) -> LoadedScenario:
     for name, model in REFERENCED.items():
         value = data.get(name)
         if isinstance(value, str) and not (name == "site" and value == CLASSIC):
+            if name == "site" and not value.endswith((".yaml", ".yml")):
+                line, column = source.position((name,)) or (None, None)
+                raise InputError(f"{value!r} is neither a site file (.yaml) nor {CLASSIC!r} "
+                                 "(the classic range)", file=path, line=line, column=column,
+                                 field=name)
             ref = _resolve(path, value, source, (name,))
             data[name] = validate(read_yaml(ref), model)
             files[name] = ref
