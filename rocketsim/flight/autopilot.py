@@ -14,7 +14,10 @@ produced by gimballing every firing engine alike: an engine a lever arm ``L``
 behind the centre of mass with thrust ``T`` gives ``tau_y = L T g_z`` and
 ``tau_z = -L T g_y`` (small angles; the engine model's sign convention), so
 ``g_z = tau_y / (L T)``, ``g_y = -tau_z / (L T)``, clipped by each engine's
-cone and reached at its slew rate. Roll is not controlled yet (it needs
+cone and reached at its slew rate. In the air, nose first, the torque also
+cancels the destabilising part of the modelled aerodynamic moment
+(:mod:`rocketsim.flight.aero_feedforward`), so that an unfinned launcher
+through max-Q keeps the same second-order response as in vacuum. Roll is not controlled yet (it needs
 reaction control), and with no thrust the autopilot commands nothing.
 """
 
@@ -25,6 +28,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from rocketsim.flight.aero_feedforward import destabilising_moment
 from rocketsim.vehicle import engines as E
 
 OMEGA_N = 1.0     # rad/s, natural frequency of the attitude response
@@ -74,17 +78,19 @@ def attitude_error(axes: np.ndarray, target: np.ndarray) -> np.ndarray:
 
 
 def gimbal_command(error: np.ndarray, rates: np.ndarray, inertia_pitch: float, inertia_yaw: float,
-                   thrust: float, lever: float) -> tuple[float, float]:
+                   thrust: float, lever: float, aero: tuple[float, float] = (0.0, 0.0)) -> tuple[float, float]:
     """``(g_y, g_z)`` (rad) of every firing engine for the damped response above.
 
     ``thrust`` (N) is the total thrust, ``lever`` (m) the thrust-weighted
-    distance of the gimbal points behind the centre of mass.
+    distance of the gimbal points behind the centre of mass; ``aero`` (N m,
+    body y and z) the aerodynamic moment the gimbals cancel
+    (:mod:`rocketsim.flight.aero_feedforward`).
     """
     if thrust <= 0.0 or lever <= 0.0:
         return 0.0, 0.0
     alpha_y = OMEGA_N ** 2 * error[1] - 2.0 * ZETA * OMEGA_N * rates[1]
     alpha_z = OMEGA_N ** 2 * error[2] - 2.0 * ZETA * OMEGA_N * rates[2]
-    tau_y, tau_z = inertia_pitch * alpha_y, inertia_yaw * alpha_z
+    tau_y, tau_z = inertia_pitch * alpha_y - aero[0], inertia_yaw * alpha_z - aero[1]
     return -tau_z / (lever * thrust), tau_y / (lever * thrust)
 
 
@@ -99,6 +105,7 @@ def steer(command: AttitudeCommand, view, vehicle, propulsion, y: np.ndarray, t:
     if not len(firing) or thrust <= 0.0:
         return 0.0, 0.0
     lever = float(each @ (x_cm - vehicle.arrays.eng[:, E.E_X])) / thrust
-    gy, gz = gimbal_command(error, view.body_rates, iyy, izz, thrust, lever)
+    aero = destabilising_moment(view, vehicle, y, thrust, x_cm)     # aero feedforward
+    gy, gz = gimbal_command(error, view.body_rates, iyy, izz, thrust, lever, aero)
     propulsion.gimbal(t, gy, gz, [int(e) for e in firing])
     return gy, gz
