@@ -14,10 +14,12 @@ runs on the truth.
 
 from __future__ import annotations
 
+import math
 from typing import TYPE_CHECKING, Callable
 
 import numpy as np
 
+from rocketsim.flight.impact import predict_impact
 from rocketsim.flight.readings import StateView
 from rocketsim.frames.elements import Elements
 from rocketsim.frames.quaternion import quat_from_axis_angle, quat_multiply
@@ -343,6 +345,38 @@ class FlightComputer:
     def jettison_fairing(self) -> str:
         """Drop the payload fairing (it becomes a body of its own); returns its name."""
         return self._world.jettison_fairing(self._body).name
+
+    def deploy_payload(self) -> str:
+        """Release the payload (after the fairing): it becomes a body of its own, named
+        ``payload``, coasting from the stack's centre-of-mass motion; returns its name."""
+        return self._world.deploy_payload(self._body).name
+
+    # --- predictions (vacuum two-body: rocketsim.flight.impact) ------------------
+    @property
+    def impact(self):
+        """Where the coasting path meets the ground (the WGS84 ellipsoid) on the vacuum
+        Kepler conic of the estimated state: an :class:`~rocketsim.flight.impact.Impact`
+        (``time`` s from now, ``latitude``, ``longitude`` rad, ``position`` ECI m,
+        ``speed`` m/s), or None for a path that clears the ground. No drag, no J2."""
+        view = self._view()
+        if "impact" not in self._readings:
+            body = self._body
+            if getattr(body, "central", "earth") != "earth":
+                raise ValueError("impact predictions are for Earth (the WGS84 ellipsoid) only")
+            self._readings["impact"] = predict_impact(view.position, view.velocity, self._world.t, body.mu)
+        return self._readings["impact"]
+
+    @property
+    def impact_point(self) -> tuple[float, float] | None:
+        """(geodetic latitude, longitude) of the predicted impact, rad; None if none."""
+        impact = self.impact
+        return None if impact is None else (impact.latitude, impact.longitude)
+
+    @property
+    def time_to_impact(self) -> float:
+        """Seconds to the predicted impact (inf on a path that clears the ground)."""
+        impact = self.impact
+        return math.inf if impact is None else impact.time
 
     # --- engines ------------------------------------------------------------
     def _propulsion(self):

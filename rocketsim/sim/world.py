@@ -49,7 +49,7 @@ from rocketsim.sim.vehicle_checks import VehicleChecks
 from rocketsim.timescales import Epoch
 from rocketsim.scenario.models import VehicleSpec
 from rocketsim.vehicle.build import VehicleModel, build
-from rocketsim.vehicle.staging import jettison_fairing, separate
+from rocketsim.vehicle.staging import deploy_payload, jettison_fairing, separate
 
 
 # parking-orbit rails about Earth: Kepler + J2, no third bodies (issue 9); a rigid
@@ -220,16 +220,37 @@ class World:
         stack = body.stack
         if body.vehicle is None or stack is None or not body.vehicle.has_fairing:
             raise ValueError(f"{body.name} has no fairing to jettison")
-        (without, y_without), fairing = jettison_fairing(stack, body.vehicle, body.y, 0,
-                                                         air=self.atmosphere)
-        body.vehicle, body.y, body._view = without, y_without, None
-        body.stack = stack.model_copy(update={"fairing": None})
-        new = self._add_body("fairing", make_state(fairing["position"], fairing["velocity"],
-                                                   fairing["attitude"], fairing["rates"]),
-                             make_params(fairing["mass"], fairing["inertia"], EARTH_MU, EARTH_RADIUS_EQ,
-                                         EARTH_J2, EARTH_RADIUS_POLAR), body)
-        self.event(body, "fairing jettison", {"fairing_mass_kg": fairing["mass"], "fairing_body": new.name})
+        parts = jettison_fairing(stack, body.vehicle, body.y, 0, air=self.atmosphere)
+        new = self._split_rigid(body, parts, "fairing", stack.model_copy(update={"fairing": None}))
+        self.event(body, "fairing jettison", {"fairing_mass_kg": new.mass, "fairing_body": new.name})
         return new
+
+    def deploy_payload(self, body: Body) -> Body:
+        """Release ``body``'s payload (after the fairing has gone): it becomes a rigid
+        body of its own (a solid cylinder) named ``payload``, with its own channels;
+        centre of mass and momentum are conserved, no separation impulse
+        (:func:`rocketsim.vehicle.staging.deploy_payload`). Returns the new body."""
+        stack = body.stack
+        if body.vehicle is None or stack is None or stack.payload is None:
+            raise ValueError(f"{body.name} has no payload to deploy")
+        if body.vehicle.has_fairing:
+            raise ValueError(f"{body.name} still carries its fairing: jettison it before deploying the payload")
+        parts = deploy_payload(stack, body.vehicle, body.y, 0, air=self.atmosphere)
+        new = self._split_rigid(body, parts, "payload", stack.model_copy(update={"payload": None}))
+        figures = {"payload_mass_kg": new.mass, "upper_mass_kg": body.mass}
+        self.event(body, "payload deploy", {**figures, "payload_body": new.name})
+        self.event(new, "payload deploy", {**figures, "from_body": body.name})
+        return new
+
+    def _split_rigid(self, body: Body, parts, name: str, stack: VehicleSpec) -> Body:
+        """Fly ``body`` on as ``parts[0]`` (model and state, what is left of ``stack``)
+        and add ``parts[1]`` (a rigid body's mass, inertia and state) as a new body."""
+        (without, y_without), part = parts
+        body.vehicle, body.y, body._view, body.stack = without, y_without, None, stack
+        return self._add_body(name, make_state(part["position"], part["velocity"], part["attitude"],
+                                               part["rates"]),
+                              make_params(part["mass"], part["inertia"], EARTH_MU, EARTH_RADIUS_EQ,
+                                          EARTH_J2, EARTH_RADIUS_POLAR), body)
 
     def _add_body(self, name: str, y: np.ndarray, p: np.ndarray, parent: Body,
                   vehicle: VehicleModel | None = None) -> Body:

@@ -18,7 +18,8 @@ payload and fairing, stations from its own base). Each part gets:
 So the parts' mass-weighted positions and momenta add up to the stack's,
 exactly up to rounding (no separation impulse: springs or pushers are events).
 :func:`jettison_fairing` does the same for the fairing, which becomes a rigid
-body (a thin shell).
+body (a thin shell), and :func:`deploy_payload` for the payload (a solid
+cylinder).
 """
 
 from __future__ import annotations
@@ -29,7 +30,7 @@ from rocketsim.dynamics.state import N_STATE, Q, R, V, W
 from rocketsim.frames.quaternion import quat_rotate
 from rocketsim.vehicle.build import VehicleModel, build
 from rocketsim.vehicle.engines import S_DRY, S_DRY_AT
-from rocketsim.vehicle.mass_properties import shell
+from rocketsim.vehicle.mass_properties import shell, solid_cylinder
 
 
 def separate(spec, whole: VehicleModel, y: np.ndarray, k: int, air=None):
@@ -72,18 +73,41 @@ def jettison_fairing(spec, model: VehicleModel, y: np.ndarray, first: int, air=N
     """
     if not model.has_fairing or model.stage_names != [s.name for s in spec.stages[first:]]:
         raise ValueError("jettison_fairing() needs the model of stages first..top with its fairing")
+    f = spec.fairing
     without = build(spec, first, air=air, fairing=False)
+    return _release_top(spec, model, without, y, f.mass, shell(f.mass, 0.5 * f.diameter, f.length), f.length)
+
+
+def deploy_payload(spec, model: VehicleModel, y: np.ndarray, first: int, air=None):
+    """Release the payload of ``model`` (stages ``first..top`` of ``spec`` with its payload).
+
+    Returns ``((model_without, y_without), payload)`` with ``payload`` a dict as
+    :func:`jettison_fairing`'s (the payload a uniform solid cylinder on top of
+    the top stage). The model left keeps the fairing if it still had one.
+    """
+    if spec.payload is None or model.stage_names != [s.name for s in spec.stages[first:]]:
+        raise ValueError("deploy_payload() needs the model of stages first..top with its payload")
+    p = spec.payload
+    without = build(spec.model_copy(update={"payload": None}), first, air=air, fairing=model.has_fairing)
+    return _release_top(spec, model, without, y, p.mass, solid_cylinder(p.mass, 0.5 * p.diameter, p.length),
+                        p.length)
+
+
+def _release_top(spec, model: VehicleModel, without: VehicleModel, y: np.ndarray, mass: float,
+                 own: tuple[float, float], length: float):
+    """Split a part of ``mass`` (kg), own inertias ``own`` (Ixx, Iyy = Izz, kg m^2)
+    and ``length`` (m), standing on top of the top stage, from ``model`` in state
+    ``y``; ``without`` is the model of what stays. Centre of mass and momentum
+    are conserved (both parts moved along body x from the whole's centre)."""
     y_new = y.copy()
     _copy_commands(model, without, 0, 0)
     x_cm = model.mass_properties(y)[1]
     y_new[R:R + 3], y_new[V:V + 3] = moved(y, without.mass_properties(y_new)[1] - x_cm)
-    f = spec.fairing
-    own_ixx, own_iyy = shell(f.mass, 0.5 * f.diameter, f.length)
     top = float(model.stage_base[-1] + spec.stages[-1].length)
-    r, v = moved(y, top + 0.5 * f.length - x_cm)
-    fairing = {"mass": f.mass, "inertia": (own_ixx, own_iyy, own_iyy), "position": r, "velocity": v,
-               "attitude": y[Q:Q + 4].copy(), "rates": y[W:W + 3].copy()}
-    return (without, y_new), fairing
+    r, v = moved(y, top + 0.5 * length - x_cm)
+    part = {"mass": mass, "inertia": (own[0], own[1], own[1]), "position": r, "velocity": v,
+            "attitude": y[Q:Q + 4].copy(), "rates": y[W:W + 3].copy()}
+    return (without, y_new), part
 
 
 def moved(y: np.ndarray, dx: float):
