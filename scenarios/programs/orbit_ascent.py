@@ -5,16 +5,20 @@ program flies any two-stage vehicle from any site:
 
 1. vertical rise on the first stage's engines;
 2. a pitch kick towards the launch azimuth that reaches the target
-   inclination (computed from the site's latitude, corrected for the ground's
+   inclination (KICK_PER_TW of kick per unit of thrust-to-weight above 1
+   at the kick: 6 deg for a Falcon 9 at 1.47, 10.8 deg for an Electron at
+   1.85, whose sprightlier climb would otherwise stay too steep; an
+   empirical rule tuned on the two) (computed from the site's latitude, corrected for the ground's
    eastward speed; the branch, north- or south-going, is the one nearest the
    site's pad azimuth);
 3. a gravity turn (holding surface prograde) to first-stage burn-out,
    throttling back through max-Q;
-4. staging, then direct insertion (dropping the fairing above 110 km): the upper stage pitches so that a
-   critically damped loop drives altitude to the target and vertical speed
-   to zero while the rest of its thrust builds horizontal speed, with a
-   cross-track term that trims the inclination, until the periapsis clears
-   the target less 5 %.
+4. staging, then direct insertion (dropping the fairing above 110 km):
+   closed-loop guidance (:class:`Insertion`) pitches the upper stage along a
+   linear-tangent law re-solved every second so that the burn ends at the
+   target radius with no radial speed, with a cross-track term that trims
+   the inclination, until the periapsis clears the target less 5 %;
+5. DEPLOY_DELAY later the payload is deployed (a body of its own).
 
 The return of the lower stage (boost-back, entry and landing burns) is not
 flown here.
@@ -25,25 +29,28 @@ import math
 EARTH_OMEGA = 7.2921159e-5     # rad/s (WGS84)
 EARTH_MU = 3.986004418e14      # m^3/s^2
 EARTH_RADIUS = 6378137.0       # m
-KICK = math.radians(84.0)      # pitch after the kick
+KICK_PER_TW = math.radians(12.66)  # kick per unit of thrust-to-weight above 1
 KICK_HEIGHT = 300.0            # m above the pad
 KICK_TIME = 10.0               # s held before the gravity turn
 Q_LIMIT = 33e3                 # Pa: throttle back above this dynamic pressure
 FAIRING_ALTITUDE = 110e3       # m: above this the air is thin enough to drop the fairing
+GUIDANCE_PERIOD = 1.0          # s between insertion guidance solutions
+NEWTON_PASSES = 2              # Newton passes per solution (warm-started)
+PREDICTION_STEP = 2.0          # s, step of the guidance's burn prediction
+DEPLOY_DELAY = 10.0            # s from insertion to payload deploy
 
 
 def main(fc):
     target = fc.target.orbit
     azimuth = launch_azimuth(fc.latitude, target.inclination, target.altitude, fc.pad_azimuth)
-    hold_altitude = target.altitude + 10e3     # geodetic height reads ~10 km above the
-    #                                            periapsis (equatorial radius) at mid latitudes
     first, upper = fc.stages[0], fc.stages[1]
     fc.ignite(first)
     fc.throttle(1.0)
     fc.point(math.pi / 2, azimuth)
     pad = fc.altitude
     fc.wait_until(lambda: fc.altitude > pad + KICK_HEIGHT)
-    fc.point(KICK, azimuth)
+    thrust_to_weight = fc.thrust / (fc.mass * fc.gravity)
+    fc.point(math.pi / 2 - KICK_PER_TW * (thrust_to_weight - 1.0), azimuth)
     fc.sleep(KICK_TIME)
     fc.hold("surface_prograde")
     while fc.thrust > 0.0:                             # to first-stage burn-out
@@ -56,6 +63,7 @@ def main(fc):
     fc.ignite(upper)
     fc.throttle(1.0)
     fairing_on = True
+    guidance = Insertion(EARTH_RADIUS + target.altitude)
     while fc.periapsis < 0.95 * target.altitude:
         if fairing_on and fc.altitude > FAIRING_ALTITUDE:
             fairing_on = False
@@ -63,12 +71,17 @@ def main(fc):
                 fc.jettison_fairing()
             except ValueError:          # a vehicle without one
                 pass
-        steer(fc, insertion_pitch(fc, hold_altitude), target.inclination)
+        steer(fc, guidance.pitch(fc), target.inclination)
         fc.step()
     fc.shutdown()
     fc.release()
     fc.log(f"insertion: {fc.periapsis / 1e3:.1f} x {fc.apoapsis / 1e3:.1f} km, "
            f"{math.degrees(fc.inclination):.3f} deg")
+    fc.sleep(DEPLOY_DELAY)
+    try:
+        fc.log("deployed", fc.deploy_payload())
+    except ValueError:                  # a vehicle without a payload
+        pass
 
 
 def launch_azimuth(latitude, inclination, altitude, pad_azimuth):
@@ -90,14 +103,77 @@ def max_q_throttle(q):
     return 1.0 - 2.0 * max(0.0, q - Q_LIMIT) / Q_LIMIT
 
 
-def insertion_pitch(fc, altitude):
-    """Pitch above the horizon for the vertical loop (see the module)."""
-    wanted = -0.04 * fc.vertical_speed - 4e-4 * (fc.altitude - altitude)
-    thrust_acceleration = fc.thrust / fc.mass
-    if thrust_acceleration <= 0:
-        return 0.0
-    s = (wanted + fc.effective_gravity) / thrust_acceleration
-    return math.asin(max(-0.5, min(0.9, s)))
+class Insertion:
+    """Closed-loop insertion guidance of the upper stage (step 4 of the module).
+
+    The pitch above the local horizontal follows a linear-tangent law
+    ``tan(pitch) = A + B tau`` (tau s since the last solution). Every
+    GUIDANCE_PERIOD seconds ``A, B`` are solved again by Newton's method on a
+    planar point-mass prediction of the rest of the burn (inverse-square
+    gravity, the thrust and mass flow read now, PREDICTION_STEP midpoint steps)
+    so that the burn ends, at circular speed or when the propellant runs out,
+    at the target radius with no radial speed. Recomputed from the state each
+    time, it absorbs what the prediction leaves out (J2, the steering's
+    cross-track share, the engines' spool).
+    """
+
+    def __init__(self, radius):
+        self.radius = radius            # m from the Earth's centre
+        self.a, self.b = 0.5, 0.0
+        self.solved_at = None
+
+    def pitch(self, fc):
+        """Pitch (rad) above the local horizontal now."""
+        if self.solved_at is None or fc.time - self.solved_at >= GUIDANCE_PERIOD:
+            self.solve(fc)
+        tau = 0.0 if self.solved_at is None else fc.time - self.solved_at
+        return math.atan(self.a + self.b * tau)
+
+    def solve(self, fc):
+        flow = sum(e["mass_flow_kg_s"] for e in fc.engines)
+        if flow <= 0.0 or fc.thrust <= 0.0:
+            return                      # the engine is still spooling up
+        r = math.sqrt(fc.position @ fc.position)
+        v = fc.velocity
+        vr = float(v @ fc.position) / r
+        vh = math.sqrt(max(0.0, v @ v - vr * vr))
+        state = (r, vr, vh, fc.mass, fc.thrust, flow, sum(fc.propellant.values()) / flow)
+        a, b = self.a, self.b
+        for _ in range(NEWTON_PASSES):
+            f0 = self.miss(state, a, b)
+            fa = self.miss(state, a + 1e-3, b)
+            fb = self.miss(state, a, b + 1e-5)
+            j11, j21 = (fa[0] - f0[0]) / 1e-3, (fa[1] - f0[1]) / 1e-3
+            j12, j22 = (fb[0] - f0[0]) / 1e-5, (fb[1] - f0[1]) / 1e-5
+            det = j11 * j22 - j12 * j21
+            if det == 0.0:
+                break
+            a += max(-0.5, min(0.5, (-f0[0] * j22 + f0[1] * j12) / det))
+            b += max(-0.01, min(0.01, (-j11 * f0[1] + j21 * f0[0]) / det))
+        self.a, self.b = max(-1.0, min(2.0, a)), b
+        self.solved_at = fc.time
+
+    def miss(self, state, a, b):
+        """(radius miss in km, radial speed in units of 10 m/s) at the end of the
+        predicted burn with the law ``a, b``."""
+        r, vr, vh, m, thrust, flow, left = state
+        t = 0.0
+        while t < left and vh * vh * r < EARTH_MU:
+            h = min(PREDICTION_STEP, left - t)
+            k1 = _planar_rates(r, vr, vh, thrust / m, a + b * t)
+            k2 = _planar_rates(r + 0.5 * h * k1[0], vr + 0.5 * h * k1[1], vh + 0.5 * h * k1[2],
+                               thrust / (m - 0.5 * h * flow), a + b * (t + 0.5 * h))
+            r, vr, vh, m = r + h * k2[0], vr + h * k2[1], vh + h * k2[2], m - h * flow
+            t += h
+        return (r - self.radius) / 1e3, vr / 10.0
+
+
+def _planar_rates(r, vr, vh, acceleration, tangent):
+    """(dr/dt, dvr/dt, dvh/dt) in the orbit plane (m/s, m/s^2) under thrust
+    ``acceleration`` (m/s^2) at pitch ``atan(tangent)`` above the horizontal."""
+    c = 1.0 / math.sqrt(1.0 + tangent * tangent)
+    return (vr, acceleration * tangent * c - EARTH_MU / (r * r) + vh * vh / r,
+            acceleration * c - vr * vh / r)
 
 
 def steer(fc, pitch, inclination):
