@@ -25,6 +25,7 @@ import re
 from pathlib import Path
 
 import numba
+import numpy as np
 from numba import njit as _numba_njit
 
 _OPTIONS = {"cache": True, "fastmath": False, "error_model": "numpy"}
@@ -85,3 +86,39 @@ def njit(func=None, **options):
     if func is None:
         return _numba_njit(**settings)
     return _numba_njit(**settings)(func)
+
+
+def entry_point(kernel, *args):
+    """The compiled entry of ``kernel`` for the numba types of ``args`` (compiled, or
+    loaded from the cache, on first need), to call with arguments of those same types.
+
+    Calling a kernel through numba's dispatcher types every argument on every
+    call; for a named tuple of arrays (a staged vehicle's ``VehicleArrays``)
+    that costs about 8 us, more than a derivative. A caller that calls a kernel
+    every step with the same objects binds the entry once and calls it directly.
+    """
+    return kernel.compile(tuple(kernel.typeof_pyval(a) for a in args))
+
+
+class Entries:
+    """Compiled entries bound to one owner's arguments (see :func:`entry_point`).
+
+    ``call(kernel, key, *args)`` returns ``kernel(*args)``; the entry is bound on
+    the first call and again whenever ``key`` (the argument whose type is
+    costly to work out, e.g. a vehicle's arrays, replaced at staging) is a new
+    object. The other arguments keep their kinds from call to call (numbers as
+    numbers, float64 arrays); an array that is not C-contiguous goes through
+    the dispatcher instead.
+    """
+
+    def __init__(self):
+        self._bound = {}
+
+    def call(self, kernel, key, *args):
+        for a in args:
+            if type(a) is np.ndarray and not a.flags.c_contiguous:
+                return kernel(*args)
+        bound = self._bound.get(kernel)
+        if bound is None or bound[0] is not key:
+            bound = self._bound[kernel] = (key, entry_point(kernel, *args))
+        return bound[1](*args)

@@ -482,6 +482,27 @@ class FlightComputer:
         return self._view().orbit.period
 
     @property
+    def central_body(self) -> str:
+        """The body the frame, gravity and orbit are about: "earth", or after a
+        sphere-of-influence handover (``gravity: n-body``) "moon", "mars" or "sun"."""
+        return self._body.central
+
+    def body_state(self, name: str, at: float | None = None) -> tuple[np.ndarray, np.ndarray]:
+        """Position (m) and velocity (m/s) of ``name`` ("sun", "earth", "moon", "mars")
+        relative to the central body, in the frame's axes, at mission time ``at`` (s;
+        default now): the simulator's ephemeris. Example: ``r_moon, v_moon = fc.body_state("moon")``."""
+        return self._world.body_state(self._body, name, at)
+
+    def predict(self, seconds: float, delta_v=None, periapsis: bool = False):
+        """Where the coast leads: ``(time, position, velocity)`` ``seconds`` from now
+        (mission time s, m, m/s, frame axes) after an impulsive ``delta_v`` (m/s) if
+        given, in the full field (DOP853); with ``periapsis`` it stops at the next
+        periapsis about the central body if that comes first. Computed from the
+        truth, not the navigation estimate. Example:
+        ``t, r, v = fc.predict(86400, periapsis=True)``."""
+        return self._world.predict(self._body, seconds, delta_v, periapsis)
+
+    @property
     def time_to_apoapsis(self) -> float:
         """Time to the next apoapsis, s (nan if unbound)."""
         return self._view().time_to_apoapsis

@@ -28,7 +28,6 @@ from __future__ import annotations
 import signal
 import threading
 import traceback
-from contextlib import contextmanager
 from pathlib import Path
 from typing import Callable
 
@@ -55,26 +54,36 @@ class ProgramOverBudget(BaseException):
     """
 
 
-@contextmanager
-def cpu_budget(seconds: float):
-    """Raise :class:`ProgramOverBudget` in this thread after ``seconds`` of CPU time.
+class CpuBudget:
+    """Context manager: raise :class:`ProgramOverBudget` in this thread after ``seconds``
+    of CPU time spent inside it.
 
     Uses the process's virtual (user CPU) interval timer, so a program that
     never hands back control is stopped however busy the machine is. Only
-    the main thread can take signals: elsewhere no budget is enforced.
+    the main thread can take signals: elsewhere no budget is enforced. A
+    runner keeps one and enters it at every resume (a class, not a generator:
+    entering costs two timer calls and little else).
     """
-    if seconds <= 0 or threading.current_thread() is not threading.main_thread():
-        yield
-        return
-    if signal.getsignal(signal.SIGVTALRM) is not _expire:
-        # installed once: the handler only acts while the timer is armed, and
-        # re-installing it around every step would cost more than the step
-        signal.signal(signal.SIGVTALRM, _expire)
-    signal.setitimer(signal.ITIMER_VIRTUAL, seconds)
-    try:
-        yield
-    finally:
-        signal.setitimer(signal.ITIMER_VIRTUAL, 0.0)
+
+    __slots__ = ("seconds", "_armed")
+
+    def __init__(self, seconds: float):
+        self.seconds = seconds
+        self._armed = False
+
+    def __enter__(self):
+        self._armed = self.seconds > 0 and threading.current_thread() is threading.main_thread()
+        if self._armed:
+            if signal.getsignal(signal.SIGVTALRM) is not _expire:
+                # installed once: the handler only acts while the timer is armed
+                signal.signal(signal.SIGVTALRM, _expire)
+            signal.setitimer(signal.ITIMER_VIRTUAL, self.seconds)
+        return self
+
+    def __exit__(self, *exc) -> bool:
+        if self._armed:
+            signal.setitimer(signal.ITIMER_VIRTUAL, 0.0)
+        return False
 
 
 def _expire(signum, frame):
@@ -125,6 +134,7 @@ class ProgramRunner:
     def __init__(self, main: Callable, path: Path, cpu_budget: float = DEFAULT_CPU_BUDGET):
         self.path = Path(path)
         self.cpu_budget = cpu_budget
+        self._budget = CpuBudget(cpu_budget)
         self._main = main
         self._greenlet: greenlet.greenlet | None = None
         self._wake_time = 0.0
@@ -139,7 +149,7 @@ class ProgramRunner:
         if self._predicate is None:
             return True
         try:
-            with cpu_budget(self.cpu_budget):
+            with self._budget:
                 ready = bool(self._predicate())
         except (Exception, ProgramOverBudget) as error:  # noqa: BLE001
             self.finished = True
@@ -166,7 +176,7 @@ class ProgramRunner:
         else:
             args = ()
         try:
-            with cpu_budget(self.cpu_budget):
+            with self._budget:
                 self._greenlet.switch(*args)
         except (Exception, ProgramOverBudget) as error:  # noqa: BLE001
             self.finished = True

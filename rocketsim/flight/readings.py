@@ -20,21 +20,89 @@ vehicle flying level with its belly down has roll 0. With the nose within
 from __future__ import annotations
 
 import math
-from functools import cached_property
 
 import numpy as np
 
+from rocketsim._jit import njit
 from rocketsim.atmosphere.relative_wind import air_velocity
 from rocketsim.atmosphere.table import air_at, wind_earth_fixed
-from rocketsim.bodies.gravity import gravity
-from rocketsim.constants import EARTH_MU, EARTH_RADIUS_EQ
-from rocketsim.frames.earth_fixed import ecef_to_eci, eci_to_ecef
+from rocketsim.bodies.gravity import point_mass_j2
+from rocketsim.constants import EARTH_J2, EARTH_MU, EARTH_OMEGA, EARTH_RADIUS_EQ
 from rocketsim.frames.elements import Elements, state_to_elements, time_to_apoapsis
-from rocketsim.frames.geodetic import ecef_to_geodetic, enu_basis
+from rocketsim.frames.geodetic import ecef_to_geodetic_njit, enu_basis
 from rocketsim.frames.quaternion import quat_to_matrix
 
 _VERTICAL = math.cos(0.01 * math.pi / 180.0)
 _CALM = np.zeros(3)             # no wind: the air velocity is then the surface velocity
+
+
+class _once:
+    """A property computed at most once per view: the value then sits in the
+    instance's ``__dict__`` and later reads are plain attribute look-ups (no lock,
+    unlike :func:`functools.cached_property` before Python 3.12)."""
+
+    def __init__(self, function):
+        self.function = function
+        self.name = function.__name__
+        self.__doc__ = function.__doc__
+
+    def __get__(self, view, owner=None):
+        if view is None:
+            return self
+        value = view.__dict__[self.name] = self.function(view)
+        return value
+
+
+@njit
+def _turned(x, y, angle):
+    """``R3(angle) (x, y)``: components in axes turned by ``angle`` (rad) about z, in
+    the order of :func:`rocketsim.frames.earth_fixed.eci_to_ecef` (the same bits)."""
+    c = math.cos(angle)
+    s = math.sin(angle)
+    return c * x + s * y, -s * x + c * y
+
+
+@njit
+def where_and_how_fast(r, v, t):
+    """One compiled call for the readings every step needs: ``(lat rad, lon rad, height
+    above WGS84 m, enu, surface velocity)`` of the ECI position ``r`` (m) and velocity
+    ``v`` (m/s) at mission time ``t`` (s). ``enu`` (3, 3) has the local east, north and
+    up unit vectors in ECI axes as rows; the surface velocity (m/s, ECI axes) is
+    relative to the rotating Earth. Same operations, in the same order, as
+    :func:`~rocketsim.frames.earth_fixed.eci_to_ecef`,
+    :func:`~rocketsim.frames.geodetic.ecef_to_geodetic`, ``ecef_to_eci`` and
+    :func:`~rocketsim.atmosphere.relative_wind.air_velocity`."""
+    theta = 0.0 + EARTH_OMEGA * t
+    x, y = _turned(r[0], r[1], theta)
+    lat, lon, h = ecef_to_geodetic_njit(x, y, r[2])
+    basis = enu_basis(lat, lon)
+    enu = np.empty((3, 3))
+    for k in range(3):
+        enu[k, 0], enu[k, 1] = _turned(basis[k, 0], basis[k, 1], -theta)
+        enu[k, 2] = basis[k, 2]
+    return lat, lon, h, enu, air_velocity(r, v, _CALM)
+
+
+@njit
+def air_here(h0, dh, density, pressure, temperature, speed_of_sound, wind_east, wind_north,
+             lat, lon, h, t, r, v):
+    """The day's air at geodetic ``lat``, ``lon`` (rad), height ``h`` (m) and mission time
+    ``t`` (s) for a body at ECI ``r`` (m) moving at ``v`` (m/s): ``(density kg/m^3,
+    pressure Pa, temperature K, speed of sound m/s, wind (ECI, m/s), air-relative
+    velocity (ECI, m/s))``. The table's arrays come first (:meth:`AtmosphereTable.arrays`)."""
+    rho, p, temperature_k, sound, east, north = air_at(h0, dh, density, pressure, temperature,
+                                                       speed_of_sound, wind_east, wind_north, h)
+    fixed = wind_earth_fixed(east, north, lat, lon)
+    wind = np.empty(3)
+    wind[0], wind[1] = _turned(fixed[0], fixed[1], -(0.0 + EARTH_OMEGA * t))
+    wind[2] = fixed[2]
+    return rho, p, temperature_k, sound, wind, air_velocity(r, v, wind)
+
+
+def _norm(vector) -> float:
+    """Euclidean length of a float64 vector: the bits of ``np.linalg.norm`` (the
+    square root of ``v @ v``), at a fraction of its cost."""
+    return math.sqrt(vector @ vector)
 
 
 class StateView:
@@ -51,24 +119,38 @@ class StateView:
         self._atmosphere = atmosphere
         self.mu = mu
 
+    @classmethod
+    def of_state(cls, t: float, y: np.ndarray, atmosphere=None, mu: float = EARTH_MU) -> "StateView":
+        """The view of a state vector ``y`` (position, velocity, attitude, rates first;
+        :mod:`rocketsim.dynamics.state`), copied so later steps do not change it."""
+        view = cls.__new__(cls)
+        s = y[:13].copy()
+        view.t, view.position, view.velocity, view.attitude, view.body_rates = (
+            t, s[0:3], s[3:6], s[6:10], s[10:13])
+        view._atmosphere, view.mu = atmosphere, mu
+        return view
+
     # --- where ------------------------------------------------------------
-    @cached_property
+    @_once
+    def _where(self) -> tuple:
+        return where_and_how_fast(self.position, self.velocity, self.t)
+
+    @_once
     def geodetic(self) -> tuple[float, float, float]:
         """(latitude rad, longitude rad, height above WGS84 m)."""
-        lat, lon, h = ecef_to_geodetic(eci_to_ecef(self.position, self.t))
-        return float(lat), float(lon), float(h)
+        lat, lon, h, _, _ = self._where
+        return lat, lon, h
 
-    @cached_property
+    @_once
     def enu(self) -> np.ndarray:
         """Rows: local east, north, up unit vectors in ECI axes."""
-        lat, lon, _ = self.geodetic
-        return ecef_to_eci(enu_basis(lat, lon), self.t)
+        return self._where[3]
 
     # --- motion -----------------------------------------------------------
-    @cached_property
+    @_once
     def surface_velocity(self) -> np.ndarray:
         """Velocity relative to the rotating Earth, ECI axes (m/s)."""
-        return air_velocity(self.position, self.velocity, _CALM)
+        return self._where[4]
 
     @property
     def vertical_speed(self) -> float:
@@ -77,34 +159,35 @@ class StateView:
     @property
     def horizontal_speed(self) -> float:
         v = self.surface_velocity
-        return float(np.linalg.norm(v - (v @ self.enu[2]) * self.enu[2]))
+        return _norm(v - (v @ self.enu[2]) * self.enu[2])
 
     @property
     def radial(self) -> np.ndarray:
-        return self.position / np.linalg.norm(self.position)
+        return self.position / _norm(self.position)
 
     @property
     def prograde(self) -> np.ndarray:
-        return self.velocity / np.linalg.norm(self.velocity)
+        return self.velocity / _norm(self.velocity)
 
     @property
     def normal(self) -> np.ndarray:
-        h = np.cross(self.position, self.velocity)
-        return h / np.linalg.norm(h)
+        (x, y, z), (u, v, w) = self.position.tolist(), self.velocity.tolist()
+        h = np.array((y * w - z * v, z * u - x * w, x * v - y * u))    # r x v, as np.cross
+        return h / _norm(h)
 
     @property
     def surface_prograde(self) -> np.ndarray:
         v = self.surface_velocity
-        speed = np.linalg.norm(v)
+        speed = _norm(v)
         return v / speed if speed > 0 else self.enu[2].copy()
 
     # --- attitude -----------------------------------------------------------
-    @cached_property
+    @_once
     def axes(self) -> np.ndarray:
         """Body x (nose), y, z as the columns of the body -> ECI matrix."""
         return quat_to_matrix(self.attitude)
 
-    @cached_property
+    @_once
     def euler(self) -> tuple[float, float, float]:
         """(pitch, heading, roll) in radians (see the module's conventions)."""
         east, north, up = self.enu
@@ -124,17 +207,16 @@ class StateView:
         return pitch, heading % (2 * math.pi), roll
 
     # --- air --------------------------------------------------------------
-    @cached_property
+    @_once
     def air(self) -> tuple:
         """(density, pressure, temperature, speed of sound, wind ECI, air velocity ECI)."""
         lat, lon, height = self.geodetic
-        rho, p, temperature, sound, east, north = air_at(*self._atmosphere().arrays(), height)
-        wind = ecef_to_eci(wind_earth_fixed(east, north, lat, lon), self.t)
-        return rho, p, temperature, sound, wind, air_velocity(self.position, self.velocity, wind)
+        return air_here(*self._atmosphere().arrays(), lat, lon, height, self.t, self.position,
+                        self.velocity)
 
     @property
     def airspeed(self) -> float:
-        return float(np.linalg.norm(self.air[5]))
+        return _norm(self.air[5])
 
     @property
     def mach(self) -> float:
@@ -157,18 +239,20 @@ class StateView:
     @property
     def gravity(self) -> float:
         """Magnitude of the local gravitational acceleration (point mass + J2), m/s^2."""
-        return float(np.linalg.norm(gravity(self.position)))
+        x, y, z = self.position.tolist()
+        g = np.array(point_mass_j2(x, y, z, EARTH_MU, EARTH_RADIUS_EQ, EARTH_J2))
+        return _norm(g)
 
     @property
     def effective_gravity(self) -> float:
         """``|g| - v_h^2 / r``, ``v_h`` the inertial horizontal speed (EQUATIONS.md)."""
-        r = np.linalg.norm(self.position)
+        r = _norm(self.position)
         v = self.velocity
         v_radial = v @ self.position / r
         v_h2 = max(float(v @ v - v_radial ** 2), 0.0)
         return self.gravity - v_h2 / r
 
-    @cached_property
+    @_once
     def orbit(self) -> Elements:
         return state_to_elements(self.position, self.velocity, self.mu)
 

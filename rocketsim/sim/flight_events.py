@@ -82,10 +82,10 @@ class FlightEvents:
                 self.world.event(self.body, label, {"stage": name, "burnout_s": float(stage[s, S_DRY_AT])})
 
     def _orbit(self, view) -> None:
-        if self.body.vehicle is not None and not coasting(self.body.vehicle, self.body.y, self.body.t):
-            return
         orbit = view.orbit
-        if in_orbit(orbit):
+        if not in_orbit(orbit):         # tested first: cheaper than the engines' states
+            return
+        if self.body.vehicle is None or coasting(self.body.vehicle, self.body.y, self.body.t):
             self.in_orbit = True
             self.world.event(self.body, "orbit", {
                 "periapsis_altitude_m": orbit.periapsis - EARTH_RADIUS_EQ,

@@ -25,7 +25,7 @@ import math
 
 import numpy as np
 
-from rocketsim._jit import njit
+from rocketsim._jit import Entries, njit
 from rocketsim.atmosphere.table import TOP, air_at
 from rocketsim.bodies.gravity import point_mass_j2
 from rocketsim.constants import (AIR_CP, CO2_CP, DEG, HEAT_SHIELD_LIMIT, MARS_MU,
@@ -54,11 +54,13 @@ class VehicleChecks:
         self.touched_down = True     # a vehicle only touches down after being in the air
         self.previous = None        # (t, y) before the last step, for the touchdown figures
         self._arrays = self._in_flight = None
+        self._kernels = Entries()   # step_figures bound to the vehicle's arrays
 
     def every_step(self, body) -> bool:
         """True while the body must be stepped one step at a time (in the air or near the ground)."""
         reach = body.vehicle.arrays.aero.ref[A_REACH]
-        return float(np.linalg.norm(body.position)) - body.p[P_RADIUS] < TOP + reach
+        r = body.position
+        return math.sqrt(r @ r) - body.p[P_RADIUS] < TOP + reach
 
     def after_step(self, world, body, h: float) -> None:
         """Run the checks on the body's new state (after a step of ``h`` seconds)."""
@@ -66,8 +68,8 @@ class VehicleChecks:
         if self._arrays is not arrays:          # a new model (staging): flight loads without contact
             self._arrays = arrays
             self._in_flight = arrays._replace(aero=arrays.aero._replace(contact=arrays.aero.contact[:0]))
-        rho, air_temperature, speed, q, alpha, axial, lowest = step_figures(
-            body.t, body.y, body.p, arrays, self._in_flight)
+        rho, air_temperature, speed, q, alpha, axial, lowest = self._kernels.call(
+            step_figures, arrays, body.t, body.y, body.p, arrays, self._in_flight)
         figures = breakup(q, alpha, axial)
         if figures is not None:
             world.event(body, "breakup", figures)
@@ -139,6 +141,19 @@ def contact_heights(y, p, vehicle) -> np.ndarray:
 
 
 @njit
+def accelerations(t, y, p, veh):
+    """``(ax, ay, az, sx, sy, sz)``: the inertial acceleration ``dv/dt`` and the sensed
+    (specific-force) acceleration ``dv/dt - g`` (m/s^2, ECI axes) of state ``y`` at
+    mission time ``t`` (s), from the derivative the integrator uses (``veh`` the
+    vehicle's arrays, None for a rigid body); ``g`` is the central body's point
+    mass and J2 of ``p``."""
+    dy = np.zeros(y.shape[0])
+    derivative(t, y, p, dy, veh)
+    gx, gy, gz = point_mass_j2(y[R], y[R + 1], y[R + 2], p[P_MU], p[P_RADIUS], p[P_J2])
+    return dy[V], dy[V + 1], dy[V + 2], dy[V] - gx, dy[V + 1] - gy, dy[V + 2] - gz
+
+
+@njit
 def step_figures(t, y, p, veh, in_flight):
     """What the checks read after a step, in one compiled call: ``(density kg/m^3, air
     temperature K, airspeed m/s, dynamic pressure Pa, total angle of attack rad, sensed
@@ -157,10 +172,7 @@ def step_figures(t, y, p, veh, in_flight):
     u, v, w = body_air_velocity(y, veh.aero.wind)
     speed = math.sqrt(u * u + v * v + w * w)
     alpha = math.acos(max(-1.0, min(1.0, u / speed))) if speed > 0.0 else 0.0
-    dy = np.zeros(y.shape[0])
-    derivative(t, y, p, dy, in_flight)
-    gx, gy, gz = point_mass_j2(y[R], y[R + 1], y[R + 2], p[P_MU], p[P_RADIUS], p[P_J2])
-    sx, sy, sz = dy[V] - gx, dy[V + 1] - gy, dy[V + 2] - gz
+    _, _, _, sx, sy, sz = accelerations(t, y, p, in_flight)
     # body x in inertial axes: first column of the rotation of q
     qw, qx, qy, qz = y[Q], y[Q + 1], y[Q + 2], y[Q + 3]
     ax = 1.0 - 2.0 * (qy * qy + qz * qz)

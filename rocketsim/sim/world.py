@@ -22,13 +22,13 @@ from typing import Callable
 import numpy as np
 
 from rocketsim.constants import DEG, EARTH_J2, EARTH_MU, EARTH_RADIUS_EQ, EARTH_RADIUS_POLAR
-from rocketsim.bodies.gravity import point_mass_j2
-from rocketsim.dynamics.derivative import derivative, radial_height
+from rocketsim._jit import Entries
+from rocketsim.dynamics.derivative import radial_height
 from rocketsim.dynamics.cruise import DONE, SOI, advance_cruise, plan_step
 from rocketsim.dynamics.nbody import make_field, no_air
 from rocketsim.dynamics.rails import FREE, advance_rails, rails_floor
 from rocketsim.dynamics.rk4 import advance
-from rocketsim.dynamics.state import (P_IXX, P_IYY, P_IZZ, P_J2, P_MASS, P_MU, P_RADIUS, Q, R, V,
+from rocketsim.dynamics.state import (P_IXX, P_IYY, P_IZZ, P_MASS, P_MU, P_RADIUS, Q, R, V,
                                       W, make_params, make_state)
 from rocketsim.flight.fc import FlightComputer
 from rocketsim.flight.program import ProgramRunner, load_program
@@ -45,7 +45,7 @@ from rocketsim.dynamics.third_bodies import bodies_at, field_of, with_field
 from rocketsim.ephemeris.solar_system import BODIES
 from rocketsim.sim.start import standing_on_ground, start_state
 from rocketsim.sim.flight_events import FlightEvents
-from rocketsim.sim.vehicle_checks import VehicleChecks
+from rocketsim.sim.vehicle_checks import VehicleChecks, accelerations
 from rocketsim.timescales import Epoch
 from rocketsim.scenario.models import VehicleSpec
 from rocketsim.vehicle.build import VehicleModel, build
@@ -81,6 +81,7 @@ class Body:
     attitude_command: object | None = None  # what the autopilot steers to (fc.point, hold...)
     cruise_until: float = -math.inf         # mission time fc.cruise allows cruise rails until
     central: str = "earth"                  # the body whose frame and gravity it flies in
+    kernels: Entries = field(default_factory=Entries)   # compiled entries bound to its arrays
 
     @property
     def position(self) -> np.ndarray:
@@ -107,9 +108,7 @@ class Body:
     def view(self) -> StateView:
         """The truth's readings at the body's time (one view per step)."""
         if self._view is None or self._view.t != self.t:
-            self._view = StateView(self.t, self.position.copy(), self.velocity.copy(),
-                                   self.attitude.copy(), self.body_rates.copy(), self.atmosphere,
-                                   self.mu)
+            self._view = StateView.of_state(self.t, self.y, self.atmosphere, self.mu)
         return self._view
 
 
@@ -329,7 +328,7 @@ class World:
             "latitude_deg": lat / DEG,
             "longitude_deg": lon / DEG,
             "altitude": height,
-            "speed": float(np.linalg.norm(body.velocity)),
+            "speed": math.sqrt(body.velocity @ body.velocity),     # |v|, the bits of np.linalg.norm
             "orbit": self.orbit_summary(body),
             "central_body": body.central,
             **self.flight_quantities(body),
@@ -339,17 +338,17 @@ class World:
         """Mass (kg); inertial acceleration |dv/dt| and sensed acceleration
         |dv/dt - g| (m/s^2, from the derivative the integrator uses); airspeed
         (m/s), Mach and dynamic pressure (Pa) in the day's air."""
-        dy = np.zeros_like(body.y)
-        derivative(body.t, body.y, body.p, dy, None if body.vehicle is None else body.vehicle.arrays)
-        x, y, z = body.position
-        gx, gy, gz = point_mass_j2(x, y, z, body.p[P_MU], body.p[P_RADIUS], body.p[P_J2])
-        ax, ay, az = dy[V:V + 3].tolist()
+        if body.vehicle is None:
+            ax, ay, az, sx, sy, sz = accelerations(body.t, body.y, body.p, None)
+        else:
+            ax, ay, az, sx, sy, sz = body.kernels.call(accelerations, body.vehicle.arrays, body.t,
+                                                       body.y, body.p, body.vehicle.arrays)
         rho, _, _, sound, _, air_velocity = body.view().air
         airspeed = math.sqrt(air_velocity @ air_velocity)
         return {
             "mass": body.mass,
             "acceleration": math.sqrt(ax * ax + ay * ay + az * az),
-            "sensed_acceleration": math.hypot(ax - gx, ay - gy, az - gz),
+            "sensed_acceleration": math.hypot(sx, sy, sz),
             "airspeed": airspeed,
             "mach": airspeed / sound,
             "dynamic_pressure": 0.5 * rho * airspeed * airspeed,
@@ -576,7 +575,8 @@ class World:
         if body.vehicle is None:
             y, taken = advance(body.y, k0, self.h, n, body.p)
         else:
-            y, taken = advance(body.y, k0, self.h, n, body.p, body.vehicle.arrays)
+            y, taken = body.kernels.call(advance, body.vehicle.arrays, body.y, k0, self.h, n, body.p,
+                                         body.vehicle.arrays)
         body.y = y
         body.t = (k0 + taken) * self.h
         self._watch_soi(body)

@@ -1,6 +1,7 @@
 """Stream telemetry to an MCAP file as the flight goes.
 
-The file is chunked (zstd) so memory stays bounded however long the flight;
+The file is chunked (zstd) so memory stays bounded however long the flight
+(:class:`~rocketsim.telemetry.mcap_stream.McapStream`, about 1 us per message);
 messages are JSON with registered JSON schemas. Timestamps are the mission
 epoch (UTC, ns since 1970) plus mission time, so Foxglove shows real dates and
 the same run always writes the same bytes: nothing here reads the wall clock.
@@ -17,11 +18,11 @@ import math
 from pathlib import Path
 
 import orjson
-from mcap.writer import CompressionType, Writer
 
 from rocketsim import __version__
 from rocketsim.frames.earth_fixed import earth_rotation_angle
 from rocketsim.telemetry import foxglove
+from rocketsim.telemetry.mcap_stream import McapStream
 from rocketsim.telemetry.schemas import BODY_STATE, EVENT, schema_bytes
 
 PROFILE = ""
@@ -55,8 +56,7 @@ class TelemetryWriter:
     def __init__(self, path: str | Path, epoch_ns: int, program_file: str = ""):
         self.path = Path(path)
         self._file = open(self.path, "wb")
-        self._writer = Writer(self._file, chunk_size=CHUNK_SIZE, compression=CompressionType.ZSTD)
-        self._writer.start(profile=PROFILE, library=LIBRARY)
+        self._writer = McapStream(self._file, PROFILE, LIBRARY, CHUNK_SIZE)
         self._epoch_ns = epoch_ns
         self._schemas = {}
         self._channels: dict[str, int] = {}
@@ -72,10 +72,8 @@ class TelemetryWriter:
     def _channel(self, topic: str, schema: dict) -> int:
         title = schema["title"]
         if title not in self._schemas:
-            self._schemas[title] = self._writer.register_schema(
-                name=title, encoding="jsonschema", data=schema_bytes(schema))
-        channel = self._writer.register_channel(
-            topic=topic, message_encoding="json", schema_id=self._schemas[title])
+            self._schemas[title] = self._writer.schema(title, "jsonschema", schema_bytes(schema))
+        channel = self._writer.channel(topic, "json", self._schemas[title])
         self._channels[topic] = channel
         return channel
 
@@ -94,8 +92,7 @@ class TelemetryWriter:
         return self._epoch_ns + round(t * 1e9)
 
     def _write(self, channel: int, stamp: int, message: dict) -> None:
-        self._writer.add_message(channel_id=channel, log_time=stamp, publish_time=stamp,
-                                 data=encode(message), sequence=self._sequence)
+        self._writer.message(channel, stamp, stamp, encode(message), self._sequence)
         self._sequence += 1
 
     def state(self, body: str, message: dict) -> None:
@@ -137,11 +134,10 @@ class TelemetryWriter:
 
     def attach(self, name: str, data: bytes, media_type: str = "text/plain") -> None:
         """Attach a file (scenario, vehicle, program...) to the log."""
-        self._writer.add_attachment(create_time=0, log_time=self._epoch_ns, name=name,
-                                    media_type=media_type, data=data)
+        self._writer.attachment(name, media_type, data, self._epoch_ns)
 
     def metadata(self, name: str, values: dict[str, str]) -> None:
-        self._writer.add_metadata(name=name, data={k: str(v) for k, v in values.items()})
+        self._writer.metadata(name, {k: str(v) for k, v in values.items()})
 
     def close(self) -> None:
         """Write the summary and index and close the file (idempotent)."""

@@ -29,6 +29,7 @@ import time
 from collections import Counter
 from pathlib import Path
 
+from rocketsim._jit import Entries
 from rocketsim.scenario.load import load
 from rocketsim.sim import flight_events, vehicle_checks, world
 from rocketsim.sim.flight import fly
@@ -64,7 +65,18 @@ class SectionClock:
 
 def _instrument(monkeypatch, clock: SectionClock) -> None:
     patch = monkeypatch.setattr
-    patch(world, "advance", clock.wrap(world.advance, "physics"))
+    integrator = world.advance
+    timed_integrator = clock.wrap(integrator, "physics")       # a rigid body's steps
+    patch(world, "advance", timed_integrator)
+    bound_call = Entries.call                                  # a staged vehicle's steps
+
+    def call(entries, kernel, key, *args):
+        if kernel is timed_integrator:
+            return timed_integrator.__wrapped__(entries, integrator, key, *args)
+        return bound_call(entries, kernel, key, *args)
+
+    timed_integrator.__wrapped__ = clock.wrap(bound_call, "physics")
+    patch(Entries, "call", call)
     patch(world.World, "_run_programs", clock.wrap(world.World._run_programs, "programs"))
     patch(world.World, "_run_autopilots", clock.wrap(world.World._run_autopilots, "autopilot"))
     patch(world.World, "_sample_all", clock.wrap(world.World._sample_all, "telemetry"))
