@@ -14,10 +14,12 @@ are untouched.
 from __future__ import annotations
 
 import math
+from functools import lru_cache
 
 import numpy as np
 
 from rocketsim.atmosphere.mars import mars_table
+from rocketsim.atmosphere.table import make_table
 from rocketsim.dynamics.nbody import F_CENTER, F_ROT, make_field
 from rocketsim.dynamics.soi import (_ORBIT, CHILDREN, SOI, central_body, central_params, frame_rotation,
                                    handover)
@@ -88,13 +90,20 @@ def to_frame(r, v, p_from, p_to, t: float):
     return rot @ (np.asarray(r, float) - s[j]), rot @ (np.asarray(v, float) - u[j])
 
 
-def air_arrays_about(center: str, earth_air):
-    """The air table arrays (:meth:`AtmosphereTable.arrays`) a vehicle flies through
+def air_about(center: str, earth_air):
+    """The :class:`~rocketsim.atmosphere.table.AtmosphereTable` a body flies through
     about ``center``: the day's (``earth_air``) about Earth, the Mars reference
     atmosphere about Mars, none (zero density and pressure) elsewhere."""
     if center == "earth":
-        return earth_air.arrays()
+        return earth_air
     if center == "mars":
-        return mars_table().arrays()
-    zero = np.zeros(2)
-    return (0.0, 1.0e6, zero, zero, zero, np.ones(2), zero, zero)
+        return _mars_air()
+    return _NO_AIR
+
+
+@lru_cache(maxsize=1)
+def _mars_air():
+    return mars_table()
+
+
+_NO_AIR = make_table(0.0, 1.0e6, np.zeros(2), np.zeros(2), np.zeros(2), np.ones(2), np.zeros(2))

@@ -1,0 +1,174 @@
+"""To the Moon from a parking orbit: trans-lunar injection, cruise, lunar orbit insertion.
+
+For a one-engine spacecraft (vehicles/lunar-orbiter.yaml) starting in a low
+Earth parking orbit in the Moon's orbital plane, in a mission flown with
+``gravity: n-body``.
+
+1. Plan the injection: over one parking revolution and transfer times of
+   3 to 5 days, the Lambert arc (two-body, Earth) from the parking orbit to
+   an aim point beside the Moon at arrival, offset by the impact parameter
+   of a 100 km periapsis, ``b = r_p sqrt(1 + 2 mu_M / (r_p v_inf^2))``;
+   take the cheapest.
+2. Burn to that arc with Lambert guidance (the arc re-solved every step from
+   where the vehicle is to the same aim point and arrival time).
+3. Cruise (cruise rails) until the Moon's sphere of influence takes over.
+4. Trim the approach twice (at the handover and two hours before
+   periapsis): turn the velocity in its own plane, speed kept, so that the
+   lunar hyperbola's angular momentum is that of a 100 km periapsis.
+5. At periapsis, burn to the circular velocity of the current radius along
+   the local horizontal: a ~100 km lunar orbit.
+
+Burns point the nose along the velocity still to gain (the engine's gimbal
+turns the vehicle; there is no reaction control) and throttle down as it
+shrinks; the engine is shut down within 0.1 m/s of the target.
+"""
+
+import math
+
+import numpy as np
+
+from rocketsim.constants import EARTH_MU, G0, MOON_MU, MOON_RADIUS
+from rocketsim.frames.quaternion import quat_to_matrix
+from rocketsim.transfer.kepler import propagate
+from rocketsim.transfer.lambert import lambert
+
+ALTITUDE = 100e3                          # m, target lunar orbit
+R_P = MOON_RADIUS + ALTITUDE
+DAY = 86400.0
+TOLERANCE = 0.1                           # m/s, velocity left to gain at cutoff
+THRUST, ISP = 45.04e3, 311.0              # N, s: the engine of vehicles/lunar-orbiter.yaml
+
+
+def unit(v):
+    return np.asarray(v) / np.linalg.norm(v)
+
+
+def burn(fc, target_velocity, label):
+    """Burn until the velocity is ``target_velocity()`` (m/s, frame axes) within
+    :data:`TOLERANCE`; returns the delta-v gained (m/s)."""
+    m0, t0 = fc.mass, fc.time
+    togo = target_velocity() - fc.velocity
+    fc.point_at(togo)
+    fc.throttle(0.1)
+    fc.ignite()
+    best = np.linalg.norm(togo)
+    while True:
+        togo = target_velocity() - fc.velocity
+        left = float(np.linalg.norm(togo))
+        if left < TOLERANCE or (left > best + 1.0 and left < 5.0):
+            break
+        if fc.time > t0 + 5.0 and fc.thrust == 0.0:
+            fc.log(f"{label}: no thrust left, {left:.1f} m/s to go")
+            break
+        best = min(best, left)
+        fc.point_at(togo)
+        aligned = float(quat_to_matrix(fc.attitude)[:, 0] @ togo) / left
+        accel = THRUST / fc.mass
+        throttle = min(1.0, left / (2.0 * accel)) if aligned > math.cos(math.radians(5.0)) else 0.1
+        fc.throttle(max(throttle, 0.1))
+        fc.step()
+    fc.shutdown()
+    fc.release()
+    gained = ISP * G0 * math.log(m0 / fc.mass)
+    fc.event(label, delta_v_m_s=gained, left_m_s=left, duration_s=fc.time - t0)
+    return gained
+
+
+def burn_time(fc, dv):
+    """Seconds of full thrust for ``dv`` m/s (the rocket equation)."""
+    exhaust = ISP * G0
+    return fc.mass * (1.0 - math.exp(-dv / exhaust)) / (THRUST / exhaust)
+
+
+def plan_injection(fc):
+    """(burn mid-time s, arrival time s, aim point m) of the cheapest injection."""
+    r0, v0, t0 = fc.position.copy(), fc.velocity.copy(), fc.time
+    period = 2 * math.pi * math.sqrt(np.linalg.norm(r0) ** 3 / EARTH_MU)
+    best = None
+    for tof in np.arange(3.0, 5.01, 0.25) * DAY:
+        starts = t0 + 900.0 + np.arange(0.0, period, 30.0)
+        r1, v1 = propagate(EARTH_MU, np.tile(r0, (len(starts), 1)), np.tile(v0, (len(starts), 1)),
+                           starts - t0)
+        # the Moon at mid-revolution stands for the Moon at each arrival (it moves
+        # 0.8 deg in a revolution): the search only picks the burn time
+        moon = fc.body_state("moon", t0 + 900.0 + 0.5 * period + tof)[0]
+        w1, _ = lambert(EARTH_MU, r1, np.tile(moon, (len(starts), 1)), np.full(len(starts), tof))
+        dv = np.linalg.norm(w1 - v1, axis=1)
+        k = int(np.argmin(dv))
+        if best is None or dv[k] < best[0]:
+            best = (dv[k], starts[k], starts[k] + tof)
+        fc.step()               # one transfer time per step: within the CPU budget
+    _, t_burn, t_arrive = best
+    r1, v1 = propagate(EARTH_MU, r0, v0, t_burn - t0)
+    moon, moon_v = fc.body_state("moon", t_arrive)
+    _, w2 = lambert(EARTH_MU, r1, moon, t_arrive - t_burn)
+    v_inf = w2 - moon_v
+    speed = np.linalg.norm(v_inf)
+    b = R_P * math.sqrt(1.0 + 2.0 * MOON_MU / (R_P * speed ** 2))
+    plane = unit(np.cross(moon, moon_v))
+    aim = moon + b * unit(np.cross(v_inf, plane))
+    return t_burn, t_arrive, aim, best[0]
+
+
+def turned(v, normal, angle):
+    """``v`` turned by ``angle`` (rad) about the unit vector ``normal``."""
+    return v * math.cos(angle) + np.cross(normal, v) * math.sin(angle)
+
+
+def periapsis_radius(fc, delta_v):
+    """Radius (m) of the next periapsis about the Moon after ``delta_v`` now (the
+    full field, :meth:`fc.predict`)."""
+    _, r, _ = fc.predict(3 * DAY, delta_v, periapsis=True)
+    return float(np.linalg.norm(r))
+
+
+def trim_approach(fc, label):
+    """Turn the Moon-relative velocity in its plane (speed kept) so that the predicted
+    periapsis is at R_P: a secant search on the angle, then a burn to it."""
+    v = fc.velocity.copy()
+    normal = unit(np.cross(fc.position, v))
+    a0, f0 = 0.0, periapsis_radius(fc, None) - R_P
+    a1 = 1e-3
+    for _ in range(12):
+        f1 = periapsis_radius(fc, turned(v, normal, a1) - v) - R_P
+        if abs(f1) < 200.0 or f1 == f0:
+            break
+        a0, f0, a1 = a1, f1, a1 - f1 * (a1 - a0) / (f1 - f0)
+    fc.log(f"{label}: turn {math.degrees(a1):.4f} deg for a periapsis {f1 / 1e3:+.2f} km off")
+    target = turned(v, normal, a1) - v
+    if np.linalg.norm(target) < 1.0:
+        return 0.0                  # turning the vehicle to burn would cost more
+    start = fc.velocity.copy()
+    return burn(fc, lambda: start + target, label)
+
+
+def time_to_periapsis(fc):
+    """Seconds to the next lunar periapsis (the full field)."""
+    return fc.predict(3 * DAY, periapsis=True)[0] - fc.time
+
+
+def main(fc):
+    t_burn, t_arrive, aim, dv = plan_injection(fc)
+    fc.log(f"TLI at {t_burn:.0f} s, {dv:.0f} m/s; arrival at {t_arrive / DAY:.2f} d")
+    fc.sleep(max(t_burn - 0.5 * burn_time(fc, dv) - fc.time, 0.0))
+    burn(fc, lambda: lambert(EARTH_MU, fc.position, aim, t_arrive - fc.time)[0], "tli")
+
+    while fc.central_body != "moon":
+        fc.cruise(3600.0)
+    trim_approach(fc, "approach_trim")
+    fc.cruise(max(time_to_periapsis(fc) - 6 * 3600.0, 0.0))
+    trim_approach(fc, "approach_trim")
+
+    speed = float(np.linalg.norm(fc.velocity))
+    v_p = math.sqrt(speed ** 2 + 2 * MOON_MU / R_P - 2 * MOON_MU / np.linalg.norm(fc.position))
+    loi = burn_time(fc, v_p - math.sqrt(MOON_MU / R_P))
+    fc.cruise(max(time_to_periapsis(fc) - 0.5 * loi, 0.0))
+
+    def circular():
+        r, v = fc.position, fc.velocity
+        along = unit(np.cross(np.cross(r, v), r))
+        return math.sqrt(MOON_MU / np.linalg.norm(r)) * along
+    burn(fc, circular, "loi")
+    orbit = fc.orbit
+    fc.event("lunar_orbit", periapsis_altitude_m=orbit.periapsis - MOON_RADIUS,
+             apoapsis_altitude_m=orbit.apoapsis - MOON_RADIUS)
