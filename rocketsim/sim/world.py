@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from functools import partial
 from typing import Callable
 
 import numpy as np
@@ -39,9 +40,10 @@ from rocketsim.scenario.load import LoadedScenario
 from rocketsim.scenario.models import check_step
 from rocketsim.errors import InputError
 from rocketsim.frames.geodetic import enu_basis, geodetic_to_ecef
-from rocketsim.sim.central import air_arrays_about, next_center, nbody_field, recentre
+from rocketsim.sim.central import air_about, next_center, nbody_field, recentre
 from rocketsim.dynamics.soi import central_params
 from rocketsim.dynamics.third_bodies import bodies_at, field_of, with_field
+from rocketsim.dynamics.prediction import coast
 from rocketsim.ephemeris.solar_system import BODIES
 from rocketsim.sim.start import standing_on_ground, start_state
 from rocketsim.sim.flight_events import FlightEvents
@@ -108,7 +110,8 @@ class Body:
     def view(self) -> StateView:
         """The truth's readings at the body's time (one view per step)."""
         if self._view is None or self._view.t != self.t:
-            self._view = StateView.of_state(self.t, self.y, self.atmosphere, self.mu)
+            air = self.atmosphere if self.central == "earth" else partial(air_about, self.central, None)
+            self._view = StateView.of_state(self.t, self.y, air, self.mu)
         return self._view
 
 
@@ -495,6 +498,16 @@ class World:
         j = BODIES.index(name)
         return s[j].copy(), u[j].copy()
 
+    def predict(self, body: Body, seconds: float, delta_v=None, periapsis: bool = False):
+        """``(t, r, v)``: where ``body`` coasts in ``seconds`` (s) from now, after an
+        impulsive ``delta_v`` (m/s, frame axes) if given; stops at the next periapsis
+        about the central body with ``periapsis`` (:func:`rocketsim.dynamics.prediction.coast`)."""
+        fp = field_of(body.p)
+        if fp is None:
+            fp = self._cruise_field(body)
+        v = body.velocity if delta_v is None else body.velocity + np.asarray(delta_v, dtype=float)
+        return coast(body.position, v, body.t, float(seconds), body.p, fp, periapsis=periapsis)
+
     def _rails_field(self, body: Body) -> np.ndarray:
         """The field of sleep rails: the n-body field the body carries (so a sleeping
         body follows the awake path to the bit), else Kepler + J2 about Earth."""
@@ -524,8 +537,8 @@ class World:
     def _fly_in_air_of(self, body: Body) -> None:
         """Give a staged vehicle the air of its central body (none about the Moon)."""
         arrays = body.vehicle.arrays
-        h0, dh, density, pressure, temperature, sound, east, north = air_arrays_about(
-            body.central, self.atmosphere)
+        h0, dh, density, pressure, temperature, sound, east, north = air_about(
+            body.central, self.atmosphere).arrays()
         body.vehicle.arrays = arrays._replace(
             air_h0=h0, air_dh=dh, air_density=density, air_pressure=pressure,
             air_temperature=temperature, air_speed_of_sound=sound, air_wind_east=east,
