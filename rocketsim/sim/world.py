@@ -17,18 +17,19 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from functools import partial
 from typing import Callable
 
 import numpy as np
 
 from rocketsim.constants import DEG, EARTH_J2, EARTH_MU, EARTH_RADIUS_EQ, EARTH_RADIUS_POLAR
-from rocketsim.bodies.gravity import point_mass_j2
-from rocketsim.dynamics.derivative import derivative, radial_height
+from rocketsim._jit import Entries
+from rocketsim.dynamics.derivative import radial_height
 from rocketsim.dynamics.cruise import DONE, SOI, advance_cruise, plan_step
 from rocketsim.dynamics.nbody import make_field, no_air
 from rocketsim.dynamics.rails import FREE, advance_rails, rails_floor
 from rocketsim.dynamics.rk4 import advance
-from rocketsim.dynamics.state import (P_IXX, P_IYY, P_IZZ, P_J2, P_MASS, P_MU, P_RADIUS, Q, R, V,
+from rocketsim.dynamics.state import (P_IXX, P_IYY, P_IZZ, P_MASS, P_MU, P_RADIUS, Q, R, V,
                                       W, make_params, make_state)
 from rocketsim.flight.fc import FlightComputer
 from rocketsim.flight.program import ProgramRunner, load_program
@@ -39,13 +40,14 @@ from rocketsim.scenario.load import LoadedScenario
 from rocketsim.scenario.models import check_step
 from rocketsim.errors import InputError
 from rocketsim.frames.geodetic import enu_basis, geodetic_to_ecef
-from rocketsim.sim.central import air_arrays_about, next_center, nbody_field, recentre
+from rocketsim.sim.central import air_about, next_center, nbody_field, recentre
 from rocketsim.dynamics.soi import central_params
 from rocketsim.dynamics.third_bodies import bodies_at, field_of, with_field
+from rocketsim.dynamics.prediction import coast
 from rocketsim.ephemeris.solar_system import BODIES
 from rocketsim.sim.start import standing_on_ground, start_state
 from rocketsim.sim.flight_events import FlightEvents
-from rocketsim.sim.vehicle_checks import VehicleChecks
+from rocketsim.sim.vehicle_checks import VehicleChecks, accelerations
 from rocketsim.timescales import Epoch
 from rocketsim.scenario.models import VehicleSpec
 from rocketsim.vehicle.build import VehicleModel, build
@@ -81,6 +83,7 @@ class Body:
     attitude_command: object | None = None  # what the autopilot steers to (fc.point, hold...)
     cruise_until: float = -math.inf         # mission time fc.cruise allows cruise rails until
     central: str = "earth"                  # the body whose frame and gravity it flies in
+    kernels: Entries = field(default_factory=Entries)   # compiled entries bound to its arrays
 
     @property
     def position(self) -> np.ndarray:
@@ -107,9 +110,8 @@ class Body:
     def view(self) -> StateView:
         """The truth's readings at the body's time (one view per step)."""
         if self._view is None or self._view.t != self.t:
-            self._view = StateView(self.t, self.position.copy(), self.velocity.copy(),
-                                   self.attitude.copy(), self.body_rates.copy(), self.atmosphere,
-                                   self.mu)
+            air = self.atmosphere if self.central == "earth" else partial(air_about, self.central, None)
+            self._view = StateView.of_state(self.t, self.y, air, self.mu)
         return self._view
 
 
@@ -329,7 +331,7 @@ class World:
             "latitude_deg": lat / DEG,
             "longitude_deg": lon / DEG,
             "altitude": height,
-            "speed": float(np.linalg.norm(body.velocity)),
+            "speed": math.sqrt(body.velocity @ body.velocity),     # |v|, the bits of np.linalg.norm
             "orbit": self.orbit_summary(body),
             "central_body": body.central,
             **self.flight_quantities(body),
@@ -339,17 +341,17 @@ class World:
         """Mass (kg); inertial acceleration |dv/dt| and sensed acceleration
         |dv/dt - g| (m/s^2, from the derivative the integrator uses); airspeed
         (m/s), Mach and dynamic pressure (Pa) in the day's air."""
-        dy = np.zeros_like(body.y)
-        derivative(body.t, body.y, body.p, dy, None if body.vehicle is None else body.vehicle.arrays)
-        x, y, z = body.position
-        gx, gy, gz = point_mass_j2(x, y, z, body.p[P_MU], body.p[P_RADIUS], body.p[P_J2])
-        ax, ay, az = dy[V:V + 3].tolist()
+        if body.vehicle is None:
+            ax, ay, az, sx, sy, sz = accelerations(body.t, body.y, body.p, None)
+        else:
+            ax, ay, az, sx, sy, sz = body.kernels.call(accelerations, body.vehicle.arrays, body.t,
+                                                       body.y, body.p, body.vehicle.arrays)
         rho, _, _, sound, _, air_velocity = body.view().air
         airspeed = math.sqrt(air_velocity @ air_velocity)
         return {
             "mass": body.mass,
             "acceleration": math.sqrt(ax * ax + ay * ay + az * az),
-            "sensed_acceleration": math.hypot(ax - gx, ay - gy, az - gz),
+            "sensed_acceleration": math.hypot(sx, sy, sz),
             "airspeed": airspeed,
             "mach": airspeed / sound,
             "dynamic_pressure": 0.5 * rho * airspeed * airspeed,
@@ -496,6 +498,16 @@ class World:
         j = BODIES.index(name)
         return s[j].copy(), u[j].copy()
 
+    def predict(self, body: Body, seconds: float, delta_v=None, periapsis: bool = False):
+        """``(t, r, v)``: where ``body`` coasts in ``seconds`` (s) from now, after an
+        impulsive ``delta_v`` (m/s, frame axes) if given; stops at the next periapsis
+        about the central body with ``periapsis`` (:func:`rocketsim.dynamics.prediction.coast`)."""
+        fp = field_of(body.p)
+        if fp is None:
+            fp = self._cruise_field(body)
+        v = body.velocity if delta_v is None else body.velocity + np.asarray(delta_v, dtype=float)
+        return coast(body.position, v, body.t, float(seconds), body.p, fp, periapsis=periapsis)
+
     def _rails_field(self, body: Body) -> np.ndarray:
         """The field of sleep rails: the n-body field the body carries (so a sleeping
         body follows the awake path to the bit), else Kepler + J2 about Earth."""
@@ -525,8 +537,8 @@ class World:
     def _fly_in_air_of(self, body: Body) -> None:
         """Give a staged vehicle the air of its central body (none about the Moon)."""
         arrays = body.vehicle.arrays
-        h0, dh, density, pressure, temperature, sound, east, north = air_arrays_about(
-            body.central, self.atmosphere)
+        h0, dh, density, pressure, temperature, sound, east, north = air_about(
+            body.central, self.atmosphere).arrays()
         body.vehicle.arrays = arrays._replace(
             air_h0=h0, air_dh=dh, air_density=density, air_pressure=pressure,
             air_temperature=temperature, air_speed_of_sound=sound, air_wind_east=east,
@@ -576,7 +588,8 @@ class World:
         if body.vehicle is None:
             y, taken = advance(body.y, k0, self.h, n, body.p)
         else:
-            y, taken = advance(body.y, k0, self.h, n, body.p, body.vehicle.arrays)
+            y, taken = body.kernels.call(advance, body.vehicle.arrays, body.y, k0, self.h, n, body.p,
+                                         body.vehicle.arrays)
         body.y = y
         body.t = (k0 + taken) * self.h
         self._watch_soi(body)
