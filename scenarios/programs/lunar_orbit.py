@@ -18,66 +18,22 @@ Earth parking orbit in the Moon's orbital plane, in a mission flown with
 5. At periapsis, burn to the circular velocity of the current radius along
    the local horizontal: a ~100 km lunar orbit.
 
-Burns point the nose along the velocity still to gain (the engine's gimbal
-turns the vehicle; there is no reaction control) and throttle down as it
-shrinks; the engine is shut down within 0.1 m/s of the target.
+Burns and trims: :mod:`rocketsim.flight.maneuvers`.
 """
 
 import math
 
 import numpy as np
 
-from rocketsim.constants import EARTH_MU, G0, MOON_MU, MOON_RADIUS
-from rocketsim.frames.quaternion import quat_to_matrix
+from rocketsim.constants import EARTH_MU, MOON_MU, MOON_RADIUS
+from rocketsim.flight.maneuvers import burn, burn_time, time_to_periapsis, trim_periapsis, unit
 from rocketsim.transfer.kepler import propagate
 from rocketsim.transfer.lambert import lambert
 
 ALTITUDE = 100e3                          # m, target lunar orbit
 R_P = MOON_RADIUS + ALTITUDE
 DAY = 86400.0
-TOLERANCE = 0.1                           # m/s, velocity left to gain at cutoff
 THRUST, ISP = 45.04e3, 311.0              # N, s: the engine of vehicles/lunar-orbiter.yaml
-
-
-def unit(v):
-    return np.asarray(v) / np.linalg.norm(v)
-
-
-def burn(fc, target_velocity, label):
-    """Burn until the velocity is ``target_velocity()`` (m/s, frame axes) within
-    :data:`TOLERANCE`; returns the delta-v gained (m/s)."""
-    m0, t0 = fc.mass, fc.time
-    togo = target_velocity() - fc.velocity
-    fc.point_at(togo)
-    fc.throttle(0.1)
-    fc.ignite()
-    best = np.linalg.norm(togo)
-    while True:
-        togo = target_velocity() - fc.velocity
-        left = float(np.linalg.norm(togo))
-        if left < TOLERANCE or (left > best + 1.0 and left < 5.0):
-            break
-        if fc.time > t0 + 5.0 and fc.thrust == 0.0:
-            fc.log(f"{label}: no thrust left, {left:.1f} m/s to go")
-            break
-        best = min(best, left)
-        fc.point_at(togo)
-        aligned = float(quat_to_matrix(fc.attitude)[:, 0] @ togo) / left
-        accel = THRUST / fc.mass
-        throttle = min(1.0, left / (2.0 * accel)) if aligned > math.cos(math.radians(5.0)) else 0.1
-        fc.throttle(max(throttle, 0.1))
-        fc.step()
-    fc.shutdown()
-    fc.release()
-    gained = ISP * G0 * math.log(m0 / fc.mass)
-    fc.event(label, delta_v_m_s=gained, left_m_s=left, duration_s=fc.time - t0)
-    return gained
-
-
-def burn_time(fc, dv):
-    """Seconds of full thrust for ``dv`` m/s (the rocket equation)."""
-    exhaust = ISP * G0
-    return fc.mass * (1.0 - math.exp(-dv / exhaust)) / (THRUST / exhaust)
 
 
 def plan_injection(fc):
@@ -110,65 +66,28 @@ def plan_injection(fc):
     return t_burn, t_arrive, aim, best[0]
 
 
-def turned(v, normal, angle):
-    """``v`` turned by ``angle`` (rad) about the unit vector ``normal``."""
-    return v * math.cos(angle) + np.cross(normal, v) * math.sin(angle)
-
-
-def periapsis_radius(fc, delta_v):
-    """Radius (m) of the next periapsis about the Moon after ``delta_v`` now (the
-    full field, :meth:`fc.predict`)."""
-    _, r, _ = fc.predict(3 * DAY, delta_v, periapsis=True)
-    return float(np.linalg.norm(r))
-
-
-def trim_approach(fc, label):
-    """Turn the Moon-relative velocity in its plane (speed kept) so that the predicted
-    periapsis is at R_P: a secant search on the angle, then a burn to it."""
-    v = fc.velocity.copy()
-    normal = unit(np.cross(fc.position, v))
-    a0, f0 = 0.0, periapsis_radius(fc, None) - R_P
-    a1 = 1e-3
-    for _ in range(12):
-        f1 = periapsis_radius(fc, turned(v, normal, a1) - v) - R_P
-        if abs(f1) < 200.0 or f1 == f0:
-            break
-        a0, f0, a1 = a1, f1, a1 - f1 * (a1 - a0) / (f1 - f0)
-    fc.log(f"{label}: turn {math.degrees(a1):.4f} deg for a periapsis {f1 / 1e3:+.2f} km off")
-    target = turned(v, normal, a1) - v
-    if np.linalg.norm(target) < 1.0:
-        return 0.0                  # turning the vehicle to burn would cost more
-    start = fc.velocity.copy()
-    return burn(fc, lambda: start + target, label)
-
-
-def time_to_periapsis(fc):
-    """Seconds to the next lunar periapsis (the full field)."""
-    return fc.predict(3 * DAY, periapsis=True)[0] - fc.time
-
-
 def main(fc):
     t_burn, t_arrive, aim, dv = plan_injection(fc)
     fc.log(f"TLI at {t_burn:.0f} s, {dv:.0f} m/s; arrival at {t_arrive / DAY:.2f} d")
-    fc.sleep(max(t_burn - 0.5 * burn_time(fc, dv) - fc.time, 0.0))
-    burn(fc, lambda: lambert(EARTH_MU, fc.position, aim, t_arrive - fc.time)[0], "tli")
+    fc.sleep(max(t_burn - 0.5 * burn_time(fc.mass, dv, THRUST, ISP) - fc.time, 0.0))
+    burn(fc, lambda: lambert(EARTH_MU, fc.position, aim, t_arrive - fc.time)[0], "tli", THRUST, ISP)
 
     while fc.central_body != "moon":
         fc.cruise(3600.0)
-    trim_approach(fc, "approach_trim")
+    trim_periapsis(fc, R_P, "approach_trim", THRUST, ISP)
     fc.cruise(max(time_to_periapsis(fc) - 6 * 3600.0, 0.0))
-    trim_approach(fc, "approach_trim")
+    trim_periapsis(fc, R_P, "approach_trim", THRUST, ISP)
 
     speed = float(np.linalg.norm(fc.velocity))
     v_p = math.sqrt(speed ** 2 + 2 * MOON_MU / R_P - 2 * MOON_MU / np.linalg.norm(fc.position))
-    loi = burn_time(fc, v_p - math.sqrt(MOON_MU / R_P))
+    loi = burn_time(fc.mass, v_p - math.sqrt(MOON_MU / R_P), THRUST, ISP)
     fc.cruise(max(time_to_periapsis(fc) - 0.5 * loi, 0.0))
 
     def circular():
         r, v = fc.position, fc.velocity
         along = unit(np.cross(np.cross(r, v), r))
         return math.sqrt(MOON_MU / np.linalg.norm(r)) * along
-    burn(fc, circular, "loi")
+    burn(fc, circular, "loi", THRUST, ISP)
     orbit = fc.orbit
     fc.event("lunar_orbit", periapsis_altitude_m=orbit.periapsis - MOON_RADIUS,
              apoapsis_altitude_m=orbit.apoapsis - MOON_RADIUS)

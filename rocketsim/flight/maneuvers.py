@@ -1,0 +1,143 @@
+"""Burns and approach trims for flight programs on interplanetary missions.
+
+Helpers a program imports (``from rocketsim.flight.maneuvers import burn``):
+they only use the ``fc`` API, hand back control step by step like any
+program, and state units and frames as ``fc`` does (SI, the central body's
+frame).
+
+- :func:`burn`: "velocity to be gained" guidance. The nose points along the
+  velocity still to gain, the throttle drops as it shrinks (never below the
+  engine's 10 % floor) and the engine is shut down within a tolerance of the
+  target. The engine's gimbal turns the vehicle; there is no reaction
+  control, so a burn starting far from its direction wastes a little.
+- :func:`hyperbola_velocity`: the velocity at a position on the escape
+  hyperbola whose excess velocity is a given vector (closed form below).
+- :func:`trim_periapsis`: turn the velocity in its own plane, speed kept,
+  so that the predicted periapsis (``fc.predict``: the full n-body field)
+  is at a given radius; a secant search on the turn angle.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from rocketsim.constants import G0
+from rocketsim.frames.quaternion import quat_to_matrix
+
+MIN_THROTTLE = 0.1
+
+
+def unit(v) -> np.ndarray:
+    return np.asarray(v, dtype=float) / np.linalg.norm(v)
+
+
+def burn_time(mass: float, dv: float, thrust: float, isp: float) -> float:
+    """Seconds at full ``thrust`` (N, vacuum Isp ``isp`` s) to gain ``dv`` m/s from
+    ``mass`` kg (the rocket equation)."""
+    exhaust = isp * G0
+    return mass * (1.0 - math.exp(-dv / exhaust)) / (thrust / exhaust)
+
+
+def burn(fc, target_velocity, label: str, thrust: float, isp: float, tolerance: float = 0.1):
+    """Burn until ``fc.velocity`` is ``target_velocity()`` (m/s) within ``tolerance``.
+
+    ``thrust`` (N) and ``isp`` (s): the vehicle's engines at full throttle (for
+    the throttle-down and the event's delta-v). Records an event ``label`` with
+    the delta-v spent (rocket equation), the velocity left to gain and the
+    duration; returns the delta-v spent (m/s).
+    """
+    m0, t0 = fc.mass, fc.time
+    togo = target_velocity() - fc.velocity
+    left = best = float(np.linalg.norm(togo))
+    fc.point_at(togo)
+    fc.throttle(MIN_THROTTLE)
+    fc.ignite()
+    while True:
+        togo = target_velocity() - fc.velocity
+        left = float(np.linalg.norm(togo))
+        if left < tolerance or (left > best + 1.0 and left < 5.0):
+            break
+        if fc.time > t0 + 5.0 and fc.thrust == 0.0:
+            fc.log(f"{label}: no thrust left, {left:.1f} m/s to go")
+            break
+        best = min(best, left)
+        fc.point_at(togo)
+        aligned = float(quat_to_matrix(fc.attitude)[:, 0] @ togo) / left
+        wanted = min(1.0, left / (2.0 * thrust / fc.mass))
+        fc.throttle(max(wanted if aligned > math.cos(math.radians(5.0)) else 0.0, MIN_THROTTLE))
+        fc.step()
+    fc.shutdown()
+    fc.release()
+    spent = isp * G0 * math.log(m0 / fc.mass)
+    fc.event(label, delta_v_m_s=spent, left_m_s=left, duration_s=fc.time - t0)
+    return spent
+
+
+def hyperbola_velocity(r, v_inf, mu: float) -> np.ndarray:
+    """Velocity (m/s) at ``r`` (m) on the hyperbola about ``mu`` (m^3/s^2) that leaves
+    with the excess velocity vector ``v_inf`` (m/s), moving towards it.
+
+    In the plane of ``r`` and ``v_inf``, with ``theta`` the angle from ``r`` to
+    the asymptote and ``s = sqrt(e^2 - 1)``, the conic equation
+    ``|r| (1 + e cos(nu_inf - theta)) = p`` with ``cos nu_inf = -1/e`` and
+    ``p = mu s^2 / v_inf^2`` becomes the quadratic
+    ``(mu / v_inf^2) s^2 - |r| sin(theta) s - |r| (1 - cos theta) = 0``;
+    then ``h = sqrt(mu p)``, ``nu = nu_inf - theta``, ``v_r = mu e sin(nu) / h``,
+    ``v_t = h / |r|`` (Bate, Mueller & White, Fundamentals of Astrodynamics, ch. 1-2).
+    """
+    r = np.asarray(r, dtype=float)
+    rn = float(np.linalg.norm(r))
+    speed = float(np.linalg.norm(v_inf))
+    u = np.asarray(v_inf, dtype=float) / speed
+    normal = unit(np.cross(r, u))
+    radial = r / rn
+    along = np.cross(normal, radial)
+    theta = math.atan2(float(u @ along), float(u @ radial))
+    k = mu / speed ** 2
+    s = (rn * math.sin(theta) + math.sqrt((rn * math.sin(theta)) ** 2
+                                          + 4.0 * k * rn * (1.0 - math.cos(theta)))) / (2.0 * k)
+    e = math.sqrt(1.0 + s * s)
+    p = k * s * s
+    h = math.sqrt(mu * p)
+    nu = math.acos(-1.0 / e) - theta
+    return (mu * e * math.sin(nu) / h) * radial + (h / rn) * along
+
+
+def turned(v, normal, angle: float) -> np.ndarray:
+    """``v`` turned by ``angle`` (rad) about the unit vector ``normal`` (perpendicular to it)."""
+    return v * math.cos(angle) + np.cross(normal, v) * math.sin(angle)
+
+
+def periapsis_radius(fc, delta_v, horizon: float) -> float:
+    """Radius (m) of the next periapsis within ``horizon`` s after ``delta_v`` now."""
+    _, r, _ = fc.predict(horizon, delta_v, periapsis=True)
+    return float(np.linalg.norm(r))
+
+
+def trim_periapsis(fc, radius: float, label: str, thrust: float, isp: float,
+                   horizon: float = 3 * 86400.0, smallest: float = 1.0) -> float:
+    """Turn the velocity in its plane (speed kept) so that the next periapsis is at
+    ``radius`` (m, within 200 m); burns only when the change is at least
+    ``smallest`` m/s (turning the vehicle to burn costs more). Returns the delta-v."""
+    v = fc.velocity.copy()
+    normal = unit(np.cross(fc.position, v))
+    a0, f0 = 0.0, periapsis_radius(fc, None, horizon) - radius
+    a1, f1 = 1e-3, f0
+    for _ in range(16):
+        f1 = periapsis_radius(fc, turned(v, normal, a1) - v, horizon) - radius
+        if abs(f1) < 200.0 or f1 == f0:
+            break
+        a0, f0, a1 = a1, f1, a1 - f1 * (a1 - a0) / (f1 - f0)
+    fc.log(f"{label}: turn {math.degrees(a1):.4f} deg for a periapsis {f1 / 1e3:+.2f} km off")
+    change = turned(v, normal, a1) - v
+    if np.linalg.norm(change) < smallest:
+        return 0.0
+    start = fc.velocity.copy()
+    return burn(fc, lambda: start + change, label, thrust, isp)
+
+
+def time_to_periapsis(fc, horizon: float = 3 * 86400.0) -> float:
+    """Seconds to the next periapsis about the central body (the full field)."""
+    return fc.predict(horizon, periapsis=True)[0] - fc.time
