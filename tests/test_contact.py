@@ -147,7 +147,7 @@ def test_touchdown_event_reports_speed_tilt_and_distance_to_the_pad(lander):
     assert figures["vertical_speed_m_s"] == pytest.approx(-math.sqrt(4.0 + 4.0 * somigliana(LAT)), rel=4e-3)
     assert figures["horizontal_speed_m_s"] < 1e-3          # Coriolis over the fall: 2 omega v t ~ 4e-4
     assert figures["tilt_deg"] < 1e-6
-    assert figures["distance_to_pad_m"] == pytest.approx(3.0, abs=1e-3)
+    assert figures["distance_to_target_m"] == pytest.approx(3.0, abs=1e-3)
 
 
 def test_the_world_reports_touchdown_and_the_lander_rests(write):
@@ -170,7 +170,7 @@ def test_the_world_reports_touchdown_and_the_lander_rests(write):
     assert events["touchdown"]["vertical_speed_m_s"] == pytest.approx(-math.sqrt(4.0 + 4.0 * somigliana(LAT)),
                                                                       rel=4e-3)
     # the pad is the site, straight below the start (Coriolis moves it by millimetres)
-    assert events["touchdown"]["distance_to_pad_m"] < 0.01
+    assert events["touchdown"]["distance_to_target_m"] < 0.01
     assert body["final"]["altitude_m"] == pytest.approx(1.2 + x_cm - mass_static(model, x_cm), abs=2e-3)
 
 
@@ -234,4 +234,4 @@ def test_touchdown_distance_is_measured_to_the_mission_target_pad(write):
                               "mission: mission.yaml\n")
     (body,) = World.from_scenario(load(path)).run()["bodies"].values()
     touchdown = {e["name"]: e for e in body["events"]}["touchdown"]
-    assert touchdown["distance_to_pad_m"] == pytest.approx(10.0, abs=0.02)
+    assert touchdown["distance_to_target_m"] == pytest.approx(10.0, abs=0.02)

@@ -51,3 +51,28 @@ def test_max_q_is_where_the_physics_model_quotes_it(flight):
 def test_standing_on_the_pad_is_not_a_touchdown(flight):
     """The vehicle starts on its legs: no touchdown until it has flown."""
     assert "touchdown" not in events(flight)
+
+
+# --- the booster's return to Landing Zone 1 (booster_return.py, flown in the same run) ---
+
+def test_booster_touches_down_on_lz1_upright_slow_and_on_target(flight):
+    """Issue 6, booster return (truth): touches down upright (tilt < 5 deg), vertical
+    speed < 2 m/s, within 15 m of the pad centre (LZ-1, the mission's target pad);
+    figures from the summary's ``touchdown`` (the first contact)."""
+    touchdown = flight["bodies"]["booster"]["touchdown"]
+    print(f"\nbooster touchdown: {touchdown}")
+    assert touchdown["tilt_deg"] < 5.0
+    assert abs(touchdown["vertical_speed_m_s"]) < 2.0
+    assert touchdown["distance_to_target_m"] < 15.0
+    assert "breakup" not in events(flight, "booster")
+
+
+def test_booster_return_phases_come_in_order(flight):
+    """Separation, boost-back, grid fins, entry burn, landing burn on the legs, touchdown;
+    the booster stays a body of its own with its own program."""
+    names = [e["name"] for e in flight["bodies"]["booster"]["events"]]
+    order = ["separation", "ignition", "boost-back start", "boost-back end", "grid fins deployed",
+             "ignition", "entry burn end", "legs deployed", "ignition", "landing burn start",
+             "landing burn end", "touchdown"]
+    remaining = iter(names)
+    assert all(name in remaining for name in order), names

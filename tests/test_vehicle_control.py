@@ -44,7 +44,7 @@ def test_ignite_spool_and_read_the_booster_thrust():
     assert thrust == pytest.approx(7_607e3, rel=0.01)
     assert sum(s["thrust_N"] for s in prop.states(y, 0.0, 0.0)) == pytest.approx(8_227e3, rel=0.01)
     assert states[9]["thrust_N"] == 0.0 and not states[9]["on"]
-    assert states[0]["ignitions_left"] == 3 and states[1]["ignitions_left"] == 0
+    assert states[0]["ignitions_left"] == 3 and states[1]["ignitions_left"] == 2
     assert states[9]["separated"] and not states[0]["separated"]
 
 

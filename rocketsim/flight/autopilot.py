@@ -1,24 +1,45 @@
-"""The autopilot: turns a commanded attitude into engine gimbal commands, once per step.
+"""The autopilot: turns a commanded attitude into gimbal and grid-fin commands, once per step.
 
 A program commands where the nose should point (a direction in a named frame,
 pitch/heading, or a mode that follows the flight: prograde, retrograde,
 surface retrograde, normal, radial). Each step the autopilot, reading the
-navigation estimate like the program, computes the attitude error as a
-rotation vector in body axes and asks for the angular acceleration of a
-damped second-order response::
+navigation estimate like the program, computes the attitude error ``e`` as a
+rotation vector in body axes (no roll component) and asks for the angular
+acceleration of a damped second-order response with a rate limit::
 
-    alpha = omega_n^2 e - 2 zeta omega_n w        (pitch and yaw axes)
+    w_cmd = clip(omega_n / (2 zeta) e, |w_cmd| <= RATE_LIMIT)   (pitch and yaw)
+    w_cmd_x = 0                                                  (roll: damped only)
+    alpha = 2 zeta omega_n (w_cmd - w)
 
-with ``omega_n = 1 rad/s`` and ``zeta = 0.9``. The torque ``I alpha`` is
-produced by gimballing every firing engine alike: an engine a lever arm ``L``
-behind the centre of mass with thrust ``T`` gives ``tau_y = L T g_z`` and
-``tau_z = -L T g_y`` (small angles; the engine model's sign convention), so
-``g_z = tau_y / (L T)``, ``g_y = -tau_z / (L T)``, clipped by each engine's
-cone and reached at its slew rate. In the air, nose first, the torque also
-cancels the destabilising part of the modelled aerodynamic moment
-(:mod:`rocketsim.flight.aero_feedforward`), so that an unfinned launcher
-through max-Q keeps the same second-order response as in vacuum. Roll is not controlled yet (it needs
-reaction control), and with no thrust the autopilot commands nothing.
+with ``omega_n = 1 rad/s``, ``zeta = 0.9`` and ``RATE_LIMIT = 0.15 rad/s``
+(8.6 deg/s). Below the limit this is exactly
+``alpha = omega_n^2 e - 2 zeta omega_n w``; a large turn (a booster's flip)
+is flown at the limited rate instead of winding up an overshoot. The torque
+``tau = I alpha`` (I the principal inertias about the centre of mass) goes
+to two actuators, shared in proportion to their authority on each axis:
+
+* the gimbals of every firing engine alike: an engine a lever arm ``L`` behind
+  the centre of mass with thrust ``T`` gives ``tau_y = L T g_z`` and
+  ``tau_z = -L T g_y`` (small angles; the engine model's sign convention), so
+  ``g_z = tau_y / (L T)``, ``g_y = -tau_z / (L T)``; authority ``L T sin(g_max)``.
+  Clipped by each engine's cone and reached at its slew rate.
+* the grid fins, once the program has called ``fc.deploy_grid_fins()`` and
+  while the air is there: their moment per radian of the pitch, yaw and roll
+  deflections is measured each step from the fin model itself
+  (:func:`rocketsim.vehicle.grid_fins.grid_fin_forces` at the estimated air
+  velocity, density and Mach, ``B_k = (M_k(FIN_PROBE) - M_k(0)) / FIN_PROBE``),
+  so the sign reversal of a tail-first descent and the choking near Mach 1
+  are in the gain; ``delta_k = tau_k / B_k``, authority ``|B_k| delta_max``,
+  clipped to the fins' range and reached at their slew rate. Roll is
+  controlled by the fins only (no reaction control on the shipped vehicles).
+
+In the air, nose first, the torque also cancels the destabilising part of the
+modelled aerodynamic moment (:mod:`rocketsim.flight.aero_feedforward`), so an
+unfinned launcher through max-Q keeps the same second-order response as in
+vacuum. With neither thrust nor deployed fins in the air the autopilot commands
+nothing. A booster falling tail first is statically unstable bare and stable
+with its grid fins (tests/test_aero.py); the fins' restoring moment at zero
+deflection is left to help, not cancelled.
 """
 
 from __future__ import annotations
@@ -30,9 +51,12 @@ import numpy as np
 
 from rocketsim.flight.aero_feedforward import destabilising_moment
 from rocketsim.vehicle import engines as E
+from rocketsim.vehicle import grid_fins as G
 
 OMEGA_N = 1.0     # rad/s, natural frequency of the attitude response
 ZETA = 0.9        # damping ratio
+RATE_LIMIT = 0.15  # rad/s, largest commanded turn rate (pitch/yaw)
+FIN_PROBE = 0.05  # rad, deflection used to measure the grid fins' moment per radian
 
 MODES = ("prograde", "retrograde", "surface_prograde", "surface_retrograde", "normal",
          "antinormal", "radial", "antiradial")
@@ -77,35 +101,83 @@ def attitude_error(axes: np.ndarray, target: np.ndarray) -> np.ndarray:
     return axis / s * angle
 
 
-def gimbal_command(error: np.ndarray, rates: np.ndarray, inertia_pitch: float, inertia_yaw: float,
-                   thrust: float, lever: float, aero: tuple[float, float] = (0.0, 0.0)) -> tuple[float, float]:
-    """``(g_y, g_z)`` (rad) of every firing engine for the damped response above.
+def angular_acceleration(error: np.ndarray, rates: np.ndarray) -> np.ndarray:
+    """Commanded angular acceleration (rad/s^2, body axes) for the rate-limited damped
+    response of the module docstring; ``error`` (rad) and ``rates`` (rad/s) in body axes."""
+    wanted = OMEGA_N / (2.0 * ZETA) * np.array([0.0, error[1], error[2]])
+    size = math.hypot(wanted[1], wanted[2])
+    if size > RATE_LIMIT:
+        wanted *= RATE_LIMIT / size
+    return 2.0 * ZETA * OMEGA_N * (wanted - rates)
+
+
+def gimbal_command(torque_y: float, torque_z: float, thrust: float, lever: float) -> tuple[float, float]:
+    """``(g_y, g_z)`` (rad) of every firing engine for a torque about body y and z (N m).
 
     ``thrust`` (N) is the total thrust, ``lever`` (m) the thrust-weighted
-    distance of the gimbal points behind the centre of mass; ``aero`` (N m,
-    body y and z) the aerodynamic moment the gimbals cancel
-    (:mod:`rocketsim.flight.aero_feedforward`).
+    distance of the gimbal points behind the centre of mass.
     """
     if thrust <= 0.0 or lever <= 0.0:
         return 0.0, 0.0
-    alpha_y = OMEGA_N ** 2 * error[1] - 2.0 * ZETA * OMEGA_N * rates[1]
-    alpha_z = OMEGA_N ** 2 * error[2] - 2.0 * ZETA * OMEGA_N * rates[2]
-    tau_y, tau_z = inertia_pitch * alpha_y - aero[0], inertia_yaw * alpha_z - aero[1]
-    return -tau_z / (lever * thrust), tau_y / (lever * thrust)
+    return -torque_z / (lever * thrust), torque_y / (lever * thrust)
+
+
+def fin_moments(arrays, air_body: np.ndarray, rho: float, sound: float, x_cm: float,
+                deflections) -> np.ndarray:
+    """Moment (N m, body x y z about the centre of mass) of the grid fins of ``arrays``
+    held at ``deflections`` = (pitch, yaw, roll) rad, in air moving at ``air_body``
+    (m/s, body axes, the vehicle relative to the air) of density ``rho`` (kg/m^3)."""
+    grid = arrays.aero.grid
+    held = np.zeros_like(arrays.aero.grid_cmd)
+    G.command(grid, held, 0.0, *deflections)
+    u, v, w = air_body
+    return np.array(G.grid_fin_forces(1e9, u, v, w, 0.0, 0.0, 0.0, rho, sound, x_cm, grid, held)[3:])
+
+
+def fin_gains(arrays, air_body: np.ndarray, rho: float, sound: float, x_cm: float) -> np.ndarray:
+    """Moment per radian (N m/rad) of the pitch, yaw and roll deflections about body y, z, x."""
+    base = fin_moments(arrays, air_body, rho, sound, x_cm, (0.0, 0.0, 0.0))
+    gains = np.zeros(3)
+    for k, axis in enumerate((1, 2, 0)):
+        probe = [0.0, 0.0, 0.0]
+        probe[k] = FIN_PROBE
+        gains[k] = (fin_moments(arrays, air_body, rho, sound, x_cm, probe)[axis] - base[axis]) / FIN_PROBE
+    return gains
 
 
 def steer(command: AttitudeCommand, view, vehicle, propulsion, y: np.ndarray, t: float,
-          ambient_pressure: float) -> tuple[float, float]:
-    """Command the gimbals of ``vehicle``'s firing engines for one step; returns ``(g_y, g_z)``."""
+          ambient_pressure: float, fins: bool = False) -> tuple[float, float]:
+    """Command the gimbals of ``vehicle``'s firing engines (and its grid fins when
+    ``fins``) for one step; returns the engines' ``(g_y, g_z)``."""
     error = attitude_error(view.axes, command.target(view))
-    _, x_cm, _, iyy, izz = vehicle.mass_properties(y)
+    _, x_cm, ixx, iyy, izz = vehicle.mass_properties(y)
+    torque = np.array([ixx, iyy, izz]) * angular_acceleration(error, view.body_rates)
     each = propulsion.thrusts(y, t, ambient_pressure)
     firing = np.flatnonzero(each > 0.0)
     thrust = float(each.sum())
+    torque[1:] -= destabilising_moment(view, vehicle, y, thrust, x_cm)     # aero feedforward
+    engine_authority = lever = 0.0
+    if len(firing) and thrust > 0.0:
+        lever = float(each @ (x_cm - vehicle.arrays.eng[:, E.E_X])) / thrust
+        cone = float(vehicle.arrays.eng[firing, E.E_GIMBAL_RANGE].min())
+        engine_authority = max(lever, 0.0) * thrust * math.sin(cone)
+    fin_torque = np.zeros(3)            # body x, y, z
+    grid = vehicle.arrays.aero.grid
+    if fins and len(grid):
+        rho, _, _, sound, _, air = view.air
+        if rho > 0.0:
+            gains = fin_gains(vehicle.arrays, view.axes.T @ air, rho, sound, x_cm)   # pitch, yaw, roll
+            deflect = [0.0, 0.0, 0.0]
+            for k, axis in enumerate((1, 2, 0)):
+                if gains[k] == 0.0:
+                    continue
+                authority = abs(gains[k]) * float(grid[:, G.G_MAX].min())
+                share = 1.0 if axis == 0 else authority / (authority + engine_authority)
+                fin_torque[axis] = share * torque[axis]
+                deflect[k] = fin_torque[axis] / gains[k]
+            G.command(grid, vehicle.arrays.aero.grid_cmd, t, *deflect)
     if not len(firing) or thrust <= 0.0:
         return 0.0, 0.0
-    lever = float(each @ (x_cm - vehicle.arrays.eng[:, E.E_X])) / thrust
-    aero = destabilising_moment(view, vehicle, y, thrust, x_cm)     # aero feedforward
-    gy, gz = gimbal_command(error, view.body_rates, iyy, izz, thrust, lever, aero)
+    gy, gz = gimbal_command(torque[1] - fin_torque[1], torque[2] - fin_torque[2], thrust, lever)
     propulsion.gimbal(t, gy, gz, [int(e) for e in firing])
     return gy, gz

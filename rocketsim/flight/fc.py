@@ -39,6 +39,8 @@ class FlightComputer:
         self._nav: StateView | None = None
         self._readings: dict[str, float] = {}
         self._engines: Propulsion | None = None
+        self._fins = False          # grid fins steered by the autopilot (fc.deploy_grid_fins)
+        self._legs = False          # fc.deploy_legs called
 
     # --- timing -------------------------------------------------------------
     def step(self) -> None:
@@ -314,7 +316,42 @@ class FlightComputer:
             return
         body = self._body
         steer(command, self._view(), body.vehicle, self._propulsion(), body.y, self._world.t,
-              body.view().air[1])
+              body.view().air[1], fins=self._fins)
+
+    # --- landing ------------------------------------------------------------------
+    def deploy_grid_fins(self) -> None:
+        """Hand the grid fins to the autopilot: from now on it steers pitch, yaw and roll
+        with them as well as with the gimbals (see :mod:`rocketsim.flight.autopilot`).
+        Before this call they are held at zero deflection. The fins' drag and restoring
+        moment are in the aerodynamics from the start (the model has no stowed
+        fins). Records a ``grid fins deployed`` event. Example: ``fc.deploy_grid_fins()``."""
+        if self._body.vehicle is None or not len(self._body.vehicle.arrays.aero.grid):
+            raise ValueError(f"{self._body.name} has no grid fins")
+        if not self._fins:
+            self._fins = True
+            self.event("grid fins deployed")
+
+    def deploy_legs(self) -> None:
+        """Deploy the landing legs. The legs' contact points are modelled as out from the
+        start (a vehicle stands on them on the pad), so this only records a ``legs
+        deployed`` event; a program should still call it before landing. Example:
+        ``fc.deploy_legs()``."""
+        if self._body.vehicle is None or not len(self._body.vehicle.arrays.aero.contact):
+            raise ValueError(f"{self._body.name} has no legs")
+        if not self._legs:
+            self._legs = True
+            self.event("legs deployed")
+
+    @property
+    def clearance(self) -> float:
+        """Height of the lowest contact point (a leg's foot, an engine bell) above the
+        ground, m: the radar altitude less the centre of mass's height over that point."""
+        from rocketsim.sim.vehicle_checks import contact_heights     # the checks' geometry
+        body = self._body
+        if body.vehicle is None or not len(body.vehicle.arrays.aero.contact):
+            return self.radar_altitude
+        lowest = float(contact_heights(body.y, body.p, body.vehicle).min())
+        return self.radar_altitude - (body.view().geodetic[2] - lowest)
 
     # --- the mission -----------------------------------------------------------
     @property

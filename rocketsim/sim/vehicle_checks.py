@@ -15,8 +15,8 @@ Events (figures in SI units, degrees where named):
   stops flying;
 * ``heat shield failure``: ``temperature_k``, ``heat_flux_w_m2``; the body stops flying;
 * ``touchdown``: ``vertical_speed_m_s`` (negative: down), ``horizontal_speed_m_s``,
-  ``tilt_deg`` (body x from the local vertical), ``distance_to_pad_m`` (horizontal,
-  from the centre of mass to the pad).
+  ``tilt_deg`` (body x from the local vertical), ``distance_to_target_m`` (horizontal,
+  from the centre of mass to the mission's target pad, else the launch site).
 """
 
 from __future__ import annotations
@@ -124,7 +124,7 @@ class VehicleChecks:
         if self.pad is not None:
             offset = eci_to_ecef(view.position, view.t) - self.pad
             up_ecef = eci_to_ecef(up, view.t)
-            figures["distance_to_pad_m"] = float(np.linalg.norm(offset - (offset @ up_ecef) * up_ecef))
+            figures["distance_to_target_m"] = float(np.linalg.norm(offset - (offset @ up_ecef) * up_ecef))
         return figures
 
 

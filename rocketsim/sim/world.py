@@ -631,6 +631,9 @@ class World:
                 },
                 "orbit": self.orbit_summary(body),
             }
+            landed = [e for e in body.events if e["name"] == "touchdown"]
+            if landed:      # the first contact's figures (speeds m/s, tilt deg, distance m)
+                bodies[body.name]["touchdown"] = {k: v for k, v in landed[0].items() if k != "name"}
         return {"epoch_utc": self.epoch.utc.isoformat(), "step_s": self.h,
                 "mission_time_s": max(b.t for b in self.bodies), "bodies": bodies}
 

@@ -12,7 +12,9 @@ program flies any two-stage vehicle from any site:
    eastward speed; the branch, north- or south-going, is the one nearest the
    site's pad azimuth);
 3. a gravity turn (holding surface prograde) to first-stage burn-out,
-   throttling back through max-Q;
+   throttling back through max-Q; when the mission names a landing pad
+   (``target.pad``) the first stage is cut off with RETURN_RESERVE of its
+   propellant left for its return (its own program flies it back);
 4. staging, then direct insertion (dropping the fairing above 110 km):
    closed-loop guidance (:class:`Insertion`) pitches the upper stage along a
    linear-tangent law re-solved every second so that the burn ends at the
@@ -20,8 +22,8 @@ program flies any two-stage vehicle from any site:
    the inclination, until the periapsis clears the target less 5 %;
 5. DEPLOY_DELAY later the payload is deployed (a body of its own).
 
-The return of the lower stage (boost-back, entry and landing burns) is not
-flown here.
+The return of the lower stage (boost-back, entry and landing burns) is flown
+by its own program (``programs:`` in the scenario, e.g. booster_return.py).
 """
 
 import math
@@ -38,6 +40,7 @@ GUIDANCE_PERIOD = 1.0          # s between insertion guidance solutions
 NEWTON_PASSES = 2              # Newton passes per solution (warm-started)
 PREDICTION_STEP = 2.0          # s, step of the guidance's burn prediction
 DEPLOY_DELAY = 10.0            # s from insertion to payload deploy
+RETURN_RESERVE = 0.18          # share of the first stage's propellant kept for its return
 
 
 def main(fc):
@@ -53,9 +56,13 @@ def main(fc):
     fc.point(math.pi / 2 - KICK_PER_TW * (thrust_to_weight - 1.0), azimuth)
     fc.sleep(KICK_TIME)
     fc.hold("surface_prograde")
-    while fc.thrust > 0.0:                             # to first-stage burn-out
+    reserve = RETURN_RESERVE * stage_propellant(fc, first) if fc.target.pad is not None else 0.0
+    while fc.thrust > 0.0 and stage_propellant(fc, first) > reserve:    # to burn-out or the reserve
         fc.throttle(max_q_throttle(fc.dynamic_pressure))
         fc.step()
+    if reserve > 0.0:           # main engine cut-off by command, the reserve left
+        fc.shutdown(first)
+        fc.event("MECO", stage=first, propellant_left_kg=stage_propellant(fc, first))
     fc.release()
     fc.sleep(3.0)
     fc.stage()
@@ -95,6 +102,11 @@ def launch_azimuth(latitude, inclination, altitude, pad_azimuth):
     for inertial in (math.asin(ratio), math.pi - math.asin(ratio)):
         candidates.append(math.atan2(speed * math.sin(inertial) - ground, speed * math.cos(inertial)))
     return min(candidates, key=lambda a: abs(math.remainder(a - pad_azimuth, 2 * math.pi)))
+
+
+def stage_propellant(fc, stage):
+    """Propellant (kg) left in the tanks of ``stage``."""
+    return sum(mass for name, mass in fc.propellant.items() if name.startswith(stage + "/"))
 
 
 def max_q_throttle(q):

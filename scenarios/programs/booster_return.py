@@ -1,0 +1,360 @@
+"""Return of a separated first stage to the mission's landing pad (``fc.target.pad``).
+
+Attached to the lower stage by the scenario's ``programs:`` (it starts at
+separation), or flown from the pad by a hop. Reads only the navigation
+estimate, so it flies with ``sensors: realistic`` as with the truth. Phases:
+
+1. boost-back: three engines (the centre and two opposite ones of the ring,
+   THREE_ENGINES; all those with an ignition left on another vehicle) burn
+   with the thrust horizontal, against the miss of the predicted impact point
+   (below); the autopilot flips the stage with the gimbals on the way. The burn
+   ends when the predicted impact point reaches the pad (throttled back to the
+   engines' minimum over the last few kilometres). It aims OVERSHOOT beyond
+   the pad: the entry burn, mostly against the velocity, shortens the fall;
+2. coast; the grid fins are handed to the autopilot;
+3. entry burn: below ENTRY_ALTITUDE, falling faster than ENTRY_SPEED, the
+   engines burn against the air-relative velocity until the airspeed is down
+   to ENTRY_END_SPEED (or only the landing burn's propellant is left);
+4. aerodynamic descent tail first on the grid fins: the nose is held on
+   the air-relative velocity's reverse, leaned away from the direction the
+   impact point must move (a body falling tail first is pushed away from
+   the side its nose leans to), by an angle that keeps q * alpha far from
+   the structure's limit;
+5. landing burn on the centre engine (LANDING_ENGINES): lit when stopping at a constant deceleration needs
+   LANDING_MARGIN of what the engines and the drag (``q / BALLISTIC``) give; the throttle then flies a
+   descent-rate reference against the radar clearance of the feet (:func:`land`),
+   the thrust leaned by a zero-effort-miss law onto the pad
+   (``a = -6 (x + v t_go) / t_go^2 + 2 v / t_go`` horizontally, ``t_go`` the time
+   to a gate TERMINAL_HEIGHT above the ground at the mean speed), the last TERMINAL_HEIGHT metres nearly upright,
+   killing the drift and what is left of the offset; the engines are cut just above the ground. The legs are deployed at the start of the burn.
+
+Impact prediction: the state (Earth-fixed, from the navigation estimate) is
+integrated to the ground under point-mass + J2 gravity, the Coriolis and
+centrifugal terms and drag on an exponential air (scale height 7.2 km) at
+the stage's ballistic coefficient ``m / (C_D A)``, estimated here (BALLISTIC).
+In the descent the prediction includes the landing burn (lit by the same
+rule, against the velocity, stopping the stage at the ground), which keeps
+the stage near its velocity's line. A guidance model, not the physics: its
+errors are what the later phases correct.
+"""
+
+import math
+
+import numpy as np
+
+from rocketsim.bodies.gravity import point_mass_j2
+from rocketsim.constants import (EARTH_J2, EARTH_MU, EARTH_OMEGA, EARTH_RADIUS_EQ,
+                                 EARTH_RADIUS_POLAR)
+from rocketsim.frames.earth_fixed import eci_to_ecef, eci_to_ecef_velocity
+from rocketsim.frames.geodetic import enu_basis, geodetic_to_ecef
+from rocketsim.vehicle.contact import point_height
+
+BALLISTIC = 1800.0          # kg/m^2: the empty stage tail first with its grid fins (estimate)
+SEA_LEVEL_DENSITY = 1.225   # kg/m^3, and scale height (m): the predictor's air
+SCALE_HEIGHT = 7200.0
+ENTRY_ALTITUDE = 60e3       # m
+ENTRY_SPEED = 900.0         # m/s
+ENTRY_END_SPEED = 650.0     # m/s
+UNUSABLE = 4200.0           # kg: propellant the engines cannot draw (1 % of the booster's load)
+OVERSHOOT = 6000.0          # m: boost-back aims this far beyond the pad (the entry burn shortens the fall)
+FINE_MISS = 3000.0          # m: boost-back throttled back below this miss
+LANDING_ALTITUDE = 8e3     # m: the landing burn starts below this (drag brakes the stage above)
+LANDING_MARGIN = 0.5        # share of the available deceleration the landing burn plans on
+TOUCH_SPEED = 0.8           # m/s: descent rate the landing burn aims for at contact
+CUTOFF_CLEARANCE = 0.15      # m: engines off this high (the tail-off finishes the job)
+FINAL_TIME = 2.0            # s: near the ground the descent rate is v_touch + h / FINAL_TIME
+MIN_TIME_TO_GO = 8.0        # s: floor of t_go (the attitude loop, ~1 rad/s, lags the law)
+SPEED_GAIN = 1.5            # 1/s: throttle feedback on the descent rate's error
+TERMINAL_HEIGHT = 40.0      # m: nearly upright from here down, the drift killed and
+TERMINAL_TIME = 1.5         # s: the offset closed with this time constant,
+TERMINAL_LEAN = math.radians(6.0)     # leaning at most this much at the gate, 0.5 deg at the ground
+MAX_LEAN = math.radians(15.0)
+LEAN_SCALE = 300.0         # m of miss for the full lean (entry burn, descent)
+THREE_ENGINES = ("centre", "ring/1", "ring/5")    # boost-back and entry burns (Falcon 9's three)
+LANDING_ENGINES = ("centre",)                      # the landing burn
+LANDING_DV = 450.0          # m/s kept for the landing burn (terminal speed and gravity loss)
+EXHAUST_SPEED = 2800.0      # m/s, effective exhaust speed of the engines low in the air (estimate)
+Q_ALPHA = 150e3             # Pa deg: lean allowed in the air (the limit is 250 kPa deg)
+
+
+def main(fc):
+    pad = fc.target.pad
+    guide = Guide(fc, pad.latitude, pad.longitude)
+    relight = [e["name"] for e in fc.engines if e["ignitions_left"] > 0]
+    three = [name for name in relight if name.endswith(THREE_ENGINES)] or relight
+    landing = [name for name in relight if name.endswith(LANDING_ENGINES)] or relight
+    fc.sleep(2.0)                                       # clear of the upper stage
+    boost_back(fc, guide, three)
+    fc.deploy_grid_fins()
+    fc.hold("surface_retrograde")
+    fc.wait_until(lambda: fc.altitude < ENTRY_ALTITUDE and -fc.vertical_speed > ENTRY_SPEED)
+    full = entry_burn(fc, guide, three)
+    landing_full = full * len(landing) / len(three)
+    descend(fc, guide, landing_full)
+    land(fc, guide, landing, landing_full)
+
+
+class Guide:
+    """The pad in the Earth-fixed frame and the impact-point prediction."""
+
+    def __init__(self, fc, latitude, longitude):
+        self.fc = fc
+        self.pad = geodetic_to_ecef(latitude, longitude, 0.0)
+        self.enu = enu_basis(latitude, longitude)           # rows east, north, up (ECEF)
+        self._miss, self._when = None, -math.inf
+
+    def state(self):
+        """Earth-fixed position and velocity (m, m/s) of the estimate."""
+        fc = self.fc
+        r, v, t = fc.position, fc.velocity, fc.time
+        return eci_to_ecef(r, t), eci_to_ecef_velocity(r, v, t)
+
+    def offset(self):
+        """(east, north) of the vehicle from the pad (m) and its ground velocity (m/s)."""
+        r, v = self.state()
+        return (self.enu @ (r - self.pad))[:2], (self.enu @ v)[:2]
+
+    def usable(self):
+        """Propellant (kg) the engines can still burn (the gauges less the unusable part)."""
+        return sum(self.fc.propellant.values()) - UNUSABLE
+
+    def recent_miss(self, age=1.0, thrust_accel=0.0):
+        """The miss (as :meth:`miss`), recomputed once every ``age`` seconds."""
+        if self.fc.time - self._when >= age:
+            self._miss, self._when = self.miss(thrust_accel), self.fc.time
+        return self._miss
+
+    def miss(self, thrust_accel=0.0):
+        """(east, north) of the predicted impact point from the pad, m (with the landing
+        burn when the engines' full thrust over the mass, m/s^2, is given)."""
+        r, v = self.state()
+        return (self.enu @ (impact(r, v, BALLISTIC, thrust_accel) - self.pad))[:2]
+
+
+def _enu_eci(fc):
+    """Local east, north, up at the vehicle, ECI axes (from the estimate)."""
+    up = fc.radial
+    east = np.cross([0.0, 0.0, 1.0], up)
+    east /= np.linalg.norm(east)
+    return east, np.cross(up, east), up
+
+
+def impact(r, v, ballistic, thrust_accel=0.0, dt=2.0):
+    """Earth-fixed point (m) where the state (r, v) (Earth-fixed, m, m/s) comes down on
+    the ellipsoid, with drag on the exponential air (see the module) and, when
+    ``thrust_accel`` (m/s^2, the engines' full thrust over the mass) is given, the
+    landing burn as the program flies it: lit by the same rule, against the
+    velocity, at the deceleration that stops the stage at the ground."""
+    w = EARTH_OMEGA
+    x, y, z = r
+    vx, vy, vz = v
+    h = point_height(x, y, z, EARTH_RADIUS_EQ, EARTH_RADIUS_POLAR)
+    burning = False
+    for _ in range(4000):
+        step = dt if h > 5000.0 else 0.25
+        px, py, pz = x, y, z
+        brake = 0.0
+        if thrust_accel > 0.0:
+            radius = math.sqrt(x * x + y * y + z * z)
+            fall = -(vx * x + vy * y + vz * z) / radius
+            speed = math.sqrt(vx * vx + vy * vy + vz * vz)
+            rho = SEA_LEVEL_DENSITY * math.exp(-max(h, 0.0) / SCALE_HEIGHT)
+            g = EARTH_MU / (radius * radius)
+            if not burning and h < LANDING_ALTITUDE and fall > 0.0 and fall * fall / (2.0 * h) > \
+                    LANDING_MARGIN * (thrust_accel - g + 0.5 * rho * speed * speed / ballistic):
+                burning = True
+            if burning:
+                if fall <= TOUCH_SPEED or speed < 1.0:
+                    return np.array([x, y, z])
+                brake = min(thrust_accel, fall * fall / (2.0 * max(h, 0.1)) + g) / speed
+        # midpoint (RK2) step
+        ax, ay, az = _acceleration(x, y, z, vx, vy, vz, h, ballistic, w, brake)
+        mx, my, mz = x + 0.5 * step * vx, y + 0.5 * step * vy, z + 0.5 * step * vz
+        mvx, mvy, mvz = vx + 0.5 * step * ax, vy + 0.5 * step * ay, vz + 0.5 * step * az
+        mh = point_height(mx, my, mz, EARTH_RADIUS_EQ, EARTH_RADIUS_POLAR)
+        ax, ay, az = _acceleration(mx, my, mz, mvx, mvy, mvz, mh, ballistic, w, brake)
+        x, y, z = x + step * mvx, y + step * mvy, z + step * mvz
+        vx, vy, vz = vx + step * ax, vy + step * ay, vz + step * az
+        h_new = point_height(x, y, z, EARTH_RADIUS_EQ, EARTH_RADIUS_POLAR)
+        if h_new <= 0.0:
+            f = h / (h - h_new)
+            return np.array([px + f * (x - px), py + f * (y - py), pz + f * (z - pz)])
+        h = h_new
+    return np.array([x, y, z])
+
+
+def _acceleration(x, y, z, vx, vy, vz, h, ballistic, w, brake):
+    """Earth-fixed acceleration (m/s^2): gravity, Coriolis and centrifugal terms, drag,
+    and ``brake`` (1/s) times the velocity against it (the landing burn)."""
+    gx, gy, gz = point_mass_j2(x, y, z, EARTH_MU, EARTH_RADIUS_EQ, EARTH_J2)
+    speed = math.sqrt(vx * vx + vy * vy + vz * vz)
+    k = SEA_LEVEL_DENSITY * math.exp(-max(h, 0.0) / SCALE_HEIGHT) * speed / (2.0 * ballistic) + brake
+    # rotating frame: -2 w x v - w x (w x r), w along +z
+    return (gx + 2.0 * w * vy + w * w * x - k * vx,
+            gy - 2.0 * w * vx + w * w * y - k * vy,
+            gz - k * vz)
+
+
+def horizontal(fc, east, north):
+    """A horizontal unit vector (ECI) from local (east, north) components."""
+    e, n, _ = _enu_eci(fc)
+    d = east * e + north * n
+    return d / np.linalg.norm(d)
+
+
+def boost_back(fc, guide, engines):
+    """Burn until the predicted impact point is on the pad: at the engines' minimum
+    while the gimbals flip the stage, then at full thrust, and at the minimum again
+    over the last FINE_MISS metres (the prediction is then refreshed every step)."""
+    miss = guide.miss()
+    first = miss / np.linalg.norm(miss)
+    size = float(np.linalg.norm(miss))
+    fc.point_at(horizontal(fc, -miss[0], -miss[1]))
+    fc.ignite(engines)
+    fc.throttle(0.0)
+    fc.event("boost-back start", miss_m=float(np.linalg.norm(miss)))
+    checked = -math.inf
+    while True:
+        if fc.time - checked >= 1.0 or size < 30e3:
+            previous = miss @ first
+            miss, checked = guide.miss() + OVERSHOOT * first, fc.time
+            size = float(np.linalg.norm(miss))
+            if size > FINE_MISS:                    # hold still over the last part: no spin
+                wanted = horizontal(fc, -miss[0], -miss[1])     # is left when the engines stop
+        along = miss @ first
+        if size < 30e3 and along <= 0.5 * max(previous - along, 0.0):     # on the aim within half a step
+            break
+        fc.point_at(wanted)
+        aligned = fc_nose(fc) @ wanted > math.cos(math.radians(20.0))
+        fc.throttle(1.0 if size > FINE_MISS and aligned else 0.0)
+        fc.step()
+    fc.shutdown(engines)
+    fc.event("boost-back end", miss_m=size)
+    fc.sleep(1.0)                   # hold the attitude through the tail-off: no spin-up
+
+
+def fc_nose(fc):
+    """The nose direction (unit vector, ECI) from the estimated attitude."""
+    w, x, y, z = fc.attitude
+    return np.array([1.0 - 2.0 * (y * y + z * z), 2.0 * (x * y + w * z), 2.0 * (x * z - w * y)])
+
+
+def entry_burn(fc, guide, engines):
+    """Slow down against the air, keeping what the landing burn needs; returns the
+    engines' full-throttle thrust (N) measured."""
+    fc.ignite(engines)
+    fc.throttle(1.0)
+    full = 0.0
+    while fc.airspeed > ENTRY_END_SPEED and guide.usable() > landing_propellant(fc):
+        fc.point_at(-fc.air_velocity)
+        full = full_thrust(fc, full)
+        fc.step()
+    fc.shutdown(engines)
+    fc.event("entry burn end", airspeed_m_s=fc.airspeed, altitude_m=fc.altitude,
+             usable_propellant_kg=guide.usable())
+    return full
+
+
+def landing_propellant(fc):
+    """Propellant (kg) a landing burn of LANDING_DV needs at the present mass."""
+    return fc.mass * (1.0 - math.exp(-LANDING_DV / EXHAUST_SPEED))
+
+
+def lean_towards(fc, guide, thrusting, thrust_accel=0.0):
+    """Point against the air-relative velocity, leaned so that the impact point moves
+    onto the pad: thrust leans towards the pad, a body falling tail first leans away."""
+    back = -fc.air_velocity / max(fc.airspeed, 1e-3)
+    miss = guide.recent_miss(0.5, thrust_accel)
+    size = float(np.linalg.norm(miss))
+    if size > 1.0:
+        towards = horizontal(fc, -miss[0], -miss[1])
+        side = towards - (towards @ back) * back
+        side /= max(np.linalg.norm(side), 1e-9)
+        sign = 1.0 if thrusting else -1.0
+        angle = min(MAX_LEAN, size / LEAN_SCALE * MAX_LEAN)
+        fc.point_at(within_air_limit(fc, math.cos(angle) * back + sign * math.sin(angle) * side))
+    else:
+        fc.point_at(back)
+
+
+def within_air_limit(fc, direction):
+    """``direction`` (unit, ECI), turned towards the air-relative velocity's reverse as far
+    as needed to keep q * alpha (alpha from the tail) within Q_ALPHA."""
+    speed = fc.airspeed
+    if speed < 1.0:
+        return direction
+    back = -fc.air_velocity / speed
+    limit = math.radians(Q_ALPHA / max(fc.dynamic_pressure, 1.0))
+    angle = math.acos(max(-1.0, min(1.0, float(direction @ back))))
+    if angle <= limit:
+        return direction
+    side = direction - (direction @ back) * back
+    side /= np.linalg.norm(side)
+    return math.cos(limit) * back + math.sin(limit) * side
+
+
+def descend(fc, guide, full):
+    """Fall tail first on the grid fins until the landing burn must start."""
+    while True:
+        lean_towards(fc, guide, thrusting=False, thrust_accel=full / fc.mass)
+        fall = -fc.vertical_speed
+        h = fc.clearance
+        available = full / fc.mass - fc.gravity + fc.dynamic_pressure / BALLISTIC   # thrust, drag
+        if fc.altitude < LANDING_ALTITUDE and fall > 0 and h > 0 \
+                and (fall * fall) / (2.0 * h) > LANDING_MARGIN * available:
+            return
+        fc.step()
+
+
+def land(fc, guide, engines, full):
+    """The landing burn, down to the engines' cut-off just above the ground.
+
+    The descent rate follows a reference: the constant deceleration planned at
+    ignition, ``v = sqrt(v_touch^2 + 2 a h)``, then ``v = v_touch + h / FINAL_TIME``
+    near the ground (slower, for the drift to be killed upright); the throttle
+    gives the reference's deceleration plus SPEED_GAIN times the speed error."""
+    fc.deploy_legs()
+    fc.ignite(engines)
+    fc.event("landing burn start", altitude_m=fc.altitude, speed_m_s=fc.airspeed)
+    h, fall = fc.clearance, -fc.vertical_speed
+    plan = max((fall * fall - TOUCH_SPEED ** 2) / (2.0 * max(h, 1.0)), 1.0)
+    gate_speed = TOUCH_SPEED + TERMINAL_HEIGHT / FINAL_TIME
+    while True:
+        h = fc.clearance
+        fall = -fc.vertical_speed
+        if h < CUTOFF_CLEARANCE or (fall < 0.0 and h < 3.0):
+            break
+        curve = math.sqrt(TOUCH_SPEED ** 2 + 2.0 * plan * max(h, 0.0))
+        line = TOUCH_SPEED + max(h, 0.0) / FINAL_TIME
+        reference, slowing = (curve, plan) if curve < line else (line, fall / FINAL_TIME)
+        up_acc = max(fc.effective_gravity + slowing + SPEED_GAIN * (fall - reference), 0.5)
+        offset, ground = guide.offset()
+        if h > TERMINAL_HEIGHT:     # zero-effort miss onto the gate TERMINAL_HEIGHT above the pad
+            t_go = max(2.0 * (h - TERMINAL_HEIGHT) / (fall + gate_speed), MIN_TIME_TO_GO)
+            side = -6.0 * (offset + ground * t_go) / t_go ** 2 + 2.0 * ground / t_go
+            lean = MAX_LEAN
+        else:                       # nearly upright: the drift, and what is left of the offset
+            side = -ground / TERMINAL_TIME - offset / TERMINAL_TIME ** 2
+            lean = TERMINAL_LEAN * h / TERMINAL_HEIGHT + math.radians(0.5)
+        side_size = float(np.linalg.norm(side))
+        cap = up_acc * math.tan(lean)
+        if side_size > cap:
+            side *= cap / side_size
+        e, n, u = _enu_eci(fc)
+        wanted = side[0] * e + side[1] * n + up_acc * u
+        total = float(np.linalg.norm(wanted))
+        fc.point_at(within_air_limit(fc, wanted / total))
+        fc.throttle(fc.mass * total / full)
+        full = full_thrust(fc, full)
+        fc.step()
+    fc.shutdown(engines)
+    fc.release()
+    fc.event("landing burn end", clearance_m=fc.clearance, vertical_speed_m_s=fc.vertical_speed)
+
+
+def full_thrust(fc, previous):
+    """Full-throttle thrust (N) of the firing engines here, once they have spooled up."""
+    firing = [e for e in fc.engines if e["thrust_N"] > 0.0]
+    if not firing or any(e["spool"] < 1.0 for e in firing):
+        return previous
+    return sum(e["thrust_N"] / e["throttle"] for e in firing)
