@@ -26,6 +26,7 @@ from rocketsim.scenario.weather import Weather
 from rocketsim.scenario.units import Angle, Duration, Frequency, Inertia, Length, Mass, Speed
 from rocketsim.scenario.aero_spec import AeroSpec, check_aero
 from rocketsim.scenario.vehicle import FairingSpec, PayloadSpec, StageSpec, check_staged
+from rocketsim.scenario.stage_selection import keep_stages, reload_tanks
 
 PositiveMass = Annotated[Mass, Field(gt=0)]
 # a path to a YAML file of its own, resolved by the loader relative to the scenario
@@ -248,6 +249,12 @@ class Scenario(Strict):
     sensors: Literal["truth", "realistic", "hard"] = Field(
         "truth", description="what programs read: the true state, or a navigation estimate "
         "with realistic (or three times larger, 'hard') sensor errors")
+    stages: Optional[list[str]] = Field(
+        None, description="fly only these stages of the vehicle, its lowest, bottom first "
+        "(a first-stage hop: [booster]); no payload or fairing")
+    propellant: dict[str, PositiveMass] = Field(
+        default_factory=dict, description="tank loads in place of the vehicle file's: "
+        "'stage/tank' -> mass (a hop flies light enough to hover)")
 
     @model_validator(mode="before")
     @classmethod
@@ -273,6 +280,12 @@ class Scenario(Strict):
             if self.vehicle.stages is None:
                 raise ValueError("'payload' goes with a staged vehicle")
             object.__setattr__(self, "vehicle", self.vehicle.model_copy(update={"payload": self.payload}))
+        if (self.stages is not None or self.propellant) and self.vehicle.stages is None:
+            raise ValueError("'stages' and 'propellant' go with a staged vehicle")
+        if self.stages is not None:
+            object.__setattr__(self, "vehicle", keep_stages(self.vehicle, self.stages))
+        if self.propellant:
+            object.__setattr__(self, "vehicle", reload_tanks(self.vehicle, self.propellant))
         if self.mission.start.site is not None and self.site is None:
             raise ValueError("mission starts on a site: give 'site'")
         pad = self.mission.target.pad
