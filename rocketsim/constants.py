@@ -10,6 +10,9 @@ import math
 DEG = math.pi / 180.0                      # rad per degree
 ARCSEC = DEG / 3600.0                      # rad per arcsecond
 SECONDS_PER_DAY = 86400.0
+# mean tropical year, equinox to equinox: the mean Sun's period in right ascension
+# (Vallado, Fundamentals of Astrodynamics and Applications, 4th ed., 365.242 189 7 d)
+TROPICAL_YEAR = 365.2421897 * SECONDS_PER_DAY     # s
 J2000_JD = 2451545.0                       # Julian date of J2000.0 (TT)
 DAYS_PER_JULIAN_CENTURY = 36525.0
 DAYS_PER_JULIAN_MILLENNIUM = 365250.0

@@ -20,6 +20,7 @@ from typing import Annotated, Literal, Optional, Union
 
 from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
 
+from rocketsim.bodies.sun_synchronous import sun_synchronous_inclination
 from rocketsim.constants import MAX_HEADLESS_STEP, STEP
 from rocketsim.scenario.classic_range import CLASSIC, classic_site
 from rocketsim.scenario.weather import Weather
@@ -168,10 +169,22 @@ class StartSpec(Strict):
 
 
 class TargetOrbit(Strict):
-    """The orbit a mission aims for (programs read it as ``fc.target``)."""
+    """The orbit a mission aims for (programs read it as ``fc.target``).
+
+    ``inclination: sso`` asks for the sun-synchronous inclination at the
+    altitude (:func:`rocketsim.bodies.sun_synchronous.sun_synchronous_inclination`);
+    programs read the number.
+    """
 
     altitude: Annotated[Length, Field(gt=0)] = Field(description="circular altitude above the equatorial radius")
-    inclination: Angle
+    inclination: Union[Literal["sso"], Angle] = Field(
+        description="an angle, or 'sso': sun-synchronous at the altitude (J2 nodal rate = the mean Sun's)")
+
+    @model_validator(mode="after")
+    def _sun_synchronous(self) -> "TargetOrbit":
+        if self.inclination == "sso":
+            object.__setattr__(self, "inclination", sun_synchronous_inclination(self.altitude))
+        return self
 
 
 class TargetPad(Strict):
