@@ -5,12 +5,12 @@ program flies any two-stage vehicle from any site:
 
 1. vertical rise on the first stage's engines;
 2. a pitch kick towards the launch azimuth that reaches the target
-   inclination (KICK_PER_TW of kick per unit of thrust-to-weight above 1
-   at the kick: 6 deg for a Falcon 9 at 1.47, 10.8 deg for an Electron at
-   1.85, whose sprightlier climb would otherwise stay too steep; an
-   empirical rule tuned on the two) (computed from the site's latitude, corrected for the ground's
+   inclination (computed from the site's latitude, corrected for the ground's
    eastward speed; the branch, north- or south-going, is the one nearest the
-   site's pad azimuth);
+   site's pad azimuth). The kick is KICK_PER_TW per unit of thrust-to-weight
+   above 1 at the kick: 6 deg for a Falcon 9 at 1.47, about 10.8 deg for an
+   Electron at about 1.85, whose sprightlier climb would otherwise stay too
+   steep (an empirical rule tuned on the two);
 3. a gravity turn (holding surface prograde) to first-stage burn-out,
    throttling back through max-Q; when the mission names a landing pad
    (``target.pad``) the first stage is cut off with RETURN_RESERVE of its
