@@ -65,18 +65,22 @@ class CpuBudget:
     entering costs two timer calls and little else).
     """
 
-    __slots__ = ("seconds", "_armed")
+    __slots__ = ("seconds", "_armed", "_installed")
 
     def __init__(self, seconds: float):
         self.seconds = seconds
         self._armed = False
+        self._installed = False
 
     def __enter__(self):
         self._armed = self.seconds > 0 and threading.current_thread() is threading.main_thread()
         if self._armed:
-            if signal.getsignal(signal.SIGVTALRM) is not _expire:
-                # installed once: the handler only acts while the timer is armed
-                signal.signal(signal.SIGVTALRM, _expire)
+            if not self._installed:
+                # once per budget: the handler only acts while the timer is armed (looking
+                # it up with signal.getsignal at every step costs more than the step's timer)
+                if signal.getsignal(signal.SIGVTALRM) is not _expire:
+                    signal.signal(signal.SIGVTALRM, _expire)
+                self._installed = True
             signal.setitimer(signal.ITIMER_VIRTUAL, self.seconds)
         return self
 

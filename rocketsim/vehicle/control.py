@@ -32,6 +32,8 @@ class Propulsion:
         if which is None:
             return list(range(n))
         if isinstance(which, (list, tuple)):
+            if all(type(item) is int and 0 <= item < n for item in which):
+                return sorted(set(which))       # indices (the autopilot's firing engines, each step)
             return sorted({e for item in which for e in self.select(item)})
         if isinstance(which, (int, np.integer)):
             if not 0 <= which < n:
