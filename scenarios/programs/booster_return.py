@@ -62,12 +62,13 @@ LANDING_ALTITUDE = 8e3     # m: the landing burn starts below this (drag brakes 
 LANDING_MARGIN = 0.5        # share of the available deceleration the landing burn plans on
 TOUCH_SPEED = 0.8           # m/s: descent rate the landing burn aims for at contact
 CUTOFF_CLEARANCE = 0.15      # m: engines off this high (the tail-off finishes the job)
-FINAL_TIME = 2.0            # s: near the ground the descent rate is v_touch + h / FINAL_TIME
+FINAL_HEIGHT = 60.0         # m of clearance: below this the landing burn slows at
+FINAL_DECELERATION = 4.0    # m/s^2 (more than the least thrust gives the empty stage)
 MIN_TIME_TO_GO = 8.0        # s: floor of t_go (the attitude loop, ~1 rad/s, lags the law)
 SPEED_GAIN = 1.5            # 1/s: throttle feedback on the descent rate's error
 TERMINAL_HEIGHT = 40.0      # m: nearly upright from here down, the drift killed and
 TERMINAL_TIME = 1.5         # s: the offset closed with this time constant,
-TERMINAL_LEAN = math.radians(6.0)     # leaning at most this much at the gate, 0.5 deg at the ground
+TERMINAL_LEAN = math.radians(3.0)     # leaning at most this much (touchdown must be within 5 deg)
 MAX_LEAN = math.radians(15.0)
 LEAN_SCALE = 300.0         # m of miss for the full lean (entry burn, descent)
 THREE_ENGINES = ("centre", "ring/1", "ring/5")    # boost-back and entry burns (Falcon 9's three)
@@ -310,23 +311,28 @@ def land(fc, guide, engines, full):
     """The landing burn, down to the engines' cut-off just above the ground.
 
     The descent rate follows a reference: the constant deceleration planned at
-    ignition, ``v = sqrt(v_touch^2 + 2 a h)``, then ``v = v_touch + h / FINAL_TIME``
-    near the ground (slower, for the drift to be killed upright); the throttle
-    gives the reference's deceleration plus SPEED_GAIN times the speed error."""
+    ignition down to FINAL_HEIGHT, then a gentler FINAL_DECELERATION (more than the
+    engine's least thrust gives, so the stage never stops above the ground) to
+    ``v_touch`` at the ground; the throttle gives the reference's deceleration plus
+    SPEED_GAIN times the speed error."""
     fc.deploy_legs()
     fc.ignite(engines)
     fc.event("landing burn start", altitude_m=fc.altitude, speed_m_s=fc.airspeed)
     h, fall = fc.clearance, -fc.vertical_speed
-    plan = max((fall * fall - TOUCH_SPEED ** 2) / (2.0 * max(h, 1.0)), 1.0)
-    gate_speed = TOUCH_SPEED + TERMINAL_HEIGHT / FINAL_TIME
+    final_speed = math.sqrt(TOUCH_SPEED ** 2 + 2.0 * FINAL_DECELERATION * FINAL_HEIGHT)
+    plan = max((fall * fall - final_speed ** 2) / (2.0 * max(h - FINAL_HEIGHT, 1.0)), 1.0)
+    gate_speed = math.sqrt(TOUCH_SPEED ** 2 + 2.0 * FINAL_DECELERATION * TERMINAL_HEIGHT)
     while True:
         h = fc.clearance
         fall = -fc.vertical_speed
         if h < CUTOFF_CLEARANCE or (fall < 0.0 and h < 3.0):
             break
-        curve = math.sqrt(TOUCH_SPEED ** 2 + 2.0 * plan * max(h, 0.0))
-        line = TOUCH_SPEED + max(h, 0.0) / FINAL_TIME
-        reference, slowing = (curve, plan) if curve < line else (line, fall / FINAL_TIME)
+        if h > FINAL_HEIGHT:
+            reference = math.sqrt(final_speed ** 2 + 2.0 * plan * (h - FINAL_HEIGHT))
+            slowing = plan
+        else:
+            reference = math.sqrt(TOUCH_SPEED ** 2 + 2.0 * FINAL_DECELERATION * max(h, 0.0))
+            slowing = FINAL_DECELERATION
         up_acc = max(fc.effective_gravity + slowing + SPEED_GAIN * (fall - reference), 0.5)
         offset, ground = guide.offset()
         if h > TERMINAL_HEIGHT:     # zero-effort miss onto the gate TERMINAL_HEIGHT above the pad
@@ -334,8 +340,8 @@ def land(fc, guide, engines, full):
             side = -6.0 * (offset + ground * t_go) / t_go ** 2 + 2.0 * ground / t_go
             lean = MAX_LEAN
         else:                       # nearly upright: the drift, and what is left of the offset
-            side = -ground / TERMINAL_TIME - offset / TERMINAL_TIME ** 2
-            lean = TERMINAL_LEAN * h / TERMINAL_HEIGHT + math.radians(0.5)
+            side = -2.0 * ground / TERMINAL_TIME - offset / TERMINAL_TIME ** 2     # critically damped
+            lean = TERMINAL_LEAN
         side_size = float(np.linalg.norm(side))
         cap = up_acc * math.tan(lean)
         if side_size > cap:
