@@ -5,11 +5,16 @@ they only use the ``fc`` API, hand back control step by step like any
 program, and state units and frames as ``fc`` does (SI, the central body's
 frame).
 
-- :func:`burn`: "velocity to be gained" guidance. The nose points along the
-  velocity still to gain, the throttle drops as it shrinks (never below the
-  engine's 10 % floor) and the engine is shut down within a tolerance of the
-  target. The engine's gimbal turns the vehicle; there is no reaction
-  control, so a burn starting far from its direction wastes a little.
+- :func:`burn`: "velocity to be gained" guidance. At the engine's 10 %
+  floor the vehicle first turns to the burn's initial direction; then the
+  nose follows the velocity still to gain, the throttle drops as it
+  shrinks (never below the engine's 10 % floor) and the engine is shut down within a tolerance of the
+  target. In the last 2 m/s the direction is held, not chased (the
+  velocity left is then small and noisy in direction), and the engine stops
+  where the velocity left is smallest: the vehicle stops turning before
+  cutoff instead of tumbling on after it. The engine's gimbal turns the
+  vehicle; there is no reaction control, so a burn starting far from its
+  direction wastes some delta-v.
 - :func:`hyperbola_velocity`: the velocity at a position on the escape
   hyperbola whose excess velocity is a given vector (closed form below).
 - :func:`trim_periapsis`: turn the velocity in its own plane, speed kept,
@@ -27,6 +32,8 @@ from rocketsim.constants import G0
 from rocketsim.frames.quaternion import quat_to_matrix
 
 MIN_THROTTLE = 0.1
+HOLD_BELOW = 2.0        # m/s left to gain below which a burn stops re-aiming
+ALIGNED = math.cos(math.radians(5.0))   # nose within 5 deg of the burn direction
 
 
 def unit(v) -> np.ndarray:
@@ -51,22 +58,30 @@ def burn(fc, target_velocity, label: str, thrust: float, isp: float, tolerance: 
     m0, t0 = fc.mass, fc.time
     togo = target_velocity() - fc.velocity
     left = best = float(np.linalg.norm(togo))
-    fc.point_at(togo)
+    first = togo / left
+    fc.point_at(first)
     fc.throttle(MIN_THROTTLE)
     fc.ignite()
+    turning = True
     while True:
         togo = target_velocity() - fc.velocity
         left = float(np.linalg.norm(togo))
-        if left < tolerance or (left > best + 1.0 and left < 5.0):
-            break
+        if left < tolerance or (left < HOLD_BELOW and left > best) or (left > best + 1.0 and left < 5.0):
+            break               # on target, or as close as the held direction gets
         if fc.time > t0 + 5.0 and fc.thrust == 0.0:
             fc.log(f"{label}: no thrust left, {left:.1f} m/s to go")
             break
         best = min(best, left)
-        fc.point_at(togo)
-        aligned = float(quat_to_matrix(fc.attitude)[:, 0] @ togo) / left
+        nose = quat_to_matrix(fc.attitude)[:, 0]
+        if turning:
+            # turn to the first direction (a fixed target: chasing the velocity left,
+            # which the low thrust turns as fast as the vehicle does, can orbit it)
+            turning = float(nose @ first) < ALIGNED
+        elif left > HOLD_BELOW:
+            fc.point_at(togo)       # below: hold the direction, so the rates die out by cutoff
+        aligned = float(nose @ togo) / left
         wanted = min(1.0, left / (2.0 * thrust / fc.mass))
-        fc.throttle(max(wanted if aligned > math.cos(math.radians(5.0)) else 0.0, MIN_THROTTLE))
+        fc.throttle(max(wanted if aligned > ALIGNED and not turning else 0.0, MIN_THROTTLE))
         fc.step()
     fc.shutdown()
     fc.release()

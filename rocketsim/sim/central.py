@@ -101,6 +101,13 @@ def air_about(center: str, earth_air):
     return _NO_AIR
 
 
+def vacuum():
+    """A table of no air (zero density and pressure at every height): what the
+    readings (:class:`~rocketsim.flight.readings.StateView`, whose heights are
+    geodetic on Earth's ellipsoid) see away from Earth."""
+    return _NO_AIR
+
+
 @lru_cache(maxsize=1)
 def _mars_air():
     return mars_table()

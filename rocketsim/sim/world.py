@@ -17,7 +17,6 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from functools import partial
 from typing import Callable
 
 import numpy as np
@@ -40,7 +39,7 @@ from rocketsim.scenario.load import LoadedScenario
 from rocketsim.scenario.models import check_step
 from rocketsim.errors import InputError
 from rocketsim.frames.geodetic import enu_basis, geodetic_to_ecef
-from rocketsim.sim.central import air_about, next_center, nbody_field, recentre
+from rocketsim.sim.central import air_about, next_center, nbody_field, recentre, vacuum
 from rocketsim.dynamics.soi import central_params
 from rocketsim.dynamics.third_bodies import bodies_at, field_of, with_field
 from rocketsim.dynamics.prediction import coast
@@ -110,7 +109,9 @@ class Body:
     def view(self) -> StateView:
         """The truth's readings at the body's time (one view per step)."""
         if self._view is None or self._view.t != self.t:
-            air = self.atmosphere if self.central == "earth" else partial(air_about, self.central, None)
+            # the readings' heights are geodetic on Earth: elsewhere they see no air (the
+            # flight model flies through Mars's own, by the height over Mars's ellipsoid)
+            air = self.atmosphere if self.central == "earth" else vacuum
             self._view = StateView.of_state(self.t, self.y, air, self.mu)
         return self._view
 

@@ -1,0 +1,42 @@
+"""The Mars mission (scenarios/mars-orbit.yaml) flown whole (issue 9).
+
+In the 2026 window that ``rocketsim windows --target mars`` finds (departure
+2026-11-01 05:41:50 UTC, 310.2-day transfer; its mission fragment gives the
+scenario's epoch), the orbiter injects itself from a 200 km parking orbit,
+leaves Earth's sphere of influence for the Sun's, corrects its course twice,
+enters Mars's sphere and captures into a 400 x 33 000 km orbit. Must hold
+(issue 9): Mars orbit inserted. The headless step is 0.1 s (the burns'
+closed loops need no finer one) and cruise rails carry the 310 days.
+"""
+
+from pathlib import Path
+
+from rocketsim.constants import MARS_RADIUS_EQ
+from rocketsim.scenario.load import load
+from rocketsim.sim.world import World
+
+SCENARIO = Path(__file__).resolve().parents[1] / "scenarios" / "mars-orbit.yaml"
+
+
+def test_the_orbiter_is_captured_by_mars():
+    world = World.from_scenario(load(SCENARIO))
+    summary = world.run()
+    body = world.bodies[0]
+    handovers = [(e["from"], e["to"]) for e in body.events if e["name"] == "soi_handover"]
+    assert handovers == [("earth", "sun"), ("sun", "mars")]
+    names = [e["name"] for e in body.events]
+    for name in ("tmi", "course_correction", "moi", "mars_orbit"):
+        assert name in names, names
+    moi = next(e for e in body.events if e["name"] == "moi")
+    assert moi["left_m_s"] < 0.5
+    orbit = summary["bodies"][body.name]["orbit"]
+    print(f"\n[mars] TMI {next(e for e in body.events if e['name'] == 'tmi')['delta_v_m_s']:.0f} m/s, "
+          f"MOI {moi['delta_v_m_s']:.0f} m/s at {moi['time_s'] / 86400:.2f} d; orbit "
+          f"{orbit['periapsis_altitude'] / 1e3:.0f} x {orbit['apoapsis_altitude'] / 1e3:.0f} km")
+    # captured: a closed orbit about Mars, periapsis above the air's 151 km rails
+    # floor and near the 400 km aimed for, apoapsis near the 33 000 km aimed for
+    assert body.central == "mars" and orbit["eccentricity"] < 1.0
+    assert 200e3 < orbit["periapsis_altitude"] < 600e3
+    assert abs(orbit["apoapsis_altitude"] - 33000e3) < 1000e3
+    assert abs(orbit["semi_major_axis"] - MARS_RADIUS_EQ
+               - 0.5 * (orbit["periapsis_altitude"] + orbit["apoapsis_altitude"])) < 1.0
