@@ -81,8 +81,8 @@ def predict_impact(r, v, t: float, mu: float, radius_eq: float = EARTH_RADIUS_EQ
         return p / (1.0 + e * math.cos(nu)) * (math.cos(nu) * pa + math.sin(nu) * qa)
 
     # a ground crossing lies between now and the next periapsis (nu = 2 pi, or 0 if
-    # falling already); on a hyperbola the arc ends at the asymptote short of it
-    end = 2.0 * math.pi if nu0 > 0.0 else 0.0
+    # falling already: nu0 < 0); on a hyperbola the arc ends at the asymptote
+    end = 2.0 * math.pi if nu0 >= 0.0 else 0.0
     start = nu0
     if e >= 1.0:
         end = min(end, math.acos(-1.0 / e) - 1e-9)
