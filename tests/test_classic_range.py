@@ -84,6 +84,13 @@ def test_site_classic_in_a_scenario_and_its_pads_as_targets(tmp_path):
         Scenario.model_validate({**data, "mission": {**data["mission"], "target": {"pad": "LZ-1"}}})
     with pytest.raises(ValueError, match="classic range flies the original model's air"):
         Scenario.model_validate({**data, "weather": {"kind": "random", "seed": 3}})
+    # the shipped booster landing names the range's landing zone and flies the booster's
+    # return program of the real-site mission
+    landing = load(ROOT / "scenarios" / "classic-booster-landing.yaml")
+    zone = [p for p in landing.scenario.site.pads if p.name == "landing zone"][0]
+    assert landing.scenario.mission.target.pad == zone
+    assert landing.stage_program_paths["booster"] == \
+        load(ROOT / "scenarios" / "falcon9-leo.yaml").stage_program_paths["booster"]
     # the switch reaches the body's parameters; a real site keeps the realistic model
     assert World.from_scenario(loaded, duration=1.0).bodies[0].p[P_CLASSIC] == 1.0
     real = load(ROOT / "scenarios" / "falcon9-leo.yaml")
