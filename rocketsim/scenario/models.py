@@ -110,11 +110,16 @@ class SiteSpec(Strict):
 # --- mission ------------------------------------------------------------------
 
 class OrbitStart(Strict):
-    """Start in orbit about Earth from classical elements at the mission epoch.
+    """Start in orbit about Earth (or ``body``) from classical elements at the mission epoch.
 
     Give ``altitude`` (circular, above the equatorial radius) or
-    ``semi_major_axis`` (with ``eccentricity``).
+    ``semi_major_axis`` (with ``eccentricity``). About the Moon or Mars the
+    mission flies ``gravity: n-body`` in that body's frame (its IAU pole as
+    ``z``, ``x`` the node of its equator on the J2000 equator; ``raan`` from
+    that node).
     """
+
+    body: Literal["earth", "moon", "mars"] = Field("earth", description="the body orbited")
 
     altitude: Optional[Length] = None
     semi_major_axis: Optional[Annotated[Length, Field(gt=0)]] = None

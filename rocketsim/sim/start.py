@@ -22,6 +22,7 @@ import math
 import numpy as np
 
 from rocketsim.constants import EARTH_MU, EARTH_RADIUS_EQ
+from rocketsim.dynamics.soi import CENTRAL
 from rocketsim.frames.earth_fixed import ecef_to_eci_velocity
 from rocketsim.frames.elements import elements_to_state
 from rocketsim.frames.geodetic import enu_basis, geodetic_to_ecef
@@ -51,9 +52,11 @@ def start_state(mission: MissionSpec, site: SiteSpec | None, gmst0: float):
         return r, v, site_attitude(site, start.site.elevation)
     if start.orbit is not None:
         orbit = start.orbit
-        a = orbit.semi_major_axis if orbit.altitude is None else EARTH_RADIUS_EQ + orbit.altitude
-        r, v = elements_to_state(a, orbit.eccentricity, orbit.inclination, orbit.raan - gmst0,
-                                 orbit.arg_periapsis, orbit.true_anomaly, EARTH_MU)
+        mu, radius = (EARTH_MU, EARTH_RADIUS_EQ) if orbit.body == "earth" else CENTRAL[orbit.body][:2]
+        a = orbit.semi_major_axis if orbit.altitude is None else radius + orbit.altitude
+        node = orbit.raan - gmst0 if orbit.body == "earth" else orbit.raan
+        r, v = elements_to_state(a, orbit.eccentricity, orbit.inclination, node,
+                                 orbit.arg_periapsis, orbit.true_anomaly, mu)
         return np.asarray(r), np.asarray(v), prograde_attitude(r, v)
     state = start.state
     r = np.array(state.position, dtype=float)

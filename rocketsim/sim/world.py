@@ -174,8 +174,11 @@ class World:
         )
         world = cls(epoch, h, mission.duration if duration is None else duration, [body],
                     atmosphere=loaded.atmosphere)
-        if mission.gravity == "n-body":
-            body.p = with_field(body.p, nbody_field("earth", epoch.jd_tt(), world.gmst0))
+        center = mission.start.orbit.body if mission.start.orbit is not None else "earth"
+        if mission.gravity == "n-body" or center != "earth":
+            body.p = with_field(central_params(body.p, center),
+                                nbody_field(center, epoch.jd_tt(), world.gmst0))
+            body.central, body.mu = center, float(body.p[P_MU])
         body.atmosphere = lambda: world.atmosphere
         body.sensors = Sensors(scenario.seed, body.name, scenario.sensors, h)
         if rigid is None:
@@ -198,6 +201,8 @@ class World:
                     pad = None if site is None else geodetic_to_ecef(site.latitude, site.longitude, site.height)
                 body.checks = VehicleChecks(scenario.vehicle.aero.heat_shield, pad_ecef=pad)
             body.stack = scenario.vehicle
+            if center != "earth":
+                world._fly_in_air_of(body)
         body.watch = FlightEvents(world, body, on_ground=mission.start.site is not None,
                                   stage_names=[s.name for s in scenario.vehicle.stages or []])
         world.sample_every = max(1, round(1.0 / (scenario.telemetry.rate * h)))

@@ -1,0 +1,58 @@
+"""From Mars orbit down to parachute conditions: deorbit, then a ballistic entry.
+
+For a capsule with a deorbit engine and a heat shield
+(vehicles/mars-entry-capsule.yaml) starting in a low circular Mars orbit.
+
+1. Deorbit: burn (:func:`rocketsim.flight.maneuvers.burn`) to the velocity,
+   along the local horizontal, of an ellipse from here to a periapsis 40 km
+   below the surface (an entry flight-path angle near -3 deg at 125 km).
+2. Point the heat shield (the nose) along the velocity while the engine
+   still has thrust to steer with, then release: the capsule falls ballistic.
+3. Watch the descent: Mach from the Mars reference atmosphere
+   (:func:`rocketsim.atmosphere.mars.mars_atmosphere`) at the height over
+   Mars's ellipsoid, with the air turning with Mars (``spin_rate``). The
+   parachute conditions: Mach below 2 more than 7 km up (the supersonic
+   disk-gap-band parachutes of Viking, Phoenix and the Mars Science
+   Laboratory opened between Mach 1.1 and 2.1, 6 to 13 km up).
+"""
+
+import math
+
+import numpy as np
+
+from rocketsim.atmosphere.mars import mars_atmosphere
+from rocketsim.bodies.orientation import spin_rate
+from rocketsim.constants import MARS_FLATTENING, MARS_MU, MARS_RADIUS_EQ
+from rocketsim.flight.maneuvers import burn, unit
+
+THRUST, ISP = 4.0e3, 220.0                # N, s: the deorbit engine of the capsule
+PERIAPSIS = MARS_RADIUS_EQ - 40e3         # m
+PARACHUTE_MACH, PARACHUTE_HEIGHT = 2.0, 7e3
+
+
+def height(r) -> float:
+    """Height (m) over Mars's ellipsoid along the radius."""
+    a, b = MARS_RADIUS_EQ, MARS_RADIUS_EQ * (1.0 - MARS_FLATTENING)
+    rn = float(np.linalg.norm(r))
+    s = r[2] / rn
+    return rn - a * b / math.sqrt(b * b * (1.0 - s * s) + a * a * s * s)
+
+
+def mach(fc) -> float:
+    r, v = fc.position, fc.velocity
+    air = v - np.cross((0.0, 0.0, spin_rate("mars")), r)
+    return float(np.linalg.norm(air)) / mars_atmosphere(height(r)).speed_of_sound
+
+
+def main(fc):
+    def deorbit():
+        r, v = fc.position, fc.velocity
+        rn = float(np.linalg.norm(r))
+        along = unit(np.cross(np.cross(r, v), r))
+        return math.sqrt(2.0 * MARS_MU * PERIAPSIS / (rn * (rn + PERIAPSIS))) * along
+    burn(fc, deorbit, "deorbit", THRUST, ISP)
+    fc.wait_until(lambda: height(fc.position) < 150e3)
+    fc.event("entry_interface", speed_m_s=float(np.linalg.norm(fc.velocity)))
+    fc.wait_until(lambda: mach(fc) < PARACHUTE_MACH or height(fc.position) < PARACHUTE_HEIGHT)
+    fc.event("parachute_conditions", mach=mach(fc), height_m=height(fc.position),
+             speed_m_s=float(np.linalg.norm(fc.velocity)))
