@@ -1,6 +1,7 @@
 """The list of commands: one import per command module."""
 
 from rocketsim_cli.atmosphere import atmosphere
+from rocketsim_cli.classic_range import classic_range
 from rocketsim_cli.ephemeris import ephemeris
 from rocketsim_cli.fly import fly
 from rocketsim_cli.replay import replay
@@ -8,4 +9,4 @@ from rocketsim_cli.validate import schema, validate
 from rocketsim_cli.vehicle import vehicle
 from rocketsim_cli.windows import windows
 
-ALL = [fly, validate, schema, atmosphere, ephemeris, vehicle, windows, replay]
+ALL = [fly, validate, schema, atmosphere, ephemeris, vehicle, windows, replay, classic_range]

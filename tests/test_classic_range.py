@@ -103,6 +103,17 @@ def test_site_classic_in_a_scenario_and_its_pads_as_targets(tmp_path):
     assert caught.value.field == "site"
 
 
+def test_the_range_written_as_a_site_file_is_the_same_site(tmp_path, cli):
+    """``rocketsim classic-range --seed 11 -o FILE``: a site file that flies the same range."""
+    site_file = tmp_path / "classic-11.yaml"
+    assert cli("classic-range", "--seed", 11, "-o", site_file).exit_code == 0
+    scenario = tmp_path / "scenario.yaml"
+    scenario.write_text(f"name: s\nsite: {site_file.name}\nseed: 11\n"
+                        "vehicle: {name: v, rigid_body: {mass: 1, inertia: [1, 1, 1]}}\n"
+                        "mission: {epoch: 2026-11-26T15:00:00Z, start: {site: {}}, duration: 1}\n")
+    assert load(scenario).scenario.site == SiteSpec.model_validate(classic_site(11))
+
+
 # --- the original model's switches ---------------------------------------------
 
 @pytest.mark.parametrize("start_height, expected_classic", [
