@@ -90,3 +90,22 @@ def test_handover_to_the_moon_keeps_position_and_velocity_continuous(write, scen
     # and the Moon's gravity is central
     assert p_b[4] == soi.CENTRAL["moon"][0] and body.mu == soi.CENTRAL["moon"][0]
     assert p0[4] == soi.CENTRAL["earth"][0] and y0[0] != body.y[0]
+
+
+def test_positions_about_mars_read_as_planetocentric_latitude_longitude_and_height():
+    # reference: the IAU body-fixed -> J2000 rotation (rocketsim.bodies.orientation,
+    # itself checked against the IAU WG 2015 report's matrices) of a body-fixed point
+    import math
+    from rocketsim.bodies.orientation import body_to_j2000
+    from rocketsim.sim.central import planetocentric
+    jd = 2461371.5
+    to_frame_axes = soi.frame_rotation("mars", jd).T @ body_to_j2000("mars", jd)
+    for lat, lon in ((0.3, 0.0), (-1.2, 45.0), (0.0, -120.0)):
+        radius = 3.5e6
+        fixed = radius * np.array([math.cos(math.radians(lon)) * math.cos(lat),
+                                   math.sin(math.radians(lon)) * math.cos(lat), math.sin(lat)])
+        got_lat, got_lon, height = planetocentric(to_frame_axes @ fixed, "mars", jd)
+        assert abs(got_lat - lat) < 1e-12 and abs(math.degrees(got_lon) - lon) < 1e-9
+        a, b = soi.CENTRAL["mars"][1], soi.CENTRAL["mars"][3]
+        surface = a * b / math.hypot(b * math.cos(lat), a * math.sin(lat))
+        assert abs(height - (radius - surface)) < 1e-6

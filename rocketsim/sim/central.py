@@ -21,8 +21,9 @@ import numpy as np
 from rocketsim.atmosphere.mars import mars_table
 from rocketsim.atmosphere.table import make_table
 from rocketsim.dynamics.nbody import F_CENTER, F_ROT, make_field
-from rocketsim.dynamics.soi import (_ORBIT, CHILDREN, SOI, central_body, central_params, frame_rotation,
-                                   handover)
+from rocketsim.bodies.orientation import pole_and_meridian
+from rocketsim.dynamics.soi import (_ORBIT, CENTRAL, CHILDREN, SOI, central_body, central_params,
+                                   frame_rotation, handover)
 from rocketsim.dynamics.state import Q, R, V
 from rocketsim.dynamics.third_bodies import bodies_at, field_of, with_field
 from rocketsim.ephemeris.solar_system import BODIES
@@ -99,6 +100,22 @@ def air_about(center: str, earth_air):
     if center == "mars":
         return _mars_air()
     return _NO_AIR
+
+
+def planetocentric(r, center: str, jd_tt: float):
+    """``(latitude rad, longitude rad, height m)`` of ``r`` (m, the IAU-pole frame of
+    ``center``, :func:`rocketsim.dynamics.soi.frame_rotation`) at the TT Julian date
+    ``jd_tt``: planetocentric latitude, east longitude from the prime meridian
+    (``W`` of the IAU rotation, measured from the frame's ``x``, the node of the
+    body's equator) and the height over its ellipsoid along the radius."""
+    _, _, w = pole_and_meridian(center, jd_tt)
+    x, y, z = (float(c) for c in r)
+    rn = math.sqrt(x * x + y * y + z * z)
+    a, b = CENTRAL[center][1], CENTRAL[center][3]
+    s = z / rn
+    height = rn - a * b / math.sqrt(b * b * (1.0 - s * s) + a * a * s * s)
+    lon = math.remainder(math.atan2(y, x) - float(w), 2.0 * math.pi)
+    return math.asin(s), lon, height
 
 
 def vacuum():

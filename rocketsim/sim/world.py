@@ -39,7 +39,7 @@ from rocketsim.scenario.load import LoadedScenario
 from rocketsim.scenario.models import check_step
 from rocketsim.errors import InputError
 from rocketsim.frames.geodetic import enu_basis, geodetic_to_ecef
-from rocketsim.sim.central import air_about, next_center, nbody_field, recentre, vacuum
+from rocketsim.sim.central import air_about, next_center, nbody_field, planetocentric, recentre, vacuum
 from rocketsim.dynamics.soi import central_params
 from rocketsim.dynamics.third_bodies import bodies_at, field_of, with_field
 from rocketsim.dynamics.prediction import coast
@@ -327,7 +327,7 @@ class World:
 
     def sample(self, body: Body) -> dict:
         """The telemetry message of ``body`` at its time (SI; degrees where named)."""
-        lat, lon, height = body.view().geodetic
+        lat, lon, height = self.where(body)
         return {
             "t": body.t,
             "position": body.position.tolist(),
@@ -514,6 +514,14 @@ class World:
         v = body.velocity if delta_v is None else body.velocity + np.asarray(delta_v, dtype=float)
         return coast(body.position, v, body.t, float(seconds), body.p, fp, periapsis=periapsis)
 
+    def where(self, body: Body) -> tuple[float, float, float]:
+        """(latitude rad, longitude rad, height m): geodetic on WGS84 about Earth,
+        planetocentric over the central body's ellipsoid elsewhere
+        (:func:`rocketsim.sim.central.planetocentric`)."""
+        if body.central == "earth":
+            return body.view().geodetic
+        return planetocentric(body.position, body.central, self.epoch.jd_tt() + body.t / 86400.0)
+
     def _rails_field(self, body: Body) -> np.ndarray:
         """The field of sleep rails: the n-body field the body carries (so a sleeping
         body follows the awake path to the bit), else Kepler + J2 about Earth."""
@@ -623,7 +631,7 @@ class World:
         """Events and final state of each body, SI units (degrees where named)."""
         bodies = {}
         for body in self.bodies:
-            lat, lon, height = body.view().geodetic
+            lat, lon, height = self.where(body)
             bodies[body.name] = {
                 "events": body.events,
                 "final": {

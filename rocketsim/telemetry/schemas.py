@@ -26,9 +26,12 @@ BODY_STATE = {
         "attitude": {"type": "array", "items": {"type": "number"}, "minItems": 4, "maxItems": 4,
                      "description": "unit quaternion (w, x, y, z), body axes -> ECI"},
         "body_rates": {**_VEC3, "description": "body rates about x (roll), y, z, rad/s"},
-        "latitude_deg": {"type": "number", "description": "geodetic latitude (WGS84), deg"},
-        "longitude_deg": {"type": "number", "description": "longitude, east positive, deg"},
-        "altitude": {"type": "number", "description": "height above the WGS84 ellipsoid, m"},
+        "latitude_deg": {"type": "number", "description": "geodetic latitude (WGS84), deg; about "
+                         "the Moon or Mars planetocentric"},
+        "longitude_deg": {"type": "number", "description": "longitude, east positive, deg (about the "
+                          "Moon or Mars from its IAU prime meridian)"},
+        "altitude": {"type": "number", "description": "height above the WGS84 ellipsoid, m (about the "
+                     "Moon or Mars over its ellipsoid, along the radius)"},
         "speed": {"type": "number", "description": "inertial speed, m/s"},
         "orbit": {"$ref": "#/$defs/orbit"},
         "central_body": {"type": "string", "enum": ["sun", "earth", "moon", "mars"],
