@@ -13,6 +13,8 @@ list of those.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from rocketsim.vehicle import engines as E
@@ -60,13 +62,14 @@ class Propulsion:
 
     def throttle(self, t: float, value: float, which=None) -> None:
         """Command a throttle (clipped to each engine's range) at mission time ``t`` (s)."""
-        for e in self.select(which):
-            E.command_throttle(self.a.eng, self.a.cmd, e, t, value)
+        E.command_throttles(self.a.eng, self.a.cmd, np.array(self.select(which), dtype=np.int64),
+                            float(t), float(value))
 
     def gimbal(self, t: float, gy: float, gz: float, which=None) -> None:
         """Command a gimbal deflection (rad; towards body +y and +z), clipped to each cone."""
-        for e in self.select(which):
-            E.command_gimbal(self.a.eng, self.a.cmd, e, t, gy, gz)
+        gy, gz = float(gy), float(gz)
+        E.command_gimbals(self.a.eng, self.a.cmd, np.array(self.select(which), dtype=np.int64),
+                          float(t), gy, gz, math.hypot(gy, gz))
 
     def states(self, y: np.ndarray, t: float, p_a: float) -> list[dict]:
         """Each engine at time ``t`` and ambient pressure ``p_a`` (Pa): on, spool fraction,

@@ -272,25 +272,50 @@ def throttle_at(eng, cmd, e: int, t: float) -> float:
     return float(slew(cmd[e, C_TAU0], cmd[e, C_TAU], eng[e, E_TAU_RATE], t - cmd[e, C_T_THROTTLE]))
 
 
+@njit
+def command_throttles(eng, cmd, engines, t, tau):
+    """Command each engine of ``engines`` (an int64 array of indices) to throttle ``tau``
+    at time ``t`` (s), clipped to its range: its throttle slews on from where it is now.
+    One compiled call for a whole stage (a program throttles every step)."""
+    for e in engines:
+        now = slew(cmd[e, C_TAU0], cmd[e, C_TAU], eng[e, E_TAU_RATE], t - cmd[e, C_T_THROTTLE])
+        cmd[e, C_TAU0] = now
+        cmd[e, C_T_THROTTLE] = t
+        cmd[e, C_TAU] = min(max(tau, eng[e, E_TAU_MIN]), eng[e, E_TAU_MAX])
+
+
 def command_throttle(eng, cmd, e: int, t: float, tau: float) -> None:
     """Command engine ``e`` to throttle ``tau`` at time ``t`` (clipped to its range)."""
-    now = throttle_at(eng, cmd, e, t)
-    cmd[e, C_TAU0] = now
-    cmd[e, C_T_THROTTLE] = t
-    cmd[e, C_TAU] = min(max(tau, eng[e, E_TAU_MIN]), eng[e, E_TAU_MAX])
+    command_throttles(eng, cmd, np.array([e], dtype=np.int64), float(t), float(tau))
+
+
+@njit
+def command_gimbals(eng, cmd, engines, t, gy, gz, size):
+    """Command the gimbal of each engine of ``engines`` (an int64 array of indices) to
+    ``(gy, gz)`` rad at ``t`` (s), clipped to its cone; ``size`` is ``math.hypot(gy, gz)``
+    computed by the (Python) caller, so the clipping has the bits it always had. One
+    compiled call for every firing engine (the autopilot steers every step)."""
+    for e in engines:
+        a, b = slew2(cmd[e, C_G0], cmd[e, C_G0 + 1], cmd[e, C_G], cmd[e, C_G + 1],
+                     eng[e, E_GIMBAL_RATE], t - cmd[e, C_T_GIMBAL])
+        cmd[e, C_G0] = a
+        cmd[e, C_G0 + 1] = b
+        cmd[e, C_T_GIMBAL] = t
+        cone = eng[e, E_GIMBAL_RANGE]
+        cy, cz = gy, gz
+        if size > cone:
+            if size > 0:
+                cy, cz = gy * cone / size, gz * cone / size
+            else:
+                cy, cz = 0.0, 0.0
+        cmd[e, C_G] = cy
+        cmd[e, C_G + 1] = cz
 
 
 def command_gimbal(eng, cmd, e: int, t: float, gy: float, gz: float) -> None:
     """Command engine ``e``'s gimbal to ``(gy, gz)`` rad at ``t``, clipped to its cone."""
-    a, b = slew2(cmd[e, C_G0], cmd[e, C_G0 + 1], cmd[e, C_G], cmd[e, C_G + 1],
-                 eng[e, E_GIMBAL_RATE], t - cmd[e, C_T_GIMBAL])
-    cmd[e, C_G0], cmd[e, C_G0 + 1] = a, b
-    cmd[e, C_T_GIMBAL] = t
-    d = math.hypot(gy, gz)
-    cone = eng[e, E_GIMBAL_RANGE]
-    if d > cone:
-        gy, gz = (gy * cone / d, gz * cone / d) if d > 0 else (0.0, 0.0)
-    cmd[e, C_G], cmd[e, C_G + 1] = gy, gz
+    gy, gz = float(gy), float(gz)
+    command_gimbals(eng, cmd, np.array([e], dtype=np.int64), float(t), gy, gz, math.hypot(gy, gz))
 
 
 def ignite(y, eng, cmd, stage, e: int, first_clock: int) -> bool:

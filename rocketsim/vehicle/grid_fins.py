@@ -122,6 +122,7 @@ def grid_fin_forces(t, u, v, w, wx, wy, wz, rho, sound, x_cm, grid, grid_cmd):
     return fx, fy, fz, mx, my, mz
 
 
+@njit
 def command(grid: np.ndarray, grid_cmd: np.ndarray, t: float, pitch: float, yaw: float,
             roll: float) -> None:
     """Command the fins (rad) at time ``t`` (s): each starts slewing from where it is now.
