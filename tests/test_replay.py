@@ -87,10 +87,12 @@ def test_verify_trust_on_a_shipped_mission_is_bit_identical(tmp_path):
 
 def test_verify_trust_on_a_staged_mission_with_separated_bodies(tmp_path):
     # the shipped Falcon 9 mission through staging and fairing jettison (three bodies,
-    # each with its own channels); a 0.1 s headless step and 185 s of flight keep the
-    # two flights short (the step is recorded in the run, so the re-flight uses it too)
+    # each with its own channels; the booster flies its return program); a 0.1 s
+    # headless step and 215 s of flight (the fairing goes at ~212 s, the booster being cut
+    # off early with its return propellant) keep the two flights short (the step is
+    # recorded in the run, so the re-flight uses it too)
     out = tmp_path / "falcon9.mcap"
-    summary = fly(load(ROOT / "scenarios" / "falcon9-leo.yaml"), out, step=0.1, duration=185.0)
+    summary = fly(load(ROOT / "scenarios" / "falcon9-leo.yaml"), out, step=0.1, duration=215.0)
     assert len(summary["bodies"]) >= 3
     result = replay(out, "--verify", "--trust")
     assert result.exit_code == 0, result.output

@@ -335,7 +335,7 @@ def lay_out(run: Run, folder: Path) -> Path:
     layout = run.metadata.get("files")
     if not layout or "scenario" not in layout:
         raise ValueError("the run does not record the layout of its files (written by an older rocketsim)")
-    by_role = {name.split("/", 1)[0]: data for name, data in run.attachments.items()}
+    by_role = {name.rsplit("/", 1)[0]: data for name, data in run.attachments.items()}   # role/file name
     depth = 0
     for rel in layout.values():
         level = 0
