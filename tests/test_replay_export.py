@@ -64,6 +64,9 @@ def test_csv_rows_and_values_equal_the_mcap(run_file, tmp_path):
         assert set(row) >= {"t", "position_x", "attitude_w", "orbit_eccentricity", "altitude"}
         for column, text in row.items():
             value = expected_value(message, column)
+            if isinstance(value, str):              # central_body
+                assert text == value, column
+                continue
             assert (text == "" if value is None else float(text) == value), column   # every digit kept
     with open(tmp_path / "tables" / "events.csv", newline="") as stream:
         events = list(csv.DictReader(stream))
