@@ -85,3 +85,33 @@ def test_attitude_error_is_the_rotation_onto_the_target():
     assert np.allclose(attitude_error(np.eye(3), np.array([math.cos(a), math.sin(a), 0.0])), [0, 0, a])
     assert np.allclose(attitude_error(np.eye(3), np.array([math.cos(a), 0.0, math.sin(a)])), [0, -a, 0])
     assert np.allclose(attitude_error(np.eye(3), np.array([1.0, 0.0, 0.0])), 0.0)
+
+
+def test_grid_fin_gain_reverses_tail_first_and_matches_the_fin_model_in_axial_flow():
+    """Analytic reference, the grid-fin model (rocketsim/vehicle/grid_fins.py) in a flow
+    along the body axis: a pitch deflection delta turns the fins on the arms at 0 and
+    180 deg by +-delta, each meets the flow at a = -delta (nose first; +delta tail first,
+    the |V.c| of the model) and pushes -q A C_N_alpha(M) a n with n_z = cos(delta), so
+    the pitch moment per radian measured with the autopilot's probe is
+    ``-+ 2 d q A C_N_alpha(M) cos(probe)`` (d the fins' station above the centre of
+    mass); the fins at 90 and 270 deg and the drag give no pitch moment."""
+    from tests.aero_vehicles import shipped
+    from rocketsim.flight.autopilot import FIN_PROBE, fin_gains
+    from rocketsim.vehicle import grid_fins as G
+    from rocketsim.vehicle.aero import interp
+    from rocketsim.vehicle.build import build
+
+    model = build(shipped("falcon9-block5.yaml"), last=0)
+    grid = model.arrays.aero.grid
+    x_cm = model.mass_properties(model.tank_load)[1]
+    rho, sound, speed = 0.4, 300.0, 250.0
+    mach = speed / sound
+    d = float(grid[0, G.G_X]) - x_cm
+    expected = 2.0 * d * 0.5 * rho * speed ** 2 * float(grid[0, G.G_AREA]) * \
+        interp(G.GRID_MACH, G.GRID_CN_ALPHA, mach) * math.cos(FIN_PROBE)
+    nose_first = fin_gains(model.arrays, np.array([speed, 0.0, 0.0]), rho, sound, x_cm)
+    tail_first = fin_gains(model.arrays, np.array([-speed, 0.0, 0.0]), rho, sound, x_cm)
+    assert nose_first[0] == pytest.approx(-expected, rel=1e-9)
+    assert tail_first[0] == pytest.approx(expected, rel=1e-9)
+    # yaw pushes the fin station to +y: the moment about z is +d F_y, the opposite sign
+    assert nose_first[1] == pytest.approx(expected, rel=1e-9)

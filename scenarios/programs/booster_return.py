@@ -77,6 +77,11 @@ LANDING_DV = 450.0          # m/s kept for the landing burn (terminal speed and 
 EXHAUST_SPEED = 2800.0      # m/s, effective exhaust speed of the engines low in the air (estimate)
 Q_ALPHA = 150e3             # Pa deg: lean allowed in the air (the limit is 250 kPa deg)
 
+# the compiled helpers the predictor calls, loaded (or compiled) when the program is
+# loaded rather than inside a step, where the time would count against its CPU budget
+point_height(EARTH_RADIUS_EQ, 0.0, 0.0, EARTH_RADIUS_EQ, EARTH_RADIUS_POLAR)
+point_mass_j2(EARTH_RADIUS_EQ, 0.0, 0.0, EARTH_MU, EARTH_RADIUS_EQ, EARTH_J2)
+
 
 def main(fc):
     pad = fc.target.pad
