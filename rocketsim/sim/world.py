@@ -50,6 +50,7 @@ from rocketsim.sim.vehicle_checks import VehicleChecks, accelerations
 from rocketsim.timescales import Epoch
 from rocketsim.scenario.models import VehicleSpec
 from rocketsim.vehicle.build import VehicleModel, build
+from rocketsim.vehicle.engines import C_ON, E_TAIL
 from rocketsim.vehicle.staging import deploy_payload, jettison_fairing, separate
 
 
@@ -458,17 +459,38 @@ class World:
         return max(1, n)
 
     def _on_rails(self, body: Body) -> bool:
-        """Sleep rails (issue 9) for a rigid body nobody flies or whose program sleeps
-        beyond the next step, axisymmetric (the exact torque-free attitude), above
-        the rails floor, with no attitude command. Staged vehicles and held
-        attitudes stay awake until the flight computer can say the engines, RCS
-        and ullage are off and the autopilot has settled on its command."""
+        """Sleep rails (issue 9) for a body nobody flies or whose program sleeps beyond
+        the next step, axisymmetric (the exact torque-free attitude), above the rails
+        floor, with no attitude command: a rigid body, or a staged vehicle coasting
+        (:meth:`_coasting`). Held attitudes stay awake (the autopilot steers them)."""
         runner = body.runner
         asleep = runner is None or runner.finished or (
             not runner.waiting_on_predicate and runner.wake_time() - self.t > self.h * (1 + 1e-9))
-        return (asleep and body.vehicle is None and body.attitude_command is None
-                and body.p[P_IYY] == body.p[P_IZZ]
+        return (asleep and body.attitude_command is None and self._coasting(body)
                 and radial_height(body.y, body.p) > rails_floor(body.central))
+
+    def _coasting(self, body: Body) -> bool:
+        """True when only gravity acts on ``body`` and it is symmetric about its roll
+        axis: a rigid body with ``I_yy = I_zz``, or a staged vehicle with every engine
+        commanded off and its tail-off over, its RCS off, and out of the air's reach
+        (a vehicle with aerodynamics: above 600 km)."""
+        vehicle = body.vehicle
+        if vehicle is None:
+            return body.p[P_IYY] == body.p[P_IZZ]
+        arrays = vehicle.arrays
+        if np.any(arrays.cmd[:, C_ON] > 0.5) or np.any(body.y[vehicle.clocks] <= arrays.eng[:, E_TAIL]):
+            return False
+        if np.any(arrays.aero.rcs_cmd != 0.0) or (body.checks is not None and body.checks.every_step(body)):
+            return False
+        return bool(self._inertia(body)[1] == vehicle.mass_properties(body.y)[4])
+
+    def _inertia(self, body: Body) -> np.ndarray:
+        """``(I_xx, I_t, I_t)`` kg m^2 of the torque-free attitude on rails (a staged
+        vehicle's from the propellant it carries)."""
+        if body.vehicle is None:
+            return body.p[P_IXX:P_IZZ + 1]
+        _, _, ixx, iyy, _ = body.vehicle.mass_properties(body.y)
+        return np.array((ixx, iyy, iyy))
 
     def _cruising(self, body: Body) -> bool:
         """fc.cruise allows cruise rails now (they run wherever no shell is near:
@@ -561,11 +583,7 @@ class World:
     def _cruise(self, body: Body, n: int) -> int:
         """Cruise ``body`` up to ``n`` steps; returns the steps taken (the rest fly awake)."""
         p = body.p
-        if body.vehicle is None:
-            inertia = p[P_IXX:P_IZZ + 1]
-        else:
-            _, _, ixx, iyy, _ = body.vehicle.mass_properties(body.y)
-            inertia = np.array((ixx, iyy, iyy))
+        inertia = self._inertia(body)
         k = self.k
         while k < self.k + n:
             y, k_end, reason, _ = advance_cruise(body.y, k, self.h, self.k + n, p,
@@ -592,8 +610,10 @@ class World:
         if n > 0 and self._on_rails(body):
             # same step, same orbit to the bit; stops below the floor and wakes for the rest
             body.y, done = advance_rails(body.y, k0, self.h, n, body.p, self._rails_field(body),
-                                         _NO_AIR, body.p[P_IXX:P_IZZ + 1], FREE,
+                                         _NO_AIR, self._inertia(body), FREE,
                                          rails_floor(body.central))
+            if body.vehicle is not None:
+                body.y[body.vehicle.clocks] += done * self.h     # engine clocks run on
             k0, n = k0 + done, n - done
         if n == 0:
             body.t = k0 * self.h
