@@ -109,6 +109,12 @@ class FlightComputer:
         for name in ("euler", "air", "orbit", "gravity", "effective_gravity", "angle_of_attack",
                      "time_to_apoapsis", "vertical_speed", "horizontal_speed", "mach"):
             getattr(view, name)
+        body = self._body
+        if body.vehicle is not None:   # the compiled calls behind fc.engines, fc.thrust, fc.propellant
+            engines, p_a = self._propulsion(), body.view().air[1]
+            engines.states(body.y, self._world.t, p_a)
+            engines.thrusts(body.y, self._world.t, p_a)
+            engines.propellant(body.y)
 
     def _measured(self, name: str, value: Callable[[], float]) -> float:
         """A scalar reading with its sensor's error (air data, radar, gauges), once per step."""
