@@ -123,3 +123,31 @@ def test_a_program_that_never_hands_back_is_stopped_by_its_cpu_budget(scenario, 
     states = list(messages(out, ["/probe/state"]))
     assert states[-1][2]["t"] == pytest.approx(0.2)          # telemetry intact up to the stop
     assert metadata(out)["outcome"]["status"] == "error"
+
+
+def test_compiling_a_kernel_does_not_count_against_the_cpu_budget(scenario, cli, tmp_path):
+    # a cold numba cache compiles kernels inside a program's step: the program
+    # below compiles a fresh kernel (numba, no disk cache: ~0.1-0.5 s of CPU)
+    # under a 0.02 s budget and must not be stopped for it, while the same
+    # budget still stops the busy loop that follows
+    program = """
+    import numba
+
+    def main(fc):
+        @numba.njit(cache=False)
+        def busy(n):
+            total = 0.0
+            for i in range(n):
+                total += (i % 7) * 0.5
+            return total
+        fc.log(f"compiled: {busy(10)}")
+        fc.step()
+        while True:
+            pass
+    """
+    path = scenario(program, duration="10 s", extra="program_cpu_budget: 0.02 s\n")
+    out = tmp_path / "run.mcap"
+    result = cli("fly", path, "-o", out)
+    assert result.exit_code == 2
+    assert "compiled: 12.0" in logged(out)
+    assert re.search(r"program\.py:1[34]: the program ran 0\.02 s of CPU time", result.output), result.output

@@ -16,7 +16,8 @@ The scheduling contract (decided here because it shapes the step loop):
   readable.
 * A program that keeps control for more than its CPU budget in one step
   (default 1 s, ``program_cpu_budget`` in the scenario) is stopped the same
-  way: an endless loop cannot hang the simulator.
+  way: an endless loop cannot hang the simulator. Time numba spends
+  compiling or loading kernels (a cold cache) does not count.
 
 The program runs in a greenlet in the simulator's own thread, so switching
 is cheap (about a microsecond) and strictly alternating: the run is
@@ -32,6 +33,7 @@ from pathlib import Path
 from typing import Callable
 
 import greenlet
+import numba.core.event as ev
 
 from rocketsim.errors import InputError
 
@@ -81,17 +83,49 @@ class CpuBudget:
                 if signal.getsignal(signal.SIGVTALRM) is not _expire:
                     signal.signal(signal.SIGVTALRM, _expire)
                 self._installed = True
+            _COMPILING.active = self
             signal.setitimer(signal.ITIMER_VIRTUAL, self.seconds)
         return self
 
     def __exit__(self, *exc) -> bool:
         if self._armed:
             signal.setitimer(signal.ITIMER_VIRTUAL, 0.0)
+            _COMPILING.active = None
         return False
 
 
 def _expire(signum, frame):
+    if _COMPILING.depth > 0:          # numba is compiling: not the program's time
+        signal.setitimer(signal.ITIMER_VIRTUAL, _COMPILING.active.seconds)
+        return
     raise ProgramOverBudget
+
+
+class _CompileTime(ev.Listener):
+    """Keeps numba's compiling out of a program's CPU budget.
+
+    On a cold cache a program's first call of a reading compiles (or loads)
+    a kernel, which can take longer than a budget. numba holds its compiler
+    lock while it compiles or loads; while it does, the budget's timer is
+    re-armed instead of stopping the program, and when the lock is let go
+    the step gets its whole budget again.
+    """
+
+    def __init__(self):
+        self.depth = 0
+        self.active: CpuBudget | None = None      # the budget armed now, if any
+
+    def on_start(self, event) -> None:
+        self.depth += 1
+
+    def on_end(self, event) -> None:
+        self.depth -= 1
+        if self.depth == 0 and self.active is not None:
+            signal.setitimer(signal.ITIMER_VIRTUAL, self.active.seconds)
+
+
+_COMPILING = _CompileTime()
+ev.register("numba:compiler_lock", _COMPILING)
 
 
 def load_program(path: Path) -> Callable:
