@@ -104,6 +104,15 @@ def test_summary_json_lists_events_final_state_and_orbit(scenario, cli, tmp_path
     assert "checkpoint" in result.output
 
 
+def _fly_over_budget(scenario, cli, tmp_path, program, budget):
+    """Fly ``program`` for 10 s under a CPU ``budget``; it must end with exit status 2."""
+    path = scenario(program, duration="10 s", extra=f"program_cpu_budget: {budget}\n")
+    out = tmp_path / "run.mcap"
+    result = cli("fly", path, "-o", out)
+    assert result.exit_code == 2
+    return out, result
+
+
 def test_a_program_that_never_hands_back_is_stopped_by_its_cpu_budget(scenario, cli, tmp_path):
     program = """
     def main(fc):
@@ -114,10 +123,7 @@ def test_a_program_that_never_hands_back_is_stopped_by_its_cpu_budget(scenario, 
             except Exception:
                 pass
     """
-    path = scenario(program, duration="10 s", extra="program_cpu_budget: 0.3 s\n")
-    out = tmp_path / "run.mcap"
-    result = cli("fly", path, "-o", out)
-    assert result.exit_code == 2
+    out, result = _fly_over_budget(scenario, cli, tmp_path, program, "0.3 s")
     # stopped somewhere inside the endless loop (lines 4 to 8 of the program)
     assert re.search(r"program\.py:[4-8]: the program ran 0\.3 s of CPU time", result.output)
     states = list(messages(out, ["/probe/state"]))
@@ -145,9 +151,6 @@ def test_compiling_a_kernel_does_not_count_against_the_cpu_budget(scenario, cli,
         while True:
             pass
     """
-    path = scenario(program, duration="10 s", extra="program_cpu_budget: 0.02 s\n")
-    out = tmp_path / "run.mcap"
-    result = cli("fly", path, "-o", out)
-    assert result.exit_code == 2
+    out, result = _fly_over_budget(scenario, cli, tmp_path, program, "0.02 s")
     assert "compiled: 12.0" in logged(out)
     assert re.search(r"program\.py:1[34]: the program ran 0\.02 s of CPU time", result.output), result.output
