@@ -30,6 +30,8 @@ latitude, :func:`profile_table` builds the :class:`AtmosphereTable`:
 
 from __future__ import annotations
 
+from functools import lru_cache
+
 import numpy as np
 
 from rocketsim.atmosphere.hydrostatic import hermite, integrate_log_pressure
@@ -77,8 +79,12 @@ def smoothstep(x):
     return x * x * (3.0 - 2.0 * x)
 
 
+@lru_cache(maxsize=4)
 def standard_table(h_low: float = LOWEST) -> AtmosphereTable:
-    """The 1976 standard atmosphere, no wind, every 50 m from ``h_low`` to 600 km."""
+    """The 1976 standard atmosphere, no wind, every 50 m from ``h_low`` to 600 km.
+
+    Built once per ``h_low`` (about 8 ms) and shared: the table is immutable
+    (a frozen dataclass of read-only arrays)."""
     z = grid(min(h_low, LOWEST))
     air = us_standard_1976(z)
     return make_table(z[0], STEP, air.density, air.pressure, air.temperature,

@@ -66,9 +66,13 @@ def _signal_behind(error: BaseException) -> BaseException:
 
     A signal handler that raises while a compiled kernel is being called
     surfaces as ``SystemError: ... returned a result with an exception set``
-    whose cause is the signal's exception: the caller must see the signal.
+    whose cause is the signal's exception, or another such SystemError (a
+    kernel that calls back into Python, e.g. numba's unpickling of a constant,
+    when the signal lands there): the caller must see the signal.
     """
-    cause = error.__cause__
-    if isinstance(error, SystemError) and cause is not None and not isinstance(cause, Exception):
-        return cause
+    cause = error
+    while isinstance(cause, SystemError) and cause.__cause__ is not None:
+        cause = cause.__cause__
+        if not isinstance(cause, Exception):
+            return cause
     return error
