@@ -47,6 +47,7 @@ from rocketsim.ephemeris.solar_system import BODIES
 from rocketsim.sim.start import standing_on_ground, start_state
 from rocketsim.sim.flight_events import FlightEvents
 from rocketsim.sim.vehicle_checks import VehicleChecks, accelerations
+from rocketsim.sim.vehicle_telemetry import vehicle_quantities
 from rocketsim.timescales import Epoch
 from rocketsim.scenario.models import VehicleSpec
 from rocketsim.vehicle.build import VehicleModel, build
@@ -342,6 +343,7 @@ class World:
             "orbit": self.orbit_summary(body),
             "central_body": body.central,
             **self.flight_quantities(body),
+            **vehicle_quantities(body),     # engines, propellant, heating
         }
 
     def flight_quantities(self, body: Body) -> dict:

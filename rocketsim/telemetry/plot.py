@@ -1,11 +1,12 @@
 """Draw a run from its telemetry: one PNG with a panel per quantity.
 
-Altitude, speed, dynamic pressure, acceleration, throttle, attitude and the
-ground track on a latitude/longitude map with the coastlines
+Altitude, speed, dynamic pressure, acceleration, throttle (with the
+propellant on board on a second axis, dashed), attitude and the ground track
+on a latitude/longitude map with the coastlines
 (:mod:`rocketsim.telemetry.land`). A quantity the telemetry does
-not carry (throttle before powered flight exists, q in a vacuum run) gets an
-empty panel that says so. Reads the file only; matplotlib is imported here,
-lazily, with the non-interactive Agg backend.
+not carry (throttle of a rigid body without engines, q in a vacuum run) gets an
+empty panel that says so; throttle is a gap while no engine runs. Reads the
+file only; matplotlib is imported here, lazily, with the non-interactive Agg backend.
 """
 
 from __future__ import annotations
@@ -40,10 +41,11 @@ def plot_run(path: str | Path, out: str | Path) -> Path:
         "airspeed": (axes[0, 1], "airspeed", 1.0, "speed, m/s"),
         "q": (axes[0, 2], "dynamic_pressure", 1e-3, "dynamic pressure q, kPa"),
         "acceleration": (axes[1, 0], "sensed_acceleration", 1.0, "sensed acceleration, m/s^2"),
-        "throttle": (axes[1, 1], "throttle", 1.0, "throttle"),
+        "throttle": (axes[1, 1], "throttle", 1.0, "throttle"),     # flown, mean of the engines running
         "mach": (axes[1, 2], "mach", 1.0, "Mach"),
     }
     drawn = set()
+    propellant_axis = None
     for body, columns in tables.items():
         t = _column(columns, "t")
         if t is None:
@@ -54,6 +56,14 @@ def plot_run(path: str | Path, out: str | Path) -> Path:
                 ax.plot(t, y * scale, label={"speed": f"{body} inertial", "airspeed": f"{body} air-relative"}.get(name, body))
                 ax.set_ylabel(label)
                 drawn.add(id(ax))
+        propellant = _column(columns, "propellant")
+        if propellant is not None:
+            if propellant_axis is None:
+                propellant_axis = axes[1, 1].twinx()
+                propellant_axis.set_ylabel("propellant on board, t (dashed)")
+                axes[1, 1].set_ylabel("throttle")
+            propellant_axis.plot(t, propellant * 1e-3, ls="--", lw=0.9, label=f"{body} propellant")
+            drawn.add(id(axes[1, 1]))
         quaternion = [_column(columns, f"attitude_{c}") for c in "wxyz"]
         if all(q is not None for q in quaternion):
             for c, q in zip("wxyz", quaternion):
@@ -91,6 +101,8 @@ def plot_run(path: str | Path, out: str | Path) -> Path:
     track.set_xlabel("longitude, deg")
     track.set_ylabel("latitude, deg")
     track.set_title("ground track")
+    if propellant_axis is not None:
+        propellant_axis.legend(fontsize=7, loc="lower right")
     axes[2, 2].axis("off")
     axes[2, 2].text(0, 1, _caption(run), va="top", family="monospace", fontsize=8)
     for ax in axes.flat[:8]:

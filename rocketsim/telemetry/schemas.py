@@ -44,6 +44,27 @@ BODY_STATE = {
         "airspeed": {"type": "number", "description": "speed relative to the air, m/s"},
         "mach": {"type": "number", "description": "airspeed over the local speed of sound"},
         "dynamic_pressure": {"type": "number", "description": "q = rho v_air^2 / 2, Pa"},
+        # a staged vehicle (rocketsim.sim.vehicle_telemetry)
+        "throttle": {"type": ["number", "null"], "description": "throttle flown (after slew and the "
+                     "flow-separation floor, 0-1 of vacuum thrust), mean of the engines running; null "
+                     "when none runs"},
+        "group_throttle": {"type": "object", "additionalProperties": {"type": ["number", "null"]},
+                           "description": "throttle flown by engine group <stage>_<group> (null: none "
+                           "of the group running)"},
+        "thrust": {"type": "number", "description": "total thrust at the ambient pressure, N"},
+        "group_thrust": {"type": "object", "additionalProperties": {"type": "number"},
+                         "description": "thrust by engine group <stage>_<group>, N"},
+        "mass_flow": {"type": "number", "description": "propellant drawn by all engines, kg/s"},
+        "engines_running": {"type": "integer", "minimum": 0,
+                            "description": "engines spooling up, at thrust or tailing off"},
+        "propellant": {"type": "number", "description": "propellant on board (unusable reserve "
+                       "included), kg"},
+        "propellant_tanks": {"type": "object", "additionalProperties": {"type": "number"},
+                             "description": "propellant by tank <stage>_<tank>, kg"},
+        # a body with a heat shield
+        "heat_flux": {"type": "number", "description": "cold-wall stagnation-point heat flux "
+                      "(Sutton-Graves on the shield's nose radius), W/m^2"},
+        "shield_temperature": {"type": "number", "description": "lumped heat-shield temperature, K"},
     },
     "required": ["t", "position", "velocity", "attitude", "body_rates", "latitude_deg",
                  "longitude_deg", "altitude", "speed", "orbit"],

@@ -1,0 +1,99 @@
+"""The engines, propellant and heating of one body, as fields of its telemetry state message.
+
+Read-only: nothing here changes the state, the engines' commands or the checks,
+and no sensor is read (the figures are the truth, like the rest of the state
+message). Called once per telemetry sample, with the compiled calls the
+integrator uses (:func:`rocketsim.vehicle.engines.thrusts` and
+:func:`~rocketsim.vehicle.engines.engine_state`), no derivative call.
+
+Fields of a staged vehicle (SI units):
+
+* ``throttle``: the throttle actually flown (after the slew limit and the
+  flow-separation floor, 0-1 of vacuum thrust), averaged over the engines
+  running; ``null`` when none runs. ``group_throttle`` is the same by engine
+  group (``<stage>_<group>``, ``null`` for a group with no engine running);
+* ``thrust`` (N) in total and ``group_thrust`` (N) by engine group, at the
+  ambient pressure of the state message's air;
+* ``mass_flow``: propellant drawn by all engines, kg/s;
+* ``engines_running``: engines whose spool fraction is above zero on a stage
+  with usable propellant left (spooling up, at thrust, or tailing off);
+* ``propellant``: all propellant on board, kg (the unusable reserve
+  included), and ``propellant_tanks`` by tank (``<stage>_<tank>``, kg).
+
+Fields of a body with a heat shield:
+
+* ``heat_flux``: cold-wall stagnation-point convective heat flux, W/m^2, by
+  Sutton-Graves (:func:`rocketsim.vehicle.heating.sutton_graves`) on the
+  shield's nose radius, from the state message's air density and airspeed;
+* ``shield_temperature``: the lumped shield's temperature, K (as the checks
+  integrate it after every step).
+
+Names with characters other than letters, digits, ``-`` and ``_`` have them
+replaced by ``_``, so Foxglove's message paths (``/<body>/state.group_thrust.booster_Merlin_1D_ring``)
+and CSV columns can name them.
+"""
+
+from __future__ import annotations
+
+import math
+from functools import lru_cache
+
+from rocketsim.constants import MARS_MU, SUTTON_GRAVES_EARTH, SUTTON_GRAVES_MARS
+from rocketsim.vehicle import engines as E
+from rocketsim.vehicle.heating import sutton_graves
+
+
+@lru_cache(maxsize=64)
+def _keys(names: tuple[str, ...]) -> tuple[str, ...]:
+    """Field names of tanks or engine groups (``stage/name`` -> ``stage_name``)."""
+    return tuple("".join(c if c.isalnum() or c in "-_" else "_" for c in n) for n in names)
+
+
+def vehicle_quantities(body) -> dict:
+    """The engine, propellant and heating fields of ``body``'s state message at its time
+    (see the module); empty for a rigid body without a heat shield."""
+    out = {}
+    model = body.vehicle
+    if model is not None:
+        out.update(_propulsion(body, model))
+    checks = body.checks
+    if checks is not None and checks.shield is not None:
+        rho, _, _, _, _, air_velocity = body.view().air
+        airspeed = math.sqrt(air_velocity @ air_velocity)
+        k = SUTTON_GRAVES_MARS if body.mu == MARS_MU else SUTTON_GRAVES_EARTH
+        out["heat_flux"] = sutton_graves(rho, airspeed, checks.shield.nose_radius, k)
+        out["shield_temperature"] = checks.temperature
+    return out
+
+
+def _propulsion(body, model) -> dict:
+    a = model.arrays
+    t, y = body.t, body.y
+    p_a = body.view().air[1]
+    thrust = body.kernels.call(E.thrusts, a, t, y, a.first_clock, a.eng, a.cmd, a.stage, p_a)
+    groups = _keys(tuple(model.engine_groups))
+    group_thrust = dict.fromkeys(groups, 0.0)
+    group_tau: dict[str, list] = {g: [] for g in groups}
+    taus, flow = [], 0.0
+    for e in range(model.n_engines):
+        if a.stage[int(a.eng[e, E.E_STAGE]), E.S_DRY] > 0.5:
+            continue
+        f, tau, _, _ = body.kernels.call(E.engine_state, a, t, e, float(y[a.first_clock + e]),
+                                         a.eng, a.cmd, p_a)
+        if f <= 0.0:
+            continue
+        taus.append(tau)
+        group_tau[groups[e]].append(tau)
+        group_thrust[groups[e]] += float(thrust[e])
+        flow += f * tau * a.eng[e, E.E_MDOT]
+    tanks = y[model.tanks]
+    return {
+        "throttle": sum(taus) / len(taus) if taus else None,
+        "group_throttle": {g: sum(v) / len(v) if v else None for g, v in group_tau.items()},
+        "thrust": float(thrust.sum()),
+        "group_thrust": group_thrust,
+        "mass_flow": float(flow),
+        "engines_running": len(taus),
+        "propellant": float(tanks.sum()),
+        "propellant_tanks": dict(zip(_keys(tuple(model.tank_names)), tanks.tolist())),
+    }
