@@ -41,6 +41,7 @@ class FlightComputer:
         self._engines: Propulsion | None = None
         self._fins = False          # grid fins steered by the autopilot (fc.deploy_grid_fins)
         self._legs = False          # fc.deploy_legs called
+        self._rcs = False           # RCS thrusters steered by the autopilot (fc.rcs)
 
     # --- timing -------------------------------------------------------------
     def step(self) -> None:
@@ -288,12 +289,17 @@ class FlightComputer:
         return self._measured("angle_of_attack", lambda: self._view().angle_of_attack)
 
     # --- attitude (the autopilot steers with the engines' gimbals) --------------
-    def point(self, pitch: float, heading: float) -> None:
-        """Point the nose ``pitch`` rad above the local horizon, ``heading`` rad from north."""
-        self._body.attitude_command = AttitudeCommand(pitch=float(pitch), heading=float(heading))
+    def point(self, pitch: float, heading: float, roll: float | None = None) -> None:
+        """Point the nose ``pitch`` rad above the local horizon, ``heading`` rad from north,
+        and, if ``roll`` (rad) is given, turned that far about the nose from belly to the
+        ground (the angle :attr:`roll` reads); ``roll=None`` leaves roll free (damped).
+        Example: ``fc.point(math.radians(10), math.radians(90), roll=math.radians(180))``."""
+        self._body.attitude_command = AttitudeCommand(pitch=float(pitch), heading=float(heading),
+                                                      roll=_roll(roll))
 
-    def point_at(self, vector, frame: str = "eci") -> None:
-        """Point the nose along ``vector``: in ``"eci"`` axes, or ``"local"`` (east, north, up)."""
+    def point_at(self, vector, frame: str = "eci", roll: float | None = None) -> None:
+        """Point the nose along ``vector``: in ``"eci"`` axes, or ``"local"`` (east, north, up);
+        ``roll`` (rad) as in :meth:`point`."""
         v = np.asarray(vector, dtype=float)
         if frame == "local":
             v = v @ self._view().enu
@@ -302,18 +308,37 @@ class FlightComputer:
         norm = float(np.linalg.norm(v))
         if not norm > 0:
             raise ValueError("fc.point_at() needs a non-zero vector")
-        self._body.attitude_command = AttitudeCommand(direction=v / norm)
+        self._body.attitude_command = AttitudeCommand(direction=v / norm, roll=_roll(roll))
 
-    def hold(self, mode: str) -> None:
+    def hold(self, mode: str, roll: float | None = None) -> None:
         """Follow a direction of the flight: one of prograde, retrograde, surface_prograde,
-        surface_retrograde, normal, antinormal, radial, antiradial."""
+        surface_retrograde, normal, antinormal, radial, antiradial; ``roll`` (rad) as in
+        :meth:`point`. Example: ``fc.hold("retrograde", roll=0.0)``."""
         if mode not in MODES:
             raise ValueError(f"unknown attitude mode {mode!r}; use one of {', '.join(MODES)}")
-        self._body.attitude_command = AttitudeCommand(mode=mode)
+        self._body.attitude_command = AttitudeCommand(mode=mode, roll=_roll(roll))
 
     def release(self) -> None:
-        """Stop steering (the gimbals stay where they are)."""
+        """Stop steering (the gimbals stay where they are, the RCS thrusters stop)."""
         self._body.attitude_command = None
+        if self._body.vehicle is not None:
+            self._body.vehicle.arrays.aero.rcs_cmd[:] = 0.0
+
+    def rcs(self, on: bool) -> None:
+        """Hand the reaction-control thrusters to the autopilot (``on`` true) or take them
+        away (false: every thruster stops). While on, the autopilot turns and holds the
+        commanded attitude with them on all three axes, alongside the gimbals and grid
+        fins, in a coast too (see :mod:`rocketsim.flight.autopilot`); they draw from
+        their tanks. Records an ``rcs on`` / ``rcs off`` event. Example: ``fc.rcs(True)``."""
+        vehicle = self._body.vehicle
+        if vehicle is None or not len(vehicle.arrays.aero.rcs):
+            raise ValueError(f"{self._body.name} has no RCS thrusters")
+        on = bool(on)
+        if not on:
+            vehicle.arrays.aero.rcs_cmd[:] = 0.0
+        if on != self._rcs:
+            self._rcs = on
+            self.event("rcs on" if on else "rcs off")
 
     def autopilot(self) -> None:
         """Run the autopilot for this step (the world calls it once per step)."""
@@ -322,7 +347,7 @@ class FlightComputer:
             return
         body = self._body
         steer(command, self._view(), body.vehicle, self._propulsion(), body.y, self._world.t,
-              body.view().air[1], fins=self._fins)
+              body.view().air[1], fins=self._fins, rcs=self._rcs)
 
     # --- landing ------------------------------------------------------------------
     def deploy_grid_fins(self) -> None:
@@ -549,3 +574,8 @@ class FlightComputer:
     def time_to_apoapsis(self) -> float:
         """Time to the next apoapsis, s (nan if unbound)."""
         return self._view().time_to_apoapsis
+
+
+def _roll(roll) -> float | None:
+    """A commanded roll (rad) as a float, or None (roll free)."""
+    return None if roll is None else float(roll)
