@@ -196,3 +196,22 @@ def test_engines_off_and_rcs_off_leave_the_angular_momentum_alone(write, tmp_pat
     print(f"\nrelative change of H over {states[-1]['t'] - states[0]['t']:.1f} s: {change:.2e}")
     assert change < 1e-9
     assert np.linalg.norm(np.array(states[-1]["body_rates"]) - np.array(states[0]["body_rates"])) > 1e-3
+
+
+def test_the_lander_quads_give_the_full_roll_torque_of_four_thrusters():
+    """Reference: hand statics of vehicles/lander.yaml's quads (445 N thrusters,
+    2.0 m off the axis, one tangential pair per quad): the largest roll torque
+    either way is four thrusters at full thrust, 4 x 445 N x 2.0 m = 3 560 N m, with
+    no pitch or yaw left over (the four quads' tangential pushes cancel off-axis).
+    The file gives the quads' y and z to 5 digits (1.41421 m), so 1e-5 relative."""
+    from rocketsim.vehicle.build import build
+    from tests.aero_vehicles import shipped
+    model = build(shipped("lander.yaml"))
+    y = model.state(np.array([7e6, 0.0, 0.0]), np.zeros(3))
+    torques = AP.rcs_torques(model.arrays, y, model.mass_properties(y)[1])
+    assert torques.shape == (3, 16)
+    for sense in (1.0, -1.0):
+        got = torques @ AP.rcs_command(torques, np.array([sense * 1e6, 0.0, 0.0]))
+        print(f"\nlargest roll torque {got[0]:.1f} N m, pitch/yaw left {got[1]:.2e} {got[2]:.2e}")
+        assert abs(got[0] - sense * 4 * 445.0 * 2.0) < 1e-5 * 3560.0
+        assert np.all(np.abs(got[1:]) < 1e-6 * 3560.0)
