@@ -24,7 +24,8 @@ Fields of a body with a heat shield:
 
 * ``heat_flux``: cold-wall stagnation-point convective heat flux, W/m^2, by
   Sutton-Graves (:func:`rocketsim.vehicle.heating.sutton_graves`) on the
-  shield's nose radius, from the state message's air density and airspeed;
+  shield's nose radius, in the air the shield's checks read (the vehicle's
+  air table at the radial height; the air-relative speed of its aerodynamics);
 * ``shield_temperature``: the lumped shield's temperature, K (as the checks
   integrate it after every step).
 
@@ -38,7 +39,9 @@ from __future__ import annotations
 import math
 from functools import lru_cache
 
+from rocketsim.atmosphere.table import air_at
 from rocketsim.constants import MARS_MU, SUTTON_GRAVES_EARTH, SUTTON_GRAVES_MARS
+from rocketsim.dynamics.derivative import body_air_velocity, radial_height
 from rocketsim.vehicle import engines as E
 from rocketsim.vehicle.heating import sutton_graves
 
@@ -57,13 +60,23 @@ def vehicle_quantities(body) -> dict:
     if model is not None:
         out.update(_propulsion(body, model))
     checks = body.checks
-    if checks is not None and checks.shield is not None:
-        rho, _, _, _, _, air_velocity = body.view().air
-        airspeed = math.sqrt(air_velocity @ air_velocity)
-        k = SUTTON_GRAVES_MARS if body.mu == MARS_MU else SUTTON_GRAVES_EARTH
-        out["heat_flux"] = sutton_graves(rho, airspeed, checks.shield.nose_radius, k)
+    if model is not None and checks is not None and checks.shield is not None:
+        out["heat_flux"] = _heat_flux(body, model.arrays, checks.shield.nose_radius)
         out["shield_temperature"] = checks.temperature
     return out
+
+
+def _heat_flux(body, veh, nose_radius: float) -> float:
+    """Sutton-Graves flux (W/m^2) in the air the shield's checks read: the vehicle's air
+    table at the radial height, the air-relative speed of its aerodynamics (about Mars
+    too, where the readings' air is a vacuum)."""
+    y = body.y
+    rho = air_at(veh.air_h0, veh.air_dh, veh.air_density, veh.air_pressure, veh.air_temperature,
+                 veh.air_speed_of_sound, veh.air_wind_east, veh.air_wind_north,
+                 radial_height(y, body.p))[0]
+    u, v, w = body_air_velocity(y, veh.aero.wind)
+    k = SUTTON_GRAVES_MARS if body.mu == MARS_MU else SUTTON_GRAVES_EARTH
+    return sutton_graves(rho, math.sqrt(u * u + v * v + w * w), nose_radius, k)
 
 
 def _propulsion(body, model) -> dict:

@@ -1,0 +1,201 @@
+"""Telemetry of engines, propellant and heating (issue 10 item 1): the state message's
+``throttle``, ``thrust``, ``mass_flow``, ``engines_running``, ``propellant``,
+``propellant_tanks``, ``heat_flux`` and ``shield_temperature`` fields
+(:mod:`rocketsim.sim.vehicle_telemetry`), checked against independent computations
+from the same run, the schema, the CSV export, and a flight without telemetry.
+
+References: the Merlin 1D's published figures in vehicles/falcon9-block5.yaml
+(914.1 kN and 311 s in vacuum, 0.680 m^2 exit area): full-throttle mass flow
+``T_vac / (g0 Isp_vac)`` and thrust ``T_vac - p_a A_e``, with ``p_a`` from the
+1976 standard atmosphere (rocketsim.atmosphere.ussa1976, the tabulated model,
+not the day's interpolated table); the heat flux by Sutton & Graves (NASA TR
+R-376, 1971), ``q = 1.7415e-4 sqrt(rho / r_n) v^3`` (W/m^2) with ``rho`` from
+the same standard atmosphere; the shield's temperature by its energy balance
+``m c dT/dt = A (q (1 - h_w/h_0) - eps sigma T^4)`` integrated by the trapezoid
+rule over the samples (the world integrates it by RK4 every step).
+"""
+
+import csv
+import json
+import math
+from pathlib import Path
+
+import jsonschema
+import numpy as np
+import pytest
+from mcap.reader import make_reader
+
+from rocketsim.atmosphere.ussa1976 import us_standard_1976
+from rocketsim.constants import AIR_CP, EARTH_OMEGA, G0, STEFAN_BOLTZMANN
+from rocketsim.scenario.load import load
+from rocketsim.sim.flight import fly
+from rocketsim.sim.world import World
+from rocketsim.telemetry.replay import export, table
+
+ROOT = Path(__file__).resolve().parents[1]
+
+# the Falcon 9 booster with the hop's 25 t of propellant; its centre engine at full
+# throttle for 4 s, then shut down (8 s flown: liftoff, a short climb)
+BURN = f"""\
+name: burn
+vehicle: {ROOT / 'vehicles' / 'falcon9-block5.yaml'}
+stages: [booster]
+propellant: {{booster/RP-1: 7.44 t, booster/LOX: 17.56 t}}
+site: {ROOT / 'scenarios' / 'sites' / 'cape-canaveral-slc40.yaml'}
+program: program.py
+mission:
+  epoch: 2026-11-26T15:00:00Z
+  start: {{site: {{}}}}
+  duration: 8 s
+"""
+BURN_PROGRAM = """
+def main(fc):
+    fc.throttle(1.0, "Merlin 1D centre")
+    fc.ignite("Merlin 1D centre")
+    fc.sleep(4.0)
+    fc.shutdown("Merlin 1D centre")
+    fc.sleep(10.0)
+"""
+MERLIN_THRUST, MERLIN_ISP, MERLIN_EXIT = 914.1e3, 311.0, 0.680      # N, s, m^2 (the vehicle file)
+
+# the Mars entry capsule (4.5 m aeroshell, 1.125 m nose radius, lumped 350 kg shield)
+# entering Earth's air: 95 km over the equator, 7.6 km/s, descending at 300 m/s;
+# 30 s at the 0.1 s headless step (the heating's time scale is tens of seconds)
+ENTRY = f"""\
+name: entry
+vehicle: {ROOT / 'vehicles' / 'mars-entry-capsule.yaml'}
+mission:
+  epoch: 2026-11-26T15:00:00Z
+  start:
+    state:
+      position: [6473.137 km, 0 km, 0 km]
+      velocity: [-0.3 km/s, 7.6 km/s, 0 km/s]
+  duration: 30 s
+step: 0.1 s
+"""
+
+
+def _fly(folder: Path, scenario: str, program: str | None = None):
+    """Fly the scenario with telemetry to ``run.mcap`` (as ``rocketsim fly`` does) and
+    again without any; returns the file and the world flown without telemetry."""
+    folder.mkdir(parents=True, exist_ok=True)
+    (folder / "scenario.yaml").write_text(scenario)
+    if program is not None:
+        (folder / "program.py").write_text(program)
+    loaded = load(folder / "scenario.yaml")
+    out = folder / "run.mcap"
+    fly(loaded, out)
+    quiet = World.from_scenario(loaded)
+    quiet.run(None)
+    return out, quiet
+
+
+def _same_end(last: dict, quiet) -> None:
+    """Reading the telemetry changes nothing: the flight without it ends at the
+    bit-identical state (JSON floats round-trip exactly)."""
+    body = quiet.bodies[0]
+    assert last["t"] == body.t
+    assert last["position"] == body.position.tolist() and last["velocity"] == body.velocity.tolist()
+    assert last["attitude"] == body.attitude.tolist()
+    assert list(last["propellant_tanks"].values()) == body.y[body.vehicle.tanks].tolist()
+
+
+def _states(path: Path, body: str) -> tuple[list[dict], dict]:
+    with open(path, "rb") as stream:
+        reader = make_reader(stream)
+        schemas = {s.name: json.loads(s.data) for s in reader.get_summary().schemas.values()}
+        messages = [json.loads(m.data) for _, _, m in reader.iter_messages(topics=[f"/{body}/state"])]
+    return messages, schemas["rocketsim.BodyState"]
+
+
+@pytest.fixture(scope="module")
+def burn(tmp_path_factory):
+    return _fly(tmp_path_factory.mktemp("burn"), BURN, BURN_PROGRAM)
+
+
+@pytest.fixture(scope="module")
+def entry(tmp_path_factory):
+    return _fly(tmp_path_factory.mktemp("entry"), ENTRY)
+
+
+def test_propellant_and_mass_flow_of_a_full_throttle_burn(burn):
+    path, quiet = burn
+    states, schema = _states(path, quiet.bodies[0].name)
+    validator = jsonschema.validators.validator_for(schema)(schema)
+    for message in states:
+        validator.validate(message)
+    first = states[0]
+    assert first["propellant"] == 25_000.0 and first["engines_running"] == 0 and first["throttle"] is None
+    assert first["propellant_tanks"] == {"booster_RP-1": 7440.0, "booster_LOX": 17560.0}
+    mdot = MERLIN_THRUST / (G0 * MERLIN_ISP)                        # 299.7 kg/s
+    full = [m for m in states if m["throttle"] == 1.0 and m["mass_flow"] == pytest.approx(mdot, rel=1e-12)]
+    assert len(full) >= 20, "the burn holds full throttle for 2 s or more (of 4 s, after ignition and spool-up)"
+    for m in full:
+        assert m["engines_running"] == 1
+        assert m["group_throttle"] == {"booster_Merlin_1D_centre": 1.0, "booster_Merlin_1D_ring": None}
+        p_a = float(us_standard_1976(m["altitude"]).pressure)
+        assert m["thrust"] == pytest.approx(MERLIN_THRUST - p_a * MERLIN_EXIT, rel=2e-3)
+        assert m["group_thrust"]["booster_Merlin_1D_centre"] == m["thrust"]
+    # at full throttle the tanks drain linearly: the drop between two samples is mdot dt
+    a, b = full[0], full[-1]
+    assert a["propellant"] - b["propellant"] == pytest.approx(mdot * (b["t"] - a["t"]), rel=1e-9)
+    # the tanks share the flow by the 2.36 mixture ratio (LOX / RP-1 by mass)
+    lox = a["propellant_tanks"]["booster_LOX"] - b["propellant_tanks"]["booster_LOX"]
+    rp1 = a["propellant_tanks"]["booster_RP-1"] - b["propellant_tanks"]["booster_RP-1"]
+    assert lox / rp1 == pytest.approx(17.56 / 7.44, rel=1e-9)
+    for m in states:                                            # all the mass lost is propellant
+        assert first["mass"] - m["mass"] == pytest.approx(first["propellant"] - m["propellant"], abs=1e-6)
+        assert m["propellant"] == pytest.approx(sum(m["propellant_tanks"].values()), rel=1e-15)
+    last = states[-1]
+    assert last["engines_running"] == 0 and last["thrust"] == 0.0 and last["mass_flow"] == 0.0
+    _same_end(last, quiet)
+
+
+def test_heat_flux_and_shield_temperature_of_an_entry(entry):
+    path, quiet = entry
+    body = quiet.bodies[0]
+    shield = body.checks.shield
+    states, schema = _states(path, body.name)
+    validator = jsonschema.validators.validator_for(schema)(schema)
+    for message in states:
+        validator.validate(message)
+    assert "throttle" in states[0] and states[0]["engines_running"] == 0
+    air = us_standard_1976(np.array([m["altitude"] for m in states]))
+    rates = []
+    for m, rho, air_temperature in zip(states, air.density, air.temperature):
+        r, v = np.array(m["position"]), np.array(m["velocity"])
+        speed = float(np.linalg.norm(v - np.cross((0.0, 0.0, EARTH_OMEGA), r)))      # still air
+        q = 1.7415e-4 * math.sqrt(rho / shield.nose_radius) * speed ** 3
+        # the world reads the day's table (interpolated rows) at the radial height: 1e-4
+        assert m["heat_flux"] == pytest.approx(q, rel=1e-4)
+        total = AIR_CP * air_temperature + 0.5 * speed ** 2
+        hot = q * max(0.0, 1.0 - AIR_CP * m["shield_temperature"] / total)
+        rates.append(shield.area * (hot - shield.emissivity * STEFAN_BOLTZMANN * m["shield_temperature"] ** 4)
+                     / (shield.mass * shield.specific_heat))
+    t = np.array([m["t"] for m in states])
+    temperature = np.array([m["shield_temperature"] for m in states])
+    assert temperature[0] == shield.initial_temperature
+    rise = float(np.sum(0.5 * (np.array(rates[1:]) + np.array(rates[:-1])) * np.diff(t)))
+    assert temperature[-1] - temperature[0] > 100.0, "the shield heats by more than 100 K"
+    assert temperature[-1] - temperature[0] == pytest.approx(rise, rel=1e-2)
+    assert max(m["heat_flux"] for m in states) > 1e5
+    _same_end(states[-1], quiet)
+    assert states[-1]["shield_temperature"] == body.checks.temperature
+
+
+def test_the_new_columns_are_exported_row_for_row(burn, tmp_path):
+    path, quiet = burn
+    body = quiet.bodies[0].name
+    states, _ = _states(path, body)
+    columns = table(path, body)
+    for key in ("throttle", "thrust", "mass_flow", "engines_running", "propellant",
+                "propellant_tanks_booster_LOX", "group_thrust_booster_Merlin_1D_centre"):
+        assert len(columns[key]) == len(states)
+    assert columns["propellant"] == [m["propellant"] for m in states]
+    assert columns["propellant_tanks_booster_LOX"] == [m["propellant_tanks"]["booster_LOX"] for m in states]
+    written = {p.name: p for p in export(path, tmp_path, "csv")}
+    with open(written[f"{body}.csv"], newline="") as stream:
+        rows = list(csv.DictReader(stream))
+    assert len(rows) == len(states)
+    assert [float(r["propellant"]) for r in rows] == [m["propellant"] for m in states]
+    assert [r["throttle"] for r in rows][:1] == [""]        # no engine running at t = 0
