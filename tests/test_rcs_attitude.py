@@ -57,8 +57,10 @@ aero:
     + "".join(_thruster(2.0, y, 0, (0, 0, s)) for y, s in ((1, 1), (-1, -1), (1, -1), (-1, 1)))
 
 
-def _fly(write, tmp_path, program, seconds, rates=(0.0, 0.0, 0.0)):
-    write("vehicle.yaml", VEHICLE)
+def _fly(write, tmp_path, program, seconds, rates=(0.0, 0.0, 0.0), vacuum=False):
+    """Fly ``program`` on the craft; ``vacuum``: as a spacecraft without aerodynamics
+    (``aero: {aerodynamics: false}``, the RCS alone in the derivative)."""
+    write("vehicle.yaml", VEHICLE.replace("aero:\n", "aero:\n  aerodynamics: false\n") if vacuum else VEHICLE)
     write("program.py", program)
     path = write("scenario.yaml", f"""\
         name: rcs
@@ -154,13 +156,14 @@ def main(fc):
 
 
 def test_a_commanded_roll_is_held(write, tmp_path):
-    """Reference: the command itself. fc.point(5 deg, 90 deg, roll=30 deg) from the
+    """Reference: the command itself. The craft flown as a vacuum spacecraft
+    (no aerodynamics, the RCS alone). fc.point(5 deg, 90 deg, roll=30 deg) from the
     start attitude; after 45 s (a turn of up to 180 deg at the 8.6 deg/s rate limit,
     then settling) fc.roll, fc.pitch and fc.heading read the command within 0.15 deg.
     The local horizon turns at the orbit's rate n = 1.05e-3 rad/s, which the law
     (alpha = omega_n^2 e - 2 zeta omega_n w) follows with a steady lag of
     e = 2 zeta n / omega_n = 0.11 deg; the tolerance is that lag plus a margin."""
-    events, _ = _fly(write, tmp_path, ROLL, 46.0)
+    events, _ = _fly(write, tmp_path, ROLL, 46.0, vacuum=True)
     held = events["held"]
     print(f"\nheld: pitch {math.degrees(held['pitch']):.4f} heading {math.degrees(held['heading']):.4f} "
           f"roll {math.degrees(held['roll']):.4f} deg")

@@ -29,6 +29,8 @@ fins (:mod:`~rocketsim.vehicle.grid_fins`), its RCS thrusters
 (:mod:`~rocketsim.vehicle.rcs`, draining their tanks) and, within reach of
 the ground, its contact forces (:mod:`~rocketsim.vehicle.contact`). The air
 moves with the ground plus the wind held for the step in ``veh.aero.wind``.
+A vacuum spacecraft (``aero: {aerodynamics: false}``, ``ref[A_ON] = 0``) gets
+its RCS thrusters only.
 """
 
 import math
@@ -177,6 +179,9 @@ def held_derivative(t, y, p, dy, veh, t_held, y_held):
         if aero.ref[A_ON] > 0.5:
             fx, fy, fz, mx, my, mz = _aero_and_contact(t, y, p, dy, rho, sound, x_cm, aero,
                                                        fx, fy, fz, mx, my, mz)
+        elif aero.rcs.shape[0] > 0:     # a vacuum spacecraft (aero: {aerodynamics: false}): RCS only
+            a = rcs_forces(y, dy, x_cm, aero.rcs, aero.rcs_cmd)
+            fx, fy, fz, mx, my, mz = fx + a[0], fy + a[1], fz + a[2], mx + a[3], my + a[4], mz + a[5]
         # body force -> inertial: v + 2w (u x v) + 2 u x (u x v), q = (w, u)
         qw, ux, uy, uz = y[Q], y[Q + 1], y[Q + 2], y[Q + 3]
         tx = 2.0 * (uy * fz - uz * fy)

@@ -108,6 +108,9 @@ class HeatShieldSpec(_Strict):
 class AeroSpec(_Strict):
     """Aerodynamics and ground contact of a staged vehicle."""
 
+    aerodynamics: bool = Field(
+        True, description="false: no air forces, grid fins or ground contact (a spacecraft "
+        "that only flies in vacuum); the section then carries only its RCS thrusters")
     nose: NoseSpec = NoseSpec(length=0.0, shape="blunt")
     segments: Annotated[int, Field(ge=10, le=200)] = Field(20, description="body segments for the crossflow")
     axial_nose_first: Optional[list[tuple[float, float]]] = Field(

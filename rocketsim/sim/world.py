@@ -195,7 +195,7 @@ class World:
                 up = enu_basis(scenario.site.latitude, scenario.site.longitude)[2]
                 x_cm = body.vehicle.mass_properties(body.y)[1]
                 body.y[R:R + 3] = standing_on_ground(r, up, x_cm, float(contact[:, 0].min()))
-            if scenario.vehicle.aero is not None:
+            if scenario.vehicle.aero is not None and scenario.vehicle.aero.aerodynamics:
                 site, target_pad = scenario.site, mission.target.pad
                 if target_pad is not None:
                     pad = geodetic_to_ecef(target_pad.latitude, target_pad.longitude, 0.0)

@@ -5,7 +5,9 @@ stages it builds; the result travels in ``VehicleArrays.aero``
 (:class:`AeroArrays`). Parts of stages that are not built (a separated
 booster's grid fins, seen from the upper stack) are left out. A vehicle
 without an ``aero:`` section gets arrays with ``ref[A_ON] = 0`` and no parts:
-the derivative then skips aerodynamics and contact.
+the derivative then skips aerodynamics and contact. With ``aerodynamics: false``
+(a spacecraft that only flies in vacuum) the arrays are those too, plus the
+section's RCS thrusters.
 
 The body's outline is the stack of stage cylinders, then the fairing (or the
 payload) on top; the top ``nose.length`` of it tapers to the tip as a cone or
@@ -183,6 +185,9 @@ def build_aero(spec, chosen, stage_base, top: bool, with_fairing: bool, tank_nam
     reach = max(math.sqrt(max(x * x, (x - total) ** 2) + y * y + z * z) for x, y, z in contact[:, :3])
     ref[A.A_REACH] = reach
 
+    if not aero.aerodynamics:           # a vacuum spacecraft: its thrusters only
+        return no_aero()._replace(rcs=np.array(rcs, dtype=float).reshape(-1, RC.N_RCS),
+                                  rcs_cmd=np.zeros(len(rcs)))
     return AeroArrays(
         ref, np.ascontiguousarray(seg),
         np.array(fins, dtype=float).reshape(-1, 2),
