@@ -4,6 +4,7 @@ import pytest
 
 from rocketsim.errors import InputError
 from rocketsim.scenario.load import load
+from rocketsim.telemetry.reader import messages, metadata
 from tests.conftest import MISSION, VEHICLE
 
 
@@ -74,6 +75,22 @@ def test_step_larger_than_a_tenth_of_a_second_on_the_command_line(scenario, cli)
     path = scenario()
     result = cli("fly", path, "--step", "0.25", "-o", path.with_name("out.mcap"))
     assert_clean_error(result, "--step", "larger than the 0.1 s")
+
+
+def test_a_state_that_diverges_ends_the_flight_with_a_clear_error(scenario, cli):
+    # a body spinning at 3000 rad/s flown at 0.1 s: |lambda h| = 150 for the attitude's
+    # kinematics, far outside RK4's stability region (|lambda h| < 2.8), so the state
+    # overflows within a few steps; the flight stops there with exit status 2 and a
+    # readable file whose samples are all finite
+    path = scenario(extra="step: 0.1 s\n")
+    mission = path.with_name("mission.yaml")
+    mission.write_text(mission.read_text() + "initial_rates: [3000, 100, 0]\n")
+    out = path.with_name("out.mcap")
+    result = cli("fly", path, "-o", out)
+    assert_clean_error(result, "step", "state of probe is no longer finite", "smaller step")
+    states = [m for _, _, m in messages(out, ["/probe/state"])]
+    assert states and all(None not in m["position"] for m in states)
+    assert metadata(out)["outcome"]["status"] == "error"
 
 
 def test_the_error_is_an_input_error_for_library_callers(scenario):

@@ -407,6 +407,7 @@ class World:
                         body.watch.after_step()
                 self.k += n
                 if self.k % self.sample_every == 0 or self.k >= self.n_steps or self._cruise_batch:
+                    self._check_finite()
                     self._sample_all()
                 if self.on_progress is not None:
                     self.on_progress(self.t)
@@ -641,6 +642,16 @@ class World:
             body.flying = False
             if self.telemetry is not None:
                 self.telemetry.state(body.name, self.sample(body))
+
+    def _check_finite(self) -> None:
+        """Stop the flight with an input error when a body's state is no longer finite
+        (a step too large for its dynamics, or an unphysical vehicle). Checked at
+        the telemetry rate, before sampling: the file ends with finite samples."""
+        for body in self.bodies:
+            if body.flying and not math.isfinite(float(body.y.sum())):
+                raise InputError(f"the state of {body.name} is no longer finite at T+{body.t:.2f} s: the "
+                                 f"step of {self.h:g} s is too large for its dynamics (stiff contact, a fast "
+                                 "spin) or its vehicle is unphysical; fly with a smaller step", field="step")
 
     def _sample_all(self) -> None:
         if self.telemetry is None:
