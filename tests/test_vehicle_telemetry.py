@@ -199,3 +199,32 @@ def test_the_new_columns_are_exported_row_for_row(burn, tmp_path):
     assert len(rows) == len(states)
     assert [float(r["propellant"]) for r in rows] == [m["propellant"] for m in states]
     assert [r["throttle"] for r in rows][:1] == [""]        # no engine running at t = 0
+
+
+def _blue_in_centre_panel(png: Path) -> int:
+    """Pixels in the blue of matplotlib's first line colour (C0, #1f77b4, antialiased:
+    blue well above red) inside the centre panel of the plot's 3 x 3 grid (the
+    throttle panel), its frame and labels left out (grey, black)."""
+    from matplotlib.image import imread
+    pixels = imread(png)[..., :3]
+    h, w = pixels.shape[:2]
+    centre = pixels[int(0.40 * h):int(0.60 * h), int(0.42 * w):int(0.62 * w)]
+    return int((centre[..., 2] - centre[..., 0] > 0.25).sum())
+
+
+def test_the_plot_draws_throttle_and_propellant(burn, tmp_path):
+    from rocketsim.telemetry.plot import plot_run
+    path, _ = burn
+    drawn = plot_run(path, tmp_path / "burn.png")
+    # a rigid body's run (no throttle, no propellant) leaves that panel empty: the same
+    # count is the check's baseline
+    rigid = tmp_path / "rigid"
+    rigid.mkdir()
+    (rigid / "vehicle.yaml").write_text("name: probe\nrigid_body:\n  mass: 10 kg\n  inertia: [0.15, 0.12, 0.05]\n")
+    (rigid / "scenario.yaml").write_text(
+        "name: rigid\nvehicle: vehicle.yaml\nmission:\n  epoch: 2026-11-26T12:00:00Z\n"
+        "  start: {orbit: {altitude: 415 km, inclination: 51.6 deg}}\n  duration: 2 s\n")
+    fly(load(rigid / "scenario.yaml"), rigid / "run.mcap")
+    empty = plot_run(rigid / "run.mcap", tmp_path / "rigid.png")
+    assert _blue_in_centre_panel(empty) == 0
+    assert _blue_in_centre_panel(drawn) > 200
