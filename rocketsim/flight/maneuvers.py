@@ -13,8 +13,11 @@ frame).
   velocity left is then small and noisy in direction), and the engine stops
   where the velocity left is smallest: the vehicle stops turning before
   cutoff instead of tumbling on after it. The engine's gimbal turns the
-  vehicle; there is no reaction control, so a burn starting far from its
-  direction wastes some delta-v.
+  vehicle, so a burn starting far from its direction wastes some delta-v;
+  with ``rcs_turn=True`` a vehicle with RCS thrusters turns on them first
+  (engine off, until the nose is within 1 deg of the burn direction and the
+  body rates below 0.1 deg/s), keeps them on through the burn (roll and
+  help with pitch and yaw) and hands them back off after it.
 - :func:`hyperbola_velocity`: the velocity at a position on the escape
   hyperbola whose excess velocity is a given vector (closed form below).
 - :func:`trim_periapsis`: turn the velocity in its own plane, speed kept,
@@ -34,6 +37,8 @@ from rocketsim.frames.quaternion import quat_to_matrix
 MIN_THROTTLE = 0.1
 HOLD_BELOW = 2.0        # m/s left to gain below which a burn stops re-aiming
 ALIGNED = math.cos(math.radians(5.0))   # nose within 5 deg of the burn direction
+RCS_ALIGNED = math.cos(math.radians(1.0))   # an RCS turn ends within 1 deg of it ...
+RCS_SETTLED = math.radians(0.1)             # ... with every body rate below 0.1 deg/s
 
 
 def unit(v) -> np.ndarray:
@@ -47,14 +52,40 @@ def burn_time(mass: float, dv: float, thrust: float, isp: float) -> float:
     return mass * (1.0 - math.exp(-dv / exhaust)) / (thrust / exhaust)
 
 
-def burn(fc, target_velocity, label: str, thrust: float, isp: float, tolerance: float = 0.1):
+def turn_with_rcs(fc, target_velocity) -> bool:
+    """Turn the nose onto the velocity still to gain, ``target_velocity() - fc.velocity``
+    (m/s, frame axes), with the RCS thrusters, engines off, until it is within
+    ``RCS_ALIGNED`` and every body rate is below ``RCS_SETTLED`` rad/s; the
+    thrusters stay on. False (nothing done) for a vehicle without thrusters."""
+    try:
+        fc.rcs(True)
+    except ValueError:
+        return False
+
+    def settled() -> bool:
+        togo = target_velocity() - fc.velocity
+        fc.point_at(togo)
+        nose = quat_to_matrix(fc.attitude)[:, 0]
+        return (float(nose @ togo) / float(np.linalg.norm(togo)) > RCS_ALIGNED
+                and float(np.max(np.abs(fc.body_rates))) < RCS_SETTLED)
+
+    fc.wait_until(settled)
+    return True
+
+
+def burn(fc, target_velocity, label: str, thrust: float, isp: float, tolerance: float = 0.1,
+         rcs_turn: bool = False):
     """Burn until ``fc.velocity`` is ``target_velocity()`` (m/s) within ``tolerance``.
 
     ``thrust`` (N) and ``isp`` (s): the vehicle's engines at full throttle (for
-    the throttle-down and the event's delta-v). Records an event ``label`` with
-    the delta-v spent (rocket equation), the velocity left to gain and the
-    duration; returns the delta-v spent (m/s).
+    the throttle-down and the event's delta-v). ``rcs_turn``: turn with the RCS
+    thrusters before igniting (:func:`turn_with_rcs`; the event then also has the
+    turn's ``turn_s``). Records an event ``label`` with the delta-v spent (rocket
+    equation), the velocity left to gain and the duration; returns the delta-v
+    spent (m/s).
     """
+    t_turn = fc.time
+    rcs = rcs_turn and turn_with_rcs(fc, target_velocity)
     m0, t0 = fc.mass, fc.time
     togo = target_velocity() - fc.velocity
     left = best = float(np.linalg.norm(togo))
@@ -85,8 +116,11 @@ def burn(fc, target_velocity, label: str, thrust: float, isp: float, tolerance: 
         fc.step()
     fc.shutdown()
     fc.release()
+    if rcs:
+        fc.rcs(False)
     spent = isp * G0 * math.log(m0 / fc.mass)
-    fc.event(label, delta_v_m_s=spent, left_m_s=left, duration_s=fc.time - t0)
+    figures = {"turn_s": t0 - t_turn} if rcs else {}
+    fc.event(label, delta_v_m_s=spent, left_m_s=left, duration_s=fc.time - t0, **figures)
     return spent
 
 
@@ -132,10 +166,11 @@ def periapsis_radius(fc, delta_v, horizon: float) -> float:
 
 
 def trim_periapsis(fc, radius: float, label: str, thrust: float, isp: float,
-                   horizon: float = 3 * 86400.0, smallest: float = 1.0) -> float:
+                   horizon: float = 3 * 86400.0, smallest: float = 1.0, rcs_turn: bool = False) -> float:
     """Turn the velocity in its plane (speed kept) so that the next periapsis is at
     ``radius`` (m, within 200 m); burns only when the change is at least
-    ``smallest`` m/s (turning the vehicle to burn costs more). Returns the delta-v."""
+    ``smallest`` m/s (turning the vehicle to burn costs more; ``rcs_turn`` as in
+    :func:`burn`). Returns the delta-v."""
     v = fc.velocity.copy()
     normal = unit(np.cross(fc.position, v))
     a0, f0 = 0.0, periapsis_radius(fc, None, horizon) - radius
@@ -150,7 +185,7 @@ def trim_periapsis(fc, radius: float, label: str, thrust: float, isp: float,
     if np.linalg.norm(change) < smallest:
         return 0.0
     start = fc.velocity.copy()
-    return burn(fc, lambda: start + change, label, thrust, isp)
+    return burn(fc, lambda: start + change, label, thrust, isp, rcs_turn=rcs_turn)
 
 
 def time_to_periapsis(fc, horizon: float = 3 * 86400.0) -> float:

@@ -70,13 +70,14 @@ def main(fc):
     t_burn, t_arrive, aim, dv = plan_injection(fc)
     fc.log(f"TLI at {t_burn:.0f} s, {dv:.0f} m/s; arrival at {t_arrive / DAY:.2f} d")
     fc.sleep(max(t_burn - 0.5 * burn_time(fc.mass, dv, THRUST, ISP) - fc.time, 0.0))
-    burn(fc, lambda: lambert(EARTH_MU, fc.position, aim, t_arrive - fc.time)[0], "tli", THRUST, ISP)
+    burn(fc, lambda: lambert(EARTH_MU, fc.position, aim, t_arrive - fc.time)[0], "tli", THRUST, ISP,
+         rcs_turn=True)
 
     while fc.central_body != "moon":
         fc.cruise(3600.0)
-    trim_periapsis(fc, R_P, "approach_trim", THRUST, ISP)
+    trim_periapsis(fc, R_P, "approach_trim", THRUST, ISP, rcs_turn=True)
     fc.cruise(max(time_to_periapsis(fc) - 6 * 3600.0, 0.0))
-    trim_periapsis(fc, R_P, "approach_trim", THRUST, ISP)
+    trim_periapsis(fc, R_P, "approach_trim", THRUST, ISP, rcs_turn=True)
 
     speed = float(np.linalg.norm(fc.velocity))
     v_p = math.sqrt(speed ** 2 + 2 * MOON_MU / R_P - 2 * MOON_MU / np.linalg.norm(fc.position))
@@ -87,7 +88,7 @@ def main(fc):
         r, v = fc.position, fc.velocity
         along = unit(np.cross(np.cross(r, v), r))
         return math.sqrt(MOON_MU / np.linalg.norm(r)) * along
-    burn(fc, circular, "loi", THRUST, ISP)
+    burn(fc, circular, "loi", THRUST, ISP, rcs_turn=True)
     orbit = fc.orbit
     fc.event("lunar_orbit", periapsis_altitude_m=orbit.periapsis - MOON_RADIUS,
              apoapsis_altitude_m=orbit.apoapsis - MOON_RADIUS)
