@@ -228,3 +228,11 @@ def test_the_plot_draws_throttle_and_propellant(burn, tmp_path):
     empty = plot_run(rigid / "run.mcap", tmp_path / "rigid.png")
     assert _blue_in_centre_panel(empty) == 0
     assert _blue_in_centre_panel(drawn) > 200
+
+
+def test_the_burn_writes_the_same_bytes_twice(burn, tmp_path):
+    from rocketsim.telemetry.reader import raw_messages
+    path, _ = burn
+    again = tmp_path / "again.mcap"
+    fly(load(path.parent / "scenario.yaml"), again)
+    assert raw_messages(again) == raw_messages(path)

@@ -37,6 +37,7 @@ and CSV columns can name them.
 from __future__ import annotations
 
 import math
+import weakref
 from functools import lru_cache
 
 from rocketsim.atmosphere.table import air_at
@@ -81,32 +82,52 @@ def _heat_flux(body, veh, nose_radius: float) -> float:
 
 def _propulsion(body, model) -> dict:
     a = model.arrays
-    t, y = body.t, body.y
+    t, y, n = body.t, body.y, model.n_engines
     p_a = body.view().air[1]
-    thrust = body.kernels.call(E.thrusts, a, t, y, a.first_clock, a.eng, a.cmd, a.stage, p_a)
-    groups = _keys(tuple(model.engine_groups))
+    stage_of, group_of, groups, tanks = _layout(model)
+    thrust = E.thrusts(t, y, a.first_clock, a.eng, a.cmd, a.stage, p_a).tolist()
+    dry = a.stage[:, E.S_DRY].tolist()
+    clocks = y[a.first_clock:a.first_clock + n].tolist()
+    mdot_full = a.eng[:, E.E_MDOT].tolist()
     group_thrust = dict.fromkeys(groups, 0.0)
     group_tau: dict[str, list] = {g: [] for g in groups}
     taus, flow = [], 0.0
-    for e in range(model.n_engines):
-        if a.stage[int(a.eng[e, E.E_STAGE]), E.S_DRY] > 0.5:
+    for e in range(n):
+        if dry[stage_of[e]] > 0.5:
             continue
-        f, tau, _, _ = body.kernels.call(E.engine_state, a, t, e, float(y[a.first_clock + e]),
-                                         a.eng, a.cmd, p_a)
+        f, tau, _, _ = E.engine_state(t, e, clocks[e], a.eng, a.cmd, p_a)
         if f <= 0.0:
             continue
         taus.append(tau)
-        group_tau[groups[e]].append(tau)
-        group_thrust[groups[e]] += float(thrust[e])
-        flow += f * tau * a.eng[e, E.E_MDOT]
-    tanks = y[model.tanks]
+        group_tau[group_of[e]].append(tau)
+        group_thrust[group_of[e]] += thrust[e]
+        flow += f * tau * mdot_full[e]
+    propellant = y[model.tanks]
     return {
         "throttle": sum(taus) / len(taus) if taus else None,
         "group_throttle": {g: sum(v) / len(v) if v else None for g, v in group_tau.items()},
-        "thrust": float(thrust.sum()),
+        "thrust": sum(thrust),
         "group_thrust": group_thrust,
-        "mass_flow": float(flow),
+        "mass_flow": flow,
         "engines_running": len(taus),
-        "propellant": float(tanks.sum()),
-        "propellant_tanks": dict(zip(_keys(tuple(model.tank_names)), tanks.tolist())),
+        "propellant": float(propellant.sum()),
+        "propellant_tanks": dict(zip(tanks, propellant.tolist())),
     }
+
+
+_LAYOUTS: dict[int, tuple] = {}
+
+
+def _layout(model) -> tuple:
+    """``(stage of each engine, group key of each engine, group keys, tank keys)`` of
+    ``model``, worked out once per model (a staging builds new ones)."""
+    found = _LAYOUTS.get(id(model))
+    if found is not None and found[0]() is model:
+        return found[1]
+    groups = _keys(tuple(model.engine_groups))
+    layout = ([int(s) for s in model.arrays.eng[:, E.E_STAGE]], groups, tuple(dict.fromkeys(groups)),
+              _keys(tuple(model.tank_names)))
+    for key in [k for k, (ref, _) in _LAYOUTS.items() if ref() is None]:
+        del _LAYOUTS[key]           # models gone with their runs
+    _LAYOUTS[id(model)] = (weakref.ref(model), layout)
+    return layout
