@@ -57,10 +57,11 @@ aero:
     + "".join(_thruster(2.0, y, 0, (0, 0, s)) for y, s in ((1, 1), (-1, -1), (1, -1), (-1, 1)))
 
 
-def _fly(write, tmp_path, program, seconds, rates=(0.0, 0.0, 0.0), vacuum=False):
-    """Fly ``program`` on the craft; ``vacuum``: as a spacecraft without aerodynamics
-    (``aero: {aerodynamics: false}``, the RCS alone in the derivative)."""
-    write("vehicle.yaml", VEHICLE.replace("aero:\n", "aero:\n  aerodynamics: false\n") if vacuum else VEHICLE)
+def _fly(write, tmp_path, program, seconds, rates=(0.0, 0.0, 0.0), vacuum=False, vehicle=VEHICLE):
+    """Fly ``program`` on the craft (or ``vehicle``, a vehicle file's text); ``vacuum``: as
+    a spacecraft without aerodynamics (``aero: {aerodynamics: false}``, the RCS alone in
+    the derivative)."""
+    write("vehicle.yaml", vehicle.replace("aero:\n", "aero:\n  aerodynamics: false\n") if vacuum else vehicle)
     write("program.py", program)
     path = write("scenario.yaml", f"""\
         name: rcs
@@ -218,3 +219,41 @@ def test_the_lander_quads_give_the_full_roll_torque_of_four_thrusters():
         print(f"\nlargest roll torque {got[0]:.1f} N m, pitch/yaw left {got[1]:.2e} {got[2]:.2e}")
         assert abs(got[0] - sense * 4 * 445.0 * 2.0) < 1e-5 * 3560.0
         assert np.all(np.abs(got[1:]) < 1e-6 * 3560.0)
+
+
+GN2_TANK = """\
+      - {name: GN2, propellant: N2, density: 250 kg/m3, radius: 0.3 m, length: 0.5 m,
+         position: 3.0 m, wall_mass: 10 kg, propellant_mass: 30 kg, feeds_engines: false}
+"""
+
+TANKS = """
+from rocketsim.frames.quaternion import quat_to_matrix
+def main(fc):
+    fc.ignite()
+    fc.sleep(3.0)
+    fc.shutdown()
+    fc.sleep(1.0)
+    fc.event("burned", **{k.replace("/", "_"): v for k, v in fc.propellant.items()})
+    fc.rcs(True)
+    fc.point_at(quat_to_matrix(fc.attitude)[:, 2])
+    fc.sleep(5.0)
+    fc.event("turned", **{k.replace("/", "_"): v for k, v in fc.propellant.items()})
+"""
+
+
+def test_an_rcs_only_tank_feeds_the_thrusters_and_not_the_engine(write, tmp_path):
+    """Reference: where each flow is drawn from (rocketsim.vehicle.engines and rcs: an
+    engine from its stage's tanks, a thruster from the tank it names). The craft with a
+    30 kg nitrogen bottle (``feeds_engines: false``) that all its thrusters use: a 3 s
+    burn leaves the bottle untouched, to the bit, and drains the hydrazine; a turn on
+    the thrusters with the engine off drains the bottle and leaves the hydrazine."""
+    vehicle = VEHICLE.replace("tank: hydrazine", "tank: GN2").replace(
+        "propellant_mass: 250 kg}\n", "propellant_mass: 250 kg}\n" + GN2_TANK)
+    events, _ = _fly(write, tmp_path, TANKS, 10.0, vehicle=vehicle)
+    burned, turned = events["burned"], events["turned"]
+    print(f"\nafter the burn: hydrazine {burned['bus_hydrazine']:.3f} kg, GN2 {burned['bus_GN2']:.6f} kg; "
+          f"after the turn: hydrazine {turned['bus_hydrazine']:.3f} kg, GN2 {turned['bus_GN2']:.6f} kg")
+    assert burned["bus_GN2"] == 30.0
+    assert burned["bus_hydrazine"] < 250.0 - 1.0          # ~3.9 kg at 4 kN, 310 s
+    assert turned["bus_hydrazine"] == burned["bus_hydrazine"]
+    assert turned["bus_GN2"] < 30.0 - 0.01                 # ~0.09 kg at 0.093 kg/s a thruster

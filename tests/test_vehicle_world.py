@@ -22,7 +22,7 @@ def test_staged_vehicle_flies_a_scenario_like_a_rigid_body_when_unpowered(write)
     w_staged = World.from_scenario(load(staged))
     w_rigid = World.from_scenario(load(rigid))
     body = w_staged.bodies[0]
-    assert body.vehicle is not None and body.y.shape[0] == 13 + 4 + 10
+    assert body.vehicle is not None and body.y.shape[0] == 13 + 5 + 10   # 4 tanks and the GN2 bottle
     liftoff = body.mass
     w_staged.run()
     w_rigid.run()

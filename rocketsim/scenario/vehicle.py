@@ -72,6 +72,9 @@ class TankSpec(_Strict):
     wall_mass: NonNegativeMass = Field(0.0, description="mass of the tank wall (thin shell)")
     propellant_mass: Optional[NonNegativeMass] = Field(
         None, description="propellant loaded at liftoff; default: full")
+    feeds_engines: bool = Field(
+        True, description="false: a tank only the RCS thrusters draw from (a cold-gas bottle), "
+        "not the stage's engines")
 
     @property
     def capacity(self) -> float:

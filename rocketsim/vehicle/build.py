@@ -135,11 +135,13 @@ def build(spec, first: int = 0, last: int | None = None, air=None, fairing: bool
         radius = 0.5 * st.diameter
         centre = base + (0.5 * st.length if st.structure_centre is None else st.structure_centre)
         add_fixed(fixed, st.structure_mass, centre, *shell(st.structure_mass, radius, st.length))
-        load = st.propellant_mass
+        # the engines draw from the tanks that feed them, listed first; RCS-only tanks after
+        feeding = [tank for tank in st.tanks if tank.feeds_engines]
+        load = sum(tank.load for tank in feeding)
         # a stage loaded with nothing starts dry: its engines cannot light
         stage_rows.append((UNUSABLE_PROPELLANT * load, 0.0 if load > 0 else 1.0, len(tank_names),
-                           len(st.tanks), math.nan))
-        for tank in st.tanks:
+                           len(feeding), math.nan))
+        for tank in feeding + [tank for tank in st.tanks if not tank.feeds_engines]:
             bottom = base + tank.position
             add_fixed(fixed, tank.wall_mass, bottom + 0.5 * tank.length,
                       *shell(tank.wall_mass, tank.radius, tank.length))
@@ -148,7 +150,7 @@ def build(spec, first: int = 0, last: int | None = None, air=None, fairing: bool
             tank_radius.append(tank.radius)
             tank_density.append(tank.density * math.pi * tank.radius ** 2)
             tank_load.append(tank.load)
-            tank_share.append(tank.load / load if load > 0 else 0.0)
+            tank_share.append(tank.load / load if load > 0 and tank.feeds_engines else 0.0)
             tank_stage.append(s)
         for group in st.engines:
             for k, (py, pz) in enumerate(_ring(group.count, group.layout_radius, group.layout_angle)):

@@ -38,7 +38,7 @@ def summary(spec) -> dict:
     stages = []
     for i, st in enumerate(spec.stages):
         vacuum, sea, flow = stage_engines(st)
-        usable = (1 - UNUSABLE_PROPELLANT) * st.propellant_mass
+        usable = (1 - UNUSABLE_PROPELLANT) * sum(t.load for t in st.tanks if t.feeds_engines)
         ignition = sum(wet[i:]) + top
         burnout = ignition - usable
         ratio = math.log(ignition / burnout) if burnout > 0 else 0.0
