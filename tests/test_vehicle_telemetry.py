@@ -236,3 +236,17 @@ def test_the_burn_writes_the_same_bytes_twice(burn, tmp_path):
     again = tmp_path / "again.mcap"
     fly(load(path.parent / "scenario.yaml"), again)
     assert raw_messages(again) == raw_messages(path)
+
+
+def test_parquet_export_keeps_the_rows_and_types_a_column_never_set_as_float(burn, tmp_path):
+    pyarrow = pytest.importorskip("pyarrow")
+    import pyarrow.parquet
+    path, quiet = burn
+    body = quiet.bodies[0].name
+    states, _ = _states(path, body)
+    export(path, tmp_path, "parquet")
+    written = pyarrow.parquet.read_table(tmp_path / f"{body}.parquet")
+    assert written.num_rows == len(states)
+    assert written.column("thrust").to_pylist() == [m["thrust"] for m in states]
+    ring = written.schema.field("group_throttle_booster_Merlin_1D_ring")      # the ring never runs
+    assert ring.type == pyarrow.float64() and written.column(ring.name).null_count == len(states)

@@ -295,7 +295,11 @@ def export(path: str | Path, out_dir: str | Path, kind: str = "csv") -> list[Pat
         if kind == "csv":
             _write_csv(target, columns)
         else:
-            pyarrow.parquet.write_table(pyarrow.table(columns), target)
+            # a column with no value in this run (e.g. the throttle of an engine group
+            # that never ran) is float, not parquet's null type
+            pyarrow.parquet.write_table(pyarrow.table({
+                key: pyarrow.array(values, type=pyarrow.float64()) if all(v is None for v in values)
+                else values for key, values in columns.items()}), target)
         written.append(target)
     events = out_dir / "events.csv"
     _write_csv(events, {"t": [e["t"] for e in run.events], "body": [e["body"] for e in run.events],
