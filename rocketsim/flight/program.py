@@ -27,6 +27,7 @@ deterministic.
 from __future__ import annotations
 
 import signal
+from types import SimpleNamespace
 import threading
 import traceback
 from pathlib import Path
@@ -130,6 +131,17 @@ ev.register("numba:compiler_lock", _COMPILING)
 
 def load_program(path: Path) -> Callable:
     """Compile and run a program file's top level; return its ``main``."""
+    main = load_program_module(path).main
+    if not callable(main):
+        raise ProgramError("the program defines no main(fc) function", file=Path(path))
+    return main
+
+
+def load_program_module(path: Path) -> SimpleNamespace:
+    """Compile and run a program file's top level; return its names as attributes
+    (``main`` None if it defines none). A program reuses another's functions this
+    way, e.g. ``load_program_module(Path(__file__).parent / "orbit_ascent.py").ascend``:
+    program files sit beside scenarios, not on the import path."""
     path = Path(path)
     try:
         source = path.read_text(encoding="utf-8")
@@ -145,10 +157,8 @@ def load_program(path: Path) -> Callable:
         exec(code, namespace)
     except Exception as error:  # noqa: BLE001 - the user's code may raise anything
         raise _program_error(error, path) from None
-    main = namespace.get("main")
-    if not callable(main):
-        raise ProgramError("the program defines no main(fc) function", file=path)
-    return main
+    namespace.setdefault("main", None)
+    return SimpleNamespace(**{k: v for k, v in namespace.items() if k != "__builtins__"})
 
 
 def _program_error(error: BaseException, path: Path, budget: float = 0.0) -> ProgramError:

@@ -27,7 +27,8 @@ from rocketsim.scenario.weather import load_weather
 from rocketsim.scenario.yaml_source import YamlSource, read_yaml
 
 # fields of a scenario that may be a path to a file of their own, and its model
-REFERENCED = {"vehicle": VehicleSpec, "site": SiteSpec, "mission": MissionSpec}
+REFERENCED = {"vehicle": VehicleSpec, "site": SiteSpec, "mission": MissionSpec,
+              "spacecraft": VehicleSpec}
 
 
 @dataclass(frozen=True)

@@ -27,7 +27,7 @@ from rocketsim.scenario.weather import Weather
 from rocketsim.scenario.units import Angle, Duration, Frequency, Inertia, Length, Mass, Speed
 from rocketsim.scenario.aero_spec import AeroSpec, check_aero
 from rocketsim.scenario.vehicle import FairingSpec, PayloadSpec, StageSpec, check_staged
-from rocketsim.scenario.stage_selection import keep_stages, reload_tanks
+from rocketsim.scenario.stage_selection import keep_stages, reload_tanks, stack_spacecraft
 
 PositiveMass = Annotated[Mass, Field(gt=0)]
 # a path to a YAML file of its own, resolved by the loader relative to the scenario
@@ -252,6 +252,10 @@ class Scenario(Strict):
         description="the mission, inline or as a path to a mission file")
     payload: Optional[PayloadSpec] = Field(
         None, description="this mission's payload, in place of the vehicle file's")
+    spacecraft: Optional[Union[VehicleSpec, FileReference]] = Field(
+        None, description="a staged spacecraft (inline or a vehicle file) stacked on top of the "
+        "vehicle: its stages above the vehicle's, its payload in place of the vehicle's; the "
+        "program flies on with it once the vehicle's stages have separated")
     weather: Optional[Union[Weather, FileReference]] = Field(
         None, description="the day's weather, inline or as a path to a weather file; "
         "default: the US Standard Atmosphere 1976, calm")
@@ -291,9 +295,13 @@ class Scenario(Strict):
 
     @model_validator(mode="after")
     def _site_when_needed(self) -> "Scenario":
-        for name in ("vehicle", "site", "mission", "weather"):
+        for name in ("vehicle", "site", "mission", "weather", "spacecraft"):
             if isinstance(getattr(self, name), str):
                 raise ValueError(f"'{name}' names a file: load scenarios with rocketsim.scenario.load")
+        if self.spacecraft is not None:
+            if self.vehicle.stages is None:
+                raise ValueError("'spacecraft' goes with a staged vehicle")
+            object.__setattr__(self, "vehicle", stack_spacecraft(self.vehicle, self.spacecraft))
         if self.payload is not None:
             if self.vehicle.stages is None:
                 raise ValueError("'payload' goes with a staged vehicle")

@@ -1,4 +1,5 @@
-"""A scenario's changes to its vehicle file: fly only the lower stages, reload tanks.
+"""A scenario's changes to its vehicle file: fly only the lower stages, reload tanks,
+stack a spacecraft on top.
 
 ``stages: [booster]`` in a scenario flies only the named stages of the vehicle
 file (the lowest ones, bottom first, as a first-stage hop does): the stages
@@ -6,7 +7,11 @@ above, the payload and the fairing are left off, with the aerodynamic parts
 (fins, grid fins, legs, thrusters) of the stages that remain; the stack's nose
 then tops the highest stage kept. ``propellant: {booster/LOX: 28 t}`` sets a
 tank's load (kg) in place of the vehicle file's (a hop flies light enough to
-hover). Both are pure functions of the vehicle spec.
+hover). ``spacecraft: ../vehicles/lunar-orbiter.yaml`` stacks a staged
+spacecraft's stages above the launcher's (its payload in place of the
+launcher's, under the launcher's fairing): after the launcher's last stage
+separates, the program flies on with the spacecraft. All are pure functions
+of the vehicle spec.
 """
 
 from __future__ import annotations
@@ -52,3 +57,24 @@ def reload_tanks(spec, loads: dict[str, float]):
         names = [f"{s.name}/{t.name}" for s in spec.stages for t in s.tanks]
         raise ValueError(f"propellant: no tank {', '.join(left)} (the vehicle has {', '.join(names)})")
     return spec.model_copy(update={"stages": stages})
+
+
+def stack_spacecraft(launcher, spacecraft):
+    """``launcher`` (a staged VehicleSpec) with the stages of ``spacecraft`` (a staged
+    VehicleSpec) stacked above its own, bottom to top, the spacecraft's payload in
+    place of the launcher's and the launcher's fairing over it; the spacecraft's
+    thrusters join the launcher's aerodynamic parts (the launcher's nose and body
+    aerodynamics stay). ValueError if a stage name appears in both."""
+    if spacecraft.stages is None:
+        raise ValueError(f"spacecraft {spacecraft.name!r} is a rigid body: give a staged vehicle "
+                         "(or fly it as the 'payload')")
+    clash = {s.name for s in launcher.stages} & {s.name for s in spacecraft.stages}
+    if clash:
+        raise ValueError(f"stage names in both the vehicle and the spacecraft: {', '.join(sorted(clash))}")
+    aero = launcher.aero
+    if aero is not None and spacecraft.aero is not None:
+        aero = aero.model_copy(update={"rcs": list(aero.rcs) + list(spacecraft.aero.rcs)})
+    return launcher.model_copy(update={
+        "name": f"{launcher.name} + {spacecraft.name}",
+        "stages": list(launcher.stages) + list(spacecraft.stages),
+        "payload": spacecraft.payload, "aero": aero})

@@ -18,17 +18,26 @@ Earth parking orbit in the Moon's orbital plane, in a mission flown with
 5. At periapsis, burn to the circular velocity of the current radius along
    the local horizontal: a ~100 km lunar orbit.
 
+Flown from the launch pad (scenarios/moon-from-pad.yaml: the lunar orbiter stacked on a
+launcher as the scenario's ``spacecraft``), the program first flies the
+launcher to the mission's target parking orbit and separates from its upper
+stage (:func:`orbit_ascent.carry_to_orbit`), then does the above.
+
 Burns and trims: :mod:`rocketsim.flight.maneuvers`.
 """
 
 import math
+from pathlib import Path
 
 import numpy as np
 
 from rocketsim.constants import EARTH_MU, MOON_MU, MOON_RADIUS
 from rocketsim.flight.maneuvers import burn, burn_time, time_to_periapsis, trim_periapsis, unit
+from rocketsim.flight.program import load_program_module
 from rocketsim.transfer.kepler import propagate
 from rocketsim.transfer.lambert import lambert
+
+ASCENT = load_program_module(Path(__file__).resolve().parent / "orbit_ascent.py")
 
 ALTITUDE = 100e3                          # m, target lunar orbit
 R_P = MOON_RADIUS + ALTITUDE
@@ -67,6 +76,8 @@ def plan_injection(fc):
 
 
 def main(fc):
+    if len(fc.stages) > 1:      # on a launcher's stages: to the parking orbit first
+        fc.log("separated", ASCENT.carry_to_orbit(fc))
     t_burn, t_arrive, aim, dv = plan_injection(fc)
     fc.log(f"TLI at {t_burn:.0f} s, {dv:.0f} m/s; arrival at {t_arrive / DAY:.2f} d")
     fc.sleep(max(t_burn - 0.5 * burn_time(fc.mass, dv, THRUST, ISP) - fc.time, 0.0))

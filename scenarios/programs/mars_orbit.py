@@ -20,17 +20,26 @@ in a low Earth parking orbit at the departure epoch of the window that
    through the full field), then at periapsis burn to the velocity of a
    400 x 33 000 km orbit along the local horizontal.
 
+Flown from the launch pad (scenarios/mars-from-pad.yaml: the Mars orbiter stacked on a
+launcher as the scenario's ``spacecraft``), the program first flies the
+launcher to the mission's target parking orbit and separates from its upper
+stage (:func:`orbit_ascent.carry_to_orbit`), then does the above.
+
 Burns and trims: :mod:`rocketsim.flight.maneuvers`.
 """
 
 import math
+from pathlib import Path
 
 import numpy as np
 
 from rocketsim.constants import EARTH_MU, MARS_MU, MARS_RADIUS_EQ, SUN_MU
 from rocketsim.flight.maneuvers import (burn, burn_time, hyperbola_velocity, time_to_periapsis,
                                         trim_periapsis, unit)
+from rocketsim.flight.program import load_program_module
 from rocketsim.transfer.lambert import lambert
+
+ASCENT = load_program_module(Path(__file__).resolve().parent / "orbit_ascent.py")
 
 DAY = 86400.0
 TRANSFER = 310.2311 * DAY                 # s, the window's time of flight (mission fragment)
@@ -101,6 +110,8 @@ def correct_course(fc, aim, label):
 
 
 def main(fc):
+    if len(fc.stages) > 1:      # on a launcher's stages: to the parking orbit first
+        fc.log("separated", ASCENT.carry_to_orbit(fc))
     t_mid, v_inf = injection(fc)
     dv = float(np.linalg.norm(hyperbola_velocity(fc.position, v_inf, EARTH_MU)) - np.linalg.norm(fc.velocity))
     fc.log(f"TMI centred at {t_mid:.0f} s, v_inf {np.linalg.norm(v_inf):.0f} m/s, ~{dv:.0f} m/s")

@@ -40,10 +40,32 @@ GUIDANCE_PERIOD = 1.0          # s between insertion guidance solutions
 NEWTON_PASSES = 2              # Newton passes per solution (warm-started)
 PREDICTION_STEP = 2.0          # s, step of the guidance's burn prediction
 DEPLOY_DELAY = 10.0            # s from insertion to payload deploy
+SEPARATION_DELAY = 10.0        # s from insertion to a carried spacecraft's separation
 RETURN_RESERVE = 0.18          # share of the first stage's propellant kept for its return
 
 
 def main(fc):
+    ascend(fc)
+    fc.sleep(DEPLOY_DELAY)
+    try:
+        fc.log("deployed", fc.deploy_payload())
+    except ValueError:                  # a vehicle without a payload
+        pass
+
+
+def carry_to_orbit(fc):
+    """A launcher carrying a spacecraft stacked on top (``spacecraft:`` in the
+    scenario): :func:`ascend`, then SEPARATION_DELAY later its upper stage
+    separates and the program flies on with the spacecraft. Returns the spent
+    stage's body name."""
+    ascend(fc)
+    fc.sleep(SEPARATION_DELAY)
+    return fc.stage()
+
+
+def ascend(fc):
+    """Steps 1-4 of the module: from the pad to engine cut-off in the target orbit,
+    the engines off and the attitude released (the upper stage still attached)."""
     target = fc.target.orbit
     azimuth = launch_azimuth(fc.latitude, target.inclination, target.altitude, fc.pad_azimuth)
     first, upper = fc.stages[0], fc.stages[1]
@@ -84,11 +106,6 @@ def main(fc):
     fc.release()
     fc.log(f"insertion: {fc.periapsis / 1e3:.1f} x {fc.apoapsis / 1e3:.1f} km, "
            f"{math.degrees(fc.inclination):.3f} deg")
-    fc.sleep(DEPLOY_DELAY)
-    try:
-        fc.log("deployed", fc.deploy_payload())
-    except ValueError:                  # a vehicle without a payload
-        pass
 
 
 def launch_azimuth(latitude, inclination, altitude, pad_azimuth):
