@@ -89,12 +89,14 @@ def _propulsion(body, model) -> dict:
     dry = a.stage[:, E.S_DRY].tolist()
     clocks = y[a.first_clock:a.first_clock + n].tolist()
     mdot_full = a.eng[:, E.E_MDOT].tolist()
+    on, level = a.cmd[:, E.C_ON].tolist(), a.cmd[:, E.C_LEVEL].tolist()
+    tail = a.eng[:, E.E_TAIL].tolist()
     group_thrust = dict.fromkeys(groups, 0.0)
     group_tau: dict[str, list] = {g: [] for g in groups}
     taus, flow = [], 0.0
     for e in range(n):
-        if dry[stage_of[e]] > 0.5:
-            continue
+        if dry[stage_of[e]] > 0.5 or (on[e] < 0.5 and (level[e] <= 0.0 or clocks[e] >= tail[e])):
+            continue            # dry, or shut down and its tail-off over: f = 0
         f, tau, _, _ = E.engine_state(t, e, clocks[e], a.eng, a.cmd, p_a)
         if f <= 0.0:
             continue
