@@ -63,6 +63,16 @@ def check_ascent(world, inclination_deg):
     return orbiter
 
 
+def through_injection(name, seconds, inclination_deg, burn):
+    """Fly ``name`` from the pad for ``seconds``; check the ascent and that the
+    injection ``burn`` reached its target. (world, orbiter body, burn event)."""
+    world = fly(name, seconds)
+    orbiter = check_ascent(world, inclination_deg)
+    injection = event(orbiter, burn)
+    assert injection["left_m_s"] < 0.5
+    return world, orbiter, injection
+
+
 def closest_approach(world, body, name, start, end, step):
     """(time s, distance m) of ``body``'s closest predicted approach to ``name``
     between mission times ``start`` and ``end``: the coast predicted in the full
@@ -81,11 +91,8 @@ def closest_approach(world, body, name, start, end, step):
 
 
 def test_moon_from_the_pad_through_the_injection():
-    # the injection ends at 4 144 s: fly to 4 150 s (about 30 s of the test)
-    world = fly("moon-from-pad.yaml", 4150.0)
-    orbiter = check_ascent(world, 28.45)
-    tli = event(orbiter, "tli")
-    assert tli["left_m_s"] < 0.5
+    # the injection ends at 4 144 s: fly to 4 150 s (about 16 s of the test)
+    world, orbiter, tli = through_injection("moon-from-pad.yaml", 4150.0, 28.45, "tli")
     # a Hohmann-like injection from 200 km costs ~3.1 km/s plus the burn's gravity
     # loss; launched 8 h off the plane that holds the Moon at arrival it cost 3.96
     assert 3.1e3 < tli["delta_v_m_s"] < 3.4e3
@@ -109,3 +116,36 @@ def test_the_spacecraft_is_stacked_on_the_launcher():
     from rocketsim.scenario.stage_selection import stack_spacecraft
     with pytest.raises(ValueError, match="both the vehicle and the spacecraft: booster"):
         stack_spacecraft(vehicle, vehicle)
+
+
+def test_mars_from_the_pad_through_the_injection():
+    # the injection ends at 3 677 s: fly to 3 700 s (about 9 s of the test)
+    world, orbiter, tmi = through_injection("mars-from-pad.yaml", 3700.0, 30.66, "tmi")
+    # 3.64 km/s impulsive from 200 km (the window's C3 9.27 km^2/s^2) plus gravity loss
+    assert 3.64e3 < tmi["delta_v_m_s"] < 3.8e3
+    # the departure hyperbola, from the state now (two-body, Earth: the Moon and
+    # Sun perturb it little in the hour since), against the window's arc: the
+    # Lambert arc (the Sun alone) from Earth at mission time 0 to Mars at the
+    # window's 310.23-day arrival, whose v-infinity is the C3's sqrt(9.27) km/s
+    from rocketsim.constants import EARTH_MU, SUN_MU
+    from rocketsim.transfer.lambert import lambert
+    r, v = orbiter.position, orbiter.velocity
+    h = np.cross(r, v)
+    e = np.cross(v, h) / EARTH_MU - r / np.linalg.norm(r)
+    ecc = float(np.linalg.norm(e))
+    nu = np.arccos(-1.0 / ecc)
+    q = np.cross(h, e) / np.linalg.norm(np.cross(h, e))
+    asymptote = np.cos(nu) * e / ecc + np.sin(nu) * q
+    v_inf = np.sqrt(v @ v - 2.0 * EARTH_MU / np.linalg.norm(r))
+    transfer = 310.2311 * 86400.0
+    sun0, sun_v0 = world.body_state(orbiter, "sun", 0.0)
+    mars, _ = world.body_state(orbiter, "mars", transfer)
+    sun1, _ = world.body_state(orbiter, "sun", transfer)
+    departure, _ = lambert(SUN_MU, -sun0, mars - sun1, transfer)
+    wanted = departure + sun_v0                     # heliocentric less Earth's velocity
+    angle = np.degrees(np.arccos(asymptote @ wanted / np.linalg.norm(wanted)))
+    print(f"\n[mars from the pad] TMI {tmi['delta_v_m_s']:.0f} m/s; v-infinity {v_inf:.0f} m/s "
+          f"against {np.linalg.norm(wanted):.0f}, asymptote {angle:.3f} deg off the window's")
+    assert abs(v_inf - np.linalg.norm(wanted)) < 10.0
+    assert angle < 0.2
+    assert abs(np.linalg.norm(wanted) - np.sqrt(9.27e6)) < 30.0
