@@ -14,14 +14,22 @@ from pathlib import Path
 from rocketsim.constants import MARS_RADIUS_EQ
 from rocketsim.scenario.load import load
 from rocketsim.sim.world import World
+from rocketsim.telemetry.reader import messages
+from rocketsim.telemetry.writer import TelemetryWriter
 
 SCENARIO = Path(__file__).resolve().parents[1] / "scenarios" / "mars-orbit.yaml"
 
 
-def test_the_orbiter_is_captured_by_mars():
+def test_the_orbiter_is_captured_by_mars(tmp_path):
+    # flown as `rocketsim fly` flies it, telemetry included: every sample of the
+    # heliocentric leg is written about the Sun (no prime meridian there)
     world = World.from_scenario(load(SCENARIO))
-    summary = world.run()
+    out = tmp_path / "mars.mcap"
+    with TelemetryWriter(out, 0, "") as telemetry:
+        summary = world.run(telemetry)
     body = world.bodies[0]
+    centres = [m["central_body"] for _, _, m in messages(out, [f"/{body.name}/state"])]
+    assert [c for i, c in enumerate(centres) if i == 0 or c != centres[i - 1]] == ["earth", "sun", "mars"]
     handovers = [(e["from"], e["to"]) for e in body.events if e["name"] == "soi_handover"]
     assert handovers == [("earth", "sun"), ("sun", "mars")]
     names = [e["name"] for e in body.events]

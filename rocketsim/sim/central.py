@@ -21,7 +21,7 @@ import numpy as np
 from rocketsim.atmosphere.mars import mars_table
 from rocketsim.atmosphere.table import make_table
 from rocketsim.dynamics.nbody import F_CENTER, F_ROT, make_field
-from rocketsim.bodies.orientation import pole_and_meridian
+from rocketsim.bodies.orientation import BODIES as ORIENTED, pole_and_meridian
 from rocketsim.dynamics.soi import (_ORBIT, CENTRAL, CHILDREN, SOI, central_body, central_params,
                                    frame_rotation, handover)
 from rocketsim.dynamics.state import Q, R, V
@@ -107,8 +107,10 @@ def planetocentric(r, center: str, jd_tt: float):
     ``center``, :func:`rocketsim.dynamics.soi.frame_rotation`) at the TT Julian date
     ``jd_tt``: planetocentric latitude, east longitude from the prime meridian
     (``W`` of the IAU rotation, measured from the frame's ``x``, the node of the
-    body's equator) and the height over its ellipsoid along the radius."""
-    _, _, w = pole_and_meridian(center, jd_tt)
+    body's equator) and the height over its ellipsoid along the radius. About
+    the Sun (no meridian) the longitude is measured from the frame's ``x``."""
+    # the Sun has no IAU prime meridian here: longitude is read from the frame's x axis
+    w = pole_and_meridian(center, jd_tt)[2] if center in ORIENTED else 0.0
     x, y, z = (float(c) for c in r)
     rn = math.sqrt(x * x + y * y + z * z)
     a, b = CENTRAL[center][1], CENTRAL[center][3]
