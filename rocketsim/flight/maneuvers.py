@@ -94,10 +94,12 @@ def burn(fc, target_velocity, label: str, thrust: float, isp: float, tolerance: 
     fc.throttle(MIN_THROTTLE)
     fc.ignite()
     turning = True
+    lit = False                 # spooled up: before, drift can grow the velocity left
     while True:
         togo = target_velocity() - fc.velocity
         left = float(np.linalg.norm(togo))
-        if left < tolerance or (left < HOLD_BELOW and left > best) or (left > best + 1.0 and left < 5.0):
+        lit = lit or fc.thrust >= MIN_THROTTLE * thrust   # spooled up to the least throttle
+        if left < tolerance or lit and ((left < HOLD_BELOW and left > best) or (left > best + 1.0 and left < 5.0)):
             break               # on target, or as close as the held direction gets
         if fc.time > t0 + 5.0 and fc.thrust == 0.0:
             fc.log(f"{label}: no thrust left, {left:.1f} m/s to go")

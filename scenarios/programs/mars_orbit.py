@@ -25,6 +25,13 @@ launcher as the scenario's ``spacecraft``), the program first flies the
 launcher to the mission's target parking orbit and separates from its upper
 stage (:func:`orbit_ascent.carry_to_orbit`), then does the above.
 
+The course corrections and trims first turn the orbiter with its RCS
+thrusters, engines off (``rcs_turn=True``): the engines' 10 % minimum throttle
+would otherwise over-burn a small correction while the vehicle turns (flown
+from the pad, the first correction's 17 m/s became 1210 m/s and emptied the
+tanks). The insertion does not: near periapsis its direction turns faster than
+an RCS turn settles (one took 183 s and the late burn ran dry), and at its
+~1 km/s the engines' turn costs little.
 Burns and trims: :mod:`rocketsim.flight.maneuvers`.
 """
 
@@ -106,7 +113,7 @@ def correct_course(fc, aim, label):
     fc.log(f"{label}: {np.linalg.norm(change):.2f} m/s, predicted miss {np.linalg.norm(miss) / 1e3:.1f} km")
     start = fc.velocity.copy()
     if np.linalg.norm(change) >= 1.0:
-        burn(fc, lambda: start + change, label, THRUST, ISP)
+        burn(fc, lambda: start + change, label, THRUST, ISP, rcs_turn=True)
 
 
 def main(fc):
@@ -130,9 +137,9 @@ def main(fc):
     while fc.central_body != "mars":
         fc.cruise(6 * 3600.0)
 
-    trim_periapsis(fc, R_P, "approach_trim", THRUST, ISP, horizon=10 * DAY)
+    trim_periapsis(fc, R_P, "approach_trim", THRUST, ISP, horizon=10 * DAY, rcs_turn=True)
     fc.cruise(max(time_to_periapsis(fc, 10 * DAY) - 12 * 3600.0, 0.0))
-    trim_periapsis(fc, R_P, "approach_trim", THRUST, ISP, horizon=10 * DAY)
+    trim_periapsis(fc, R_P, "approach_trim", THRUST, ISP, horizon=10 * DAY, rcs_turn=True)
 
     def captured():
         r, v = fc.position, fc.velocity
