@@ -26,7 +26,7 @@ from rocketsim._jit import Entries
 from rocketsim.dynamics.derivative import radial_height
 from rocketsim.dynamics.cruise import DONE, SOI, advance_cruise, plan_step
 from rocketsim.dynamics.nbody import make_field, no_air
-from rocketsim.dynamics.rails import FREE, advance_rails, rails_floor
+from rocketsim.dynamics.rails import FREE, HELD, advance_rails, rails_floor
 from rocketsim.dynamics.rk4 import advance
 from rocketsim.dynamics.state import (P_IXX, P_IYY, P_IZZ, P_MASS, P_MU, P_RADIUS, Q, R, V,
                                       W, make_params, make_state)
@@ -35,6 +35,7 @@ from rocketsim.flight.program import ProgramRunner, load_program
 from rocketsim.flight.readings import StateView
 from rocketsim.flight.sensors import Sensors
 from rocketsim.frames.earth_fixed import eci_to_ecef_velocity
+from rocketsim.frames.quaternion import quat_from_axis_angle, quat_multiply, quat_rotate
 from rocketsim.scenario.load import LoadedScenario
 from rocketsim.scenario.models import check_step
 from rocketsim.errors import InputError
@@ -59,6 +60,9 @@ from rocketsim.vehicle.staging import deploy_payload, jettison_fairing, separate
 # body has no aerodynamics awake, so none on rails either
 _RAILS_FIELD = make_field("earth", 0.0, bodies=())
 _NO_AIR = no_air()
+# a held inertial direction goes on sleep rails once the autopilot has settled on it:
+HOLD_SETTLED_ERROR = math.radians(0.01)    # rad, nose off the commanded direction
+HOLD_SETTLED_RATE = 1e-4                   # rad/s, every body rate
 
 
 @dataclass
@@ -116,6 +120,19 @@ class Body:
             air = self.atmosphere if self.central == "earth" else vacuum
             self._view = StateView.of_state(self.t, self.y, air, self.mu)
         return self._view
+
+
+def _settle_on(y: np.ndarray, direction: np.ndarray) -> None:
+    """Put the nose (body x) of state ``y`` exactly on ``direction`` (unit, ECI) by the
+    smallest rotation (in place; roll about the nose kept) and the body rates to zero:
+    a settled hold going on rails drops its residual (below 0.01 deg, 1e-4 rad/s)."""
+    nose = quat_rotate(y[Q:Q + 4], np.array((1.0, 0.0, 0.0)))
+    axis = np.cross(nose, direction)
+    size = float(np.linalg.norm(axis))
+    if size > 0.0:
+        turn = quat_from_axis_angle(axis, math.atan2(size, float(nose @ direction)))
+        y[Q:Q + 4] = quat_multiply(turn, y[Q:Q + 4])
+    y[W:W + 3] = 0.0
 
 
 class World:
@@ -435,6 +452,10 @@ class World:
     def _run_autopilots(self) -> None:
         for body in self.bodies:
             if body.flying and body.attitude_command is not None and body.fc is not None:
+                if self._holding(body):     # held on rails: the autopilot rests, its RCS off
+                    if body.vehicle is not None:
+                        body.vehicle.arrays.aero.rcs_cmd[:] = 0.0
+                    continue
                 body.fc.autopilot()
 
     def _batch_length(self) -> int:
@@ -442,7 +463,7 @@ class World:
         self._cruise_batch = False
         if any(b.flying and b.checks is not None and b.checks.every_step(b) for b in self.bodies):
             return 1                        # limits, heating and touchdown are checked every step
-        if any(b.flying and b.attitude_command is not None for b in self.bodies):
+        if any(b.flying and b.attitude_command is not None and not self._holding(b) for b in self.bodies):
             return 1                        # the autopilot runs once per step
         n = min(self.n_steps - self.k, self.sample_every - self.k % self.sample_every)
         flying = [b for b in self.bodies if b.flying]
@@ -465,17 +486,46 @@ class World:
         """Sleep rails (issue 9) for a body nobody flies or whose program sleeps beyond
         the next step, axisymmetric (the exact torque-free attitude), above the rails
         floor, with no attitude command: a rigid body, or a staged vehicle coasting
-        (:meth:`_coasting`). Held attitudes stay awake (the autopilot steers them)."""
-        runner = body.runner
-        asleep = runner is None or runner.finished or (
-            not runner.waiting_on_predicate and runner.wake_time() - self.t > self.h * (1 + 1e-9))
-        return (asleep and body.attitude_command is None and self._coasting(body)
+        (:meth:`_coasting`); or holding an inertial direction once settled (:meth:`_holding`)."""
+        if body.attitude_command is not None:
+            return self._holding(body)
+        return (self._asleep(body) and self._coasting(body)
                 and radial_height(body.y, body.p) > rails_floor(body.central))
 
-    def _coasting(self, body: Body) -> bool:
+    def _asleep(self, body: Body) -> bool:
+        """Nobody flies ``body`` or its program sleeps beyond the next step."""
+        runner = body.runner
+        return runner is None or runner.finished or (
+            not runner.waiting_on_predicate and runner.wake_time() - self.t > self.h * (1 + 1e-9))
+
+    def _holding(self, body: Body) -> bool:
+        """Sleep rails in mode HELD (issue 9): ``body`` is asleep (:meth:`_asleep`) and
+        holds an inertial direction (fc.point_at in ECI: ``direction`` set, no roll
+        commanded), coasts but for the autopilot's own RCS (:meth:`_coasting`; the RCS
+        stops on rails), is above the rails floor, and the autopilot has settled: nose
+        within ``HOLD_SETTLED_ERROR`` (0.01 deg) of the direction and every body rate
+        below ``HOLD_SETTLED_RATE`` (1e-4 rad/s). On rails the nose is set exactly on
+        the direction and the rates to zero (:func:`_settle_on`: the settled residual
+        is dropped), and the attitude stays fixed in the inertial frame until the
+        program wakes or the floor is reached. Documented limit: commands whose frame
+        turns (prograde, radial, pitch/heading, a commanded roll about the local
+        vertical) stay awake, the autopilot steering them every step."""
+        command = body.attitude_command
+        if command is None or command.direction is None or command.roll is not None:
+            return False
+        if not (self._asleep(body) and self._coasting(body, rcs_free=True)
+                and radial_height(body.y, body.p) > rails_floor(body.central)):
+            return False
+        nose = quat_rotate(body.y[Q:Q + 4], np.array((1.0, 0.0, 0.0)))
+        error = math.atan2(float(np.linalg.norm(np.cross(nose, command.direction))),
+                           float(nose @ command.direction))
+        return error < HOLD_SETTLED_ERROR and float(np.max(np.abs(body.y[W:W + 3]))) < HOLD_SETTLED_RATE
+
+    def _coasting(self, body: Body, rcs_free: bool = False) -> bool:
         """True when only gravity acts on ``body`` and it is symmetric about its roll
         axis: a rigid body with ``I_yy = I_zz``, or a staged vehicle with every engine
-        commanded off and its tail-off over, its RCS off, and out of the air's reach
+        commanded off and its tail-off over, its RCS off (``rcs_free``: the autopilot's
+        RCS commands ignored, a held body's on rails stop), and out of the air's reach
         (a vehicle with aerodynamics: above 600 km)."""
         vehicle = body.vehicle
         if vehicle is None:
@@ -483,7 +533,7 @@ class World:
         arrays = vehicle.arrays
         if np.any(arrays.cmd[:, C_ON] > 0.5) or np.any(body.y[vehicle.clocks] <= arrays.eng[:, E_TAIL]):
             return False
-        if np.any(arrays.aero.rcs_cmd != 0.0) or (body.checks is not None and body.checks.every_step(body)):
+        if (not rcs_free and np.any(arrays.aero.rcs_cmd != 0.0)) or (body.checks is not None and body.checks.every_step(body)):
             return False
         return bool(self._inertia(body)[1] == vehicle.mass_properties(body.y)[4])
 
@@ -611,9 +661,13 @@ class World:
             done = self._cruise(body, n)
             k0, n = k0 + done, n - done
         if n > 0 and self._on_rails(body):
+            held = body.attitude_command is not None
+            if held:                # a new state: a view of the old one stays as it was
+                body.y = body.y.copy()
+                _settle_on(body.y, body.attitude_command.direction)
             # same step, same orbit to the bit; stops below the floor and wakes for the rest
             body.y, done = advance_rails(body.y, k0, self.h, n, body.p, self._rails_field(body),
-                                         _NO_AIR, self._inertia(body), FREE,
+                                         _NO_AIR, self._inertia(body), HELD if held else FREE,
                                          rails_floor(body.central))
             if body.vehicle is not None:
                 body.y[body.vehicle.clocks] += done * self.h     # engine clocks run on
