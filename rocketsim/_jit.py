@@ -31,8 +31,9 @@ from numba import njit as _numba_njit
 _OPTIONS = {"cache": True, "fastmath": False, "error_model": "numpy"}
 
 
-_IMPORT = re.compile(r"^\s*(?:from\s+(rocketsim(?:\.\w+)*)\s+import\s+([\w ,()]+)|import\s+(rocketsim(?:\.\w+)*))",
-                     re.M)
+# "from rocketsim.a import b, c", a parenthesised list over several lines, or "import rocketsim.a"
+_IMPORT = re.compile(r"^\s*(?:from\s+(rocketsim(?:\.\w+)*)\s+import\s+(\([^)]*\)|[\w ,]+)"
+                     r"|import\s+(rocketsim(?:\.\w+)*))", re.M)
 
 
 def _kernel_sources(package: Path) -> list[Path]:

@@ -32,3 +32,20 @@ def test_pure_python_layers_do_not_invalidate_the_cache():
     for module in ("sim/world.py", "flight/fc.py", "flight/autopilot.py", "scenario/models.py",
                    "telemetry/writer.py"):
         assert module not in names
+
+
+def test_a_submodule_named_on_a_later_line_of_a_parenthesised_import_is_followed(tmp_path):
+    # a kernel module importing a submodule inside "from pkg.x import (a,\n    b)" must
+    # still bring b's source into the key
+    package = tmp_path / "rocketsim"
+    (package / "dynamics").mkdir(parents=True)
+    (package / "__init__.py").write_text("")
+    (package / "dynamics" / "__init__.py").write_text("")
+    (package / "dynamics" / "kernel.py").write_text(
+        "from rocketsim._jit import njit\nfrom rocketsim.dynamics import (state,\n    gravity)\n")
+    (package / "dynamics" / "state.py").write_text("N = 13\n")
+    (package / "dynamics" / "gravity.py").write_text("MU = 3.986e14\n")
+    (package / "dynamics" / "unrelated.py").write_text("X = 1\n")
+    names = {path.relative_to(package).as_posix() for path in _kernel_sources(package)}
+    assert {"dynamics/kernel.py", "dynamics/state.py", "dynamics/gravity.py"} <= names
+    assert "dynamics/unrelated.py" not in names
