@@ -35,19 +35,24 @@ the stage's ballistic coefficient ``m / (C_D A)``, estimated here (BALLISTIC).
 In the descent the prediction includes the landing burn (lit by the same
 rule, against the velocity, stopping the stage at the ground), which keeps
 the stage near its velocity's line. A guidance model, not the physics: its
-errors are what the later phases correct.
+errors are what the later phases correct. It is compiled
+(:func:`rocketsim.flight.guidance.descent_point`): about 20 us a prediction.
+
+Guidance rate: the boost-back and the descent update their commands every
+GUIDANCE_STEP (0.1 s; the autopilot holds the last one every 20 ms step) and
+every step where a decision is near: the boost-back's last 30 km of miss,
+the descent once the landing burn's rule is within NEAR_LANDING_BURN of
+lighting it. The entry and landing burns run every step.
 """
 
 import math
 
 import numpy as np
 
-from rocketsim.bodies.gravity import point_mass_j2
-from rocketsim.constants import (EARTH_J2, EARTH_MU, EARTH_OMEGA, EARTH_RADIUS_EQ,
-                                 EARTH_RADIUS_POLAR)
+from rocketsim.constants import EARTH_J2
 from rocketsim.frames.earth_fixed import eci_to_ecef, eci_to_ecef_velocity
 from rocketsim.frames.geodetic import enu_basis, geodetic_to_ecef
-from rocketsim.vehicle.contact import point_height
+from rocketsim.flight.guidance import descent_point, warm_up
 
 BALLISTIC = 1800.0          # kg/m^2: the empty stage tail first with its grid fins (estimate)
 SEA_LEVEL_DENSITY = 1.225   # kg/m^3, and scale height (m): the predictor's air
@@ -76,11 +81,10 @@ LANDING_ENGINES = ("centre",)                      # the landing burn
 LANDING_DV = 450.0          # m/s kept for the landing burn (terminal speed and gravity loss)
 EXHAUST_SPEED = 2800.0      # m/s, effective exhaust speed of the engines low in the air (estimate)
 Q_ALPHA = 150e3             # Pa deg: lean allowed in the air (the limit is 250 kPa deg)
+GUIDANCE_STEP = 0.1         # s between steering updates away from the decisions (see the module)
+NEAR_LANDING_BURN = 0.9     # share of the landing burn's trigger from which the descent checks every step
 
-# the compiled helpers the predictor calls, loaded (or compiled) when the program is
-# loaded rather than inside a step, where the time would count against its CPU budget
-point_height(EARTH_RADIUS_EQ, 0.0, 0.0, EARTH_RADIUS_EQ, EARTH_RADIUS_POLAR)
-point_mass_j2(EARTH_RADIUS_EQ, 0.0, 0.0, EARTH_MU, EARTH_RADIUS_EQ, EARTH_J2)
+warm_up()       # the predictor's compiled kernels, loaded with the program, not inside a step
 
 
 def main(fc):
@@ -138,67 +142,27 @@ class Guide:
 
 
 def _enu_eci(fc):
-    """Local east, north, up at the vehicle, ECI axes (from the estimate)."""
+    """Local east, north, up at the vehicle, ECI axes (from the estimate): ``up`` the
+    radial direction, ``east = z x up`` normalised, ``north = up x east``."""
     up = fc.radial
-    east = np.cross([0.0, 0.0, 1.0], up)
-    east /= np.linalg.norm(east)
-    return east, np.cross(up, east), up
+    ux, uy, uz = up.tolist()
+    size = math.sqrt(ux * ux + uy * uy)
+    ex, ey = -uy / size, ux / size
+    return np.array((ex, ey, 0.0)), np.array((-uz * ey, uz * ex, ux * ey - uy * ex)), up
 
 
-def impact(r, v, ballistic, thrust_accel=0.0, dt=2.0):
+def impact(r, v, ballistic, thrust_accel=0.0):
     """Earth-fixed point (m) where the state (r, v) (Earth-fixed, m, m/s) comes down on
     the ellipsoid, with drag on the exponential air (see the module) and, when
     ``thrust_accel`` (m/s^2, the engines' full thrust over the mass) is given, the
     landing burn as the program flies it: lit by the same rule, against the
-    velocity, at the deceleration that stops the stage at the ground."""
-    w = EARTH_OMEGA
-    x, y, z = r
-    vx, vy, vz = v
-    h = point_height(x, y, z, EARTH_RADIUS_EQ, EARTH_RADIUS_POLAR)
-    burning = False
-    for _ in range(4000):
-        step = dt if h > 5000.0 else 0.25
-        px, py, pz = x, y, z
-        brake = 0.0
-        if thrust_accel > 0.0:
-            radius = math.sqrt(x * x + y * y + z * z)
-            fall = -(vx * x + vy * y + vz * z) / radius
-            speed = math.sqrt(vx * vx + vy * vy + vz * vz)
-            rho = SEA_LEVEL_DENSITY * math.exp(-max(h, 0.0) / SCALE_HEIGHT)
-            g = EARTH_MU / (radius * radius)
-            if not burning and h < LANDING_ALTITUDE and fall > 0.0 and fall * fall / (2.0 * h) > \
-                    LANDING_MARGIN * (thrust_accel - g + 0.5 * rho * speed * speed / ballistic):
-                burning = True
-            if burning:
-                if fall <= TOUCH_SPEED or speed < 1.0:
-                    return np.array([x, y, z])
-                brake = min(thrust_accel, fall * fall / (2.0 * max(h, 0.1)) + g) / speed
-        # midpoint (RK2) step
-        ax, ay, az = _acceleration(x, y, z, vx, vy, vz, h, ballistic, w, brake)
-        mx, my, mz = x + 0.5 * step * vx, y + 0.5 * step * vy, z + 0.5 * step * vz
-        mvx, mvy, mvz = vx + 0.5 * step * ax, vy + 0.5 * step * ay, vz + 0.5 * step * az
-        mh = point_height(mx, my, mz, EARTH_RADIUS_EQ, EARTH_RADIUS_POLAR)
-        ax, ay, az = _acceleration(mx, my, mz, mvx, mvy, mvz, mh, ballistic, w, brake)
-        x, y, z = x + step * mvx, y + step * mvy, z + step * mvz
-        vx, vy, vz = vx + step * ax, vy + step * ay, vz + step * az
-        h_new = point_height(x, y, z, EARTH_RADIUS_EQ, EARTH_RADIUS_POLAR)
-        if h_new <= 0.0:
-            f = h / (h - h_new)
-            return np.array([px + f * (x - px), py + f * (y - py), pz + f * (z - pz)])
-        h = h_new
-    return np.array([x, y, z])
-
-
-def _acceleration(x, y, z, vx, vy, vz, h, ballistic, w, brake):
-    """Earth-fixed acceleration (m/s^2): gravity, Coriolis and centrifugal terms, drag,
-    and ``brake`` (1/s) times the velocity against it (the landing burn)."""
-    gx, gy, gz = point_mass_j2(x, y, z, EARTH_MU, EARTH_RADIUS_EQ, EARTH_J2)
-    speed = math.sqrt(vx * vx + vy * vy + vz * vz)
-    k = SEA_LEVEL_DENSITY * math.exp(-max(h, 0.0) / SCALE_HEIGHT) * speed / (2.0 * ballistic) + brake
-    # rotating frame: -2 w x v - w x (w x r), w along +z
-    return (gx + 2.0 * w * vy + w * w * x - k * vx,
-            gy - 2.0 * w * vx + w * w * y - k * vy,
-            gz - k * vz)
+    velocity, at the deceleration that stops the stage at the ground
+    (:func:`rocketsim.flight.guidance.descent_point`, compiled)."""
+    x, y, z = r.tolist()
+    vx, vy, vz = v.tolist()
+    return np.array(descent_point(x, y, z, vx, vy, vz, ballistic, thrust_accel, 2.0,
+                                  SEA_LEVEL_DENSITY, SCALE_HEIGHT, LANDING_ALTITUDE,
+                                  LANDING_MARGIN, TOUCH_SPEED, EARTH_J2))
 
 
 def horizontal(fc, east, north):
@@ -233,7 +197,7 @@ def boost_back(fc, guide, engines):
         fc.point_at(wanted)
         aligned = fc_nose(fc) @ wanted > math.cos(math.radians(20.0))
         fc.throttle(1.0 if size > FINE_MISS and aligned else 0.0)
-        fc.step()
+        fc.sleep(0.0 if size < 30e3 else GUIDANCE_STEP)     # every step near the cut-off
     fc.shutdown(engines)
     fc.event("boost-back end", miss_m=size)
     fc.sleep(1.0)                   # hold the attitude through the tail-off: no spin-up
@@ -250,15 +214,15 @@ def entry_burn(fc, guide, engines):
     engines' full-throttle thrust (N) measured."""
     fc.ignite(engines)
     fc.throttle(1.0)
-    full = 0.0
+    gauge = FullThrust(0.0)
     while fc.airspeed > ENTRY_END_SPEED and guide.usable() > landing_propellant(fc):
         fc.point_at(-fc.air_velocity)
-        full = full_thrust(fc, full)
+        gauge.read(fc)
         fc.step()
     fc.shutdown(engines)
     fc.event("entry burn end", airspeed_m_s=fc.airspeed, altitude_m=fc.altitude,
              usable_propellant_kg=guide.usable())
-    return full
+    return gauge.full
 
 
 def landing_propellant(fc):
@@ -306,10 +270,14 @@ def descend(fc, guide, full):
         fall = -fc.vertical_speed
         h = fc.clearance
         available = full / fc.mass - fc.gravity + fc.dynamic_pressure / BALLISTIC   # thrust, drag
-        if fc.altitude < LANDING_ALTITUDE and fall > 0 and h > 0 \
-                and (fall * fall) / (2.0 * h) > LANDING_MARGIN * available:
+        need = fall * fall / (2.0 * h) if fall > 0 and h > 0 else 0.0
+        low = fc.altitude < LANDING_ALTITUDE
+        if low and need > LANDING_MARGIN * available:
             return
-        fc.step()
+        # every step once the burn's rule is near (lit in the step it holds), else at the guidance rate
+        near = fc.altitude < LANDING_ALTITUDE + 2.0 * GUIDANCE_STEP * max(fall, 0.0) \
+            and need > NEAR_LANDING_BURN * LANDING_MARGIN * available
+        fc.sleep(0.0 if near else GUIDANCE_STEP)
 
 
 def land(fc, guide, engines, full):
@@ -327,6 +295,7 @@ def land(fc, guide, engines, full):
     final_speed = math.sqrt(TOUCH_SPEED ** 2 + 2.0 * FINAL_DECELERATION * FINAL_HEIGHT)
     plan = max((fall * fall - final_speed ** 2) / (2.0 * max(h - FINAL_HEIGHT, 1.0)), 1.0)
     gate_speed = math.sqrt(TOUCH_SPEED ** 2 + 2.0 * FINAL_DECELERATION * TERMINAL_HEIGHT)
+    gauge = FullThrust(full)
     while True:
         h = fc.clearance
         fall = -fc.vertical_speed
@@ -355,17 +324,29 @@ def land(fc, guide, engines, full):
         wanted = side[0] * e + side[1] * n + up_acc * u
         total = float(np.linalg.norm(wanted))
         fc.point_at(within_air_limit(fc, wanted / total))
-        fc.throttle(fc.mass * total / full)
-        full = full_thrust(fc, full)
+        fc.throttle(fc.mass * total / gauge.full)
+        gauge.read(fc)
         fc.step()
     fc.shutdown(engines)
     fc.release()
     fc.event("landing burn end", clearance_m=fc.clearance, vertical_speed_m_s=fc.vertical_speed)
 
 
-def full_thrust(fc, previous):
-    """Full-throttle thrust (N) of the firing engines here, once they have spooled up."""
-    firing = [e for e in fc.engines if e["thrust_N"] > 0.0]
-    if not firing or any(e["spool"] < 1.0 for e in firing):
-        return previous
-    return sum(e["thrust_N"] / e["throttle"] for e in firing)
+class FullThrust:
+    """Full-throttle thrust (N) of the firing engines: ``full`` until they have spooled
+    up, then measured (thrust over throttle), again every GUIDANCE_STEP (it changes
+    only with the air's pressure: reading every engine's state every step costs more)."""
+
+    def __init__(self, full):
+        self.full = full
+        self.measured_at = -math.inf
+
+    def read(self, fc):
+        """Measure now if due; returns :attr:`full`."""
+        if fc.time - self.measured_at < GUIDANCE_STEP - 1e-9:
+            return self.full
+        firing = [e for e in fc.engines if e["thrust_N"] > 0.0]
+        if firing and all(e["spool"] >= 1.0 for e in firing):
+            self.full = sum(e["thrust_N"] / e["throttle"] for e in firing)
+            self.measured_at = fc.time
+        return self.full

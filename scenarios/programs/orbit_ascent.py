@@ -12,7 +12,8 @@ program flies any two-stage vehicle from any site:
    Electron at about 1.85, whose sprightlier climb would otherwise stay too
    steep (an empirical rule tuned on the two);
 3. a gravity turn (holding surface prograde) to first-stage burn-out,
-   throttling back through max-Q; when the mission names a landing pad
+   throttling back through max-Q (the throttle updated every GUIDANCE_STEP);
+   when the mission names a landing pad
    (``target.pad``) the first stage is cut off with RETURN_RESERVE of its
    propellant left for its return (its own program flies it back);
 4. staging, then direct insertion (dropping the fairing above 110 km):
@@ -22,26 +23,36 @@ program flies any two-stage vehicle from any site:
    the inclination, until the periapsis clears the target less 5 %;
 5. DEPLOY_DELAY later the payload is deployed (a body of its own).
 
+Guidance rate: like a real flight computer, the program updates its commands
+(throttle, steering direction) every GUIDANCE_STEP (0.1 s) and sleeps in
+between, while the autopilot holds the last command every 20 ms step; it goes
+to every step when a cut-off is near (:class:`Approach`: the first stage's
+reserve, the insertion's periapsis), so engines are cut in the step the limit
+is crossed. A program that wants the per-step loop calls ``fc.step()`` instead.
+
 The return of the lower stage (boost-back, entry and landing burns) is flown
 by its own program (``programs:`` in the scenario, e.g. booster_return.py).
 """
 
 import math
 
-EARTH_OMEGA = 7.2921159e-5     # rad/s (WGS84)
-EARTH_MU = 3.986004418e14      # m^3/s^2
-EARTH_RADIUS = 6378137.0       # m
+from rocketsim.constants import EARTH_MU, EARTH_OMEGA, EARTH_RADIUS_EQ as EARTH_RADIUS
+from rocketsim.flight.guidance import solve_linear_tangent, warm_up
+
 KICK_PER_TW = math.radians(12.66)  # kick per unit of thrust-to-weight above 1
 KICK_HEIGHT = 300.0            # m above the pad
 KICK_TIME = 10.0               # s held before the gravity turn
 Q_LIMIT = 33e3                 # Pa: throttle back above this dynamic pressure
 FAIRING_ALTITUDE = 110e3       # m: above this the air is thin enough to drop the fairing
 GUIDANCE_PERIOD = 1.0          # s between insertion guidance solutions
+GUIDANCE_STEP = 0.1            # s between steering updates (the autopilot holds them every step)
 NEWTON_PASSES = 2              # Newton passes per solution (warm-started)
 PREDICTION_STEP = 2.0          # s, step of the guidance's burn prediction
 DEPLOY_DELAY = 10.0            # s from insertion to payload deploy
 SEPARATION_DELAY = 10.0        # s from insertion to a carried spacecraft's separation
 RETURN_RESERVE = 0.18          # share of the first stage's propellant kept for its return
+
+warm_up()       # the guidance's compiled kernels, loaded with the program, not inside a step
 
 
 def main(fc):
@@ -79,9 +90,10 @@ def ascend(fc):
     fc.sleep(KICK_TIME)
     fc.hold("surface_prograde")
     reserve = RETURN_RESERVE * stage_propellant(fc, first) if fc.target.pad is not None else 0.0
-    while fc.thrust > 0.0 and stage_propellant(fc, first) > reserve:    # to burn-out or the reserve
+    left = Approach(reserve)
+    while fc.thrust > 0.0 and left.ahead(stage_propellant(fc, first), fc.time):   # to burn-out or the reserve
         fc.throttle(max_q_throttle(fc.dynamic_pressure))
-        fc.step()
+        fc.sleep(left.next_update())
     if reserve > 0.0:           # main engine cut-off by command, the reserve left
         fc.shutdown(first)
         fc.event("MECO", stage=first, propellant_left_kg=stage_propellant(fc, first))
@@ -93,7 +105,8 @@ def ascend(fc):
     fc.throttle(1.0)
     fairing_on = True
     guidance = Insertion(EARTH_RADIUS + target.altitude)
-    while fc.periapsis < 0.95 * target.altitude:
+    periapsis = Approach(0.95 * target.altitude, rising=True)
+    while periapsis.ahead(fc.periapsis, fc.time):
         if fairing_on and fc.altitude > FAIRING_ALTITUDE:
             fairing_on = False
             try:
@@ -101,7 +114,7 @@ def ascend(fc):
             except ValueError:          # a vehicle without one
                 pass
         steer(fc, guidance.pitch(fc), target.inclination)
-        fc.step()
+        fc.sleep(periapsis.next_update())
     fc.shutdown()
     fc.release()
     fc.log(f"insertion: {fc.periapsis / 1e3:.1f} x {fc.apoapsis / 1e3:.1f} km, "
@@ -139,7 +152,8 @@ class Insertion:
     ``tan(pitch) = A + B tau`` (tau s since the last solution). Every
     GUIDANCE_PERIOD seconds ``A, B`` are solved again by Newton's method on a
     planar point-mass prediction of the rest of the burn (inverse-square
-    gravity, the thrust and mass flow read now, PREDICTION_STEP midpoint steps)
+    gravity, the thrust and mass flow read now, PREDICTION_STEP midpoint steps;
+    compiled: :func:`rocketsim.flight.guidance.solve_linear_tangent`)
     so that the burn ends, at circular speed or when the propellant runs out,
     at the target radius with no radial speed. Recomputed from the state each
     time, it absorbs what the prediction leaves out (J2, the steering's
@@ -160,49 +174,44 @@ class Insertion:
 
     def solve(self, fc):
         flow = sum(e["mass_flow_kg_s"] for e in fc.engines)
-        if flow <= 0.0 or fc.thrust <= 0.0:
+        thrust = fc.thrust
+        if flow <= 0.0 or thrust <= 0.0:
             return                      # the engine is still spooling up
         r = math.sqrt(fc.position @ fc.position)
         v = fc.velocity
         vr = float(v @ fc.position) / r
         vh = math.sqrt(max(0.0, v @ v - vr * vr))
-        state = (r, vr, vh, fc.mass, fc.thrust, flow, sum(fc.propellant.values()) / flow)
-        a, b = self.a, self.b
-        for _ in range(NEWTON_PASSES):
-            f0 = self.miss(state, a, b)
-            fa = self.miss(state, a + 1e-3, b)
-            fb = self.miss(state, a, b + 1e-5)
-            j11, j21 = (fa[0] - f0[0]) / 1e-3, (fa[1] - f0[1]) / 1e-3
-            j12, j22 = (fb[0] - f0[0]) / 1e-5, (fb[1] - f0[1]) / 1e-5
-            det = j11 * j22 - j12 * j21
-            if det == 0.0:
-                break
-            a += max(-0.5, min(0.5, (-f0[0] * j22 + f0[1] * j12) / det))
-            b += max(-0.01, min(0.01, (-j11 * f0[1] + j21 * f0[0]) / det))
-        self.a, self.b = max(-1.0, min(2.0, a)), b
+        self.a, self.b = solve_linear_tangent(r, vr, vh, fc.mass, thrust, flow,
+                                              sum(fc.propellant.values()) / flow, self.radius,
+                                              self.a, self.b, EARTH_MU, PREDICTION_STEP, NEWTON_PASSES)
         self.solved_at = fc.time
 
-    def miss(self, state, a, b):
-        """(radius miss in km, radial speed in units of 10 m/s) at the end of the
-        predicted burn with the law ``a, b``."""
-        r, vr, vh, m, thrust, flow, left = state
-        t = 0.0
-        while t < left and vh * vh * r < EARTH_MU:
-            h = min(PREDICTION_STEP, left - t)
-            k1 = _planar_rates(r, vr, vh, thrust / m, a + b * t)
-            k2 = _planar_rates(r + 0.5 * h * k1[0], vr + 0.5 * h * k1[1], vh + 0.5 * h * k1[2],
-                               thrust / (m - 0.5 * h * flow), a + b * (t + 0.5 * h))
-            r, vr, vh, m = r + h * k2[0], vr + h * k2[1], vh + h * k2[2], m - h * flow
-            t += h
-        return (r - self.radius) / 1e3, vr / 10.0
 
+class Approach:
+    """A reading on its way to a limit, setting the guidance's update rate: an update
+    every GUIDANCE_STEP while the limit is more than two updates away at the rate the
+    reading last changed, every step (20 ms) nearer, so that the crossing is caught
+    in the step it happens. ``rising``: the reading climbs to the limit (else it
+    falls to it)."""
 
-def _planar_rates(r, vr, vh, acceleration, tangent):
-    """(dr/dt, dvr/dt, dvh/dt) in the orbit plane (m/s, m/s^2) under thrust
-    ``acceleration`` (m/s^2) at pitch ``atan(tangent)`` above the horizontal."""
-    c = 1.0 / math.sqrt(1.0 + tangent * tangent)
-    return (vr, acceleration * tangent * c - EARTH_MU / (r * r) + vh * vh / r,
-            acceleration * c - vr * vh / r)
+    def __init__(self, limit, rising=False):
+        self.limit = limit
+        self.sign = 1.0 if rising else -1.0
+        self.last = None            # (reading, mission time) at the last update
+        self.gap = self.rate = math.inf
+
+    def ahead(self, value, time):
+        """Record the reading ``value`` at mission ``time`` (s); whether the limit is
+        still ahead of it."""
+        self.gap = self.sign * (self.limit - value)
+        if self.last is not None:
+            self.rate = self.sign * (value - self.last[0]) / (time - self.last[1])
+        self.last = (value, time)
+        return self.gap > 0.0
+
+    def next_update(self):
+        """Seconds until the next update (0: the next step)."""
+        return GUIDANCE_STEP if self.gap > 2.0 * GUIDANCE_STEP * self.rate else 0.0
 
 
 def steer(fc, pitch, inclination):
