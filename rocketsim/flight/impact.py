@@ -9,7 +9,7 @@ central body's point mass; no drag, no thrust, no J2. It meets the ground
 
 first changes sign from positive (above) to negative (below) along the true anomaly ``nu`` ahead
 of the vehicle (found by a scan in STEPS steps of the arc to periapsis,
-then bisected to 1e-12 rad). The time of flight follows from Kepler's
+then bisected to 1e-12 rad; the scan and bisection are compiled). The time of flight follows from Kepler's
 equation (the eccentric anomaly on an ellipse, the hyperbolic anomaly on a
 hyperbola; Vallado, *Fundamentals of Astrodynamics and Applications*, 4th
 ed., sections 2.2-2.3), and the impact longitude from the Earth's rotation
@@ -29,6 +29,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from rocketsim._jit import njit
 from rocketsim.constants import EARTH_RADIUS_EQ, EARTH_RADIUS_POLAR
 from rocketsim.frames.earth_fixed import eci_to_ecef
 from rocketsim.frames.geodetic import ecef_to_geodetic
@@ -56,14 +57,14 @@ def predict_impact(r, v, t: float, mu: float, radius_eq: float = EARTH_RADIUS_EQ
     meets it (an orbit clear of the ground, or a path already below it)."""
     r = np.asarray(r, dtype=float)
     v = np.asarray(v, dtype=float)
-    if _outside(r, radius_eq, radius_polar) <= 0.0:
+    if _outside(r[0], r[1], r[2], radius_eq, radius_polar) <= 0.0:
         return None                                   # on or under the ground already
-    h = np.cross(r, v)
+    h = _cross(r, v)
     h2 = float(h @ h)
     if h2 == 0.0:
         return None                                   # a purely radial path: not handled
     rn = math.sqrt(r @ r)
-    e_vec = np.cross(v, h) / mu - r / rn
+    e_vec = _cross(v, h) / mu - r / rn
     e = math.sqrt(e_vec @ e_vec)
     p = h2 / mu
     if p / (1.0 + e) > radius_eq:
@@ -74,11 +75,8 @@ def predict_impact(r, v, t: float, mu: float, radius_eq: float = EARTH_RADIUS_EQ
         pa = e_vec / e
     else:
         pa = r / rn
-    qa = np.cross(w, pa)
+    qa = _cross(w, pa)
     nu0 = math.atan2(r @ qa, r @ pa)
-
-    def point(nu):
-        return p / (1.0 + e * math.cos(nu)) * (math.cos(nu) * pa + math.sin(nu) * qa)
 
     # a ground crossing lies between now and the next periapsis (nu = 2 pi, or 0 if
     # falling already: nu0 < 0); on a hyperbola the arc ends at the asymptote
@@ -89,36 +87,65 @@ def predict_impact(r, v, t: float, mu: float, radius_eq: float = EARTH_RADIUS_EQ
     span = end - start
     if span <= 0.0:
         return None
-    a_prev = start
-    f_prev = _outside(point(start), radius_eq, radius_polar)
-    crossing = None
-    for k in range(1, STEPS + 1):
-        a_next = start + span * k / STEPS
-        f_next = _outside(point(a_next), radius_eq, radius_polar)
-        if f_prev > 0.0 >= f_next:
-            crossing = (a_prev, a_next)
-            break
-        a_prev, f_prev = a_next, f_next
-    if crossing is None:
+    nu = _ground_crossing(pa, qa, p, e, start, span, radius_eq, radius_polar)
+    if math.isnan(nu):
         return None
-    lo, hi = crossing
-    while hi - lo > 1e-12:
-        mid = 0.5 * (lo + hi)
-        if _outside(point(mid), radius_eq, radius_polar) > 0.0:
-            lo = mid
-        else:
-            hi = mid
-    nu = hi
     dt = _time_between(nu0, nu, e, p, mu)
-    position = point(nu)
+    position = _on_conic(pa, qa, p, e, nu)
     lat, lon, _ = ecef_to_geodetic(eci_to_ecef(position, t + dt))
     speed = math.sqrt(mu * (2.0 / math.sqrt(position @ position) - (1.0 - e * e) / p))
     return Impact(dt, lat, lon, position, speed)
 
 
-def _outside(r, a: float, b: float) -> float:
+def _cross(a, b) -> np.ndarray:
+    """``a x b`` of two 3-vectors: the products of ``np.cross``, without its overhead."""
+    (ax, ay, az), (bx, by, bz) = a.tolist(), b.tolist()
+    return np.array((ay * bz - az * by, az * bx - ax * bz, ax * by - ay * bx))
+
+
+@njit
+def _outside(x, y, z, a, b):
     """``(x^2 + y^2)/a^2 + z^2/b^2 - 1``: positive above the ellipsoid, zero on it."""
-    return (r[0] * r[0] + r[1] * r[1]) / (a * a) + r[2] * r[2] / (b * b) - 1.0
+    return (x * x + y * y) / (a * a) + z * z / (b * b) - 1.0
+
+
+@njit
+def _on_conic(pa, qa, p, e, nu):
+    """The point (m) at true anomaly ``nu`` (rad) of the conic ``r = p / (1 + e cos nu)``
+    with unit perifocal axes ``pa`` (to periapsis) and ``qa`` (90 deg ahead)."""
+    return p / (1.0 + e * math.cos(nu)) * (math.cos(nu) * pa + math.sin(nu) * qa)
+
+
+@njit
+def _height_sign(pa, qa, p, e, nu, a, b):
+    """:func:`_outside` of the conic's point at ``nu`` (:func:`_on_conic`, in scalars)."""
+    c, s = math.cos(nu), math.sin(nu)
+    radius = p / (1.0 + e * c)
+    return _outside(radius * (c * pa[0] + s * qa[0]), radius * (c * pa[1] + s * qa[1]),
+                    radius * (c * pa[2] + s * qa[2]), a, b)
+
+
+@njit
+def _ground_crossing(pa, qa, p, e, start, span, a, b):
+    """True anomaly (rad) of the first crossing of the ellipsoid ``(a, b)`` from above
+    to below on ``[start, start + span]`` of the conic: a scan in STEPS steps, then
+    bisection to 1e-12 rad; nan if none."""
+    a_prev = start
+    f_prev = _height_sign(pa, qa, p, e, start, a, b)
+    for k in range(1, STEPS + 1):
+        a_next = start + span * k / STEPS
+        f_next = _height_sign(pa, qa, p, e, a_next, a, b)
+        if f_prev > 0.0 >= f_next:
+            lo, hi = a_prev, a_next
+            while hi - lo > 1e-12:
+                mid = 0.5 * (lo + hi)
+                if _height_sign(pa, qa, p, e, mid, a, b) > 0.0:
+                    lo = mid
+                else:
+                    hi = mid
+            return hi
+        a_prev, f_prev = a_next, f_next
+    return math.nan
 
 
 def _time_between(nu0: float, nu1: float, e: float, p: float, mu: float) -> float:
