@@ -74,7 +74,7 @@ def make_field(center: str, jd0_tt: float, rotation=None, bodies=BODIES,
     return fp
 
 
-@njit
+@njit(inline="always")
 def field_acceleration(x, y, z, s, fp, p):
     """The whole field (m/s^2): central point mass + J2 (``p``) plus :func:`perturbation`."""
     ax, ay, az = point_mass_j2(x, y, z, p[P_MU], p[P_RADIUS], p[P_J2])
@@ -112,7 +112,9 @@ def no_air():
     return (0.0, 1.0, zero, zero, zero, zero, zero, zero)
 
 
-@njit
+# inlined (numba IR) here and above and below: a call per RK4 stage that passes the air
+# table's tuple of arrays cost rails four times their arithmetic (issue 9 benchmark)
+@njit(inline="always")
 def translational_acceleration(x, y, z, vx, vy, vz, p, s, fp, air, pos):
     """The field at ``(x, y, z)`` (m) and, about Earth with ``fp[F_DRAG]`` set,
     point-mass drag ``-1/2 rho |v_air| v_air C_D A/m`` (``v_air = v - omega_E x r``;
@@ -145,7 +147,7 @@ def translational_derivative(y, p, s, fp, air, dy):
         y[R], y[R + 1], y[R + 2], y[V], y[V + 1], y[V + 2], p, s, fp, air, np.empty(3))
 
 
-@njit
+@njit(inline="always")
 def translational_rk4(y, h, p, s, fp, air, pos):
     """One RK4 step of ``h`` s of position and velocity, in place on ``y[0:6]``.
 

@@ -43,6 +43,32 @@ def _product(a0, a1, a2, a3, b0, b1, b2, b3):
 
 
 @njit
+def spin_constants(w_x, inertia, dt):
+    """The body-fixed part of :func:`turn_constants`: ``(b, c, s)``, the quaternion
+    ``q_x(omega_s dt)`` (a tuple) and the cosine and sine of the rates' turn, for the
+    roll rate ``w_x`` (rad/s). The torque-free map leaves ``w_x`` untouched, so these
+    are the same bits at every step of a body on rails (computed once per batch)."""
+    i1, it = inertia[0], inertia[1]
+    spin = (it - i1) * w_x / it
+    b = (math.cos(0.5 * spin * dt), math.sin(0.5 * spin * dt), 0.0, 0.0)
+    return b, math.cos(spin * dt), -math.sin(spin * dt)
+
+
+@njit
+def precession_constant(y, inertia, dt):
+    """The inertial part of :func:`turn_constants`: the quaternion ``q_H(Omega dt)``
+    (a tuple) about the angular momentum of state ``y``, identity when it is zero."""
+    i1, it = inertia[0], inertia[1]
+    hx, hy, hz = quat_rotate(y[Q:Q + 4], np.array((i1 * y[W], it * y[W + 1], it * y[W + 2])))
+    h = math.sqrt(hx * hx + hy * hy + hz * hz)
+    if h == 0.0:
+        return (1.0, 0.0, 0.0, 0.0)
+    half = 0.5 * h / it * dt
+    k = math.sin(half) / h
+    return (math.cos(half), k * hx, k * hy, k * hz)
+
+
+@njit
 def turn_constants(y, inertia, dt):
     """The exact torque-free map over ``dt`` s from the attitude and rates of ``y``.
 
@@ -56,20 +82,11 @@ def turn_constants(y, inertia, dt):
     and the transverse body rates turn at ``-omega_s`` (Landau & Lifshitz,
     Mechanics, section 36; Goldstein, Classical Mechanics, section 5.6).
     Returns ``(a, b, c, s)``: the quaternions ``q_H`` and ``q_x`` (tuples) and
-    the cosine and sine of the rates' turn. The map is rebuilt from each
-    step's state (not once per batch), so batching never changes a bit.
+    the cosine and sine of the rates' turn. ``q_H`` is rebuilt from each step's
+    state (not once per batch), so batching never changes a bit.
     """
-    i1, it = inertia[0], inertia[1]
-    hx, hy, hz = quat_rotate(y[Q:Q + 4], np.array((i1 * y[W], it * y[W + 1], it * y[W + 2])))
-    h = math.sqrt(hx * hx + hy * hy + hz * hz)
-    if h == 0.0:
-        return (1.0, 0.0, 0.0, 0.0), (1.0, 0.0, 0.0, 0.0), 1.0, 0.0
-    spin = (it - i1) * y[W] / it
-    half = 0.5 * h / it * dt
-    k = math.sin(half) / h
-    a = (math.cos(half), k * hx, k * hy, k * hz)
-    b = (math.cos(0.5 * spin * dt), math.sin(0.5 * spin * dt), 0.0, 0.0)
-    return a, b, math.cos(spin * dt), -math.sin(spin * dt)
+    b, c, s = spin_constants(y[W], inertia, dt)
+    return precession_constant(y, inertia, dt), b, c, s
 
 
 @njit
@@ -135,13 +152,17 @@ def advance_rails(y, k0, h, n_steps, p, fp, air, inertia, mode, floor=RAILS_FLOO
     for k in range(4):
         if fp[F_MU + k] != 0.0 and k != int(fp[F_CENTER]):
             third = True
+    spin, c, sn = spin_constants(y[W], inertia, h)
     for k in range(n_steps):
         t = (k0 + k) * h
         if third and hold_time(t) != bucket:
             bucket = hold_time(t)
             s = bodies_at(fp, bucket)[0]
         translational_rk4(y, h, p, s, fp, air, pos)
-        turn_attitude(y, inertia, h, mode)
+        if mode == HELD:
+            turn_attitude(y, inertia, h, mode)
+        else:
+            apply_turn(y, precession_constant(y, inertia, h), spin, c, sn)
         if radial_height(y, p) < floor:
             return y, k + 1
     return y, n_steps
