@@ -5,7 +5,7 @@ import math
 import numpy as np
 import pytest
 
-from rocketsim.flight.autopilot import attitude_error
+from rocketsim.flight.steering import attitude_error
 from rocketsim.scenario.load import load
 from rocketsim.sim.flight import fly
 
@@ -96,7 +96,7 @@ def test_grid_fin_gain_reverses_tail_first_and_matches_the_fin_model_in_axial_fl
     ``-+ 2 d q A C_N_alpha(M) cos(probe)`` (d the fins' station above the centre of
     mass); the fins at 90 and 270 deg and the drag give no pitch moment."""
     from tests.aero_vehicles import shipped
-    from rocketsim.flight.autopilot import FIN_PROBE, fin_gains
+    from rocketsim.flight.steering import FIN_PROBE, fin_gains
     from rocketsim.vehicle import grid_fins as G
     from rocketsim.vehicle.aero import interp
     from rocketsim.vehicle.build import build
@@ -109,9 +109,41 @@ def test_grid_fin_gain_reverses_tail_first_and_matches_the_fin_model_in_axial_fl
     d = float(grid[0, G.G_X]) - x_cm
     expected = 2.0 * d * 0.5 * rho * speed ** 2 * float(grid[0, G.G_AREA]) * \
         interp(G.GRID_MACH, G.GRID_CN_ALPHA, mach) * math.cos(FIN_PROBE)
-    nose_first = fin_gains(model.arrays, np.array([speed, 0.0, 0.0]), rho, sound, x_cm)
-    tail_first = fin_gains(model.arrays, np.array([-speed, 0.0, 0.0]), rho, sound, x_cm)
+    nose_first = fin_gains(model.arrays.aero, speed, 0.0, 0.0, rho, sound, x_cm)
+    tail_first = fin_gains(model.arrays.aero, -speed, 0.0, 0.0, rho, sound, x_cm)
     assert nose_first[0] == pytest.approx(-expected, rel=1e-9)
     assert tail_first[0] == pytest.approx(expected, rel=1e-9)
     # yaw pushes the fin station to +y: the moment about z is +d F_y, the opposite sign
     assert nose_first[1] == pytest.approx(expected, rel=1e-9)
+
+
+def test_rotation_error_is_the_axis_times_the_angle():
+    """Analytic (Rodrigues): the target axes turned by an angle a about a unit axis n
+    (body axes: the current axes are the identity) need the rotation vector a n; the
+    same for a turn beyond 90 deg."""
+    from rocketsim.flight.steering import rotation_error
+    for angle in (0.3, 2.5):
+        n = np.array([1.0, -2.0, 0.5]) / math.sqrt(5.25)
+        k = np.array([[0.0, -n[2], n[1]], [n[2], 0.0, -n[0]], [-n[1], n[0], 0.0]])
+        turned = np.eye(3) + math.sin(angle) * k + (1.0 - math.cos(angle)) * (k @ k)
+        assert np.allclose(rotation_error(np.eye(3), turned), angle * n, atol=1e-12)
+
+
+def test_commanded_attitudes_in_local_axes():
+    """Reference: the conventions of rocketsim/flight/readings.py, with east, north, up
+    along ECI x, y, z. Pitch 30 deg, heading 90 deg puts the nose at cos 30 east +
+    sin 30 up; level flight east with roll 0 has the belly (body z) down and body y =
+    z x x = south; a roll of 90 deg turns body z about the nose to z_ref turned by
+    +90 deg, x_nose cross z_ref = east x down = north."""
+    from rocketsim.flight.steering import PITCH_HEADING, nose_target, target_axes
+    enu = np.eye(3)
+    code = np.array([PITCH_HEADING, 1.0, math.radians(30.0), math.radians(90.0), 0.0, math.nan])
+    nose = nose_target(code, np.array([7e6, 0.0, 0.0]), np.array([0.0, 7e3, 0.0]), enu, np.zeros(3))
+    assert np.allclose(nose, [math.cos(math.radians(30.0)), 0.0, 0.5], atol=1e-15)
+    east = np.array([1.0, 0.0, 0.0])
+    found, level = target_axes(east, enu, 0.0)
+    assert found and np.allclose(level, [[1, 0, 0], [0, -1, 0], [0, 0, -1]], atol=1e-15)
+    found, rolled = target_axes(east, enu, math.pi / 2)
+    assert found and np.allclose(rolled[:, 2], [0.0, 1.0, 0.0], atol=1e-15)
+    found, _ = target_axes(np.array([0.0, 0.0, 1.0]), enu, 0.0)     # nose up: no reference
+    assert not found

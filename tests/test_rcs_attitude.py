@@ -12,6 +12,7 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 from rocketsim.flight import autopilot as AP
+from rocketsim.flight import steering as ST
 from rocketsim.frames.quaternion import quat_to_matrix
 from rocketsim.scenario.load import load
 from rocketsim.sim.flight import fly
@@ -99,10 +100,10 @@ def _law_response(times, angle):
     """Reference: the autopilot law's own planar response (module docstring of
     rocketsim.flight.autopilot), theta'' = 2 zeta omega_n (clip(omega_n/(2 zeta) e,
     RATE_LIMIT) - theta'), e = angle - theta, integrated by scipy's DOP853 from rest."""
-    k = 2.0 * AP.ZETA * AP.OMEGA_N
+    k = 2.0 * ST.ZETA * ST.OMEGA_N
 
     def rhs(_, s):
-        wanted = float(np.clip(AP.OMEGA_N / (2.0 * AP.ZETA) * (angle - s[0]), -AP.RATE_LIMIT, AP.RATE_LIMIT))
+        wanted = float(np.clip(ST.OMEGA_N / (2.0 * ST.ZETA) * (angle - s[0]), -ST.RATE_LIMIT, ST.RATE_LIMIT))
         return [s[1], k * (wanted - s[1])]
 
     sol = solve_ivp(rhs, (0.0, times[-1]), [0.0, 0.0], method="DOP853", t_eval=times, rtol=1e-10,

@@ -20,40 +20,36 @@ that sense and the vehicle flies nose first (angle of attack below 90 deg).
 A stabilising moment (fins, a tail-first booster) is left alone to help; grid
 fins are not counted (they are commanded separately). The moment is
 evaluated on what the autopilot reads (the navigation estimate: air data
-errors flow in), in the air of the step.
+errors flow in), in the air of the step, inside the autopilot's compiled step
+(:func:`rocketsim.flight.steering.steer_step`).
 """
 
 from __future__ import annotations
 
 import math
 
-import numpy as np
-
+from rocketsim._jit import njit
 from rocketsim.vehicle.aero import A_ON, body_aero
 
 
-def destabilising_moment(view, vehicle, y: np.ndarray, thrust: float, x_cm: float) -> tuple[float, float]:
+@njit
+def destabilising_moment(aero, u, v, w, wx, wy, wz, rho, sound, thrust, x_cm):
     """``(M_y, M_z)`` (N m, body axes, about the centre of mass) of the aerodynamic
     moment's part that turns the nose away from the air-relative velocity.
 
-    ``view``: the state the autopilot reads (attitude, rates, the air);
-    ``vehicle``: the runtime model (its aero arrays); ``y``: the state (only
-    for the model's layout); ``thrust``: the engines' total force along body +x
+    ``aero``: the vehicle's aerodynamic arrays (:class:`~rocketsim.vehicle.aero_build.AeroArrays`);
+    ``(u, v, w)``: the air-relative velocity (m/s, body axes) and ``(wx, wy, wz)``
+    the body rates (rad/s) the autopilot reads; ``rho`` (kg/m^3) and ``sound``
+    (m/s): the air it reads; ``thrust``: the engines' total force along body +x
     (N, for the plume shielding of a tail-first base); ``x_cm``: station of the
     centre of mass (m). Zero without aerodynamics, out of the air, or flying
     more than 90 deg off the air-relative velocity.
     """
-    aero = vehicle.arrays.aero
-    if aero.ref[A_ON] < 0.5:
+    if aero.ref[A_ON] < 0.5 or rho <= 0.0:
         return 0.0, 0.0
-    rho, _, _, sound, _, air_velocity = view.air
-    if rho <= 0.0:
-        return 0.0, 0.0
-    u, v, w = view.axes.T @ air_velocity           # air-relative velocity, body axes
     cross = math.hypot(v, w)
     if u <= 0.0 or cross == 0.0:                  # tail first, or no angle of attack
         return 0.0, 0.0
-    wx, wy, wz = view.body_rates
     moment = body_aero(u, v, w, wx, wy, wz, rho, sound, thrust, x_cm, aero.ref, aero.seg,
                        aero.fin, aero.ca_nf, aero.ca_tf)
     # n = d x x_b with d = (u, v, w)/speed: (0, w, -v)/speed, normalised by the

@@ -62,30 +62,31 @@ vacuum. With neither thrust nor deployed fins in the air the autopilot commands
 nothing. A booster falling tail first is statically unstable bare and stable
 with its grid fins (tests/test_aero.py); the fins' restoring moment at zero
 deflection is left to help, not cancelled.
+
+The step is computed in one compiled call
+(:func:`rocketsim.flight.steering.steer_step`, where the gains live) from the
+estimated state; only the RCS's bounded least squares runs here, in Python,
+while the program has the thrusters on.
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 from scipy.optimize import lsq_linear
 
-from rocketsim.flight.aero_feedforward import destabilising_moment
-from rocketsim.vehicle import engines as E
-from rocketsim.vehicle import grid_fins as G
+from rocketsim.flight.steering import (DIRECTION, NORMAL, PITCH_HEADING, PROGRADE, RADIAL,
+                                       SURFACE_PROGRADE, steer_step)
 from rocketsim.vehicle import rcs as RC
-from rocketsim.frames.quaternion import quat_from_matrix
-from rocketsim.flight.readings import _VERTICAL
 
-OMEGA_N = 1.0     # rad/s, natural frequency of the attitude response
-ZETA = 0.9        # damping ratio
-RATE_LIMIT = 0.15  # rad/s, largest commanded turn rate (pitch/yaw)
-FIN_PROBE = 0.05  # rad, deflection used to measure the grid fins' moment per radian
-
-MODES = ("prograde", "retrograde", "surface_prograde", "surface_retrograde", "normal",
-         "antinormal", "radial", "antiradial")
+# each mode: the direction it follows and its sense
+MODE_CODES = {"prograde": (PROGRADE, 1.0), "retrograde": (PROGRADE, -1.0),
+              "surface_prograde": (SURFACE_PROGRADE, 1.0), "surface_retrograde": (SURFACE_PROGRADE, -1.0),
+              "normal": (NORMAL, 1.0), "antinormal": (NORMAL, -1.0),
+              "radial": (RADIAL, 1.0), "antiradial": (RADIAL, -1.0)}
+MODES = tuple(MODE_CODES)
 
 
 @dataclass(frozen=True)
@@ -97,84 +98,17 @@ class AttitudeCommand:
     heading: float | None = None            # rad from north towards east
     mode: str | None = None
     roll: float | None = None               # rad about the nose (StateView.euler's); None: free, damped
+    code: np.ndarray = field(init=False, repr=False, compare=False)   # the numbers steer_step reads
 
-    def target(self, view) -> np.ndarray:
-        """The commanded nose direction (unit vector, ECI) for the state ``view``."""
+    def __post_init__(self):
+        roll = math.nan if self.roll is None else self.roll
         if self.direction is not None:
-            return self.direction
-        if self.mode is not None:
-            sign = -1.0 if self.mode.startswith(("retro", "anti", "surface_retro")) else 1.0
-            base = {"prograde": "prograde", "retrograde": "prograde",
-                    "surface_prograde": "surface_prograde", "surface_retrograde": "surface_prograde",
-                    "normal": "normal", "antinormal": "normal",
-                    "radial": "radial", "antiradial": "radial"}[self.mode]
-            return sign * getattr(view, base)
-        east, north, up = view.enu
-        horizontal = math.sin(self.heading) * east + math.cos(self.heading) * north
-        return math.cos(self.pitch) * horizontal + math.sin(self.pitch) * up
-
-
-def attitude_error(axes: np.ndarray, target: np.ndarray) -> np.ndarray:
-    """Rotation vector (rad, body axes) that turns the nose (body x) onto ``target`` (ECI).
-
-    ``axes`` is the body -> ECI matrix; the result has no roll component.
-    """
-    d = axes.T @ target                      # target in body axes
-    axis = np.array([0.0, -d[2], d[1]])      # x_b cross d
-    s = float(np.linalg.norm(axis))
-    angle = math.atan2(s, float(d[0]))
-    if s == 0.0:
-        return np.array([0.0, 0.0, math.pi]) if d[0] < 0 else np.zeros(3)
-    return axis / s * angle
-
-
-def target_axes(nose: np.ndarray, enu, roll: float) -> np.ndarray | None:
-    """Body -> ECI matrix of the attitude with the nose along ``nose`` (unit, ECI) turned
-    ``roll`` rad about it from the belly-to-the-ground reference (``enu`` the local east,
-    north, up unit vectors, ECI); None within 0.01 deg of the vertical (no reference)."""
-    east, north, up = enu
-    sin_pitch = float(np.clip(nose @ up, -1.0, 1.0))
-    if abs(sin_pitch) >= _VERTICAL:
-        return None
-    horizontal = nose - sin_pitch * up
-    horizontal = horizontal / np.linalg.norm(horizontal)
-    z_ref = sin_pitch * horizontal - math.sqrt(1.0 - sin_pitch * sin_pitch) * up
-    z_body = math.cos(roll) * z_ref + math.sin(roll) * np.cross(nose, z_ref)
-    return np.column_stack((nose, np.cross(z_body, nose), z_body))
-
-
-def rotation_error(axes: np.ndarray, target: np.ndarray) -> np.ndarray:
-    """Rotation vector (rad, body axes) that turns the body axes ``axes`` onto the
-    target axes ``target`` (both body -> ECI matrices), all three components."""
-    q = quat_from_matrix(axes.T @ target)
-    if q[0] < 0.0:
-        q = -q
-    s = float(np.linalg.norm(q[1:]))
-    if s == 0.0:
-        return np.zeros(3)
-    return q[1:] / s * (2.0 * math.atan2(s, float(q[0])))
-
-
-def command_error(command: "AttitudeCommand", view) -> np.ndarray:
-    """The attitude error (rad, body axes) of ``command`` for the state ``view``: the
-    nose's (no roll component) or, with a roll commanded, the whole attitude's."""
-    nose = command.target(view)
-    if command.roll is not None:
-        target = target_axes(nose, view.enu, command.roll)
-        if target is not None:
-            return rotation_error(view.axes, target)
-    return attitude_error(view.axes, nose)
-
-
-def angular_acceleration(error: np.ndarray, rates: np.ndarray) -> np.ndarray:
-    """Commanded angular acceleration (rad/s^2, body axes) for the rate-limited damped
-    response of the module docstring; ``error`` (rad) and ``rates`` (rad/s) in body axes.
-    A roll component of ``error`` (a commanded roll) is flown like pitch and yaw."""
-    wanted = OMEGA_N / (2.0 * ZETA) * np.array([error[0], error[1], error[2]])
-    size = math.hypot(wanted[1], wanted[2]) if error[0] == 0.0 else float(np.linalg.norm(wanted))
-    if size > RATE_LIMIT:
-        wanted *= RATE_LIMIT / size
-    return 2.0 * ZETA * OMEGA_N * (wanted - rates)
+            code = (DIRECTION, 1.0, *self.direction, roll)
+        elif self.mode is not None:
+            code = (*MODE_CODES[self.mode], 0.0, 0.0, 0.0, roll)
+        else:
+            code = (PITCH_HEADING, 1.0, self.pitch, self.heading, 0.0, roll)
+        object.__setattr__(self, "code", np.array(code, dtype=float))
 
 
 def rcs_torques(arrays, y: np.ndarray, x_cm: float) -> np.ndarray:
@@ -196,83 +130,21 @@ def rcs_command(torques: np.ndarray, wanted: np.ndarray) -> np.ndarray:
     return np.clip(lsq_linear(torques, wanted, bounds=(0.0, 1.0), method="bvls").x, 0.0, 1.0)
 
 
-def gimbal_command(torque_y: float, torque_z: float, thrust: float, lever: float) -> tuple[float, float]:
-    """``(g_y, g_z)`` (rad) of every firing engine for a torque about body y and z (N m).
-
-    ``thrust`` (N) is the total thrust, ``lever`` (m) the thrust-weighted
-    distance of the gimbal points behind the centre of mass.
-    """
-    if thrust <= 0.0 or lever <= 0.0:
-        return 0.0, 0.0
-    return -torque_z / (lever * thrust), torque_y / (lever * thrust)
-
-
-def fin_moments(arrays, air_body: np.ndarray, rho: float, sound: float, x_cm: float,
-                deflections) -> np.ndarray:
-    """Moment (N m, body x y z about the centre of mass) of the grid fins of ``arrays``
-    held at ``deflections`` = (pitch, yaw, roll) rad, in air moving at ``air_body``
-    (m/s, body axes, the vehicle relative to the air) of density ``rho`` (kg/m^3)."""
-    grid = arrays.aero.grid
-    held = np.zeros_like(arrays.aero.grid_cmd)
-    G.command(grid, held, 0.0, *deflections)
-    u, v, w = air_body
-    return np.array(G.grid_fin_forces(1e9, u, v, w, 0.0, 0.0, 0.0, rho, sound, x_cm, grid, held)[3:])
-
-
-def fin_gains(arrays, air_body: np.ndarray, rho: float, sound: float, x_cm: float) -> np.ndarray:
-    """Moment per radian (N m/rad) of the pitch, yaw and roll deflections about body y, z, x."""
-    base = fin_moments(arrays, air_body, rho, sound, x_cm, (0.0, 0.0, 0.0))
-    gains = np.zeros(3)
-    for k, axis in enumerate((1, 2, 0)):
-        probe = [0.0, 0.0, 0.0]
-        probe[k] = FIN_PROBE
-        gains[k] = (fin_moments(arrays, air_body, rho, sound, x_cm, probe)[axis] - base[axis]) / FIN_PROBE
-    return gains
-
-
 def steer(command: AttitudeCommand, view, vehicle, propulsion, y: np.ndarray, t: float,
-          ambient_pressure: float, fins: bool = False, rcs: bool = False) -> tuple[float, float]:
+          ambient_pressure: float, fins: bool = False, rcs: bool = False) -> None:
     """Command the gimbals of ``vehicle``'s firing engines (and its grid fins when
-    ``fins``, its RCS thrusters when ``rcs``) for one step; returns the engines' ``(g_y, g_z)``."""
-    error = command_error(command, view) if command.roll is not None else \
-        attitude_error(view.axes, command.target(view))
-    _, x_cm, ixx, iyy, izz = vehicle.mass_properties(y)
-    torque = np.array([ixx, iyy, izz]) * angular_acceleration(error, view.body_rates)
-    each = propulsion.thrusts(y, t, ambient_pressure)
-    firing = np.flatnonzero(each > 0.0)
-    thrust = float(each.sum())
-    torque[1:] -= destabilising_moment(view, vehicle, y, thrust, x_cm)     # aero feedforward
-    engine_authority = lever = 0.0
-    if len(firing) and thrust > 0.0:
-        lever = float(each @ (x_cm - vehicle.arrays.eng[:, E.E_X])) / thrust
-        cone = float(vehicle.arrays.eng[firing, E.E_GIMBAL_RANGE].min())
-        engine_authority = max(lever, 0.0) * thrust * math.sin(cone)
-    fin_torque = np.zeros(3)            # body x, y, z
-    grid = vehicle.arrays.aero.grid
-    if fins and len(grid):
-        rho, _, _, sound, _, air = view.air
-        if rho > 0.0:
-            gains = fin_gains(vehicle.arrays, view.axes.T @ air, rho, sound, x_cm)   # pitch, yaw, roll
-            deflect = [0.0, 0.0, 0.0]
-            for k, axis in enumerate((1, 2, 0)):
-                if gains[k] == 0.0:
-                    continue
-                authority = abs(gains[k]) * float(grid[:, G.G_MAX].min())
-                share = 1.0 if axis == 0 else authority / (authority + engine_authority)
-                fin_torque[axis] = share * torque[axis]
-                deflect[k] = fin_torque[axis] / gains[k]
-            G.command(grid, vehicle.arrays.aero.grid_cmd, t, *deflect)
-    if not len(firing) or thrust <= 0.0:
-        if rcs:
-            vehicle.arrays.aero.rcs_cmd[:] = rcs_command(rcs_torques(vehicle.arrays, y, x_cm),
-                                                         torque - fin_torque)
-        return 0.0, 0.0
-    gy, gz = gimbal_command(torque[1] - fin_torque[1], torque[2] - fin_torque[2], thrust, lever)
+    ``fins``, its RCS thrusters when ``rcs``) for one step at mission time ``t`` (s).
+
+    ``view``: the navigation estimate the autopilot reads (a
+    :class:`~rocketsim.flight.readings.StateView` at the state ``y``'s time);
+    ``propulsion``: the vehicle's :class:`~rocketsim.vehicle.control.Propulsion`
+    (its compiled entries); ``ambient_pressure``: the truth's (Pa) for the engines'
+    thrust, or nan when ``view`` is the truth itself (the kernel reads it off the air).
+    """
+    arrays = vehicle.arrays
+    x_cm, *left = propulsion.kernels.call(steer_step, arrays, arrays, y, t, view.t, view.position,
+                                          view.velocity, view.attitude, view.body_rates,
+                                          ambient_pressure, view._atmosphere().arrays(), command.code,
+                                          fins, rcs)
     if rcs:
-        size = math.hypot(gy, gz)
-        inside = 1.0 if size <= cone else cone / size      # the part the gimbals can reach
-        rest = torque - fin_torque
-        rest[1:] *= 1.0 - inside
-        vehicle.arrays.aero.rcs_cmd[:] = rcs_command(rcs_torques(vehicle.arrays, y, x_cm), rest)
-    propulsion.gimbal(t, gy, gz, [int(e) for e in firing])
-    return gy, gz
+        arrays.aero.rcs_cmd[:] = rcs_command(rcs_torques(arrays, y, x_cm), np.array(left))

@@ -17,6 +17,7 @@ import math
 
 import numpy as np
 
+from rocketsim._jit import Entries
 from rocketsim.vehicle import engines as E
 from rocketsim.vehicle.build import VehicleModel
 
@@ -27,6 +28,7 @@ class Propulsion:
     def __init__(self, model: VehicleModel):
         self.model = model
         self.a = model.arrays
+        self.kernels = Entries()        # compiled entries bound to its arrays (the autopilot's step)
 
     def select(self, which=None) -> list[int]:
         """Engine indices named by ``which`` (see the module); ValueError if it names none."""
@@ -34,8 +36,6 @@ class Propulsion:
         if which is None:
             return list(range(n))
         if isinstance(which, (list, tuple)):
-            if all(type(item) is int and 0 <= item < n for item in which):
-                return sorted(set(which))       # indices (the autopilot's firing engines, each step)
             return sorted({e for item in which for e in self.select(item)})
         if isinstance(which, (int, np.integer)):
             if not 0 <= which < n:
