@@ -150,21 +150,28 @@ def test_touchdown_event_reports_speed_tilt_and_distance_to_the_pad(lander):
     assert figures["distance_to_target_m"] == pytest.approx(3.0, abs=1e-3)
 
 
-def test_the_world_reports_touchdown_and_the_lander_rests(write):
-    # The same drop flown by World from a scenario: the site's height puts the feet 2 m
-    # above the ellipsoid (the ground is the WGS84 ellipsoid; terrain is not modelled).
+def fly_drop(write, speed: float, duration: float, target: str = "") -> dict:
+    """The lander dropped by World from a scenario at ``speed`` (m/s, down) with its feet
+    2 m above the ellipsoid (the site's height; the ground is the WGS84 ellipsoid,
+    terrain is not modelled); ``target`` a mission ``target:`` entry. Its summary."""
     from rocketsim.scenario.load import load
     from rocketsim.sim.world import World
     from tests.aero_vehicles import ROOT
     model = build(shipped("lander.yaml"))
     x_cm = model.mass_properties(model.state([0, 0, 0], [0, 0, 0]))[1]
     write("site.yaml", f"name: flat\nlatitude: 28.5 deg\nlongitude: -80.6 deg\nheight: {2.0 + 1.2 + x_cm} m\n")
-    write("mission.yaml", "epoch: 2026-11-26T12:00:00Z\nstart:\n  site:\n    velocity: [0 m/s, 0 m/s, -2 m/s]\n"
-                          "duration: 2 s\n")
+    write("mission.yaml", "epoch: 2026-11-26T12:00:00Z\nstart:\n  site:\n"
+                          f"    velocity: [0 m/s, 0 m/s, {-speed!r} m/s]\nduration: {duration!r} s\n{target}")
     path = write("drop.yaml", f"name: drop\nvehicle: {ROOT / 'vehicles' / 'lander.yaml'}\nsite: site.yaml\n"
                               "mission: mission.yaml\n")
-    summary = World.from_scenario(load(path)).run()
-    (body,) = summary["bodies"].values()
+    (body,) = World.from_scenario(load(path)).run()["bodies"].values()
+    return body
+
+
+def test_the_world_reports_touchdown_and_the_lander_rests(write):
+    model = build(shipped("lander.yaml"))
+    x_cm = model.mass_properties(model.state([0, 0, 0], [0, 0, 0]))[1]
+    body = fly_drop(write, 2.0, 2.0)
     events = {e["name"]: e for e in body["events"]}
     assert "touchdown" in events and "impact" not in events and "breakup" not in events
     assert events["touchdown"]["vertical_speed_m_s"] == pytest.approx(-math.sqrt(4.0 + 4.0 * somigliana(LAT)),
@@ -220,18 +227,26 @@ def test_touchdown_distance_is_measured_to_the_mission_target_pad(write):
     distance to the pad is 10 m (a meridian arc of 10 m is 10/M rad of
     latitude, M = a(1 - e^2)/(1 - e^2 sin^2 lat)^1.5, WGS84)."""
     from rocketsim.constants import EARTH_E2, EARTH_RADIUS_EQ
-    from rocketsim.scenario.load import load
-    from rocketsim.sim.world import World
-    from tests.aero_vehicles import ROOT
-    model = build(shipped("lander.yaml"))
-    x_cm = model.mass_properties(model.state([0, 0, 0], [0, 0, 0]))[1]
     meridian = EARTH_RADIUS_EQ * (1 - EARTH_E2) / (1 - EARTH_E2 * math.sin(LAT) ** 2) ** 1.5
     pad_lat = math.degrees(LAT + 10.0 / meridian)
-    write("site.yaml", f"name: flat\nlatitude: 28.5 deg\nlongitude: -80.6 deg\nheight: {2.0 + 1.2 + x_cm} m\n")
-    write("mission.yaml", "epoch: 2026-11-26T12:00:00Z\nstart:\n  site:\n    velocity: [0 m/s, 0 m/s, -2 m/s]\n"
-                          f"duration: 1 s\ntarget:\n  pad: {{latitude: {pad_lat!r} deg, longitude: -80.6 deg}}\n")
-    path = write("drop.yaml", f"name: drop\nvehicle: {ROOT / 'vehicles' / 'lander.yaml'}\nsite: site.yaml\n"
-                              "mission: mission.yaml\n")
-    (body,) = World.from_scenario(load(path)).run()["bodies"].values()
+    body = fly_drop(write, 2.0, 1.0, f"target:\n  pad: {{latitude: {pad_lat!r} deg, longitude: -80.6 deg}}\n")
     touchdown = {e["name"]: e for e in body["events"]}["touchdown"]
     assert touchdown["distance_to_target_m"] == pytest.approx(10.0, abs=0.02)
+
+
+def test_a_contact_far_faster_than_any_landing_is_an_impact_not_a_bounce(write):
+    """Dropped at 30 m/s (three times CRASH_SPEED) the lander's first contact ends it:
+    an impact with the speeds at the contact (free fall over the last 2 m,
+    sqrt(30^2 + 2 gamma 2), as in the touchdown test), no touchdown, no bounce (the
+    legs' springs would throw it back up)."""
+    from rocketsim.sim.vehicle_checks import CRASH_SPEED
+    assert 30.0 > 2.0 * CRASH_SPEED
+    body = fly_drop(write, 30.0, 1.0)
+    names = [e["name"] for e in body["events"]]
+    assert names == ["impact"]
+    impact = body["events"][0]
+    expected = math.sqrt(30.0 ** 2 + 4.0 * somigliana(LAT))
+    assert impact["vertical_speed_m_s"] == pytest.approx(-expected, rel=4e-3)
+    assert impact["speed_m_s"] == pytest.approx(expected, rel=4e-3)
+    assert impact["time_s"] == pytest.approx((expected - 30.0) / somigliana(LAT), abs=0.021)
+    assert body["final"]["time_s"] == impact["time_s"]          # it flies no further

@@ -64,3 +64,22 @@ def test_orbit_is_reported_once_the_engine_is_off_with_a_periapsis_above_100_km(
     assert orbit["time_s"] >= shutdown["time_s"] + 0.25
     assert 150e3 < orbit["periapsis_altitude_m"] < 400e3
     assert orbit["inclination_deg"] == pytest.approx(28.5, abs=0.05)
+
+
+def test_the_cheap_periapsis_bound_is_never_below_the_periapsis():
+    """The orbit test computes the elements only once ``|r x v|^2 / mu`` (the semi-latus
+    rectum p) passes the bound: p = r_p (1 + e) >= r_p (Vallado, eq. 2-57), so no
+    orbit can be missed. Checked on random states, bound or not, and on the circular
+    orbit where the two are equal."""
+    import numpy as np
+    from rocketsim.constants import EARTH_MU
+    from rocketsim.frames.elements import state_to_elements
+    from rocketsim.sim.flight_events import periapsis_bound
+    rng = np.random.default_rng(6)
+    for _ in range(2000):
+        r = rng.normal(size=3) * rng.uniform(6.4e6, 5e7)
+        v = rng.normal(size=3) * rng.uniform(100.0, 9000.0)
+        periapsis = state_to_elements(r, v, EARTH_MU).periapsis
+        assert periapsis_bound(np.concatenate((r, v)), EARTH_MU) >= periapsis * (1 - 1e-12)
+    r, v = np.array([7e6, 0.0, 0.0]), np.array([0.0, (EARTH_MU / 7e6) ** 0.5, 0.0])
+    assert periapsis_bound(np.concatenate((r, v)), EARTH_MU) == pytest.approx(7e6, rel=1e-12)

@@ -31,6 +31,8 @@ LIFTOFF_HEIGHT = 1.0          # m above the starting height
 MAX_Q_MIN = 1000.0            # Pa, a peak smaller than this is not "max-Q"
 MAX_Q_DROP = 0.95             # reported once q < 95 % of the peak
 ORBIT_PERIAPSIS = 100e3       # m above the equatorial radius
+# the cheap bound below which no orbit is possible (1 ppm under the test's radius: rounding)
+ORBIT_PERIAPSIS_BOUND = (EARTH_RADIUS_EQ + ORBIT_PERIAPSIS) * (1.0 - 1e-6)
 
 
 class FlightEvents:
@@ -48,19 +50,22 @@ class FlightEvents:
         self.in_orbit = in_orbit(body.view().orbit)   # starting in orbit is not achieving it
 
     def after_step(self) -> None:
+        """Watch the body's new state. The view (and its kernels) is built only while
+        liftoff or max-Q is pending, or the orbit test has passed its cheap bound
+        (:func:`periapsis_bound`): a few microseconds per step otherwise."""
         body = self.body
-        view = body.view()
-        if not self.lifted and view.geodetic[2] > self.start_height + LIFTOFF_HEIGHT:
+        if not self.lifted and body.view().geodetic[2] > self.start_height + LIFTOFF_HEIGHT:
             self.lifted = True
             self.world.event(body, "liftoff", {"mass_kg": body.mass})
         if body.vehicle is not None:        # a rigid body feels no air: no max-Q to watch
-            self._max_q(view)
+            if not self.max_q_done:
+                self._max_q(body.view())
             self._stages_dry()
-        if not self.in_orbit and self.lifted:
-            self._orbit(view)
+        if not self.in_orbit and self.lifted and periapsis_bound(body.y, body.mu) > ORBIT_PERIAPSIS_BOUND:
+            self._orbit(body.view())
 
     def _max_q(self, view) -> None:
-        if self.max_q_done or body_has_no_air(view):
+        if body_has_no_air(view):
             return
         q = view.dynamic_pressure
         if self.peak is None or q > self.peak[0]:
@@ -91,6 +96,17 @@ class FlightEvents:
                 "periapsis_altitude_m": orbit.periapsis - EARTH_RADIUS_EQ,
                 "apoapsis_altitude_m": orbit.apoapsis - EARTH_RADIUS_EQ,
                 "inclination_deg": orbit.i / DEG, "eccentricity": orbit.e})
+
+
+def periapsis_bound(y, mu: float) -> float:
+    """An upper bound (m) of the periapsis radius of state ``y`` (ECI position and
+    velocity first, m and m/s) about ``mu`` (m^3/s^2): the semi-latus rectum
+    ``|r x v|^2 / mu`` (the periapsis is ``p / (1 + e)``), in plain floats (~1 us).
+    Below :data:`ORBIT_PERIAPSIS_BOUND` the body cannot be in orbit and the elements
+    are not computed."""
+    x, y_, z, u, v, w = y[:6].tolist()
+    hx, hy, hz = y_ * w - z * v, z * u - x * w, x * v - y_ * u
+    return (hx * hx + hy * hy + hz * hz) / mu
 
 
 def in_orbit(orbit) -> bool:

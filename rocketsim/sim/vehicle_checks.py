@@ -16,7 +16,9 @@ Events (figures in SI units, degrees where named):
 * ``heat shield failure``: ``temperature_k``, ``heat_flux_w_m2``; the body stops flying;
 * ``touchdown``: ``vertical_speed_m_s`` (negative: down), ``horizontal_speed_m_s``,
   ``tilt_deg`` (body x from the local vertical), ``distance_to_target_m`` (horizontal,
-  from the centre of mass to the mission's target pad, else the launch site).
+  from the centre of mass to the mission's target pad, else the launch site);
+* a first contact faster than :data:`CRASH_SPEED` (10 m/s down) is a crash: the world
+  records an ``impact`` with those figures instead and the body stops flying.
 """
 
 from __future__ import annotations
@@ -42,6 +44,10 @@ from rocketsim.vehicle.mass_properties import mass_properties
 from rocketsim.vehicle.limits import breakup
 
 AIRBORNE_CLEARANCE = 1.0       # m: lowest contact point this high = in the air (a bounce is not a new flight)
+# m/s down at the first contact: beyond this no legs or shock absorber survive (a Falcon 9
+# booster lands at 1-2 m/s, an Apollo capsule splashed down at ~9 m/s under its parachutes);
+# the body ends in an impact instead of a touchdown (the contact springs would bounce it back)
+CRASH_SPEED = 10.0
 
 
 class VehicleChecks:
@@ -53,23 +59,32 @@ class VehicleChecks:
         self.pad = None if pad_ecef is None else np.asarray(pad_ecef, dtype=float)
         self.touched_down = True     # a vehicle only touches down after being in the air
         self.previous = None        # (t, y) before the last step, for the touchdown figures
-        self._arrays = self._in_flight = None
+        self._arrays = self._in_flight = self._watched = None
         self._kernels = Entries()   # step_figures bound to the vehicle's arrays
 
     def every_step(self, body) -> bool:
         """True while the body must be stepped one step at a time (in the air or near the ground)."""
-        reach = body.vehicle.arrays.aero.ref[A_REACH]
-        r = body.position
-        return math.sqrt(r @ r) - body.p[P_RADIUS] < TOP + reach
+        self._bind(body.vehicle.arrays)
+        r = body.y[R:R + 3]
+        return math.sqrt(r @ r) - body.p[P_RADIUS] < self._watched
 
-    def after_step(self, world, body, h: float) -> None:
-        """Run the checks on the body's new state (after a step of ``h`` seconds)."""
-        arrays = body.vehicle.arrays
-        if self._arrays is not arrays:          # a new model (staging): flight loads without contact
+    def _bind(self, arrays) -> None:
+        """Derive what the checks need from a vehicle's arrays, once per model (a new
+        model at staging): its flight loads without contact, and the radius (m, over
+        the equatorial radius) below which the air can reach it."""
+        if self._arrays is not arrays:
             self._arrays = arrays
             self._in_flight = arrays._replace(aero=arrays.aero._replace(contact=arrays.aero.contact[:0]))
+            self._watched = TOP + float(arrays.aero.ref[A_REACH])
+
+    def after_step(self, world, body, h: float) -> dict | None:
+        """Run the checks on the body's new state (after a step of ``h`` seconds). Returns
+        the touchdown figures of a first contact faster than :data:`CRASH_SPEED` (a
+        crash: the world ends the body with an impact), else None."""
+        arrays = body.vehicle.arrays
+        self._bind(arrays)
         rho, air_temperature, speed, q, alpha, axial, lowest = self._kernels.call(
-            step_figures, arrays, body.t, body.y, body.p, arrays, self._in_flight)
+            step_figures, arrays, body.t, body.y, body.p, self._in_flight, arrays.aero.contact)
         figures = breakup(q, alpha, axial)
         if figures is not None:
             world.event(body, "breakup", figures)
@@ -80,8 +95,12 @@ class VehicleChecks:
             self.touched_down = False       # in the air: the next contact is a touchdown
         elif body.flying and not self.touched_down and lowest <= 0.0 and self.previous is not None:
             self.touched_down = True
-            world.event(body, "touchdown", self.touchdown_figures(body, body.view()))
+            figures = self.touchdown_figures(body, body.view())
+            if figures["vertical_speed_m_s"] < -CRASH_SPEED:
+                return figures
+            world.event(body, "touchdown", figures)
         self.previous = (body.t, body.y.copy())
+        return None
 
     def _heat(self, world, body, rho, speed, air_temperature, h) -> None:
         s = self.shield
@@ -130,13 +149,20 @@ class VehicleChecks:
 
 def contact_heights(y, p, vehicle) -> np.ndarray:
     """Height (m) of each contact point of ``vehicle`` above the ellipsoid, along the radius."""
-    a = vehicle.arrays.aero
-    x_cm = vehicle.mass_properties(y)[1]
-    out = np.empty(a.contact.shape[0])
-    for i, row in enumerate(a.contact):
-        offset = quat_rotate(y[Q:Q + 4], np.array([row[K_X] - x_cm, row[K_Y], row[K_Z]]))
-        px, py, pz = y[R:R + 3] + offset
-        out[i] = point_height(px, py, pz, p[P_RADIUS], p[P_POLAR_RADIUS])
+    return contact_point_heights(y, p, vehicle.arrays.aero.contact, vehicle.mass_properties(y)[1])
+
+
+@njit
+def contact_point_heights(y, p, contact, x_cm):
+    """Height (m) of each contact point (rows of ``contact``, body stations from the
+    base, m) above the ellipsoid of ``p``, along the radius, for state ``y`` whose
+    centre of mass sits at station ``x_cm`` (m)."""
+    out = np.empty(contact.shape[0])
+    offset = np.empty(3)
+    for i in range(contact.shape[0]):
+        offset[0], offset[1], offset[2] = contact[i, K_X] - x_cm, contact[i, K_Y], contact[i, K_Z]
+        o = quat_rotate(y[Q:Q + 4], offset)
+        out[i] = point_height(y[R] + o[0], y[R + 1] + o[1], y[R + 2] + o[2], p[P_RADIUS], p[P_POLAR_RADIUS])
     return out
 
 
@@ -154,11 +180,12 @@ def accelerations(t, y, p, veh):
 
 
 @njit
-def step_figures(t, y, p, veh, in_flight):
+def step_figures(t, y, p, veh, contact):
     """What the checks read after a step, in one compiled call: ``(density kg/m^3, air
     temperature K, airspeed m/s, dynamic pressure Pa, total angle of attack rad, sensed
-    acceleration along body x m/s^2 from the flight loads (``in_flight``: the vehicle's
-    arrays without its contact points), height of the lowest contact point m)``.
+    acceleration along body x m/s^2 from the flight loads, height of the lowest contact
+    point m)``. ``veh`` is the vehicle's arrays without their contact points (the flight
+    loads), ``contact`` its contact points (one named tuple to unbox per call, not two).
 
     The air moves with the ground and the wind held for the step (as the derivative
     sees it); the angle of attack is measured from the nose.
@@ -172,19 +199,13 @@ def step_figures(t, y, p, veh, in_flight):
     u, v, w = body_air_velocity(y, veh.aero.wind)
     speed = math.sqrt(u * u + v * v + w * w)
     alpha = math.acos(max(-1.0, min(1.0, u / speed))) if speed > 0.0 else 0.0
-    _, _, _, sx, sy, sz = accelerations(t, y, p, in_flight)
+    _, _, _, sx, sy, sz = accelerations(t, y, p, veh)
     # body x in inertial axes: first column of the rotation of q
     qw, qx, qy, qz = y[Q], y[Q + 1], y[Q + 2], y[Q + 3]
     ax = 1.0 - 2.0 * (qy * qy + qz * qz)
     ay = 2.0 * (qx * qy + qw * qz)
     az = 2.0 * (qx * qz - qw * qy)
     lowest = math.inf
-    c = veh.aero.contact
-    for i in range(c.shape[0]):
-        bx, by, bz = c[i, K_X] - x_cm, c[i, K_Y], c[i, K_Z]
-        # q b (rotation matrix rows)
-        ox = (1.0 - 2.0 * (qy * qy + qz * qz)) * bx + 2.0 * (qx * qy - qw * qz) * by + 2.0 * (qx * qz + qw * qy) * bz
-        oy = 2.0 * (qx * qy + qw * qz) * bx + (1.0 - 2.0 * (qx * qx + qz * qz)) * by + 2.0 * (qy * qz - qw * qx) * bz
-        oz = 2.0 * (qx * qz - qw * qy) * bx + 2.0 * (qy * qz + qw * qx) * by + (1.0 - 2.0 * (qx * qx + qy * qy)) * bz
-        lowest = min(lowest, point_height(y[R] + ox, y[R + 1] + oy, y[R + 2] + oz, p[P_RADIUS], p[P_POLAR_RADIUS]))
+    for height in contact_point_heights(y, p, contact, x_cm):
+        lowest = min(lowest, height)
     return rho, temperature, speed, 0.5 * rho * speed * speed, alpha, sx * ax + sy * ay + sz * az, lowest

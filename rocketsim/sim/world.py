@@ -530,10 +530,12 @@ class World:
         vehicle = body.vehicle
         if vehicle is None:
             return body.p[P_IYY] == body.p[P_IZZ]
+        if body.checks is not None and body.checks.every_step(body):
+            return False                    # tested first: the cheapest, and true below 600 km
         arrays = vehicle.arrays
         if np.any(arrays.cmd[:, C_ON] > 0.5) or np.any(body.y[vehicle.clocks] <= arrays.eng[:, E_TAIL]):
             return False
-        if (not rcs_free and np.any(arrays.aero.rcs_cmd != 0.0)) or (body.checks is not None and body.checks.every_step(body)):
+        if not rcs_free and np.any(arrays.aero.rcs_cmd != 0.0):
             return False
         return bool(self._inertia(body)[1] == vehicle.mass_properties(body.y)[4])
 
@@ -684,15 +686,18 @@ class World:
         body.y = y
         body.t = (k0 + taken) * self.h
         self._watch_soi(body)
-        if body.checks is not None:
-            body.checks.after_step(self, body, self.h)
-        if body.flying and (taken < n or radial_height(body.y, body.p) < 0.0):
+        crash = None if body.checks is None else body.checks.after_step(self, body, self.h)
+        if body.flying and (crash is not None or taken < n or radial_height(body.y, body.p) < 0.0):
             # the body went below the ground in its last step (the batch's last one
-            # included, where advance cannot say so by stopping early): it has hit
-            lat, lon, _ = body.view().geodetic
+            # included, where advance cannot say so by stopping early), or its first
+            # contact was a crash (its speeds at the contact, not after the springs): it has hit
+            lat, lon, _ = self.where(body)
             ground_speed = np.linalg.norm(eci_to_ecef_velocity(body.position, body.velocity, body.t))
-            self.event(body, "impact", {"latitude_deg": lat / DEG, "longitude_deg": lon / DEG,
-                                        "speed_m_s": float(ground_speed)})
+            figures = {"latitude_deg": lat / DEG, "longitude_deg": lon / DEG, "speed_m_s": float(ground_speed)}
+            if crash is not None:
+                figures.update(crash, speed_m_s=math.hypot(crash["vertical_speed_m_s"],
+                                                           crash["horizontal_speed_m_s"]))
+            self.event(body, "impact", figures)
             body.flying = False
             if self.telemetry is not None:
                 self.telemetry.state(body.name, self.sample(body))
