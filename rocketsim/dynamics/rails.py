@@ -13,9 +13,15 @@ by RK4 of its position and velocity only
   the very gravity an awake body feels, so the two stay bit-identical.
 
 The attitude is not integrated. A held attitude stays fixed in its command
-frame (:data:`HELD`: the inertial frame, body rates zero); a free body turns
-by the exact torque-free motion of an axisymmetric body (:func:`turn_constants`,
-``x`` the symmetry axis, ``I_yy = I_zz``), nutation included.
+frame: :data:`HELD`, an inertial direction with no roll, body rates zero;
+:data:`TRACK`, a frame that turns (prograde, surface prograde, normal and
+radial and their opposites; pitch/heading in the local east-north-up axes;
+any commanded roll, whose reference is the local vertical): after each step
+the attitude is set exactly on the command of the new state
+(:func:`command_attitude`) and the body rates to the frame's turn over the
+step (:func:`turn_rate`). A free body turns by the exact torque-free motion of
+an axisymmetric body (:func:`turn_constants`, ``x`` the symmetry axis,
+``I_yy = I_zz``), nutation included.
 """
 
 from __future__ import annotations
@@ -28,11 +34,44 @@ from rocketsim._jit import njit
 from rocketsim.constants import RAILS_FLOOR
 from rocketsim.dynamics.derivative import radial_height
 from rocketsim.dynamics.nbody import F_CENTER, F_MU, bodies_at, hold_time, translational_rk4
-from rocketsim.dynamics.state import Q, W
-from rocketsim.frames.quaternion import quat_rotate
+from rocketsim.dynamics.state import Q, R, V, W
+from rocketsim.flight.readings import _VERTICAL, where_and_how_fast
+from rocketsim.frames.quaternion import (quat_conjugate, quat_from_axis_angle, quat_from_matrix,
+                                         quat_multiply, quat_normalize, quat_rotate)
 
 FREE = 0      # torque-free rotation
 HELD = 1      # attitude held fixed in an inertial command frame
+TRACK = 2     # attitude held in a command frame that turns, set on it at every step
+
+# what a command's nose follows (the first entry of its code, :func:`command_code`)
+DIRECTION, PITCH_HEADING, PROGRADE, SURFACE_PROGRADE, NORMAL, RADIAL = 0, 1, 2, 3, 4, 5
+_MODE_CODES = {"prograde": (PROGRADE, 1.0), "retrograde": (PROGRADE, -1.0),
+               "surface_prograde": (SURFACE_PROGRADE, 1.0),
+               "surface_retrograde": (SURFACE_PROGRADE, -1.0),
+               "normal": (NORMAL, 1.0), "antinormal": (NORMAL, -1.0),
+               "radial": (RADIAL, 1.0), "antiradial": (RADIAL, -1.0)}
+
+
+def command_code(command) -> np.ndarray:
+    """The numbers the rails read of an attitude command
+    (:class:`rocketsim.flight.autopilot.AttitudeCommand`): ``(kind, sign, a, b, c, roll)``,
+    ``kind`` :data:`DIRECTION` with the ECI unit vector ``(a, b, c)``,
+    :data:`PITCH_HEADING` with pitch ``a`` and heading ``b`` (rad), or a mode
+    (:data:`PROGRADE` ... :data:`RADIAL`) with ``sign`` -1 for its opposite;
+    ``roll`` rad, nan for none."""
+    roll = math.nan if command.roll is None else float(command.roll)
+    if command.direction is not None:
+        code = (DIRECTION, 1.0, *command.direction, roll)
+    elif command.mode is not None:
+        code = (*_MODE_CODES[command.mode], 0.0, 0.0, 0.0, roll)
+    else:
+        code = (PITCH_HEADING, 1.0, command.pitch, command.heading, 0.0, roll)
+    return np.array(code, dtype=float)
+
+
+def hold_mode(code: np.ndarray) -> int:
+    """:data:`HELD` for an inertial direction with no roll, else :data:`TRACK`."""
+    return HELD if code[0] == DIRECTION and math.isnan(code[5]) else TRACK
 
 
 @njit
@@ -118,6 +157,151 @@ def turn_attitude(y, inertia, dt, mode):
 
 
 @njit
+def _unit(x, y, z):
+    size = math.sqrt(x * x + y * y + z * z)
+    return x / size, y / size, z / size
+
+
+@njit
+def nose_target(code, r, v, enu, surface):
+    """The commanded nose direction (unit, ECI) of ``code`` (:func:`command_code`) for a
+    body at ``r`` (m) moving at ``v`` (m/s), as the autopilot reads it
+    (:meth:`rocketsim.flight.autopilot.AttitudeCommand.target`): ``enu`` the rows east,
+    north, up and ``surface`` the velocity relative to the ground (m/s, ECI axes) of
+    :func:`rocketsim.flight.readings.where_and_how_fast`."""
+    kind = int(code[0])
+    out = np.empty(3)
+    if kind == DIRECTION:
+        out[:] = code[2:5]
+        return out
+    if kind == PITCH_HEADING:
+        sin_heading, cos_heading = math.sin(code[3]), math.cos(code[3])
+        cos_pitch, sin_pitch = math.cos(code[2]), math.sin(code[2])
+        for i in range(3):
+            out[i] = cos_pitch * (sin_heading * enu[0, i] + cos_heading * enu[1, i]) + sin_pitch * enu[2, i]
+        return out
+    if kind == PROGRADE:
+        x, y, z = _unit(v[0], v[1], v[2])
+    elif kind == SURFACE_PROGRADE:
+        if surface[0] * surface[0] + surface[1] * surface[1] + surface[2] * surface[2] > 0.0:
+            x, y, z = _unit(surface[0], surface[1], surface[2])
+        else:
+            x, y, z = enu[2, 0], enu[2, 1], enu[2, 2]
+    elif kind == NORMAL:
+        x, y, z = _unit(r[1] * v[2] - r[2] * v[1], r[2] * v[0] - r[0] * v[2], r[0] * v[1] - r[1] * v[0])
+    else:
+        x, y, z = _unit(r[0], r[1], r[2])
+    out[0], out[1], out[2] = code[1] * x, code[1] * y, code[1] * z
+    return out
+
+
+@njit
+def _dot(a, b):
+    total = 0.0
+    for i in range(a.shape[0]):
+        total += a[i] * b[i]
+    return total
+
+
+@njit
+def _cross(a, b):
+    return np.array((a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]))
+
+
+@njit
+def target_attitude(nose, up, roll):
+    """``(found, q)``: the attitude (quaternion body -> ECI, ``w >= 0``) with the nose along
+    ``nose`` (unit, ECI) turned ``roll`` rad about it from the belly-to-the-ground
+    reference below the local ``up`` (unit, ECI), as the autopilot's
+    :func:`rocketsim.flight.autopilot.target_axes`; ``found`` false within 0.01 deg of
+    the vertical (no reference: the autopilot then holds the nose only)."""
+    sin_pitch = min(max(nose[0] * up[0] + nose[1] * up[1] + nose[2] * up[2], -1.0), 1.0)
+    if abs(sin_pitch) >= _VERTICAL:
+        return False, np.empty(4)
+    horizontal = nose - sin_pitch * up
+    horizontal = horizontal / math.sqrt(_dot(horizontal, horizontal))
+    z_ref = sin_pitch * horizontal - math.sqrt(1.0 - sin_pitch * sin_pitch) * up
+    z_body = math.cos(roll) * z_ref + math.sin(roll) * _cross(nose, z_ref)
+    axes = np.empty((3, 3))
+    axes[:, 0] = nose
+    axes[:, 1] = _cross(z_body, nose)
+    axes[:, 2] = z_body
+    return True, quat_from_matrix(axes)
+
+
+@njit
+def command_attitude(code, y, t, q):
+    """The attitude (quaternion body -> ECI) the command ``code`` (:func:`command_code`)
+    holds for state ``y`` at mission time ``t`` (s), nearest the attitude ``q``: with a
+    roll, the whole target attitude (sign as ``q``'s); without one, ``q`` turned by the
+    smallest rotation that puts its nose on the commanded direction (the roll about the
+    nose is left as it was: the autopilot only damps it)."""
+    r, v = y[R:R + 3], y[V:V + 3]
+    roll = code[5]
+    kind = int(code[0])
+    if kind == PITCH_HEADING or kind == SURFACE_PROGRADE or not math.isnan(roll):
+        _, _, _, enu, surface = where_and_how_fast(r, v, t)
+    else:
+        enu, surface = np.empty((3, 3)), np.empty(3)
+    nose = nose_target(code, r, v, enu, surface)
+    if not math.isnan(roll):
+        found, target = target_attitude(nose, enu[2], roll)
+        if found:
+            if _dot(target, q) < 0.0:
+                target = -target
+            return target
+    now = quat_rotate(q, np.array((1.0, 0.0, 0.0)))
+    axis = _cross(now, nose)
+    size = math.sqrt(_dot(axis, axis))
+    if size == 0.0:
+        return q.copy()
+    return quat_normalize(quat_multiply(quat_from_axis_angle(axis, math.atan2(size, _dot(now, nose))), q))
+
+
+@njit
+def turn_rate(q0, q1, dt):
+    """The body rates (rad/s, body axes) that turn the attitude ``q0`` into ``q1`` at a
+    steady rate over ``dt`` s: the rotation vector of ``q0* (x) q1`` over ``dt`` (the
+    same in either attitude's axes)."""
+    d = quat_multiply(quat_conjugate(q0), q1)
+    if d[0] < 0.0:
+        d = -d
+    size = math.sqrt(d[1] * d[1] + d[2] * d[2] + d[3] * d[3])
+    if size == 0.0:
+        return np.zeros(3)
+    return d[1:] * (2.0 * math.atan2(size, d[0]) / (size * dt))
+
+
+@njit
+def settle(y, code, t, mode):
+    """Put state ``y`` (in place) exactly on the command ``code`` at mission time ``t``
+    (s) as it goes on rails: the settled residual is dropped; in mode :data:`HELD` the
+    body rates are zeroed (mode :data:`TRACK` sets them at each step)."""
+    y[Q:Q + 4] = command_attitude(code, y, t, y[Q:Q + 4])
+    if mode == HELD:
+        y[W:W + 3] = 0.0
+
+
+@njit
+def hold_offsets(code, y, t, dt, mu):
+    """``(error, turn)`` of a body holding ``code`` (:func:`command_code`), state ``y`` at
+    mission time ``t`` (s), both body axes: the rotation vector (rad) from its attitude
+    onto :func:`command_attitude`, and the command frame's turn rate (rad/s) over ``dt``
+    s along the Kepler arc about ``mu`` (m^3/s^2; the frame's rate, not the path, is
+    wanted: the rails settle test compares it to the body rates to 1e-4 rad/s)."""
+    q = y[Q:Q + 4].copy()
+    target = command_attitude(code, y, t, q)
+    error = turn_rate(q, target, 1.0)
+    ahead = y[:W + 3].copy()
+    r = y[R:R + 3]
+    k = -mu / _dot(r, r) ** 1.5
+    for i in range(3):
+        ahead[R + i] = y[R + i] + dt * y[V + i] + 0.5 * dt * dt * k * y[R + i]
+        ahead[V + i] = y[V + i] + dt * k * y[R + i]
+    return error, turn_rate(target, command_attitude(code, ahead, t + dt, target), dt)
+
+
+@njit
 def rails_step(y, t, h, p, s, fp, air, inertia, mode):
     """One rails step of ``h`` s from mission time ``t`` (a new state): RK4 of
     position and velocity in the field (bodies held at ``s``), the attitude
@@ -135,12 +319,15 @@ def rails_floor(center: str) -> float:
 
 
 @njit
-def advance_rails(y, k0, h, n_steps, p, fp, air, inertia, mode, floor=RAILS_FLOOR):
+def advance_rails(y, k0, h, n_steps, p, fp, air, inertia, mode, floor=RAILS_FLOOR, code=None):
     """Advance up to ``n_steps`` rails steps; returns ``(y, steps_taken)``.
 
     Step ``k`` starts at mission time ``(k0 + k) h``; other bodies in the field
     are held per 5 s bucket (as :func:`rocketsim.dynamics.nbody.advance_awake`).
-    Bit-identical to calling :func:`rails_step` once per step.
+    Bit-identical to calling :func:`rails_step` once per step (mode :data:`FREE`
+    or :data:`HELD`). In mode :data:`TRACK` (``code`` the command,
+    :func:`command_code`) each step ends with the attitude on the command of the
+    new state and the rates at the frame's turn over the step (:func:`turn_rate`).
     Stops early, after the step that took the body below ``floor`` (m over the
     central body's ellipsoid, :func:`rails_floor`): it must wake up.
     """
@@ -159,7 +346,11 @@ def advance_rails(y, k0, h, n_steps, p, fp, air, inertia, mode, floor=RAILS_FLOO
             bucket = hold_time(t)
             s = bodies_at(fp, bucket)[0]
         translational_rk4(y, h, p, s, fp, air, pos)
-        if mode == HELD:
+        if code is not None and mode == TRACK:
+            before = y[Q:Q + 4].copy()
+            y[Q:Q + 4] = command_attitude(code, y, (k0 + k + 1) * h, before)
+            y[W:W + 3] = turn_rate(before, y[Q:Q + 4], h)
+        elif mode == HELD:
             turn_attitude(y, inertia, h, mode)
         else:
             apply_turn(y, precession_constant(y, inertia, h), spin, c, sn)
