@@ -110,7 +110,7 @@ class _World:
 class _Body:
     def __init__(self, model, y, p):
         self.vehicle, self.y, self.p, self.t, self.flying = model, y, p, 0.0, True
-        self.mu = EARTH_MU
+        self.mu, self.central = EARTH_MU, "earth"
         from rocketsim.atmosphere.day import standard_table
         table = standard_table()
         self.atmosphere = lambda: table
@@ -250,3 +250,22 @@ def test_a_contact_far_faster_than_any_landing_is_an_impact_not_a_bounce(write):
     assert impact["speed_m_s"] == pytest.approx(expected, rel=4e-3)
     assert impact["time_s"] == pytest.approx((expected - 30.0) / somigliana(LAT), abs=0.021)
     assert body["final"]["time_s"] == impact["time_s"]          # it flies no further
+
+
+def test_about_mars_the_touchdown_speeds_are_over_ground_turning_at_mars_rate():
+    """About Mars the ground turns at Mars's rate (IAU WGCCRE 2015: the prime meridian
+    turns 350.89198226 deg/day about the pole, the frame's z), not Earth's 360.9856
+    deg/day (about 6.9 m/s apart on Mars's equator): a body riding the equator's
+    ground while sinking at 5 m/s has a vertical speed of -5 m/s and no horizontal
+    speed over the ground."""
+    from rocketsim.sim.vehicle_checks import ground_motion
+    rate = math.radians(350.89198226) / 86400.0
+    angle = 0.7
+    radial = np.array([math.cos(angle), math.sin(angle), 0.0])
+    r = 3396.19e3 * radial
+    y = np.zeros(13)
+    y[0:3], y[3:6] = r, rate * np.array([-r[1], r[0], 0.0]) - 5.0 * radial
+    up, surface = ground_motion("mars", 100.0, y)
+    assert np.allclose(up, radial, atol=1e-15)
+    assert surface @ up == pytest.approx(-5.0, abs=1e-9)
+    assert np.linalg.norm(surface - (surface @ up) * up) < 1e-6

@@ -30,10 +30,11 @@ import numpy as np
 from rocketsim._jit import Entries, njit
 from rocketsim.atmosphere.table import TOP, air_at
 from rocketsim.bodies.gravity import point_mass_j2
+from rocketsim.bodies.orientation import BODIES as ORIENTED, spin_rate
 from rocketsim.constants import (AIR_CP, CO2_CP, DEG, HEAT_SHIELD_LIMIT, MARS_MU,
                                  SUTTON_GRAVES_EARTH, SUTTON_GRAVES_MARS)
 from rocketsim.dynamics.derivative import body_air_velocity, derivative, radial_height
-from rocketsim.dynamics.state import P_J2, P_MU, P_POLAR_RADIUS, P_RADIUS, Q, R, V, W
+from rocketsim.dynamics.state import P_J2, P_MU, P_POLAR_RADIUS, P_RADIUS, Q, R, V
 from rocketsim.flight.readings import StateView
 from rocketsim.frames.earth_fixed import eci_to_ecef
 from rocketsim.frames.quaternion import quat_rotate
@@ -95,7 +96,7 @@ class VehicleChecks:
             self.touched_down = False       # in the air: the next contact is a touchdown
         elif body.flying and not self.touched_down and lowest <= 0.0 and self.previous is not None:
             self.touched_down = True
-            figures = self.touchdown_figures(body, body.view())
+            figures = self.touchdown_figures(body)
             if figures["vertical_speed_m_s"] < -CRASH_SPEED:
                 return figures
             world.event(body, "touchdown", figures)
@@ -114,37 +115,50 @@ class VehicleChecks:
                 "heat_flux_w_m2": sutton_graves(rho, speed, s.nose_radius, k)})
             body.flying = False
 
-    def touchdown_figures(self, body, view) -> dict:
+    def touchdown_figures(self, body) -> dict:
         """Vertical and horizontal speed over the ground, tilt and distance to the pad, at
         the instant the first contact point reached the ground.
 
         The step that touched down has already compressed the legs (by up to
         ``|v| h``), so the figures come from the state before that step, carried
         to the ground at the vertical acceleration the derivative gave there
-        (gravity, thrust, drag): ``v_td = -sqrt(v^2 - 2 a h_lowest)``.
+        (gravity, thrust, drag): ``v_td = -sqrt(v^2 - 2 a h_lowest)``. The ground
+        is the central body's (:func:`ground_motion`); the pad is on Earth.
         """
+        t0, y0 = self.previous if self.previous is not None else (body.t, body.y)
+        up, surface = ground_motion(body.central, t0, y0)
+        vertical = float(surface @ up)
+        across = surface - vertical * up
         if self.previous is not None:
-            t0, y0 = self.previous
-            before = StateView(t0, y0[R:R + 3].copy(), y0[V:V + 3].copy(), y0[Q:Q + 4].copy(),
-                               y0[W:W + 3].copy(), body.atmosphere, body.mu)
             dy = np.zeros_like(y0)
             derivative(t0, y0, body.p, dy, body.vehicle.arrays)
-            up = before.enu[2]
             lowest = max(float(contact_heights(y0, body.p, body.vehicle).min()), 0.0)
-            vertical = -math.sqrt(max(before.vertical_speed ** 2 - 2.0 * float(dy[V:V + 3] @ up) * lowest, 0.0))
-            view, attitude = before, y0[Q:Q + 4]
-        else:
-            up, vertical, attitude = view.enu[2], view.vertical_speed, body.attitude
-        axis = quat_rotate(attitude, np.array([1.0, 0.0, 0.0]))
+            vertical = -math.sqrt(max(vertical ** 2 - 2.0 * float(dy[V:V + 3] @ up) * lowest, 0.0))
+        axis = quat_rotate(y0[Q:Q + 4], np.array([1.0, 0.0, 0.0]))
         tilt = math.acos(max(-1.0, min(1.0, float(axis @ up))))
         figures = {"vertical_speed_m_s": vertical,
-                   "horizontal_speed_m_s": view.horizontal_speed,
+                   "horizontal_speed_m_s": math.sqrt(across @ across),
                    "tilt_deg": tilt / DEG}
-        if self.pad is not None:
-            offset = eci_to_ecef(view.position, view.t) - self.pad
-            up_ecef = eci_to_ecef(up, view.t)
+        if self.pad is not None and body.central == "earth":
+            offset = eci_to_ecef(y0[R:R + 3], t0) - self.pad
+            up_ecef = eci_to_ecef(up, t0)
             figures["distance_to_target_m"] = float(np.linalg.norm(offset - (offset @ up_ecef) * up_ecef))
         return figures
+
+
+def ground_motion(central: str, t: float, y) -> tuple[np.ndarray, np.ndarray]:
+    """``(up, surface velocity)`` of state ``y`` at mission time ``t`` (s) over the ground
+    of ``central``, in its frame's axes: about Earth the readings' (the WGS84 normal,
+    the velocity relative to the ground turning at Earth's rate); about the Moon or
+    Mars the radial direction (the contact heights are measured along the radius)
+    and the velocity relative to the ground turning at the body's IAU rate about its
+    pole, the frame's z (:mod:`rocketsim.dynamics.soi`); about the Sun no turn."""
+    if central == "earth":
+        view = StateView.of_state(t, y)
+        return view.enu[2], view.surface_velocity
+    r = y[R:R + 3]
+    spin = spin_rate(central) if central in ORIENTED else 0.0
+    return r / math.sqrt(r @ r), y[V:V + 3] - spin * np.array((-r[1], r[0], 0.0))
 
 
 def contact_heights(y, p, vehicle) -> np.ndarray:
