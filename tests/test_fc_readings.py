@@ -96,3 +96,30 @@ def test_realistic_sensors_change_what_the_program_reads_not_the_physics(scenari
     error = read["realistic"] - read["truth"]
     assert 0.3 < np.abs(error).max() < 10.0           # metres: a 2 m-class error
     assert not np.array_equal(read["realistic"], read["seed2"])
+
+
+def test_orbit_altitudes_are_over_the_central_body(write, tmp_path):
+    """Away from Earth, fc.periapsis, fc.apoapsis and fc.altitude are heights over the
+    central body: a probe started in a 400 km circular orbit of Mars (the scenario's
+    altitude over Mars's equatorial radius, 3396.19 km, IAU) reads ~400 km for all three
+    (Earth-referenced they would read about -2 980 km)."""
+    write("vehicle.yaml", VEHICLE)
+    write("program.py", """
+def main(fc):
+    fc.event("readings", periapsis=fc.periapsis, apoapsis=fc.apoapsis, alt=fc.altitude,
+             central=fc.central_body)
+""")
+    path = write("scenario.yaml", """\
+        name: about mars
+        vehicle: vehicle.yaml
+        program: program.py
+        mission:
+          epoch: 2027-09-08T00:00:00Z
+          start: {orbit: {body: mars, altitude: 400 km, inclination: 25 deg}}
+          duration: 0.02 s
+          gravity: n-body
+        """)
+    r = readings(path, tmp_path)
+    assert r["central"] == "mars"
+    for name in ("periapsis", "apoapsis", "alt"):
+        assert r[name] == pytest.approx(400e3, abs=5e3), name     # J2's osculating swing: a few km

@@ -19,6 +19,7 @@ from typing import TYPE_CHECKING, Callable
 
 import numpy as np
 
+from rocketsim.dynamics.state import P_RADIUS
 from rocketsim.flight.impact import predict_impact
 from rocketsim.flight.readings import StateView
 from rocketsim.frames.elements import Elements
@@ -164,10 +165,25 @@ class FlightComputer:
         """Speed over the ground, m/s."""
         return self._view().horizontal_speed
 
+    def _where(self) -> tuple[float, float, float]:
+        """(latitude rad, longitude rad, height m) of the estimate: geodetic on WGS84
+        about Earth, planetocentric over the central body's ellipsoid elsewhere
+        (:func:`rocketsim.sim.central.planetocentric`)."""
+        view = self._view()
+        body = self._body
+        if body.central == "earth":
+            return view.geodetic
+        if "where" not in self._readings:
+            from rocketsim.sim.central import planetocentric     # sim imports flight: not at the top
+            self._readings["where"] = planetocentric(
+                view.position, body.central, self._world.epoch.jd_tt() + body.t / 86400.0)
+        return self._readings["where"]
+
     @property
     def altitude(self) -> float:
-        """Height above the WGS84 ellipsoid, m."""
-        return self._view().geodetic[2]
+        """Height above the WGS84 ellipsoid, m; away from Earth (after a handover) above
+        the central body's ellipsoid, along the radius."""
+        return self._where()[2]
 
     @property
     def radar_altitude(self) -> float:
@@ -176,18 +192,18 @@ class FlightComputer:
 
     @property
     def latitude(self) -> float:
-        """Geodetic latitude, rad."""
-        return self._view().geodetic[0]
+        """Geodetic latitude, rad (planetocentric away from Earth)."""
+        return self._where()[0]
 
     @property
     def longitude(self) -> float:
-        """Longitude, east positive, rad."""
-        return self._view().geodetic[1]
+        """Longitude, east positive, rad (from the central body's prime meridian)."""
+        return self._where()[1]
 
     # --- directions (unit vectors, ECI) ----------------------------------------
     @property
     def prograde(self) -> np.ndarray:
-        return self._view().prograde
+        return self._view().prograde.copy()
 
     @property
     def retrograde(self) -> np.ndarray:
@@ -195,7 +211,7 @@ class FlightComputer:
 
     @property
     def surface_prograde(self) -> np.ndarray:
-        return self._view().surface_prograde
+        return self._view().surface_prograde.copy()
 
     @property
     def surface_retrograde(self) -> np.ndarray:
@@ -204,12 +220,12 @@ class FlightComputer:
     @property
     def normal(self) -> np.ndarray:
         """Orbit normal, ``r x v`` direction."""
-        return self._view().normal
+        return self._view().normal.copy()
 
     @property
     def radial(self) -> np.ndarray:
-        """Radial out, from the Earth's centre."""
-        return self._view().radial
+        """Radial out, from the central body's centre."""
+        return self._view().radial.copy()
 
     # --- attitude -----------------------------------------------------------
     @property
@@ -346,8 +362,9 @@ class FlightComputer:
         if command is None or self._body.vehicle is None:
             return
         body = self._body
-        steer(command, self._view(), body.vehicle, self._propulsion(), body.y, self._world.t,
-              body.view().air[1], fins=self._fins, rcs=self._rcs)
+        nav, truth = self._view(), body.view()
+        steer(command, nav, body.vehicle, self._propulsion(), body.y, self._world.t,
+              math.nan if nav is truth else truth.air[1], fins=self._fins, rcs=self._rcs)
 
     # --- landing ------------------------------------------------------------------
     def deploy_grid_fins(self) -> None:
@@ -381,8 +398,11 @@ class FlightComputer:
         body = self._body
         if body.vehicle is None or not len(body.vehicle.arrays.aero.contact):
             return self.radar_altitude
-        lowest = float(contact_heights(body.y, body.p, body.vehicle).min())
-        return self.radar_altitude - (body.view().geodetic[2] - lowest)
+        self._view()
+        if "clearance" not in self._readings:
+            lowest = float(contact_heights(body.y, body.p, body.vehicle).min())
+            self._readings["clearance"] = self.radar_altitude - (body.view().geodetic[2] - lowest)
+        return self._readings["clearance"]
 
     # --- the mission -----------------------------------------------------------
     @property
@@ -408,6 +428,7 @@ class FlightComputer:
         The stage becomes a body of its own (flown by its program from the
         scenario's ``programs:``, if any). Returns its name.
         """
+        self._readings.pop("clearance", None)       # the stack's feet have changed
         return self._world.separate(self._body).name
 
     def jettison_fairing(self) -> str:
@@ -528,13 +549,13 @@ class FlightComputer:
 
     @property
     def apoapsis(self) -> float:
-        """Apoapsis altitude above the equatorial radius, m (inf if unbound)."""
-        return self._view().apoapsis_altitude
+        """Apoapsis altitude above the central body's equatorial radius, m (inf if unbound)."""
+        return self._view().orbit.apoapsis - float(self._body.p[P_RADIUS])
 
     @property
     def periapsis(self) -> float:
-        """Periapsis altitude above the equatorial radius, m."""
-        return self._view().periapsis_altitude
+        """Periapsis altitude above the central body's equatorial radius, m."""
+        return self._view().orbit.periapsis - float(self._body.p[P_RADIUS])
 
     @property
     def inclination(self) -> float:

@@ -1,7 +1,8 @@
 """What can be read off one body's state at one instant, truth or estimate.
 
 A :class:`StateView` takes a state (position, velocity, attitude, rates in the
-ECI of the mission epoch, at mission time ``t``) and derives, lazily and once,
+ECI of the mission epoch, at mission time ``t``) and derives, lazily and once
+(each reading is computed at its first read and kept: a view is of one instant),
 everything a flight program or the telemetry reads: geodetic position,
 surface and orbital velocities, local directions, attitude angles, the air,
 gravity and the orbit. The same class serves the truth (telemetry) and the
@@ -152,30 +153,30 @@ class StateView:
         """Velocity relative to the rotating Earth, ECI axes (m/s)."""
         return self._where[4]
 
-    @property
+    @_once
     def vertical_speed(self) -> float:
         return float(self.surface_velocity @ self.enu[2])
 
-    @property
+    @_once
     def horizontal_speed(self) -> float:
         v = self.surface_velocity
         return _norm(v - (v @ self.enu[2]) * self.enu[2])
 
-    @property
+    @_once
     def radial(self) -> np.ndarray:
         return self.position / _norm(self.position)
 
-    @property
+    @_once
     def prograde(self) -> np.ndarray:
         return self.velocity / _norm(self.velocity)
 
-    @property
+    @_once
     def normal(self) -> np.ndarray:
         (x, y, z), (u, v, w) = self.position.tolist(), self.velocity.tolist()
         h = np.array((y * w - z * v, z * u - x * w, x * v - y * u))    # r x v, as np.cross
         return h / _norm(h)
 
-    @property
+    @_once
     def surface_prograde(self) -> np.ndarray:
         v = self.surface_velocity
         speed = _norm(v)
@@ -214,19 +215,19 @@ class StateView:
         return air_here(*self._atmosphere().arrays(), lat, lon, height, self.t, self.position,
                         self.velocity)
 
-    @property
+    @_once
     def airspeed(self) -> float:
         return _norm(self.air[5])
 
-    @property
+    @_once
     def mach(self) -> float:
         return self.airspeed / self.air[3]
 
-    @property
+    @_once
     def dynamic_pressure(self) -> float:
         return 0.5 * self.air[0] * self.airspeed ** 2
 
-    @property
+    @_once
     def angle_of_attack(self) -> float:
         """Angle between the nose and the air-relative velocity (rad, 0 in still air)."""
         v_air = self.air[5]
@@ -236,14 +237,14 @@ class StateView:
         return math.acos(float(np.clip(self.axes[:, 0] @ v_air / speed, -1.0, 1.0)))
 
     # --- gravity and orbit ------------------------------------------------
-    @property
+    @_once
     def gravity(self) -> float:
         """Magnitude of the local gravitational acceleration (point mass + J2), m/s^2."""
         x, y, z = self.position.tolist()
         g = np.array(point_mass_j2(x, y, z, EARTH_MU, EARTH_RADIUS_EQ, EARTH_J2))
         return _norm(g)
 
-    @property
+    @_once
     def effective_gravity(self) -> float:
         """``|g| - v_h^2 / r``, ``v_h`` the inertial horizontal speed (EQUATIONS.md)."""
         r = _norm(self.position)
@@ -256,16 +257,6 @@ class StateView:
     def orbit(self) -> Elements:
         return state_to_elements(self.position, self.velocity, self.mu)
 
-    @property
+    @_once
     def time_to_apoapsis(self) -> float:
         return time_to_apoapsis(self.position, self.velocity, self.mu)
-
-    @property
-    def periapsis_altitude(self) -> float:
-        """Periapsis radius less Earth's equatorial radius, m."""
-        return self.orbit.periapsis - EARTH_RADIUS_EQ
-
-    @property
-    def apoapsis_altitude(self) -> float:
-        """Apoapsis radius less Earth's equatorial radius, m (inf if unbound)."""
-        return self.orbit.apoapsis - EARTH_RADIUS_EQ
