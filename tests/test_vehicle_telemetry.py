@@ -1,7 +1,7 @@
 """Telemetry of engines, propellant and heating (issue 10 item 1): the state message's
 ``throttle``, ``thrust``, ``mass_flow``, ``engines_running``, ``propellant``,
 ``propellant_tanks``, ``heat_flux`` and ``shield_temperature`` fields
-(:mod:`rocketsim.sim.vehicle_telemetry`), checked against independent computations
+(:mod:`rocketsim.sim.sampling`), checked against independent computations
 from the same run, the schema, the CSV export, and a flight without telemetry.
 
 References: the Merlin 1D's published figures in vehicles/falcon9-block5.yaml

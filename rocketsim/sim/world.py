@@ -28,7 +28,7 @@ from rocketsim.dynamics.cruise import DONE, SOI, advance_cruise, plan_step
 from rocketsim.dynamics.nbody import make_field, no_air
 from rocketsim.dynamics.rails import FREE, HELD, advance_rails, rails_floor
 from rocketsim.dynamics.rk4 import advance
-from rocketsim.dynamics.state import (P_IXX, P_IYY, P_IZZ, P_MASS, P_MU, P_RADIUS, Q, R, V,
+from rocketsim.dynamics.state import (P_IXX, P_IYY, P_IZZ, P_MASS, P_MU, Q, R, V,
                                       W, make_params, make_state)
 from rocketsim.flight.fc import FlightComputer
 from rocketsim.flight.program import ProgramRunner, load_program
@@ -46,9 +46,9 @@ from rocketsim.dynamics.third_bodies import bodies_at, field_of, with_field
 from rocketsim.dynamics.prediction import coast
 from rocketsim.ephemeris.solar_system import BODIES
 from rocketsim.sim.start import standing_on_ground, start_state
+from rocketsim.sim import sampling
 from rocketsim.sim.flight_events import FlightEvents
-from rocketsim.sim.vehicle_checks import VehicleChecks, accelerations
-from rocketsim.sim.vehicle_telemetry import vehicle_quantities
+from rocketsim.sim.vehicle_checks import VehicleChecks
 from rocketsim.timescales import Epoch
 from rocketsim.scenario.models import VehicleSpec
 from rocketsim.vehicle.build import VehicleModel, build
@@ -345,63 +345,12 @@ class World:
             self.telemetry.event(body.t, body.name, name, figures)
 
     def sample(self, body: Body) -> dict:
-        """The telemetry message of ``body`` at its time (SI; degrees where named)."""
-        lat, lon, height = self.where(body)
-        return {
-            "t": body.t,
-            "position": body.position.tolist(),
-            "velocity": body.velocity.tolist(),
-            "attitude": body.attitude.tolist(),
-            "body_rates": body.body_rates.tolist(),
-            "latitude_deg": lat / DEG,
-            "longitude_deg": lon / DEG,
-            "altitude": height,
-            "speed": math.sqrt(body.velocity @ body.velocity),     # |v|, the bits of np.linalg.norm
-            "orbit": self.orbit_summary(body),
-            "central_body": body.central,
-            **self.flight_quantities(body),
-            **vehicle_quantities(body),     # engines, propellant, heating
-        }
-
-    def flight_quantities(self, body: Body) -> dict:
-        """Mass (kg); inertial acceleration |dv/dt| and sensed acceleration
-        |dv/dt - g| (m/s^2, from the derivative the integrator uses); airspeed
-        (m/s), Mach and dynamic pressure (Pa) in the day's air."""
-        if body.vehicle is None:
-            ax, ay, az, sx, sy, sz = accelerations(body.t, body.y, body.p, None)
-        else:
-            ax, ay, az, sx, sy, sz = body.kernels.call(accelerations, body.vehicle.arrays, body.t,
-                                                       body.y, body.p, body.vehicle.arrays)
-        rho, _, _, sound, _, air_velocity = body.view().air
-        airspeed = math.sqrt(air_velocity @ air_velocity)
-        return {
-            "mass": body.mass,
-            "acceleration": math.sqrt(ax * ax + ay * ay + az * az),
-            "sensed_acceleration": math.hypot(sx, sy, sz),
-            "airspeed": airspeed,
-            "mach": airspeed / sound,
-            "dynamic_pressure": 0.5 * rho * airspeed * airspeed,
-        }
+        """The telemetry state message of ``body`` at its time (:mod:`rocketsim.sim.sampling`)."""
+        return sampling.message(body, self.gmst0, self.where)
 
     def orbit_summary(self, body: Body) -> dict:
-        """Osculating elements about the central body with angles in degrees, RAAN
-        from the equinox (about Earth) or from the node of the body's equator on
-        the J2000 equator (about the Moon and Mars); altitudes over the central
-        body's equatorial radius."""
-        el = body.view().orbit
-        radius = body.p[P_RADIUS]
-        node = self.gmst0 if body.central == "earth" else 0.0
-        return {
-            "semi_major_axis": el.a,
-            "eccentricity": el.e,
-            "inclination_deg": el.i / DEG,
-            "raan_deg": math.fmod(el.raan + node, 2 * math.pi) / DEG,
-            "arg_periapsis_deg": el.argp / DEG,
-            "true_anomaly_deg": el.nu / DEG,
-            "periapsis_altitude": el.periapsis - radius,
-            "apoapsis_altitude": el.apoapsis - radius if math.isfinite(el.apoapsis) else None,
-            "period": el.period if math.isfinite(el.period) else None,
-        }
+        """The osculating elements of ``body``'s state message (:func:`rocketsim.sim.sampling.orbit`)."""
+        return sampling.orbit(body, self.gmst0)
 
     # --- the loop -----------------------------------------------------------
     def run(self, telemetry=None) -> dict:

@@ -99,28 +99,29 @@ def timestamp(stamp_ns: int) -> dict:
     return {"sec": sec, "nsec": nsec}
 
 
-def frame_transform(stamp_ns: int, parent: str, child: str, translation, quaternion_wxyz) -> dict:
-    """A ``foxglove.FrameTransform``: ``child`` at ``translation`` (m) in ``parent``,
-    turned by the unit quaternion ``(w, x, y, z)`` (child axes -> parent axes)."""
+def frame_transform(time: dict, parent: str, child: str, translation, quaternion_wxyz) -> dict:
+    """A ``foxglove.FrameTransform`` at ``time`` (:func:`timestamp`): ``child`` at
+    ``translation`` (m) in ``parent``, turned by the unit quaternion ``(w, x, y, z)``
+    (child axes -> parent axes)."""
     w, x, y, z = quaternion_wxyz
     tx, ty, tz = translation
-    return {"timestamp": timestamp(stamp_ns), "parent_frame_id": parent, "child_frame_id": child,
+    return {"timestamp": time, "parent_frame_id": parent, "child_frame_id": child,
             "translation": {"x": tx, "y": ty, "z": tz},
             "rotation": {"x": x, "y": y, "z": z, "w": w}}
 
 
-def earth_transform(stamp_ns: int, angle: float) -> dict:
-    """The Earth-fixed frame in the inertial one: a turn of ``angle`` (rad) about ``z``."""
+def earth_transform(time: dict, angle: float) -> dict:
+    """The Earth-fixed frame in the inertial one at ``time``: a turn of ``angle`` (rad) about ``z``."""
     half = 0.5 * angle
-    return frame_transform(stamp_ns, INERTIAL_FRAME, EARTH_FRAME, (0.0, 0.0, 0.0),
+    return frame_transform(time, INERTIAL_FRAME, EARTH_FRAME, (0.0, 0.0, 0.0),
                            (math.cos(half), 0.0, 0.0, math.sin(half)))
 
 
-def location_fix(stamp_ns: int, frame: str, latitude_deg: float, longitude_deg: float,
+def location_fix(time: dict, frame: str, latitude_deg: float, longitude_deg: float,
                  altitude: float) -> dict:
-    """A ``foxglove.LocationFix`` of an exactly known (simulated) position:
-    geodetic latitude and longitude in degrees, height above WGS84 in m."""
-    return {"timestamp": timestamp(stamp_ns), "frame_id": frame, "latitude": latitude_deg,
+    """A ``foxglove.LocationFix`` at ``time`` (:func:`timestamp`) of an exactly known
+    (simulated) position: geodetic latitude and longitude in degrees, height above WGS84 in m."""
+    return {"timestamp": time, "frame_id": frame, "latitude": latitude_deg,
             "longitude": longitude_deg, "altitude": altitude,
             "position_covariance": [0.0] * 9, "position_covariance_type": 0}
 

@@ -44,7 +44,7 @@ BODY_STATE = {
         "airspeed": {"type": "number", "description": "speed relative to the air, m/s"},
         "mach": {"type": "number", "description": "airspeed over the local speed of sound"},
         "dynamic_pressure": {"type": "number", "description": "q = rho v_air^2 / 2, Pa"},
-        # a staged vehicle (rocketsim.sim.vehicle_telemetry)
+        # a staged vehicle (rocketsim.sim.sampling)
         "throttle": {"type": ["number", "null"], "description": "throttle flown (after slew and the "
                      "flow-separation floor, 0-1 of vacuum thrust), mean of the engines running; null "
                      "when none runs"},

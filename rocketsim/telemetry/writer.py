@@ -60,6 +60,7 @@ class TelemetryWriter:
         self._epoch_ns = epoch_ns
         self._schemas = {}
         self._channels: dict[str, int] = {}
+        self._bodies: dict[str, tuple[int, int, int]] = {}     # state, transform, location
         self._sequence = 0
         self._closed = False
         self._program_file = program_file
@@ -84,9 +85,9 @@ class TelemetryWriter:
         Every scalar of the state message is a JSON-schema'd field that
         Foxglove's Plot panel reads by path (``/<name>/state.altitude``,
         ``.orbit.eccentricity``, ``.position[0]``): no second copy is written."""
-        self._channel(f"/{name}/state", BODY_STATE)
-        self._channel(f"/{name}/transform", foxglove.FRAME_TRANSFORM)
-        self._channel(f"/{name}/location", foxglove.LOCATION_FIX)
+        self._bodies[name] = (self._channel(f"/{name}/state", BODY_STATE),
+                              self._channel(f"/{name}/transform", foxglove.FRAME_TRANSFORM),
+                              self._channel(f"/{name}/location", foxglove.LOCATION_FIX))
 
     def _stamp(self, t: float) -> int:
         return self._epoch_ns + round(t * 1e9)
@@ -99,18 +100,19 @@ class TelemetryWriter:
         """A body's state message, and the Foxglove messages drawn from it."""
         t = message["t"]
         stamp = self._stamp(t)
-        channels = self._channels
-        self._write(channels[f"/{body}/state"], stamp, message)
+        state, transform, location = self._bodies[body]
+        time = foxglove.timestamp(stamp)
+        self._write(state, stamp, message)
         second = math.floor(t)
         if self._earth_at != second:
             # once per second of mission time: Foxglove interpolates between
             # transforms, and the Earth turns 0.004 deg in a second
-            self._write(self._earth, stamp, foxglove.earth_transform(stamp, earth_rotation_angle(t)))
+            self._write(self._earth, stamp, foxglove.earth_transform(time, earth_rotation_angle(t)))
             self._earth_at = second
-        self._write(channels[f"/{body}/transform"], stamp, foxglove.frame_transform(
-            stamp, foxglove.INERTIAL_FRAME, body, message["position"], message["attitude"]))
-        self._write(channels[f"/{body}/location"], stamp, foxglove.location_fix(
-            stamp, body, message["latitude_deg"], message["longitude_deg"], message["altitude"]))
+        self._write(transform, stamp, foxglove.frame_transform(
+            time, foxglove.INERTIAL_FRAME, body, message["position"], message["attitude"]))
+        self._write(location, stamp, foxglove.location_fix(
+            time, body, message["latitude_deg"], message["longitude_deg"], message["altitude"]))
 
     def event(self, t: float, body: str, name: str, figures: dict) -> None:
         """An event with its figures (SI), and its line in ``/events/log``."""

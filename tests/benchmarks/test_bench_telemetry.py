@@ -7,7 +7,12 @@ Printed (run with ``pytest -s``):
    every 20 ms step), the first 40 s of the shipped Falcon 9-class mission
    (a staged vehicle: program, autopilot and checks every step, as in the
    issue-6 mission) and a program-less orbital coast (steps batched in the
-   compiled kernel, so the sampling is nearly all the work);
+   compiled kernel, so the sampling is nearly all the work). For each, what
+   one sample costs on its own, called in a loop at the flight's end: its
+   message (``World.sample``: one compiled call and the dictionaries) and
+   its writing (``TelemetryWriter.state``: the state, transform and location
+   messages as JSON, in the MCAP chunk) -- in a flight, with the caches
+   shared with the flight's own work, a sample costs about twice as much;
 2. ``rocketsim replay``'s summary of a one-hour 10 Hz flight's MCAP
    (target under 1 s), against reading every message of the same file.
 Nothing asserts a time; the checks are that both flights end in the same
@@ -33,11 +38,12 @@ def _on_off(loaded, duration, out):
     """Best wall times (s) of the flight without and with telemetry, and of the
     file's fixed cost (a one-step flight with telemetry less one without: opening,
     attachments, metadata, summary, and what the first sample builds, e.g. the
-    day's air table); plus the final state flown without telemetry."""
+    day's air table); the final state flown without telemetry; and what one sample
+    costs on its own (:func:`_one_sample`)."""
     def off(seconds=duration):
         world = World.from_scenario(loaded, duration=seconds)
         world.run(None)
-        return world.bodies[0].y.copy()
+        return world
 
     def on(seconds=duration):
         fly(loaded, out if seconds == duration else out.with_suffix(".step.mcap"), duration=seconds)
@@ -48,39 +54,52 @@ def _on_off(loaded, duration, out):
     step = loaded.scenario.step
     t_off = t_on = float("inf")
     for _ in range(2):                      # alternate, so a busy machine slows both alike
-        t, y_off = best_of(1, off)
+        t, world = best_of(1, off)
         t_off = min(t_off, t)
         t_on = min(t_on, best_of(1, on)[0])
     t_file = best_of(5, lambda: on(step))[0] - best_of(5, lambda: off(step))[0]
-    return t_off, t_on, y_off, t_file
+    return t_off, t_on, world.bodies[0].y.copy(), t_file, _one_sample(world, out.with_suffix(".loop.mcap"))
 
 
-def _report(name, duration, t_off, t_on, t_file):
+def _one_sample(world, path, calls=1000):
+    """Best seconds of one call of ``world.sample`` and of ``TelemetryWriter.state`` with
+    its message, for the first body at the end of ``world``'s flight."""
+    body = world.bodies[0]
+    with TelemetryWriter(path, 0) as telemetry:
+        telemetry.add_body(body.name)
+        t_message, message = best_of(5, lambda: [world.sample(body) for _ in range(calls)][-1])
+        t_write = best_of(5, lambda: [telemetry.state(body.name, message) for _ in range(calls)])[0]
+    return t_message / calls, t_write / calls
+
+
+def _report(name, duration, t_off, t_on, t_file, one_sample):
     samples = duration * 10
     print(f"\n{name}: {duration:g} s flown in {t_off * 1e3:.1f} ms without telemetry, "
           f"{t_on * 1e3:.1f} ms with 10 Hz telemetry: ratio {t_on / t_off:.2f} "
           f"({(t_on - t_off) / samples * 1e6:.0f} us per sample; the file's fixed cost "
           f"{t_file * 1e3:.1f} ms, so {(t_on - t_off - t_file) / samples * 1e6:.0f} us per "
-          f"sample beyond it)")
+          f"sample beyond it; on its own a sample's message takes {one_sample[0] * 1e6:.1f} us "
+          f"and its writing {one_sample[1] * 1e6:.1f} us; the flight {t_off / samples * 1e6:.0f} us "
+          f"per sample interval)")
 
 
 def test_telemetry_on_versus_off(tmp_path, scenario):
     shipped = load(ROOT / "scenarios" / "spaceport-ballistic.yaml")
-    t_off, t_on, y_off, t_file = _on_off(shipped, 20.0, tmp_path / "ballistic.mcap")
-    _report("spaceport-ballistic (program every step)", 20.0, t_off, t_on, t_file)
+    t_off, t_on, y_off, t_file, one = _on_off(shipped, 20.0, tmp_path / "ballistic.mcap")
+    _report("spaceport-ballistic (program every step)", 20.0, t_off, t_on, t_file, one)
     with open(tmp_path / "ballistic.mcap", "rb") as stream:
         last = list(make_reader(stream).iter_messages(topics=["/sounding-payload/state"]))[-1]
     import json
     assert json.loads(last[2].data)["position"] == y_off[:3].tolist()   # same flight either way
 
     falcon = load(ROOT / "scenarios" / "falcon9-leo.yaml")
-    t_off, t_on, _, t_file = _on_off(falcon, 40.0, tmp_path / "falcon9.mcap")
+    t_off, t_on, _, t_file, one = _on_off(falcon, 40.0, tmp_path / "falcon9.mcap")
     _report("falcon9-leo, first 40 s (staged vehicle: program, autopilot, checks every step)",
-            40.0, t_off, t_on, t_file)
+            40.0, t_off, t_on, t_file, one)
 
     coast = load(scenario(duration="150 s"))
-    t_off, t_on, _, t_file = _on_off(coast, 150.0, tmp_path / "coast.mcap")
-    _report("orbital coast, no program (kernel batches 5 steps per sample)", 150.0, t_off, t_on, t_file)
+    t_off, t_on, _, t_file, one = _on_off(coast, 150.0, tmp_path / "coast.mcap")
+    _report("orbital coast, no program (kernel batches 5 steps per sample)", 150.0, t_off, t_on, t_file, one)
 
 
 def _one_hour_file(path: Path) -> int:

@@ -1,0 +1,293 @@
+"""The telemetry sample of one body: its state message, every number of it from one compiled call.
+
+:func:`figures` computes, for one body at its time, the state and everything
+derived from it (geodetic position, speed, orbit elements, mass,
+accelerations, air data; for a staged vehicle the engines, propellant and
+heating) into one flat float64 array; :func:`message` lays that array out as
+the state message (keys in the order of :data:`rocketsim.telemetry.schemas.BODY_STATE`)
+with a layout worked out once per vehicle model. A sample costs one compiled
+call and a few dictionary builds, not a Python walk through the readings.
+
+Read-only: nothing here changes the state, the engines' commands or the checks,
+and no sensor is read (the figures are the truth). The computations are those
+of the flight itself: the readings' geodetic position and the day's air
+(:func:`rocketsim.flight.readings.where_and_how_fast`, ``air_here``), the
+derivative the integrator uses (:func:`rocketsim.sim.vehicle_checks.accelerations`),
+the engine model (:func:`rocketsim.vehicle.engines.thrusts`, ``engine_state``).
+
+Fields of every body (SI units; degrees where the name ends in ``_deg``):
+position, velocity (ECI of the central body, m, m/s), attitude (quaternion
+w, x, y, z, body -> ECI), body rates (rad/s), latitude, longitude and height
+(geodetic over WGS84 about Earth; planetocentric over the central body's
+ellipsoid elsewhere, :func:`rocketsim.sim.central.planetocentric`), inertial
+speed, the osculating elements (RAAN from the equinox about Earth, from the
+node of the body's equator on the J2000 equator elsewhere; altitudes over the
+central body's equatorial radius; apoapsis and period ``null`` unless
+elliptic), mass (kg), inertial acceleration ``|dv/dt|`` and sensed acceleration
+``|dv/dt - g|`` (m/s^2), airspeed (m/s), Mach and dynamic pressure (Pa) in the
+readings' air (the day's air about Earth, none elsewhere).
+
+Fields of a staged vehicle:
+
+* ``throttle``: the throttle actually flown (after the slew limit and the
+  flow-separation floor, 0-1 of vacuum thrust), averaged over the engines
+  running; ``null`` when none runs. ``group_throttle`` is the same by engine
+  group (``<stage>_<group>``, ``null`` for a group with no engine running);
+* ``thrust`` (N) in total and ``group_thrust`` (N) by engine group, at the
+  ambient pressure of the state message's air;
+* ``mass_flow``: propellant drawn by all engines, kg/s;
+* ``engines_running``: engines whose spool fraction is above zero on a stage
+  with usable propellant left (spooling up, at thrust, or tailing off);
+* ``propellant``: all propellant on board, kg (the unusable reserve
+  included), and ``propellant_tanks`` by tank (``<stage>_<tank>``, kg).
+
+Fields of a staged vehicle with a heat shield:
+
+* ``heat_flux``: cold-wall stagnation-point convective heat flux, W/m^2, by
+  Sutton-Graves (:func:`rocketsim.vehicle.heating.sutton_graves`) on the
+  shield's nose radius, in the air the shield's checks read (the vehicle's
+  air table at the radial height; the air-relative speed of its aerodynamics);
+* ``shield_temperature``: the lumped shield's temperature, K (as the checks
+  integrate it after every step).
+
+Names with characters other than letters, digits, ``-`` and ``_`` have them
+replaced by ``_``, so Foxglove's message paths (``/<body>/state.group_thrust.booster_Merlin_1D_ring``)
+and CSV columns can name them.
+"""
+
+from __future__ import annotations
+
+import math
+import weakref
+from functools import lru_cache
+
+import numpy as np
+
+from rocketsim._jit import njit
+from rocketsim.atmosphere.table import air_at
+from rocketsim.constants import DEG, MARS_MU, SUTTON_GRAVES_EARTH, SUTTON_GRAVES_MARS
+from rocketsim.dynamics.derivative import body_air_velocity, radial_height
+from rocketsim.dynamics.state import N_STATE, P_MASS, P_RADIUS, R, V
+from rocketsim.flight.readings import air_here, where_and_how_fast
+from rocketsim.frames.elements import elements_tuple
+from rocketsim.sim.central import vacuum
+from rocketsim.sim.vehicle_checks import accelerations
+from rocketsim.vehicle.engines import E_MDOT, E_STAGE, S_DRY, engine_state, thrusts
+from rocketsim.vehicle.heating import sutton_graves
+from rocketsim.vehicle.mass_properties import mass_properties
+
+_TWO_PI = 2.0 * math.pi
+
+# the flat array of figures(): the state (position, velocity, attitude, rates), then
+LAT, LON, HEIGHT, SPEED = range(N_STATE, N_STATE + 4)   # deg, deg, m, m/s
+ORBIT = SPEED + 1                                 # ORBIT_KEYS, in order
+ORBIT_KEYS = ("semi_major_axis", "eccentricity", "inclination_deg", "raan_deg", "arg_periapsis_deg",
+              "true_anomaly_deg", "periapsis_altitude", "apoapsis_altitude", "period")
+MASS = ORBIT + len(ORBIT_KEYS)                    # kg, then FLIGHT_KEYS in order
+FLIGHT_KEYS = ("mass", "acceleration", "sensed_acceleration", "airspeed", "mach", "dynamic_pressure")
+VEHICLE = MASS + len(FLIGHT_KEYS)                 # a staged vehicle: VEHICLE_KEYS, then by group
+VEHICLE_KEYS = ("throttle", "thrust", "mass_flow", "engines_running", "propellant", "heat_flux")
+GROUPS = VEHICLE + len(VEHICLE_KEYS)              # throttle by group, thrust by group, tanks
+
+
+@njit
+def orbit_into(out, k, r, v, mu, radius, node):
+    """Write the osculating elements of ``r`` (m), ``v`` (m/s) about ``mu`` (m^3/s^2) into
+    ``out[k:k + 9]`` in the order of ``ORBIT_KEYS``: angles in degrees, RAAN turned by
+    ``node`` (rad), periapsis and apoapsis radii less ``radius`` (m); apoapsis and
+    period nan unless elliptic (the formulas of :class:`rocketsim.frames.elements.Elements`)."""
+    a, e, i, raan, argp, nu, p = elements_tuple(r, v, mu)
+    out[k] = a
+    out[k + 1] = e
+    out[k + 2] = i / DEG
+    out[k + 3] = np.fmod(raan + node, _TWO_PI) / DEG      # exact, as math.fmod
+    out[k + 4] = argp / DEG
+    out[k + 5] = nu / DEG
+    out[k + 6] = p / (1.0 + e) - radius
+    apoapsis = p / (1.0 - e) if e < 1.0 else math.inf
+    period = _TWO_PI * math.sqrt(a ** 3.0 / mu) if e < 1.0 else math.inf
+    out[k + 7] = apoapsis - radius if math.isfinite(apoapsis) else math.nan
+    out[k + 8] = period if math.isfinite(period) else math.nan
+
+
+@njit
+def orbit_figures(r, v, mu, radius, node):
+    """The elements of :func:`orbit_into` as an array of 9."""
+    out = np.empty(9)
+    orbit_into(out, 0, r, v, mu, radius, node)
+    return out
+
+
+@njit
+def _vehicle_into(out, t, y, p, p_a, veh, group, n_groups, nose_radius, k_heat):
+    """The engine, propellant and heating figures of a staged vehicle into ``out[VEHICLE:]``
+    (see the module): nan for a throttle with no engine running and for the heat flux
+    without a heat shield (``nose_radius`` 0)."""
+    eng, cmd, stage = veh.eng, veh.cmd, veh.stage
+    g_tau, g_thrust, tanks = GROUPS, GROUPS + n_groups, GROUPS + 2 * n_groups
+    thrust = thrusts(t, y, veh.first_clock, eng, cmd, stage, p_a)
+    counts = np.zeros(n_groups)
+    out[g_tau:tanks] = 0.0
+    total, total_tau, flow, running = 0.0, 0.0, 0.0, 0
+    for e in range(eng.shape[0]):
+        total += thrust[e]
+        if stage[int(eng[e, E_STAGE]), S_DRY] > 0.5:
+            continue
+        f, tau, _, _ = engine_state(t, e, y[veh.first_clock + e], eng, cmd, p_a)
+        if f <= 0.0:
+            continue
+        g = group[e]
+        total_tau += tau
+        running += 1
+        out[g_tau + g] += tau
+        counts[g] += 1.0
+        out[g_thrust + g] += thrust[e]
+        flow += f * tau * eng[e, E_MDOT]
+    for g in range(n_groups):
+        out[g_tau + g] = out[g_tau + g] / counts[g] if counts[g] > 0.0 else math.nan
+    propellant = 0.0
+    for j in range(veh.tank_bottom.shape[0]):
+        out[tanks + j] = y[N_STATE + j]
+        propellant += y[N_STATE + j]
+    out[VEHICLE] = total_tau / running if running > 0 else math.nan
+    out[VEHICLE + 1] = total
+    out[VEHICLE + 2] = flow
+    out[VEHICLE + 3] = running
+    out[VEHICLE + 4] = propellant
+    out[VEHICLE + 5] = math.nan
+    if nose_radius > 0.0:
+        rho = air_at(veh.air_h0, veh.air_dh, veh.air_density, veh.air_pressure, veh.air_temperature,
+                     veh.air_speed_of_sound, veh.air_wind_east, veh.air_wind_north,
+                     radial_height(y, p))[0]
+        u, v, w = body_air_velocity(y, veh.aero.wind)
+        out[VEHICLE + 5] = sutton_graves(rho, math.sqrt(u * u + v * v + w * w), nose_radius, k_heat)
+
+
+@njit
+def figures(t, y, p, mu, node, h0, dh, density, pressure, temperature, sound, wind_east,
+            wind_north, veh, group, n_groups, nose_radius, k_heat):
+    """Every number of the state message of a body in state ``y`` (parameters ``p``,
+    central body's ``mu`` m^3/s^2) at mission time ``t`` (s), in the flat layout of this
+    module (the state's ECI axes; the geodetic position is WGS84's).
+
+    ``node``: rad added to the RAAN; ``h0`` ... ``wind_north``: the readings' air table
+    (:meth:`~rocketsim.atmosphere.table.AtmosphereTable.arrays`); ``veh``: the vehicle's
+    arrays (None: a rigid body, whose figures end before ``VEHICLE``), ``group`` the
+    engine group of each engine (``n_groups`` groups), ``nose_radius`` the heat shield's
+    (m, 0: none) and ``k_heat`` the Sutton-Graves constant of the central body's air."""
+    if veh is None:
+        out = np.empty(VEHICLE)
+        out[MASS] = p[P_MASS]
+    else:
+        n_tanks = veh.tank_bottom.shape[0]
+        out = np.empty(GROUPS + 2 * n_groups + n_tanks)
+        out[MASS] = mass_properties(veh.fixed, veh.tank_bottom, veh.tank_radius, veh.tank_density,
+                                    y[N_STATE:N_STATE + n_tanks])[0]
+    out[:N_STATE] = y[:N_STATE]
+    r, v = y[R:R + 3], y[V:V + 3]
+    lat, lon, height, _, _ = where_and_how_fast(r, v, t)
+    out[LAT] = lat / DEG
+    out[LON] = lon / DEG
+    out[HEIGHT] = height
+    out[SPEED] = math.sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2])
+    orbit_into(out, ORBIT, r, v, mu, p[P_RADIUS], node)
+    rho, p_a, _, a_sound, _, air = air_here(h0, dh, density, pressure, temperature, sound,
+                                            wind_east, wind_north, lat, lon, height, t, r, v)
+    ax, ay, az, sx, sy, sz = accelerations(t, y, p, veh)
+    out[MASS + 1] = math.sqrt(ax * ax + ay * ay + az * az)
+    out[MASS + 2] = math.sqrt(sx * sx + sy * sy + sz * sz)
+    airspeed = math.sqrt(air[0] * air[0] + air[1] * air[1] + air[2] * air[2])
+    out[MASS + 3] = airspeed
+    out[MASS + 4] = airspeed / a_sound
+    out[MASS + 5] = 0.5 * rho * airspeed * airspeed
+    if veh is not None:
+        _vehicle_into(out, t, y, p, p_a, veh, group, n_groups, nose_radius, k_heat)
+    return out
+
+
+# --- the message ---------------------------------------------------------------
+_NO_GROUPS = np.zeros(0, dtype=np.int64)
+
+
+def message(body, gmst0: float, where) -> dict:
+    """The state message of ``body`` (a :class:`rocketsim.sim.world.Body`) at its time:
+    ``gmst0`` (rad) the Earth's sidereal angle at the epoch (the RAAN's origin about
+    Earth), ``where(body)`` its (latitude rad, longitude rad, height m) away from Earth."""
+    earth = body.central == "earth"
+    model = body.vehicle
+    air = (body.atmosphere if earth else vacuum)().arrays()
+    if model is None:
+        v = body.kernels.call(figures, None, body.t, body.y, body.p, body.mu, gmst0 if earth else 0.0,
+                              *air, None, _NO_GROUPS, 0, 0.0, 0.0).tolist()
+    else:
+        layout = _layout(model)
+        shield = body.checks.shield if body.checks is not None else None
+        v = body.kernels.call(figures, model.arrays, body.t, body.y, body.p, body.mu,
+                              gmst0 if earth else 0.0, *air, model.arrays, layout[0], len(layout[1]),
+                              shield.nose_radius if shield is not None else 0.0,
+                              SUTTON_GRAVES_MARS if body.mu == MARS_MU else SUTTON_GRAVES_EARTH).tolist()
+    if not earth:
+        lat, lon, v[HEIGHT] = where(body)
+        v[LAT], v[LON] = lat / DEG, lon / DEG
+    out = {"t": body.t, "position": v[0:3], "velocity": v[3:6], "attitude": v[6:10],
+           "body_rates": v[10:13], "latitude_deg": v[LAT], "longitude_deg": v[LON],
+           "altitude": v[HEIGHT], "speed": v[SPEED], "orbit": _orbit(v[ORBIT:MASS]),
+           "central_body": body.central}
+    out.update(zip(FLIGHT_KEYS, v[MASS:VEHICLE]))
+    if model is not None:
+        _, groups, tanks = layout
+        n = len(groups)
+        throttle = v[VEHICLE]
+        out["throttle"] = throttle if throttle == throttle else None
+        out["group_throttle"] = {g: x if x == x else None for g, x in zip(groups, v[GROUPS:GROUPS + n])}
+        out["thrust"] = v[VEHICLE + 1]
+        out["group_thrust"] = dict(zip(groups, v[GROUPS + n:GROUPS + 2 * n]))
+        out["mass_flow"] = v[VEHICLE + 2]
+        out["engines_running"] = int(v[VEHICLE + 3])
+        out["propellant"] = v[VEHICLE + 4]
+        out["propellant_tanks"] = dict(zip(tanks, v[GROUPS + 2 * n:]))
+        if shield is not None:
+            out["heat_flux"] = v[VEHICLE + 5]
+            out["shield_temperature"] = body.checks.temperature
+    return out
+
+
+def orbit(body, gmst0: float) -> dict:
+    """The ``orbit`` field of ``body``'s state message (see :func:`message`)."""
+    return _orbit(orbit_figures(body.position, body.velocity, body.mu, body.p[P_RADIUS],
+                                gmst0 if body.central == "earth" else 0.0).tolist())
+
+
+def _orbit(values: list) -> dict:
+    """The orbit's fields from its figures, null for an apoapsis and period not elliptic."""
+    out = dict(zip(ORBIT_KEYS, values))
+    if values[7] != values[7]:
+        out["apoapsis_altitude"] = None
+    if values[8] != values[8]:
+        out["period"] = None
+    return out
+
+
+@lru_cache(maxsize=64)
+def _keys(names: tuple[str, ...]) -> tuple[str, ...]:
+    """Field names of tanks or engine groups (``stage/name`` -> ``stage_name``)."""
+    return tuple("".join(c if c.isalnum() or c in "-_" else "_" for c in n) for n in names)
+
+
+_LAYOUTS: dict[int, tuple] = {}
+
+
+def _layout(model) -> tuple:
+    """``(engine group index of each engine, group keys, tank keys)`` of ``model``,
+    worked out once per model (a staging builds new ones)."""
+    found = _LAYOUTS.get(id(model))
+    if found is not None and found[0]() is model:
+        return found[1]
+    keys = _keys(tuple(model.engine_groups))
+    groups = tuple(dict.fromkeys(keys))
+    layout = (np.array([groups.index(k) for k in keys], dtype=np.int64), groups,
+              _keys(tuple(model.tank_names)))
+    for key in [k for k, (ref, _) in _LAYOUTS.items() if ref() is None]:
+        del _LAYOUTS[key]           # models gone with their runs
+    _LAYOUTS[id(model)] = (weakref.ref(model), layout)
+    return layout
