@@ -12,7 +12,7 @@ with the program awake every step (the full derivative, the autopilot steering
 with the RCS throughout). The awake body keeps trimming within its settle band
 with thrusters that are not pure couples, so the two orbits differ by the
 trimming's small push, not to the bit (tolerance stated below).
-A command in a turning frame (prograde) stays awake: the documented limit.
+Commands in turning frames: tests/test_rails_track.py.
 Both flights take the 0.1 s headless step (the awake reference flown at 20 ms
 costs about 1.7 ms a step with its RCS solve: 0.1 s steps and 300 s keep the
 file near 4 s; rails and awake share the step either way).
@@ -101,12 +101,3 @@ def test_a_settled_inertial_hold_sleeps_on_rails_with_its_nose_on_the_command(wr
     print(f"held vs awake after {SECONDS} s: {dr:.3e} m, {dv:.3e} m/s")
     assert dr < 1.0 and dv < 1e-3
 
-
-def test_a_hold_in_a_turning_frame_stays_awake(write):
-    world = _world(write, "def main(fc):\n    fc.rcs(True)\n    fc.hold('prograde')\n    fc.sleep(1e9)\n")
-    world.n_steps = 400     # 40 s: long enough for the sleep to begin; prograde turns, no rails
-    body = world.bodies[0]
-    railed = []
-    world.on_progress = lambda t: railed.append(world._on_rails(body))
-    world.run()
-    assert len(railed) == 400 and not any(railed)

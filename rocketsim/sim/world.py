@@ -26,7 +26,7 @@ from rocketsim._jit import Entries
 from rocketsim.dynamics.derivative import radial_height
 from rocketsim.dynamics.cruise import DONE, SOI, advance_cruise, plan_step
 from rocketsim.dynamics.nbody import make_field, no_air
-from rocketsim.dynamics.rails import FREE, HELD, advance_rails, rails_floor
+from rocketsim.dynamics.rails import FREE, advance_rails, hold_mode, hold_offsets, rails_floor, settle
 from rocketsim.dynamics.rk4 import advance
 from rocketsim.dynamics.state import (P_IXX, P_IYY, P_IZZ, P_MASS, P_MU, Q, R, V,
                                       W, make_params, make_state)
@@ -34,8 +34,8 @@ from rocketsim.flight.fc import FlightComputer
 from rocketsim.flight.program import ProgramRunner, load_program
 from rocketsim.flight.readings import StateView
 from rocketsim.flight.sensors import Sensors
+from rocketsim.flight.steering import OMEGA_N, ZETA
 from rocketsim.frames.earth_fixed import eci_to_ecef_velocity
-from rocketsim.frames.quaternion import quat_from_axis_angle, quat_multiply, quat_rotate
 from rocketsim.scenario.load import LoadedScenario
 from rocketsim.scenario.models import check_step
 from rocketsim.errors import InputError
@@ -60,9 +60,9 @@ from rocketsim.vehicle.staging import deploy_payload, jettison_fairing, separate
 # body has no aerodynamics awake, so none on rails either
 _RAILS_FIELD = make_field("earth", 0.0, bodies=())
 _NO_AIR = no_air()
-# a held inertial direction goes on sleep rails once the autopilot has settled on it:
-HOLD_SETTLED_ERROR = math.radians(0.01)    # rad, nose off the commanded direction
-HOLD_SETTLED_RATE = 1e-4                   # rad/s, every body rate
+# a held attitude goes on sleep rails once the autopilot has settled on it:
+HOLD_SETTLED_ERROR = math.radians(0.01)    # rad, attitude off the command (less the law's lag)
+HOLD_SETTLED_RATE = 1e-4                   # rad/s, every body rate off the frame's turn rate
 
 
 @dataclass
@@ -120,19 +120,6 @@ class Body:
             air = self.atmosphere if self.central == "earth" else vacuum
             self._view = StateView.of_state(self.t, self.y, air, self.mu)
         return self._view
-
-
-def _settle_on(y: np.ndarray, direction: np.ndarray) -> None:
-    """Put the nose (body x) of state ``y`` exactly on ``direction`` (unit, ECI) by the
-    smallest rotation (in place; roll about the nose kept) and the body rates to zero:
-    a settled hold going on rails drops its residual (below 0.01 deg, 1e-4 rad/s)."""
-    nose = quat_rotate(y[Q:Q + 4], np.array((1.0, 0.0, 0.0)))
-    axis = np.cross(nose, direction)
-    size = float(np.linalg.norm(axis))
-    if size > 0.0:
-        turn = quat_from_axis_angle(axis, math.atan2(size, float(nose @ direction)))
-        y[Q:Q + 4] = quat_multiply(turn, y[Q:Q + 4])
-    y[W:W + 3] = 0.0
 
 
 class World:
@@ -435,7 +422,7 @@ class World:
         """Sleep rails (issue 9) for a body nobody flies or whose program sleeps beyond
         the next step, axisymmetric (the exact torque-free attitude), above the rails
         floor, with no attitude command: a rigid body, or a staged vehicle coasting
-        (:meth:`_coasting`); or holding an inertial direction once settled (:meth:`_holding`)."""
+        (:meth:`_coasting`); or holding an attitude once settled (:meth:`_holding`)."""
         if body.attitude_command is not None:
             return self._holding(body)
         return (self._asleep(body) and self._coasting(body)
@@ -448,27 +435,28 @@ class World:
             not runner.waiting_on_predicate and runner.wake_time() - self.t > self.h * (1 + 1e-9))
 
     def _holding(self, body: Body) -> bool:
-        """Sleep rails in mode HELD (issue 9): ``body`` is asleep (:meth:`_asleep`) and
-        holds an inertial direction (fc.point_at in ECI: ``direction`` set, no roll
-        commanded), coasts but for the autopilot's own RCS (:meth:`_coasting`; the RCS
-        stops on rails), is above the rails floor, and the autopilot has settled: nose
-        within ``HOLD_SETTLED_ERROR`` (0.01 deg) of the direction and every body rate
-        below ``HOLD_SETTLED_RATE`` (1e-4 rad/s). On rails the nose is set exactly on
-        the direction and the rates to zero (:func:`_settle_on`: the settled residual
-        is dropped), and the attitude stays fixed in the inertial frame until the
-        program wakes or the floor is reached. Documented limit: commands whose frame
-        turns (prograde, radial, pitch/heading, a commanded roll about the local
-        vertical) stay awake, the autopilot steering them every step."""
+        """Sleep rails for a held attitude (issue 9): ``body`` is asleep (:meth:`_asleep`),
+        coasts but for the autopilot's own RCS (:meth:`_coasting`; the RCS stops on
+        rails), is above the rails floor, and the autopilot has settled on its command
+        (:func:`rocketsim.dynamics.rails.hold_offsets`): every body rate within
+        ``HOLD_SETTLED_RATE`` (1e-4 rad/s) of the command frame's turn rate ``Omega``,
+        and the attitude error within ``HOLD_SETTLED_ERROR`` (0.01 deg) of the law's
+        steady lag ``2 zeta Omega / omega_n`` (:mod:`rocketsim.flight.steering`; zero
+        for mode HELD, an inertial direction with no roll, 0.12 deg at a low orbit's
+        rate for mode TRACK: fc.hold's modes, fc.point's pitch/heading, any commanded
+        roll) or of none (a body already on rails is on the command itself). On rails
+        the attitude is set exactly on the command (the residual is dropped) and kept
+        there at every step, the rates zero (HELD) or the frame's turn rate (TRACK), so
+        the autopilot wakes to no error (:func:`rocketsim.dynamics.rails.settle`). The
+        truth's frame is held (an autopilot reading noisy sensors steers the estimate's)."""
         command = body.attitude_command
-        if command is None or command.direction is None or command.roll is not None:
+        if command is None or not (self._asleep(body) and self._coasting(body, rcs_free=True)
+                                   and radial_height(body.y, body.p) > rails_floor(body.central)):
             return False
-        if not (self._asleep(body) and self._coasting(body, rcs_free=True)
-                and radial_height(body.y, body.p) > rails_floor(body.central)):
-            return False
-        nose = quat_rotate(body.y[Q:Q + 4], np.array((1.0, 0.0, 0.0)))
-        error = math.atan2(float(np.linalg.norm(np.cross(nose, command.direction))),
-                           float(nose @ command.direction))
-        return error < HOLD_SETTLED_ERROR and float(np.max(np.abs(body.y[W:W + 3]))) < HOLD_SETTLED_RATE
+        error, turn = hold_offsets(command.code, body.y, body.t, self.h, body.mu)
+        lagging = error - (2.0 * ZETA / OMEGA_N) * turn
+        return (min(math.sqrt(error @ error), math.sqrt(lagging @ lagging)) < HOLD_SETTLED_ERROR
+                and float(np.max(np.abs(body.y[W:W + 3] - turn))) < HOLD_SETTLED_RATE)
 
     def _coasting(self, body: Body, rcs_free: bool = False) -> bool:
         """True when only gravity acts on ``body`` and it is symmetric about its roll
@@ -612,14 +600,16 @@ class World:
             done = self._cruise(body, n)
             k0, n = k0 + done, n - done
         if n > 0 and self._on_rails(body):
-            held = body.attitude_command is not None
-            if held:                # a new state: a view of the old one stays as it was
+            mode, code = FREE, None
+            if body.attitude_command is not None:   # a new state: a view of the old one stays
+                code = body.attitude_command.code
+                mode = hold_mode(code)
                 body.y = body.y.copy()
-                _settle_on(body.y, body.attitude_command.direction)
+                settle(body.y, code, k0 * self.h, mode)
             # same step, same orbit to the bit; stops below the floor and wakes for the rest
             body.y, done = advance_rails(body.y, k0, self.h, n, body.p, self._rails_field(body),
-                                         _NO_AIR, self._inertia(body), HELD if held else FREE,
-                                         rails_floor(body.central))
+                                         _NO_AIR, self._inertia(body), mode,
+                                         rails_floor(body.central), code)
             if body.vehicle is not None:
                 body.y[body.vehicle.clocks] += done * self.h     # engine clocks run on
             k0, n = k0 + done, n - done
