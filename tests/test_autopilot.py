@@ -135,7 +135,8 @@ def test_commanded_attitudes_in_local_axes():
     sin 30 up; level flight east with roll 0 has the belly (body z) down and body y =
     z x x = south; a roll of 90 deg turns body z about the nose to z_ref turned by
     +90 deg, x_nose cross z_ref = east x down = north."""
-    from rocketsim.flight.steering import PITCH_HEADING, nose_target, target_axes
+    from rocketsim.dynamics.rails import PITCH_HEADING, nose_target
+    from rocketsim.flight.steering import target_axes
     enu = np.eye(3)
     code = np.array([PITCH_HEADING, 1.0, math.radians(30.0), math.radians(90.0), 0.0, math.nan])
     nose = nose_target(code, np.array([7e6, 0.0, 0.0]), np.array([0.0, 7e3, 0.0]), enu, np.zeros(3))

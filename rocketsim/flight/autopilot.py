@@ -71,22 +71,17 @@ while the program has the thrusters on.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 
 import numpy as np
 from scipy.optimize import lsq_linear
 
-from rocketsim.flight.steering import (DIRECTION, NORMAL, PITCH_HEADING, PROGRADE, RADIAL,
-                                       SURFACE_PROGRADE, steer_step)
+from rocketsim.dynamics.rails import command_code
+from rocketsim.flight.steering import steer_step
 from rocketsim.vehicle import rcs as RC
 
-# each mode: the direction it follows and its sense
-MODE_CODES = {"prograde": (PROGRADE, 1.0), "retrograde": (PROGRADE, -1.0),
-              "surface_prograde": (SURFACE_PROGRADE, 1.0), "surface_retrograde": (SURFACE_PROGRADE, -1.0),
-              "normal": (NORMAL, 1.0), "antinormal": (NORMAL, -1.0),
-              "radial": (RADIAL, 1.0), "antiradial": (RADIAL, -1.0)}
-MODES = tuple(MODE_CODES)
+MODES = ("prograde", "retrograde", "surface_prograde", "surface_retrograde", "normal",
+         "antinormal", "radial", "antiradial")
 
 
 @dataclass(frozen=True)
@@ -101,14 +96,7 @@ class AttitudeCommand:
     code: np.ndarray = field(init=False, repr=False, compare=False)   # the numbers steer_step reads
 
     def __post_init__(self):
-        roll = math.nan if self.roll is None else self.roll
-        if self.direction is not None:
-            code = (DIRECTION, 1.0, *self.direction, roll)
-        elif self.mode is not None:
-            code = (*MODE_CODES[self.mode], 0.0, 0.0, 0.0, roll)
-        else:
-            code = (PITCH_HEADING, 1.0, self.pitch, self.heading, 0.0, roll)
-        object.__setattr__(self, "code", np.array(code, dtype=float))
+        object.__setattr__(self, "code", command_code(self))
 
 
 def rcs_torques(arrays, y: np.ndarray, x_cm: float) -> np.ndarray:

@@ -13,9 +13,10 @@ gimbal and grid-fin commands into the vehicle's arrays in place. The torque
 left to the RCS thrusters is returned; their bounded least squares stays in
 Python (:func:`rocketsim.flight.autopilot.rcs_command`) while they are on.
 
-A commanded attitude is handed over as numbers (:data:`DIRECTION` ...
-:data:`RADIAL`, see :func:`nose_target`). Units: SI, vectors in ECI unless
-said to be in body axes (x the nose).
+A commanded attitude is handed over as six numbers
+(:func:`rocketsim.dynamics.rails.command_code`, the encoding the sleep rails
+read too; its nose direction is :func:`rocketsim.dynamics.rails.nose_target`).
+Units: SI, vectors in ECI unless said to be in body axes (x the nose).
 """
 
 from __future__ import annotations
@@ -25,6 +26,7 @@ import math
 import numpy as np
 
 from rocketsim._jit import njit
+from rocketsim.dynamics.rails import nose_target
 from rocketsim.flight.aero_feedforward import destabilising_moment
 from rocketsim.flight.readings import _VERTICAL, air_here, where_and_how_fast
 from rocketsim.frames.quaternion import quat_from_matrix, quat_to_matrix
@@ -36,59 +38,6 @@ OMEGA_N = 1.0     # rad/s, natural frequency of the attitude response
 ZETA = 0.9        # damping ratio
 RATE_LIMIT = 0.15  # rad/s, largest commanded turn rate (pitch/yaw)
 FIN_PROBE = 0.05  # rad, deflection used to measure the grid fins' moment per radian
-
-# what a commanded nose direction follows (the first entry of a command's code)
-DIRECTION, PITCH_HEADING, PROGRADE, SURFACE_PROGRADE, NORMAL, RADIAL = 0, 1, 2, 3, 4, 5
-
-
-@njit
-def _unit(x, y, z):
-    """``(x, y, z)`` over its length (the bits of ``v / sqrt(v @ v)``)."""
-    out = np.empty(3)
-    size = math.sqrt(x * x + y * y + z * z)
-    out[0] = x / size
-    out[1] = y / size
-    out[2] = z / size
-    return out
-
-
-@njit
-def nose_target(code, r, v, enu, surface_velocity):
-    """The commanded nose direction (unit vector, ECI) of the command ``code`` =
-    ``(kind, sign, a, b, c, roll)`` for a body at ``r`` (m) moving at ``v`` (m/s,
-    inertial; ``surface_velocity`` relative to the rotating ground), ``enu`` the
-    rows east, north, up. ``kind`` :data:`DIRECTION`: ``(a, b, c)`` itself;
-    :data:`PITCH_HEADING`: pitch ``a`` rad above the horizon, heading ``b`` rad
-    from north; a mode: ``sign`` (+1 or -1) times the prograde, surface prograde
-    (straight up at rest on the ground), orbit normal (``r x v``) or radial unit
-    vector."""
-    kind = int(code[0])
-    if kind == DIRECTION:
-        return code[2:5].copy()
-    if kind == PITCH_HEADING:
-        out = np.empty(3)
-        sin_heading, cos_heading = math.sin(code[3]), math.cos(code[3])
-        cos_pitch, sin_pitch = math.cos(code[2]), math.sin(code[2])
-        for i in range(3):
-            horizontal = sin_heading * enu[0, i] + cos_heading * enu[1, i]
-            out[i] = cos_pitch * horizontal + sin_pitch * enu[2, i]
-        return out
-    if kind == PROGRADE:
-        out = _unit(v[0], v[1], v[2])
-    elif kind == SURFACE_PROGRADE:
-        s = surface_velocity
-        if s[0] * s[0] + s[1] * s[1] + s[2] * s[2] > 0.0:
-            out = _unit(s[0], s[1], s[2])
-        else:
-            out = enu[2].copy()
-    elif kind == NORMAL:
-        out = _unit(r[1] * v[2] - r[2] * v[1], r[2] * v[0] - r[0] * v[2], r[0] * v[1] - r[1] * v[0])
-    else:
-        out = _unit(r[0], r[1], r[2])
-    sign = code[1]
-    for i in range(3):
-        out[i] = sign * out[i]
-    return out
 
 
 @njit
@@ -237,8 +186,9 @@ def steer_step(veh, y, t, t_nav, r, v, q, w, ambient_pressure, air_table, code, 
     in the day's air (``air_table``: the tuple of
     :meth:`~rocketsim.atmosphere.table.AtmosphereTable.arrays`). The engines' thrust
     is the truth's, at ``ambient_pressure`` (Pa; nan: the estimate is the truth, its
-    air's pressure). ``code``: the command (:func:`nose_target`; its last entry the
-    roll, rad, nan for none).
+    air's pressure). ``code``: the command
+    (:func:`~rocketsim.dynamics.rails.command_code`; its last entry the roll, rad, nan
+    for none).
 
     Returns ``(x_cm, tau_x, tau_y, tau_z)``: the centre of mass's station (m) and the
     torque (N m, body axes) left to the RCS thrusters when ``rcs`` (zero otherwise).
