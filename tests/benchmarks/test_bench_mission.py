@@ -25,6 +25,13 @@ Printed (run with ``pytest -s``):
 * the ratio of the whole flight to its physics alone, both measured in this
   run (1.0 would be a loop that costs nothing beyond the integrator).
 
+The shipped programs run their guidance at 10 Hz (``GUIDANCE_STEP`` = 0.1 s:
+``orbit_ascent.py`` and ``booster_return.py`` sleep between updates while the
+autopilot holds the last command every 20 ms step; every step near a cut-off,
+the boost-back's end and the landing-burn ignition, and through the entry and
+landing burns): 7 701 program resumes in the whole mission instead of 33 106
+at one per step.
+
 The shares come from timing wrappers put around those parts for this run
 only (about a microsecond per wrapped call, included in the figures).
 Nothing asserts a time; the checks are that the mission reaches orbit and
