@@ -95,7 +95,12 @@ def test_powered_segment_converges_at_fourth_order_against_dop853():
     """A turning burn at 300 km (gimbal 0.2 deg: torque, rotation, J2 gravity, mass falling
     and inertia changing) for 10 s, against DOP853 at rtol 1e-13 on the same derivative:
     the position error falls about 16-fold per halving of the step (issue 4; the seed's
-    audit: 'the position error of a powered segment fell from 0.91 m')."""
+    audit: 'the position error of a powered segment fell from 0.91 m').
+
+    Steps 0.2, 0.1 and 0.05 s: their errors (~2e-5 to ~7e-8 m) stand well above the
+    rounding floor of a position of 6.7e6 m (one ulp is 9.3e-10 m). At 0.025 s the error is
+    ~2e-9 m, two ulps, where rounding, not the method, sets it: the order measured there
+    swung from 4 to 5 with a change of the last bits of the derivative."""
     m = build(spec(single_stage()))
     a = m.arrays
     r0 = EARTH_RADIUS_EQ + 300e3
@@ -104,12 +109,12 @@ def test_powered_segment_converges_at_fourth_order_against_dop853():
     a.cmd[0, E.C_G0], a.cmd[0, E.C_G] = g, g               # held deflection: no slew kink
     ref = integrate_reference(y0, 0.0, 10.0, earth(), rtol=1e-13, atol=1e-9, veh=a)
     errors = []
-    for h in (0.1, 0.05, 0.025):
+    for h in (0.2, 0.1, 0.05):
         y = powered_segment(h, m, y0, 10.0)
         errors.append(np.linalg.norm(y[:3] - ref[:3]))
     turned = np.degrees(2 * math.acos(min(1.0, abs(ref[6]))))
     assert turned > 10.0                                   # it did turn
-    assert errors[0] < 1e-3
+    assert errors[1] < 1e-3
     orders = [math.log2(errors[i] / errors[i + 1]) for i in range(2)]
     assert all(3.6 < order < 4.4 for order in orders), (errors, orders)
 
