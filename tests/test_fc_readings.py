@@ -9,7 +9,7 @@ import pytest
 from rocketsim.scenario.load import load
 from rocketsim.sim.flight import fly
 from rocketsim.telemetry.reader import messages, raw_messages
-from tests.conftest import VEHICLE
+from tests.conftest import ROOT, VEHICLE
 
 RECORD = """
 import math
@@ -123,3 +123,68 @@ def main(fc):
     assert r["central"] == "mars"
     for name in ("periapsis", "apoapsis", "alt"):
         assert r[name] == pytest.approx(400e3, abs=5e3), name     # J2's osculating swing: a few km
+
+
+SENSED = """
+def main(fc):
+    fc.event("start", g=fc.acceleration)
+    fc.sleep(8.0)
+    fc.event("standing", g=fc.acceleration)
+"""
+
+
+def test_accelerometers_read_the_grounds_push_on_the_pad_and_nothing_in_a_coast(write, scenario, tmp_path):
+    """fc.acceleration (issue 6: "acceleration (g)") is what accelerometers read,
+    every force but gravity. References: (1) a body coasting in vacuum feels no
+    force but gravity: 0 g to rounding; (2) the LM-class lander standing on its legs
+    on an equatorial pad, settled after 8 s, is pushed up by the ground with the
+    weight less the centrifugal term: WGS84 normal gravity at the equator,
+    gamma_e = 9.7803253359 m/s^2 (NIMA TR8350.2, table 3.4), over G0 = 9.80665."""
+    coast = fly(load(scenario(SENSED, duration="10 s")), tmp_path / "coast.mcap")
+    events = {e["name"]: e for e in coast["bodies"]["probe"]["events"]}
+    assert abs(events["start"]["g"]) < 1e-12 and abs(events["standing"]["g"]) < 1e-12
+
+    write("program.py", SENSED)
+    path = write("scenario.yaml", f"""\
+        name: pad
+        vehicle: {ROOT / 'vehicles' / 'lander.yaml'}
+        site: {{name: pad, latitude: 0 deg, longitude: 10 deg, pad_azimuth: 90 deg}}
+        program: program.py
+        mission:
+          epoch: 2026-11-26T12:00:00Z
+          start: {{site: {{}}}}
+          duration: 10 s
+        """)
+    pad = fly(load(path), tmp_path / "pad.mcap")
+    events = {e["name"]: e for e in pad["bodies"]["lander"]["events"]}
+    assert events["standing"]["g"] == pytest.approx(9.7803253359 / 9.80665, rel=5e-5)   # 1.0e-5 measured
+
+
+HEATING = """
+def main(fc):
+    fc.event("air", q=fc.heating, rho=fc.air_density, v=fc.airspeed, shield=fc.shield_temperature)
+"""
+
+
+def test_heating_is_sutton_graves_on_the_air_the_program_reads(write, tmp_path):
+    """fc.heating (issue 6: "heating"): a probe leaving the pad at 2 km/s through sea-level
+    air. Reference: Sutton & Graves (NASA TR R-376, 1971), q = k sqrt(rho / r_n) v^3 with
+    k = 1.7415e-4 kg^0.5/m for air, on the 1 m reference nose radius of a vehicle without
+    a heat shield; US 1976 sea-level density 1.225 kg/m^3; no shield, no temperature."""
+    write("vehicle.yaml", VEHICLE)
+    write("program.py", HEATING)
+    path = write("scenario.yaml", """\
+        name: pad
+        vehicle: vehicle.yaml
+        site: {name: pad, latitude: 0 deg, longitude: 10 deg, pad_azimuth: 90 deg}
+        program: program.py
+        mission:
+          epoch: 2026-11-26T12:00:00Z
+          start: {site: {elevation: 90 deg, velocity: [0, 0, 2000]}}
+          duration: 0.02 s
+        """)
+    r = fly(load(path), tmp_path / "run.mcap")["bodies"]["probe"]["events"][0]
+    assert r["rho"] == pytest.approx(1.225, rel=1e-3)
+    assert r["v"] == pytest.approx(2000.0, rel=1e-3)
+    assert r["q"] == pytest.approx(1.7415e-4 * math.sqrt(r["rho"] / 1.0) * r["v"] ** 3, rel=1e-12)
+    assert math.isnan(r["shield"])

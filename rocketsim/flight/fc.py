@@ -19,13 +19,16 @@ from typing import TYPE_CHECKING, Callable
 
 import numpy as np
 
+from rocketsim.constants import G0
 from rocketsim.dynamics.state import P_RADIUS
+from rocketsim.flight.accelerometer import sensed_acceleration
 from rocketsim.flight.impact import predict_impact
 from rocketsim.flight.readings import StateView
 from rocketsim.frames.elements import Elements
 from rocketsim.frames.quaternion import quat_from_axis_angle, quat_multiply
 from rocketsim.flight.autopilot import MODES, AttitudeCommand, steer
 from rocketsim.vehicle.control import Propulsion
+from rocketsim.vehicle.heating import sutton_graves, sutton_graves_constant
 
 if TYPE_CHECKING:  # pragma: no cover
     from rocketsim.sim.world import Body, World
@@ -554,6 +557,41 @@ class FlightComputer:
 
     @property
     def periapsis(self) -> float:
+    @property
+    def acceleration(self) -> float:
+        """What the accelerometers read, in g (``G0`` = 9.80665 m/s^2): the magnitude of the
+        sensed acceleration ``|dv/dt - g|``, every force but gravity per unit mass (thrust,
+        air, RCS, the ground's push; :mod:`rocketsim.flight.accelerometer`). About 1 g
+        standing on the pad, 0 coasting in vacuum; with the accelerometers' error (0.1 %).
+        Example: ``fc.throttle(0.7) if fc.acceleration > 4.5 else None``."""
+        def truth():
+            body = self._body
+            arrays = None if body.vehicle is None else body.vehicle.arrays
+            a = sensed_acceleration(body.t, body.y, body.p, arrays)
+            return math.sqrt(a @ a) / G0
+        return self._measured("acceleration", truth)
+
+    @property
+    def heating(self) -> float:
+        """Convective heating at the nose, W/m^2: the cold-wall stagnation-point heat flux
+        of Sutton-Graves, ``k sqrt(rho / r_n) v^3`` (:func:`rocketsim.vehicle.heating.sutton_graves`,
+        ``k`` of the central body's air), from the air density and airspeed the program
+        reads (their errors included), on the heat shield's nose radius, or on a 1 m
+        reference radius for a vehicle without a shield (the flux scales as
+        ``1/sqrt(r_n)``). Zero out of the air. Example: ``fc.wait_until(lambda: fc.heating < 1135)``."""
+        checks = self._body.checks
+        shield = None if checks is None else checks.shield
+        return float(sutton_graves(self.air_density, self.airspeed,
+                                   1.0 if shield is None else shield.nose_radius,
+                                   sutton_graves_constant(self._body.mu)))
+
+    @property
+    def shield_temperature(self) -> float:
+        """The lumped heat shield's temperature, K, as the checks integrate it after every
+        step (nan for a vehicle without a heat shield)."""
+        checks = self._body.checks
+        return math.nan if checks is None or checks.shield is None else float(checks.temperature)
+
         """Periapsis altitude above the central body's equatorial radius, m."""
         return self._view().orbit.periapsis - float(self._body.p[P_RADIUS])
 

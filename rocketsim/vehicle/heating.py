@@ -24,7 +24,13 @@ from __future__ import annotations
 import math
 
 from rocketsim._jit import njit
-from rocketsim.constants import STEFAN_BOLTZMANN
+from rocketsim.constants import MARS_MU, STEFAN_BOLTZMANN, SUTTON_GRAVES_EARTH, SUTTON_GRAVES_MARS
+
+
+def sutton_graves_constant(mu: float) -> float:
+    """``k`` of the air about the central body of gravitational parameter ``mu``
+    (m^3/s^2): CO2 about Mars, air elsewhere (the Moon has none to heat with)."""
+    return SUTTON_GRAVES_MARS if mu == MARS_MU else SUTTON_GRAVES_EARTH
 
 
 @njit
