@@ -546,18 +546,6 @@ class FlightComputer:
     effectiveGravity = effective_gravity   # the name programs of the original simulator use
 
     @property
-    def orbit(self) -> Elements:
-        """Osculating orbital elements about the central body (ECI axes)."""
-        return self._view().orbit
-
-    @property
-    def apoapsis(self) -> float:
-        """Apoapsis altitude above the central body's equatorial radius, m (inf if unbound)."""
-        return self._view().orbit.apoapsis - float(self._body.p[P_RADIUS])
-
-    @property
-    def periapsis(self) -> float:
-    @property
     def acceleration(self) -> float:
         """What the accelerometers read, in g (``G0`` = 9.80665 m/s^2): the magnitude of the
         sensed acceleration ``|dv/dt - g|``, every force but gravity per unit mass (thrust,
@@ -592,6 +580,18 @@ class FlightComputer:
         checks = self._body.checks
         return math.nan if checks is None or checks.shield is None else float(checks.temperature)
 
+    @property
+    def orbit(self) -> Elements:
+        """Osculating orbital elements about the central body (ECI axes)."""
+        return self._view().orbit
+
+    @property
+    def apoapsis(self) -> float:
+        """Apoapsis altitude above the central body's equatorial radius, m (inf if unbound)."""
+        return self._view().orbit.apoapsis - float(self._body.p[P_RADIUS])
+
+    @property
+    def periapsis(self) -> float:
         """Periapsis altitude above the central body's equatorial radius, m."""
         return self._view().orbit.periapsis - float(self._body.p[P_RADIUS])
 
