@@ -264,7 +264,7 @@ def test_the_writer_streams_to_disk_with_bounded_memory(tmp_path):
 def test_an_interrupted_flight_is_a_complete_file_that_says_so(scenario, tmp_path):
     out = tmp_path / "stopped.mcap"
 
-    def ctrl_c(t):
+    def ctrl_c(t, phase):
         if t >= 1.5:
             raise KeyboardInterrupt
 

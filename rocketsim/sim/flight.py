@@ -21,11 +21,15 @@ def fly(loaded: LoadedScenario, out: str | Path, *, step: float | None = None,
         duration: float | None = None, on_progress=None) -> dict:
     """Fly ``loaded`` and write its telemetry to ``out``; return the summary.
 
+    ``on_progress(t, phase)``, if given, is called after every batch of steps with the
+    mission time (s) and the flight's phase, its latest event as ``"<body>: <name>"``
+    (:attr:`rocketsim.sim.world.World.phase`).
+
     Errors in the scenario or the program are raised after the telemetry
     file has been finished.
     """
     world = World.from_scenario(loaded, step=step, duration=duration)
-    world.on_progress = on_progress
+    world.on_progress = None if on_progress is None else (lambda t: on_progress(t, world.phase))
     epoch_ns = round(world.epoch.utc.timestamp() * 1e9)
     program = loaded.program_path
     with TelemetryWriter(out, epoch_ns, program.name if program else "") as telemetry:

@@ -137,6 +137,7 @@ class World:
         self.telemetry = None
         self.sample_every = 1
         self.on_progress: Callable[[float], None] | None = None
+        self.phase = ""                     # the latest event, "<body>: <name>" (progress bars)
         self._build_atmosphere = atmosphere
         self._atmosphere = None
         self._field = None                  # cruise rails' field, built on first use
@@ -328,6 +329,7 @@ class World:
         """Record an event of ``body`` at the body's own time (SI figures)."""
         record = {"name": name, "time_s": body.t, **figures}
         body.events.append(record)
+        self.phase = f"{body.name}: {name}"
         if self.telemetry is not None:
             self.telemetry.event(body.t, body.name, name, figures)
 
