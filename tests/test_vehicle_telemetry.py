@@ -30,6 +30,7 @@ from rocketsim.constants import AIR_CP, EARTH_OMEGA, G0, STEFAN_BOLTZMANN
 from rocketsim.scenario.load import load
 from rocketsim.sim.flight import fly
 from rocketsim.sim.world import World
+from rocketsim.telemetry.reader import raw_messages
 from rocketsim.telemetry.replay import export, table
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -231,7 +232,6 @@ def test_the_plot_draws_throttle_and_propellant(burn, tmp_path):
 
 
 def test_the_burn_writes_the_same_bytes_twice(burn, tmp_path):
-    from rocketsim.telemetry.reader import raw_messages
     path, _ = burn
     again = tmp_path / "again.mcap"
     fly(load(path.parent / "scenario.yaml"), again)
@@ -250,3 +250,67 @@ def test_parquet_export_keeps_the_rows_and_types_a_column_never_set_as_float(bur
     assert written.column("thrust").to_pylist() == [m["thrust"] for m in states]
     ring = written.schema.field("group_throttle_booster_Merlin_1D_ring")      # the ring never runs
     assert ring.type == pyarrow.float64() and written.column(ring.name).null_count == len(states)
+
+
+def _both_encodings(world, body, folder: Path, monkeypatch, trials: int = 120) -> None:
+    """The template path (``TelemetryWriter.sample``: the numbers spliced into byte
+    templates of the three messages, :mod:`rocketsim.telemetry.splice`) writes the same
+    file, byte for byte, as the straightforward one (``TelemetryWriter.state``:
+    ``orjson.dumps`` of each message built as a dictionary, ``fields(values.tolist(),
+    int)``, as before the templates), for the body's own numbers and for the same
+    message shape filled with numbers of every kind: NaN and infinities (null),
+    -0.0, subnormal, the largest double, exponents from -300 to 300. Small chunks, so
+    that chunks end inside a sample's records (the chunk ends where one-by-one
+    messages end it); times 0.37 s apart, so the Earth's transform comes between
+    samples' state and transform messages every second or so."""
+    import orjson
+    import rocketsim.telemetry.writer as writer_module
+    from rocketsim.sim import sampling
+    from rocketsim.telemetry.writer import TelemetryWriter
+    monkeypatch.setattr(writer_module, "CHUNK_SIZE", 3_000)
+    values, fields = sampling.values(body, world.gmst0, world.where)
+    rng = np.random.default_rng(10)
+    special = np.array([math.nan, math.inf, -math.inf, -0.0, 0.0, 5e-324, 1.7976931348623157e308,
+                        1e16, 1e-7, 0.1, 123456789.0, 2.0 ** 53])
+    samples = [values]
+    for k in range(1, trials):
+        v = values.copy()
+        odd = rng.random(v.size) < 0.3
+        v[odd] = rng.normal(size=odd.sum()) * 10.0 ** rng.integers(-300, 300, odd.sum())
+        chosen = rng.random(v.size) < 0.2
+        v[chosen] = rng.choice(special, chosen.sum())
+        v[-2] = values[-2] + 0.37 * k                  # the time: finite, increasing
+        if body.vehicle is not None:
+            v[sampling.VEHICLE + 3] = rng.integers(0, 40)   # engines running: a count
+        samples.append(v)
+    folder.mkdir(parents=True, exist_ok=True)
+    paths = folder / "dictionaries.mcap", folder / "templates.mcap"
+    for path in paths:
+        with TelemetryWriter(path, 1_795_694_400 * 10**9) as telemetry:
+            telemetry.add_body(body.name)
+            for v in samples:
+                if path is paths[0]:
+                    telemetry.state(body.name, fields(v.tolist(), int))
+                else:
+                    telemetry.sample(body.name, v, fields)
+    assert paths[0].read_bytes() == paths[1].read_bytes()
+    first = json.loads(next(m for topic, _, m in raw_messages(paths[1]) if topic.endswith("/state")))
+    assert first == orjson.loads(orjson.dumps(fields(values.tolist(), int)))     # the body's own numbers
+
+
+def test_templates_write_what_dictionaries_write_for_a_staged_vehicle(burn, entry, tmp_path, monkeypatch):
+    # the booster with engine groups and tanks (after the burn: throttles null), then the
+    # capsule with its heat shield (heat flux, shield temperature)
+    for k, (_, quiet) in enumerate((burn, entry)):
+        _both_encodings(quiet, quiet.bodies[0], tmp_path / str(k), monkeypatch)
+
+
+def test_templates_write_what_dictionaries_write_for_a_rigid_body_and_about_mars(scenario, tmp_path,
+                                                                                monkeypatch):
+    coast = World.from_scenario(load(scenario(duration="1 s")))
+    coast.run(None)
+    _both_encodings(coast, coast.bodies[0], tmp_path / "coast", monkeypatch)
+    mars = World.from_scenario(load(ROOT / "scenarios" / "mars-entry.yaml"), duration=0.2)
+    mars.run(None)
+    assert mars.bodies[0].central == "mars"
+    _both_encodings(mars, mars.bodies[0], tmp_path / "mars", monkeypatch)

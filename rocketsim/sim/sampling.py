@@ -3,10 +3,14 @@
 :func:`figures` computes, for one body at its time, the state and everything
 derived from it (geodetic position, speed, orbit elements, mass,
 accelerations, air data; for a staged vehicle the engines, propellant and
-heating) into one flat float64 array; :func:`message` lays that array out as
-the state message (keys in the order of :data:`rocketsim.telemetry.schemas.BODY_STATE`)
-with a layout worked out once per vehicle model. A sample costs one compiled
-call and a few dictionary builds, not a Python walk through the readings.
+heating) into one flat float64 array; :func:`values` returns that array with
+the function that lays it out as the state message (keys in the order of
+:data:`rocketsim.telemetry.schemas.BODY_STATE`), one per message shape, with a
+layout worked out once per vehicle model. The flight writes the array as it
+is (:meth:`rocketsim.telemetry.writer.TelemetryWriter.sample` splices its
+numbers into a byte template of the message): a sample costs one compiled call
+for its numbers and one for its bytes, no dictionary; :func:`message` builds
+the dictionary for those who read it.
 
 Read-only: nothing here changes the state, the engines' commands or the checks,
 and no sensor is read (the figures are the truth). The computations are those
@@ -59,11 +63,11 @@ from __future__ import annotations
 
 import math
 import weakref
-from functools import lru_cache
+from functools import lru_cache, partial
 
 import numpy as np
 
-from rocketsim._jit import njit
+from rocketsim._jit import entry_point, njit
 from rocketsim.atmosphere.table import air_at
 from rocketsim.constants import DEG, MARS_MU, SUTTON_GRAVES_EARTH, SUTTON_GRAVES_MARS
 from rocketsim.dynamics.derivative import body_air_velocity, radial_height
@@ -165,7 +169,7 @@ def _vehicle_into(out, t, y, p, p_a, veh, group, n_groups, nose_radius, k_heat):
 
 @njit
 def figures(t, y, p, mu, node, h0, dh, density, pressure, temperature, sound, wind_east,
-            wind_north, veh, group, n_groups, nose_radius, k_heat):
+            wind_north, veh, group, n_groups, nose_radius, k_heat, shield_temperature):
     """Every number of the state message of a body in state ``y`` (parameters ``p``,
     central body's ``mu`` m^3/s^2) at mission time ``t`` (s), in the flat layout of this
     module (the state's ECI axes; the geodetic position is WGS84's).
@@ -174,13 +178,15 @@ def figures(t, y, p, mu, node, h0, dh, density, pressure, temperature, sound, wi
     (:meth:`~rocketsim.atmosphere.table.AtmosphereTable.arrays`); ``veh``: the vehicle's
     arrays (None: a rigid body, whose figures end before ``VEHICLE``), ``group`` the
     engine group of each engine (``n_groups`` groups), ``nose_radius`` the heat shield's
-    (m, 0: none) and ``k_heat`` the Sutton-Graves constant of the central body's air."""
+    (m, 0: none) and ``k_heat`` the Sutton-Graves constant of the central body's air.
+    The array ends with ``t`` and ``shield_temperature`` (K, nan: no shield): every
+    number of the message, for :func:`rocketsim.telemetry.splice.records`."""
     if veh is None:
-        out = np.empty(VEHICLE)
+        out = np.empty(VEHICLE + 2)
         out[MASS] = p[P_MASS]
     else:
         n_tanks = veh.tank_bottom.shape[0]
-        out = np.empty(GROUPS + 2 * n_groups + n_tanks)
+        out = np.empty(GROUPS + 2 * n_groups + n_tanks + 2)
         out[MASS] = mass_properties(veh.fixed, veh.tank_bottom, veh.tank_radius, veh.tank_density,
                                     y[N_STATE:N_STATE + n_tanks])[0]
     out[:N_STATE] = y[:N_STATE]
@@ -202,6 +208,8 @@ def figures(t, y, p, mu, node, h0, dh, density, pressure, temperature, sound, wi
     out[MASS + 5] = 0.5 * rho * airspeed * airspeed
     if veh is not None:
         _vehicle_into(out, t, y, p, p_a, veh, group, n_groups, nose_radius, k_heat)
+    out[-2] = t
+    out[-1] = shield_temperature
     return out
 
 
@@ -209,33 +217,77 @@ def figures(t, y, p, mu, node, h0, dh, density, pressure, temperature, sound, wi
 _NO_GROUPS = np.zeros(0, dtype=np.int64)
 
 
-def message(body, gmst0: float, where) -> dict:
-    """The state message of ``body`` (a :class:`rocketsim.sim.world.Body`) at its time:
-    ``gmst0`` (rad) the Earth's sidereal angle at the epoch (the RAAN's origin about
-    Earth), ``where(body)`` its (latitude rad, longitude rad, height m) away from Earth."""
+def values(body, gmst0: float, where) -> tuple[np.ndarray, "partial"]:
+    """Every number of the state message of ``body`` (a :class:`rocketsim.sim.world.Body`)
+    at its time, in the layout of :func:`figures`, and the function that lays them out
+    as the message: ``fields(values, integer)`` (``integer``: how a count is written,
+    ``int`` for a message of numbers), one object per message shape.
+
+    ``gmst0`` (rad): the Earth's sidereal angle at the epoch (the RAAN's origin about
+    Earth); ``where(body)``: its (latitude rad, longitude rad, height m) away from Earth."""
     earth = body.central == "earth"
     model = body.vehicle
     air = (body.atmosphere if earth else vacuum)().arrays()
     if model is None:
-        v = body.kernels.call(figures, None, body.t, body.y, body.p, body.mu, gmst0 if earth else 0.0,
-                              *air, None, _NO_GROUPS, 0, 0.0, 0.0).tolist()
+        v = _call(body, None, (body.t, body.y, body.p, body.mu, gmst0 if earth else 0.0, *air, None,
+                               _NO_GROUPS, 0, 0.0, 0.0, math.nan))
+        shape = _shape(body.central, None, None, False)
     else:
-        layout = _layout(model)
+        group, groups, tanks = _layout(model)
         shield = body.checks.shield if body.checks is not None else None
-        v = body.kernels.call(figures, model.arrays, body.t, body.y, body.p, body.mu,
-                              gmst0 if earth else 0.0, *air, model.arrays, layout[0], len(layout[1]),
-                              shield.nose_radius if shield is not None else 0.0,
-                              SUTTON_GRAVES_MARS if body.mu == MARS_MU else SUTTON_GRAVES_EARTH).tolist()
+        v = _call(body, model, (
+            body.t, body.y, body.p, body.mu, gmst0 if earth else 0.0, *air, model.arrays, group,
+            len(groups), shield.nose_radius if shield is not None else 0.0,
+            SUTTON_GRAVES_MARS if body.mu == MARS_MU else SUTTON_GRAVES_EARTH,
+            body.checks.temperature if shield is not None else math.nan))
+        shape = _shape(body.central, groups, tanks, shield is not None)
     if not earth:
         lat, lon, v[HEIGHT] = where(body)
         v[LAT], v[LON] = lat / DEG, lon / DEG
-    out = {"t": body.t, "position": v[0:3], "velocity": v[3:6], "attitude": v[6:10],
+    return v, shape
+
+
+def message(body, gmst0: float, where) -> dict:
+    """The state message of ``body`` at its time (see :func:`values`), as a dictionary."""
+    v, fields = values(body, gmst0, where)
+    return fields(v.tolist(), int)
+
+
+def _call(body, model, args):
+    """``figures(*args)`` through its compiled entry, bound once per vehicle model (and
+    once for every rigid body): :meth:`rocketsim._jit.Entries.call` without its look
+    at every argument, as only the state and the parameters can be views."""
+    global _RIGID
+    if not (body.y.flags.c_contiguous and body.p.flags.c_contiguous):
+        return figures(*args)
+    if model is None:
+        if _RIGID is None:
+            _RIGID = entry_point(figures, *args)
+        return _RIGID(*args)
+    record = _model(model)
+    if record[2] is None or record[2][0] is not model.arrays:
+        record[2] = (model.arrays, entry_point(figures, *args))
+    return record[2][1](*args)
+
+
+_RIGID = None
+
+
+@lru_cache(maxsize=64)
+def _shape(central: str, groups, tanks, shield: bool) -> partial:
+    """The ``fields`` of :func:`values` for one message shape, the same object each time."""
+    return partial(_fields, central=central, groups=groups, tanks=tanks, shield=shield)
+
+
+def _fields(v, integer, central: str, groups, tanks, shield: bool) -> dict:
+    """The state message (keys in the order of :data:`rocketsim.telemetry.schemas.BODY_STATE`)
+    from the numbers ``v`` of :func:`figures` (a list, or slots standing for them)."""
+    out = {"t": v[-2], "position": v[0:3], "velocity": v[3:6], "attitude": v[6:10],
            "body_rates": v[10:13], "latitude_deg": v[LAT], "longitude_deg": v[LON],
            "altitude": v[HEIGHT], "speed": v[SPEED], "orbit": _orbit(v[ORBIT:MASS]),
-           "central_body": body.central}
+           "central_body": central}
     out.update(zip(FLIGHT_KEYS, v[MASS:VEHICLE]))
-    if model is not None:
-        _, groups, tanks = layout
+    if groups is not None:
         n = len(groups)
         throttle = v[VEHICLE]
         out["throttle"] = throttle if throttle == throttle else None
@@ -243,12 +295,12 @@ def message(body, gmst0: float, where) -> dict:
         out["thrust"] = v[VEHICLE + 1]
         out["group_thrust"] = dict(zip(groups, v[GROUPS + n:GROUPS + 2 * n]))
         out["mass_flow"] = v[VEHICLE + 2]
-        out["engines_running"] = int(v[VEHICLE + 3])
+        out["engines_running"] = integer(v[VEHICLE + 3])
         out["propellant"] = v[VEHICLE + 4]
-        out["propellant_tanks"] = dict(zip(tanks, v[GROUPS + 2 * n:]))
-        if shield is not None:
+        out["propellant_tanks"] = dict(zip(tanks, v[GROUPS + 2 * n:-2]))
+        if shield:
             out["heat_flux"] = v[VEHICLE + 5]
-            out["shield_temperature"] = body.checks.temperature
+            out["shield_temperature"] = v[-1]
     return out
 
 
@@ -274,20 +326,26 @@ def _keys(names: tuple[str, ...]) -> tuple[str, ...]:
     return tuple("".join(c if c.isalnum() or c in "-_" else "_" for c in n) for n in names)
 
 
-_LAYOUTS: dict[int, tuple] = {}
+# id(model) -> [weak reference to the model, its layout, (its arrays, figures' entry) or None]
+_MODELS: dict[int, list] = {}
 
 
 def _layout(model) -> tuple:
     """``(engine group index of each engine, group keys, tank keys)`` of ``model``,
     worked out once per model (a staging builds new ones)."""
-    found = _LAYOUTS.get(id(model))
+    return _model(model)[1]
+
+
+def _model(model) -> list:
+    """What is worked out once per vehicle model (see :data:`_MODELS`)."""
+    found = _MODELS.get(id(model))
     if found is not None and found[0]() is model:
-        return found[1]
+        return found
     keys = _keys(tuple(model.engine_groups))
     groups = tuple(dict.fromkeys(keys))
     layout = (np.array([groups.index(k) for k in keys], dtype=np.int64), groups,
               _keys(tuple(model.tank_names)))
-    for key in [k for k, (ref, _) in _LAYOUTS.items() if ref() is None]:
-        del _LAYOUTS[key]           # models gone with their runs
-    _LAYOUTS[id(model)] = (weakref.ref(model), layout)
-    return layout
+    for key in [k for k, (ref, _, _) in _MODELS.items() if ref() is None]:
+        del _MODELS[key]            # models gone with their runs
+    found = _MODELS[id(model)] = [weakref.ref(model), layout, None]
+    return found

@@ -286,7 +286,7 @@ class World:
         self.bodies.append(new)
         if self.telemetry is not None:
             self.telemetry.add_body(new.name)
-            self.telemetry.state(new.name, self.sample(new))
+            self._record(new)
         return new
 
     def separate(self, body: Body) -> Body:
@@ -336,6 +336,11 @@ class World:
     def sample(self, body: Body) -> dict:
         """The telemetry state message of ``body`` at its time (:mod:`rocketsim.sim.sampling`)."""
         return sampling.message(body, self.gmst0, self.where)
+
+    def _record(self, body: Body) -> None:
+        """Write ``body``'s telemetry sample: its state message (as :meth:`sample`) and the
+        Foxglove messages drawn from it, from the numbers alone (no dictionaries)."""
+        self.telemetry.sample(body.name, *sampling.values(body, self.gmst0, self.where))
 
     def orbit_summary(self, body: Body) -> dict:
         """The osculating elements of ``body``'s state message (:func:`rocketsim.sim.sampling.orbit`)."""
@@ -555,14 +560,14 @@ class World:
         a sample in the old frame, the handover event, a sample in the new one."""
         old = body.central
         if self.telemetry is not None:
-            self.telemetry.state(body.name, self.sample(body))
+            self._record(body)
         body.y, body.p = recentre(body.y, body.p, body.t, new, self.gmst0)
         body.central, body.mu, body._view = new, float(body.p[P_MU]), None
         if body.vehicle is not None:
             self._fly_in_air_of(body)
         self.event(body, "soi_handover", {"from": old, "to": new})
         if self.telemetry is not None:
-            self.telemetry.state(body.name, self.sample(body))
+            self._record(body)
 
     def _fly_in_air_of(self, body: Body) -> None:
         """Give a staged vehicle the air of its central body (none about the Moon)."""
@@ -641,7 +646,7 @@ class World:
             self.event(body, "impact", figures)
             body.flying = False
             if self.telemetry is not None:
-                self.telemetry.state(body.name, self.sample(body))
+                self._record(body)
 
     def _check_finite(self) -> None:
         """Stop the flight with an input error when a body's state is no longer finite
@@ -658,7 +663,7 @@ class World:
             return
         for body in self.bodies:
             if body.flying:
-                self.telemetry.state(body.name, self.sample(body))
+                self._record(body)
 
     def summary(self) -> dict:
         """Events and final state of each body, SI units (degrees where named)."""

@@ -3,9 +3,12 @@
 Telemetry writes tens of thousands of small messages per flight; the ``mcap``
 package's writer spends about 8 us on each (a record object, statistics and
 index objects, five stream writes). This writer packs a message record in one
-``struct`` call into the open chunk (about 1 us) and keeps the chunk's
-message index as plain lists. Everything else follows the MCAP specification
-(mcap.dev/spec) and is read back by the ``mcap`` package's reader:
+``struct`` call into the open chunk, a reused byte array, and keeps the chunk's
+message index as an array of (channel, log time, offset); a caller that frames
+records itself writes them straight into both (:meth:`McapStream.reserve`,
+:meth:`McapStream.added`: a telemetry sample's records in one compiled call,
+:mod:`rocketsim.telemetry.splice`). Everything else follows the MCAP
+specification (mcap.dev/spec) and is read back by the ``mcap`` package's reader:
 
 * data section: magic, Header, then Schema and Channel records as they are
   registered, Chunks (zstd-compressed records, each followed by one Message
@@ -26,6 +29,7 @@ import struct
 import zlib
 from typing import BinaryIO
 
+import numpy as np
 import zstandard
 
 MAGIC = b"\x89MCAP0\r\n"
@@ -41,6 +45,8 @@ _MESSAGE_FIXED = 2 + 4 + 8 + 8               # content bytes before the data
 # where the default level 3 does 260 MB/s (about 2 us less per 10 Hz sample of a
 # staged vehicle) and packs them no worse (5.9 : 1 against 4.9 : 1 on a Falcon 9 run)
 ZSTD_LEVEL = 1
+# bytes a chunk holds beyond its size (the records that take it there): grown when short
+_SLACK = 16 * 1024
 
 
 def _string(text: str) -> bytes:
@@ -111,60 +117,88 @@ class McapStream:
         return channel_id
 
     # --- messages, in chunks -------------------------------------------------
-    def _new_chunk(self) -> None:
-        self._records: list[bytes] = []
+    def _new_chunk(self, least: int = 0) -> None:
+        self._chunk = np.empty(max(self._chunk_limit + _SLACK, 2 * least), dtype=np.uint8)
+        self._view = memoryview(self._chunk)
         self._size = 0
-        self._index: dict[int, list[int]] = {}   # channel -> [time, offset, time, offset, ...]
-        self._chunk_first = self._chunk_last = None
+        self._index = np.empty(3 * 1024, dtype=np.int64)   # (channel, log time, offset) per record
+        self._n = 0
+
+    def reserve(self, size: int, records: int) -> tuple[np.ndarray, int, np.ndarray, int]:
+        """Room for ``size`` more bytes of ``records`` more records in the open chunk:
+        ``(chunk, its size, index, records in it)``, for a caller that writes records
+        at the chunk's end and their (channel, log time, start) triples at the index's,
+        then calls :meth:`added`."""
+        if self._size + size > self._chunk.shape[0]:
+            grown = np.empty(2 * (self._size + size), dtype=np.uint8)
+            grown[:self._size] = self._chunk[:self._size]
+            self._chunk, self._view = grown, memoryview(grown)
+        if 3 * (self._n + records) > self._index.shape[0]:
+            self._index = np.concatenate([self._index, np.empty_like(self._index)])
+        return self._chunk, self._size, self._index, self._n
+
+    def added(self, size: int, records: int) -> None:
+        """The open chunk now holds ``size`` bytes in ``records`` records (see
+        :meth:`reserve`). A chunk ends after the first record that takes it to the
+        chunk size, as when messages are added one by one."""
+        first = self._n
+        self._size, self._n = size, records
+        while self._size >= self._chunk_limit:
+            ends = self._index[3 * first + 2:3 * self._n:3].tolist()[1:] + [self._size]
+            k = next(k for k, end in enumerate(ends) if end >= self._chunk_limit)
+            self._write_chunk(ends[k], first + k + 1)
+            first = 0
 
     def message(self, channel: int, log_time: int, publish_time: int, data: bytes,
                 sequence: int = 0) -> None:
         """Add a message (times in ns) to the open chunk."""
-        offset = self._size
-        self._records.append(_MESSAGE.pack(MESSAGE, _MESSAGE_FIXED + len(data), channel, sequence,
-                                           log_time, publish_time))
-        self._records.append(data)
-        self._size = offset + 9 + _MESSAGE_FIXED + len(data)
-        entries = self._index.get(channel)
-        if entries is None:
-            entries = self._index[channel] = []
-        entries += (log_time, offset)
-        self._counts[channel] += 1
-        if self._chunk_first is None:
-            self._chunk_first = self._chunk_last = log_time
-        elif log_time < self._chunk_first:
-            self._chunk_first = log_time
-        elif log_time > self._chunk_last:
-            self._chunk_last = log_time
-        if self._size >= self._chunk_limit:
-            self._write_chunk()
+        size = 9 + _MESSAGE_FIXED + len(data)
+        chunk, at, index, n = self.reserve(size, 1)
+        _MESSAGE.pack_into(chunk, at, MESSAGE, _MESSAGE_FIXED + len(data), channel, sequence,
+                           log_time, publish_time)
+        self._view[at + 9 + _MESSAGE_FIXED:at + size] = data
+        index[3 * n:3 * n + 3] = channel, log_time, at
+        self.added(at + size, n + 1)
 
-    def _write_chunk(self) -> None:
-        """Compress and write the open chunk, its message indexes and (for the
-        summary) its chunk index."""
-        if not self._records:
+    def _write_chunk(self, size: int | None = None, records: int | None = None) -> None:
+        """Compress and write the open chunk's first ``size`` bytes (all by default), its
+        first ``records`` records, with their message indexes and (for the summary) its
+        chunk index; what follows them starts the next chunk."""
+        size = self._size if size is None else size
+        records = self._n if records is None else records
+        if records == 0:
             return
-        records = b"".join(self._records)
-        compressed = self._compressor.compress(records)
-        first, last = self._chunk_first, self._chunk_last
-        chunk = _record(CHUNK, struct.pack("<QQQI", first, last, len(records), zlib.crc32(records))
+        data = self._view[:size]
+        compressed = self._compressor.compress(data)
+        entries = self._index[:3 * records].reshape(records, 3)
+        channels, times = entries[:, 0], entries[:, 1]
+        first, last = int(times.min()), int(times.max())
+        chunk = _record(CHUNK, struct.pack("<QQQI", first, last, size, zlib.crc32(data))
                         + _string("zstd") + struct.pack("<Q", len(compressed)) + compressed)
         chunk_start = self._emit(chunk)
         index_offsets = {}
         index_start = self._offset
-        for channel in sorted(self._index):
-            entries = self._index[channel]
-            pairs = struct.pack(f"<{len(entries)}Q", *entries)
+        for channel in np.unique(channels).tolist():
+            pairs = entries[channels == channel, 1:].astype("<u8").tobytes()
+            self._counts[channel] += len(pairs) // 16
             index_offsets[channel] = self._emit(_record(
                 MESSAGE_INDEX, struct.pack("<HI", channel, len(pairs)) + pairs))
         offsets = b"".join(struct.pack("<HQ", c, o) for c, o in index_offsets.items())
         self._chunk_indexes.append(_record(CHUNK_INDEX, struct.pack(
             "<QQQQI", first, last, chunk_start, len(chunk), len(offsets)) + offsets
             + struct.pack("<Q", self._offset - index_start) + _string("zstd")
-            + struct.pack("<QQ", len(compressed), len(records))))
+            + struct.pack("<QQ", len(compressed), size)))
         self._first = first if self._first is None else min(self._first, first)
         self._last = last if self._last is None else max(self._last, last)
-        self._new_chunk()
+        rest, rest_records = self._size - size, self._n - records
+        tail = self._chunk[size:self._size].copy()
+        tail_index = self._index[3 * records:3 * self._n].reshape(rest_records, 3).copy()
+        self._new_chunk(rest)
+        if rest_records:
+            tail_index[:, 2] -= size
+            self._chunk[:rest] = tail
+            self._index[:3 * rest_records] = tail_index.ravel()
+            self._size, self._n = rest, rest_records
 
     # --- attachments and metadata ---------------------------------------------
     def attachment(self, name: str, media_type: str, data: bytes, log_time: int,

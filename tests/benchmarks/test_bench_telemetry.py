@@ -9,10 +9,12 @@ Printed (run with ``pytest -s``):
    issue-6 mission) and a program-less orbital coast (steps batched in the
    compiled kernel, so the sampling is nearly all the work). For each, what
    one sample costs on its own, called in a loop at the flight's end: its
-   message (``World.sample``: one compiled call and the dictionaries) and
-   its writing (``TelemetryWriter.state``: the state, transform and location
-   messages as JSON, in the MCAP chunk) -- in a flight, with the caches
-   shared with the flight's own work, a sample costs about twice as much;
+   numbers (``sampling.values``: one compiled call) and their writing
+   (``TelemetryWriter.sample``: ``orjson`` formats the numbers, one compiled
+   call splices them into the state, transform and location messages'
+   templates and frames the MCAP records in the chunk; the chunk's zstd
+   compression, about 2.5 us a sample, included) -- in a flight, with the
+   caches shared with the flight's own work, a sample costs about twice as much;
 2. ``rocketsim replay``'s summary of a one-hour 10 Hz flight's MCAP
    (target under 1 s), against reading every message of the same file.
 Nothing asserts a time; the checks are that both flights end in the same
@@ -25,6 +27,7 @@ from pathlib import Path
 from mcap.reader import make_reader
 
 from rocketsim.scenario.load import load
+from rocketsim.sim import sampling
 from rocketsim.sim.flight import fly
 from rocketsim.sim.world import World
 from rocketsim.telemetry.replay import read_run
@@ -62,14 +65,16 @@ def _on_off(loaded, duration, out):
 
 
 def _one_sample(world, path, calls=1000):
-    """Best seconds of one call of ``world.sample`` and of ``TelemetryWriter.state`` with
-    its message, for the first body at the end of ``world``'s flight."""
+    """Best seconds of one call of what the flight calls per sample, for the first body
+    at the end of ``world``'s flight: its numbers (``sampling.values``) and their
+    writing (``TelemetryWriter.sample``)."""
     body = world.bodies[0]
     with TelemetryWriter(path, 0) as telemetry:
         telemetry.add_body(body.name)
-        t_message, message = best_of(5, lambda: [world.sample(body) for _ in range(calls)][-1])
-        t_write = best_of(5, lambda: [telemetry.state(body.name, message) for _ in range(calls)])[0]
-    return t_message / calls, t_write / calls
+        t_values, (values, fields) = best_of(
+            5, lambda: [sampling.values(body, world.gmst0, world.where) for _ in range(calls)][-1])
+        t_write = best_of(5, lambda: [telemetry.sample(body.name, values, fields) for _ in range(calls)])[0]
+    return t_values / calls, t_write / calls
 
 
 def _report(name, duration, t_off, t_on, t_file, one_sample):
@@ -78,8 +83,8 @@ def _report(name, duration, t_off, t_on, t_file, one_sample):
           f"{t_on * 1e3:.1f} ms with 10 Hz telemetry: ratio {t_on / t_off:.2f} "
           f"({(t_on - t_off) / samples * 1e6:.0f} us per sample; the file's fixed cost "
           f"{t_file * 1e3:.1f} ms, so {(t_on - t_off - t_file) / samples * 1e6:.0f} us per "
-          f"sample beyond it; on its own a sample's message takes {one_sample[0] * 1e6:.1f} us "
-          f"and its writing {one_sample[1] * 1e6:.1f} us; the flight {t_off / samples * 1e6:.0f} us "
+          f"sample beyond it; on its own a sample's numbers take {one_sample[0] * 1e6:.1f} us "
+          f"and their writing {one_sample[1] * 1e6:.1f} us; the flight {t_off / samples * 1e6:.0f} us "
           f"per sample interval)")
 
 
