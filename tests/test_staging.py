@@ -3,6 +3,7 @@
 import numpy as np
 import pytest
 
+from rocketsim.frames.quaternion import quat_rotate
 from rocketsim.scenario.load import load
 from rocketsim.sim.world import World
 from rocketsim.sim.flight import fly
@@ -80,18 +81,24 @@ def test_a_program_for_a_stage_the_vehicle_lacks_is_refused(write, cli):
     assert "scenario.yaml:4:" in result.output and "no stage named 'boster'" in result.output
 
 
-def test_the_fairing_is_jettisoned_into_a_body_of_its_own(write):
-    """Conservation again: mass and momentum of the stack and the fairing add up
-    to the stack's before; the fairing's mass is the vehicle file's (1 900 kg)."""
+def test_the_fairing_is_jettisoned_into_two_halves_of_their_own(write):
+    """Conservation again: mass and momentum of the stack and the two fairing halves
+    add up to the stack's before; each half has half the vehicle file's 1 900 kg, and
+    the halves move apart along the body's y axis at the separation speed (2 m/s
+    by default) plus the turn of their lever arms (the stack starts at rest)."""
     world = World.from_scenario(load(scenario_with_programs(write)))
     stack = world.bodies[0]
     mass, momentum = stack.mass, stack.mass * stack.velocity.copy()
-    fairing = world.jettison_fairing(stack)
-    assert fairing.name == "fairing" and fairing.mass == pytest.approx(1900.0)
-    assert stack.mass + fairing.mass == pytest.approx(mass, rel=1e-12)
-    both = stack.mass * stack.velocity + fairing.mass * fairing.velocity
-    assert np.allclose(both, momentum, rtol=1e-12, atol=1e-6)
+    one, two = world.jettison_fairing(stack)
+    assert (one.name, two.name) == ("fairing_1", "fairing_2")
+    assert one.mass == two.mass == pytest.approx(950.0)
+    assert stack.mass + one.mass + two.mass == pytest.approx(mass, rel=1e-12)
+    parts = stack.mass * stack.velocity + one.mass * one.velocity + two.mass * two.velocity
+    assert np.allclose(parts, momentum, rtol=1e-12, atol=1e-6)
+    side = quat_rotate(stack.attitude, np.array([0.0, 1.0, 0.0]))
+    assert np.dot(one.velocity - two.velocity, side) == pytest.approx(2.0, abs=1e-9)
     assert [e["name"] for e in stack.events] == ["fairing jettison"]
+    assert stack.events[0]["fairing_bodies"] == ["fairing_1", "fairing_2"]
     with pytest.raises(ValueError, match="no fairing"):
         world.jettison_fairing(stack)
     booster = world.separate(stack)                     # staging still works without it

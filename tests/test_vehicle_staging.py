@@ -45,19 +45,58 @@ def test_separation_conserves_centre_of_mass_and_momentum():
     assert np.array_equal(y_u[upper.tanks], whole.tank_load[2:])
 
 
-def test_fairing_jettison_conserves_centre_of_mass_and_momentum():
+def test_fairing_halves_conserve_centre_of_mass_and_momentum():
+    """The fairing opens into two halves pushed apart along body +/-y at half the
+    separation speed (2 m/s apart by default): stack + halves keep the centre of mass
+    and momentum of the stack before (to rounding), and the halves' centres lie
+    2 R / pi off the axis (the centroid of a half circle's arc)."""
     spec = validate(read_yaml(F9), VehicleSpec)
     whole = build(spec)
+    q = quat_from_axis_angle(np.array([0.3, -0.5, 0.8]) / np.linalg.norm([0.3, -0.5, 0.8]), 1.1)
     (_, _), (upper, y_u) = separate(spec, whole, whole.state([EARTH_RADIUS_EQ + 110e3, 0.0, 0.0],
-                                                             [0.0, 2500.0, 800.0], w=(0.0, 0.02, 0.0)), 1)
-    (bare, y_b), fairing = jettison_fairing(spec, upper, y_u, 1)
+                                                             [0.0, 2500.0, 800.0], q, w=(0.01, 0.02, -0.03)), 1)
+    (bare, y_b), (one, two) = jettison_fairing(spec, upper, y_u, 1)
     m, m_b = upper.mass_properties(y_u)[0], bare.mass_properties(y_b)[0]
-    assert m - m_b == pytest.approx(1900.0, rel=1e-12) and fairing["mass"] == 1900.0
-    assert np.allclose((m_b * y_b[:3] + 1900.0 * fairing["position"]) / m, y_u[:3], rtol=0, atol=1e-8)
-    assert np.allclose((m_b * y_b[3:6] + 1900.0 * fairing["velocity"]) / m, y_u[3:6], rtol=0, atol=1e-10)
-    # thin shell, r = 2.6 m, L = 13.1 m: Ixx = m r^2, Iyy = m (r^2/2 + L^2/12)
-    assert fairing["inertia"] == pytest.approx((1900 * 2.6 ** 2, 1900 * (2.6 ** 2 / 2 + 13.1 ** 2 / 12),
-                                                1900 * (2.6 ** 2 / 2 + 13.1 ** 2 / 12)), rel=1e-14)
+    assert m - m_b == pytest.approx(1900.0, rel=1e-12) and one["mass"] == two["mass"] == 950.0
+    centre = (m_b * y_b[:3] + 950.0 * one["position"] + 950.0 * two["position"]) / m
+    momentum = m_b * y_b[3:6] + 950.0 * one["velocity"] + 950.0 * two["velocity"]
+    assert np.allclose(centre, y_u[:3], rtol=0, atol=1e-8)
+    assert np.allclose(momentum / m, y_u[3:6], rtol=0, atol=1e-10)
+    side = quat_rotate(q, np.array([0.0, 1.0, 0.0]))
+    assert np.dot(one["position"] - two["position"], side) == pytest.approx(4 * 2.6 / np.pi, abs=1e-8)
+    # relative speed along body y: the push (2 m/s) plus the turn of the offset (w_x, w_z)
+    turn = np.cross([0.01, 0.02, -0.03], [0.0, 4 * 2.6 / np.pi, 0.0])
+    assert np.allclose(one["velocity"] - two["velocity"], quat_rotate(q, turn + [0.0, 2.0, 0.0]),
+                       rtol=0, atol=1e-9)
     assert not bare.has_fairing and bare.length == pytest.approx(13.8 + 6.0)
     with pytest.raises(ValueError):
         jettison_fairing(spec, bare, y_b, 1)
+
+
+def test_half_shell_inertia_against_quadrature():
+    """The inertia of a half cylindrical shell about its own centre against a direct
+    midpoint quadrature of the integrals sum m_i (y^2 + z^2) etc. over 2 000 x 400
+    area elements of the half shell (the reference: the definition, not the
+    parallel-axis formulas), and a cylinder's mean projected area (surface / 4, Cauchy)
+    against the average of its projections over all directions."""
+    from rocketsim.vehicle.staging import half_shell
+    from rocketsim.vehicle.tumbling import cylinder_area
+    mass, radius, length = 950.0, 2.6, 13.1
+    phi = (np.arange(2000) + 0.5) / 2000 * np.pi - np.pi / 2     # the +y half: y = R cos(phi)
+    x = ((np.arange(400) + 0.5) / 400 - 0.5) * length
+    yy, zz = radius * np.cos(phi)[:, None], radius * np.sin(phi)[:, None]
+    xx = x[None, :]
+    dm = mass / (2000 * 400)
+    yc = np.sum(yy * np.ones_like(xx)) * dm / mass
+    (ixx, iyy, izz), d = half_shell(mass, radius, length)
+    assert d == pytest.approx(yc, rel=1e-6)
+    ones = np.ones((2000, 400))
+    assert ixx == pytest.approx(dm * np.sum((yy - yc) ** 2 * ones + zz ** 2 * ones), rel=1e-5)
+    assert iyy == pytest.approx(dm * np.sum(xx ** 2 * ones + zz ** 2 * ones), rel=1e-5)
+    assert izz == pytest.approx(dm * np.sum(xx ** 2 * ones + (yy - yc) ** 2 * ones), rel=1e-5)
+    # Cauchy: mean projected area of a convex body = surface / 4. Reference for the closed
+    # cylinder: its projection seen at theta from the axis, pi R^2 |cos| + 2 R L sin, averaged
+    # over the sphere of directions (sin theta dtheta / 2) by quadrature
+    theta = (np.arange(20000) + 0.5) / 20000 * np.pi
+    seen = np.pi * 2.0 ** 2 * np.abs(np.cos(theta)) + 2 * 2.0 * 6.0 * np.sin(theta)
+    assert cylinder_area(2.0, 6.0) == pytest.approx(np.sum(seen * np.sin(theta)) * np.pi / 20000 / 2, rel=1e-7)

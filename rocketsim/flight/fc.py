@@ -434,9 +434,10 @@ class FlightComputer:
         self._readings.pop("clearance", None)       # the stack's feet have changed
         return self._world.separate(self._body).name
 
-    def jettison_fairing(self) -> str:
-        """Drop the payload fairing (it becomes a body of its own); returns its name."""
-        return self._world.jettison_fairing(self._body).name
+    def jettison_fairing(self) -> tuple[str, str]:
+        """Drop the payload fairing: it opens into two halves, bodies of their own
+        (``fairing_1``, ``fairing_2``); returns their names."""
+        return tuple(half.name for half in self._world.jettison_fairing(self._body))
 
     def deploy_payload(self) -> str:
         """Release the payload (after the fairing): it becomes a body of its own, named

@@ -36,7 +36,7 @@ from pydantic_core import InitErrorDetails, PydanticCustomError, ValidationError
 
 from rocketsim.constants import ENGINE_TAIL_OFF, G0
 from rocketsim.scenario.units import (Angle, AngularRate, Area, Density, Duration, Force, Fraction,
-                                      Length, Mass, MassFlow, Pressure, SpecificImpulse)
+                                      Length, Mass, MassFlow, Pressure, SpecificImpulse, Speed)
 
 PositiveLength = Annotated[Length, Field(gt=0)]
 NonNegativeLength = Annotated[Length, Field(ge=0)]
@@ -236,12 +236,16 @@ class PayloadSpec(_Strict):
 
 
 class FairingSpec(_Strict):
-    """The payload fairing, a thin shell on top of the top stage, jettisoned as data says."""
+    """The payload fairing, a thin shell on top of the top stage, jettisoned as data says:
+    it opens into two halves pushed apart along the body's y axis at ``separation_speed``
+    (their relative speed; default 2 m/s, an estimate of the order of a spring or
+    pneumatic pusher's push, not a published figure)."""
 
     mass: PositiveMass
     length: PositiveLength
     diameter: PositiveLength
     jettison: bool = True
+    separation_speed: Annotated[Speed, Field(ge=0)] = 2.0
 
 
 def check_staged(stages: list[StageSpec], extra_engines) -> None:

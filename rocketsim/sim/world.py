@@ -23,7 +23,9 @@ import numpy as np
 
 from rocketsim.constants import DEG, EARTH_J2, EARTH_MU, EARTH_RADIUS_EQ, EARTH_RADIUS_POLAR
 from rocketsim._jit import Entries
+from rocketsim.atmosphere.table import TOP
 from rocketsim.dynamics.derivative import radial_height
+from rocketsim.dynamics.free_body import advance_free
 from rocketsim.dynamics.cruise import DONE, SOI, advance_cruise, plan_step
 from rocketsim.dynamics.nbody import make_field, no_air
 from rocketsim.dynamics.rails import FREE, advance_rails, hold_mode, hold_offsets, rails_floor, settle
@@ -57,7 +59,7 @@ from rocketsim.vehicle.staging import deploy_payload, jettison_fairing, separate
 
 
 # parking-orbit rails about Earth: Kepler + J2, no third bodies (issue 9); a rigid
-# body has no aerodynamics awake, so none on rails either
+# body with drag goes on them only above the air (free_body flies it below)
 _RAILS_FIELD = make_field("earth", 0.0, bodies=())
 _NO_AIR = no_air()
 # a held attitude goes on sleep rails once the autopilot has settled on it:
@@ -90,6 +92,7 @@ class Body:
     central: str = "earth"                  # the body whose frame and gravity it flies in
     kernels: Entries = field(default_factory=Entries)   # compiled entries bound to its arrays
 
+    drag: tuple | None = None               # a tumbling rigid body's (mean area / mass m^2/kg, length m)
     @property
     def position(self) -> np.ndarray:
         return self.y[R:R + 3]
@@ -228,44 +231,55 @@ class World:
         body.fc = FlightComputer(self, body)
 
     # --- staging ------------------------------------------------------------
-    def jettison_fairing(self, body: Body) -> Body:
-        """Drop ``body``'s payload fairing: it becomes a rigid body of its own (a thin
-        shell) with its own channels; centre of mass and momentum are conserved
-        (:func:`rocketsim.vehicle.staging.jettison_fairing`). Returns the new body."""
+    def jettison_fairing(self, body: Body) -> tuple[Body, Body]:
+        """Drop ``body``'s payload fairing: it opens into two rigid bodies of their own,
+        ``fairing_1`` and ``fairing_2`` (half shells pushed apart along the body's
+        ``+y`` and ``-y`` axes, each with its own channels and tumbling drag); centre of
+        mass and momentum are conserved (:func:`rocketsim.vehicle.staging.jettison_fairing`).
+        Returns the two new bodies."""
         stack = body.stack
         if body.vehicle is None or stack is None or not body.vehicle.has_fairing:
             raise ValueError(f"{body.name} has no fairing to jettison")
-        parts = jettison_fairing(stack, body.vehicle, body.y, 0, air=self.atmosphere)
-        new = self._split_rigid(body, parts, "fairing", stack.model_copy(update={"fairing": None}))
-        self.event(body, "fairing jettison", {"fairing_mass_kg": new.mass, "fairing_body": new.name})
+        kept, halves = jettison_fairing(stack, body.vehicle, body.y, 0, air=self.atmosphere)
+        new = self._split_rigid(body, kept, halves, ("fairing_1", "fairing_2"),
+                                stack.model_copy(update={"fairing": None}))
+        self.event(body, "fairing jettison", {"fairing_mass_kg": stack.fairing.mass,
+                                              "fairing_bodies": [half.name for half in new]})
         return new
 
     def deploy_payload(self, body: Body) -> Body:
         """Release ``body``'s payload (after the fairing has gone): it becomes a rigid
-        body of its own (a solid cylinder) named ``payload``, with its own channels;
-        centre of mass and momentum are conserved, no separation impulse
-        (:func:`rocketsim.vehicle.staging.deploy_payload`). Returns the new body."""
+        body of its own (a solid cylinder, with its tumbling drag) named ``payload``,
+        with its own channels; centre of mass and momentum are conserved, no
+        separation impulse (:func:`rocketsim.vehicle.staging.deploy_payload`).
+        Returns the new body."""
         stack = body.stack
         if body.vehicle is None or stack is None or stack.payload is None:
             raise ValueError(f"{body.name} has no payload to deploy")
         if body.vehicle.has_fairing:
             raise ValueError(f"{body.name} still carries its fairing: jettison it before deploying the payload")
-        parts = deploy_payload(stack, body.vehicle, body.y, 0, air=self.atmosphere)
-        new = self._split_rigid(body, parts, "payload", stack.model_copy(update={"payload": None}))
+        kept, part = deploy_payload(stack, body.vehicle, body.y, 0, air=self.atmosphere)
+        new, = self._split_rigid(body, kept, [part], ("payload",), stack.model_copy(update={"payload": None}))
         figures = {"payload_mass_kg": new.mass, "upper_mass_kg": body.mass}
         self.event(body, "payload deploy", {**figures, "payload_body": new.name})
         self.event(new, "payload deploy", {**figures, "from_body": body.name})
         return new
 
-    def _split_rigid(self, body: Body, parts, name: str, stack: VehicleSpec) -> Body:
-        """Fly ``body`` on as ``parts[0]`` (model and state, what is left of ``stack``)
-        and add ``parts[1]`` (a rigid body's mass, inertia and state) as a new body."""
-        (without, y_without), part = parts
+    def _split_rigid(self, body: Body, kept, parts, names, stack: VehicleSpec) -> tuple[Body, ...]:
+        """Fly ``body`` on as ``kept`` (model and state, what is left of ``stack``) and
+        add each of ``parts`` (a rigid body's mass, inertia, state and drag:
+        :func:`rocketsim.vehicle.staging._release_top`) as a new body named as ``names``."""
+        without, y_without = kept
         body.vehicle, body.y, body._view, body.stack = without, y_without, None, stack
-        return self._add_body(name, make_state(part["position"], part["velocity"], part["attitude"],
-                                               part["rates"]),
-                              make_params(part["mass"], part["inertia"], EARTH_MU, EARTH_RADIUS_EQ,
-                                          EARTH_J2, EARTH_RADIUS_POLAR), body)
+        new = []
+        for name, part in zip(names, parts):
+            added = self._add_body(name, make_state(part["position"], part["velocity"], part["attitude"],
+                                                    part["rates"]),
+                                   make_params(part["mass"], part["inertia"], EARTH_MU, EARTH_RADIUS_EQ,
+                                               EARTH_J2, EARTH_RADIUS_POLAR), body)
+            added.drag = (part["area"] / part["mass"], part["length"])
+            new.append(added)
+        return tuple(new)
 
     def _add_body(self, name: str, y: np.ndarray, p: np.ndarray, parent: Body,
                   vehicle: VehicleModel | None = None) -> Body:
@@ -433,7 +447,15 @@ class World:
         if body.attitude_command is not None:
             return self._holding(body)
         return (self._asleep(body) and self._coasting(body)
-                and radial_height(body.y, body.p) > rails_floor(body.central))
+                and radial_height(body.y, body.p) > self._rails_floor(body))
+
+    def _rails_floor(self, body: Body) -> float:
+        """Height (m) below which ``body`` cannot stay on rails: :func:`rails_floor`, or
+        the air's top (600 km) for a tumbling rigid body about Earth (its drag is
+        flown awake, :mod:`rocketsim.dynamics.free_body`)."""
+        if body.drag is not None and body.central == "earth":
+            return TOP
+        return rails_floor(body.central)
 
     def _asleep(self, body: Body) -> bool:
         """Nobody flies ``body`` or its program sleeps beyond the next step."""
@@ -616,7 +638,7 @@ class World:
             # same step, same orbit to the bit; stops below the floor and wakes for the rest
             body.y, done = advance_rails(body.y, k0, self.h, n, body.p, self._rails_field(body),
                                          _NO_AIR, self._inertia(body), mode,
-                                         rails_floor(body.central), code)
+                                         self._rails_floor(body), code)
             if body.vehicle is not None:
                 body.y[body.vehicle.clocks] += done * self.h     # engine clocks run on
             k0, n = k0 + done, n - done
@@ -624,7 +646,10 @@ class World:
             body.t = k0 * self.h
             self._watch_soi(body)
             return
-        if body.vehicle is None:
+        if body.vehicle is None and body.drag is not None:     # a tumbling part: gravity and drag
+            air = _NO_AIR if self.atmosphere is None else air_about(body.central, self.atmosphere).arrays()
+            y, taken = advance_free(body.y, k0, self.h, n, body.p, self._rails_field(body), air, *body.drag)
+        elif body.vehicle is None:
             y, taken = advance(body.y, k0, self.h, n, body.p)
         else:
             y, taken = body.kernels.call(advance, body.vehicle.arrays, body.y, k0, self.h, n, body.p,

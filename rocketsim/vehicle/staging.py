@@ -17,9 +17,12 @@ payload and fairing, stations from its own base). Each part gets:
 
 So the parts' mass-weighted positions and momenta add up to the stack's,
 exactly up to rounding (no separation impulse: springs or pushers are events).
-:func:`jettison_fairing` does the same for the fairing, which becomes a rigid
-body (a thin shell), and :func:`deploy_payload` for the payload (a solid
-cylinder).
+:func:`jettison_fairing` does the same for the fairing, which opens into two
+rigid bodies (half cylindrical shells pushed apart along the body's y axis, in
+opposite directions, so their centre of mass and momentum are those of the
+fairing), and :func:`deploy_payload` for the payload (a solid cylinder). Each
+rigid part carries its tumbling drag's mean area and length
+(:mod:`rocketsim.vehicle.tumbling`).
 """
 
 from __future__ import annotations
@@ -30,7 +33,8 @@ from rocketsim.dynamics.state import N_STATE, Q, R, V, W
 from rocketsim.frames.quaternion import quat_rotate
 from rocketsim.vehicle.build import VehicleModel, build
 from rocketsim.vehicle.engines import S_DRY, S_DRY_AT
-from rocketsim.vehicle.mass_properties import shell, solid_cylinder
+from rocketsim.vehicle.mass_properties import solid_cylinder
+from rocketsim.vehicle.tumbling import cylinder_area, half_shell_area
 
 
 def separate(spec, whole: VehicleModel, y: np.ndarray, k: int, air=None):
@@ -66,53 +70,88 @@ def separate(spec, whole: VehicleModel, y: np.ndarray, k: int, air=None):
 def jettison_fairing(spec, model: VehicleModel, y: np.ndarray, first: int, air=None):
     """Drop the fairing of ``model`` (stages ``first..top`` of ``spec`` with its fairing).
 
-    Returns ``((model_without, y_without), fairing)`` with ``fairing`` a dict of
-    the fairing as a rigid body: ``mass`` (kg), ``inertia`` (Ixx, Iyy, Izz about
-    its centre, kg m^2; a thin shell), ``position`` and ``velocity`` (of its
-    centre, same frame as ``y``), ``attitude`` and ``rates`` (the stack's).
+    Returns ``((model_without, y_without), (half_1, half_2))``, each half a dict of
+    a rigid body (:func:`_release_top`): half the fairing's mass, the inertia of a
+    half cylindrical shell about its own centre (:func:`half_shell`; the nose is
+    taken as part of the cylinder), its centre ``2 R / pi`` off the axis along the
+    body's ``+y`` (``half_1``) or ``-y`` (``half_2``), moving away from the axis at
+    half the fairing's ``separation_speed`` (m/s, the halves' relative speed).
     """
     if not model.has_fairing or model.stage_names != [s.name for s in spec.stages[first:]]:
         raise ValueError("jettison_fairing() needs the model of stages first..top with its fairing")
     f = spec.fairing
     without = build(spec, first, air=air, fairing=False)
-    return _release_top(spec, model, without, y, f.mass, shell(f.mass, 0.5 * f.diameter, f.length), f.length)
+    radius = 0.5 * f.diameter
+    inertia, offset = half_shell(0.5 * f.mass, radius, f.length)
+    area = half_shell_area(radius, f.length)
+    (kept, y_kept), halves = _release_top(spec, model, without, y, f.mass, f.length, [
+        (0.5 * f.mass, inertia, sign * offset, sign * 0.5 * f.separation_speed, area) for sign in (1.0, -1.0)])
+    return (kept, y_kept), tuple(halves)
 
 
 def deploy_payload(spec, model: VehicleModel, y: np.ndarray, first: int, air=None):
     """Release the payload of ``model`` (stages ``first..top`` of ``spec`` with its payload).
 
     Returns ``((model_without, y_without), payload)`` with ``payload`` a dict as
-    :func:`jettison_fairing`'s (the payload a uniform solid cylinder on top of
-    the top stage). The model left keeps the fairing if it still had one.
+    :func:`_release_top`'s (the payload a uniform solid cylinder on top of the
+    top stage, no separation impulse). The model left keeps the fairing if it
+    still had one.
     """
     if spec.payload is None or model.stage_names != [s.name for s in spec.stages[first:]]:
         raise ValueError("deploy_payload() needs the model of stages first..top with its payload")
     p = spec.payload
     without = build(spec.model_copy(update={"payload": None}), first, air=air, fairing=model.has_fairing)
-    return _release_top(spec, model, without, y, p.mass, solid_cylinder(p.mass, 0.5 * p.diameter, p.length),
-                        p.length)
+    ixx, iyy = solid_cylinder(p.mass, 0.5 * p.diameter, p.length)
+    kept, (payload,) = _release_top(spec, model, without, y, p.mass, p.length, [
+        (p.mass, (ixx, iyy, iyy), 0.0, 0.0, cylinder_area(0.5 * p.diameter, p.length))])
+    return kept, payload
+
+
+def half_shell(mass: float, radius: float, length: float) -> tuple[tuple[float, float, float], float]:
+    """``((Ixx, Iyy, Izz), d)`` of a thin half cylindrical shell (no end caps) of
+    ``mass`` (kg), ``radius`` and ``length`` (m) lying on the ``+y`` side of the
+    ``x`` axis: its inertia (kg m^2) about its own centre of mass, which is
+    ``d = 2 R / pi`` (m) off the axis along ``y``. About the axis the shell's
+    ``Ixx`` is ``m R^2``; its ``Iyy`` and ``Izz`` ``m (R^2/2 + L^2/12)`` (the mean of
+    ``y^2`` and of ``z^2`` over the half circle is ``R^2/2``); the parallel-axis
+    theorem moves ``Ixx`` and ``Izz`` to the centre (``- m d^2``); ``y`` and ``z``
+    are principal (the half is symmetric in ``z`` and in ``x``)."""
+    d = 2.0 * radius / np.pi
+    transverse = mass * (0.5 * radius ** 2 + length ** 2 / 12.0)
+    return (mass * (radius ** 2 - d * d), transverse, transverse - mass * d * d), d
 
 
 def _release_top(spec, model: VehicleModel, without: VehicleModel, y: np.ndarray, mass: float,
-                 own: tuple[float, float], length: float):
-    """Split a part of ``mass`` (kg), own inertias ``own`` (Ixx, Iyy = Izz, kg m^2)
-    and ``length`` (m), standing on top of the top stage, from ``model`` in state
-    ``y``; ``without`` is the model of what stays. Centre of mass and momentum
-    are conserved (both parts moved along body x from the whole's centre)."""
+                 length: float, pieces):
+    """Split a part of ``mass`` (kg) and ``length`` (m) standing on top of the top
+    stage from ``model`` in state ``y``, as ``pieces``: ``(mass, (Ixx, Iyy, Izz),
+    y_off, speed, area)`` each (kg, kg m^2 about its own centre, m off the body x
+    axis along body y, m/s pushed along body y, mean tumbling area m^2), whose
+    masses add up to ``mass`` and whose mass-weighted offsets and speeds add up to
+    zero. ``without`` is the model of what stays. Returns ``((without, y_without),
+    [part, ...])``, each part a dict: ``mass``, ``inertia``, ``position`` and
+    ``velocity`` (of its centre, same frame as ``y``), ``attitude`` and ``rates``
+    (the stack's), ``area`` (m^2) and ``length`` (m). Centre of mass and momentum
+    are conserved (all parts moved from the whole's centre)."""
     y_new = y.copy()
     _copy_commands(model, without, 0, 0)
     x_cm = model.mass_properties(y)[1]
     y_new[R:R + 3], y_new[V:V + 3] = moved(y, without.mass_properties(y_new)[1] - x_cm)
     top = float(model.stage_base[-1] + spec.stages[-1].length)
-    r, v = moved(y, top + 0.5 * length - x_cm)
-    part = {"mass": mass, "inertia": (own[0], own[1], own[1]), "position": r, "velocity": v,
-            "attitude": y[Q:Q + 4].copy(), "rates": y[W:W + 3].copy()}
-    return (without, y_new), part
+    parts = []
+    for piece_mass, inertia, y_off, speed, area in pieces:
+        r, v = moved(y, top + 0.5 * length - x_cm, y_off)
+        v = v + quat_rotate(y[Q:Q + 4], np.array([0.0, speed, 0.0]))
+        parts.append({"mass": piece_mass, "inertia": inertia, "position": r, "velocity": v,
+                      "attitude": y[Q:Q + 4].copy(), "rates": y[W:W + 3].copy(), "area": area,
+                      "length": length})
+    return (without, y_new), parts
 
 
-def moved(y: np.ndarray, dx: float):
-    """Position and velocity of the point ``dx`` (m) ahead of the centre of mass along body x."""
-    offset = np.array([dx, 0.0, 0.0])
+def moved(y: np.ndarray, dx: float, dy: float = 0.0):
+    """Position and velocity of the point ``dx`` (m) ahead of the centre of mass along
+    body x and ``dy`` (m) off it along body y."""
+    offset = np.array([dx, dy, 0.0])
     return (y[R:R + 3] + quat_rotate(y[Q:Q + 4], offset),
             y[V:V + 3] + quat_rotate(y[Q:Q + 4], np.cross(y[W:W + 3], offset)))
 

@@ -1,0 +1,92 @@
+"""A rigid body nobody steers: gravity, a tumbling body's drag, torque-free rotation.
+
+A fairing half or a deployed payload has no engines, no control and no
+aerodynamic model of its own: it tumbles. Its model is gravity (the awake
+field: central body's point mass and J2, the other bodies of an n-body field),
+point-mass drag ``-1/2 rho |v_air| v_air C_D A/m`` with ``v_air = v - omega_E x r``
+and the torque-free rotation of its inertia. The attitude does not enter the
+drag (the tumbling body's ``C_D`` and mean area,
+:mod:`rocketsim.vehicle.tumbling`), so each step is the sum of two exact
+pieces, at the flight model's step ``h``:
+
+- attitude and body rates: the awake rigid body's RK4 step
+  (:func:`rocketsim.dynamics.rk4.step`, Euler's equations without torque),
+  bit for bit what a rigid body flew before it had drag;
+- position and velocity: RK4 of gravity plus drag,
+  :func:`rocketsim.dynamics.nbody.translational_rk4`, the one home of the
+  point-mass drag (the sleep rails' too), with ``C_D A/m`` held for the step
+  from the Mach and Knudsen numbers at its start (as the vehicles hold the
+  wind), in the day's air table about Earth.
+
+Where there is no air (above 600 km, or no drag area) the translational part
+is the awake step's own: the body flies exactly as before. Drag is felt about
+Earth only (the point-mass drag's home is Earth's); the day's wind is not
+felt (the home has no wind slot).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from rocketsim._jit import njit
+from rocketsim.atmosphere.table import air_at
+from rocketsim.constants import EARTH_OMEGA
+from rocketsim.dynamics.derivative import radial_height
+from rocketsim.dynamics.nbody import translational_rk4
+from rocketsim.dynamics.rk4 import step
+from rocketsim.dynamics.state import N_PARAMS, R, V
+from rocketsim.dynamics.third_bodies import EARTH_INDEX, F_CENTER, F_DRAG, P_HELD
+from rocketsim.vehicle.tumbling import tumbling_cd
+
+
+@njit
+def drag_factor(y, p, air, area_mass, length):
+    """``C_D A/m`` (m^2/kg) of a tumbling body of mean area over mass ``area_mass``
+    (m^2/kg) and ``length`` (m) in state ``y`` (0 where there is no air), from the
+    air table ``air`` (the arguments of ``air_at`` before the height)."""
+    rho, _, _, sound, _, _ = air_at(air[0], air[1], air[2], air[3], air[4], air[5], air[6], air[7],
+                                    radial_height(y, p))
+    if not (rho > 0.0 and area_mass > 0.0):
+        return 0.0
+    wx = y[V] + EARTH_OMEGA * y[R + 1]
+    wy = y[V + 1] - EARTH_OMEGA * y[R]
+    speed = math.sqrt(wx * wx + wy * wy + y[V + 2] * y[V + 2])
+    return area_mass * tumbling_cd(speed / sound, rho, length)
+
+
+@njit
+def free_step(y, t, h, p, fp, air, area_mass, length):
+    """One step of ``h`` s from mission time ``t`` (a new state). ``fp``: the field
+    array (:func:`rocketsim.dynamics.nbody.make_field`) of the body's central body,
+    a scratch copy whose drag slot is set here."""
+    out = step(y, t, h, p)          # attitude (and the n-body hold in p) as the awake body
+    if fp[F_CENTER] != EARTH_INDEX:
+        return out
+    k = drag_factor(y, p, air, area_mass, length)
+    if k == 0.0:
+        return out
+    fp[F_DRAG] = k
+    if p.shape[0] > N_PARAMS:
+        s = p[P_HELD:P_HELD + 12].reshape((4, 3)).copy()
+    else:
+        s = np.zeros((4, 3))
+    moved = y.copy()
+    translational_rk4(moved, h, p, s, fp, air, np.empty(3))
+    out[:6] = moved[:6]
+    return out
+
+
+@njit
+def advance_free(y, k0, h, n_steps, p, fp, air, area_mass, length):
+    """Advance up to ``n_steps`` steps (step ``k`` from mission time ``(k0 + k) h``);
+    returns ``(y, steps_taken)``. Stops early, after the step that took the body
+    below its central body's ellipsoid (an impact). Bit-identical to calling
+    :func:`free_step` once per step."""
+    fp = fp.copy()
+    for k in range(n_steps):
+        y = free_step(y, (k0 + k) * h, h, p, fp, air, area_mass, length)
+        if radial_height(y, p) < 0.0:
+            return y, k + 1
+    return y, n_steps
