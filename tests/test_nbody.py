@@ -14,7 +14,7 @@ import math
 import numpy as np
 import pytest
 
-from rocketsim.bodies.orientation import pole
+from rocketsim.bodies.orientation import pole, spin_rate
 from rocketsim.constants import (AU, EARTH_J2, EARTH_MU, EARTH_RADIUS_EQ, EARTH_RADIUS_POLAR,
                                  MOON_J2, MOON_MU, MOON_RADIUS, SUN_MU)
 from rocketsim.dynamics import nbody, soi
@@ -25,7 +25,8 @@ from tests.nbody_reference import field_j2000
 
 JD0 = Epoch.from_utc(dt.datetime(2026, 11, 26, 12, tzinfo=dt.timezone.utc)).jd_tt()
 EARTH_P = make_params(1.0, (1.0, 1.0, 1.0), EARTH_MU, EARTH_RADIUS_EQ, EARTH_J2, EARTH_RADIUS_POLAR)
-MOON_P = make_params(1.0, (1.0, 1.0, 1.0), MOON_MU, MOON_RADIUS, MOON_J2, MOON_RADIUS)
+MOON_P = make_params(1.0, (1.0, 1.0, 1.0), MOON_MU, MOON_RADIUS, MOON_J2, MOON_RADIUS,
+                     spin=spin_rate("moon"))     # the IAU W rate: the Moon's ground turns at it
 
 
 def test_collinear_sun_tide_matches_the_closed_form():

@@ -28,7 +28,8 @@ segment crossflow, nose lift, fins: :mod:`rocketsim.vehicle.aero`), its grid
 fins (:mod:`~rocketsim.vehicle.grid_fins`), its RCS thrusters
 (:mod:`~rocketsim.vehicle.rcs`, draining their tanks) and, within reach of
 the ground, its contact forces (:mod:`~rocketsim.vehicle.contact`). The air
-moves with the ground plus the wind held for the step in ``veh.aero.wind``.
+moves with the ground plus the wind held for the step in ``veh.aero.wind``; the
+ground turns with the central body at ``p[P_SPIN]`` about the frame's z.
 A vacuum spacecraft (``aero: {aerodynamics: false}``, ``ref[A_ON] = 0``) gets
 its RCS thrusters only.
 """
@@ -43,7 +44,7 @@ from rocketsim.atmosphere.ussa1976 import Z_86
 from rocketsim.constants import EARTH_OMEGA
 from rocketsim.bodies.gravity import point_mass_j2
 from rocketsim.dynamics.state import (N_PARAMS, P_CLASSIC, P_IXX, P_IYY, P_IZZ, P_J2, P_MU,
-                                      P_POLAR_RADIUS, P_RADIUS, Q, R, V, W)
+                                      P_POLAR_RADIUS, P_RADIUS, P_SPIN, Q, R, V, W)
 from rocketsim.dynamics.third_bodies import held_perturbation
 from rocketsim.frames.quaternion import quat_multiply
 from rocketsim.vehicle.aero import A_ON, A_REACH, body_aero
@@ -74,11 +75,13 @@ def radial_height(y, p):
 
 
 @njit
-def body_air_velocity(y, wind):
+def body_air_velocity(y, wind, spin=EARTH_OMEGA):
     """Air-relative velocity of the centre of mass (m/s) in body axes:
-    ``q* (v - omega_E x r - wind) q`` (EQUATIONS.md), ``wind`` inertial (m/s)."""
-    ax = y[V] + EARTH_OMEGA * y[R + 1] - wind[0]
-    ay = y[V + 1] - EARTH_OMEGA * y[R] - wind[1]
+    ``q* (v - omega x r - wind) q`` (EQUATIONS.md), ``wind`` inertial (m/s), the air
+    turning with the central body at ``spin`` (rad/s about the frame's z: ``p[P_SPIN]``;
+    Earth's rate by default)."""
+    ax = y[V] + spin * y[R + 1] - wind[0]
+    ay = y[V + 1] - spin * y[R] - wind[1]
     az = y[V + 2] - wind[2]
     qw, ux, uy, uz = y[Q], -y[Q + 1], -y[Q + 2], -y[Q + 3]
     tx = 2.0 * (uy * az - uz * ay)
@@ -94,7 +97,7 @@ def _aero_and_contact(t, y, p, dy, rho, sound, x_cm, aero, fx, fy, fz, mx, my, m
     the centre of mass) to the engines' force and moment ``(fx..mz)``."""
     wx, wy, wz = y[W], y[W + 1], y[W + 2]
     if rho > 0.0:
-        u, v, w = body_air_velocity(y, aero.wind)
+        u, v, w = body_air_velocity(y, aero.wind, p[P_SPIN])
         a = body_aero(u, v, w, wx, wy, wz, rho, sound, fx, x_cm, aero.ref, aero.seg, aero.fin,
                       aero.ca_nf, aero.ca_tf)
         fx, fy, fz, mx, my, mz = fx + a[0], fy + a[1], fz + a[2], mx + a[3], my + a[4], mz + a[5]
@@ -107,7 +110,7 @@ def _aero_and_contact(t, y, p, dy, rho, sound, x_cm, aero, fx, fy, fz, mx, my, m
     # contact only within reach of the ground (a cheap bound first)
     r = math.sqrt(y[R] ** 2 + y[R + 1] ** 2 + y[R + 2] ** 2)
     if r - p[P_RADIUS] < aero.ref[A_REACH] and radial_height(y, p) < aero.ref[A_REACH]:
-        a = contact_forces(y, x_cm, p[P_RADIUS], p[P_POLAR_RADIUS], EARTH_OMEGA, aero.contact)
+        a = contact_forces(y, x_cm, p[P_RADIUS], p[P_POLAR_RADIUS], p[P_SPIN], aero.contact)
         fx, fy, fz, mx, my, mz = fx + a[0], fy + a[1], fz + a[2], mx + a[3], my + a[4], mz + a[5]
     return fx, fy, fz, mx, my, mz
 

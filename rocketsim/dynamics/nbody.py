@@ -42,9 +42,8 @@ import numpy as np
 from rocketsim._jit import njit
 from rocketsim.bodies.gravity import point_mass_j2
 from rocketsim.atmosphere.table import air_at
-from rocketsim.constants import EARTH_OMEGA
 from rocketsim.dynamics.derivative import derivative, radial_height
-from rocketsim.dynamics.state import P_J2, P_MU, P_RADIUS, Q, R, V
+from rocketsim.dynamics.state import P_J2, P_MU, P_RADIUS, P_SPIN, Q, R, V
 from rocketsim.dynamics.third_bodies import (  # noqa: F401  (the field's slots and pull live there)
     EARTH_INDEX, F_CENTER, F_DRAG, F_JD0, F_MU, F_ROT, F_SRP, MU, N_FIELD, SRP_1AU, bodies_at,
     held_bodies, hold_time, perturbation)
@@ -117,7 +116,8 @@ def no_air():
 @njit(inline="always")
 def translational_acceleration(x, y, z, vx, vy, vz, p, s, fp, air, pos):
     """The field at ``(x, y, z)`` (m) and, about Earth with ``fp[F_DRAG]`` set,
-    point-mass drag ``-1/2 rho |v_air| v_air C_D A/m`` (``v_air = v - omega_E x r``;
+    point-mass drag ``-1/2 rho |v_air| v_air C_D A/m`` (``v_air = v - omega x r``,
+    ``omega`` Earth's rate ``p[P_SPIN]``;
     density from the day's table ``air`` at the radial height, none above
     600 km). ``pos``: a scratch array of 3. Returns m/s^2, frame axes."""
     ax, ay, az = field_acceleration(x, y, z, s, fp, p)
@@ -128,8 +128,8 @@ def translational_acceleration(x, y, z, vx, vy, vz, p, s, fp, air, pos):
         rho = air_at(air[0], air[1], air[2], air[3], air[4], air[5], air[6], air[7],
                      radial_height(pos, p))[0]
         if rho > 0.0:
-            wx = vx + EARTH_OMEGA * y
-            wy = vy - EARTH_OMEGA * x
+            wx = vx + p[P_SPIN] * y
+            wy = vy - p[P_SPIN] * x
             k = -0.5 * rho * math.sqrt(wx * wx + wy * wy + vz * vz) * fp[F_DRAG]
             ax += k * wx
             ay += k * wy

@@ -32,10 +32,10 @@ import numpy as np
 
 from rocketsim._jit import njit
 from rocketsim.atmosphere.table import air_at, wind_earth_fixed
-from rocketsim.constants import (EARTH_OMEGA, GROUND_SUBSTEP_HEIGHT, GROUND_SUBSTEP_MAX, GROUND_SUBSTEPS,
+from rocketsim.constants import (GROUND_SUBSTEP_HEIGHT, GROUND_SUBSTEP_MAX, GROUND_SUBSTEPS,
                                 UNUSABLE_PROPELLANT)
 from rocketsim.dynamics.derivative import held_derivative, radial_height
-from rocketsim.dynamics.state import N_PARAMS, P_RADIUS, Q, R
+from rocketsim.dynamics.state import N_PARAMS, P_RADIUS, P_SPIN, Q, R
 from rocketsim.dynamics.third_bodies import hold_field
 from rocketsim.frames.geodetic import ecef_to_geodetic_njit
 from rocketsim.vehicle.aero import A_REACH, A_WIND
@@ -91,10 +91,11 @@ def near_ground(y, p, reach=0.0):
 
 
 @njit
-def hold_wind(y, t, veh):
+def hold_wind(y, t, p, veh):
     """Sample the day's wind at the vehicle's position at time ``t`` (s) and hold it
-    (inertial, m/s) in ``veh.aero.wind`` for the step (physics model, "The integrator")."""
-    theta = EARTH_OMEGA * t
+    (inertial, m/s) in ``veh.aero.wind`` for the step (physics model, "The integrator");
+    the table's east and north turn with the central body at ``p[P_SPIN]``."""
+    theta = p[P_SPIN] * t
     c = math.cos(theta)
     s = math.sin(theta)
     x = c * y[R] + s * y[R + 1]
@@ -203,7 +204,7 @@ def step(y, t, h, p, veh=None):
     if veh is not None:
         reach = veh.aero.ref[A_REACH]
         if veh.aero.ref[A_WIND] > 0.5:
-            hold_wind(y, t, veh)
+            hold_wind(y, t, p, veh)
     if near_ground(y, p, reach):
         # four 5 ms sub-steps at 20 ms; a larger headless step keeps sub-steps of 5 ms
         # at most, so stiff legs stay inside RK4's stability region

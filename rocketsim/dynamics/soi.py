@@ -23,13 +23,13 @@ import math
 
 import numpy as np
 
-from rocketsim.bodies.orientation import pole_and_meridian
-from rocketsim.constants import (EARTH_J2, EARTH_MU, EARTH_ORBIT_A, EARTH_RADIUS_EQ,
+from rocketsim.bodies.orientation import pole_and_meridian, spin_rate
+from rocketsim.constants import (EARTH_J2, EARTH_MU, EARTH_OMEGA, EARTH_ORBIT_A, EARTH_RADIUS_EQ,
                                  EARTH_RADIUS_POLAR, MARS_FLATTENING, MARS_J2, MARS_MU,
                                  MARS_ORBIT_A, MARS_RADIUS_EQ, MOON_J2, MOON_MU, MOON_ORBIT_A,
                                  MOON_RADIUS, SECONDS_PER_DAY, SUN_MU, SUN_RADIUS)
 from rocketsim.dynamics.nbody import F_CENTER, F_JD0, F_ROT, bodies_at
-from rocketsim.dynamics.state import P_J2, P_MU, P_POLAR_RADIUS, P_RADIUS
+from rocketsim.dynamics.state import P_J2, P_MU, P_POLAR_RADIUS, P_RADIUS, P_SPIN
 from rocketsim.ephemeris.solar_system import BODIES
 
 PARENT = {"earth": "sun", "moon": "earth", "mars": "sun"}
@@ -51,17 +51,20 @@ SOI_BY_INDEX = np.array([SOI[name] for name in BODIES])
 CHILDREN = {"sun": ("earth", "mars"), "earth": ("moon",), "moon": (), "mars": ()}
 
 
-# mu (m^3/s^2), reference radius (m), J2 and polar radius (m) of each central body
-CENTRAL = {"sun": (SUN_MU, SUN_RADIUS, 0.0, SUN_RADIUS),
-           "earth": (EARTH_MU, EARTH_RADIUS_EQ, EARTH_J2, EARTH_RADIUS_POLAR),
-           "moon": (MOON_MU, MOON_RADIUS, MOON_J2, MOON_RADIUS),
-           "mars": (MARS_MU, MARS_RADIUS_EQ, MARS_J2, MARS_RADIUS_EQ * (1.0 - MARS_FLATTENING))}
+# mu (m^3/s^2), reference radius (m), J2, polar radius (m) and rotation rate about the
+# frame's z (rad/s) of each central body: Earth's WGS84 rate, the Moon's and Mars's IAU
+# W rate (their frames' z is their pole); none for the Sun (its frame's z is J2000's)
+CENTRAL = {"sun": (SUN_MU, SUN_RADIUS, 0.0, SUN_RADIUS, 0.0),
+           "earth": (EARTH_MU, EARTH_RADIUS_EQ, EARTH_J2, EARTH_RADIUS_POLAR, EARTH_OMEGA),
+           "moon": (MOON_MU, MOON_RADIUS, MOON_J2, MOON_RADIUS, spin_rate("moon")),
+           "mars": (MARS_MU, MARS_RADIUS_EQ, MARS_J2, MARS_RADIUS_EQ * (1.0 - MARS_FLATTENING),
+                    spin_rate("mars"))}
 
 
 def central_params(p, body: str) -> np.ndarray:
-    """A copy of the parameter vector ``p`` with ``body``'s gravity as the centre's."""
+    """A copy of the parameter vector ``p`` with ``body``'s gravity and rotation as the centre's."""
     out = np.array(p, dtype=float)
-    out[P_MU], out[P_RADIUS], out[P_J2], out[P_POLAR_RADIUS] = CENTRAL[body]
+    out[P_MU], out[P_RADIUS], out[P_J2], out[P_POLAR_RADIUS], out[P_SPIN] = CENTRAL[body]
     return out
 
 

@@ -19,14 +19,17 @@ ignition or shutdown command).
 
 Parameters ``p`` (float64, length :data:`N_PARAMS`) are what the derivative
 reads but does not integrate: the mass and the diagonal inertia of a rigid
-body, the central body's gravity (mu, reference radius, J2), and which model
-flies the body (:data:`P_CLASSIC`: 1 on the classic range, whose original
+body, the central body's gravity (mu, reference radius, J2) and rotation rate
+(:data:`P_SPIN`: the ground and the air turn at it about the frame's z, the
+body's pole), and which model flies the body (:data:`P_CLASSIC`: 1 on the classic range, whose original
 model holds a staged vehicle's thrust, mass and upper-air density for the
 step; see :func:`rocketsim.dynamics.derivative.held_derivative`). Index
 constants below are the only names for these slots.
 """
 
 import numpy as np
+
+from rocketsim.constants import EARTH_OMEGA
 
 # state slots
 R = 0
@@ -45,7 +48,8 @@ P_RADIUS = 5        # m, central body's reference radius
 P_J2 = 6            # central body's J2 (0 for a point mass)
 P_POLAR_RADIUS = 7  # m, central body's polar radius (ground proximity)
 P_CLASSIC = 8       # 1: the classic range's original model (held for the step), 0: realistic
-N_PARAMS = 9
+P_SPIN = 9          # rad/s, central body's rotation rate about the frame's z (its pole)
+N_PARAMS = 10
 
 
 def make_state(r, v, q=(1.0, 0.0, 0.0, 0.0), w=(0.0, 0.0, 0.0)) -> np.ndarray:
@@ -59,9 +63,12 @@ def make_state(r, v, q=(1.0, 0.0, 0.0, 0.0), w=(0.0, 0.0, 0.0)) -> np.ndarray:
     return y
 
 
-def make_params(mass, inertia, mu, radius, j2, polar_radius, classic=False) -> np.ndarray:
+def make_params(mass, inertia, mu, radius, j2, polar_radius, classic=False,
+                spin=EARTH_OMEGA) -> np.ndarray:
     """Assemble the parameter vector (SI units; ``inertia`` = (Ixx, Iyy, Izz));
-    ``classic``: fly the classic range's original model (:data:`P_CLASSIC`)."""
+    ``classic``: fly the classic range's original model (:data:`P_CLASSIC`);
+    ``spin``: the central body's rotation rate, rad/s (:data:`P_SPIN`; Earth's by
+    default, :func:`rocketsim.dynamics.soi.central_params` sets another body's)."""
     p = np.empty(N_PARAMS)
     p[P_MASS] = mass
     p[P_IXX:P_IZZ + 1] = inertia
@@ -70,4 +77,5 @@ def make_params(mass, inertia, mu, radius, j2, polar_radius, classic=False) -> n
     p[P_J2] = j2
     p[P_POLAR_RADIUS] = polar_radius
     p[P_CLASSIC] = 1.0 if classic else 0.0
+    p[P_SPIN] = spin
     return p

@@ -105,7 +105,8 @@ class FlightComputer:
             truth.attitude, quat_from_axis_angle(tilt / angle, angle))
         self._nav = StateView(body.t, sensors.vector("position", truth.position, k),
                               sensors.vector("velocity", truth.velocity, k), q,
-                              sensors.vector("rates", truth.body_rates, k), body.atmosphere, body.mu)
+                              sensors.vector("rates", truth.body_rates, k), body.atmosphere, body.mu,
+                              body.p)
         return self._nav
 
     def warm_up(self) -> None:
@@ -155,7 +156,8 @@ class FlightComputer:
 
     @property
     def surface_velocity(self) -> np.ndarray:
-        """Velocity relative to the rotating Earth, ECI axes, m/s."""
+        """Velocity relative to the central body's turning ground (Earth's WGS84 rate, the
+        Moon's or Mars's IAU rate after a handover), frame axes, m/s."""
         return self._view().surface_velocity.copy()
 
     @property
@@ -533,7 +535,7 @@ class FlightComputer:
 
     @property
     def gravity(self) -> float:
-        """Magnitude of the local gravitational field (point mass + J2), m/s^2."""
+        """Magnitude of the central body's local gravitational field (point mass + J2), m/s^2."""
         return self._view().gravity
 
     @property

@@ -28,13 +28,16 @@ from rocketsim._jit import njit
 from rocketsim.atmosphere.relative_wind import air_velocity
 from rocketsim.atmosphere.table import air_at, wind_earth_fixed
 from rocketsim.bodies.gravity import point_mass_j2
-from rocketsim.constants import EARTH_J2, EARTH_MU, EARTH_OMEGA, EARTH_RADIUS_EQ
+from rocketsim.constants import EARTH_J2, EARTH_MU, EARTH_OMEGA, EARTH_RADIUS_EQ, EARTH_RADIUS_POLAR
+from rocketsim.dynamics.state import P_J2, P_MU, P_RADIUS, P_SPIN, make_params
 from rocketsim.frames.elements import Elements, state_to_elements, time_to_apoapsis
 from rocketsim.frames.geodetic import ecef_to_geodetic_njit, enu_basis
 from rocketsim.frames.quaternion import quat_to_matrix
 
 _VERTICAL = math.cos(0.01 * math.pi / 180.0)
 _CALM = np.zeros(3)             # no wind: the air velocity is then the surface velocity
+# the central body of a view given no parameters: Earth (gravity and rotation)
+_EARTH_P = make_params(1.0, (1.0, 1.0, 1.0), EARTH_MU, EARTH_RADIUS_EQ, EARTH_J2, EARTH_RADIUS_POLAR)
 
 
 class _once:
@@ -64,12 +67,13 @@ def _turned(x, y, angle):
 
 
 @njit
-def where_and_how_fast(r, v, t):
+def where_and_how_fast(r, v, t, spin=EARTH_OMEGA):
     """One compiled call for the readings every step needs: ``(lat rad, lon rad, height
     above WGS84 m, enu, surface velocity)`` of the ECI position ``r`` (m) and velocity
     ``v`` (m/s) at mission time ``t`` (s). ``enu`` (3, 3) has the local east, north and
     up unit vectors in ECI axes as rows; the surface velocity (m/s, ECI axes) is
-    relative to the rotating Earth. Same operations, in the same order, as
+    relative to the ground turning at ``spin`` (rad/s about the frame's z: the
+    central body's ``p[P_SPIN]``, Earth's by default). Same operations, in the same order, as
     :func:`~rocketsim.frames.earth_fixed.eci_to_ecef`,
     :func:`~rocketsim.frames.geodetic.ecef_to_geodetic`, ``ecef_to_eci`` and
     :func:`~rocketsim.atmosphere.relative_wind.air_velocity`."""
@@ -81,23 +85,24 @@ def where_and_how_fast(r, v, t):
     for k in range(3):
         enu[k, 0], enu[k, 1] = _turned(basis[k, 0], basis[k, 1], -theta)
         enu[k, 2] = basis[k, 2]
-    return lat, lon, h, enu, air_velocity(r, v, _CALM)
+    return lat, lon, h, enu, air_velocity(r, v, _CALM, spin)
 
 
 @njit
 def air_here(h0, dh, density, pressure, temperature, speed_of_sound, wind_east, wind_north,
-             lat, lon, h, t, r, v):
+             lat, lon, h, t, r, v, spin=EARTH_OMEGA):
     """The day's air at geodetic ``lat``, ``lon`` (rad), height ``h`` (m) and mission time
     ``t`` (s) for a body at ECI ``r`` (m) moving at ``v`` (m/s): ``(density kg/m^3,
     pressure Pa, temperature K, speed of sound m/s, wind (ECI, m/s), air-relative
-    velocity (ECI, m/s))``. The table's arrays come first (:meth:`AtmosphereTable.arrays`)."""
+    velocity (ECI, m/s))``, the air turning at ``spin`` (rad/s, the central body's;
+    Earth's by default). The table's arrays come first (:meth:`AtmosphereTable.arrays`)."""
     rho, p, temperature_k, sound, east, north = air_at(h0, dh, density, pressure, temperature,
                                                        speed_of_sound, wind_east, wind_north, h)
     fixed = wind_earth_fixed(east, north, lat, lon)
     wind = np.empty(3)
     wind[0], wind[1] = _turned(fixed[0], fixed[1], -(0.0 + EARTH_OMEGA * t))
     wind[2] = fixed[2]
-    return rho, p, temperature_k, sound, wind, air_velocity(r, v, wind)
+    return rho, p, temperature_k, sound, wind, air_velocity(r, v, wind, spin)
 
 
 def _norm(vector) -> float:
@@ -109,9 +114,10 @@ def _norm(vector) -> float:
 class StateView:
     """Derived readings of one state at mission time ``t`` (SI units, ECI vectors)."""
 
-    def __init__(self, t: float, r, v, q, w, atmosphere=None, mu: float = EARTH_MU):
+    def __init__(self, t: float, r, v, q, w, atmosphere=None, mu: float = EARTH_MU, p=None):
         """``atmosphere``: a function returning the day's AtmosphereTable (called
-        only when the air is read)."""
+        only when the air is read); ``p``: the body's parameters, whose central
+        body's gravity and rotation (``P_SPIN``) the readings use (None: Earth's)."""
         self.t = t
         self.position = np.asarray(r, dtype=float)
         self.velocity = np.asarray(v, dtype=float)
@@ -119,22 +125,25 @@ class StateView:
         self.body_rates = np.asarray(w, dtype=float)
         self._atmosphere = atmosphere
         self.mu = mu
+        self._p = _EARTH_P if p is None else p
 
     @classmethod
-    def of_state(cls, t: float, y: np.ndarray, atmosphere=None, mu: float = EARTH_MU) -> "StateView":
+    def of_state(cls, t: float, y: np.ndarray, atmosphere=None, mu: float = EARTH_MU,
+                 p=None) -> "StateView":
         """The view of a state vector ``y`` (position, velocity, attitude, rates first;
-        :mod:`rocketsim.dynamics.state`), copied so later steps do not change it."""
+        :mod:`rocketsim.dynamics.state`), copied so later steps do not change it;
+        ``p`` as for the constructor."""
         view = cls.__new__(cls)
         s = y[:13].copy()
         view.t, view.position, view.velocity, view.attitude, view.body_rates = (
             t, s[0:3], s[3:6], s[6:10], s[10:13])
-        view._atmosphere, view.mu = atmosphere, mu
+        view._atmosphere, view.mu, view._p = atmosphere, mu, _EARTH_P if p is None else p
         return view
 
     # --- where ------------------------------------------------------------
     @_once
     def _where(self) -> tuple:
-        return where_and_how_fast(self.position, self.velocity, self.t)
+        return where_and_how_fast(self.position, self.velocity, self.t, self._p[P_SPIN])
 
     @_once
     def geodetic(self) -> tuple[float, float, float]:
@@ -150,7 +159,7 @@ class StateView:
     # --- motion -----------------------------------------------------------
     @_once
     def surface_velocity(self) -> np.ndarray:
-        """Velocity relative to the rotating Earth, ECI axes (m/s)."""
+        """Velocity relative to the central body's turning ground, ECI axes (m/s)."""
         return self._where[4]
 
     @_once
@@ -213,7 +222,7 @@ class StateView:
         """(density, pressure, temperature, speed of sound, wind ECI, air velocity ECI)."""
         lat, lon, height = self.geodetic
         return air_here(*self._atmosphere().arrays(), lat, lon, height, self.t, self.position,
-                        self.velocity)
+                        self.velocity, self._p[P_SPIN])
 
     @_once
     def airspeed(self) -> float:
@@ -239,9 +248,11 @@ class StateView:
     # --- gravity and orbit ------------------------------------------------
     @_once
     def gravity(self) -> float:
-        """Magnitude of the local gravitational acceleration (point mass + J2), m/s^2."""
+        """Magnitude of the local gravitational acceleration of the central body (point
+        mass + J2), m/s^2."""
         x, y, z = self.position.tolist()
-        g = np.array(point_mass_j2(x, y, z, EARTH_MU, EARTH_RADIUS_EQ, EARTH_J2))
+        p = self._p
+        g = np.array(point_mass_j2(x, y, z, p[P_MU], p[P_RADIUS], p[P_J2]))
         return _norm(g)
 
     @_once

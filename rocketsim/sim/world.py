@@ -121,7 +121,7 @@ class Body:
             # the readings' heights are geodetic on Earth: elsewhere they see no air (the
             # flight model flies through Mars's own, by the height over Mars's ellipsoid)
             air = self.atmosphere if self.central == "earth" else vacuum
-            self._view = StateView.of_state(self.t, self.y, air, self.mu)
+            self._view = StateView.of_state(self.t, self.y, air, self.mu, self.p)
         return self._view
 
 
@@ -663,7 +663,8 @@ class World:
             # included, where advance cannot say so by stopping early), or its first
             # contact was a crash (its speeds at the contact, not after the springs): it has hit
             lat, lon, _ = self.where(body)
-            ground_speed = np.linalg.norm(eci_to_ecef_velocity(body.position, body.velocity, body.t))
+            ground_speed = np.linalg.norm(eci_to_ecef_velocity(body.position, body.velocity, body.t)
+                                          if body.central == "earth" else body.view().surface_velocity)
             figures = {"latitude_deg": lat / DEG, "longitude_deg": lon / DEG, "speed_m_s": float(ground_speed)}
             if crash is not None:
                 figures.update(crash, speed_m_s=math.hypot(crash["vertical_speed_m_s"],
