@@ -3,11 +3,11 @@
 A fairing half or a deployed payload has no engines, no control and no
 aerodynamic model of its own: it tumbles. Its model is gravity (the awake
 field: central body's point mass and J2, the other bodies of an n-body field),
-point-mass drag ``-1/2 rho |v_air| v_air C_D A/m`` with ``v_air = v - omega_E x r``
-and the torque-free rotation of its inertia. The attitude does not enter the
-drag (the tumbling body's ``C_D`` and mean area,
-:mod:`rocketsim.vehicle.tumbling`), so each step is the sum of two exact
-pieces, at the flight model's step ``h``:
+point-mass drag ``-1/2 rho |v_air| v_air C_D A/m`` with ``v_air = v - omega x r``
+(``omega`` Earth's rate, ``p[P_SPIN]``) and the torque-free rotation of its
+inertia. The attitude does not enter the drag (the tumbling body's ``C_D`` and
+mean area, :mod:`rocketsim.vehicle.tumbling`), so each step is the sum of two
+exact pieces, at the flight model's step ``h``:
 
 - attitude and body rates: the awake rigid body's RK4 step
   (:func:`rocketsim.dynamics.rk4.step`, Euler's equations without torque),
@@ -32,11 +32,10 @@ import numpy as np
 
 from rocketsim._jit import njit
 from rocketsim.atmosphere.table import air_at
-from rocketsim.constants import EARTH_OMEGA
 from rocketsim.dynamics.derivative import radial_height
 from rocketsim.dynamics.nbody import translational_rk4
 from rocketsim.dynamics.rk4 import step
-from rocketsim.dynamics.state import N_PARAMS, R, V
+from rocketsim.dynamics.state import N_PARAMS, P_SPIN, R, V
 from rocketsim.dynamics.third_bodies import EARTH_INDEX, F_CENTER, F_DRAG, P_HELD
 from rocketsim.vehicle.tumbling import tumbling_cd
 
@@ -50,8 +49,8 @@ def drag_factor(y, p, air, area_mass, length):
                                     radial_height(y, p))
     if not (rho > 0.0 and area_mass > 0.0):
         return 0.0
-    wx = y[V] + EARTH_OMEGA * y[R + 1]
-    wy = y[V + 1] - EARTH_OMEGA * y[R]
+    wx = y[V] + p[P_SPIN] * y[R + 1]
+    wy = y[V + 1] - p[P_SPIN] * y[R]
     speed = math.sqrt(wx * wx + wy * wy + y[V + 2] * y[V + 2])
     return area_mass * tumbling_cd(speed / sound, rho, length)
 
