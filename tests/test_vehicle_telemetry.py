@@ -262,7 +262,9 @@ def _both_encodings(world, body, folder: Path, monkeypatch, trials: int = 120) -
     -0.0, subnormal, the largest double, exponents from -300 to 300. Small chunks, so
     that chunks end inside a sample's records (the chunk ends where one-by-one
     messages end it); times 0.37 s apart, so the Earth's transform comes between
-    samples' state and transform messages every second or so."""
+    samples' state and transform messages every second or so; events and log lines
+    between samples, and samples still waiting at the end of the file, so that the
+    waiting samples (``TelemetryWriter.PENDING``) are written in the flight's order."""
     import orjson
     import rocketsim.telemetry.writer as writer_module
     from rocketsim.sim import sampling
@@ -288,11 +290,14 @@ def _both_encodings(world, body, folder: Path, monkeypatch, trials: int = 120) -
     for path in paths:
         with TelemetryWriter(path, 1_795_694_400 * 10**9) as telemetry:
             telemetry.add_body(body.name)
-            for v in samples:
+            for k, v in enumerate(samples):
                 if path is paths[0]:
                     telemetry.state(body.name, fields(v.tolist(), int))
                 else:
                     telemetry.sample(body.name, v, fields)
+                if k % 7 == 3:                          # written in the flight's order
+                    telemetry.event(v[-2], body.name, "mark", {"k": k})
+                    telemetry.log(v[-2], body.name, f"line {k}")
     assert paths[0].read_bytes() == paths[1].read_bytes()
     first = json.loads(next(m for topic, _, m in raw_messages(paths[1]) if topic.endswith("/state")))
     assert first == orjson.loads(orjson.dumps(fields(values.tolist(), int)))     # the body's own numbers

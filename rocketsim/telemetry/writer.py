@@ -34,6 +34,8 @@ PROFILE = ""
 # while flying is one chunk; a file cut short loses at most the last one.
 CHUNK_SIZE = 256 * 1024
 LIBRARY = f"rocketsim {__version__}"
+# samples written together (TelemetryWriter.sample): a few kB of numbers held
+PENDING = 32
 _NO_TEXT = np.frombuffer(b"", dtype=np.uint8)      # a template's text: read-only bytes
 
 
@@ -90,6 +92,7 @@ class TelemetryWriter:
         self._earth = self._channel("/earth/transform", foxglove.FRAME_TRANSFORM)
         self._earth_at = None
         self._plans: dict[str, tuple] = {}      # body -> its messages' template (sample)
+        self._pending: list[tuple] = []         # samples waiting to be written (sample)
 
     def _channel(self, topic: str, schema: dict) -> int:
         title = schema["title"]
@@ -106,6 +109,7 @@ class TelemetryWriter:
         Every scalar of the state message is a JSON-schema'd field that
         Foxglove's Plot panel reads by path (``/<name>/state.altitude``,
         ``.orbit.eccentricity``, ``.position[0]``): no second copy is written."""
+        self._flush()
         self._bodies[name] = (self._channel(f"/{name}/state", BODY_STATE),
                               self._channel(f"/{name}/transform", foxglove.FRAME_TRANSFORM),
                               self._channel(f"/{name}/location", foxglove.LOCATION_FIX))
@@ -119,6 +123,7 @@ class TelemetryWriter:
 
     def state(self, body: str, message: dict) -> None:
         """A body's state message, and the Foxglove messages drawn from it."""
+        self._flush()
         t = message["t"]
         stamp = self._stamp(t)
         time = foxglove.timestamp(stamp)
@@ -133,22 +138,35 @@ class TelemetryWriter:
     def sample(self, body: str, values: np.ndarray, fields) -> None:
         """What :meth:`state` writes for the message ``fields(values, int)``, from a byte
         template of the message (worked out once per body and ``fields``) filled with
-        ``values`` (float64) in one compiled call (:mod:`rocketsim.telemetry.splice`):
-        the same bytes, about a third of the time."""
-        plan = self._plans.get(body)
-        if plan is None or plan[0] is not fields or plan[1] != values.shape[0]:
-            plan = self._plans[body] = self._plan(body, values.shape[0], fields)
-        _, _, text, cuts, t_index, most = plan
-        t = values.item(t_index)
-        stamp = self._stamp(t)
-        earth = self._earth_turn(t, stamp)
-        extra = b"" if earth is None else encode(earth)
-        chunk, at, index, n = self._writer.reserve(most + len(extra), 4)
-        at, records = _records()(orjson.dumps(values, option=orjson.OPT_SERIALIZE_NUMPY), values,
-                                 stamp, self._sequence, text, cuts, extra, self._earth, 0, chunk, at,
-                                 index, n)
-        self._sequence += records - n
-        self._writer.added(at, records)
+        ``values`` (float64, not to be changed afterwards) in one compiled call
+        (:mod:`rocketsim.telemetry.splice`): the same bytes, without the dictionaries.
+
+        Samples wait, up to :data:`PENDING` of them, and are written together before
+        anything else is (a message, an attachment, metadata, a body's channels, the
+        end of the file): the file's order is the flight's, and writing them back to
+        back keeps the writer's code and data in the processor's caches."""
+        self._pending.append((body, values, fields))
+        if len(self._pending) >= PENDING:
+            self._flush()
+
+    def _flush(self) -> None:
+        """Write the samples waiting (see :meth:`sample`)."""
+        pending, self._pending = self._pending, []
+        for body, values, fields in pending:
+            plan = self._plans.get(body)
+            if plan is None or plan[0] is not fields or plan[1] != values.shape[0]:
+                plan = self._plans[body] = self._plan(body, values.shape[0], fields)
+            _, _, text, cuts, t_index, most = plan
+            t = values.item(t_index)
+            stamp = self._stamp(t)
+            earth = self._earth_turn(t, stamp)
+            extra = b"" if earth is None else encode(earth)
+            chunk, at, index, n = self._writer.reserve(most + len(extra), 4)
+            at, records = _records()(orjson.dumps(values, option=orjson.OPT_SERIALIZE_NUMPY), values,
+                                     stamp, self._sequence, text, cuts, extra, self._earth, 0, chunk,
+                                     at, index, n)
+            self._sequence += records - n
+            self._writer.added(at, records)
 
     def _plan(self, body: str, n: int, fields) -> tuple:
         """``(fields, n, text, plan, index of t, most bytes of its records)``:
@@ -180,6 +198,7 @@ class TelemetryWriter:
 
     def event(self, t: float, body: str, name: str, figures: dict) -> None:
         """An event with its figures (SI), and its line in ``/events/log``."""
+        self._flush()
         stamp = self._stamp(t)
         self._write(self._events, stamp, {"t": t, "body": body, "name": name, "figures": figures})
         text = name + "".join(f" {k}={v}" for k, v in figures.items())
@@ -188,21 +207,25 @@ class TelemetryWriter:
 
     def log(self, t: float, body: str, message: str) -> None:
         """A line the program logged."""
+        self._flush()
         stamp = self._stamp(t)
         self._write(self._logs, stamp, foxglove.log_line(
             stamp, foxglove.INFO, message, body, self._program_file, t, body))
 
     def error(self, t: float, message: str) -> None:
         """The error that ended a flight (program exception, Ctrl-C...), in ``/events/log``."""
+        self._flush()
         stamp = self._stamp(t)
         self._write(self._event_lines, stamp, foxglove.log_line(
             stamp, foxglove.ERROR, message, "rocketsim", "", t, ""))
 
     def attach(self, name: str, data: bytes, media_type: str = "text/plain") -> None:
         """Attach a file (scenario, vehicle, program...) to the log."""
+        self._flush()
         self._writer.attachment(name, media_type, data, self._epoch_ns)
 
     def metadata(self, name: str, values: dict[str, str]) -> None:
+        self._flush()
         self._writer.metadata(name, {k: str(v) for k, v in values.items()})
 
     def close(self) -> None:
@@ -211,6 +234,7 @@ class TelemetryWriter:
             return
         self._closed = True
         try:
+            self._flush()
             self._writer.finish()
         finally:
             self._file.close()
