@@ -15,7 +15,7 @@ cache; it took ~90 s when this file was first written, which flew it only
 through the injection). Where the time goes, the scenario's 311 d flown
 whole (9.2 s CPU): the ascent to the parking
 orbit 0.8 s, the parking-orbit coast while the spent stage falls 0.9 s, the
-injection burn 0.6 s, cruise to Mars with the course corrections 1.5 s, the
+injection burn 0.6 s, cruise to Mars with the course corrections 1.2 s, the
 approach trims and the insertion 0.8 s, and the last 0.88 d coasting in Mars
 orbit after the insertion (0.1 s sleep-rails steps) 5 s: the test stops at
 310.15 d, just after the insertion.
