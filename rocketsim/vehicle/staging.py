@@ -84,7 +84,7 @@ def jettison_fairing(spec, model: VehicleModel, y: np.ndarray, first: int, air=N
     radius = 0.5 * f.diameter
     inertia, offset = half_shell(0.5 * f.mass, radius, f.length)
     area = half_shell_area(radius, f.length)
-    (kept, y_kept), halves = _release_top(spec, model, without, y, f.mass, f.length, [
+    (kept, y_kept), halves = _release_top(spec, model, without, y, f.length, [
         (0.5 * f.mass, inertia, sign * offset, sign * 0.5 * f.separation_speed, area) for sign in (1.0, -1.0)])
     return (kept, y_kept), tuple(halves)
 
@@ -102,7 +102,7 @@ def deploy_payload(spec, model: VehicleModel, y: np.ndarray, first: int, air=Non
     p = spec.payload
     without = build(spec.model_copy(update={"payload": None}), first, air=air, fairing=model.has_fairing)
     ixx, iyy = solid_cylinder(p.mass, 0.5 * p.diameter, p.length)
-    kept, (payload,) = _release_top(spec, model, without, y, p.mass, p.length, [
+    kept, (payload,) = _release_top(spec, model, without, y, p.length, [
         (p.mass, (ixx, iyy, iyy), 0.0, 0.0, cylinder_area(0.5 * p.diameter, p.length))])
     return kept, payload
 
@@ -121,14 +121,13 @@ def half_shell(mass: float, radius: float, length: float) -> tuple[tuple[float, 
     return (mass * (radius ** 2 - d * d), transverse, transverse - mass * d * d), d
 
 
-def _release_top(spec, model: VehicleModel, without: VehicleModel, y: np.ndarray, mass: float,
-                 length: float, pieces):
-    """Split a part of ``mass`` (kg) and ``length`` (m) standing on top of the top
-    stage from ``model`` in state ``y``, as ``pieces``: ``(mass, (Ixx, Iyy, Izz),
-    y_off, speed, area)`` each (kg, kg m^2 about its own centre, m off the body x
-    axis along body y, m/s pushed along body y, mean tumbling area m^2), whose
-    masses add up to ``mass`` and whose mass-weighted offsets and speeds add up to
-    zero. ``without`` is the model of what stays. Returns ``((without, y_without),
+def _release_top(spec, model: VehicleModel, without: VehicleModel, y: np.ndarray, length: float,
+                 pieces):
+    """Split a part ``length`` (m) long standing on top of the top stage from
+    ``model`` in state ``y``, as ``pieces``: ``(mass, (Ixx, Iyy, Izz), y_off, speed,
+    area)`` each (kg, kg m^2 about its own centre, m off the body x axis along body
+    y, m/s pushed along body y, mean tumbling area m^2), whose masses add up to the
+    part's and whose mass-weighted offsets and speeds add up to zero. ``without`` is the model of what stays. Returns ``((without, y_without),
     [part, ...])``, each part a dict: ``mass``, ``inertia``, ``position`` and
     ``velocity`` (of its centre, same frame as ``y``), ``attitude`` and ``rates``
     (the stack's), ``area`` (m^2) and ``length`` (m). Centre of mass and momentum
