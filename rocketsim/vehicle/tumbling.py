@@ -14,10 +14,12 @@ closed by its diametral plane and its two half-disc ends.
 Drag coefficient, on that mean area:
 
 - continuum (Knudsen number below 1e-3): the drag of a sphere against Mach
-  number, :data:`SPHERE_MACH` / :data:`SPHERE_CD`, read (to about 0.03) off the
-  high-Reynolds-number curves of Bailey & Hiatt, "Sphere drag coefficients for
+  number, :data:`SPHERE_MACH` / :data:`SPHERE_CD`, approximate readings (to a
+  few hundredths, not re-checked against the originals here) of the
+  subcritical-Reynolds curves of Bailey & Hiatt, "Sphere drag coefficients for
   a broad range of Mach and Reynolds numbers", AIAA J. 10 (1972) 1436, and
-  Hoerner, Fluid-Dynamic Drag (1965), ch. 16. The sphere is the tumbling body
+  Hoerner, Fluid-Dynamic Drag (1965), ch. 16 (subcritical: a tumbling body
+  with edges has no drag crisis). The sphere is the tumbling body
   whose drag does not depend on its attitude, and at hypersonic speed every
   convex body tumbling at random has its drag: in Newtonian flow (surface
   pressure ``C_p,max cos^2 theta`` on the faces the flow meets) a surface
@@ -33,10 +35,12 @@ Drag coefficient, on that mean area:
   with diffuse re-emission (Vallado, Fundamentals of Astrodynamics and
   Applications, 4th ed., 2013, section 8.6.2; Wertz & Larson, Space Mission
   Analysis and Design, 3rd ed., 1999, section 8.1);
-- between them, the sine-squared bridging in ``log10 Kn`` of Wilmoth,
+- between them, a sine-squared bridging in ``log10 Kn``,
+  ``C_D = C_c + (C_fm - C_c) sin^2(pi (3/8 + log10(Kn) / 8))``, of the kind the
+  re-entry literature uses for the transitional regime (e.g. Wilmoth,
   Mitcheltree & Moss, "Low-density aerodynamics of the Stardust sample return
-  capsule", J. Spacecraft Rockets 36 (1999) 436:
-  ``C_D = C_c + (C_fm - C_c) sin^2(pi (3/8 + log10(Kn) / 8))``.
+  capsule", J. Spacecraft Rockets 36, 1999); its end points 1e-3 and 10 are
+  this module's choice.
 
 The Knudsen number is the air's mean free path over the body's length; the
 mean free path scales as ``1/rho`` from its sea-level value 6.6328e-8 m at
@@ -57,7 +61,7 @@ SPHERE_CD = np.array([0.47, 0.50, 0.56, 0.62, 0.75, 0.90, 1.00, 1.02, 0.98, 0.94
 FREE_MOLECULAR_CD = 2.2             # diffuse re-emission (Vallado 2013, 8.6.2)
 MEAN_FREE_PATH_SL = 6.6328e-8       # m, sea level (USSA 1976, table I)
 DENSITY_SL = 1.225                  # kg/m^3, sea level (USSA 1976)
-KN_CONTINUUM, KN_FREE = 1e-3, 10.0  # the bridging's ends (Wilmoth et al. 1999)
+KN_CONTINUUM, KN_FREE = 1e-3, 10.0  # the bridging's ends
 
 
 @njit
