@@ -17,6 +17,7 @@ finished on success, on a program error and on Ctrl-C alike.
 from __future__ import annotations
 
 import math
+from collections import deque
 from pathlib import Path
 
 import numpy as np
@@ -92,7 +93,7 @@ class TelemetryWriter:
         self._earth = self._channel("/earth/transform", foxglove.FRAME_TRANSFORM)
         self._earth_at = None
         self._plans: dict[str, tuple] = {}      # body -> its messages' template (sample)
-        self._pending: list[tuple] = []         # samples waiting to be written (sample)
+        self._pending: deque[tuple] = deque()   # samples waiting to be written (sample)
 
     def _channel(self, topic: str, schema: dict) -> int:
         title = schema["title"]
@@ -150,9 +151,11 @@ class TelemetryWriter:
             self._flush()
 
     def _flush(self) -> None:
-        """Write the samples waiting (see :meth:`sample`)."""
-        pending, self._pending = self._pending, []
-        for body, values, fields in pending:
+        """Write the samples waiting (see :meth:`sample`), each leaving the queue once
+        written: a Ctrl-C in between leaves the rest for :meth:`close`."""
+        pending = self._pending
+        while pending:
+            body, values, fields = pending[0]
             plan = self._plans.get(body)
             if plan is None or plan[0] is not fields or plan[1] != values.shape[0]:
                 plan = self._plans[body] = self._plan(body, values.shape[0], fields)
@@ -165,8 +168,9 @@ class TelemetryWriter:
             at, records = _records()(orjson.dumps(values, option=orjson.OPT_SERIALIZE_NUMPY), values,
                                      stamp, self._sequence, text, cuts, extra, self._earth, 0, chunk,
                                      at, index, n)
-            self._sequence += records - n
             self._writer.added(at, records)
+            self._sequence += records - n
+            pending.popleft()
 
     def _plan(self, body: str, n: int, fields) -> tuple:
         """``(fields, n, text, plan, index of t, most bytes of its records)``:
