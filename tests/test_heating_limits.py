@@ -153,24 +153,31 @@ def test_a_vehicle_pitched_hard_at_max_q_breaks_up_at_the_right_q_alpha():
             assert world.events == [] and body.flying
 
 
-def test_a_16_g_burn_breaks_the_vehicle():
-    # one 100 kN engine under a light stage in vacuum: axial load T / (m g0), analytic
+def light_stage(thrust: float):
+    """``(model, body)``: one engine of ``thrust`` (N, spooled up) under a light stage in
+    vacuum (700 km, above the air)."""
     data = {"name": "light", "stages": [{
         "name": "S", "length": "4 m", "diameter": "0.5 m", "structure_mass": "300 kg",
         "tanks": [{"name": "T", "propellant": "X", "density": 1000.0, "radius": "0.2 m", "length": "3 m",
                    "position": "0.5 m", "propellant_mass": "200 kg"}],
-        "engines": [{"name": "E", "thrust_vacuum": "100 kN", "isp_vacuum": "300 s", "exit_area": "0.01 m2",
+        "engines": [{"name": "E", "thrust_vacuum": f"{thrust} N", "isp_vacuum": "300 s", "exit_area": "0.01 m2",
                      "spool_up": "0.01 s"}]}], "aero": {}}
+    model = build(spec(data))
+    r = np.array([EARTH_RADIUS_EQ + 700e3, 0.0, 0.0])
+    y = model.state(r, np.array([0.0, 7500.0, 0.0]))
+    a = model.arrays
+    E.ignite(y, a.eng, a.cmd, a.stage, 0, a.first_clock)
+    y[model.clocks] = 5.0
+    body = _Body(model, y, earth_params())
+    body.mu = EARTH_MU
+    return model, body
+
+
+def test_a_16_g_burn_breaks_the_vehicle():
+    # one 100 kN engine under a light stage in vacuum: axial load T / (m g0), analytic
     for thrust, broken in ((100e3, True), (70e3, False)):
-        data["stages"][0]["engines"][0]["thrust_vacuum"] = f"{thrust} N"
-        model = build(spec(data))
-        r = np.array([EARTH_RADIUS_EQ + 700e3, 0.0, 0.0])            # above the air
-        y = model.state(r, np.array([0.0, 7500.0, 0.0]))
-        a = model.arrays
-        E.ignite(y, a.eng, a.cmd, a.stage, 0, a.first_clock)
-        y[model.clocks] = 5.0
-        body, world = _Body(model, y, earth_params()), _World()
-        body.mu = EARTH_MU
+        model, body = light_stage(thrust)
+        y, world = body.y, _World()
         checks = VehicleChecks()
         checks.after_step(world, body, 0.02)
         mass = model.mass_properties(y)[0]

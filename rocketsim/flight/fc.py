@@ -361,12 +361,26 @@ class FlightComputer:
             self._rcs = on
             self.event("rcs on" if on else "rcs off")
 
-    def autopilot(self) -> None:
-        """Run the autopilot for this step (the world calls it once per step)."""
+    def autopilot(self, fold: bool = False) -> tuple | None:
+        """Run the autopilot for this step (the world calls it once per step).
+
+        With ``fold`` (the caller's compiled step can run the autopilot's step first)
+        and nothing of it left to Python here (the navigation estimate is the truth,
+        about Earth, in the air the vehicle flies through, the RCS off, and any estimate
+        read earlier in this step still the truth's current view: not after a staging
+        within the step, where it steers on the estimate read before it), returns what
+        that step reads instead, ``(command code, fins)``
+        (:meth:`rocketsim.sim.vehicle_checks.VehicleChecks.advance`: the same compiled
+        step, one call fewer); else runs it and returns None."""
         command = self._body.attitude_command
         if command is None or self._body.vehicle is None:
-            return
+            return None
         body = self._body
+        nav = self._nav         # None, an earlier step's, or this step's (the truth's view when perfect)
+        if fold and not self._rcs and body.central == "earth" and (body.sensors is None or body.sensors.perfect) \
+                and (nav is None or nav.t != body.t or nav is body._view) \
+                and body.vehicle.arrays.air_density is body.atmosphere().density:
+            return command.code, self._fins
         nav, truth = self._view(), body.view()
         steer(command, nav, body.vehicle, self._propulsion(), body.y, self._world.t,
               math.nan if nav is truth else truth.air[1], fins=self._fins, rcs=self._rcs)

@@ -34,8 +34,10 @@ from rocketsim.bodies.orientation import BODIES as ORIENTED, spin_rate
 from rocketsim.constants import (AIR_CP, CO2_CP, DEG, HEAT_SHIELD_LIMIT, MARS_MU,
                                  SUTTON_GRAVES_EARTH, SUTTON_GRAVES_MARS)
 from rocketsim.dynamics.derivative import body_air_velocity, derivative, radial_height
-from rocketsim.dynamics.state import P_J2, P_MU, P_POLAR_RADIUS, P_RADIUS, Q, R, V
+from rocketsim.dynamics.rk4 import advance, near_ground
+from rocketsim.dynamics.state import P_J2, P_MU, P_POLAR_RADIUS, P_RADIUS, Q, R, V, W
 from rocketsim.flight.readings import StateView
+from rocketsim.flight.steering import steer_step
 from rocketsim.frames.earth_fixed import eci_to_ecef
 from rocketsim.frames.quaternion import quat_rotate
 from rocketsim.vehicle.aero import A_REACH
@@ -49,6 +51,8 @@ AIRBORNE_CLEARANCE = 1.0       # m: lowest contact point this high = in the air 
 # booster lands at 1-2 m/s, an Apollo capsule splashed down at ~9 m/s under its parachutes);
 # the body ends in an impact instead of a touchdown (the contact springs would bounce it back)
 CRASH_SPEED = 10.0
+# what advance_checked reads when the autopilot does not steer in its call (unused)
+_NO_STEERING = (np.full(6, math.nan), False)
 
 
 class VehicleChecks:
@@ -62,12 +66,13 @@ class VehicleChecks:
         self.previous = None        # (t, y) before the last step, for the touchdown figures
         self._arrays = self._in_flight = self._watched = None
         self._kernels = Entries()   # step_figures bound to the vehicle's arrays
+        self._figures = None        # (state, step_figures of it) from the last advance
 
     def every_step(self, body) -> bool:
         """True while the body must be stepped one step at a time (in the air or near the ground)."""
         self._bind(body.vehicle.arrays)
-        r = body.y[R:R + 3]
-        return math.sqrt(r @ r) - body.p[P_RADIUS] < self._watched
+        x, y, z = body.y[R:R + 3].tolist()          # plain floats: a few times faster than r @ r
+        return math.sqrt(x * x + y * y + z * z) - body.p[P_RADIUS] < self._watched
 
     def _bind(self, arrays) -> None:
         """Derive what the checks need from a vehicle's arrays, once per model (a new
@@ -78,14 +83,34 @@ class VehicleChecks:
             self._in_flight = arrays._replace(aero=arrays.aero._replace(contact=arrays.aero.contact[:0]))
             self._watched = TOP + float(arrays.aero.ref[A_REACH])
 
+    def advance(self, body, k0: int, h: float, n: int, steering: tuple | None = None) -> tuple[np.ndarray, int]:
+        """Advance ``body`` like :func:`rocketsim.dynamics.rk4.advance` (up to ``n`` steps
+        of ``h`` seconds from step ``k0``; returns ``(y, steps taken)``) and compute the
+        checks' figures at the new state in the same compiled call (:func:`advance_checked`:
+        the vehicle's arrays are unboxed once, not two or three times); :meth:`after_step`
+        reads them if the body's state is still that one. ``steering``: the autopilot's
+        step to run first in that call, ``(command code, fins)`` from
+        :meth:`rocketsim.flight.fc.FlightComputer.autopilot`, or None."""
+        arrays = body.vehicle.arrays
+        steer = steering is not None
+        code, fins = steering if steer else _NO_STEERING
+        y, taken, near, figures = body.kernels.call(advance_checked, arrays, body.y, k0, h, n, body.p, arrays,
+                                                    steer, code, fins)
+        self._figures = None if near else (y, figures)
+        return y, taken
+
     def after_step(self, world, body, h: float) -> dict | None:
         """Run the checks on the body's new state (after a step of ``h`` seconds). Returns
         the touchdown figures of a first contact faster than :data:`CRASH_SPEED` (a
         crash: the world ends the body with an impact), else None."""
         arrays = body.vehicle.arrays
         self._bind(arrays)
-        rho, air_temperature, speed, q, alpha, axial, lowest = self._kernels.call(
-            step_figures, arrays, body.t, body.y, body.p, self._in_flight, arrays.aero.contact)
+        figures, self._figures = self._figures, None
+        if figures is not None and figures[0] is body.y:
+            rho, air_temperature, speed, q, alpha, axial, lowest = figures[1]
+        else:
+            rho, air_temperature, speed, q, alpha, axial, lowest = self._kernels.call(
+                step_figures, arrays, body.t, body.y, body.p, self._in_flight, arrays.aero.contact)
         figures = breakup(q, alpha, axial)
         if figures is not None:
             world.event(body, "breakup", figures)
@@ -223,3 +248,30 @@ def step_figures(t, y, p, veh, contact):
     for height in contact_point_heights(y, p, contact, x_cm):
         lowest = min(lowest, height)
     return rho, temperature, speed, 0.5 * rho * speed * speed, alpha, sx * ax + sy * ay + sz * az, lowest
+
+
+@njit
+def advance_checked(y, k0, h, n_steps, p, veh, steer, code, fins):
+    """:func:`~rocketsim.dynamics.rk4.advance` of a staged vehicle with aerodynamics
+    (arrays ``veh``), then :func:`step_figures` at the new state, in one compiled call.
+    Returns ``(y, steps taken, near, figures)``.
+
+    With ``steer``, the autopilot's step comes first, as the world's loop runs it
+    before the advance: :func:`~rocketsim.flight.steering.steer_step` reading the
+    truth (the state ``y`` at the step's start time ``k0 h``) in the vehicle's air (the
+    day's) with the command ``code``, the grid fins when ``fins``, no RCS.
+
+    The figures' flight loads are the derivative's without the contact forces. Out of
+    the contact points' reach of the ground the derivative adds none, so ``veh`` itself
+    serves; within it (``near``, tested with the margin of the ground sub-steps) the
+    figures are computed here all the same but the caller must compute them again
+    with the contact points removed.
+    """
+    if steer:
+        t = k0 * h
+        air = (veh.air_h0, veh.air_dh, veh.air_density, veh.air_pressure, veh.air_temperature,
+               veh.air_speed_of_sound, veh.air_wind_east, veh.air_wind_north)
+        steer_step(veh, y, t, t, y[R:R + 3], y[V:V + 3], y[Q:Q + 4], y[W:W + 3], math.nan, air, code, fins, False)
+    y, taken = advance(y, k0, h, n_steps, p, veh)
+    near = near_ground(y, p, veh.aero.ref[A_REACH])
+    return y, taken, near, step_figures((k0 + taken) * h, y, p, veh, veh.aero.contact)

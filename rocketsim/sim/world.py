@@ -91,6 +91,7 @@ class Body:
     cruise_until: float = -math.inf         # mission time fc.cruise allows cruise rails until
     central: str = "earth"                  # the body whose frame and gravity it flies in
     kernels: Entries = field(default_factory=Entries)   # compiled entries bound to its arrays
+    steering: tuple | None = None           # the autopilot's step folded into this step's advance
 
     drag: tuple | None = None               # a tumbling rigid body's (mean area / mass m^2/kg, length m)
     @property
@@ -413,7 +414,8 @@ class World:
                     if body.vehicle is not None:
                         body.vehicle.arrays.aero.rcs_cmd[:] = 0.0
                     continue
-                body.fc.autopilot()
+                # a vehicle with checks runs the autopilot's compiled step in its advance
+                body.steering = body.fc.autopilot(fold=body.checks is not None)
 
     def _batch_length(self) -> int:
         """Steps that can be taken before anything needs deciding."""
@@ -479,7 +481,8 @@ class World:
         the autopilot wakes to no error (:func:`rocketsim.dynamics.rails.settle`). The
         truth's frame is held (an autopilot reading noisy sensors steers the estimate's)."""
         command = body.attitude_command
-        if command is None or not (self._asleep(body) and self._coasting(body, rcs_free=True)
+        # coasting first: in the air (most steps of an ascent or a landing) it says no at once
+        if command is None or not (self._coasting(body, rcs_free=True) and self._asleep(body)
                                    and radial_height(body.y, body.p) > rails_floor(body.central)):
             return False
         error, turn = hold_offsets(command.code, body.y, body.t, self.h, body.mu)
@@ -651,6 +654,9 @@ class World:
             y, taken = advance_free(body.y, k0, self.h, n, body.p, self._rails_field(body), air, *body.drag)
         elif body.vehicle is None:
             y, taken = advance(body.y, k0, self.h, n, body.p)
+        elif body.checks is not None:       # with the autopilot's step first, the checks' figures after
+            y, taken = body.checks.advance(body, k0, self.h, n, body.steering)
+            body.steering = None
         else:
             y, taken = body.kernels.call(advance, body.vehicle.arrays, body.y, k0, self.h, n, body.p,
                                          body.vehicle.arrays)

@@ -28,10 +28,11 @@ def breakup(q: float, alpha: float, axial_acceleration: float) -> dict | None:
     """
     q_alpha = q * bending_alpha(alpha) / DEG
     load = abs(axial_acceleration) / G0
-    figures = {"q_alpha_pa_deg": q_alpha, "dynamic_pressure_pa": q,
-               "angle_of_attack_deg": alpha / DEG, "axial_load_g": load}
     if q_alpha > STRUCTURE_Q_ALPHA_LIMIT:
-        return {"cause": "bending", **figures}
-    if load > STRUCTURE_AXIAL_LIMIT_G:
-        return {"cause": "axial load", **figures}
-    return None
+        cause = "bending"
+    elif load > STRUCTURE_AXIAL_LIMIT_G:
+        cause = "axial load"
+    else:
+        return None
+    return {"cause": cause, "q_alpha_pa_deg": q_alpha, "dynamic_pressure_pa": q,
+            "angle_of_attack_deg": alpha / DEG, "axial_load_g": load}

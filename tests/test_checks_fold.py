@@ -1,0 +1,110 @@
+"""One compiled call per step of a vehicle with aerodynamics (issue 6 speed): the
+autopilot's step, the RK4 advance and the checks' figures folded into
+:func:`rocketsim.sim.vehicle_checks.advance_checked`.
+
+A pure speed refactor: the reference is the code before it, three calls
+(:func:`rocketsim.flight.steering.steer_step`, :func:`rocketsim.dynamics.rk4.advance`,
+:func:`rocketsim.sim.vehicle_checks.step_figures` on the arrays without contact
+points), which these tests run side by side with the fold: same bits. The
+breakup test's axial load is also checked against its closed form ``T / (m g0)``.
+"""
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from rocketsim._jit import Entries
+from rocketsim.constants import G0
+from rocketsim.dynamics import rk4
+from rocketsim.flight.fc import FlightComputer
+from rocketsim.scenario.load import load
+from rocketsim.sim import vehicle_checks
+from rocketsim.sim.vehicle_checks import VehicleChecks, advance_checked
+from rocketsim.sim.world import World
+from tests.test_contact import _World
+from tests.test_heating_limits import light_stage
+
+MISSION = Path(__file__).resolve().parents[1] / "scenarios" / "falcon9-leo.yaml"
+
+
+def test_a_16_g_burn_breaks_the_vehicle_through_the_folded_step():
+    # the step's own figures fire the check, with the bits of the separate call and the
+    # closed form T / (m g0) at the state after the step (the thrust is steady: spooled up)
+    model, body = light_stage(100e3)
+    body.kernels = Entries()
+    checks, world = VehicleChecks(), _World()
+    body.y, taken = checks.advance(body, 250, 0.02, 1)
+    body.t = (250 + taken) * 0.02
+    checks.after_step(world, body, 0.02)
+    name, figures = world.events[0]
+    assert name == "breakup" and figures["cause"] == "axial load" and not body.flying
+    mass = model.mass_properties(body.y)[0]
+    assert figures["axial_load_g"] == pytest.approx(100e3 / (mass * G0), rel=1e-12)
+    separate = _World()
+    body.flying = True
+    VehicleChecks().after_step(separate, body, 0.02)        # no figures at hand: the separate call
+    assert separate.events == world.events
+
+
+def _fly(seconds, fold, monkeypatch):
+    """The shipped mission's first ``seconds`` (on the pad, liftoff, the climb through the
+    air): final states, events, the checks' inputs at every step and how many steps
+    took the fold's figures (out of contact) and steered inside it."""
+    seen = {"figures": [], "near": 0, "far": 0, "steered": 0}
+
+    def recording_breakup(q, alpha, axial, original=vehicle_checks.breakup):
+        seen["figures"].append((q, alpha, axial))
+        return original(q, alpha, axial)
+
+    monkeypatch.setattr(vehicle_checks, "breakup", recording_breakup)
+    if fold:
+        call = Entries.call
+
+        def counting_call(entries, kernel, key, *args):
+            out = call(entries, kernel, key, *args)
+            if kernel is advance_checked:
+                seen["near" if out[2] else "far"] += 1
+                seen["steered"] += bool(args[6])
+            return out
+
+        monkeypatch.setattr(Entries, "call", counting_call)
+    else:       # the code before the fold: the autopilot's own call, the plain advance, the figures' call
+        autopilot = FlightComputer.autopilot
+        monkeypatch.setattr(FlightComputer, "autopilot", lambda fc, fold=False: autopilot(fc))
+
+        def unfolded(checks, body, k0, h, n, steering=None):
+            assert steering is None
+            return body.kernels.call(rk4.advance, body.vehicle.arrays, body.y, k0, h, n, body.p,
+                                     body.vehicle.arrays)
+
+        monkeypatch.setattr(VehicleChecks, "advance", unfolded)
+    world = World.from_scenario(load(MISSION), duration=seconds)
+    summary = world.run()
+    monkeypatch.undo()
+    return [b.y.copy() for b in world.bodies], summary, seen
+
+
+def test_the_folded_step_flies_the_same_bits_as_three_calls(monkeypatch):
+    states, summary, seen = _fly(12.0, True, monkeypatch)
+    states_before, summary_before, seen_before = _fly(12.0, False, monkeypatch)
+    assert all(np.array_equal(a, b) for a, b in zip(states, states_before, strict=True))
+    assert summary == summary_before
+    assert seen["figures"] == seen_before["figures"] and len(seen["figures"]) == 600
+    # both ways of the figures ran: on the pad (legs on the ground) and in the air
+    assert seen["near"] > 0 and seen["far"] > 0 and seen["steered"] > 0
+
+
+def test_after_a_staging_within_the_step_the_autopilot_runs_on_the_estimate_read_before_it():
+    # the program read the estimate, then dropped the fairing in the same step: the body's
+    # state is new, the estimate is the stack's; the autopilot steers on that estimate (as
+    # before the fold) in its own call, not on the new state inside the step's
+    world = World.from_scenario(load(MISSION))
+    body = world.bodies[0]
+    body.fc.point(math.radians(80.0), math.radians(90.0))
+    assert body.fc.autopilot(fold=True) is not None         # nothing read yet: folded
+    body.fc.position                                        # the program reads the estimate
+    assert body.fc.autopilot(fold=True) is not None         # the truth's current view: folded
+    world.jettison_fairing(body)
+    assert body.fc.autopilot(fold=True) is None             # ran here, on the estimate read before
