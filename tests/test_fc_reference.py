@@ -11,6 +11,7 @@ block that raised or never finished (the flight ended while it waited).
 
 from __future__ import annotations
 
+import inspect
 import json
 import re
 
@@ -118,14 +119,35 @@ def _blocks() -> list[dict]:
     return found
 
 
+def _heading(name: str) -> str:
+    """How the page's heading writes member ``name``: ``fc.name`` for a property,
+    ``fc.name(params)`` with the method's own parameters and defaults for a method."""
+    member = inspect.getattr_static(FlightComputer, name)
+    if isinstance(member, property):
+        return f"`fc.{name}`"
+    params = []
+    for p in list(inspect.signature(member).parameters.values())[1:]:     # without self
+        if p.kind is p.VAR_POSITIONAL:
+            params.append(f"*{p.name}")
+        elif p.kind is p.VAR_KEYWORD:
+            params.append(f"**{p.name}")
+        elif p.default is p.empty:
+            params.append(p.name)
+        else:                   # a string default as the page writes it: "eci"
+            default = json.dumps(p.default) if isinstance(p.default, str) else repr(p.default)
+            params.append(f"{p.name}={default}")
+    return f"`fc.{name}({', '.join(params)})`"
+
+
 def _mentions(text: str, name: str) -> bool:
     return re.search(rf"\bfc\.{re.escape(name)}(?!\w)", text) is not None
 
 
 def test_every_public_member_has_a_section_with_an_example():
     """Found by introspection: each name of FlightComputer not starting with ``_`` (the
-    aliases too) is named in a ``###`` heading, and a python block of that section uses
-    it as ``fc.<name>``; no heading or example names a member that does not exist."""
+    aliases too) is named in a ``###`` heading, with the method's parameters and defaults
+    as they are in the code, and a python block of that section uses it as ``fc.<name>``;
+    no heading or example names a member that does not exist."""
     blocks = _blocks()
     headings = {b["section"] for b in blocks}
     missing = []
@@ -134,6 +156,8 @@ def test_every_public_member_has_a_section_with_an_example():
         if not mine:
             missing.append(name)
     assert not missing, f"docs/fc.md has no section with an example for: {', '.join(missing)}"
+    stale = [_heading(name) for name in MEMBERS if not any(_heading(name) in h for h in headings)]
+    assert not stale, f"docs/fc.md: no heading gives the member as it is now: {', '.join(stale)}"
     used = {m for b in blocks for m in re.findall(r"\bfc\.([A-Za-z_]\w*)", b["text"])}
     used |= {m for h in headings for m in re.findall(r"\bfc\.([A-Za-z_]\w*)", h)}
     unknown = sorted(used - set(MEMBERS))
