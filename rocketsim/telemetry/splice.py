@@ -112,32 +112,52 @@ def _put_int(out, at, x):
 
 
 @njit
-def records(numbers, values, stamp, sequence, text, plan, extra, extra_channel, extra_after,
-            out, at, index, n_index):
-    """Write the MCAP Message records of one sample into ``out`` from ``at`` and each one's
-    (channel, ``stamp``, start) into ``index`` from entry ``n_index`` (three numbers per
-    entry); returns where the records and the index entries end.
+def records(numbers, values, stamps, sequence, text, plan, extras, extra_ends, extra_channel,
+            extra_after, out, at, index, n_index):
+    """Write the MCAP Message records of samples of one template into ``out`` from ``at``
+    and each record's (channel, log time, start) into ``index`` from entry ``n_index``
+    (three numbers per entry); returns where the records and the index entries end.
 
-    ``numbers``: ``orjson.dumps(values)`` (``[a,b,...]``); ``values`` the float64
-    numbers; ``stamp`` the log and publish time (ns), whose seconds and nanoseconds fill
-    the time slots; ``sequence`` the first record's sequence number (one more for each
-    next record); ``text``, ``plan`` the messages' template (:func:`template`).
-    ``extra``: the data of one more record on ``extra_channel``, written after the
-    template's message ``extra_after`` (none when empty). ``out`` must have room for
-    :func:`most` bytes and the extra record."""
-    n = values.shape[0]
-    first = np.empty(n + 1, dtype=np.int64)     # where each number's bytes begin (after "[" or ",")
-    k, i = 0, 1
-    first[0] = 1
-    while k < n - 1:
-        if numbers[i] == 44:                    # ","
+    ``values``: the samples' float64 numbers, a row each; ``numbers``:
+    ``orjson.dumps(values)`` (``[[a,b,...],[c,...]]``); ``stamps``: each sample's log
+    and publish time (ns), whose seconds and nanoseconds fill the time slots;
+    ``sequence`` the first record's sequence number (one more for each next record);
+    ``text``, ``plan`` the messages' template (:func:`template`). ``extras``: the data
+    of one more record on ``extra_channel`` for some samples, written after the
+    template's message ``extra_after``: sample ``k``'s is
+    ``extras[extra_ends[k]:extra_ends[k + 1]]`` (none when empty). ``out`` must have
+    room for :func:`most` bytes a sample and the extra records."""
+    n_samples, n = values.shape
+    # where each number's bytes begin (after "[" or ","), then one past the row's "]"
+    first = np.empty(n_samples * (n + 1), dtype=np.int64)
+    row, k = -1, 0
+    for i in range(1, len(numbers) - 1):
+        c = numbers[i]
+        if c == 91:                             # "[": a row begins
+            row += 1
+            k = row * (n + 1)
+            first[k] = i + 1
+        elif c == 93:                           # "]": it ends
+            first[row * (n + 1) + n] = i + 1
+        elif c == 44 and k < row * (n + 1) + n - 1 and numbers[i - 1] != 93:   # "," in a row
             k += 1
             first[k] = i + 1
-        i += 1
-    first[n] = len(numbers)             # the closing "]", one past the last number's end
+    r = n_index
+    for sample in range(n_samples):
+        at, r = _sample(numbers, first[sample * (n + 1):(sample + 1) * (n + 1)], values[sample],
+                        stamps[sample], sequence + r - n_index, text, plan,
+                        extras[extra_ends[sample]:extra_ends[sample + 1]], extra_channel,
+                        extra_after, out, at, index, r)
+    return at, r
+
+
+@njit
+def _sample(numbers, first, values, stamp, sequence, text, plan, extra, extra_channel, extra_after,
+            out, at, index, r):
+    """One sample's records (see :func:`records`): ``first`` where its numbers begin."""
     n_messages = plan[0]
     seconds, nanoseconds = stamp // 1_000_000_000, stamp % 1_000_000_000
-    piece, cut, r = 0, 1 + 2 * n_messages, n_index
+    piece, cut, r0 = 0, 1 + 2 * n_messages, r
     for m in range(n_messages):
         head = at
         _entry(index, r, plan[1 + 2 * m], stamp, at)
@@ -161,12 +181,11 @@ def records(numbers, values, stamp, sequence, text, plan, extra, extra_channel, 
         cut += 1
         at = _copy(out, at, text, piece, end)
         piece = end
-        _header(out, head, at - head - 9, plan[1 + 2 * m], sequence + r - 1 - n_index, stamp)
+        _header(out, head, at - head - 9, plan[1 + 2 * m], sequence + r - 1 - r0, stamp)
         if m == extra_after and len(extra) > 0:
             _entry(index, r, extra_channel, stamp, at)
             r += 1
-            _header(out, at, len(extra) + _HEADER - 9, extra_channel, sequence + r - 1 - n_index,
-                    stamp)
+            _header(out, at, len(extra) + _HEADER - 9, extra_channel, sequence + r - 1 - r0, stamp)
             at = _copy(out, at + _HEADER, extra, 0, len(extra))
     return at, r
 

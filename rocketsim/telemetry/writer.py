@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import math
 from collections import deque
+from itertools import islice
 from pathlib import Path
 
 import numpy as np
@@ -50,13 +51,13 @@ def encode(message: dict) -> bytes:
 
 def _records():
     """:func:`rocketsim.telemetry.splice.records`' compiled entry (bound on first need:
-    its argument types never change, and the dispatcher's typing of nine arguments
+    its argument types never change, and the dispatcher's typing of fourteen arguments
     costs about as much as the call)."""
     global _RECORDS
     if _RECORDS is None:
-        _RECORDS = entry_point(splice.records, b"", np.zeros(1), 0, 0, _NO_TEXT,
-                               np.zeros(1, dtype=np.int64), b"", 0, 0, np.zeros(1, dtype=np.uint8), 0,
-                               np.zeros(1, dtype=np.int64), 0)
+        ints = np.zeros(1, dtype=np.int64)
+        _RECORDS = entry_point(splice.records, b"", np.zeros((1, 1)), ints, 0, _NO_TEXT, ints, b"",
+                               ints, 0, 0, np.zeros(1, dtype=np.uint8), 0, ints, 0)
     return _RECORDS
 
 
@@ -151,26 +152,41 @@ class TelemetryWriter:
             self._flush()
 
     def _flush(self) -> None:
-        """Write the samples waiting (see :meth:`sample`), each leaving the queue once
-        written: a Ctrl-C in between leaves the rest for :meth:`close`."""
+        """Write the samples waiting (see :meth:`sample`): each run of samples of one
+        body and message shape in one compiled call, leaving the queue once written (a
+        Ctrl-C in between leaves the rest for :meth:`close`)."""
         pending = self._pending
         while pending:
             body, values, fields = pending[0]
             plan = self._plans.get(body)
             if plan is None or plan[0] is not fields or plan[1] != values.shape[0]:
                 plan = self._plans[body] = self._plan(body, values.shape[0], fields)
-            _, _, text, cuts, t_index, most = plan
-            t = values.item(t_index)
-            stamp = self._stamp(t)
-            earth = self._earth_turn(t, stamp)
-            extra = b"" if earth is None else encode(earth)
-            chunk, at, index, n = self._writer.reserve(most + len(extra), 4)
-            at, records = _records()(orjson.dumps(values, option=orjson.OPT_SERIALIZE_NUMPY), values,
-                                     stamp, self._sequence, text, cuts, extra, self._earth, 0, chunk,
-                                     at, index, n)
+            _, size, text, cuts, t_index, most = plan
+            run = [values]
+            for other, more, shape in islice(pending, 1, None):
+                if other != body or shape is not fields or more.shape[0] != size:
+                    break
+                run.append(more)
+            stamps, extras, ends = [], [], [0]
+            for values in run:
+                t = values.item(t_index)
+                stamp = self._stamp(t)
+                earth = self._earth_turn(t, stamp)
+                if earth is not None:
+                    extras.append(encode(earth))
+                ends.append(ends[-1] + (0 if earth is None else len(extras[-1])))
+                stamps.append(stamp)
+            block = np.stack(run)
+            extra = b"".join(extras)
+            chunk, at, index, n = self._writer.reserve(most * len(run) + len(extra), 4 * len(run))
+            at, records = _records()(orjson.dumps(block, option=orjson.OPT_SERIALIZE_NUMPY), block,
+                                     np.array(stamps, dtype=np.int64), self._sequence, text, cuts,
+                                     extra, np.array(ends, dtype=np.int64), self._earth, 0, chunk, at,
+                                     index, n)
             self._writer.added(at, records)
             self._sequence += records - n
-            pending.popleft()
+            for _ in run:
+                pending.popleft()
 
     def _plan(self, body: str, n: int, fields) -> tuple:
         """``(fields, n, text, plan, index of t, most bytes of its records)``:
