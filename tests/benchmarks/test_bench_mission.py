@@ -13,10 +13,15 @@ Printed (run with ``pytest -s``):
 
 * simulated seconds per wall second (the real-time factor);
 * the share of the wall time in each part of the step loop: the physics
-  (the compiled RK4 advance of every awake body), the rails (sleeping
-  bodies' compiled steps), the programs (their Python code and the readings
-  they compute first), the autopilot, the per-step checks (limits, heating,
-  touchdown), the flight events, telemetry (sampling, encoding, writing), the
+  (the compiled RK4 advance of every awake body, a tumbling part's with its
+  drag included; for a vehicle with
+  aerodynamics one compiled call per step, which also runs the autopilot's
+  step before it, when nothing of that is left to Python, and computes the
+  checks' figures after it: :func:`rocketsim.sim.vehicle_checks.advance_checked`),
+  the rails (sleeping bodies' compiled steps), the programs (their Python code
+  and the readings they compute first), the autopilot (what is left of it
+  outside that call), the per-step checks (limits, heating, touchdown, on those
+  figures), the flight events, telemetry (sampling, encoding, writing), the
   loop's decisions (batch length, rails or not, the impact test), and the
   rest of the run;
 * the physics, checks, events and loop per body-step (per awake 20 ms step of one
@@ -34,6 +39,16 @@ at one per step.
 
 The shares come from timing wrappers put around those parts for this run
 only (about a microsecond per wrapped call, included in the figures).
+
+Last figures (the whole mission, five bodies; a 2-core machine shared with
+other work, load ~2-3): uninstrumented, CPU best of 3, 3.15 s (190x real
+time) before the folded step of a vehicle with aerodynamics (953fe44: the
+autopilot's step, the RK4 advance and the checks' figures in three compiled
+calls) and 2.74-2.83 s (212-219x) after it (220f493), same bits. This
+benchmark, instrumented: 3.50 s (171x); physics 34 % (12.5 us per body-step),
+programs 19 %, loop 17 %, telemetry 11 %, checks 7 % (2.6 us per body-step,
+was 9 with the second derivative), events 3.5 %, autopilot 2.4 % (2.8 us per
+call, was 15).
 Nothing asserts a time; the checks are that the mission reaches orbit and
 that the parts add up to no more than the whole.
 """
@@ -48,6 +63,7 @@ from pathlib import Path
 from rocketsim._jit import Entries
 from rocketsim.scenario.load import load
 from rocketsim.sim import flight_events, vehicle_checks, world
+from rocketsim.sim.vehicle_checks import advance_checked
 from rocketsim.sim.flight import fly
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -94,13 +110,20 @@ def _instrument(monkeypatch, clock: SectionClock) -> Counter:
         return timed_advance(y, k0, h, n, *rest)
 
     patch(world, "advance", timed_integrator)
+    timed_free = clock.wrap(world.advance_free, "physics")
+
+    def timed_free_body(y, k0, h, n, *rest):                   # a tumbling part's steps (with drag)
+        steps["body-steps"] += n
+        return timed_free(y, k0, h, n, *rest)
+
+    patch(world, "advance_free", timed_free_body)
     bound_call = Entries.call                                  # a staged vehicle's steps
     timed_bound_call = clock.wrap(bound_call, "physics")
 
     def call(entries, kernel, key, *args):
-        if kernel is timed_integrator:
+        if kernel is timed_integrator or kernel is advance_checked:
             steps["body-steps"] += args[3]
-            return timed_bound_call(entries, integrator, key, *args)
+            return timed_bound_call(entries, integrator if kernel is timed_integrator else kernel, key, *args)
         return bound_call(entries, kernel, key, *args)
 
     patch(Entries, "call", call)
