@@ -239,7 +239,7 @@ def values(body, gmst0: float, where) -> tuple[np.ndarray, "partial"]:
             body.t, body.y, body.p, body.mu, gmst0 if earth else 0.0, *air, model.arrays, group,
             len(groups), shield.nose_radius if shield is not None else 0.0,
             SUTTON_GRAVES_MARS if body.mu == MARS_MU else SUTTON_GRAVES_EARTH,
-            body.checks.temperature if shield is not None else math.nan))
+            float(body.checks.temperature) if shield is not None else math.nan))
         shape = _shape(body.central, groups, tanks, shield is not None)
     if not earth:
         lat, lon, v[HEIGHT] = where(body)
