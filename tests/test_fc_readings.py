@@ -188,3 +188,33 @@ def test_heating_is_sutton_graves_on_the_air_the_program_reads(write, tmp_path):
     assert r["v"] == pytest.approx(2000.0, rel=1e-3)
     assert r["q"] == pytest.approx(1.7415e-4 * math.sqrt(r["rho"] / 1.0) * r["v"] ** 3, rel=1e-12)
     assert math.isnan(r["shield"])
+
+
+RADAR = """
+def main(fc):
+    fc.event("radar", radar=fc.radar_altitude, clearance=fc.clearance, altitude=fc.altitude,
+             body=fc.central_body)
+"""
+
+
+def test_radar_altitude_over_the_moon_is_the_height_over_the_moon(write, tmp_path):
+    """A probe in a circular 100 km lunar orbit (n-body field, the Moon's frame): the radar
+    and the clearance read its height over the Moon's surface, as fc.altitude does (truth
+    sensors: the same number), about 100 km (the 1737.4 km sphere of IAU 2015). They read
+    the WGS84 height of the Moon-centred position before, -4 540 km."""
+    write("vehicle.yaml", VEHICLE)
+    write("program.py", RADAR)
+    path = write("scenario.yaml", """\
+        name: moon
+        vehicle: vehicle.yaml
+        program: program.py
+        mission:
+          epoch: 2026-11-26T12:00:00Z
+          start: {orbit: {body: moon, altitude: 100 km, inclination: 80 deg}}
+          duration: 0.1 s
+          gravity: n-body
+        """)
+    r = fly(load(path), tmp_path / "run.mcap")["bodies"]["probe"]["events"][0]
+    assert r["body"] == "moon"
+    assert r["radar"] == r["altitude"] == r["clearance"]
+    assert r["radar"] == pytest.approx(100e3, abs=10.0)

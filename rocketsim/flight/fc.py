@@ -171,18 +171,28 @@ class FlightComputer:
         return self._view().horizontal_speed
 
     def _where(self) -> tuple[float, float, float]:
-        """(latitude rad, longitude rad, height m) of the estimate: geodetic on WGS84
-        about Earth, planetocentric over the central body's ellipsoid elsewhere
-        (:func:`rocketsim.sim.central.planetocentric`)."""
-        view = self._view()
+        """(latitude rad, longitude rad, height m) of the estimate (:meth:`_place`)."""
+        return self._place(self._view(), "where")
+
+    def _place(self, view: StateView, key: str) -> tuple[float, float, float]:
+        """(latitude rad, longitude rad, height m) of ``view``'s position: geodetic on
+        WGS84 about Earth, planetocentric over the central body's ellipsoid elsewhere
+        (:func:`rocketsim.sim.central.planetocentric`, kept for the step as ``key``)."""
         body = self._body
         if body.central == "earth":
             return view.geodetic
-        if "where" not in self._readings:
+        if key not in self._readings:
             from rocketsim.sim.central import planetocentric     # sim imports flight: not at the top
-            self._readings["where"] = planetocentric(
+            self._readings[key] = planetocentric(
                 view.position, body.central, self._world.epoch.jd_tt() + body.t / 86400.0)
-        return self._readings["where"]
+        return self._readings[key]
+
+    def _true_height(self) -> float:
+        """Height of the true centre of mass over the central body's ground, m (what a radar
+        measures, as :attr:`altitude` reads it: over WGS84 about Earth, over the central
+        body's ellipsoid after a handover)."""
+        self._view()                    # a new step clears the readings kept in _place
+        return self._place(self._body.view(), "true place")[2]
 
     @property
     def altitude(self) -> float:
@@ -192,8 +202,9 @@ class FlightComputer:
 
     @property
     def radar_altitude(self) -> float:
-        """Height above the ground (the ellipsoid: no terrain), with the radar's error, m."""
-        return self._measured("radar_altitude", lambda: self._body.view().geodetic[2])
+        """Height above the ground (the central body's ellipsoid: no terrain), with the
+        radar's error, m."""
+        return self._measured("radar_altitude", self._true_height)
 
     @property
     def latitude(self) -> float:
@@ -420,7 +431,7 @@ class FlightComputer:
         self._view()
         if "clearance" not in self._readings:
             lowest = float(contact_heights(body.y, body.p, body.vehicle).min())
-            self._readings["clearance"] = self.radar_altitude - (body.view().geodetic[2] - lowest)
+            self._readings["clearance"] = self.radar_altitude - (self._true_height() - lowest)
         return self._readings["clearance"]
 
     # --- the mission -----------------------------------------------------------
