@@ -578,7 +578,9 @@ class FlightComputer:
         """What the accelerometers read, in g (``G0`` = 9.80665 m/s^2): the magnitude of the
         sensed acceleration ``|dv/dt - g|``, every force but gravity per unit mass (thrust,
         air, RCS, the ground's push; :mod:`rocketsim.flight.accelerometer`). About 1 g
-        standing on the pad, 0 coasting in vacuum; with the accelerometers' error (0.1 %).
+        standing on the pad once the legs carry the weight (a vehicle starts with its legs
+        just touching: 0 g at T+0, settled within about a second), 0 coasting in vacuum;
+        with the accelerometers' error (0.1 %).
         Example: ``fc.throttle(0.7) if fc.acceleration > 4.5 else None``."""
         def truth():
             body = self._body
