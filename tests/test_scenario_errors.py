@@ -125,3 +125,13 @@ def test_yaml_merge_keys_work_and_bad_values_are_input_errors(write, cli):
         "name: probe", "name: !!python/name:os.system probe"))
     result = cli("validate", vehicle)
     assert_clean_error(result, "vehicle.yaml:2:")
+
+
+def test_an_epoch_before_1970_is_refused_not_written_wrong(scenario, cli, tmp_path):
+    """MCAP timestamps are unsigned ns since 1970: a 1969 epoch cannot be written, so it is an
+    input error at the epoch's line, not a file of wrapped-around stamps."""
+    path = scenario()
+    mission = path.with_name("mission.yaml")
+    mission.write_text(mission.read_text().replace("2026-11-26T12:00:00Z", "1969-07-16T13:32:00Z"))
+    result = cli("fly", path, "-o", tmp_path / "run.mcap")
+    assert_clean_error(result, "mission.yaml:1:1", "epoch", "before 1970-01-01")

@@ -29,6 +29,8 @@ from rocketsim.scenario.aero_spec import AeroSpec, check_aero
 from rocketsim.scenario.vehicle import FairingSpec, PayloadSpec, StageSpec, check_staged
 from rocketsim.scenario.stage_selection import keep_stages, reload_tanks, stack_spacecraft
 
+UNIX_EPOCH = dt.datetime(1970, 1, 1, tzinfo=dt.timezone.utc)
+
 PositiveMass = Annotated[Mass, Field(gt=0)]
 # a path to a YAML file of its own, resolved by the loader relative to the scenario
 FileReference = Annotated[str, Field(pattern=r"\.ya?ml$")]
@@ -228,9 +230,12 @@ class MissionSpec(Strict):
     @field_validator("epoch")
     @classmethod
     def _utc(cls, value: dt.datetime) -> dt.datetime:
-        if value.tzinfo is None:
-            return value.replace(tzinfo=dt.timezone.utc)
-        return value.astimezone(dt.timezone.utc)
+        value = value.replace(tzinfo=dt.timezone.utc) if value.tzinfo is None else value.astimezone(dt.timezone.utc)
+        if value < UNIX_EPOCH:
+            # telemetry stamps are MCAP's unsigned ns since 1970 (rocketsim.telemetry.writer)
+            raise ValueError(f"the epoch {value.isoformat()} is before 1970-01-01: the telemetry's "
+                             "timestamps (MCAP, ns since 1970) cannot hold it")
+        return value
 
 
 # --- scenario -----------------------------------------------------------------
