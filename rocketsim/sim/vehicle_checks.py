@@ -31,8 +31,7 @@ from rocketsim._jit import Entries, njit
 from rocketsim.atmosphere.table import TOP, air_at
 from rocketsim.bodies.gravity import point_mass_j2
 from rocketsim.bodies.orientation import BODIES as ORIENTED, spin_rate
-from rocketsim.constants import (AIR_CP, CO2_CP, DEG, HEAT_SHIELD_LIMIT, MARS_MU,
-                                 SUTTON_GRAVES_EARTH, SUTTON_GRAVES_MARS)
+from rocketsim.constants import AIR_CP, CO2_CP, DEG, HEAT_SHIELD_LIMIT, MARS_MU
 from rocketsim.dynamics.derivative import body_air_velocity, derivative, radial_height
 from rocketsim.dynamics.rk4 import advance, near_ground
 from rocketsim.dynamics.state import P_J2, P_MU, P_POLAR_RADIUS, P_RADIUS, Q, R, V, W
@@ -42,7 +41,7 @@ from rocketsim.frames.earth_fixed import eci_to_ecef
 from rocketsim.frames.quaternion import quat_rotate
 from rocketsim.vehicle.aero import A_REACH
 from rocketsim.vehicle.contact import K_X, K_Y, K_Z, point_height
-from rocketsim.vehicle.heating import advance_shield, sutton_graves
+from rocketsim.vehicle.heating import advance_shield, sutton_graves, sutton_graves_constant
 from rocketsim.vehicle.mass_properties import mass_properties
 from rocketsim.vehicle.limits import breakup
 
@@ -130,8 +129,8 @@ class VehicleChecks:
 
     def _heat(self, world, body, rho, speed, air_temperature, h) -> None:
         s = self.shield
-        mars = body.mu == MARS_MU
-        k, cp = (SUTTON_GRAVES_MARS, CO2_CP) if mars else (SUTTON_GRAVES_EARTH, AIR_CP)
+        k = sutton_graves_constant(body.mu)
+        cp = CO2_CP if body.mu == MARS_MU else AIR_CP        # the CO2 of Mars's air, else air
         self.temperature = advance_shield(self.temperature, h, rho, speed, air_temperature, s.nose_radius,
                                           k, cp, s.emissivity, s.area, s.mass * s.specific_heat)
         if self.temperature > HEAT_SHIELD_LIMIT:
