@@ -319,3 +319,37 @@ def test_templates_write_what_dictionaries_write_for_a_rigid_body_and_about_mars
     mars.run(None)
     assert mars.bodies[0].central == "mars"
     _both_encodings(mars, mars.bodies[0], tmp_path / "mars", monkeypatch)
+
+
+def test_air_data_about_mars_are_mars_air_turning_with_mars(write, tmp_path):
+    """The state message of a body about Mars reads Mars's air, at the height over Mars's
+    ellipsoid, turning with Mars (it read no air at a WGS84 height, turning with Earth).
+    A probe starts in an equatorial orbit 30 km over Mars's equatorial radius (3396.19 km,
+    IAU 2015). References typed here: the NASA Glenn Mars model above 7 km
+    (T = -23.4 - 0.00222 h deg C, p = 0.699 exp(-0.00009 h) kPa, rho = p / (0.1921 (T + 273.1)),
+    h in m; Glenn Research Center, "Mars Atmosphere Model - Metric Units") and the air
+    turning at Mars's IAU 2015 rate W-dot = 350.891982443297 deg/day: q = rho |v - Omega x r|^2 / 2."""
+    from rocketsim.telemetry.reader import messages
+    from tests.conftest import VEHICLE
+    write("vehicle.yaml", VEHICLE)
+    path = write("scenario.yaml", """\
+        name: mars-air
+        vehicle: vehicle.yaml
+        mission:
+          epoch: 2026-11-26T12:00:00Z
+          start: {orbit: {body: mars, altitude: 30 km, inclination: 0 deg}}
+          duration: 0.1 s
+          gravity: n-body
+        """)
+    fly(load(path), tmp_path / "run.mcap")
+    first = next(m for _, _, m in messages(tmp_path / "run.mcap", ["/probe/state"]))
+    assert first["central_body"] == "mars"
+    r, v = np.array(first["position"]), np.array(first["velocity"])
+    h = np.linalg.norm(r) - 3396.19e3
+    assert h == pytest.approx(30e3, abs=1.0)
+    temperature = -23.4 - 0.00222 * h + 273.1
+    rho = 0.699 * math.exp(-0.00009 * h) / (0.1921 * temperature)
+    omega = math.radians(350.891982443297) / 86400.0
+    air = v - np.cross((0.0, 0.0, omega), r)
+    assert first["airspeed"] == pytest.approx(np.linalg.norm(air), rel=1e-12)
+    assert first["dynamic_pressure"] == pytest.approx(0.5 * rho * (air @ air), rel=1e-3)

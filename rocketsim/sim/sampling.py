@@ -69,15 +69,15 @@ import numpy as np
 
 from rocketsim._jit import entry_point, njit
 from rocketsim.atmosphere.table import air_at
-from rocketsim.constants import DEG, MARS_MU, SUTTON_GRAVES_EARTH, SUTTON_GRAVES_MARS
+from rocketsim.constants import DEG
 from rocketsim.dynamics.derivative import body_air_velocity, radial_height
-from rocketsim.dynamics.state import N_STATE, P_MASS, P_RADIUS, R, V
+from rocketsim.dynamics.state import N_STATE, P_MASS, P_RADIUS, P_SPIN, R, V
 from rocketsim.flight.readings import air_here, where_and_how_fast
 from rocketsim.frames.elements import elements_tuple
-from rocketsim.sim.central import vacuum
+from rocketsim.sim.central import air_about
 from rocketsim.sim.vehicle_checks import accelerations
 from rocketsim.vehicle.engines import E_MDOT, E_STAGE, S_DRY, engine_state, thrusts
-from rocketsim.vehicle.heating import sutton_graves
+from rocketsim.vehicle.heating import sutton_graves, sutton_graves_constant
 from rocketsim.vehicle.mass_properties import mass_properties
 
 _TWO_PI = 2.0 * math.pi
@@ -163,19 +163,22 @@ def _vehicle_into(out, t, y, p, p_a, veh, group, n_groups, nose_radius, k_heat):
         rho = air_at(veh.air_h0, veh.air_dh, veh.air_density, veh.air_pressure, veh.air_temperature,
                      veh.air_speed_of_sound, veh.air_wind_east, veh.air_wind_north,
                      radial_height(y, p))[0]
-        u, v, w = body_air_velocity(y, veh.aero.wind)
+        u, v, w = body_air_velocity(y, veh.aero.wind, p[P_SPIN])
         out[VEHICLE + 5] = sutton_graves(rho, math.sqrt(u * u + v * v + w * w), nose_radius, k_heat)
 
 
 @njit
-def figures(t, y, p, mu, node, h0, dh, density, pressure, temperature, sound, wind_east,
+def figures(t, y, p, mu, node, geodetic, h0, dh, density, pressure, temperature, sound, wind_east,
             wind_north, veh, group, n_groups, nose_radius, k_heat, shield_temperature):
     """Every number of the state message of a body in state ``y`` (parameters ``p``,
     central body's ``mu`` m^3/s^2) at mission time ``t`` (s), in the flat layout of this
     module (the state's ECI axes; the geodetic position is WGS84's).
 
-    ``node``: rad added to the RAAN; ``h0`` ... ``wind_north``: the readings' air table
-    (:meth:`~rocketsim.atmosphere.table.AtmosphereTable.arrays`); ``veh``: the vehicle's
+    ``node``: rad added to the RAAN; ``geodetic``: the body flies about Earth (the air is
+    read at the WGS84 height, else at the height over the central body's ellipsoid along
+    the radius, as the derivative reads it); ``h0`` ... ``wind_north``: the central body's
+    air table (:meth:`~rocketsim.atmosphere.table.AtmosphereTable.arrays`, turning at
+    ``p[P_SPIN]``); ``veh``: the vehicle's
     arrays (None: a rigid body, whose figures end before ``VEHICLE``), ``group`` the
     engine group of each engine (``n_groups`` groups), ``nose_radius`` the heat shield's
     (m, 0: none) and ``k_heat`` the Sutton-Graves constant of the central body's air.
@@ -191,14 +194,16 @@ def figures(t, y, p, mu, node, h0, dh, density, pressure, temperature, sound, wi
                                     y[N_STATE:N_STATE + n_tanks])[0]
     out[:N_STATE] = y[:N_STATE]
     r, v = y[R:R + 3], y[V:V + 3]
-    lat, lon, height, _, _ = where_and_how_fast(r, v, t)
+    lat, lon, height, _, _ = where_and_how_fast(r, v, t, p[P_SPIN])
     out[LAT] = lat / DEG
     out[LON] = lon / DEG
     out[HEIGHT] = height
     out[SPEED] = math.sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2])
     orbit_into(out, ORBIT, r, v, mu, p[P_RADIUS], node)
     rho, p_a, _, a_sound, _, air = air_here(h0, dh, density, pressure, temperature, sound,
-                                            wind_east, wind_north, lat, lon, height, t, r, v)
+                                            wind_east, wind_north, lat, lon,
+                                            height if geodetic else radial_height(y, p), t, r, v,
+                                            p[P_SPIN])
     ax, ay, az, sx, sy, sz = accelerations(t, y, p, veh)
     out[MASS + 1] = math.sqrt(ax * ax + ay * ay + az * az)
     out[MASS + 2] = math.sqrt(sx * sx + sy * sy + sz * sz)
@@ -227,18 +232,18 @@ def values(body, gmst0: float, where) -> tuple[np.ndarray, "partial"]:
     Earth); ``where(body)``: its (latitude rad, longitude rad, height m) away from Earth."""
     earth = body.central == "earth"
     model = body.vehicle
-    air = (body.atmosphere if earth else vacuum)().arrays()
+    air = air_about(body.central, body.atmosphere() if earth else None).arrays()
     if model is None:
-        v = _call(body, None, (body.t, body.y, body.p, body.mu, gmst0 if earth else 0.0, *air, None,
+        v = _call(body, None, (body.t, body.y, body.p, body.mu, gmst0 if earth else 0.0, earth, *air, None,
                                _NO_GROUPS, 0, 0.0, 0.0, math.nan))
         shape = _shape(body.central, None, None, False)
     else:
         group, groups, tanks = _layout(model)
         shield = body.checks.shield if body.checks is not None else None
         v = _call(body, model, (
-            body.t, body.y, body.p, body.mu, gmst0 if earth else 0.0, *air, model.arrays, group,
+            body.t, body.y, body.p, body.mu, gmst0 if earth else 0.0, earth, *air, model.arrays, group,
             len(groups), shield.nose_radius if shield is not None else 0.0,
-            SUTTON_GRAVES_MARS if body.mu == MARS_MU else SUTTON_GRAVES_EARTH,
+            sutton_graves_constant(body.mu),
             float(body.checks.temperature) if shield is not None else math.nan))
         shape = _shape(body.central, groups, tanks, shield is not None)
     if not earth:

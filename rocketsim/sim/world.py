@@ -92,8 +92,8 @@ class Body:
     central: str = "earth"                  # the body whose frame and gravity it flies in
     kernels: Entries = field(default_factory=Entries)   # compiled entries bound to its arrays
     steering: tuple | None = None           # the autopilot's step folded into this step's advance
-
     drag: tuple | None = None               # a tumbling rigid body's (mean area / mass m^2/kg, length m)
+
     @property
     def position(self) -> np.ndarray:
         return self.y[R:R + 3]
