@@ -57,6 +57,32 @@ def scenario(write):
 
 
 @pytest.fixture
+def probe_about(write):
+    """probe_about(body, orbit, program=None, duration='0.1 s', epoch=...) -> Path of a
+    scenario: the conftest probe starting in ``orbit`` (YAML flow text, e.g. ``altitude:
+    100 km, inclination: 80 deg``) about ``body`` (earth, moon or mars) in the n-body field."""
+
+    def _probe(body: str, orbit: str, program: str | None = None, duration: str = "0.1 s",
+               epoch: str = "2026-11-26T12:00:00Z") -> Path:
+        write("vehicle.yaml", VEHICLE)
+        text = f"""\
+            name: about {body}
+            vehicle: vehicle.yaml
+            mission:
+              epoch: {epoch}
+              start: {{orbit: {{body: {body}, {orbit}}}}}
+              duration: {duration}
+              gravity: n-body
+            """
+        if program is not None:
+            write("program.py", program)
+            text += "program: program.py\n"
+        return write("scenario.yaml", text)
+
+    return _probe
+
+
+@pytest.fixture
 def cli():
     """cli(*args) -> click Result of ``rocketsim *args``."""
     from rocketsim_cli.main import main

@@ -98,27 +98,16 @@ def test_realistic_sensors_change_what_the_program_reads_not_the_physics(scenari
     assert not np.array_equal(read["realistic"], read["seed2"])
 
 
-def test_orbit_altitudes_are_over_the_central_body(write, tmp_path):
+def test_orbit_altitudes_are_over_the_central_body(probe_about, tmp_path):
     """Away from Earth, fc.periapsis, fc.apoapsis and fc.altitude are heights over the
     central body: a probe started in a 400 km circular orbit of Mars (the scenario's
     altitude over Mars's equatorial radius, 3396.19 km, IAU) reads ~400 km for all three
     (Earth-referenced they would read about -2 980 km)."""
-    write("vehicle.yaml", VEHICLE)
-    write("program.py", """
+    path = probe_about("mars", "altitude: 400 km, inclination: 25 deg", """
 def main(fc):
     fc.event("readings", periapsis=fc.periapsis, apoapsis=fc.apoapsis, alt=fc.altitude,
              central=fc.central_body)
-""")
-    path = write("scenario.yaml", """\
-        name: about mars
-        vehicle: vehicle.yaml
-        program: program.py
-        mission:
-          epoch: 2027-09-08T00:00:00Z
-          start: {orbit: {body: mars, altitude: 400 km, inclination: 25 deg}}
-          duration: 0.02 s
-          gravity: n-body
-        """)
+""", duration="0.02 s", epoch="2027-09-08T00:00:00Z")
     r = readings(path, tmp_path)
     assert r["central"] == "mars"
     for name in ("periapsis", "apoapsis", "alt"):
@@ -197,23 +186,12 @@ def main(fc):
 """
 
 
-def test_radar_altitude_over_the_moon_is_the_height_over_the_moon(write, tmp_path):
+def test_radar_altitude_over_the_moon_is_the_height_over_the_moon(probe_about, tmp_path):
     """A probe in a circular 100 km lunar orbit (n-body field, the Moon's frame): the radar
     and the clearance read its height over the Moon's surface, as fc.altitude does (truth
     sensors: the same number), about 100 km (the 1737.4 km sphere of IAU 2015). They read
     the WGS84 height of the Moon-centred position before, -4 540 km."""
-    write("vehicle.yaml", VEHICLE)
-    write("program.py", RADAR)
-    path = write("scenario.yaml", """\
-        name: moon
-        vehicle: vehicle.yaml
-        program: program.py
-        mission:
-          epoch: 2026-11-26T12:00:00Z
-          start: {orbit: {body: moon, altitude: 100 km, inclination: 80 deg}}
-          duration: 0.1 s
-          gravity: n-body
-        """)
+    path = probe_about("moon", "altitude: 100 km, inclination: 80 deg", RADAR)
     r = fly(load(path), tmp_path / "run.mcap")["bodies"]["probe"]["events"][0]
     assert r["body"] == "moon"
     assert r["radar"] == r["altitude"] == r["clearance"]

@@ -321,7 +321,7 @@ def test_templates_write_what_dictionaries_write_for_a_rigid_body_and_about_mars
     _both_encodings(mars, mars.bodies[0], tmp_path / "mars", monkeypatch)
 
 
-def test_air_data_about_mars_are_mars_air_turning_with_mars(write, tmp_path):
+def test_air_data_about_mars_are_mars_air_turning_with_mars(probe_about, tmp_path):
     """The state message of a body about Mars reads Mars's air, at the height over Mars's
     ellipsoid, turning with Mars (it read no air at a WGS84 height, turning with Earth).
     A probe starts in an equatorial orbit 30 km over Mars's equatorial radius (3396.19 km,
@@ -330,17 +330,7 @@ def test_air_data_about_mars_are_mars_air_turning_with_mars(write, tmp_path):
     h in m; Glenn Research Center, "Mars Atmosphere Model - Metric Units") and the air
     turning at Mars's IAU 2015 rate W-dot = 350.891982443297 deg/day: q = rho |v - Omega x r|^2 / 2."""
     from rocketsim.telemetry.reader import messages
-    from tests.conftest import VEHICLE
-    write("vehicle.yaml", VEHICLE)
-    path = write("scenario.yaml", """\
-        name: mars-air
-        vehicle: vehicle.yaml
-        mission:
-          epoch: 2026-11-26T12:00:00Z
-          start: {orbit: {body: mars, altitude: 30 km, inclination: 0 deg}}
-          duration: 0.1 s
-          gravity: n-body
-        """)
+    path = probe_about("mars", "altitude: 30 km, inclination: 0 deg")
     fly(load(path), tmp_path / "run.mcap")
     first = next(m for _, _, m in messages(tmp_path / "run.mcap", ["/probe/state"]))
     assert first["central_body"] == "mars"
