@@ -34,7 +34,7 @@ from rocketsim._jit import njit
 from rocketsim.constants import RAILS_FLOOR
 from rocketsim.dynamics.derivative import radial_height
 from rocketsim.dynamics.nbody import F_CENTER, F_MU, bodies_at, hold_time, translational_rk4
-from rocketsim.dynamics.state import Q, R, V, W
+from rocketsim.dynamics.state import P_MU, P_POLAR_RADIUS, P_RADIUS, P_SPIN, Q, R, V, W
 from rocketsim.flight.readings import _VERTICAL, where_and_how_fast
 from rocketsim.frames.quaternion import (quat_conjugate, quat_from_axis_angle, quat_from_matrix,
                                          quat_multiply, quat_normalize, quat_rotate)
@@ -230,9 +230,10 @@ def target_attitude(nose, up, roll):
 
 
 @njit
-def command_attitude(code, y, t, q):
+def command_attitude(code, y, t, q, p):
     """The attitude (quaternion body -> ECI) the command ``code`` (:func:`command_code`)
-    holds for state ``y`` at mission time ``t`` (s), nearest the attitude ``q``: with a
+    holds for state ``y`` (parameters ``p``: the central body's ellipsoid and turn for the
+    local vertical and the surface velocity) at mission time ``t`` (s), nearest the attitude ``q``: with a
     roll, the whole target attitude (sign as ``q``'s); without one, ``q`` turned by the
     smallest rotation that puts its nose on the commanded direction (the roll about the
     nose is left as it was: the autopilot only damps it)."""
@@ -240,7 +241,7 @@ def command_attitude(code, y, t, q):
     roll = code[5]
     kind = int(code[0])
     if kind == PITCH_HEADING or kind == SURFACE_PROGRADE or not math.isnan(roll):
-        _, _, _, enu, surface = where_and_how_fast(r, v, t)
+        _, _, _, enu, surface = where_and_how_fast(r, v, t, p[P_SPIN], p[P_RADIUS], p[P_POLAR_RADIUS])
     else:
         enu, surface = np.empty((3, 3)), np.empty(3)
     nose = nose_target(code, r, v, enu, surface)
@@ -273,32 +274,32 @@ def turn_rate(q0, q1, dt):
 
 
 @njit
-def settle(y, code, t, mode):
+def settle(y, code, t, mode, p):
     """Put state ``y`` (in place) exactly on the command ``code`` at mission time ``t``
     (s) as it goes on rails: the settled residual is dropped; in mode :data:`HELD` the
     body rates are zeroed (mode :data:`TRACK` sets them at each step)."""
-    y[Q:Q + 4] = command_attitude(code, y, t, y[Q:Q + 4])
+    y[Q:Q + 4] = command_attitude(code, y, t, y[Q:Q + 4], p)
     if mode == HELD:
         y[W:W + 3] = 0.0
 
 
 @njit
-def hold_offsets(code, y, t, dt, mu):
+def hold_offsets(code, y, t, dt, p):
     """``(error, turn)`` of a body holding ``code`` (:func:`command_code`), state ``y`` at
     mission time ``t`` (s), both body axes: the rotation vector (rad) from its attitude
     onto :func:`command_attitude`, and the command frame's turn rate (rad/s) over ``dt``
-    s along the Kepler arc about ``mu`` (m^3/s^2; the frame's rate, not the path, is
+    s along the Kepler arc about the central body of ``p`` (the frame's rate, not the path, is
     wanted: the rails settle test compares it to the body rates to 1e-4 rad/s)."""
     q = y[Q:Q + 4].copy()
-    target = command_attitude(code, y, t, q)
+    target = command_attitude(code, y, t, q, p)
     error = turn_rate(q, target, 1.0)
     ahead = y[:W + 3].copy()
     r = y[R:R + 3]
-    k = -mu / _dot(r, r) ** 1.5
+    k = -p[P_MU] / _dot(r, r) ** 1.5
     for i in range(3):
         ahead[R + i] = y[R + i] + dt * y[V + i] + 0.5 * dt * dt * k * y[R + i]
         ahead[V + i] = y[V + i] + dt * k * y[R + i]
-    return error, turn_rate(target, command_attitude(code, ahead, t + dt, target), dt)
+    return error, turn_rate(target, command_attitude(code, ahead, t + dt, target, p), dt)
 
 
 @njit
@@ -348,7 +349,7 @@ def advance_rails(y, k0, h, n_steps, p, fp, air, inertia, mode, floor=RAILS_FLOO
         translational_rk4(y, h, p, s, fp, air, pos)
         if code is not None and mode == TRACK:
             before = y[Q:Q + 4].copy()
-            y[Q:Q + 4] = command_attitude(code, y, (k0 + k + 1) * h, before)
+            y[Q:Q + 4] = command_attitude(code, y, (k0 + k + 1) * h, before, p)
             y[W:W + 3] = turn_rate(before, y[Q:Q + 4], h)
         elif mode == HELD:
             turn_attitude(y, inertia, h, mode)

@@ -130,7 +130,7 @@ def steer(command: AttitudeCommand, view, vehicle, propulsion, y: np.ndarray, t:
     thrust, or nan when ``view`` is the truth itself (the kernel reads it off the air).
     """
     arrays = vehicle.arrays
-    x_cm, *left = propulsion.kernels.call(steer_step, arrays, arrays, y, t, view.t, view.position,
+    x_cm, *left = propulsion.kernels.call(steer_step, arrays, arrays, y, view._p, t, view.t, view.position,
                                           view.velocity, view.attitude, view.body_rates,
                                           ambient_pressure, view._atmosphere().arrays(), command.code,
                                           fins, rcs)

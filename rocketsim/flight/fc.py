@@ -105,7 +105,7 @@ class FlightComputer:
             truth.attitude, quat_from_axis_angle(tilt / angle, angle))
         self._nav = StateView(body.t, sensors.vector("position", truth.position, k),
                               sensors.vector("velocity", truth.velocity, k), q,
-                              sensors.vector("rates", truth.body_rates, k), body.atmosphere, body.mu,
+                              sensors.vector("rates", truth.body_rates, k), truth._atmosphere, body.mu,
                               body.p)
         return self._nav
 

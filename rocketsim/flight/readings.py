@@ -29,9 +29,9 @@ from rocketsim.atmosphere.relative_wind import air_velocity
 from rocketsim.atmosphere.table import air_at, wind_earth_fixed
 from rocketsim.bodies.gravity import point_mass_j2
 from rocketsim.constants import EARTH_J2, EARTH_MU, EARTH_OMEGA, EARTH_RADIUS_EQ, EARTH_RADIUS_POLAR
-from rocketsim.dynamics.state import P_J2, P_MU, P_RADIUS, P_SPIN, make_params
+from rocketsim.dynamics.state import P_J2, P_MU, P_POLAR_RADIUS, P_RADIUS, P_SPIN, make_params
 from rocketsim.frames.elements import Elements, state_to_elements, time_to_apoapsis
-from rocketsim.frames.geodetic import ecef_to_geodetic_njit, enu_basis
+from rocketsim.frames.geodetic import ecef_to_geodetic_njit, enu_basis, geodetic_on
 from rocketsim.frames.quaternion import quat_to_matrix
 
 _VERTICAL = math.cos(0.01 * math.pi / 180.0)
@@ -67,19 +67,29 @@ def _turned(x, y, angle):
 
 
 @njit
-def where_and_how_fast(r, v, t, spin=EARTH_OMEGA):
+def where_and_how_fast(r, v, t, spin=EARTH_OMEGA, a=EARTH_RADIUS_EQ, b=EARTH_RADIUS_POLAR):
     """One compiled call for the readings every step needs: ``(lat rad, lon rad, height
-    above WGS84 m, enu, surface velocity)`` of the ECI position ``r`` (m) and velocity
-    ``v`` (m/s) at mission time ``t`` (s). ``enu`` (3, 3) has the local east, north and
-    up unit vectors in ECI axes as rows; the surface velocity (m/s, ECI axes) is
-    relative to the ground turning at ``spin`` (rad/s about the frame's z: the
-    central body's ``p[P_SPIN]``, Earth's by default). Same operations, in the same order, as
+    m, enu, surface velocity)`` of the position ``r`` (m) and velocity ``v`` (m/s) in the
+    central body's inertial frame at mission time ``t`` (s), on the central body's
+    ellipsoid (equatorial radius ``a``, polar ``b``, m: ``p[P_RADIUS]``,
+    ``p[P_POLAR_RADIUS]``; WGS84 by default) turning at ``spin`` (rad/s about the frame's
+    z, the body's pole: ``p[P_SPIN]``; Earth's by default). ``enu`` (3, 3) has the local
+    east, north and up (the ellipsoid's normal) unit vectors in the frame's axes as rows;
+    the surface velocity (m/s, same axes) is relative to the turning ground. About Earth,
+    geodetic over WGS84 with the same operations, in the same order, as
     :func:`~rocketsim.frames.earth_fixed.eci_to_ecef`,
     :func:`~rocketsim.frames.geodetic.ecef_to_geodetic`, ``ecef_to_eci`` and
-    :func:`~rocketsim.atmosphere.relative_wind.air_velocity`."""
-    theta = 0.0 + EARTH_OMEGA * t
+    :func:`~rocketsim.atmosphere.relative_wind.air_velocity`; elsewhere the longitude is
+    counted from the frame's x turned by ``spin t``, not from the IAU prime meridian (the
+    local axes and the surface velocity do not depend on it;
+    :func:`rocketsim.sim.central.planetocentric` gives the body's own latitude and
+    longitude)."""
+    theta = 0.0 + spin * t
     x, y = _turned(r[0], r[1], theta)
-    lat, lon, h = ecef_to_geodetic_njit(x, y, r[2])
+    if a == EARTH_RADIUS_EQ and b == EARTH_RADIUS_POLAR:
+        lat, lon, h = ecef_to_geodetic_njit(x, y, r[2])
+    else:
+        lat, lon, h = geodetic_on(x, y, r[2], a, b)
     basis = enu_basis(lat, lon)
     enu = np.empty((3, 3))
     for k in range(3):
@@ -143,7 +153,8 @@ class StateView:
     # --- where ------------------------------------------------------------
     @_once
     def _where(self) -> tuple:
-        return where_and_how_fast(self.position, self.velocity, self.t, self._p[P_SPIN])
+        return where_and_how_fast(self.position, self.velocity, self.t, self._p[P_SPIN],
+                                  self._p[P_RADIUS], self._p[P_POLAR_RADIUS])
 
     @_once
     def geodetic(self) -> tuple[float, float, float]:

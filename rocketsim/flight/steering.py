@@ -27,6 +27,7 @@ import numpy as np
 
 from rocketsim._jit import njit
 from rocketsim.dynamics.rails import nose_target
+from rocketsim.dynamics.state import P_POLAR_RADIUS, P_RADIUS, P_SPIN
 from rocketsim.flight.aero_feedforward import destabilising_moment
 from rocketsim.flight.readings import _VERTICAL, air_here, where_and_how_fast
 from rocketsim.frames.quaternion import quat_from_matrix, quat_to_matrix
@@ -176,15 +177,17 @@ def fin_gains(aero, u, v, w, rho, sound, x_cm):
 
 
 @njit
-def steer_step(veh, y, t, t_nav, r, v, q, w, ambient_pressure, air_table, code, fins, rcs):
+def steer_step(veh, y, p, t, t_nav, r, v, q, w, ambient_pressure, air_table, code, fins, rcs):
     """One step of the autopilot of the staged vehicle ``veh`` (its arrays) with state
     ``y`` at mission time ``t`` (s): commands the gimbals of its firing engines and,
     when ``fins``, its grid fins (in place, in ``veh.cmd`` and ``veh.aero.grid_cmd``).
 
     The autopilot reads the navigation estimate ``r``, ``v``, ``q``, ``w`` (position m,
     velocity m/s, attitude quaternion body -> ECI, body rates rad/s) at ``t_nav`` (s)
-    in the day's air (``air_table``: the tuple of
-    :meth:`~rocketsim.atmosphere.table.AtmosphereTable.arrays`). The engines' thrust
+    in the central body's air (``air_table``: the tuple of
+    :meth:`~rocketsim.atmosphere.table.AtmosphereTable.arrays`), its local vertical and
+    turning ground those of the central body of the parameters ``p`` (ellipsoid and
+    ``P_SPIN``). The engines' thrust
     is the truth's, at ``ambient_pressure`` (Pa; nan: the estimate is the truth, its
     air's pressure). ``code``: the command
     (:func:`~rocketsim.dynamics.rails.command_code`; its last entry the roll, rad, nan
@@ -193,8 +196,9 @@ def steer_step(veh, y, t, t_nav, r, v, q, w, ambient_pressure, air_table, code, 
     Returns ``(x_cm, tau_x, tau_y, tau_z)``: the centre of mass's station (m) and the
     torque (N m, body axes) left to the RCS thrusters when ``rcs`` (zero otherwise).
     """
-    lat, lon, height, enu, surface_velocity = where_and_how_fast(r, v, t_nav)
-    rho, p_a, _, sound, _, air = air_here(*air_table, lat, lon, height, t_nav, r, v)
+    lat, lon, height, enu, surface_velocity = where_and_how_fast(r, v, t_nav, p[P_SPIN], p[P_RADIUS],
+                                                                 p[P_POLAR_RADIUS])
+    rho, p_a, _, sound, _, air = air_here(*air_table, lat, lon, height, t_nav, r, v, p[P_SPIN])
     if not math.isnan(ambient_pressure):
         p_a = ambient_pressure
     axes = quat_to_matrix(q)

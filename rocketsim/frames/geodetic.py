@@ -71,10 +71,28 @@ def ecef_to_geodetic_njit(x, y, z):
     poles included (one pass would leave 6 mm at 1 000 km). The centre of the
     Earth itself has no geodetic coordinates.
     """
+    return _bowring(x, y, z, _A, _B, _E2, _EP2, _ONE_MINUS_F)
+
+
+@njit
+def geodetic_on(x, y, z, a, b):
+    """Geodetic ``(lat, lon, h)`` (rad, rad, m) of the body-fixed point ``(x, y, z)`` (m) on
+    the ellipsoid of revolution of equatorial radius ``a`` and polar radius ``b`` (m; a
+    sphere when equal): the Moon's or Mars's as :func:`ecef_to_geodetic_njit` is WGS84's,
+    by the same two Bowring passes."""
+    one_minus_f = b / a
+    e2 = 1.0 - one_minus_f * one_minus_f
+    return _bowring(x, y, z, a, b, e2, e2 / (1.0 - e2), one_minus_f)
+
+
+@njit
+def _bowring(x, y, z, a, b, e2, ep2, one_minus_f):
+    """:func:`ecef_to_geodetic_njit` on the ellipsoid ``a``, ``b`` (m), first and second
+    eccentricity squared ``e2``, ``ep2`` and ``1 - f``."""
     p = math.sqrt(x * x + y * y)
     # reduced latitude beta as (cos, sin) up to a common factor; first guess
     # from the ellipsoid through the point's direction
-    cb = _ONE_MINUS_F * p
+    cb = one_minus_f * p
     sb = z
     num = z
     den = p
@@ -83,15 +101,15 @@ def ecef_to_geodetic_njit(x, y, z):
         cb /= norm
         sb /= norm
         # Bowring: tan(lat) = (z + e'^2 b sin^3 beta) / (p - e^2 a cos^3 beta)
-        num = z + _EP2 * _B * sb * sb * sb
-        den = p - _E2 * _A * cb * cb * cb
+        num = z + ep2 * b * sb * sb * sb
+        den = p - e2 * a * cb * cb * cb
         # tan(beta) = (1 - f) tan(lat)
         cb = den
-        sb = _ONE_MINUS_F * num
+        sb = one_minus_f * num
     norm = math.sqrt(num * num + den * den)
     s = num / norm
     c = den / norm
-    h = p * c + z * s - _A * math.sqrt(1.0 - _E2 * s * s)
+    h = p * c + z * s - a * math.sqrt(1.0 - e2 * s * s)
     return math.atan2(num, den), math.atan2(y, x), h
 
 

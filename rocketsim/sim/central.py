@@ -120,13 +120,6 @@ def planetocentric(r, center: str, jd_tt: float):
     return math.asin(s), lon, height
 
 
-def vacuum():
-    """A table of no air (zero density and pressure at every height): what the
-    readings (:class:`~rocketsim.flight.readings.StateView`, whose heights are
-    geodetic on Earth's ellipsoid) see away from Earth."""
-    return _NO_AIR
-
-
 @lru_cache(maxsize=1)
 def _mars_air():
     return mars_table()

@@ -71,7 +71,7 @@ from rocketsim._jit import entry_point, njit
 from rocketsim.atmosphere.table import air_at
 from rocketsim.constants import DEG
 from rocketsim.dynamics.derivative import body_air_velocity, radial_height
-from rocketsim.dynamics.state import N_STATE, P_MASS, P_RADIUS, P_SPIN, R, V
+from rocketsim.dynamics.state import N_STATE, P_MASS, P_POLAR_RADIUS, P_RADIUS, P_SPIN, R, V
 from rocketsim.flight.readings import air_here, where_and_how_fast
 from rocketsim.frames.elements import elements_tuple
 from rocketsim.sim.central import air_about
@@ -194,7 +194,7 @@ def figures(t, y, p, mu, node, geodetic, h0, dh, density, pressure, temperature,
                                     y[N_STATE:N_STATE + n_tanks])[0]
     out[:N_STATE] = y[:N_STATE]
     r, v = y[R:R + 3], y[V:V + 3]
-    lat, lon, height, _, _ = where_and_how_fast(r, v, t, p[P_SPIN])
+    lat, lon, height, _, _ = where_and_how_fast(r, v, t, p[P_SPIN], p[P_RADIUS], p[P_POLAR_RADIUS])
     out[LAT] = lat / DEG
     out[LON] = lon / DEG
     out[HEIGHT] = height

@@ -270,7 +270,8 @@ def advance_checked(y, k0, h, n_steps, p, veh, steer, code, fins):
         t = k0 * h
         air = (veh.air_h0, veh.air_dh, veh.air_density, veh.air_pressure, veh.air_temperature,
                veh.air_speed_of_sound, veh.air_wind_east, veh.air_wind_north)
-        steer_step(veh, y, t, t, y[R:R + 3], y[V:V + 3], y[Q:Q + 4], y[W:W + 3], math.nan, air, code, fins, False)
+        steer_step(veh, y, p, t, t, y[R:R + 3], y[V:V + 3], y[Q:Q + 4], y[W:W + 3], math.nan, air, code, fins,
+                   False)
     y, taken = advance(y, k0, h, n_steps, p, veh)
     near = near_ground(y, p, veh.aero.ref[A_REACH])
     return y, taken, near, step_figures((k0 + taken) * h, y, p, veh, veh.aero.contact)

@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from functools import partial
 from typing import Callable
 
 import numpy as np
@@ -42,7 +43,7 @@ from rocketsim.scenario.load import LoadedScenario
 from rocketsim.scenario.models import check_step
 from rocketsim.errors import InputError
 from rocketsim.frames.geodetic import enu_basis, geodetic_to_ecef
-from rocketsim.sim.central import air_about, next_center, nbody_field, planetocentric, recentre, vacuum
+from rocketsim.sim.central import air_about, next_center, nbody_field, planetocentric, recentre
 from rocketsim.dynamics.soi import central_params
 from rocketsim.dynamics.third_bodies import bodies_at, field_of, with_field
 from rocketsim.dynamics.prediction import coast
@@ -119,9 +120,8 @@ class Body:
     def view(self) -> StateView:
         """The truth's readings at the body's time (one view per step)."""
         if self._view is None or self._view.t != self.t:
-            # the readings' heights are geodetic on Earth: elsewhere they see no air (the
-            # flight model flies through Mars's own, by the height over Mars's ellipsoid)
-            air = self.atmosphere if self.central == "earth" else vacuum
+            # the central body's air: the day's about Earth, Mars's about Mars, none elsewhere
+            air = self.atmosphere if self.central == "earth" else partial(air_about, self.central, None)
             self._view = StateView.of_state(self.t, self.y, air, self.mu, self.p)
         return self._view
 
@@ -485,7 +485,7 @@ class World:
         if command is None or not (self._coasting(body, rcs_free=True) and self._asleep(body)
                                    and radial_height(body.y, body.p) > rails_floor(body.central)):
             return False
-        error, turn = hold_offsets(command.code, body.y, body.t, self.h, body.mu)
+        error, turn = hold_offsets(command.code, body.y, body.t, self.h, body.p)
         lagging = error - (2.0 * ZETA / OMEGA_N) * turn
         return (min(math.sqrt(error @ error), math.sqrt(lagging @ lagging)) < HOLD_SETTLED_ERROR
                 and float(np.max(np.abs(body.y[W:W + 3] - turn))) < HOLD_SETTLED_RATE)
@@ -637,7 +637,7 @@ class World:
                 code = body.attitude_command.code
                 mode = hold_mode(code)
                 body.y = body.y.copy()
-                settle(body.y, code, k0 * self.h, mode)
+                settle(body.y, code, k0 * self.h, mode, body.p)
             # same step, same orbit to the bit; stops below the floor and wakes for the rest
             body.y, done = advance_rails(body.y, k0, self.h, n, body.p, self._rails_field(body),
                                          _NO_AIR, self._inertia(body), mode,
