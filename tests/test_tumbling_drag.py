@@ -134,3 +134,59 @@ def test_a_payload_in_a_200_km_orbit_decays_at_the_analytic_rate():
     expected = 2 * math.pi * rho * FREE_MOLECULAR_CD * area / 1e4 * a0 ** 2 * (1 - spin * a0 / v0) ** 2
     assert taken == n and tumbling_cd(7.8, rho, 6.0) == FREE_MOLECULAR_CD
     assert a0 - a1 == pytest.approx(expected * n * h / period, rel=1e-3)
+
+
+def _first_step_drag(y, p, fp, air, t=0.0):
+    """The drag acceleration (m/s^2, frame axes) of the drum's first step from ``y``: its
+    velocity change less that of the same step without drag area, over the step."""
+    with_drag, _ = advance_free(y, 0, H, 1, p, fp, air, AREA / MASS, LENGTH)
+    without, _ = advance_free(y, 0, H, 1, p, fp, air, 0.0, LENGTH)
+    return (with_drag[3:6] - without[3:6]) / H
+
+
+def test_a_drum_at_rest_over_the_ground_is_pushed_along_the_wind():
+    """A uniform 20 m/s east wind at every height (the standard day otherwise), the drum
+    1 km over the equator at rest over the turning ground: the air moves past it at 20 m/s
+    east, so it is pushed east by 1/2 rho C_D A |w|^2 / m (USSA 1976 density; C_D of the
+    tumbling body at that Mach), averaged over the step as the drum picks up the wind's
+    speed."""
+    table = standard_table()
+    h0, dh, density, pressure, temperature, sound, east, north = table.arrays()
+    air = (h0, dh, density, pressure, temperature, sound, np.full_like(east, 20.0), north)
+    p = make_params(MASS, (1.0, 2.0, 2.0), EARTH_MU, EARTH_RADIUS_EQ, EARTH_J2, EARTH_RADIUS_POLAR)
+    fp = make_field("earth", 0.0, bodies=())
+    r = np.array([EARTH_RADIUS_EQ + 1e3, 0.0, 0.0])
+    y = make_state(r, np.cross((0.0, 0.0, 7.2921159e-5), r), [1.0, 0.0, 0.0, 0.0])
+    drag = _first_step_drag(y, p, fp, air)
+    at = us_standard_1976(np.array([1e3]))
+    rho, a = float(at.density[0]), float(at.speed_of_sound[0])
+    start = 0.5 * rho * 20.0 ** 2 * tumbling_cd(20.0 / a, rho, LENGTH) * AREA / MASS
+    # over the step the drum picks up speed along the wind: the air passes it at w - a t,
+    # and the drag (as (w - a t)^2) averages start (1 - a h / w) to first order
+    expected = start * (1.0 - start * H / 20.0)
+    assert drag[1] == pytest.approx(expected, rel=1e-4)                 # east, at x on the equator
+    # up (x here): the air it starts to fall through pushes back, 1/2 (drag / w) g h = 0.024
+    assert drag[0] == pytest.approx(0.5 * expected / 20.0 * 9.8 * H, rel=0.05)
+    assert drag[2] == 0.0
+
+
+def test_a_drum_about_mars_is_slowed_by_mars_air():
+    """The drum 30 km over Mars's equator moving 300 m/s east over the turning ground:
+    decelerated by 1/2 rho C_D A v^2 / m in Mars's air, the NASA Glenn model above 7 km
+    typed here (T = -23.4 - 0.00222 h deg C, p = 0.699 exp(-0.00009 h) kPa,
+    rho = p / (0.1921 (T + 273.1))), to 2e-3 (the table's interpolation and the step)."""
+    from rocketsim.dynamics.soi import central_params
+    from rocketsim.sim.central import air_about
+    mars_eq, omega = 3396.19e3, math.radians(350.891982443297) / 86400.0      # IAU 2015
+    p = central_params(make_params(MASS, (1.0, 2.0, 2.0), EARTH_MU, EARTH_RADIUS_EQ, EARTH_J2,
+                                   EARTH_RADIUS_POLAR), "mars")
+    fp = make_field("mars", 2461006.0, bodies=())
+    r = np.array([mars_eq + 30e3, 0.0, 0.0])
+    y = make_state(r, np.cross((0.0, 0.0, omega), r) + [0.0, 300.0, 0.0], [1.0, 0.0, 0.0, 0.0])
+    air = air_about("mars", None)
+    drag = _first_step_drag(y, p, fp, air.arrays())
+    h = 30e3
+    rho = 0.699 * math.exp(-0.00009 * h) / (0.1921 * (-23.4 - 0.00222 * h + 273.1))
+    sound = float(air.at(np.array([h]))[3][0])
+    expected = 0.5 * rho * 300.0 ** 2 * tumbling_cd(300.0 / sound, rho, LENGTH) * AREA / MASS
+    assert -drag[1] == pytest.approx(expected, rel=2e-3)

@@ -3,8 +3,9 @@
 A fairing half or a deployed payload has no engines, no control and no
 aerodynamic model of its own: it tumbles. Its model is gravity (the awake
 field: central body's point mass and J2, the other bodies of an n-body field),
-point-mass drag ``-1/2 rho |v_air| v_air C_D A/m`` with ``v_air = v - omega x r``
-(``omega`` Earth's rate, ``p[P_SPIN]``) and the torque-free rotation of its
+point-mass drag ``-1/2 rho |v_air| v_air C_D A/m`` with ``v_air = v - omega x r - wind``
+(``omega`` the central body's rate, ``p[P_SPIN]``; the day's wind held for the step, as
+the vehicles hold it, :func:`rocketsim.dynamics.rk4.wind_at`) and the torque-free rotation of its
 inertia. The attitude does not enter the drag (the tumbling body's ``C_D`` and
 mean area, :mod:`rocketsim.vehicle.tumbling`), so each step is the sum of two
 exact pieces, at the flight model's step ``h``:
@@ -15,13 +16,11 @@ exact pieces, at the flight model's step ``h``:
 - position and velocity: RK4 of gravity plus drag,
   :func:`rocketsim.dynamics.nbody.translational_rk4`, the one home of the
   point-mass drag (the sleep rails' too), with ``C_D A/m`` held for the step
-  from the Mach and Knudsen numbers at its start (as the vehicles hold the
-  wind), in the day's air table about Earth.
+  from the Mach and Knudsen numbers at its start, and the wind, in the central
+  body's air table (the day's about Earth, Mars's about Mars, none about the Moon).
 
-Where there is no air (above 600 km, or no drag area) the translational part
-is the awake step's own: the body flies exactly as before. Drag is felt about
-Earth only (the point-mass drag's home is Earth's); the day's wind is not
-felt (the home has no wind slot).
+Where there is no air (above 600 km about Earth, the Moon, or no drag area) the
+translational part is the awake step's own: the body flies exactly as before.
 """
 
 from __future__ import annotations
@@ -34,24 +33,26 @@ from rocketsim._jit import njit
 from rocketsim.atmosphere.table import air_at
 from rocketsim.dynamics.derivative import radial_height
 from rocketsim.dynamics.nbody import translational_rk4
-from rocketsim.dynamics.rk4 import step
+from rocketsim.dynamics.rk4 import step, wind_at
 from rocketsim.dynamics.state import N_PARAMS, P_SPIN, R, V
-from rocketsim.dynamics.third_bodies import EARTH_INDEX, F_CENTER, F_DRAG, P_HELD
+from rocketsim.dynamics.third_bodies import F_DRAG, F_WIND, P_HELD
 from rocketsim.vehicle.tumbling import tumbling_cd
 
 
 @njit
-def drag_factor(y, p, air, area_mass, length):
+def drag_factor(y, p, air, wind, area_mass, length):
     """``C_D A/m`` (m^2/kg) of a tumbling body of mean area over mass ``area_mass``
     (m^2/kg) and ``length`` (m) in state ``y`` (0 where there is no air), from the
-    air table ``air`` (the arguments of ``air_at`` before the height)."""
+    air table ``air`` (the arguments of ``air_at`` before the height) and the ``wind``
+    (m/s, frame axes)."""
     rho, _, _, sound, _, _ = air_at(air[0], air[1], air[2], air[3], air[4], air[5], air[6], air[7],
                                     radial_height(y, p))
     if not (rho > 0.0 and area_mass > 0.0):
         return 0.0
-    wx = y[V] + p[P_SPIN] * y[R + 1]
-    wy = y[V + 1] - p[P_SPIN] * y[R]
-    speed = math.sqrt(wx * wx + wy * wy + y[V + 2] * y[V + 2])
+    wx = y[V] + p[P_SPIN] * y[R + 1] - wind[0]
+    wy = y[V + 1] - p[P_SPIN] * y[R] - wind[1]
+    wz = y[V + 2] - wind[2]
+    speed = math.sqrt(wx * wx + wy * wy + wz * wz)
     return area_mass * tumbling_cd(speed / sound, rho, length)
 
 
@@ -61,12 +62,12 @@ def free_step(y, t, h, p, fp, air, area_mass, length):
     array (:func:`rocketsim.dynamics.nbody.make_field`) of the body's central body,
     a scratch copy whose drag slot is set here."""
     out = step(y, t, h, p)          # attitude (and the n-body hold in p) as the awake body
-    if fp[F_CENTER] != EARTH_INDEX:
-        return out
-    k = drag_factor(y, p, air, area_mass, length)
+    wind = wind_at(y, t, p, air[0], air[1], air[2], air[3], air[4], air[5], air[6], air[7])
+    k = drag_factor(y, p, air, wind, area_mass, length)
     if k == 0.0:
         return out
     fp[F_DRAG] = k
+    fp[F_WIND], fp[F_WIND + 1], fp[F_WIND + 2] = wind
     if p.shape[0] > N_PARAMS:
         s = p[P_HELD:P_HELD + 12].reshape((4, 3)).copy()
     else:

@@ -45,7 +45,7 @@ from rocketsim.atmosphere.table import air_at
 from rocketsim.dynamics.derivative import derivative, radial_height
 from rocketsim.dynamics.state import P_J2, P_MU, P_RADIUS, P_SPIN, Q, R, V
 from rocketsim.dynamics.third_bodies import (  # noqa: F401  (the field's slots and pull live there)
-    EARTH_INDEX, F_CENTER, F_DRAG, F_JD0, F_MU, F_ROT, F_SRP, MU, N_FIELD, SRP_1AU, bodies_at,
+    F_CENTER, F_DRAG, F_JD0, F_MU, F_ROT, F_SRP, F_WIND, MU, N_FIELD, SRP_1AU, bodies_at,
     held_bodies, hold_time, perturbation)
 from rocketsim.ephemeris.solar_system import BODIES
 
@@ -115,25 +115,27 @@ def no_air():
 # table's tuple of arrays cost rails four times their arithmetic (issue 9 benchmark)
 @njit(inline="always")
 def translational_acceleration(x, y, z, vx, vy, vz, p, s, fp, air, pos):
-    """The field at ``(x, y, z)`` (m) and, about Earth with ``fp[F_DRAG]`` set,
-    point-mass drag ``-1/2 rho |v_air| v_air C_D A/m`` (``v_air = v - omega x r``,
-    ``omega`` Earth's rate ``p[P_SPIN]``;
-    density from the day's table ``air`` at the radial height, none above
-    600 km). ``pos``: a scratch array of 3. Returns m/s^2, frame axes."""
+    """The field at ``(x, y, z)`` (m) and, with ``fp[F_DRAG]`` set, point-mass drag
+    ``-1/2 rho |v_air| v_air C_D A/m`` (``v_air = v - omega x r - wind``, ``omega`` the
+    central body's rate ``p[P_SPIN]``, ``wind`` the one held in ``fp[F_WIND:F_WIND + 3]``;
+    density from the central body's air table ``air`` at the radial height: the day's
+    about Earth, none above 600 km; Mars's about Mars). ``pos``: a scratch array of 3.
+    Returns m/s^2, frame axes."""
     ax, ay, az = field_acceleration(x, y, z, s, fp, p)
-    if fp[F_DRAG] != 0.0 and fp[F_CENTER] == EARTH_INDEX:
+    if fp[F_DRAG] != 0.0:
         pos[0] = x
         pos[1] = y
         pos[2] = z
         rho = air_at(air[0], air[1], air[2], air[3], air[4], air[5], air[6], air[7],
                      radial_height(pos, p))[0]
         if rho > 0.0:
-            wx = vx + p[P_SPIN] * y
-            wy = vy - p[P_SPIN] * x
-            k = -0.5 * rho * math.sqrt(wx * wx + wy * wy + vz * vz) * fp[F_DRAG]
+            wx = vx + p[P_SPIN] * y - fp[F_WIND]
+            wy = vy - p[P_SPIN] * x - fp[F_WIND + 1]
+            wz = vz - fp[F_WIND + 2]
+            k = -0.5 * rho * math.sqrt(wx * wx + wy * wy + wz * wz) * fp[F_DRAG]
             ax += k * wx
             ay += k * wy
-            az += k * vz
+            az += k * wz
     return ax, ay, az
 
 

@@ -93,21 +93,28 @@ def near_ground(y, p, reach=0.0):
 @njit
 def hold_wind(y, t, p, veh):
     """Sample the day's wind at the vehicle's position at time ``t`` (s) and hold it
-    (inertial, m/s) in ``veh.aero.wind`` for the step (physics model, "The integrator");
-    the table's east and north turn with the central body at ``p[P_SPIN]``."""
+    (inertial, m/s) in ``veh.aero.wind`` for the step (physics model, "The integrator"):
+    :func:`wind_at` in the vehicle's air table."""
+    veh.aero.wind[0], veh.aero.wind[1], veh.aero.wind[2] = wind_at(
+        y, t, p, veh.air_h0, veh.air_dh, veh.air_density, veh.air_pressure, veh.air_temperature,
+        veh.air_speed_of_sound, veh.air_wind_east, veh.air_wind_north)
+
+
+@njit
+def wind_at(y, t, p, h0, dh, density, pressure, temperature, sound, wind_east, wind_north):
+    """The wind (m/s, frame axes) of the air table (the arrays of
+    :meth:`~rocketsim.atmosphere.table.AtmosphereTable.arrays`) at the position of state
+    ``y`` at mission time ``t`` (s); the table's east and north turn with the central
+    body at ``p[P_SPIN]``."""
     theta = p[P_SPIN] * t
     c = math.cos(theta)
     s = math.sin(theta)
     x = c * y[R] + s * y[R + 1]
     yy = -s * y[R] + c * y[R + 1]
     lat, lon, h = ecef_to_geodetic_njit(x, yy, y[R + 2])
-    east, north = air_at(veh.air_h0, veh.air_dh, veh.air_density, veh.air_pressure,
-                         veh.air_temperature, veh.air_speed_of_sound, veh.air_wind_east,
-                         veh.air_wind_north, h)[4:6]
+    east, north = air_at(h0, dh, density, pressure, temperature, sound, wind_east, wind_north, h)[4:6]
     wind = wind_earth_fixed(east, north, lat, lon)
-    veh.aero.wind[0] = c * wind[0] - s * wind[1]
-    veh.aero.wind[1] = s * wind[0] + c * wind[1]
-    veh.aero.wind[2] = wind[2]
+    return c * wind[0] - s * wind[1], s * wind[0] + c * wind[1], wind[2]
 
 
 @njit

@@ -42,8 +42,9 @@ F_JD0 = 1         # TT Julian date of mission time 0
 F_SRP = 2         # C_R A / m, m^2/kg (0: no radiation pressure)
 F_ROT = 3         # 9 slots: rotation frame -> J2000, row-major
 F_MU = 12         # 4 slots: mu of sun, earth, moon, mars in the field (0: left out)
-F_DRAG = 16       # C_D A / m, m^2/kg, point-mass drag of the rails about Earth (0: none)
-N_FIELD = 17
+F_DRAG = 16       # C_D A / m, m^2/kg, point-mass drag (0: none)
+F_WIND = 17       # 3 slots: the wind held for the step, m/s, frame axes (a tumbling part's drag)
+N_FIELD = 20
 
 # parameter slots of a body flying in the n-body field (after the plain parameters)
 P_FIELD = N_PARAMS                  # N_FIELD slots: its field fp
