@@ -21,7 +21,8 @@ Printed (run with ``pytest -s``):
   the rails (sleeping bodies' compiled steps), the programs (their Python code
   and the readings they compute first), the autopilot (what is left of it
   outside that call), the per-step checks (limits, heating, touchdown, on those
-  figures), the flight events, telemetry (sampling, encoding, writing), the
+  figures), the flight events, telemetry (sampling, encoding, writing: per call,
+  per sample computed or batch of waiting samples written), the
   loop's decisions (batch length, rails or not, the impact test), and the
   rest of the run;
 * the physics, checks, events and loop per body-step (per awake 20 ms step of one
@@ -40,15 +41,16 @@ at one per step.
 The shares come from timing wrappers put around those parts for this run
 only (about a microsecond per wrapped call, included in the figures).
 
-Last figures (the whole mission, five bodies; a 2-core machine shared with
-other work, load ~2-3): uninstrumented, CPU best of 3, 3.15 s (190x real
-time) before the folded step of a vehicle with aerodynamics (953fe44: the
-autopilot's step, the RK4 advance and the checks' figures in three compiled
-calls) and 2.74-2.83 s (212-219x) after it (220f493), same bits. This
-benchmark, instrumented: 3.50 s (171x); physics 34 % (12.5 us per body-step),
-programs 19 %, loop 17 %, telemetry 11 %, checks 7 % (2.6 us per body-step,
-was 9 with the second derivative), events 3.5 %, autopilot 2.4 % (2.8 us per
-call, was 15).
+Last figures (the whole mission, five bodies). On a quiet 2-core machine (load
+0.8, 0533c0f), uninstrumented, in-process ``fly``, CPU best of 3: 3.04-3.34 s
+(180-198x real time). Before the folded step of a vehicle with aerodynamics
+(953fe44: the autopilot's step, the RK4 advance and the checks' figures in three
+compiled calls) 3.15 s, after it (220f493) 2.74-2.83 s on a machine shared with
+other work, same bits. This benchmark, instrumented (130c1b8, load ~1.6): 4.17 s
+(144x); physics 32 % (14.0 us per body-step), programs 19 %, loop 16 %,
+telemetry 14 % (29 us per sample or batch written), checks 7 % (3.0 us per
+body-step, was 9 with the second derivative), events 3.4 %, autopilot 2.3 %
+(3.2 us per call, was 15).
 Nothing asserts a time; the checks are that the mission reaches orbit and
 that the parts add up to no more than the whole.
 """
@@ -65,6 +67,7 @@ from rocketsim.scenario.load import load
 from rocketsim.sim import flight_events, vehicle_checks, world
 from rocketsim.sim.vehicle_checks import advance_checked
 from rocketsim.sim.flight import fly
+from rocketsim.telemetry.writer import TelemetryWriter
 
 ROOT = Path(__file__).resolve().parents[2]
 MISSION = ROOT / "scenarios" / "falcon9-leo.yaml"
@@ -131,8 +134,10 @@ def _instrument(monkeypatch, clock: SectionClock) -> Counter:
         patch(world, name, clock.wrap(getattr(world, name), "rails"))
     patch(world.World, "_run_programs", clock.wrap(world.World._run_programs, "programs"))
     patch(world.World, "_run_autopilots", clock.wrap(world.World._run_autopilots, "autopilot"))
-    patch(world.World, "_sample_all", clock.wrap(world.World._sample_all, "telemetry"))
-    patch(world.World, "sample", clock.wrap(world.World.sample, "telemetry"))
+    # every sample (the rate's, and those at impacts, handovers and new bodies) and every
+    # writing of the waiting samples, whoever asks for it (an event, a log line, the end)
+    patch(world.World, "_record", clock.wrap(world.World._record, "telemetry"))
+    patch(TelemetryWriter, "_flush", clock.wrap(TelemetryWriter._flush, "telemetry"))
     for cls, name, label in ((vehicle_checks.VehicleChecks, "after_step", "checks"),
                              (vehicle_checks.VehicleChecks, "every_step", "checks"),
                              (flight_events.FlightEvents, "after_step", "events")):
