@@ -38,7 +38,6 @@ from rocketsim.flight.program import ProgramRunner, load_program
 from rocketsim.flight.readings import StateView
 from rocketsim.flight.sensors import Sensors
 from rocketsim.flight.steering import OMEGA_N, ZETA
-from rocketsim.frames.earth_fixed import eci_to_ecef_velocity
 from rocketsim.scenario.load import LoadedScenario
 from rocketsim.scenario.models import check_step
 from rocketsim.errors import InputError
@@ -453,9 +452,9 @@ class World:
 
     def _rails_floor(self, body: Body) -> float:
         """Height (m) below which ``body`` cannot stay on rails: :func:`rails_floor`, or
-        the air's top (600 km) for a tumbling rigid body about Earth (its drag is
-        flown awake, :mod:`rocketsim.dynamics.free_body`)."""
-        if body.drag is not None and body.central == "earth":
+        the air's top (600 km) for a tumbling rigid body about a body with air, Earth or
+        Mars (its drag is flown awake, :mod:`rocketsim.dynamics.free_body`)."""
+        if body.drag is not None and body.central in ("earth", "mars"):
             return TOP
         return rails_floor(body.central)
 
@@ -669,8 +668,7 @@ class World:
             # included, where advance cannot say so by stopping early), or its first
             # contact was a crash (its speeds at the contact, not after the springs): it has hit
             lat, lon, _ = self.where(body)
-            ground_speed = np.linalg.norm(eci_to_ecef_velocity(body.position, body.velocity, body.t)
-                                          if body.central == "earth" else body.view().surface_velocity)
+            ground_speed = np.linalg.norm(body.view().surface_velocity)     # over the central body's ground
             figures = {"latitude_deg": lat / DEG, "longitude_deg": lon / DEG, "speed_m_s": float(ground_speed)}
             if crash is not None:
                 figures.update(crash, speed_m_s=math.hypot(crash["vertical_speed_m_s"],
