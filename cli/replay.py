@@ -13,7 +13,9 @@ from pathlib import Path
 import click
 
 from rocketsim.errors import InputError
-from rocketsim.telemetry.replay import Run, UntrustedProgram, export, read_run, verify
+from rocketsim.api.verify import UntrustedProgram, verify
+from rocketsim.telemetry.reader import RunFile, read_run
+from rocketsim.telemetry.tables import export
 from rocketsim_cli.errors import reports_input_errors
 
 
@@ -67,7 +69,7 @@ def replay(run_file: Path, export_to, plot: Path | None, check: bool, trust: boo
     sys.exit(status)
 
 
-def _verify(run_file: Path, run: Run, trust: bool) -> int:
+def _verify(run_file: Path, run: RunFile, trust: bool) -> int:
     if run.program and trust:
         click.echo(f"--trust: executing the program {run.program} carried by {run_file}", err=True)
     try:
@@ -88,7 +90,7 @@ def _verify(run_file: Path, run: Run, trust: bool) -> int:
     return 1
 
 
-def describe(run: Run) -> str:
+def describe(run: RunFile) -> str:
     """The run as a person reads it: what, when, outcome, bodies, events, errors."""
     info = run.metadata.get("rocketsim", {})
     outcome = run.metadata.get("outcome", {})

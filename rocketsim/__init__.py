@@ -1,3 +1,5 @@
 """rocketsim: a headless six-degree-of-freedom rocket flight and mission simulator."""
 
-__version__ = "0.1.0"
+from rocketsim.version import __version__
+
+__all__ = ["__version__"]

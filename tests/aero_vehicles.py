@@ -9,7 +9,7 @@ from pathlib import Path
 import numpy as np
 
 from rocketsim.constants import EARTH_J2, EARTH_MU, EARTH_OMEGA, EARTH_RADIUS_EQ, EARTH_RADIUS_POLAR
-from rocketsim.dynamics.state import make_params
+from rocketsim.layout import make_params
 from rocketsim.scenario.load import validate
 from rocketsim.scenario.models import VehicleSpec
 from rocketsim.scenario.yaml_source import read_yaml

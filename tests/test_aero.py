@@ -10,17 +10,20 @@ from rocketsim.atmosphere.day import standard_table
 from rocketsim.constants import EARTH_RADIUS_EQ, G0
 from rocketsim.dynamics.derivative import derivative
 from rocketsim.dynamics.rk4 import step
-from rocketsim.dynamics.state import Q, W
+from rocketsim.layout import Q, W
 from rocketsim.frames.quaternion import quat_rotate
-from rocketsim.vehicle import aero as A
-from rocketsim.vehicle import grid_fins as G
+from rocketsim.vehicle.aero import (A_AREA, A_ETA, A_NOSE_X, FIN_X, HANDOVER, NOSE_FIRST_CA,
+                                    NOSE_FIRST_MACH, TAIL_FIRST_CA, TAIL_FIRST_MACH,
+                                    axial_coefficient, body_aero)
+from rocketsim.vehicle.grid_fins import (GC_CMD, GRID_CD, GRID_CN_ALPHA, GRID_MACH, G_MAX, G_RATE,
+                                         command, deflection, grid_fin_forces)
 from rocketsim.vehicle.build import build
 from rocketsim.vehicle.rcs import rcs_forces
 from tests.aero_vehicles import (SLENDER, SOUNDING, corotating, earth_params, pitch_quaternion,
                                  shipped, spec)
 
-NF = np.column_stack((A.NOSE_FIRST_MACH, A.NOSE_FIRST_CA))
-TF = np.column_stack((A.TAIL_FIRST_MACH, A.TAIL_FIRST_CA))
+NF = np.column_stack((NOSE_FIRST_MACH, NOSE_FIRST_CA))
+TF = np.column_stack((TAIL_FIRST_MACH, TAIL_FIRST_CA))
 
 
 # --- axial force --------------------------------------------------------------
@@ -29,12 +32,12 @@ def test_axial_tables_hold_the_physics_models_points():
     # Physics model, "Aerodynamics ... in brief": nose first 0.30 subsonic, 0.62 at
     # Mach 1.15, 0.25 hypersonic; tail first 0.85 rising to 1.45 at Mach 2.
     for mach, ca in ((0.0, 0.30), (0.5, 0.30), (1.15, 0.62), (8.0, 0.25), (20.0, 0.25)):
-        assert A.axial_coefficient(mach, 1.0, 0.0, NF, TF) == ca
+        assert axial_coefficient(mach, 1.0, 0.0, NF, TF) == ca
     for mach, ca in ((0.0, 0.85), (0.3, 0.85), (2.0, 1.45), (6.0, 1.45)):
-        assert A.axial_coefficient(mach, -1.0, 0.0, NF, TF) == ca
+        assert axial_coefficient(mach, -1.0, 0.0, NF, TF) == ca
     machs = np.linspace(0.0, 10.0, 2001)
-    nose = np.array([A.axial_coefficient(m, 1.0, 0.0, NF, TF) for m in machs])
-    tail = np.array([A.axial_coefficient(m, -1.0, 0.0, NF, TF) for m in machs])
+    nose = np.array([axial_coefficient(m, 1.0, 0.0, NF, TF) for m in machs])
+    tail = np.array([axial_coefficient(m, -1.0, 0.0, NF, TF) for m in machs])
     peak = machs <= 1.15
     assert np.all(np.diff(nose[peak]) >= 0.0) and np.all(np.diff(nose[~peak]) <= 0.0)
     assert np.all(np.diff(tail) >= 0.0)
@@ -45,24 +48,24 @@ def test_axial_force_hands_over_monotonically_and_continuously_through_90_degree
     # The axial force per q S is -cos(alpha) C_A: it must run from -C_A(nose first) at 0
     # to +C_A(tail first) at 180 deg without a jump and without turning back.
     alphas = np.radians(np.linspace(0.0, 180.0, 18001))
-    force = np.array([-math.cos(a) * A.axial_coefficient(mach, math.cos(a), 0.0, NF, TF) for a in alphas])
-    assert force[0] == -A.axial_coefficient(mach, 1.0, 0.0, NF, TF)
-    assert force[-1] == A.axial_coefficient(mach, -1.0, 0.0, NF, TF)
+    force = np.array([-math.cos(a) * axial_coefficient(mach, math.cos(a), 0.0, NF, TF) for a in alphas])
+    assert force[0] == -axial_coefficient(mach, 1.0, 0.0, NF, TF)
+    assert force[-1] == axial_coefficient(mach, -1.0, 0.0, NF, TF)
     assert np.all(np.diff(force) > 0.0)
     # continuous: no step larger than the slope bound (|d/dalpha| <= C_A,max (1 + 3/(2 sin 10deg)))
-    bound = 1.45 * (1.0 + 1.5 / A.HANDOVER) * (alphas[1] - alphas[0])
+    bound = 1.45 * (1.0 + 1.5 / HANDOVER) * (alphas[1] - alphas[0])
     assert np.max(np.diff(force)) < bound
 
 
 def test_plume_shields_the_base_when_flying_tail_first_under_thrust():
     # exp(-C_T), fitted to the trend in Korzun, Cruz & Braun (2008) sec. 4: C_A falls
     # steeply with C_T and is nearly gone (a few percent) above C_T ~ 3.
-    bare = A.axial_coefficient(1.5, -1.0, 0.0, NF, TF)
-    shielded = [A.axial_coefficient(1.5, -1.0, c, NF, TF) / bare for c in (0.5, 1.0, 3.0, 6.0)]
+    bare = axial_coefficient(1.5, -1.0, 0.0, NF, TF)
+    shielded = [axial_coefficient(1.5, -1.0, c, NF, TF) / bare for c in (0.5, 1.0, 3.0, 6.0)]
     assert shielded == pytest.approx([math.exp(-0.5), math.exp(-1.0), math.exp(-3.0), math.exp(-6.0)])
     assert shielded[2] < 0.06
     # thrust pushing along the flight (nose first) shields nothing
-    assert A.axial_coefficient(1.5, 1.0, 3.0, NF, TF) == A.axial_coefficient(1.5, 1.0, 0.0, NF, TF)
+    assert axial_coefficient(1.5, 1.0, 3.0, NF, TF) == axial_coefficient(1.5, 1.0, 0.0, NF, TF)
 
 
 # --- normal force -------------------------------------------------------------
@@ -72,9 +75,9 @@ def _slender_coefficients(alpha_deg, mach=0.3):
     sound, rho = 340.294, 1.225
     speed = mach * sound
     al = math.radians(alpha_deg)
-    f = A.body_aero(speed * math.cos(al), 0.0, speed * math.sin(al), 0.0, 0.0, 0.0, rho, sound, 0.0,
+    f = body_aero(speed * math.cos(al), 0.0, speed * math.sin(al), 0.0, 0.0, 0.0, rho, sound, 0.0,
                     5.0, a.ref, a.seg, a.fin, a.ca_nf, a.ca_tf)
-    return -f[2] / (0.5 * rho * speed ** 2 * a.ref[A.A_AREA]), a
+    return -f[2] / (0.5 * rho * speed ** 2 * a.ref[A_AREA]), a
 
 
 @pytest.mark.parametrize("alpha_deg", [0.5, 2.0, 5.0, 10.0])
@@ -89,7 +92,7 @@ def test_normal_force_of_a_slender_cylinder_with_nose_matches_jorgensen(alpha_de
     al = math.radians(alpha_deg)
     area = math.pi * 0.25 ** 2
     planform = 0.5 * 8.0 + 0.5 * 0.5 * 2.0
-    assert a.ref[A.A_ETA] == pytest.approx(0.70)
+    assert a.ref[A_ETA] == pytest.approx(0.70)
     expected = math.sin(2 * al) * math.cos(al / 2) + 0.70 * 1.2 * planform / area * math.sin(al) ** 2
     assert cn == pytest.approx(expected, rel=0.05)
 
@@ -105,9 +108,9 @@ def test_nose_lift_acts_at_the_slender_body_centre_of_pressure():
     # ogive's at 0.467 L (Barrowman 1967, table of nose centres of pressure: 0.666 L cone,
     # 0.466 L ogive).
     cone = build(spec(SLENDER)).arrays.aero.ref
-    assert 10.0 - cone[A.A_NOSE_X] == pytest.approx(2.0 * 2.0 / 3.0, rel=1e-3)
+    assert 10.0 - cone[A_NOSE_X] == pytest.approx(2.0 * 2.0 / 3.0, rel=1e-3)
     ogive = build(spec(SOUNDING)).arrays.aero.ref
-    assert 6.0 - ogive[A.A_NOSE_X] == pytest.approx(0.466 * 1.0, rel=0.01)
+    assert 6.0 - ogive[A_NOSE_X] == pytest.approx(0.466 * 1.0, rel=0.01)
 
 
 # --- static stability --------------------------------------------------------
@@ -129,7 +132,7 @@ def test_a_finned_sounding_rocket_weathercocks_into_the_wind():
     r = np.array([EARTH_RADIUS_EQ + 1000.0, 0.0, 0.0])
     y = model.state(r, corotating(r) + np.array([150.0, 0.0, 0.0]))
     x_cm = model.mass_properties(y)[1]
-    assert a.aero.fin[0, A.FIN_X] < x_cm         # the fins' centre of pressure is aft
+    assert a.aero.fin[0, FIN_X] < x_cm         # the fins' centre of pressure is aft
     p = earth_params()
     alpha0 = _angle_of_attack(model, y)
     for k in range(100):                          # 2 s
@@ -184,15 +187,15 @@ def test_a_body_pitching_in_still_air_feels_the_analytic_damping_moment(rate):
     data = {**SLENDER, "aero": {"segments": 200}}
     a = build(spec(data)).arrays.aero
     rho, sound, x_cm = 1.225, 340.294, 4.0
-    f = A.body_aero(0.0, 0.0, 0.0, 0.0, rate, 0.0, rho, sound, 0.0, x_cm, a.ref, a.seg, a.fin,
+    f = body_aero(0.0, 0.0, 0.0, 0.0, rate, 0.0, rho, sound, 0.0, x_cm, a.ref, a.seg, a.fin,
                     a.ca_nf, a.ca_tf)
-    eta = a.ref[A.A_ETA]
+    eta = a.ref[A_ETA]
     expected = -0.5 * rho * eta * 1.2 * 0.5 * rate * abs(rate) * (4.0 ** 4 + 6.0 ** 4) / 4.0
     assert f[4] == pytest.approx(expected, rel=1e-4)
     assert f[0] == 0.0 and f[5] == 0.0 and math.copysign(1.0, f[4]) == -math.copysign(1.0, rate)
     # the default 20 segments (midpoint rule) are within 0.5 %
     a20 = build(spec({**SLENDER, "aero": {}})).arrays.aero
-    f20 = A.body_aero(0.0, 0.0, 0.0, 0.0, rate, 0.0, rho, sound, 0.0, x_cm, a20.ref, a20.seg, a20.fin,
+    f20 = body_aero(0.0, 0.0, 0.0, 0.0, rate, 0.0, rho, sound, 0.0, x_cm, a20.ref, a20.seg, a20.fin,
                       a20.ca_nf, a20.ca_tf)
     assert f20[4] == pytest.approx(expected, rel=5e-3)
 
@@ -209,37 +212,37 @@ def test_grid_fins_roll_command_gives_a_pure_roll_moment_and_drag_on_all_four():
     grid, cmd = _grid()
     rho, sound, speed = 0.4, 300.0, 450.0                 # Mach 1.5
     q = 0.5 * rho * speed ** 2
-    f0 = G.grid_fin_forces(0.0, speed, 0.0, 0.0, 0.0, 0.0, 0.0, rho, sound, 20.0, grid, cmd)
+    f0 = grid_fin_forces(0.0, speed, 0.0, 0.0, 0.0, 0.0, 0.0, rho, sound, 20.0, grid, cmd)
     # undeflected: four times one fin's drag q A C_D(M), nothing else (symmetry)
-    assert f0[0] == pytest.approx(-4 * q * 2.0 * np.interp(1.5, G.GRID_MACH, G.GRID_CD), rel=1e-12)
+    assert f0[0] == pytest.approx(-4 * q * 2.0 * np.interp(1.5, GRID_MACH, GRID_CD), rel=1e-12)
     assert max(abs(c) for c in f0[1:]) < 1e-6 * abs(f0[0])
-    G.command(grid, cmd, 0.0, 0.0, 0.0, math.radians(5.0))
-    f = G.grid_fin_forces(10.0, speed, 0.0, 0.0, 0.0, 0.0, 0.0, rho, sound, 20.0, grid, cmd)
+    command(grid, cmd, 0.0, 0.0, 0.0, math.radians(5.0))
+    f = grid_fin_forces(10.0, speed, 0.0, 0.0, 0.0, 0.0, 0.0, rho, sound, 20.0, grid, cmd)
     assert abs(f[3]) > 1e3 and max(abs(f[1]), abs(f[2]), abs(f[4]), abs(f[5])) < 1e-6 * abs(f[3])
     # a fin turned by delta in a flow along x: normal force q A C_N_alpha delta at radius r,
     # cos(delta) of it tangential (Washington & Miller's linear range; thin-fin geometry)
     delta = math.radians(5.0)
-    cna = np.interp(1.5, G.GRID_MACH, G.GRID_CN_ALPHA)
+    cna = np.interp(1.5, GRID_MACH, GRID_CN_ALPHA)
     assert f[3] == pytest.approx(4 * q * 2.0 * cna * delta * math.cos(delta) * 2.6, rel=1e-9)
 
 
 def test_grid_fins_pitch_and_yaw_push_the_fin_station_and_stall_caps_the_force():
     grid, cmd = _grid()
     rho, sound, speed = 0.4, 300.0, 240.0                 # Mach 0.8
-    G.command(grid, cmd, 0.0, math.radians(4.0), 0.0, 0.0)
-    f = G.grid_fin_forces(10.0, speed, 0.0, 0.0, 0.0, 0.0, 0.0, rho, sound, 20.0, grid, cmd)
+    command(grid, cmd, 0.0, math.radians(4.0), 0.0, 0.0)
+    f = grid_fin_forces(10.0, speed, 0.0, 0.0, 0.0, 0.0, 0.0, rho, sound, 20.0, grid, cmd)
     assert f[2] > 0.0 and abs(f[1]) < 1e-6 * f[2] and f[4] < 0.0      # +z at x > x_cm: nose down
-    G.command(grid, cmd, 0.0, 0.0, math.radians(4.0), 0.0)
-    f = G.grid_fin_forces(10.0, speed, 0.0, 0.0, 0.0, 0.0, 0.0, rho, sound, 20.0, grid, cmd)
+    command(grid, cmd, 0.0, 0.0, math.radians(4.0), 0.0)
+    f = grid_fin_forces(10.0, speed, 0.0, 0.0, 0.0, 0.0, 0.0, rho, sound, 20.0, grid, cmd)
     assert f[1] > 0.0 and abs(f[2]) < 1e-6 * f[1]
     # beyond the stall angle (25 deg) the normal force stops growing
     lateral = []
     for deg in (20.0, 30.0, 40.0):
         al = math.radians(deg)
         cmd[:] = 0.0
-        g = G.grid_fin_forces(0.0, speed * math.cos(al), 0.0, speed * math.sin(al), 0.0, 0.0, 0.0, rho,
+        g = grid_fin_forces(0.0, speed * math.cos(al), 0.0, speed * math.sin(al), 0.0, 0.0, 0.0, rho,
                               sound, 20.0, grid, cmd)
-        drag = 2 * 0.5 * rho * speed ** 2 * 2.0 * np.interp(0.8, G.GRID_MACH, G.GRID_CD) * math.sin(al)
+        drag = 2 * 0.5 * rho * speed ** 2 * 2.0 * np.interp(0.8, GRID_MACH, GRID_CD) * math.sin(al)
         lateral.append(-g[2] - drag * 2)                   # the two normal-bearing fins' share
     assert lateral[0] < lateral[1] and lateral[2] == pytest.approx(lateral[1], rel=1e-9)
 
@@ -247,19 +250,19 @@ def test_grid_fins_pitch_and_yaw_push_the_fin_station_and_stall_caps_the_force()
 def test_grid_fin_normal_force_slope_dips_where_the_lattice_chokes():
     # Washington & Miller (1993): the slope falls between Mach 0.8 and 1.2 (choked
     # cells) and recovers supersonic.
-    slope = lambda m: np.interp(m, G.GRID_MACH, G.GRID_CN_ALPHA)
+    slope = lambda m: np.interp(m, GRID_MACH, GRID_CN_ALPHA)
     assert slope(1.05) < 0.7 * slope(0.8) and slope(1.05) < 0.8 * slope(1.5)
 
 
 def test_grid_fins_slew_at_their_rate_limit():
     grid, cmd = _grid()
-    rate = grid[0, G.G_RATE]
-    G.command(grid, cmd, 1.0, math.radians(15.0), 0.0, 0.0)
+    rate = grid[0, G_RATE]
+    command(grid, cmd, 1.0, math.radians(15.0), 0.0, 0.0)
     for t, expected in ((1.0, 0.0), (1.1, 0.1 * rate), (1.2, 0.2 * rate), (5.0, math.radians(15.0))):
-        assert G.deflection(t, grid[0], cmd[0]) == pytest.approx(expected, abs=1e-15)
+        assert deflection(t, grid[0], cmd[0]) == pytest.approx(expected, abs=1e-15)
     # commanded past the limit: clipped to it
-    G.command(grid, cmd, 5.0, math.radians(90.0), 0.0, 0.0)
-    assert cmd[0, G.GC_CMD] == pytest.approx(grid[0, G.G_MAX])
+    command(grid, cmd, 5.0, math.radians(90.0), 0.0, 0.0)
+    assert cmd[0, GC_CMD] == pytest.approx(grid[0, G_MAX])
 
 
 # --- reaction control ---------------------------------------------------------
@@ -311,14 +314,14 @@ def test_the_derivative_shields_the_base_with_the_engines_own_thrust():
     # Tail first with the centre engine burning (a landing burn): the axial aerodynamic force
     # the derivative applies is the bare tail-first one times exp(-C_T), C_T = T / (q S)
     # with T the engines' thrust at that instant (Korzun et al. trend; plume_shielding).
-    from rocketsim.vehicle import engines as E
-    from rocketsim.atmosphere.table import air_at
+    from rocketsim.vehicle.engines import engine_forces, ignite
+    from rocketsim.atmosphere.table import air_in
     from rocketsim.dynamics.derivative import body_air_velocity, radial_height
     model = build(shipped("falcon9-block5.yaml"), last=0)
     a = model.arrays
     r = np.array([EARTH_RADIUS_EQ + 8e3, 0.0, 0.0])
     y = model.state(r, corotating(r) + np.array([-450.0, 0.0, 0.0]), propellant=np.array([2e4, 4e4]))
-    E.ignite(y, a.eng, a.cmd, a.stage, 0, a.first_clock)           # the centre engine
+    ignite(y, a.eng, a.cmd, a.stage, 0, a.first_clock)           # the centre engine
     y[model.clocks] = 10.0
     p = earth_params()
     no_fins = a._replace(aero=a.aero._replace(grid=a.aero.grid[:0], grid_cmd=a.aero.grid_cmd[:0]))
@@ -328,12 +331,12 @@ def test_the_derivative_shields_the_base_with_the_engines_own_thrust():
     derivative(0.0, y, p, dy0, bare)
     mass, x_cm = model.mass_properties(y)[:2]
     aero_x = (dy[3] - dy0[3]) * mass                       # body x = ECI x here
-    rho, p_a, _, sound = air_at(*a[10:18], radial_height(y, p))[:4]
-    thrust = E.engine_forces(0.0, y, np.zeros_like(y), a.first_tank, a.first_clock, a.eng, a.cmd, a.stage,
+    rho, p_a, _, sound = air_in(a.air, radial_height(y, p))[:4]
+    thrust = engine_forces(0.0, y, np.zeros_like(y), a.first_tank, a.first_clock, a.eng, a.cmd, a.stage,
                              a.tank_share, p_a, x_cm)[0]
     u, v, w = body_air_velocity(y, a.aero.wind)
     q = 0.5 * rho * (u * u + v * v + w * w)
-    area = a.aero.ref[A.A_AREA]
-    bare_axial = q * area * np.interp(abs(u) / sound, A.TAIL_FIRST_MACH, A.TAIL_FIRST_CA)
+    area = a.aero.ref[A_AREA]
+    bare_axial = q * area * np.interp(abs(u) / sound, TAIL_FIRST_MACH, TAIL_FIRST_CA)
     assert thrust > 0.0 and u < 0.0 and 0.5 < thrust / (q * area) < 5.0
     assert aero_x == pytest.approx(bare_axial * math.exp(-thrust / (q * area)), rel=1e-9)

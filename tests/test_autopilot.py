@@ -97,7 +97,7 @@ def test_grid_fin_gain_reverses_tail_first_and_matches_the_fin_model_in_axial_fl
     mass); the fins at 90 and 270 deg and the drag give no pitch moment."""
     from tests.aero_vehicles import shipped
     from rocketsim.flight.steering import FIN_PROBE, fin_gains
-    from rocketsim.vehicle import grid_fins as G
+    from rocketsim.vehicle.grid_fins import GRID_CN_ALPHA, GRID_MACH, G_AREA, G_X
     from rocketsim.vehicle.aero import interp
     from rocketsim.vehicle.build import build
 
@@ -106,9 +106,9 @@ def test_grid_fin_gain_reverses_tail_first_and_matches_the_fin_model_in_axial_fl
     x_cm = model.mass_properties(model.tank_load)[1]
     rho, sound, speed = 0.4, 300.0, 250.0
     mach = speed / sound
-    d = float(grid[0, G.G_X]) - x_cm
-    expected = 2.0 * d * 0.5 * rho * speed ** 2 * float(grid[0, G.G_AREA]) * \
-        interp(G.GRID_MACH, G.GRID_CN_ALPHA, mach) * math.cos(FIN_PROBE)
+    d = float(grid[0, G_X]) - x_cm
+    expected = 2.0 * d * 0.5 * rho * speed ** 2 * float(grid[0, G_AREA]) * \
+        interp(GRID_MACH, GRID_CN_ALPHA, mach) * math.cos(FIN_PROBE)
     nose_first = fin_gains(model.arrays.aero, speed, 0.0, 0.0, rho, sound, x_cm)
     tail_first = fin_gains(model.arrays.aero, -speed, 0.0, 0.0, rho, sound, x_cm)
     assert nose_first[0] == pytest.approx(-expected, rel=1e-9)

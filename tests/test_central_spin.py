@@ -24,11 +24,11 @@ from rocketsim.constants import (EARTH_J2, EARTH_MU, EARTH_RADIUS_EQ, EARTH_RADI
 from rocketsim.dynamics.derivative import body_air_velocity, derivative
 from rocketsim.dynamics.rk4 import step
 from rocketsim.dynamics.soi import central_params
-from rocketsim.dynamics.state import P_SPIN, make_params
+from rocketsim.layout import P_SPIN, make_params
 from rocketsim.flight.readings import StateView
 from rocketsim.frames.quaternion import quat_from_matrix
-from rocketsim.sim.central import air_about
-from rocketsim.sim.vehicle_checks import contact_heights
+from rocketsim.dynamics.central import air_about
+from rocketsim.vehicle.contact import contact_heights
 from rocketsim.vehicle.aero import A_WIND
 from rocketsim.vehicle.build import build
 from tests.aero_vehicles import shipped
@@ -83,10 +83,7 @@ def test_a_lander_resting_on_mars_equator_stays_at_rest():
     the ground (the contact's ground turns at Mars's rate: at Earth's, the feet would
     slide at 6.9 m/s against it and friction would drag the lander along)."""
     model = build(shipped("lander.yaml"))
-    h0, dh, density, pressure, temperature, sound, east, north = air_about("mars", None).arrays()
-    model.arrays = model.arrays._replace(
-        air_h0=h0, air_dh=dh, air_density=density, air_pressure=pressure, air_temperature=temperature,
-        air_speed_of_sound=sound, air_wind_east=east, air_wind_north=north)
+    model.arrays = model.arrays._replace(air=air_about("mars", None).arrays())
     assert model.arrays.aero.ref[A_WIND] == 0.0          # Earth's standard day is calm
     p = central_params(earth_p(), "mars")
     y0 = model.state([0, 0, 0], [0, 0, 0])

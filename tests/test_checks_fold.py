@@ -22,7 +22,7 @@ from rocketsim.flight.fc import FlightComputer
 from rocketsim.scenario.load import load
 from rocketsim.sim import vehicle_checks
 from rocketsim.sim.vehicle_checks import VehicleChecks, advance_checked
-from rocketsim.sim.world import World
+from rocketsim.sim.build import build_world
 from tests.test_contact import _World
 from tests.test_heating_limits import light_stage
 
@@ -80,7 +80,7 @@ def _fly(seconds, fold, monkeypatch):
                                      body.vehicle.arrays)
 
         monkeypatch.setattr(VehicleChecks, "advance", unfolded)
-    world = World.from_scenario(load(MISSION), duration=seconds)
+    world = build_world(load(MISSION), duration=seconds)
     summary = world.run()
     monkeypatch.undo()
     return [b.y.copy() for b in world.bodies], summary, seen
@@ -100,7 +100,7 @@ def test_after_a_staging_within_the_step_the_autopilot_runs_on_the_estimate_read
     # the program read the estimate, then dropped the fairing in the same step: the body's
     # state is new, the estimate is the stack's; the autopilot steers on that estimate (as
     # before the fold) in its own call, not on the new state inside the step's
-    world = World.from_scenario(load(MISSION))
+    world = build_world(load(MISSION))
     body = world.bodies[0]
     body.fc.point(math.radians(80.0), math.radians(90.0))
     assert body.fc.autopilot(fold=True) is not None         # nothing read yet: folded

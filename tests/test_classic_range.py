@@ -17,7 +17,7 @@ from rocketsim.constants import (DEG, EARTH_J2, EARTH_MU, EARTH_OMEGA, EARTH_RAD
 from rocketsim.dynamics.derivative import derivative, held_derivative
 from rocketsim.dynamics.reference import integrate_reference
 from rocketsim.dynamics.rk4 import advance
-from rocketsim.dynamics.state import P_CLASSIC, R, V, make_params
+from rocketsim.layout import P_CLASSIC, R, V, make_params
 from rocketsim.errors import InputError
 from rocketsim.scenario.classic_range import DRONE_SHIP_RANGE, LANDING_ZONE_RANGE, classic_site
 from rocketsim.scenario.load import load
@@ -26,9 +26,9 @@ from rocketsim.scenario.weather import ClassicWeather, build_atmosphere
 from rocketsim.scenario.yaml_source import read_yaml
 from rocketsim.scenario.models import VehicleSpec
 from rocketsim.sim.flight import fly
-from rocketsim.sim.world import World
-from rocketsim.telemetry.replay import verify
-from rocketsim.vehicle import engines as E
+from rocketsim.sim.build import build_world
+from rocketsim.api.verify import verify
+from rocketsim.vehicle.engines import ignite
 from rocketsim.vehicle.build import build
 from tests.conftest import ROOT
 
@@ -92,9 +92,9 @@ def test_site_classic_in_a_scenario_and_its_pads_as_targets(tmp_path):
     assert landing.stage_program_paths["booster"] == \
         load(ROOT / "scenarios" / "falcon9-leo.yaml").stage_program_paths["booster"]
     # the switch reaches the body's parameters; a real site keeps the realistic model
-    assert World.from_scenario(loaded, duration=1.0).bodies[0].p[P_CLASSIC] == 1.0
+    assert build_world(loaded, duration=1.0).bodies[0].p[P_CLASSIC] == 1.0
     real = load(ROOT / "scenarios" / "falcon9-leo.yaml")
-    assert World.from_scenario(real, duration=1.0).bodies[0].p[P_CLASSIC] == 0.0
+    assert build_world(real, duration=1.0).bodies[0].p[P_CLASSIC] == 0.0
     bad = tmp_path / "bad.yaml"
     bad.write_text("name: bad\nsite: clasic\nvehicle: {name: v, rigid_body: {mass: 1, inertia: [1, 1, 1]}}\n"
                    "mission: {epoch: 2026-11-26T15:00:00Z, start: {site: {}}, duration: 1}\n")
@@ -142,7 +142,7 @@ def test_powered_flight_is_first_order_on_the_classic_range(start_height, expect
     r0 = EARTH_RADIUS_EQ + start_height
     y0 = m.state([r0, 0.0, 0.0], [0.0, EARTH_OMEGA * r0, 0.0])     # nose up, moving with the ground
     for e in m.stage_engines(0):
-        assert E.ignite(y0, a.eng, a.cmd, a.stage, e, a.first_clock)
+        assert ignite(y0, a.eng, a.cmd, a.stage, e, a.first_clock)
         y0[a.first_clock + e] = 10.0                                # spooled: full thrust
     reference = integrate_reference(y0, 0.0, BURN, _params(False), rtol=1e-13, atol=1e-9, veh=a)
 

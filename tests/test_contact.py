@@ -19,7 +19,8 @@ from rocketsim.constants import EARTH_J2, EARTH_MU, EARTH_OMEGA, EARTH_RADIUS_EQ
 from rocketsim.dynamics.rk4 import rk4_step, step
 from rocketsim.frames.geodetic import enu_basis, geodetic_to_ecef
 from rocketsim.frames.quaternion import quat_from_matrix
-from rocketsim.sim.vehicle_checks import VehicleChecks, contact_heights
+from rocketsim.sim.vehicle_checks import VehicleChecks
+from rocketsim.vehicle.contact import contact_heights
 from rocketsim.vehicle.build import build
 from tests.aero_vehicles import corotating, earth_params, shipped
 
@@ -155,7 +156,7 @@ def fly_drop(write, speed: float, duration: float, target: str = "") -> dict:
     2 m above the ellipsoid (the site's height; the ground is the WGS84 ellipsoid,
     terrain is not modelled); ``target`` a mission ``target:`` entry. Its summary."""
     from rocketsim.scenario.load import load
-    from rocketsim.sim.world import World
+    from rocketsim.sim.build import build_world
     from tests.aero_vehicles import ROOT
     model = build(shipped("lander.yaml"))
     x_cm = model.mass_properties(model.state([0, 0, 0], [0, 0, 0]))[1]
@@ -164,7 +165,7 @@ def fly_drop(write, speed: float, duration: float, target: str = "") -> dict:
                           f"    velocity: [0 m/s, 0 m/s, {-speed!r} m/s]\nduration: {duration!r} s\n{target}")
     path = write("drop.yaml", f"name: drop\nvehicle: {ROOT / 'vehicles' / 'lander.yaml'}\nsite: site.yaml\n"
                               "mission: mission.yaml\n")
-    (body,) = World.from_scenario(load(path)).run()["bodies"].values()
+    (body,) = build_world(load(path)).run()["bodies"].values()
     return body
 
 

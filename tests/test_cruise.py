@@ -17,7 +17,7 @@ from rocketsim.constants import (CRUISE_MAX_STEP, EARTH_J2, EARTH_MU, EARTH_RADI
                                  EARTH_RADIUS_POLAR, MOON_J2, MOON_MU, MOON_RADIUS, SUN_MU,
                                  SUN_RADIUS)
 from rocketsim.dynamics import cruise, nbody, soi
-from rocketsim.dynamics.state import make_params, make_state
+from rocketsim.layout import make_params, make_state
 from rocketsim.ephemeris.solar_system import states
 from rocketsim.timescales import Epoch
 from rocketsim.transfer.lambert import lambert
@@ -94,7 +94,7 @@ def lunar_transfer():
     speed = np.sqrt(EARTH_MU * (2 / r_p - 1 / a))
     r = rot.T @ (r_p * perigee)
     v = rot.T @ (speed * np.cross(normal, perigee))
-    from rocketsim.transfer.kepler import propagate
+    from rocketsim.orbits.kepler import propagate
     r1, v1 = propagate(EARTH_MU, r, v, 1800.0)
     return gmst0, rot, r1, v1
 
@@ -118,7 +118,7 @@ def test_lunar_transfer_cruise_with_handover_matches_dop853_within_1_km():
     k_h = k
     y_m, k, reason, _ = cruise.advance_cruise(y_m, k, H, k_end, MOON_P, fp_m, AIR, MOON_P[1:4])
     assert k > k_h
-    rot_m = fp_m[nbody.F_ROT:nbody.F_ROT + 9].reshape(3, 3)
+    rot_m = fp_m[nbody.FIELD_ROT:nbody.FIELD_ROT + 9].reshape(3, 3)
     r_ref_m, v_ref_m = reference_orbit(r_m, v_m, k_h * H, k * H, JD0, "moon", rot_m,
                                        ("sun", "earth", "mars"), (MOON_MU, MOON_RADIUS, MOON_J2))
     assert np.linalg.norm(y_m[:3] - r_ref_m) < 1e3

@@ -11,7 +11,7 @@ from rocketsim.constants import (AIR_CP, DEG, EARTH_MU, EARTH_RADIUS_EQ, G0, STE
                                  SUTTON_GRAVES_EARTH, SUTTON_GRAVES_MARS)
 from rocketsim.scenario.aero_spec import HeatShieldSpec
 from rocketsim.sim.vehicle_checks import VehicleChecks
-from rocketsim.vehicle import engines as E
+from rocketsim.vehicle.engines import ignite
 from rocketsim.vehicle.build import build
 from rocketsim.vehicle.heating import advance_shield, hot_wall_factor, sutton_graves
 from rocketsim.vehicle.limits import breakup
@@ -166,7 +166,7 @@ def light_stage(thrust: float):
     r = np.array([EARTH_RADIUS_EQ + 700e3, 0.0, 0.0])
     y = model.state(r, np.array([0.0, 7500.0, 0.0]))
     a = model.arrays
-    E.ignite(y, a.eng, a.cmd, a.stage, 0, a.first_clock)
+    ignite(y, a.eng, a.cmd, a.stage, 0, a.first_clock)
     y[model.clocks] = 5.0
     body = _Body(model, y, earth_params())
     body.mu = EARTH_MU

@@ -10,7 +10,7 @@ import pytest
 from rocketsim.scenario.load import load
 from rocketsim.scenario.stage_selection import keep_stages, reload_tanks
 from rocketsim.sim.flight import fly
-from rocketsim.sim.world import World
+from rocketsim.sim.build import build_world
 from tests.conftest import ROOT
 
 HOP = ROOT / "scenarios" / "falcon9-hop.yaml"
@@ -29,7 +29,7 @@ def test_the_hop_vehicle_is_the_booster_alone_with_its_reload():
     assert [s.name for s in vehicle.stages] == ["booster"]
     assert vehicle.payload is None and vehicle.fairing is None
     assert len(vehicle.aero.legs) == 1 and len(vehicle.aero.grid_fins) == 1
-    world = World.from_scenario(load(HOP))
+    world = build_world(load(HOP))
     assert world.bodies[0].mass == pytest.approx(22_200 + 25_000, abs=1e-6)
 
 

@@ -17,7 +17,7 @@ import pytest
 
 from rocketsim.constants import DEG, EARTH_J2, EARTH_MU, EARTH_RADIUS_EQ, EARTH_RADIUS_POLAR
 from rocketsim.dynamics.reference import integrate_reference
-from rocketsim.dynamics.state import R, make_params, make_state
+from rocketsim.layout import R, make_params, make_state
 from rocketsim.flight.impact import predict_impact
 from rocketsim.frames.earth_fixed import ecef_to_eci, eci_to_ecef
 from rocketsim.frames.geodetic import ecef_to_geodetic, enu_basis, geodetic_to_ecef

@@ -10,7 +10,7 @@ from scipy.optimize import brentq
 from rocketsim.constants import EARTH_MU, EARTH_RADIUS_EQ, EARTH_RADIUS_POLAR, GROUND_SUBSTEPS
 from rocketsim.dynamics.reference import integrate_reference
 from rocketsim.dynamics.rk4 import advance, rk4_step, step
-from rocketsim.dynamics.state import Q, R, V, W, make_params, make_state
+from rocketsim.layout import Q, R, V, W, make_params, make_state
 from rocketsim.frames.elements import elements_to_state
 from rocketsim.frames.quaternion import quat_rotate
 

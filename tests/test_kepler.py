@@ -18,7 +18,7 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from rocketsim.transfer import propagate
+from rocketsim.orbits import propagate
 
 MU = 398600.4418e9
 

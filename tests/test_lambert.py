@@ -17,7 +17,8 @@ import numpy as np
 import pytest
 
 from rocketsim.errors import InputError
-from rocketsim.transfer import lambert, propagate
+from rocketsim.orbits import propagate
+from rocketsim.transfer import lambert
 
 KM = 1e3
 MU_VALLADO = 398600.4418e9      # m^3/s^2, as in Vallado and Der

@@ -3,7 +3,7 @@
 References:
 - Round trip: the two-body motion from (r1, v1) over the time of flight must
   end at r2. The propagator is the universal-variable Kepler solver of
-  ``rocketsim.transfer.kepler`` (itself checked against Vallado and a DOP853
+  ``rocketsim.orbits.kepler`` (itself checked against Vallado and a DOP853
   integration in tests/test_kepler.py): an independent formulation (Stumpff
   functions, Laguerre-Conway) sharing no code with Izzo's.
 - Peer: lamberthub (Martinez Garrido), ``izzo2015`` and ``gooding1990``
@@ -23,7 +23,8 @@ the hyperbolic anomaly rather than with f and g.
 import numpy as np
 import pytest
 
-from rocketsim.transfer import lambert, propagate
+from rocketsim.orbits import propagate
+from rocketsim.transfer import lambert
 from rocketsim.transfer.lambert import lambert_detailed
 
 N = 10_000

@@ -17,7 +17,7 @@ import pytest
 from rocketsim.constants import EARTH_J2, EARTH_MU, EARTH_RADIUS_EQ, EARTH_RADIUS_POLAR
 from rocketsim.dynamics.rails import command_attitude
 from rocketsim.dynamics.soi import central_params
-from rocketsim.dynamics.state import make_params, make_state
+from rocketsim.layout import make_params, make_state
 from rocketsim.flight.autopilot import AttitudeCommand
 from rocketsim.flight.readings import StateView
 from rocketsim.frames.quaternion import quat_from_matrix, quat_rotate

@@ -1,6 +1,6 @@
 """The escape hyperbola's velocity for a given excess velocity (rocketsim.flight.maneuvers).
 
-Reference: the universal-variable Kepler propagator (rocketsim.transfer.kepler,
+Reference: the universal-variable Kepler propagator (rocketsim.orbits.kepler,
 itself checked against Vallado's worked examples): a hyperbola propagated
 3e9 s out gives its excess velocity vector; the closed form must return the
 hyperbola's own velocity at its start and at a point 3e6 s later.
@@ -10,7 +10,7 @@ import numpy as np
 
 from rocketsim.constants import EARTH_MU
 from rocketsim.flight.maneuvers import hyperbola_velocity
-from rocketsim.transfer.kepler import propagate
+from rocketsim.orbits.kepler import propagate
 
 
 def test_the_closed_form_lands_on_the_propagated_hyperbola():

@@ -23,14 +23,14 @@ from rocketsim.bodies.orientation import spin_rate
 from rocketsim.constants import HEAT_SHIELD_LIMIT, SUTTON_GRAVES_MARS
 from rocketsim.dynamics.derivative import radial_height
 from rocketsim.scenario.load import load
-from rocketsim.sim.world import World
+from rocketsim.sim.build import build_world
 from rocketsim.vehicle.heating import sutton_graves
 
 SCENARIO = Path(__file__).resolve().parents[1] / "scenarios" / "mars-entry.yaml"
 
 
 def test_the_capsule_reaches_parachute_conditions_with_its_shield_intact():
-    world = World.from_scenario(load(SCENARIO))
+    world = build_world(load(SCENARIO))
     body = world.bodies[0]
     air = mars_table()
     nose = body.checks.shield.nose_radius

@@ -13,7 +13,7 @@ from pathlib import Path
 
 from rocketsim.constants import MARS_RADIUS_EQ
 from rocketsim.scenario.load import load
-from rocketsim.sim.world import World
+from rocketsim.sim.build import build_world
 from rocketsim.telemetry.reader import messages
 from rocketsim.telemetry.writer import TelemetryWriter
 
@@ -23,7 +23,7 @@ SCENARIO = Path(__file__).resolve().parents[1] / "scenarios" / "mars-orbit.yaml"
 def test_the_orbiter_is_captured_by_mars(tmp_path):
     # flown as `rocketsim fly` flies it, telemetry included: every sample of the
     # heliocentric leg is written about the Sun (no prime meridian there)
-    world = World.from_scenario(load(SCENARIO))
+    world = build_world(load(SCENARIO))
     out = tmp_path / "mars.mcap"
     with TelemetryWriter(out, 0, "") as telemetry:
         summary = world.run(telemetry)

@@ -33,10 +33,10 @@ import numpy as np
 import pytest
 
 from rocketsim.constants import EARTH_MU, MOON_RADIUS
-from rocketsim.dynamics.nbody import F_ROT
+from rocketsim.dynamics.nbody import FIELD_ROT
 from rocketsim.dynamics.third_bodies import field_of
 from rocketsim.scenario.load import load
-from rocketsim.sim.world import World
+from rocketsim.sim.build import build_world
 
 SCENARIOS = Path(__file__).resolve().parents[1] / "scenarios"
 DAY = 86400.0
@@ -68,7 +68,7 @@ def test_moon_from_the_pad_to_lunar_orbit():
     Lambert arc to a 100 km periapsis, circularised there: tests/test_moon_mission.py
     checks the same program from a parking orbit) and the Hohmann-like injection's
     cost from 200 km, ~3.1 km/s plus the burn's gravity loss."""
-    world = World.from_scenario(load(SCENARIOS / "moon-from-pad.yaml"))
+    world = build_world(load(SCENARIOS / "moon-from-pad.yaml"))
     summary = world.run()
     orbiter = check_ascent(world, 28.45)
     names = [e["name"] for e in orbiter.events]
@@ -143,13 +143,13 @@ def test_mars_from_the_pad_to_mars_orbit():
     arrival date."""
     loaded = load(SCENARIOS / "mars-from-pad.yaml")
     object.__setattr__(loaded.scenario.mission, "duration", 310.15 * DAY)
-    world = World.from_scenario(loaded)
+    world = build_world(loaded)
     orbiter = world.bodies[0]
     after_tmi = {}
 
     def watch(t):
         if not after_tmi and any(e["name"] == "tmi" for e in orbiter.events):
-            rotation = field_of(orbiter.p)[F_ROT:F_ROT + 9].reshape(3, 3)     # frame -> J2000
+            rotation = field_of(orbiter.p)[FIELD_ROT:FIELD_ROT + 9].reshape(3, 3)     # frame -> J2000
             after_tmi.update(r=rotation @ orbiter.position, v=rotation @ orbiter.velocity)
     world.on_progress = watch
     summary = world.run()

@@ -12,13 +12,13 @@ from pathlib import Path
 
 from rocketsim.constants import MOON_RADIUS
 from rocketsim.scenario.load import load
-from rocketsim.sim.world import World
+from rocketsim.sim.build import build_world
 
 SCENARIO = Path(__file__).resolve().parents[1] / "scenarios" / "moon-orbit.yaml"
 
 
 def test_the_orbiter_reaches_a_100_km_lunar_orbit():
-    world = World.from_scenario(load(SCENARIO))
+    world = build_world(load(SCENARIO))
     batches = []
     world.on_progress = batches.append
     summary = world.run()

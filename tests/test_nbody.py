@@ -18,7 +18,7 @@ from rocketsim.bodies.orientation import pole, spin_rate
 from rocketsim.constants import (AU, EARTH_J2, EARTH_MU, EARTH_RADIUS_EQ, EARTH_RADIUS_POLAR,
                                  MOON_J2, MOON_MU, MOON_RADIUS, SUN_MU)
 from rocketsim.dynamics import nbody, soi
-from rocketsim.dynamics.state import make_params
+from rocketsim.layout import make_params
 from rocketsim.ephemeris.solar_system import states
 from rocketsim.timescales import Epoch
 from tests.nbody_reference import field_j2000

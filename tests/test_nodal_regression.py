@@ -19,7 +19,7 @@ import pytest
 
 from rocketsim.constants import EARTH_J2, EARTH_MU, EARTH_RADIUS_EQ, EARTH_RADIUS_POLAR
 from rocketsim.dynamics.rk4 import advance
-from rocketsim.dynamics.state import R, V, make_params, make_state
+from rocketsim.layout import R, V, make_params, make_state
 from rocketsim.frames.elements import elements_to_state
 
 STEP = 0.1

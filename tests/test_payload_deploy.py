@@ -9,10 +9,10 @@ turning (0.02 rad/s in pitch) so that the lever arm's velocity term counts.
 import numpy as np
 import pytest
 
-from rocketsim.dynamics.state import P_IXX, P_IYY, P_IZZ
+from rocketsim.layout import P_IXX, P_IYY, P_IZZ
 from rocketsim.scenario.load import load
 from rocketsim.sim.flight import fly
-from rocketsim.sim.world import World
+from rocketsim.sim.build import build_world
 from rocketsim.telemetry.reader import messages
 from tests.conftest import ROOT
 
@@ -43,7 +43,7 @@ def electron_in_orbit(write, program=True):
 
 
 def test_the_payload_leaves_with_the_stack_s_mass_centre_and_momentum(write):
-    world = World.from_scenario(load(electron_in_orbit(write, program=False)))
+    world = build_world(load(electron_in_orbit(write, program=False)))
     stack = world.bodies[0]
     with pytest.raises(ValueError, match="fairing"):
         world.deploy_payload(stack)                    # still inside the fairing

@@ -29,7 +29,7 @@ from rocketsim.bodies.gravity import gravity
 from rocketsim.dynamics import nbody, rails, soi
 from rocketsim.dynamics.reference import integrate_reference
 from rocketsim.dynamics.rk4 import advance
-from rocketsim.dynamics.state import make_params, make_state
+from rocketsim.layout import make_params, make_state
 from rocketsim.frames.elements import elements_to_state
 from rocketsim.frames.quaternion import quat_rotate
 from rocketsim.timescales import Epoch

@@ -22,10 +22,10 @@ from pathlib import Path
 
 import numpy as np
 
-from rocketsim.dynamics.state import Q, R, V, W
+from rocketsim.layout import Q, R, V, W
 from rocketsim.frames.quaternion import quat_rotate
 from rocketsim.scenario.load import load
-from rocketsim.sim.world import World
+from rocketsim.sim.build import build_world
 
 ROOT = Path(__file__).resolve().parents[1]
 SECONDS = 300.0
@@ -46,7 +46,7 @@ def _world(write, program):
         program: program.py
         step: 0.1 s
         """)
-    return World.from_scenario(load(path))
+    return build_world(load(path))
 
 
 def _nose(y):
@@ -71,7 +71,7 @@ def _fly(write, program):
 
     def progress(t):
         steps.append(world.k - start[0])
-        railed.append(world._on_rails(body))
+        railed.append(world.schedule.on_rails(body))
         start[0] = world.k
 
     world.on_progress = progress

@@ -25,7 +25,7 @@ import math
 import numpy as np
 
 from rocketsim.bodies.gravity import gravity
-from rocketsim.dynamics.state import Q, R, V, W
+from rocketsim.layout import Q, R, V, W
 from rocketsim.flight.readings import StateView
 from rocketsim.frames.quaternion import quat_rotate
 from tests.test_rails_held import _nose, _world
@@ -42,7 +42,7 @@ def _fly(write, program, seconds):
 
     def progress(t):
         log.append((railed[0], body.t, body.y.copy()))
-        railed[0] = world._on_rails(body)
+        railed[0] = world.schedule.on_rails(body)
 
     world.on_progress = progress
     world.run()

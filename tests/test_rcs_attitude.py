@@ -11,8 +11,8 @@ import math
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from rocketsim.flight import autopilot as AP
-from rocketsim.flight import steering as ST
+from rocketsim.flight.autopilot import rcs_command, rcs_torques
+from rocketsim.flight.steering import OMEGA_N, RATE_LIMIT, ZETA
 from rocketsim.frames.quaternion import quat_to_matrix
 from rocketsim.scenario.load import load
 from rocketsim.sim.flight import fly
@@ -100,10 +100,10 @@ def _law_response(times, angle):
     """Reference: the autopilot law's own planar response (module docstring of
     rocketsim.flight.autopilot), theta'' = 2 zeta omega_n (clip(omega_n/(2 zeta) e,
     RATE_LIMIT) - theta'), e = angle - theta, integrated by scipy's DOP853 from rest."""
-    k = 2.0 * ST.ZETA * ST.OMEGA_N
+    k = 2.0 * ZETA * OMEGA_N
 
     def rhs(_, s):
-        wanted = float(np.clip(ST.OMEGA_N / (2.0 * ST.ZETA) * (angle - s[0]), -ST.RATE_LIMIT, ST.RATE_LIMIT))
+        wanted = float(np.clip(OMEGA_N / (2.0 * ZETA) * (angle - s[0]), -RATE_LIMIT, RATE_LIMIT))
         return [s[1], k * (wanted - s[1])]
 
     sol = solve_ivp(rhs, (0.0, times[-1]), [0.0, 0.0], method="DOP853", t_eval=times, rtol=1e-10,
@@ -213,10 +213,10 @@ def test_the_lander_quads_give_the_full_roll_torque_of_four_thrusters():
     from tests.aero_vehicles import shipped
     model = build(shipped("lander.yaml"))
     y = model.state(np.array([7e6, 0.0, 0.0]), np.zeros(3))
-    torques = AP.rcs_torques(model.arrays, y, model.mass_properties(y)[1])
+    torques = rcs_torques(model.arrays, y, model.mass_properties(y)[1])
     assert torques.shape == (3, 16)
     for sense in (1.0, -1.0):
-        got = torques @ AP.rcs_command(torques, np.array([sense * 1e6, 0.0, 0.0]))
+        got = torques @ rcs_command(torques, np.array([sense * 1e6, 0.0, 0.0]))
         print(f"\nlargest roll torque {got[0]:.1f} N m, pitch/yaw left {got[1]:.2e} {got[2]:.2e}")
         assert abs(got[0] - sense * 4 * 445.0 * 2.0) < 1e-5 * 3560.0
         assert np.all(np.abs(got[1:]) < 1e-6 * 3560.0)

@@ -11,7 +11,8 @@ from mcap.writer import CompressionType, Writer
 
 from rocketsim.scenario.load import load
 from rocketsim.sim.flight import fly
-from rocketsim.telemetry.replay import UntrustedProgram, lay_out, read_run, verify
+from rocketsim.api.verify import UntrustedProgram, lay_out, verify
+from rocketsim.telemetry.reader import read_run
 
 ROOT = Path(__file__).resolve().parents[1]
 

@@ -25,15 +25,15 @@ from rocketsim.constants import EARTH_OMEGA, G0  # noqa: E402
 from rocketsim.dynamics.rk4 import step  # noqa: E402
 from rocketsim.frames.geodetic import ecef_to_geodetic, enu_basis, geodetic_to_ecef  # noqa: E402
 from rocketsim.frames.quaternion import quat_from_matrix  # noqa: E402
-from rocketsim.vehicle import aero as A  # noqa: E402
-from rocketsim.vehicle import engines as E  # noqa: E402
+from rocketsim.vehicle.aero import NOSE_FIRST_CA, NOSE_FIRST_MACH  # noqa: E402
+from rocketsim.vehicle.engines import ignite  # noqa: E402
 from rocketsim.vehicle.build import build  # noqa: E402
 from tests.aero_vehicles import corotating, earth_params, spec  # noqa: E402
 
 LAT, LON = math.radians(32.99), math.radians(-106.97)      # a desert range (Spaceport America)
 THRUST, ISP, PROPELLANT = 9000.0, 230.0, 120.0             # N, s, kg
 DEAD, SPOOL = 0.3, 0.5                                     # s
-DRAG = [(m, c) for m, c in zip(A.NOSE_FIRST_MACH, A.NOSE_FIRST_CA)]
+DRAG = [(m, c) for m, c in zip(NOSE_FIRST_MACH, NOSE_FIRST_CA)]
 ROCKET = {
     "name": "peer sounding rocket",
     "stages": [{"name": "rocket", "length": "6 m", "diameter": "0.3 m", "structure_mass": "80 kg",
@@ -59,7 +59,7 @@ def _our_apogee():
     # standing on its base on the pad (the base's contact springs carry it until liftoff)
     r = np.array(geodetic_to_ecef(LAT, LON, x_cm))
     y = model.state(r, corotating(r), q=quat_from_matrix(axes), w=axes.T @ np.array([0, 0, EARTH_OMEGA]))
-    E.ignite(y, a.eng, a.cmd, a.stage, 0, a.first_clock)
+    ignite(y, a.eng, a.cmd, a.stage, 0, a.first_clock)
     p = earth_params()
     start = ecef_to_geodetic(y[0:3])[2]
     best = start

@@ -5,7 +5,7 @@ import pytest
 
 from rocketsim.frames.quaternion import quat_rotate
 from rocketsim.scenario.load import load
-from rocketsim.sim.world import World
+from rocketsim.sim.build import build_world
 from rocketsim.sim.flight import fly
 from rocketsim.telemetry.reader import messages
 from tests.conftest import ROOT
@@ -45,7 +45,7 @@ def scenario_with_programs(write):
 def test_separation_makes_two_bodies_that_conserve_mass_and_momentum(write, tmp_path):
     """Conservation (the reference): the parts' masses add up to the stack's,
     and their mass-weighted velocities to the stack's momentum, to rounding."""
-    world = World.from_scenario(load(scenario_with_programs(write)))
+    world = build_world(load(scenario_with_programs(write)))
     stack = world.bodies[0]
     mass, momentum = stack.mass, stack.mass * stack.velocity.copy()
     booster = world.separate(stack)
@@ -86,7 +86,7 @@ def test_the_fairing_is_jettisoned_into_two_halves_of_their_own(write):
     add up to the stack's before; each half has half the vehicle file's 1 900 kg, and
     the halves move apart along the body's y axis at the separation speed (2 m/s
     by default) plus the turn of their lever arms (the stack starts at rest)."""
-    world = World.from_scenario(load(scenario_with_programs(write)))
+    world = build_world(load(scenario_with_programs(write)))
     stack = world.bodies[0]
     mass, momentum = stack.mass, stack.mass * stack.velocity.copy()
     one, two = world.jettison_fairing(stack)

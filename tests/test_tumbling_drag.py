@@ -20,7 +20,7 @@ from rocketsim.atmosphere.ussa1976 import us_standard_1976
 from rocketsim.constants import EARTH_J2, EARTH_MU, EARTH_RADIUS_EQ, EARTH_RADIUS_POLAR
 from rocketsim.dynamics.free_body import advance_free
 from rocketsim.dynamics.nbody import make_field
-from rocketsim.dynamics.state import make_params, make_state
+from rocketsim.layout import make_params, make_state
 from rocketsim.vehicle.tumbling import FREE_MOLECULAR_CD, continuum_cd, cylinder_area, tumbling_cd
 
 MASS, RADIUS, LENGTH = 100.0, 1.0, 2.0          # a light drum: terminal speed ~30 m/s low down
@@ -176,7 +176,7 @@ def test_a_drum_about_mars_is_slowed_by_mars_air():
     typed here (T = -23.4 - 0.00222 h deg C, p = 0.699 exp(-0.00009 h) kPa,
     rho = p / (0.1921 (T + 273.1))), to 2e-3 (the table's interpolation and the step)."""
     from rocketsim.dynamics.soi import central_params
-    from rocketsim.sim.central import air_about
+    from rocketsim.dynamics.central import air_about
     mars_eq, omega = 3396.19e3, math.radians(350.891982443297) / 86400.0      # IAU 2015
     p = central_params(make_params(MASS, (1.0, 2.0, 2.0), EARTH_MU, EARTH_RADIUS_EQ, EARTH_J2,
                                    EARTH_RADIUS_POLAR), "mars")

@@ -10,8 +10,8 @@ from rocketsim.constants import (EARTH_J2, EARTH_MU, EARTH_RADIUS_EQ, EARTH_RADI
                                  UNUSABLE_PROPELLANT)
 from rocketsim.dynamics.reference import integrate_reference
 from rocketsim.dynamics.rk4 import advance
-from rocketsim.dynamics.state import V, make_params
-from rocketsim.vehicle import engines as E
+from rocketsim.layout import V, make_params
+from rocketsim.vehicle.engines import C_G, C_G0, S_DRY, S_DRY_AT, ignite
 from rocketsim.vehicle.build import build
 from tests.vehicle_specs import single_stage, spec
 
@@ -31,7 +31,7 @@ def earth():
 def lit(model, y, spooled=False):
     a = model.arrays
     for e in range(model.n_engines):
-        assert E.ignite(y, a.eng, a.cmd, a.stage, e, a.first_clock)
+        assert ignite(y, a.eng, a.cmd, a.stage, e, a.first_clock)
         if spooled:
             y[a.first_clock + e] = 10.0            # long past the dead time and the spool-up
     return y
@@ -48,7 +48,7 @@ def test_vertical_burn_in_vacuum_matches_the_rocket_equation(h):
     m1 = m0 - (1 - UNUSABLE_PROPELLANT) * LOAD
     expected = ISP * G0 * math.log(m0 / m1)
     dv = np.linalg.norm(y1[V:V + 3])
-    assert m.arrays.stage[0, E.S_DRY] == 1.0
+    assert m.arrays.stage[0, S_DRY] == 1.0
     assert abs(dv - expected) / expected < 7e-5
     assert abs(dv - expected) / expected < 1e-10          # what it actually does
 
@@ -66,7 +66,7 @@ def test_tank_running_dry_inside_a_step_stops_the_thrust_at_that_instant():
     y1, _ = advance(y, 0, h, k + 1, no_gravity(), m.arrays)
     burned = LOAD - y1[m.tanks].sum()
     assert abs(burned - usable) / usable < 1e-9
-    assert abs(m.arrays.stage[0, E.S_DRY_AT] - t_dry) / t_dry < 1e-9
+    assert abs(m.arrays.stage[0, S_DRY_AT] - t_dry) / t_dry < 1e-9
     y2, _ = advance(y1, k + 1, h, 10, no_gravity(), m.arrays)
     assert np.array_equal(y2[V:V + 3], y1[V:V + 3])       # dry: no thrust, no flow
     assert np.array_equal(y2[m.tanks], y1[m.tanks])
@@ -106,7 +106,7 @@ def test_powered_segment_converges_at_fourth_order_against_dop853():
     r0 = EARTH_RADIUS_EQ + 300e3
     y0 = lit(m, m.state([r0, 0.0, 0.0], [0.0, 7500.0, 0.0], w=(0.01, 0.0, 0.0)), spooled=True)
     g = math.radians(0.2)
-    a.cmd[0, E.C_G0], a.cmd[0, E.C_G] = g, g               # held deflection: no slew kink
+    a.cmd[0, C_G0], a.cmd[0, C_G] = g, g               # held deflection: no slew kink
     ref = integrate_reference(y0, 0.0, 10.0, earth(), rtol=1e-13, atol=1e-9, veh=a)
     errors = []
     for h in (0.2, 0.1, 0.05):

@@ -12,11 +12,13 @@ import pytest
 from rocketsim.atmosphere.day import standard_table
 from rocketsim.constants import EARTH_RADIUS_EQ, EARTH_RADIUS_POLAR, G0, USSA_P0
 from rocketsim.dynamics.rk4 import advance
-from rocketsim.dynamics.state import V, make_params
+from rocketsim.layout import V, make_params
 from rocketsim.scenario.load import validate
 from rocketsim.scenario.models import VehicleSpec
 from rocketsim.scenario.yaml_source import read_yaml
-from rocketsim.vehicle import engines as E
+from rocketsim.vehicle.engines import (C_IGNITED, C_LEVEL, C_ON, C_TAU, S_DRY, command_gimbal,
+                                       command_throttle, engine_forces, ignite, separated,
+                                       shutdown, throttle_at)
 from rocketsim.vehicle.build import build
 from tests.vehicle_specs import single_stage, spec
 
@@ -47,14 +49,14 @@ def forces(model, t, clock=None, p_a=0.0, y=None):
         y[model.clocks] = clock
     dy = np.zeros_like(y)
     x_cm = model.mass_properties(y)[1]
-    return np.array(E.engine_forces(t, y, dy, a.first_tank, a.first_clock, a.eng, a.cmd, a.stage,
+    return np.array(engine_forces(t, y, dy, a.first_tank, a.first_clock, a.eng, a.cmd, a.stage,
                                     a.tank_share, p_a, x_cm)), dy
 
 
 def lit_model(**changes):
     m = build(spec(single_stage(**changes)))
     y = m.state([0, 0, 0], [0, 0, 0])
-    assert E.ignite(y, m.arrays.eng, m.arrays.cmd, m.arrays.stage, 0, m.arrays.first_clock)
+    assert ignite(y, m.arrays.eng, m.arrays.cmd, m.arrays.stage, 0, m.arrays.first_clock)
     return m, y
 
 
@@ -64,7 +66,7 @@ def test_thrust_in_vacuum_and_at_sea_level_matches_the_published_figures(file, e
     e = model.engine_names.index(engine)
     a = model.arrays
     y = model.state([0, 0, 0], [0, 0, 0])
-    E.ignite(y, a.eng, a.cmd, a.stage, e, a.first_clock)
+    ignite(y, a.eng, a.cmd, a.stage, e, a.first_clock)
     y[model.clocks] = 10.0                                   # spooled up
     p_sea = standard_table().at(0.0)[1][0]                   # US 1976 at sea level: 101 325 Pa
     assert p_sea == pytest.approx(USSA_P0, rel=1e-9)
@@ -118,8 +120,8 @@ def test_tail_off_falls_to_nothing_in_a_quarter_second():
     m, y = lit_model()
     a = m.arrays
     y[m.clocks] = 10.0
-    assert E.shutdown(y, a.eng, a.cmd, 0, a.first_clock)
-    assert a.cmd[0, E.C_LEVEL] == 1.0 and y[a.first_clock] == 0.0
+    assert shutdown(y, a.eng, a.cmd, 0, a.first_clock)
+    assert a.cmd[0, C_LEVEL] == 1.0 and y[a.first_clock] == 0.0
     for clock, fraction in [(0.0, 1.0), (0.125, 0.5), (0.2, 0.2), (0.25, 0.0), (1.0, 0.0)]:
         assert forces(m, 0.0, clock=clock, y=y.copy())[0][0] == pytest.approx(100e3 * fraction, rel=1e-12, abs=1e-9)
 
@@ -127,7 +129,7 @@ def test_tail_off_falls_to_nothing_in_a_quarter_second():
 def test_shutdown_during_spool_up_tails_off_from_the_level_reached():
     m, y = lit_model()
     y[m.clocks] = 0.8                                       # half spooled
-    E.shutdown(y, m.arrays.eng, m.arrays.cmd, 0, m.arrays.first_clock)
+    shutdown(y, m.arrays.eng, m.arrays.cmd, 0, m.arrays.first_clock)
     assert forces(m, 0.0, clock=0.125, y=y.copy())[0][0] == pytest.approx(25e3, rel=1e-12)
 
 
@@ -136,14 +138,14 @@ def test_throttle_slews_at_its_rate_and_stays_in_its_range():
     is held at 0.5; back up to 1 takes 1 s again."""
     m, y = lit_model()
     a = m.arrays
-    E.command_throttle(a.eng, a.cmd, 0, 10.0, 0.2)
-    assert a.cmd[0, E.C_TAU] == 0.5
+    command_throttle(a.eng, a.cmd, 0, 10.0, 0.2)
+    assert a.cmd[0, C_TAU] == 0.5
     for t, tau in [(10.0, 1.0), (10.5, 0.75), (11.0, 0.5), (12.0, 0.5)]:
         assert forces(m, t, clock=10.0, y=y.copy())[0][0] == pytest.approx(100e3 * tau, rel=1e-12)
-    E.command_throttle(a.eng, a.cmd, 0, 10.4, 1.0)          # reversed half-way: from 0.8
-    assert E.throttle_at(a.eng, a.cmd, 0, 10.4) == pytest.approx(0.8, rel=1e-12)
-    assert E.throttle_at(a.eng, a.cmd, 0, 10.6) == pytest.approx(0.9, rel=1e-12)
-    assert E.throttle_at(a.eng, a.cmd, 0, 10.8) == 1.0
+    command_throttle(a.eng, a.cmd, 0, 10.4, 1.0)          # reversed half-way: from 0.8
+    assert throttle_at(a.eng, a.cmd, 0, 10.4) == pytest.approx(0.8, rel=1e-12)
+    assert throttle_at(a.eng, a.cmd, 0, 10.6) == pytest.approx(0.9, rel=1e-12)
+    assert throttle_at(a.eng, a.cmd, 0, 10.8) == 1.0
 
 
 def test_gimbal_slews_at_its_rate_inside_its_cone():
@@ -151,7 +153,7 @@ def test_gimbal_slews_at_its_rate_inside_its_cone():
     thrust turns by exactly that angle; a diagonal command is clipped to the cone's edge."""
     m, y = lit_model()
     a = m.arrays
-    E.command_gimbal(a.eng, a.cmd, 0, 2.0, math.radians(10.0), 0.0)
+    command_gimbal(a.eng, a.cmd, 0, 2.0, math.radians(10.0), 0.0)
     for t, angle in [(2.0, 0.0), (2.25, 2.5), (2.5, 5.0), (3.0, 5.0)]:
         f = forces(m, t, clock=10.0, y=y.copy())[0]
         assert np.linalg.norm(f[:3]) == pytest.approx(100e3, rel=1e-12)
@@ -159,7 +161,7 @@ def test_gimbal_slews_at_its_rate_inside_its_cone():
         # the torque about the centre of mass: arm (x_e - x_cm) times the side force
         x_cm = m.mass_properties(y)[1]
         assert f[5] == pytest.approx((0.0 - x_cm) * f[1], rel=1e-12, abs=1e-9)
-    E.command_gimbal(a.eng, a.cmd, 0, 3.0, math.radians(4.0), math.radians(4.0))
+    command_gimbal(a.eng, a.cmd, 0, 3.0, math.radians(4.0), math.radians(4.0))
     f = forces(m, 10.0, clock=10.0, y=y.copy())[0]
     assert math.degrees(math.acos(f[0] / np.linalg.norm(f[:3]))) == pytest.approx(5.0, abs=1e-9)
     assert f[1] == pytest.approx(f[2], rel=1e-12)
@@ -168,20 +170,20 @@ def test_gimbal_slews_at_its_rate_inside_its_cone():
 def test_restarts_are_counted():
     m, y = lit_model(engines=[dict(single_stage()["stages"][0]["engines"][0], restarts=1)])
     a = m.arrays
-    assert E.shutdown(y, a.eng, a.cmd, 0, a.first_clock)
-    assert E.ignite(y, a.eng, a.cmd, a.stage, 0, a.first_clock)       # the one restart
-    assert a.cmd[0, E.C_IGNITED] == 2
-    E.shutdown(y, a.eng, a.cmd, 0, a.first_clock)
-    assert not E.ignite(y, a.eng, a.cmd, a.stage, 0, a.first_clock)   # none left
-    assert a.cmd[0, E.C_ON] == 0.0
+    assert shutdown(y, a.eng, a.cmd, 0, a.first_clock)
+    assert ignite(y, a.eng, a.cmd, a.stage, 0, a.first_clock)       # the one restart
+    assert a.cmd[0, C_IGNITED] == 2
+    shutdown(y, a.eng, a.cmd, 0, a.first_clock)
+    assert not ignite(y, a.eng, a.cmd, a.stage, 0, a.first_clock)   # none left
+    assert a.cmd[0, C_ON] == 0.0
 
 
 def test_a_dry_stage_does_not_relight():
     m, y = lit_model(engines=[dict(single_stage()["stages"][0]["engines"][0], restarts=3)])
     a = m.arrays
-    E.shutdown(y, a.eng, a.cmd, 0, a.first_clock)
-    a.stage[0, E.S_DRY] = 1.0
-    assert not E.ignite(y, a.eng, a.cmd, a.stage, 0, a.first_clock)
+    shutdown(y, a.eng, a.cmd, 0, a.first_clock)
+    a.stage[0, S_DRY] = 1.0
+    assert not ignite(y, a.eng, a.cmd, a.stage, 0, a.first_clock)
 
 
 def test_summerfield_floor_at_deep_throttle_in_thick_air():
@@ -190,20 +192,20 @@ def test_summerfield_floor_at_deep_throttle_in_thick_air():
     tau = 0.4 * 101 325 / 50 000 = 0.8106; in vacuum it throttles to 0.5."""
     m, y = lit_model(engines=[dict(single_stage()["stages"][0]["engines"][0], exit_pressure="50 kPa")])
     a = m.arrays
-    E.command_throttle(a.eng, a.cmd, 0, 0.0, 0.5)
+    command_throttle(a.eng, a.cmd, 0, 0.0, 0.5)
     tau_sep = 0.4 * USSA_P0 / 50e3
     sea = forces(m, 5.0, clock=10.0, p_a=USSA_P0, y=y.copy())[0][0]
     assert sea == pytest.approx(tau_sep * 100e3 - USSA_P0 * 0.5, rel=1e-12)
     assert forces(m, 5.0, clock=10.0, y=y.copy())[0][0] == pytest.approx(50e3, rel=1e-12)
-    assert not E.separated(a.eng, a.cmd, 5.0, USSA_P0)[0]
+    assert not separated(a.eng, a.cmd, 5.0, USSA_P0)[0]
 
 
 def test_vacuum_nozzle_runs_separated_at_sea_level():
     model = build(validate(read_yaml(VEHICLES / "falcon9-block5.yaml"), VehicleSpec))
     a = model.arrays
-    flags = E.separated(a.eng, a.cmd, 0.0, USSA_P0)
+    flags = separated(a.eng, a.cmd, 0.0, USSA_P0)
     assert list(flags) == [False] * 9 + [True]               # Merlin Vacuum only
-    assert not E.separated(a.eng, a.cmd, 0.0, 0.0).any()
+    assert not separated(a.eng, a.cmd, 0.0, 0.0).any()
 
 
 def test_mass_flow_instead_of_isp_gives_the_same_engine():

@@ -14,7 +14,7 @@ from rocketsim.frames.quaternion import quat_from_axis_angle, quat_rotate
 from rocketsim.scenario.load import validate
 from rocketsim.scenario.models import VehicleSpec
 from rocketsim.scenario.yaml_source import read_yaml
-from rocketsim.vehicle import engines as E
+from rocketsim.vehicle.engines import S_DRY
 from rocketsim.vehicle.build import build
 from rocketsim.vehicle.staging import jettison_fairing, separate
 
@@ -28,7 +28,7 @@ def test_separation_conserves_centre_of_mass_and_momentum():
     y = whole.state([EARTH_RADIUS_EQ + 80e3, 1e4, -2e3], [1500.0, 2200.0, 300.0], q, (0.01, 0.03, -0.02))
     y[whole.tanks] *= 0.1                                     # booster near the end of its burn
     y[whole.tanks][2:] = whole.tank_load[2:]
-    whole.arrays.stage[0, E.S_DRY] = 1.0
+    whole.arrays.stage[0, S_DRY] = 1.0
     (lower, y_l), (upper, y_u) = separate(spec, whole, y, 1)
     m, m_l, m_u = (x.mass_properties(yy)[0] for x, yy in ((whole, y), (lower, y_l), (upper, y_u)))
     assert m_l + m_u == pytest.approx(m, rel=1e-14)
@@ -41,7 +41,7 @@ def test_separation_conserves_centre_of_mass_and_momentum():
     assert lower.n_engines == 9 and upper.n_engines == 1
     assert np.allclose(upper.mass_properties(y_u), build(spec, 1).mass_properties(whole.tank_load[2:]),
                        rtol=1e-14)
-    assert lower.arrays.stage[0, E.S_DRY] == 1.0 and upper.arrays.stage[0, E.S_DRY] == 0.0
+    assert lower.arrays.stage[0, S_DRY] == 1.0 and upper.arrays.stage[0, S_DRY] == 0.0
     assert np.array_equal(y_u[upper.tanks], whole.tank_load[2:])
 
 

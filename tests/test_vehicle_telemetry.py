@@ -29,9 +29,9 @@ from rocketsim.atmosphere.ussa1976 import us_standard_1976
 from rocketsim.constants import AIR_CP, EARTH_OMEGA, G0, STEFAN_BOLTZMANN
 from rocketsim.scenario.load import load
 from rocketsim.sim.flight import fly
-from rocketsim.sim.world import World
+from rocketsim.sim.build import build_world
 from rocketsim.telemetry.reader import raw_messages
-from rocketsim.telemetry.replay import export, table
+from rocketsim.telemetry.tables import export, table
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -86,7 +86,7 @@ def _fly(folder: Path, scenario: str, program: str | None = None):
     loaded = load(folder / "scenario.yaml")
     out = folder / "run.mcap"
     fly(loaded, out)
-    quiet = World.from_scenario(loaded)
+    quiet = build_world(loaded)
     quiet.run(None)
     return out, quiet
 
@@ -312,10 +312,10 @@ def test_templates_write_what_dictionaries_write_for_a_staged_vehicle(burn, entr
 
 def test_templates_write_what_dictionaries_write_for_a_rigid_body_and_about_mars(scenario, tmp_path,
                                                                                 monkeypatch):
-    coast = World.from_scenario(load(scenario(duration="1 s")))
+    coast = build_world(load(scenario(duration="1 s")))
     coast.run(None)
     _both_encodings(coast, coast.bodies[0], tmp_path / "coast", monkeypatch)
-    mars = World.from_scenario(load(ROOT / "scenarios" / "mars-entry.yaml"), duration=0.2)
+    mars = build_world(load(ROOT / "scenarios" / "mars-entry.yaml"), duration=0.2)
     mars.run(None)
     assert mars.bodies[0].central == "mars"
     _both_encodings(mars, mars.bodies[0], tmp_path / "mars", monkeypatch)

@@ -8,7 +8,7 @@ from pathlib import Path
 import numpy as np
 
 from rocketsim.scenario.load import load
-from rocketsim.sim.world import World
+from rocketsim.sim.build import build_world
 from tests.conftest import MISSION, VEHICLE
 
 VEHICLES = Path(__file__).resolve().parents[1] / "vehicles"
@@ -19,8 +19,8 @@ def test_staged_vehicle_flies_a_scenario_like_a_rigid_body_when_unpowered(write)
     write("rigid.yaml", VEHICLE)
     staged = write("staged.yaml", f"name: s\nvehicle: {VEHICLES / 'falcon9-block5.yaml'}\nmission: mission.yaml\n")
     rigid = write("rigid-scenario.yaml", "name: r\nvehicle: rigid.yaml\nmission: mission.yaml\n")
-    w_staged = World.from_scenario(load(staged))
-    w_rigid = World.from_scenario(load(rigid))
+    w_staged = build_world(load(staged))
+    w_rigid = build_world(load(rigid))
     body = w_staged.bodies[0]
     assert body.vehicle is not None and body.y.shape[0] == 13 + 5 + 10   # 4 tanks and the GN2 bottle
     liftoff = body.mass

@@ -11,7 +11,7 @@ from rocketsim.dynamics.reference import integrate_reference
 from rocketsim.dynamics.rk4 import advance
 from rocketsim.frames.quaternion import quat_rotate
 from rocketsim.scenario.load import load
-from rocketsim.sim.world import World
+from rocketsim.sim.build import build_world
 from tests.test_world_rails import AXISYMMETRIC
 
 CRUISER = """
@@ -33,7 +33,7 @@ def world_for(write, scenario, position, velocity):
         duration: 72000 s
         initial_rates: [0.3, 0.02, 0.0]
         """)
-    world = World.from_scenario(load(path))
+    world = build_world(load(path))
     batches = []
     world.on_progress = batches.append
     return world, batches

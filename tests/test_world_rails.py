@@ -11,7 +11,7 @@ import numpy as np
 from rocketsim.dynamics.reference import integrate_reference
 from rocketsim.dynamics.rk4 import advance
 from rocketsim.scenario.load import load
-from rocketsim.sim.world import World
+from rocketsim.sim.build import build_world
 
 AXISYMMETRIC = """\
 name: spinner
@@ -34,16 +34,16 @@ def fly_world(write, scenario, monkeypatch_calls):
     write("vehicle.yaml", AXISYMMETRIC)
     mission = path.parent / "mission.yaml"
     mission.write_text(mission.read_text() + "initial_rates: [0.8, 0.05, -0.03]\n")
-    world = World.from_scenario(load(path))
+    world = build_world(load(path))
     body = world.bodies[0]
     y0, p = body.y.copy(), body.p.copy()
-    on_rails = world._on_rails
+    on_rails = world.schedule.on_rails
 
     def record(b):
         answer = on_rails(b)
         monkeypatch_calls.append((world.k, answer))
         return answer
-    world._on_rails = record
+    world.schedule.on_rails = record
     world.run()
     return world, y0, p
 
@@ -66,5 +66,5 @@ def test_a_sleeping_body_rides_the_rails_and_wakes_on_the_same_orbit(write, scen
 
 def test_an_asymmetric_or_stepping_body_stays_awake(scenario):
     # the default probe (inertia 0.15, 0.12, 0.05) has no closed-form torque-free motion here
-    world = World.from_scenario(load(scenario(SLEEPER, duration="2 s")))
-    assert not world._on_rails(world.bodies[0])
+    world = build_world(load(scenario(SLEEPER, duration="2 s")))
+    assert not world.schedule.on_rails(world.bodies[0])

@@ -5,7 +5,7 @@ A body starts in Earth's ECI 600 km outside the Moon's sphere of influence
 on the Moon at 1 km/s. References: the awake RK4 kernel of the same field
 flown without any handover in Earth's frame
 (:func:`rocketsim.dynamics.rk4.advance`), the states re-expressed by
-:func:`rocketsim.sim.central.to_frame` (ephemeris positions and IAU pole
+:func:`rocketsim.dynamics.central.to_frame` (ephemeris positions and IAU pole
 rotations computed from the Moon's side, not the Earth's); DOP853 of the
 lunar-centred field (:mod:`rocketsim.dynamics.reference`) for a cruise
 that crosses the boundary.
@@ -17,8 +17,8 @@ from rocketsim.dynamics import soi
 from rocketsim.dynamics.rk4 import advance
 from rocketsim.dynamics.third_bodies import bodies_at, field_of
 from rocketsim.scenario.load import load
-from rocketsim.sim.central import nbody_field, to_frame
-from rocketsim.sim.world import World
+from rocketsim.dynamics.central import nbody_field, to_frame
+from rocketsim.sim.build import build_world
 from rocketsim.timescales import Epoch
 import datetime as dt
 
@@ -52,7 +52,7 @@ def world_for(write, scenario, program=None, duration="900 s", gap=600e3):
         duration: {duration}
         gravity: n-body
         """)
-    world = World.from_scenario(load(path))
+    world = build_world(load(path))
     records = []
     body = world.bodies[0]
     world.on_progress = lambda t: records.append((body.t, body.y.copy(), body.p.copy(), body.central))
@@ -97,7 +97,7 @@ def test_positions_about_mars_read_as_planetocentric_latitude_longitude_and_heig
     # itself checked against the IAU WG 2015 report's matrices) of a body-fixed point
     import math
     from rocketsim.bodies.orientation import body_to_j2000
-    from rocketsim.sim.central import planetocentric
+    from rocketsim.dynamics.central import planetocentric
     jd = 2461371.5
     to_frame_axes = soi.frame_rotation("mars", jd).T @ body_to_j2000("mars", jd)
     for lat, lon in ((0.3, 0.0), (-1.2, 45.0), (0.0, -120.0)):
@@ -128,10 +128,10 @@ def test_about_the_moon_a_sleeping_body_follows_the_awake_path_to_the_bit(write,
             duration: 200 s
             initial_rates: [0.0, 0.0, 0.0]
             """)
-        world = World.from_scenario(load(path))
+        world = build_world(load(path))
         body = world.bodies[0]
         railed = []
-        world.on_progress = lambda t: railed.append(world._on_rails(body))
+        world.on_progress = lambda t: railed.append(world.schedule.on_rails(body))
         world.run()
         assert body.central == "moon" and body.t == 200.0
         assert all(railed) if asleep else not any(railed)

@@ -12,7 +12,7 @@ from pathlib import Path
 import numpy as np
 
 from rocketsim.scenario.load import load
-from rocketsim.sim.world import World
+from rocketsim.sim.build import build_world
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -34,15 +34,15 @@ def test_a_coasting_stage_on_rails_follows_the_awake_path(write):
             mission: mission.yaml
             program: program.py
             """)
-        world = World.from_scenario(load(path))
+        world = build_world(load(path))
         body = world.bodies[0]
         railed = []
-        world.on_progress = lambda t: railed.append(world._on_rails(body))
+        world.on_progress = lambda t: railed.append(world.schedule.on_rails(body))
         world.run()
         assert body.t == 200.0
         assert all(railed[5:]) if asleep else not any(railed)   # asleep: once the engine clocks pass the 0.25 s tail-off
         finals.append(body.y.copy())
-    clocks = World.from_scenario(load(path)).bodies[0].vehicle.clocks
+    clocks = build_world(load(path)).bodies[0].vehicle.clocks
     np.testing.assert_array_equal(finals[0][:6], finals[1][:6])
     np.testing.assert_allclose(finals[0][clocks], finals[1][clocks], rtol=0, atol=1e-9)
     np.testing.assert_array_equal(finals[0][13:clocks.start], finals[1][13:clocks.start])    # tanks

@@ -121,6 +121,13 @@ def air_at(h0, dh, density, pressure, temperature, speed_of_sound, wind_east, wi
 
 
 @njit
+def air_in(air, h):
+    """:func:`air_at` of the table ``air``: the tuple of
+    :meth:`AtmosphereTable.arrays` (what a vehicle carries as its ``air``)."""
+    return air_at(air[0], air[1], air[2], air[3], air[4], air[5], air[6], air[7], h)
+
+
+@njit
 def air_at_many(h0, dh, density, pressure, temperature, speed_of_sound, wind_east, wind_north,
                 heights):
     """:func:`air_at` for an array of heights: six arrays shaped like ``heights``."""

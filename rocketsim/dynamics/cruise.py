@@ -1,7 +1,6 @@
 """Cruise rails: RK4 through the full n-body field, sub-steps sized by the turn.
 
-Physics model, "Cruise rails: RK4 sized by the turn"; EQUATIONS.md ("Cruise
-rails"). With ``tau = |v|^2 / |v x a|`` the time the path takes to turn
+docs/physics.md, "Cruise rails". With ``tau = |v|^2 / |v x a|`` the time the path takes to turn
 through a radian:
 
 - a sub-step lasts ``0.02 tau``, never less than 5 s, and is one classical
@@ -34,13 +33,13 @@ from rocketsim._jit import njit
 from rocketsim.constants import (CRUISE_CLEARANCE, CRUISE_MAX_STEP, CRUISE_MAX_TURN,
                                  CRUISE_MIN_SUBSTEP, CRUISE_TURN_PER_SUBSTEP, EARTH_RADIUS_EQ,
                                  MARS_RADIUS_EQ, MOON_RADIUS, SUN_RADIUS)
-from rocketsim.dynamics.nbody import (F_CENTER, F_MU, bodies_at, field_acceleration,
+from rocketsim.dynamics.nbody import (FIELD_CENTER, FIELD_MU, bodies_at, field_acceleration,
                                       field_rk4_step)
 from rocketsim.dynamics.rails import FREE, turn_attitude
 from rocketsim.dynamics.soi import SOI_BY_INDEX, central_body, central_params, handover
-from rocketsim.dynamics.state import P_MU, R, V
+from rocketsim.layout import P_MU, R, V
 from rocketsim.ephemeris.solar_system import BODIES
-from rocketsim.transfer.kepler import _propagate_one
+from rocketsim.orbits.kepler import _propagate_one
 
 DONE = 0          # reached the requested end
 ENCOUNTER = 1     # a clearance shell is less than a minimum sub-step away: fly at 20 ms
@@ -64,7 +63,7 @@ def turn_time(y, p, s, fp):
 
 @njit
 def _in_field(fp, k):
-    return k == int(fp[F_CENTER]) or fp[F_MU + k] != 0.0
+    return k == int(fp[FIELD_CENTER]) or fp[FIELD_MU + k] != 0.0
 
 
 @njit
@@ -87,7 +86,7 @@ def step_limits(y, t, p, fp):
     tau = turn_time(y, p, s, fp)
     sub = max(CRUISE_TURN_PER_SUBSTEP * tau, CRUISE_MIN_SUBSTEP)
     limit = min(CRUISE_MAX_STEP, CRUISE_MAX_TURN * tau)
-    c = int(fp[F_CENTER])
+    c = int(fp[FIELD_CENTER])
     soi_time = np.inf
     for k in range(4):
         if not _in_field(fp, k):
@@ -132,7 +131,7 @@ def conic_clear(y, t, dt, p, fp):
 @njit
 def outside_soi(y, t, fp):
     """True when ``y`` has left the central body's sphere or entered a child's."""
-    c = int(fp[F_CENTER])
+    c = int(fp[FIELD_CENTER])
     r = math.sqrt(y[R] ** 2 + y[R + 1] ** 2 + y[R + 2] ** 2)
     if r > SOI_BY_INDEX[c]:
         return True
@@ -217,7 +216,7 @@ def cruise_through(y, k0: int, h: float, k_end: int, p, fp, air, inertia, gmst0:
     k = k0
     while True:
         new = central_body(y[R:R + 3], fp, k * h)
-        if new != BODIES[int(fp[F_CENTER])]:
+        if new != BODIES[int(fp[FIELD_CENTER])]:
             r, v, fp = handover(y[R:R + 3], y[V:V + 3], fp, k * h, new, gmst0)
             y = y.copy()
             y[R:R + 3] = r

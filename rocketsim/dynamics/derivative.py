@@ -39,11 +39,11 @@ import math
 import numpy as np
 
 from rocketsim._jit import njit
-from rocketsim.atmosphere.table import air_at
+from rocketsim.atmosphere.table import air_in
 from rocketsim.atmosphere.ussa1976 import Z_86
 from rocketsim.constants import EARTH_OMEGA
 from rocketsim.bodies.gravity import point_mass_j2
-from rocketsim.dynamics.state import (N_PARAMS, P_CLASSIC, P_IXX, P_IYY, P_IZZ, P_J2, P_MU,
+from rocketsim.layout import (P_CLASSIC, P_IXX, P_NBODY, P_IYY, P_IZZ, P_J2, P_MU,
                                       P_POLAR_RADIUS, P_RADIUS, P_SPIN, Q, R, V, W)
 from rocketsim.dynamics.third_bodies import held_perturbation
 from rocketsim.frames.quaternion import quat_multiply
@@ -140,7 +140,7 @@ def held_derivative(t, y, p, dy, veh, t_held, y_held):
     the aerodynamics, RCS and contact are evaluated at every stage either way.
     """
     ax, ay, az = point_mass_j2(y[R], y[R + 1], y[R + 2], p[P_MU], p[P_RADIUS], p[P_J2])
-    if p.shape[0] > N_PARAMS:
+    if p[P_NBODY] > 0.5:
         # the n-body field the body carries: the other bodies held for the step
         tx, ty, tz = held_perturbation(y[R], y[R + 1], y[R + 2], p)
         ax, ay, az = ax + tx, ay + ty, az + tz
@@ -166,14 +166,10 @@ def held_derivative(t, y, p, dy, veh, t_held, y_held):
         n_tanks = veh.tank_bottom.shape[0]
         mass, x_cm, ixx, iyy, izz = mass_properties(veh.fixed, veh.tank_bottom, veh.tank_radius,
                                                     veh.tank_density, y_e[13:13 + n_tanks])
-        rho, p_a, _, sound, _, _ = air_at(veh.air_h0, veh.air_dh, veh.air_density, veh.air_pressure,
-                                          veh.air_temperature, veh.air_speed_of_sound,
-                                          veh.air_wind_east, veh.air_wind_north, radial_height(y, p))
+        rho, p_a, _, sound, _, _ = air_in(veh.air, radial_height(y, p))
         if classic:
             h_held = radial_height(y_held, p)
-            rho_held, p_a = air_at(veh.air_h0, veh.air_dh, veh.air_density, veh.air_pressure,
-                                   veh.air_temperature, veh.air_speed_of_sound, veh.air_wind_east,
-                                   veh.air_wind_north, h_held)[:2]
+            rho_held, p_a = air_in(veh.air, h_held)[:2]
             if h_held > Z_86:
                 rho = rho_held
         fx, fy, fz, mx, my, mz = engine_forces(t_e, y_e, dy, veh.first_tank, veh.first_clock, veh.eng,

@@ -30,12 +30,12 @@ import math
 import numpy as np
 
 from rocketsim._jit import njit
-from rocketsim.atmosphere.table import air_at
+from rocketsim.atmosphere.table import air_in
 from rocketsim.dynamics.derivative import radial_height
 from rocketsim.dynamics.nbody import translational_rk4
 from rocketsim.dynamics.rk4 import step, wind_at
-from rocketsim.dynamics.state import N_PARAMS, P_SPIN, R, V
-from rocketsim.dynamics.third_bodies import F_DRAG, F_WIND, P_HELD
+from rocketsim.layout import P_NBODY, P_SPIN, R, V
+from rocketsim.dynamics.third_bodies import FIELD_DRAG, FIELD_WIND, P_HELD
 from rocketsim.vehicle.tumbling import tumbling_cd
 
 
@@ -45,8 +45,7 @@ def drag_factor(y, p, air, wind, area_mass, length):
     (m^2/kg) and ``length`` (m) in state ``y`` (0 where there is no air), from the
     air table ``air`` (the arguments of ``air_at`` before the height) and the ``wind``
     (m/s, frame axes)."""
-    rho, _, _, sound, _, _ = air_at(air[0], air[1], air[2], air[3], air[4], air[5], air[6], air[7],
-                                    radial_height(y, p))
+    rho, _, _, sound, _, _ = air_in(air, radial_height(y, p))
     if not (rho > 0.0 and area_mass > 0.0):
         return 0.0
     wx = y[V] + p[P_SPIN] * y[R + 1] - wind[0]
@@ -62,13 +61,13 @@ def free_step(y, t, h, p, fp, air, area_mass, length):
     array (:func:`rocketsim.dynamics.nbody.make_field`) of the body's central body,
     a scratch copy whose drag slot is set here."""
     out = step(y, t, h, p)          # attitude (and the n-body hold in p) as the awake body
-    wind = wind_at(y, t, p, air[0], air[1], air[2], air[3], air[4], air[5], air[6], air[7])
+    wind = wind_at(y, t, p, air)
     k = drag_factor(y, p, air, wind, area_mass, length)
     if k == 0.0:
         return out
-    fp[F_DRAG] = k
-    fp[F_WIND], fp[F_WIND + 1], fp[F_WIND + 2] = wind
-    if p.shape[0] > N_PARAMS:
+    fp[FIELD_DRAG] = k
+    fp[FIELD_WIND], fp[FIELD_WIND + 1], fp[FIELD_WIND + 2] = wind
+    if p[P_NBODY] > 0.5:
         s = p[P_HELD:P_HELD + 12].reshape((4, 3)).copy()
     else:
         s = np.zeros((4, 3))

@@ -41,11 +41,11 @@ import numpy as np
 
 from rocketsim._jit import njit
 from rocketsim.bodies.gravity import point_mass_j2
-from rocketsim.atmosphere.table import air_at
+from rocketsim.atmosphere.table import air_in
 from rocketsim.dynamics.derivative import derivative, radial_height
-from rocketsim.dynamics.state import P_J2, P_MU, P_RADIUS, P_SPIN, Q, R, V
+from rocketsim.layout import P_J2, P_MU, P_RADIUS, P_SPIN, Q, R, V
 from rocketsim.dynamics.third_bodies import (  # noqa: F401  (the field's slots and pull live there)
-    F_CENTER, F_DRAG, F_JD0, F_MU, F_ROT, F_SRP, F_WIND, MU, N_FIELD, SRP_1AU, bodies_at,
+    FIELD_CENTER, FIELD_DRAG, FIELD_JD0, FIELD_MU, FIELD_ROT, FIELD_SRP, FIELD_WIND, MU, N_FIELD, SRP_1AU, bodies_at,
     held_bodies, hold_time, perturbation)
 from rocketsim.ephemeris.solar_system import BODIES
 
@@ -62,14 +62,14 @@ def make_field(center: str, jd0_tt: float, rotation=None, bodies=BODIES,
     ``drag``: ``C_D A/m`` in m^2/kg of the rails' point-mass drag (Earth only).
     """
     fp = np.zeros(N_FIELD)
-    fp[F_CENTER] = BODIES.index(center)
-    fp[F_JD0] = jd0_tt
-    fp[F_SRP] = srp
-    fp[F_DRAG] = drag
+    fp[FIELD_CENTER] = BODIES.index(center)
+    fp[FIELD_JD0] = jd0_tt
+    fp[FIELD_SRP] = srp
+    fp[FIELD_DRAG] = drag
     rotation = np.eye(3) if rotation is None else np.asarray(rotation, dtype=float)
-    fp[F_ROT:F_ROT + 9] = rotation.reshape(9)
+    fp[FIELD_ROT:FIELD_ROT + 9] = rotation.reshape(9)
     for name in bodies:
-        fp[F_MU + BODIES.index(name)] = MU[name]
+        fp[FIELD_MU + BODIES.index(name)] = MU[name]
     return fp
 
 
@@ -115,24 +115,23 @@ def no_air():
 # table's tuple of arrays cost rails four times their arithmetic (issue 9 benchmark)
 @njit(inline="always")
 def translational_acceleration(x, y, z, vx, vy, vz, p, s, fp, air, pos):
-    """The field at ``(x, y, z)`` (m) and, with ``fp[F_DRAG]`` set, point-mass drag
+    """The field at ``(x, y, z)`` (m) and, with ``fp[FIELD_DRAG]`` set, point-mass drag
     ``-1/2 rho |v_air| v_air C_D A/m`` (``v_air = v - omega x r - wind``, ``omega`` the
-    central body's rate ``p[P_SPIN]``, ``wind`` the one held in ``fp[F_WIND:F_WIND + 3]``;
+    central body's rate ``p[P_SPIN]``, ``wind`` the one held in ``fp[FIELD_WIND:FIELD_WIND + 3]``;
     density from the central body's air table ``air`` at the radial height: the day's
     about Earth, none above 600 km; Mars's about Mars). ``pos``: a scratch array of 3.
     Returns m/s^2, frame axes."""
     ax, ay, az = field_acceleration(x, y, z, s, fp, p)
-    if fp[F_DRAG] != 0.0:
+    if fp[FIELD_DRAG] != 0.0:
         pos[0] = x
         pos[1] = y
         pos[2] = z
-        rho = air_at(air[0], air[1], air[2], air[3], air[4], air[5], air[6], air[7],
-                     radial_height(pos, p))[0]
+        rho = air_in(air, radial_height(pos, p))[0]
         if rho > 0.0:
-            wx = vx + p[P_SPIN] * y - fp[F_WIND]
-            wy = vy - p[P_SPIN] * x - fp[F_WIND + 1]
-            wz = vz - fp[F_WIND + 2]
-            k = -0.5 * rho * math.sqrt(wx * wx + wy * wy + wz * wz) * fp[F_DRAG]
+            wx = vx + p[P_SPIN] * y - fp[FIELD_WIND]
+            wy = vy - p[P_SPIN] * x - fp[FIELD_WIND + 1]
+            wz = vz - fp[FIELD_WIND + 2]
+            k = -0.5 * rho * math.sqrt(wx * wx + wy * wy + wz * wz) * fp[FIELD_DRAG]
             ax += k * wx
             ay += k * wy
             az += k * wz

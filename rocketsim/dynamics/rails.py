@@ -33,9 +33,9 @@ import numpy as np
 from rocketsim._jit import njit
 from rocketsim.constants import RAILS_FLOOR
 from rocketsim.dynamics.derivative import radial_height
-from rocketsim.dynamics.nbody import F_CENTER, F_MU, bodies_at, hold_time, translational_rk4
-from rocketsim.dynamics.state import P_MU, P_POLAR_RADIUS, P_RADIUS, P_SPIN, Q, R, V, W
-from rocketsim.flight.readings import _VERTICAL, where_and_how_fast
+from rocketsim.dynamics.nbody import FIELD_CENTER, FIELD_MU, bodies_at, hold_time, translational_rk4
+from rocketsim.layout import P_MU, P_POLAR_RADIUS, P_RADIUS, P_SPIN, Q, R, V, W
+from rocketsim.frames.local import VERTICAL, where_and_how_fast
 from rocketsim.frames.quaternion import (quat_conjugate, quat_from_axis_angle, quat_from_matrix,
                                          quat_multiply, quat_normalize, quat_rotate)
 
@@ -168,7 +168,7 @@ def nose_target(code, r, v, enu, surface):
     body at ``r`` (m) moving at ``v`` (m/s), as the autopilot reads it
     (:meth:`rocketsim.flight.autopilot.AttitudeCommand.target`): ``enu`` the rows east,
     north, up and ``surface`` the velocity relative to the ground (m/s, ECI axes) of
-    :func:`rocketsim.flight.readings.where_and_how_fast`."""
+    :func:`rocketsim.frames.local.where_and_how_fast`."""
     kind = int(code[0])
     out = np.empty(3)
     if kind == DIRECTION:
@@ -216,7 +216,7 @@ def target_attitude(nose, up, roll):
     :func:`rocketsim.flight.autopilot.target_axes`; ``found`` false within 0.01 deg of
     the vertical (no reference: the autopilot then holds the nose only)."""
     sin_pitch = min(max(nose[0] * up[0] + nose[1] * up[1] + nose[2] * up[2], -1.0), 1.0)
-    if abs(sin_pitch) >= _VERTICAL:
+    if abs(sin_pitch) >= VERTICAL:
         return False, np.empty(4)
     horizontal = nose - sin_pitch * up
     horizontal = horizontal / math.sqrt(_dot(horizontal, horizontal))
@@ -338,7 +338,7 @@ def advance_rails(y, k0, h, n_steps, p, fp, air, inertia, mode, floor=RAILS_FLOO
     s = np.zeros((4, 3))
     third = False
     for k in range(4):
-        if fp[F_MU + k] != 0.0 and k != int(fp[F_CENTER]):
+        if fp[FIELD_MU + k] != 0.0 and k != int(fp[FIELD_CENTER]):
             third = True
     spin, c, sn = spin_constants(y[W], inertia, h)
     for k in range(n_steps):

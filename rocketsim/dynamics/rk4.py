@@ -31,11 +31,11 @@ import math
 import numpy as np
 
 from rocketsim._jit import njit
-from rocketsim.atmosphere.table import air_at, wind_earth_fixed
+from rocketsim.atmosphere.table import air_in, wind_earth_fixed
 from rocketsim.constants import (GROUND_SUBSTEP_HEIGHT, GROUND_SUBSTEP_MAX, GROUND_SUBSTEPS,
                                 UNUSABLE_PROPELLANT)
 from rocketsim.dynamics.derivative import held_derivative, radial_height
-from rocketsim.dynamics.state import N_PARAMS, P_RADIUS, P_SPIN, Q, R
+from rocketsim.layout import P_NBODY, P_RADIUS, P_SPIN, Q, R
 from rocketsim.dynamics.third_bodies import hold_field
 from rocketsim.frames.geodetic import ecef_to_geodetic_njit
 from rocketsim.vehicle.aero import A_REACH, A_WIND
@@ -95,14 +95,12 @@ def hold_wind(y, t, p, veh):
     """Sample the day's wind at the vehicle's position at time ``t`` (s) and hold it
     (inertial, m/s) in ``veh.aero.wind`` for the step (physics model, "The integrator"):
     :func:`wind_at` in the vehicle's air table."""
-    veh.aero.wind[0], veh.aero.wind[1], veh.aero.wind[2] = wind_at(
-        y, t, p, veh.air_h0, veh.air_dh, veh.air_density, veh.air_pressure, veh.air_temperature,
-        veh.air_speed_of_sound, veh.air_wind_east, veh.air_wind_north)
+    veh.aero.wind[0], veh.aero.wind[1], veh.aero.wind[2] = wind_at(y, t, p, veh.air)
 
 
 @njit
-def wind_at(y, t, p, h0, dh, density, pressure, temperature, sound, wind_east, wind_north):
-    """The wind (m/s, frame axes) of the air table (the arrays of
+def wind_at(y, t, p, air):
+    """The wind (m/s, frame axes) of the air table ``air`` (the tuple of
     :meth:`~rocketsim.atmosphere.table.AtmosphereTable.arrays`) at the position of state
     ``y`` at mission time ``t`` (s); the table's east and north turn with the central
     body at ``p[P_SPIN]``."""
@@ -112,7 +110,7 @@ def wind_at(y, t, p, h0, dh, density, pressure, temperature, sound, wind_east, w
     x = c * y[R] + s * y[R + 1]
     yy = -s * y[R] + c * y[R + 1]
     lat, lon, h = ecef_to_geodetic_njit(x, yy, y[R + 2])
-    east, north = air_at(h0, dh, density, pressure, temperature, sound, wind_east, wind_north, h)[4:6]
+    east, north = air_in(air, h)[4:6]
     wind = wind_earth_fixed(east, north, lat, lon)
     return c * wind[0] - s * wind[1], s * wind[0] + c * wind[1], wind[2]
 
@@ -205,7 +203,7 @@ def step(y, t, h, p, veh=None):
     in the n-body field holds the other bodies' positions here (per 5 s bucket
     of the step's start time, :func:`~rocketsim.dynamics.third_bodies.hold_field`).
     """
-    if p.shape[0] > N_PARAMS:
+    if p[P_NBODY] > 0.5:
         hold_field(p, t)            # the other bodies of an n-body field, held per 5 s
     reach = 0.0
     if veh is not None:

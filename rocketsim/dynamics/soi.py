@@ -28,8 +28,8 @@ from rocketsim.constants import (EARTH_J2, EARTH_MU, EARTH_OMEGA, EARTH_ORBIT_A,
                                  EARTH_RADIUS_POLAR, MARS_FLATTENING, MARS_J2, MARS_MU,
                                  MARS_ORBIT_A, MARS_RADIUS_EQ, MOON_J2, MOON_MU, MOON_ORBIT_A,
                                  MOON_RADIUS, SECONDS_PER_DAY, SUN_MU, SUN_RADIUS)
-from rocketsim.dynamics.nbody import F_CENTER, F_JD0, F_ROT, bodies_at
-from rocketsim.dynamics.state import P_J2, P_MU, P_POLAR_RADIUS, P_RADIUS, P_SPIN
+from rocketsim.dynamics.nbody import FIELD_CENTER, FIELD_JD0, FIELD_ROT, bodies_at
+from rocketsim.layout import P_J2, P_MU, P_POLAR_RADIUS, P_RADIUS, P_SPIN
 from rocketsim.ephemeris.solar_system import BODIES
 
 PARENT = {"earth": "sun", "moon": "earth", "mars": "sun"}
@@ -92,7 +92,7 @@ def central_body(r, fp, t: float) -> str:
     Leaving the centre's sphere hands over to its parent; entering a child's
     sphere (the Moon's from Earth, Earth's or Mars's from the Sun) to the child.
     """
-    center = BODIES[int(fp[F_CENTER])]
+    center = BODIES[int(fp[FIELD_CENTER])]
     r = np.asarray(r, dtype=float)
     if np.linalg.norm(r) > SOI[center]:
         return PARENT[center]
@@ -112,8 +112,8 @@ def handover(r, v, fp, t: float, new_center: str, gmst0: float = 0.0):
     field about the new centre (same bodies, same SRP).
     """
     fp = np.asarray(fp, dtype=float)
-    old_rot = fp[F_ROT:F_ROT + 9].reshape(3, 3)
-    jd = fp[F_JD0] + t / SECONDS_PER_DAY
+    old_rot = fp[FIELD_ROT:FIELD_ROT + 9].reshape(3, 3)
+    jd = fp[FIELD_JD0] + t / SECONDS_PER_DAY
     new_rot = frame_rotation(new_center, jd, gmst0)
     s, u = bodies_at(fp, t)
     j = BODIES.index(new_center)
@@ -121,6 +121,6 @@ def handover(r, v, fp, t: float, new_center: str, gmst0: float = 0.0):
     r_new = new_rot.T @ (old_rot @ (np.asarray(r, float) - s[j]))
     v_new = new_rot.T @ (old_rot @ (np.asarray(v, float) - u[j]))
     fp_new = fp.copy()
-    fp_new[F_CENTER] = j
-    fp_new[F_ROT:F_ROT + 9] = new_rot.reshape(9)
+    fp_new[FIELD_CENTER] = j
+    fp_new[FIELD_ROT:FIELD_ROT + 9] = new_rot.reshape(9)
     return r_new, v_new, fp_new

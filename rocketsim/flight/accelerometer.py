@@ -21,7 +21,7 @@ import numpy as np
 from rocketsim._jit import njit
 from rocketsim.bodies.gravity import point_mass_j2
 from rocketsim.dynamics.derivative import derivative
-from rocketsim.dynamics.state import N_PARAMS, P_J2, P_MU, P_RADIUS, R, V
+from rocketsim.layout import P_J2, P_MU, P_NBODY, P_RADIUS, R, V
 from rocketsim.dynamics.third_bodies import held_perturbation
 
 
@@ -32,7 +32,7 @@ def sensed_acceleration(t, y, p, veh):
     dy = np.zeros(y.shape[0])
     derivative(t, y, p, dy, veh)
     gx, gy, gz = point_mass_j2(y[R], y[R + 1], y[R + 2], p[P_MU], p[P_RADIUS], p[P_J2])
-    if p.shape[0] > N_PARAMS:
+    if p[P_NBODY] > 0.5:
         tx, ty, tz = held_perturbation(y[R], y[R + 1], y[R + 2], p)
         gx, gy, gz = gx + tx, gy + ty, gz + tz
     return np.array([dy[V] - gx, dy[V + 1] - gy, dy[V + 2] - gz])

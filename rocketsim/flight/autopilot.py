@@ -78,7 +78,7 @@ from scipy.optimize import lsq_linear
 
 from rocketsim.dynamics.rails import command_code
 from rocketsim.flight.steering import steer_step
-from rocketsim.vehicle import rcs as RC
+from rocketsim.vehicle.rcs import R_DX, R_DZ, R_TANK, R_THRUST, R_X, R_Y, R_Z
 
 MODES = ("prograde", "retrograde", "surface_prograde", "surface_retrograde", "normal",
          "antinormal", "radial", "antiradial")
@@ -103,10 +103,10 @@ def rcs_torques(arrays, y: np.ndarray, x_cm: float) -> np.ndarray:
     """Torque (N m, body x y z about the centre of mass) of each thruster at full
     command, a 3 x n matrix; zero for a thruster whose tank is empty."""
     rcs = arrays.aero.rcs
-    lever = np.column_stack((rcs[:, RC.R_X] - x_cm, rcs[:, RC.R_Y], rcs[:, RC.R_Z]))
-    push = rcs[:, RC.R_THRUST, None] * rcs[:, RC.R_DX:RC.R_DZ + 1]
+    lever = np.column_stack((rcs[:, R_X] - x_cm, rcs[:, R_Y], rcs[:, R_Z]))
+    push = rcs[:, R_THRUST, None] * rcs[:, R_DX:R_DZ + 1]
     torques = np.cross(lever, push)
-    torques[y[rcs[:, RC.R_TANK].astype(int)] <= 0.0] = 0.0
+    torques[y[rcs[:, R_TANK].astype(int)] <= 0.0] = 0.0
     return torques.T
 
 

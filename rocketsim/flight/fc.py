@@ -15,33 +15,33 @@ runs on the truth.
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING, Callable
+from typing import Callable
 
 import numpy as np
 
 from rocketsim.constants import G0
-from rocketsim.dynamics.state import P_RADIUS
+from rocketsim.dynamics.central import planetocentric
+from rocketsim.layout import P_RADIUS
 from rocketsim.flight.accelerometer import sensed_acceleration
 from rocketsim.flight.impact import predict_impact
 from rocketsim.flight.readings import StateView
 from rocketsim.frames.elements import Elements
-from rocketsim.frames.quaternion import quat_from_axis_angle, quat_multiply
 from rocketsim.flight.autopilot import MODES, AttitudeCommand, steer
+from rocketsim.flight.craft import Craft
+from rocketsim.flight.navigation import Navigation
+from rocketsim.vehicle.contact import contact_heights
 from rocketsim.vehicle.control import Propulsion
 from rocketsim.vehicle.heating import sutton_graves, sutton_graves_constant
-
-if TYPE_CHECKING:  # pragma: no cover
-    from rocketsim.sim.world import Body, World
-
 
 class FlightComputer:
     """The program's handle on one body of the world."""
 
-    def __init__(self, world: "World", body: "Body"):
-        self._world = world
-        self._body = body
-        self._nav: StateView | None = None
-        self._readings: dict[str, float] = {}
+    def __init__(self, craft: Craft):
+        self._craft = craft
+        self._nav = Navigation(craft)
+        self._view = self._nav.view             # the estimate of this step
+        self._measured = self._nav.measured     # a scalar reading with its sensor's error
+        self._command: AttitudeCommand | None = None
         self._engines: Propulsion | None = None
         self._fins = False          # grid fins steered by the autopilot (fc.deploy_grid_fins)
         self._legs = False          # fc.deploy_legs called
@@ -50,13 +50,13 @@ class FlightComputer:
     # --- timing -------------------------------------------------------------
     def step(self) -> None:
         """Hand control back; the program resumes at the next step."""
-        self._body.runner.hand_back(self._world.t + self._world.h)
+        self._craft.hand_back(self._craft.time + self._craft.step_length)
 
     def sleep(self, seconds: float) -> None:
         """Hand control back for ``seconds`` of mission time (at least one step)."""
         if not seconds >= 0:
             raise ValueError(f"fc.sleep() needs a duration >= 0 s, got {seconds!r}")
-        self._body.runner.hand_back(self._world.t + max(seconds, self._world.h))
+        self._craft.hand_back(self._craft.time + max(seconds, self._craft.step_length))
 
     def cruise(self, seconds: float) -> None:
         """Hand control back for ``seconds`` and allow cruise rails meanwhile.
@@ -69,45 +69,24 @@ class FlightComputer:
         """
         if not seconds >= 0:
             raise ValueError(f"fc.cruise() needs a duration >= 0 s, got {seconds!r}")
-        self._body.cruise_until = self._world.t + max(seconds, self._world.h)
-        self._body.runner.hand_back(self._body.cruise_until)
+        until = self._craft.time + max(seconds, self._craft.step_length)
+        self._craft.allow_cruise(until)
+        self._craft.hand_back(until)
 
     def wait_until(self, predicate: Callable[[], bool]) -> None:
         """Hand control back until ``predicate()`` is true (checked once per step)."""
         if not callable(predicate):
             raise TypeError("fc.wait_until() needs a function, e.g. lambda: fc.altitude > 1e5")
-        self._body.runner.hand_back(self._world.t + self._world.h, predicate)
+        self._craft.hand_back(self._craft.time + self._craft.step_length, predicate)
 
     # --- output -------------------------------------------------------------
     def log(self, *parts) -> None:
         """Write a line to the telemetry's ``/log`` channel."""
-        self._world.log(self._body, " ".join(str(p) for p in parts))
+        self._craft.log(" ".join(str(p) for p in parts))
 
     def event(self, name: str, **figures) -> None:
         """Record a named event with its figures (numbers or strings)."""
-        self._world.event(self._body, str(name), figures)
-
-    # --- the navigation estimate -----------------------------------------------
-    def _view(self) -> StateView:
-        body = self._body
-        if self._nav is not None and self._nav.t == body.t:
-            return self._nav
-        truth = body.view()
-        sensors = body.sensors
-        self._readings = {}
-        if sensors is None or sensors.perfect:
-            self._nav = truth
-            return truth
-        k = self._world.k
-        tilt = sensors.vector("attitude", (0.0, 0.0, 0.0), k)
-        angle = float(np.linalg.norm(tilt))
-        q = truth.attitude if angle == 0.0 else quat_multiply(
-            truth.attitude, quat_from_axis_angle(tilt / angle, angle))
-        self._nav = StateView(body.t, sensors.vector("position", truth.position, k),
-                              sensors.vector("velocity", truth.velocity, k), q,
-                              sensors.vector("rates", truth.body_rates, k), truth._atmosphere, body.mu,
-                              body.p)
-        return self._nav
+        self._craft.event(str(name), figures)
 
     def warm_up(self) -> None:
         """Read everything once (builds the air table, loads compiled kernels)."""
@@ -115,33 +94,23 @@ class FlightComputer:
         for name in ("euler", "air", "orbit", "gravity", "effective_gravity", "angle_of_attack",
                      "time_to_apoapsis", "vertical_speed", "horizontal_speed", "mach"):
             getattr(view, name)
-        body = self._body
+        body = self._craft
         if body.vehicle is not None:   # the compiled calls behind fc.engines, fc.thrust, fc.propellant
-            engines, p_a = self._propulsion(), body.view().air[1]
-            engines.states(body.y, self._world.t, p_a)
-            engines.thrusts(body.y, self._world.t, p_a)
+            engines, p_a = self._propulsion(), body.truth().air[1]
+            engines.states(body.y, self._craft.time, p_a)
+            engines.thrusts(body.y, self._craft.time, p_a)
             engines.propellant(body.y)
-
-    def _measured(self, name: str, value: Callable[[], float]) -> float:
-        """A scalar reading with its sensor's error (air data, radar, gauges), once per step."""
-        self._view()
-        if name not in self._readings:
-            sensors = self._body.sensors
-            truth = value()
-            self._readings[name] = truth if sensors is None or sensors.perfect else \
-                sensors.scalar(name, truth, self._world.k)
-        return self._readings[name]
 
     # --- time ---------------------------------------------------------------
     @property
     def time(self) -> float:
         """Mission time, s since the epoch (liftoff)."""
-        return self._world.t
+        return self._craft.time
 
     @property
     def utc(self):
         """UTC as a timezone-aware datetime (leap seconds ignored)."""
-        return self._world.epoch.utc_at(self._world.t)
+        return self._craft.epoch.utc_at(self._craft.time)
 
     # --- where and how fast -------------------------------------------------
     @property
@@ -177,22 +146,21 @@ class FlightComputer:
     def _place(self, view: StateView, key: str) -> tuple[float, float, float]:
         """(latitude rad, longitude rad, height m) of ``view``'s position: geodetic on
         WGS84 about Earth, planetocentric over the central body's ellipsoid elsewhere
-        (:func:`rocketsim.sim.central.planetocentric`, kept for the step as ``key``)."""
-        body = self._body
+        (:func:`rocketsim.dynamics.central.planetocentric`, kept for the step as ``key``)."""
+        body = self._craft
         if body.central == "earth":
             return view.geodetic
-        if key not in self._readings:
-            from rocketsim.sim.central import planetocentric     # sim imports flight: not at the top
-            self._readings[key] = planetocentric(
-                view.position, body.central, self._world.epoch.jd_tt() + body.t / 86400.0)
-        return self._readings[key]
+        if key not in self._nav.readings:
+            self._nav.readings[key] = planetocentric(
+                view.position, body.central, self._craft.epoch.jd_tt() + body.t / 86400.0)
+        return self._nav.readings[key]
 
     def _true_height(self) -> float:
         """Height of the true centre of mass over the central body's ground, m (what a radar
         measures, as :attr:`altitude` reads it: over WGS84 about Earth, over the central
         body's ellipsoid after a handover)."""
         self._view()                    # a new step clears the readings kept in _place
-        return self._place(self._body.view(), "true place")[2]
+        return self._place(self._craft.truth(), "true place")[2]
 
     @property
     def altitude(self) -> float:
@@ -326,8 +294,7 @@ class FlightComputer:
         and, if ``roll`` (rad) is given, turned that far about the nose from belly to the
         ground (the angle :attr:`roll` reads); ``roll=None`` leaves roll free (damped).
         Example: ``fc.point(math.radians(10), math.radians(90), roll=math.radians(180))``."""
-        self._body.attitude_command = AttitudeCommand(pitch=float(pitch), heading=float(heading),
-                                                      roll=_roll(roll))
+        self._steer(AttitudeCommand(pitch=float(pitch), heading=float(heading), roll=_roll(roll)))
 
     def point_at(self, vector, frame: str = "eci", roll: float | None = None) -> None:
         """Point the nose along ``vector``: in ``"eci"`` axes, or ``"local"`` (east, north, up);
@@ -340,7 +307,7 @@ class FlightComputer:
         norm = float(np.linalg.norm(v))
         if not norm > 0:
             raise ValueError("fc.point_at() needs a non-zero vector")
-        self._body.attitude_command = AttitudeCommand(direction=v / norm, roll=_roll(roll))
+        self._steer(AttitudeCommand(direction=v / norm, roll=_roll(roll)))
 
     def hold(self, mode: str, roll: float | None = None) -> None:
         """Follow a direction of the flight: one of prograde, retrograde, surface_prograde,
@@ -348,13 +315,15 @@ class FlightComputer:
         :meth:`point`. Example: ``fc.hold("retrograde", roll=0.0)``."""
         if mode not in MODES:
             raise ValueError(f"unknown attitude mode {mode!r}; use one of {', '.join(MODES)}")
-        self._body.attitude_command = AttitudeCommand(mode=mode, roll=_roll(roll))
+        self._steer(AttitudeCommand(mode=mode, roll=_roll(roll)))
 
     def release(self) -> None:
         """Stop steering (the gimbals stay where they are, the RCS thrusters stop)."""
-        self._body.attitude_command = None
-        if self._body.vehicle is not None:
-            self._body.vehicle.arrays.aero.rcs_cmd[:] = 0.0
+        self._steer(None)
+
+    def _steer(self, command: AttitudeCommand | None) -> None:
+        self._command = command
+        self._craft.command_attitude(command)
 
     def rcs(self, on: bool) -> None:
         """Hand the reaction-control thrusters to the autopilot (``on`` true) or take them
@@ -362,12 +331,12 @@ class FlightComputer:
         commanded attitude with them on all three axes, alongside the gimbals and grid
         fins, in a coast too (see :mod:`rocketsim.flight.autopilot`); they draw from
         their tanks. Records an ``rcs on`` / ``rcs off`` event. Example: ``fc.rcs(True)``."""
-        vehicle = self._body.vehicle
+        vehicle = self._craft.vehicle
         if vehicle is None or not len(vehicle.arrays.aero.rcs):
-            raise ValueError(f"{self._body.name} has no RCS thrusters")
+            raise ValueError(f"{self._craft.name} has no RCS thrusters")
         on = bool(on)
         if not on:
-            vehicle.arrays.aero.rcs_cmd[:] = 0.0
+            self._craft.stop_rcs()
         if on != self._rcs:
             self._rcs = on
             self.event("rcs on" if on else "rcs off")
@@ -383,17 +352,16 @@ class FlightComputer:
         that step reads instead, ``(command code, fins)``
         (:meth:`rocketsim.sim.vehicle_checks.VehicleChecks.advance`: the same compiled
         step, one call fewer); else runs it and returns None."""
-        command = self._body.attitude_command
-        if command is None or self._body.vehicle is None:
+        command = self._command
+        body = self._craft
+        if command is None or body.vehicle is None:
             return None
-        body = self._body
-        nav = self._nav         # None, an earlier step's, or this step's (the truth's view when perfect)
+        nav = self._nav.current     # None, an earlier step's, or this step's (the truth's view when perfect)
         if fold and not self._rcs and body.central == "earth" and (body.sensors is None or body.sensors.perfect) \
-                and (nav is None or nav.t != body.t or nav is body._view) \
-                and body.vehicle.arrays.air_density is body.atmosphere().density:
+                and (nav is None or nav.t != body.t or body.is_truth(nav)) and body.flies_in_days_air():
             return command.code, self._fins
-        nav, truth = self._view(), body.view()
-        steer(command, nav, body.vehicle, self._propulsion(), body.y, self._world.t,
+        nav, truth = self._view(), body.truth()
+        steer(command, nav, body.vehicle, self._propulsion(), body.y, self._craft.time,
               math.nan if nav is truth else truth.air[1], fins=self._fins, rcs=self._rcs)
 
     # --- landing ------------------------------------------------------------------
@@ -403,8 +371,8 @@ class FlightComputer:
         Before this call they are held at zero deflection. The fins' drag and restoring
         moment are in the aerodynamics from the start (the model has no stowed
         fins). Records a ``grid fins deployed`` event. Example: ``fc.deploy_grid_fins()``."""
-        if self._body.vehicle is None or not len(self._body.vehicle.arrays.aero.grid):
-            raise ValueError(f"{self._body.name} has no grid fins")
+        if self._craft.vehicle is None or not len(self._craft.vehicle.arrays.aero.grid):
+            raise ValueError(f"{self._craft.name} has no grid fins")
         if not self._fins:
             self._fins = True
             self.event("grid fins deployed")
@@ -414,8 +382,8 @@ class FlightComputer:
         start (a vehicle stands on them on the pad), so this only records a ``legs
         deployed`` event; a program should still call it before landing. Example:
         ``fc.deploy_legs()``."""
-        if self._body.vehicle is None or not len(self._body.vehicle.arrays.aero.contact):
-            raise ValueError(f"{self._body.name} has no legs")
+        if self._craft.vehicle is None or not len(self._craft.vehicle.arrays.aero.contact):
+            raise ValueError(f"{self._craft.name} has no legs")
         if not self._legs:
             self._legs = True
             self.event("legs deployed")
@@ -424,31 +392,30 @@ class FlightComputer:
     def clearance(self) -> float:
         """Height of the lowest contact point (a leg's foot, an engine bell) above the
         ground, m: the radar altitude less the centre of mass's height over that point."""
-        from rocketsim.sim.vehicle_checks import contact_heights     # the checks' geometry
-        body = self._body
+        body = self._craft
         if body.vehicle is None or not len(body.vehicle.arrays.aero.contact):
             return self.radar_altitude
         self._view()
-        if "clearance" not in self._readings:
+        if "clearance" not in self._nav.readings:
             lowest = float(contact_heights(body.y, body.p, body.vehicle).min())
-            self._readings["clearance"] = self.radar_altitude - (self._true_height() - lowest)
-        return self._readings["clearance"]
+            self._nav.readings["clearance"] = self.radar_altitude - (self._true_height() - lowest)
+        return self._nav.readings["clearance"]
 
     # --- the mission -----------------------------------------------------------
     @property
     def target(self):
         """The mission's target (``fc.target.orbit.altitude``, ``.inclination``; SI)."""
-        return self._world.target
+        return self._craft.target
 
     @property
     def pad_azimuth(self) -> float:
         """The launch site's pad azimuth from north, rad (nan without a site)."""
-        return self._world.pad_azimuth
+        return self._craft.pad_azimuth
 
     @property
     def stages(self) -> list[str]:
         """Names of the stages still attached, bottom first (empty for a rigid body)."""
-        vehicle = self._body.vehicle
+        vehicle = self._craft.vehicle
         return list(vehicle.stage_names) if vehicle is not None else []
 
     # --- staging ------------------------------------------------------------
@@ -458,18 +425,18 @@ class FlightComputer:
         The stage becomes a body of its own (flown by its program from the
         scenario's ``programs:``, if any). Returns its name.
         """
-        self._readings.pop("clearance", None)       # the stack's feet have changed
-        return self._world.separate(self._body).name
+        self._nav.readings.pop("clearance", None)       # the stack's feet have changed
+        return self._craft.stage()
 
     def jettison_fairing(self) -> tuple[str, str]:
         """Drop the payload fairing: it opens into two halves, bodies of their own
         (``fairing_1``, ``fairing_2``); returns their names."""
-        return tuple(half.name for half in self._world.jettison_fairing(self._body))
+        return self._craft.jettison_fairing()
 
     def deploy_payload(self) -> str:
         """Release the payload (after the fairing): it becomes a body of its own, named
         ``payload``, coasting from the stack's centre-of-mass motion; returns its name."""
-        return self._world.deploy_payload(self._body).name
+        return self._craft.deploy_payload()
 
     # --- predictions (vacuum two-body: rocketsim.flight.impact) ------------------
     @property
@@ -479,12 +446,12 @@ class FlightComputer:
         (``time`` s from now, ``latitude``, ``longitude`` rad, ``position`` ECI m,
         ``speed`` m/s), or None for a path that clears the ground. No drag, no J2."""
         view = self._view()
-        if "impact" not in self._readings:
-            body = self._body
-            if getattr(body, "central", "earth") != "earth":
+        if "impact" not in self._nav.readings:
+            body = self._craft
+            if body.central != "earth":
                 raise ValueError("impact predictions are for Earth (the WGS84 ellipsoid) only")
-            self._readings["impact"] = predict_impact(view.position, view.velocity, self._world.t, body.mu)
-        return self._readings["impact"]
+            self._nav.readings["impact"] = predict_impact(view.position, view.velocity, self._craft.time, body.mu)
+        return self._nav.readings["impact"]
 
     @property
     def impact_point(self) -> tuple[float, float] | None:
@@ -500,7 +467,7 @@ class FlightComputer:
 
     # --- engines ------------------------------------------------------------
     def _propulsion(self):
-        body = self._body
+        body = self._craft
         if body.vehicle is None:
             raise ValueError(f"{body.name} has no engines (a rigid_body vehicle)")
         if self._engines is None or self._engines.model is not body.vehicle:
@@ -512,51 +479,51 @@ class FlightComputer:
         (``"booster"``, ``"Merlin 1D ring"``, ``"booster/Merlin 1D ring/3"``) or index.
         Thrust follows after the ignition dead time and spool-up. Returns the
         engines that accepted (not already on, propellant left, an ignition left)."""
-        names = self._propulsion().ignite(self._body.y, which)
+        names = self._propulsion().ignite(self._craft.y, which)
         if names:
-            self._world.event(self._body, "ignition", {"engines": names})
+            self._craft.event("ignition", {"engines": names})
         return names
 
     def shutdown(self, which=None) -> list[str]:
         """Command engines off (the tail-off follows); returns the engines that were on."""
-        names = self._propulsion().shutdown(self._body.y, which)
+        names = self._propulsion().shutdown(self._craft.y, which)
         if names:
-            self._world.event(self._body, "shutdown", {"engines": names})
+            self._craft.event("shutdown", {"engines": names})
         return names
 
     def throttle(self, value: float, which=None) -> None:
         """Command a throttle (0-1 of vacuum thrust, clipped to each engine's range and
         reached at its slew rate)."""
-        self._propulsion().throttle(self._world.t, float(value), which)
+        self._propulsion().throttle(self._craft.time, float(value), which)
 
     @property
     def engines(self) -> list[dict]:
         """Each engine now: name, on, spool, throttle, gimbal_rad, thrust_N,
         mass_flow_kg_s, ignitions_left, separated (flow separation)."""
-        body = self._body
-        return self._propulsion().states(body.y, self._world.t, body.view().air[1])
+        body = self._craft
+        return self._propulsion().states(body.y, self._craft.time, body.truth().air[1])
 
     @property
     def thrust(self) -> float:
         """Total thrust of all engines now, N."""
-        body = self._body
+        body = self._craft
         if body.vehicle is None:
             return 0.0
-        return float(self._propulsion().thrusts(body.y, self._world.t, body.view().air[1]).sum())
+        return float(self._propulsion().thrusts(body.y, self._craft.time, body.truth().air[1]).sum())
 
     @property
     def propellant(self) -> dict[str, float]:
         """Propellant left per tank (``stage/tank`` -> kg), with the gauge's error."""
-        if self._body.vehicle is None:
+        if self._craft.vehicle is None:
             return {}
-        levels = self._propulsion().propellant(self._body.y)
+        levels = self._propulsion().propellant(self._craft.y)
         return {name: self._measured(f"propellant/{name}", lambda m=mass: m) for name, mass in levels.items()}
 
     # --- mass, gravity, orbit ---------------------------------------------------
     @property
     def mass(self) -> float:
         """Current mass, kg."""
-        return self._body.mass
+        return self._craft.mass
 
     @property
     def gravity(self) -> float:
@@ -583,7 +550,7 @@ class FlightComputer:
         with the accelerometers' error (0.1 %).
         Example: ``fc.throttle(0.7) if fc.acceleration > 4.5 else None``."""
         def truth():
-            body = self._body
+            body = self._craft
             arrays = None if body.vehicle is None else body.vehicle.arrays
             a = sensed_acceleration(body.t, body.y, body.p, arrays)
             return math.sqrt(a @ a) / G0
@@ -597,18 +564,16 @@ class FlightComputer:
         reads (their errors included), on the heat shield's nose radius, or on a 1 m
         reference radius for a vehicle without a shield (the flux scales as
         ``1/sqrt(r_n)``). Zero out of the air. Example: ``fc.wait_until(lambda: fc.heating < 1135)``."""
-        checks = self._body.checks
-        shield = None if checks is None else checks.shield
+        shield = self._craft.heat_shield
         return float(sutton_graves(self.air_density, self.airspeed,
                                    1.0 if shield is None else shield.nose_radius,
-                                   sutton_graves_constant(self._body.mu)))
+                                   sutton_graves_constant(self._craft.mu)))
 
     @property
     def shield_temperature(self) -> float:
         """The lumped heat shield's temperature, K, as the checks integrate it after every
         step (nan for a vehicle without a heat shield)."""
-        checks = self._body.checks
-        return math.nan if checks is None or checks.shield is None else float(checks.temperature)
+        return self._craft.shield_temperature
 
     @property
     def orbit(self) -> Elements:
@@ -618,12 +583,12 @@ class FlightComputer:
     @property
     def apoapsis(self) -> float:
         """Apoapsis altitude above the central body's equatorial radius, m (inf if unbound)."""
-        return self._view().orbit.apoapsis - float(self._body.p[P_RADIUS])
+        return self._view().orbit.apoapsis - float(self._craft.p[P_RADIUS])
 
     @property
     def periapsis(self) -> float:
         """Periapsis altitude above the central body's equatorial radius, m."""
-        return self._view().orbit.periapsis - float(self._body.p[P_RADIUS])
+        return self._view().orbit.periapsis - float(self._craft.p[P_RADIUS])
 
     @property
     def inclination(self) -> float:
@@ -642,13 +607,13 @@ class FlightComputer:
     def central_body(self) -> str:
         """The body the frame, gravity and orbit are about: "earth", or after a
         sphere-of-influence handover (``gravity: n-body``) "moon", "mars" or "sun"."""
-        return self._body.central
+        return self._craft.central
 
     def body_state(self, name: str, at: float | None = None) -> tuple[np.ndarray, np.ndarray]:
         """Position (m) and velocity (m/s) of ``name`` ("sun", "earth", "moon", "mars")
         relative to the central body, in the frame's axes, at mission time ``at`` (s;
         default now): the simulator's ephemeris. Example: ``r_moon, v_moon = fc.body_state("moon")``."""
-        return self._world.body_state(self._body, name, at)
+        return self._craft.body_state(name, at)
 
     def predict(self, seconds: float, delta_v=None, periapsis: bool = False):
         """Where the coast leads: ``(time, position, velocity)`` ``seconds`` from now
@@ -657,7 +622,7 @@ class FlightComputer:
         periapsis about the central body if that comes first. Computed from the
         truth, not the navigation estimate. Example:
         ``t, r, v = fc.predict(86400, periapsis=True)``."""
-        return self._world.predict(self._body, seconds, delta_v, periapsis)
+        return self._craft.predict(seconds, delta_v, periapsis)
 
     @property
     def time_to_apoapsis(self) -> float:

@@ -42,7 +42,7 @@ MISS_SCALE = 1e3            # m
 RADIAL_SPEED_SCALE = 10.0   # m/s
 DA, DB = 1e-3, 1e-5         # -, 1/s
 MAX_DA, MAX_DB = 0.5, 0.01  # -, 1/s
-A_RANGE = (-1.0, 2.0)       # the solved tan(pitch) at the start: -45 deg to 63 deg
+TAN_PITCH_RANGE = (-1.0, 2.0)       # the solved tan(pitch) at the start: -45 deg to 63 deg
 
 # the falling stage: the steps of its prediction
 DESCENT_STEPS = 4000        # at most this many steps (the point reached is returned)
@@ -97,7 +97,7 @@ def solve_linear_tangent(r, vr, vh, mass, thrust, flow, burn_time, radius, a, b,
 
     ``passes`` Newton passes from the guess ``a``, ``b`` (warm-start with the last
     solution), the Jacobian by forward differences (DA, DB), each pass's change
-    limited to MAX_DA, MAX_DB; ``a`` is returned within A_RANGE. A burn that
+    limited to MAX_DA, MAX_DB; ``a`` is returned within TAN_PITCH_RANGE. A burn that
     cannot reach the radius returns the law that comes closest along the Newton
     path, not an error: the caller re-solves as the state evolves."""
     for _ in range(passes):
@@ -111,7 +111,7 @@ def solve_linear_tangent(r, vr, vh, mass, thrust, flow, burn_time, radius, a, b,
             break
         a += max(-MAX_DA, min(MAX_DA, (-f0r * j22 + f0v * j12) / det))
         b += max(-MAX_DB, min(MAX_DB, (-j11 * f0v + j21 * f0r) / det))
-    return max(A_RANGE[0], min(A_RANGE[1], a)), b
+    return max(TAN_PITCH_RANGE[0], min(TAN_PITCH_RANGE[1], a)), b
 
 
 @njit

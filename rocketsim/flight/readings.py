@@ -25,16 +25,14 @@ import math
 import numpy as np
 
 from rocketsim._jit import njit
-from rocketsim.atmosphere.relative_wind import air_velocity
 from rocketsim.atmosphere.table import air_at, wind_earth_fixed
 from rocketsim.bodies.gravity import point_mass_j2
 from rocketsim.constants import EARTH_J2, EARTH_MU, EARTH_OMEGA, EARTH_RADIUS_EQ, EARTH_RADIUS_POLAR
-from rocketsim.dynamics.state import P_J2, P_MU, P_POLAR_RADIUS, P_RADIUS, P_SPIN, make_params
+from rocketsim.layout import P_J2, P_MU, P_POLAR_RADIUS, P_RADIUS, P_SPIN, make_params
 from rocketsim.frames.elements import Elements, state_to_elements, time_to_apoapsis
-from rocketsim.frames.geodetic import ecef_to_geodetic_njit, enu_basis, geodetic_on
+from rocketsim.frames.local import VERTICAL, air_velocity, turned, where_and_how_fast
 from rocketsim.frames.quaternion import quat_to_matrix
 
-_VERTICAL = math.cos(0.01 * math.pi / 180.0)
 _CALM = np.zeros(3)             # no wind: the air velocity is then the surface velocity
 # the central body of a view given no parameters: Earth (gravity and rotation)
 _EARTH_P = make_params(1.0, (1.0, 1.0, 1.0), EARTH_MU, EARTH_RADIUS_EQ, EARTH_J2, EARTH_RADIUS_POLAR)
@@ -58,47 +56,6 @@ class _once:
 
 
 @njit
-def _turned(x, y, angle):
-    """``R3(angle) (x, y)``: components in axes turned by ``angle`` (rad) about z, in
-    the order of :func:`rocketsim.frames.earth_fixed.eci_to_ecef` (the same bits)."""
-    c = math.cos(angle)
-    s = math.sin(angle)
-    return c * x + s * y, -s * x + c * y
-
-
-@njit
-def where_and_how_fast(r, v, t, spin=EARTH_OMEGA, a=EARTH_RADIUS_EQ, b=EARTH_RADIUS_POLAR):
-    """One compiled call for the readings every step needs: ``(lat rad, lon rad, height
-    m, enu, surface velocity)`` of the position ``r`` (m) and velocity ``v`` (m/s) in the
-    central body's inertial frame at mission time ``t`` (s), on the central body's
-    ellipsoid (equatorial radius ``a``, polar ``b``, m: ``p[P_RADIUS]``,
-    ``p[P_POLAR_RADIUS]``; WGS84 by default) turning at ``spin`` (rad/s about the frame's
-    z, the body's pole: ``p[P_SPIN]``; Earth's by default). ``enu`` (3, 3) has the local
-    east, north and up (the ellipsoid's normal) unit vectors in the frame's axes as rows;
-    the surface velocity (m/s, same axes) is relative to the turning ground. About Earth,
-    geodetic over WGS84 with the same operations, in the same order, as
-    :func:`~rocketsim.frames.earth_fixed.eci_to_ecef`,
-    :func:`~rocketsim.frames.geodetic.ecef_to_geodetic`, ``ecef_to_eci`` and
-    :func:`~rocketsim.atmosphere.relative_wind.air_velocity`; elsewhere the longitude is
-    counted from the frame's x turned by ``spin t``, not from the IAU prime meridian (the
-    local axes and the surface velocity do not depend on it;
-    :func:`rocketsim.sim.central.planetocentric` gives the body's own latitude and
-    longitude)."""
-    theta = 0.0 + spin * t
-    x, y = _turned(r[0], r[1], theta)
-    if a == EARTH_RADIUS_EQ and b == EARTH_RADIUS_POLAR:
-        lat, lon, h = ecef_to_geodetic_njit(x, y, r[2])
-    else:
-        lat, lon, h = geodetic_on(x, y, r[2], a, b)
-    basis = enu_basis(lat, lon)
-    enu = np.empty((3, 3))
-    for k in range(3):
-        enu[k, 0], enu[k, 1] = _turned(basis[k, 0], basis[k, 1], -theta)
-        enu[k, 2] = basis[k, 2]
-    return lat, lon, h, enu, air_velocity(r, v, _CALM, spin)
-
-
-@njit
 def air_here(h0, dh, density, pressure, temperature, speed_of_sound, wind_east, wind_north,
              lat, lon, h, t, r, v, spin=EARTH_OMEGA):
     """The day's air at geodetic ``lat``, ``lon`` (rad), height ``h`` (m) and mission time
@@ -110,7 +67,7 @@ def air_here(h0, dh, density, pressure, temperature, speed_of_sound, wind_east, 
                                                        speed_of_sound, wind_east, wind_north, h)
     fixed = wind_earth_fixed(east, north, lat, lon)
     wind = np.empty(3)
-    wind[0], wind[1] = _turned(fixed[0], fixed[1], -(0.0 + EARTH_OMEGA * t))
+    wind[0], wind[1] = turned(fixed[0], fixed[1], -(0.0 + EARTH_OMEGA * t))
     wind[2] = fixed[2]
     return rho, p, temperature_k, sound, wind, air_velocity(r, v, wind, spin)
 
@@ -141,7 +98,7 @@ class StateView:
     def of_state(cls, t: float, y: np.ndarray, atmosphere=None, mu: float = EARTH_MU,
                  p=None) -> "StateView":
         """The view of a state vector ``y`` (position, velocity, attitude, rates first;
-        :mod:`rocketsim.dynamics.state`), copied so later steps do not change it;
+        :mod:`rocketsim.layout`), copied so later steps do not change it;
         ``p`` as for the constructor."""
         view = cls.__new__(cls)
         s = y[:13].copy()
@@ -215,7 +172,7 @@ class StateView:
         nose, z_body = self.axes[:, 0], self.axes[:, 2]
         sin_pitch = float(np.clip(nose @ up, -1.0, 1.0))
         pitch = math.asin(sin_pitch)
-        if abs(sin_pitch) >= _VERTICAL:
+        if abs(sin_pitch) >= VERTICAL:
             # the reference z is the heading itself (nose up) or its opposite
             belly = math.copysign(1.0, sin_pitch) * z_body
             heading = math.atan2(belly @ east, belly @ north)
@@ -268,7 +225,7 @@ class StateView:
 
     @_once
     def effective_gravity(self) -> float:
-        """``|g| - v_h^2 / r``, ``v_h`` the inertial horizontal speed (EQUATIONS.md)."""
+        """``|g| - v_h^2 / r``, ``v_h`` the inertial horizontal speed (docs/physics.md, "Readings")."""
         r = _norm(self.position)
         v = self.velocity
         v_radial = v @ self.position / r

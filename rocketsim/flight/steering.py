@@ -27,9 +27,10 @@ import numpy as np
 
 from rocketsim._jit import njit
 from rocketsim.dynamics.rails import nose_target
-from rocketsim.dynamics.state import P_POLAR_RADIUS, P_RADIUS, P_SPIN
+from rocketsim.layout import P_POLAR_RADIUS, P_RADIUS, P_SPIN
 from rocketsim.flight.aero_feedforward import destabilising_moment
-from rocketsim.flight.readings import _VERTICAL, air_here, where_and_how_fast
+from rocketsim.flight.readings import air_here
+from rocketsim.frames.local import VERTICAL, where_and_how_fast
 from rocketsim.frames.quaternion import quat_from_matrix, quat_to_matrix
 from rocketsim.vehicle.engines import E_GIMBAL_RANGE, E_X, command_gimbals, thrusts
 from rocketsim.vehicle.grid_fins import G_MAX, command, grid_fin_forces
@@ -88,7 +89,7 @@ def target_axes(nose, enu, roll):
     up = enu[2]
     out = np.empty((3, 3))
     sin_pitch = min(max(nose[0] * up[0] + nose[1] * up[1] + nose[2] * up[2], -1.0), 1.0)
-    if abs(sin_pitch) >= _VERTICAL:
+    if abs(sin_pitch) >= VERTICAL:
         return False, out
     horizontal = np.empty(3)
     for i in range(3):

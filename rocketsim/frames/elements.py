@@ -10,7 +10,7 @@ measured in the frame of ``r`` and ``v`` (ECI for Earth: equator and ``x``).
 Degenerate orbits get fixed conventions so that a round trip
 ``elements_to_state(*state_to_elements(r, v, mu))`` always returns the state:
 
-* circular (``e < E_CIRCULAR``): ``argp = 0``, so ``nu`` is the argument of
+* circular (``e < CIRCULAR_ECCENTRICITY``): ``argp = 0``, so ``nu`` is the argument of
   latitude (from the ascending node);
 * equatorial (``sin i < SIN_I_EQUATORIAL``): ``raan = 0``, the node line is
   the ``x`` axis, so ``argp`` is the longitude of periapsis (measured in the
@@ -31,7 +31,7 @@ import numpy as np
 from rocketsim._jit import njit
 from rocketsim.constants import EARTH_MU
 
-E_CIRCULAR = 1e-11        # below this eccentricity an orbit is treated as circular
+CIRCULAR_ECCENTRICITY = 1e-11        # below this eccentricity an orbit is treated as circular
 SIN_I_EQUATORIAL = 1e-11  # below this sin(i) an orbit is treated as equatorial
 _TWO_PI = 2.0 * math.pi
 
@@ -146,7 +146,7 @@ def elements_tuple(r, v, mu):
     else:
         node_hat = node / node_n
         raan = math.atan2(node_hat[1], node_hat[0])
-    if e < E_CIRCULAR:
+    if e < CIRCULAR_ECCENTRICITY:
         argp = 0.0
         peri_hat = node_hat
     else:

@@ -11,9 +11,9 @@ import json
 import os
 from pathlib import Path
 
-from rocketsim import __version__
+from rocketsim.version import __version__
 from rocketsim.scenario.load import LoadedScenario
-from rocketsim.sim.world import World
+from rocketsim.sim.build import build_world
 from rocketsim.telemetry.writer import TelemetryWriter
 
 
@@ -28,7 +28,7 @@ def fly(loaded: LoadedScenario, out: str | Path, *, step: float | None = None,
     Errors in the scenario or the program are raised after the telemetry
     file has been finished.
     """
-    world = World.from_scenario(loaded, step=step, duration=duration)
+    world = build_world(loaded, step=step, duration=duration)
     world.on_progress = None if on_progress is None else (lambda t: on_progress(t, world.phase))
     epoch_ns = round(world.epoch.utc.timestamp() * 1e9)
     program = loaded.program_path

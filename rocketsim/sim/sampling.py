@@ -15,7 +15,7 @@ the dictionary for those who read it.
 Read-only: nothing here changes the state, the engines' commands or the checks,
 and no sensor is read (the figures are the truth). The computations are those
 of the flight itself: the readings' geodetic position and the day's air
-(:func:`rocketsim.flight.readings.where_and_how_fast`, ``air_here``), the
+(:func:`rocketsim.frames.local.where_and_how_fast`, ``air_here``), the
 derivative the integrator uses (:func:`rocketsim.sim.vehicle_checks.accelerations`),
 the engine model (:func:`rocketsim.vehicle.engines.thrusts`, ``engine_state``).
 
@@ -23,7 +23,7 @@ Fields of every body (SI units; degrees where the name ends in ``_deg``):
 position, velocity (ECI of the central body, m, m/s), attitude (quaternion
 w, x, y, z, body -> ECI), body rates (rad/s), latitude, longitude and height
 (geodetic over WGS84 about Earth; planetocentric over the central body's
-ellipsoid elsewhere, :func:`rocketsim.sim.central.planetocentric`), inertial
+ellipsoid elsewhere, :func:`rocketsim.dynamics.central.planetocentric`), inertial
 speed, the osculating elements (RAAN from the equinox about Earth, from the
 node of the body's equator on the J2000 equator elsewhere; altitudes over the
 central body's equatorial radius; apoapsis and period ``null`` unless
@@ -68,13 +68,14 @@ from functools import lru_cache, partial
 import numpy as np
 
 from rocketsim._jit import entry_point, njit
-from rocketsim.atmosphere.table import air_at
+from rocketsim.atmosphere.table import air_in
 from rocketsim.constants import DEG
 from rocketsim.dynamics.derivative import body_air_velocity, radial_height
-from rocketsim.dynamics.state import N_STATE, P_MASS, P_POLAR_RADIUS, P_RADIUS, P_SPIN, R, V
-from rocketsim.flight.readings import air_here, where_and_how_fast
+from rocketsim.layout import N_STATE, P_MASS, P_POLAR_RADIUS, P_RADIUS, P_SPIN, R, V
+from rocketsim.flight.readings import air_here
+from rocketsim.frames.local import where_and_how_fast
 from rocketsim.frames.elements import elements_tuple
-from rocketsim.sim.central import air_about
+from rocketsim.dynamics.central import air_about
 from rocketsim.sim.vehicle_checks import accelerations
 from rocketsim.vehicle.engines import E_MDOT, E_STAGE, S_DRY, engine_state, thrusts
 from rocketsim.vehicle.heating import sutton_graves, sutton_graves_constant
@@ -160,9 +161,7 @@ def _vehicle_into(out, t, y, p, p_a, veh, group, n_groups, nose_radius, k_heat):
     out[VEHICLE + 4] = propellant
     out[VEHICLE + 5] = math.nan
     if nose_radius > 0.0:
-        rho = air_at(veh.air_h0, veh.air_dh, veh.air_density, veh.air_pressure, veh.air_temperature,
-                     veh.air_speed_of_sound, veh.air_wind_east, veh.air_wind_north,
-                     radial_height(y, p))[0]
+        rho = air_in(veh.air, radial_height(y, p))[0]
         u, v, w = body_air_velocity(y, veh.aero.wind, p[P_SPIN])
         out[VEHICLE + 5] = sutton_graves(rho, math.sqrt(u * u + v * v + w * w), nose_radius, k_heat)
 

@@ -28,19 +28,19 @@ import math
 import numpy as np
 
 from rocketsim._jit import Entries, njit
-from rocketsim.atmosphere.table import TOP, air_at
+from rocketsim.atmosphere.table import TOP, air_in
 from rocketsim.bodies.gravity import point_mass_j2
 from rocketsim.bodies.orientation import BODIES as ORIENTED, spin_rate
 from rocketsim.constants import AIR_CP, CO2_CP, DEG, HEAT_SHIELD_LIMIT, MARS_MU
 from rocketsim.dynamics.derivative import body_air_velocity, derivative, radial_height
 from rocketsim.dynamics.rk4 import advance, near_ground
-from rocketsim.dynamics.state import P_J2, P_MU, P_POLAR_RADIUS, P_RADIUS, Q, R, V, W
+from rocketsim.layout import P_J2, P_MU, P_RADIUS, Q, R, V, W
 from rocketsim.flight.readings import StateView
 from rocketsim.flight.steering import steer_step
 from rocketsim.frames.earth_fixed import eci_to_ecef
 from rocketsim.frames.quaternion import quat_rotate
 from rocketsim.vehicle.aero import A_REACH
-from rocketsim.vehicle.contact import K_X, K_Y, K_Z, point_height
+from rocketsim.vehicle.contact import contact_heights, contact_point_heights
 from rocketsim.vehicle.heating import advance_shield, sutton_graves, sutton_graves_constant
 from rocketsim.vehicle.mass_properties import mass_properties
 from rocketsim.vehicle.limits import breakup
@@ -185,25 +185,6 @@ def ground_motion(central: str, t: float, y) -> tuple[np.ndarray, np.ndarray]:
     return r / math.sqrt(r @ r), y[V:V + 3] - spin * np.array((-r[1], r[0], 0.0))
 
 
-def contact_heights(y, p, vehicle) -> np.ndarray:
-    """Height (m) of each contact point of ``vehicle`` above the ellipsoid, along the radius."""
-    return contact_point_heights(y, p, vehicle.arrays.aero.contact, vehicle.mass_properties(y)[1])
-
-
-@njit
-def contact_point_heights(y, p, contact, x_cm):
-    """Height (m) of each contact point (rows of ``contact``, body stations from the
-    base, m) above the ellipsoid of ``p``, along the radius, for state ``y`` whose
-    centre of mass sits at station ``x_cm`` (m)."""
-    out = np.empty(contact.shape[0])
-    offset = np.empty(3)
-    for i in range(contact.shape[0]):
-        offset[0], offset[1], offset[2] = contact[i, K_X] - x_cm, contact[i, K_Y], contact[i, K_Z]
-        o = quat_rotate(y[Q:Q + 4], offset)
-        out[i] = point_height(y[R] + o[0], y[R + 1] + o[1], y[R + 2] + o[2], p[P_RADIUS], p[P_POLAR_RADIUS])
-    return out
-
-
 @njit
 def accelerations(t, y, p, veh):
     """``(ax, ay, az, sx, sy, sz)``: the inertial acceleration ``dv/dt`` and the sensed
@@ -231,9 +212,7 @@ def step_figures(t, y, p, veh, contact):
     n_tanks = veh.tank_bottom.shape[0]
     x_cm = mass_properties(veh.fixed, veh.tank_bottom, veh.tank_radius, veh.tank_density,
                            y[13:13 + n_tanks])[1]
-    rho, _, temperature, _, _, _ = air_at(veh.air_h0, veh.air_dh, veh.air_density, veh.air_pressure,
-                                          veh.air_temperature, veh.air_speed_of_sound, veh.air_wind_east,
-                                          veh.air_wind_north, radial_height(y, p))
+    rho, _, temperature, _, _, _ = air_in(veh.air, radial_height(y, p))
     u, v, w = body_air_velocity(y, veh.aero.wind)
     speed = math.sqrt(u * u + v * v + w * w)
     alpha = math.acos(max(-1.0, min(1.0, u / speed))) if speed > 0.0 else 0.0
@@ -268,9 +247,7 @@ def advance_checked(y, k0, h, n_steps, p, veh, steer, code, fins):
     """
     if steer:
         t = k0 * h
-        air = (veh.air_h0, veh.air_dh, veh.air_density, veh.air_pressure, veh.air_temperature,
-               veh.air_speed_of_sound, veh.air_wind_east, veh.air_wind_north)
-        steer_step(veh, y, p, t, t, y[R:R + 3], y[V:V + 3], y[Q:Q + 4], y[W:W + 3], math.nan, air, code, fins,
+        steer_step(veh, y, p, t, t, y[R:R + 3], y[V:V + 3], y[Q:Q + 4], y[W:W + 3], math.nan, veh.air, code, fins,
                    False)
     y, taken = advance(y, k0, h, n_steps, p, veh)
     near = near_ground(y, p, veh.aero.ref[A_REACH])

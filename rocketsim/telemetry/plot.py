@@ -16,7 +16,8 @@ from pathlib import Path
 import numpy as np
 
 from rocketsim.telemetry.land import draw_coastline
-from rocketsim.telemetry.replay import read_run, table
+from rocketsim.telemetry.reader import read_run
+from rocketsim.telemetry.tables import table
 
 
 def _column(columns: dict, key: str) -> np.ndarray | None:

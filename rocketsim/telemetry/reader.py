@@ -1,12 +1,253 @@
-"""Read rocketsim telemetry back from an MCAP file."""
+"""Read a run's MCAP file back, complete, truncated or corrupted, executing nothing.
+
+Reading is JSON only (never pickle, never ``exec``): the program a run carries
+is an attachment like any other. A complete file is summarised from its
+summary section, its metadata and the few event and log messages (a one-hour
+flight in well under a second); a truncated or corrupted file is read record
+by record up to the break, and :class:`RunFile` says what went wrong
+(``problem``). The message iterators stop quietly at a break.
+"""
 
 from __future__ import annotations
 
 import json
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Iterator
 
+from mcap.exceptions import EndOfFile
 from mcap.reader import make_reader
+from mcap.records import Attachment, Channel, Message, Metadata
+from mcap.stream_reader import StreamReader
+
+STATE_SUFFIX = "/state"
+TEXT_TOPICS = ("/events", "/log", "/events/log")
+
+
+@dataclass
+class RunFile:
+    """What a run's file says, read without executing anything.
+
+    ``final`` maps each body to its last state message; ``counts`` each topic
+    to its number of messages; ``problem`` is None for a sound file, else why
+    the rest could not be read.
+    """
+
+    path: Path
+    metadata: dict[str, dict[str, str]] = field(default_factory=dict)
+    attachments: dict[str, bytes] = field(default_factory=dict)
+    counts: dict[str, int] = field(default_factory=dict)
+    events: list[dict] = field(default_factory=list)
+    logs: list[dict] = field(default_factory=list)
+    errors: list[dict] = field(default_factory=list)
+    final: dict[str, dict] = field(default_factory=dict)
+    start_ns: int | None = None
+    end_ns: int | None = None
+    problem: str | None = None
+
+    @property
+    def bodies(self) -> list[str]:
+        return [topic[1:-len(STATE_SUFFIX)] for topic in self.counts if _is_state(topic)]
+
+    @property
+    def program(self) -> str | None:
+        """Name of the attached program, if the run carries one."""
+        return next((name for name in self.attachments if name.startswith("program/")), None)
+
+    @property
+    def summary(self) -> dict | None:
+        """The flight summary the simulator wrote at the end (None if it never finished)."""
+        text = self.metadata.get("summary", {}).get("json")
+        return json.loads(text) if text else None
+
+
+def _is_state(topic: str) -> bool:
+    return topic.endswith(STATE_SUFFIX) and topic.count("/") == 2
+
+
+def read_run(path: str | Path) -> RunFile:
+    """Summarise the run in ``path`` (complete, truncated or corrupted alike)."""
+    path = Path(path)
+    try:
+        return _read_indexed(path)
+    except Exception:           # no usable summary section: read what precedes the break
+        return _read_streamed(path)
+
+
+def _read_indexed(path: Path) -> RunFile:
+    run = RunFile(path)
+    with open(path, "rb") as stream:
+        reader = make_reader(stream)
+        summary = reader.get_summary()
+        if summary is None or summary.statistics is None:
+            raise ValueError("no summary section")
+        topics = {c.id: c.topic for c in summary.channels.values()}
+        run.counts = {topics[i]: n for i, n in sorted(summary.statistics.channel_message_counts.items())}
+        run.start_ns = summary.statistics.message_start_time
+        run.end_ns = summary.statistics.message_end_time
+        run.metadata = {m.name: dict(m.metadata) for m in reader.iter_metadata()}
+        run.attachments = {a.name: bytes(a.data) for a in reader.iter_attachments()}
+        for _, channel, message in reader.iter_messages(topics=list(TEXT_TOPICS)):
+            _keep_text(run, channel.topic, message.data)
+        for topic in [t for t in run.counts if _is_state(t)]:
+            for _, _, message in reader.iter_messages(topics=[topic], reverse=True):
+                run.final[topic[1:-len(STATE_SUFFIX)]] = json.loads(message.data)
+                break
+    return run
+
+
+class _Break(Exception):
+    """Where and why a damaged file stops being readable."""
+
+
+_MAGIC = b"\x89MCAP0\r\n"
+_CHUNK = 0x06
+
+
+def records(path: str | Path) -> Iterator:
+    """Every readable record of an MCAP file in file order, chunks opened.
+
+    A file cut inside a chunk still gives the messages of that chunk's
+    readable part (zstd decompresses a frame's prefix). Raises
+    :class:`_Break` after the last readable record of a damaged file.
+    """
+    import io
+    import struct
+
+    data = Path(path).read_bytes()
+    if not data.startswith(_MAGIC):
+        raise _Break("it does not start as an MCAP file")
+    at, whole = len(_MAGIC), []
+    while at + 9 <= len(data):
+        opcode, length = struct.unpack_from("<BQ", data, at)
+        if at + 9 + length > len(data):
+            break
+        whole.append(data[at:at + 9 + length])
+        at += 9 + length
+    try:
+        yield from StreamReader(io.BytesIO(b"".join(whole)), skip_magic=True, validate_crcs=True).records
+    except EndOfFile:
+        pass                    # the end of the complete records
+    except Exception as error:
+        raise _Break(f"a record is corrupt ({type(error).__name__}: {error})") from None
+    if at >= len(data) - len(_MAGIC) and data.endswith(_MAGIC):
+        return
+    if at + 9 <= len(data) and data[at] == _CHUNK:
+        yield from _partial_chunk(data[at + 9:])
+    raise _Break(f"the file is cut short at byte {len(data)} (inside a record that starts at byte {at})")
+
+
+def _partial_chunk(body: bytes) -> Iterator:
+    """The complete records at the start of a chunk cut short (zstd or uncompressed)."""
+    import io
+    import struct
+
+    try:
+        (compression_length,) = struct.unpack_from("<I", body, 28)
+        compression = body[32:32 + compression_length].decode()
+        start = 32 + compression_length + 8
+        if compression == "zstd":
+            import zstandard
+            inner = zstandard.ZstdDecompressor().decompressobj().decompress(body[start:])
+        elif compression == "":
+            inner = body[start:]
+        else:
+            return
+    except Exception:
+        return
+    try:
+        yield from StreamReader(io.BytesIO(inner), skip_magic=True).records
+    except Exception:
+        return
+
+
+def _read_streamed(path: Path) -> RunFile:
+    run = RunFile(path)
+    channels: dict[int, str] = {}
+    last_state: dict[str, bytes] = {}
+    try:
+        for record in records(path):
+            if isinstance(record, Channel):
+                channels[record.id] = record.topic
+                run.counts.setdefault(record.topic, 0)
+            elif isinstance(record, Message):
+                topic = channels.get(record.channel_id, f"#{record.channel_id}")
+                run.counts[topic] = run.counts.get(topic, 0) + 1
+                run.start_ns = record.log_time if run.start_ns is None else min(run.start_ns, record.log_time)
+                run.end_ns = record.log_time if run.end_ns is None else max(run.end_ns, record.log_time)
+                if topic in TEXT_TOPICS:
+                    _keep_text(run, topic, record.data)
+                elif _is_state(topic):
+                    last_state[topic] = record.data
+            elif isinstance(record, Metadata):
+                run.metadata[record.name] = dict(record.metadata)
+            elif isinstance(record, Attachment):
+                run.attachments[record.name] = bytes(record.data)
+        run.problem = "the file ends without its summary section"
+    except _Break as error:
+        run.problem = f"{error}; {sum(run.counts.values())} messages read"
+    except Exception as error:
+        run.problem = f"unreadable ({type(error).__name__}: {error}); {sum(run.counts.values())} messages read"
+    for topic, data in last_state.items():
+        try:
+            run.final[topic[1:-len(STATE_SUFFIX)]] = json.loads(data)
+        except ValueError:
+            pass
+    if not run.counts and run.problem:
+        run.problem = "not an MCAP file, or nothing in it is readable: " + run.problem
+    return run
+
+
+def _keep_text(run: RunFile, topic: str, data: bytes) -> None:
+    message = json.loads(data)
+    if topic == "/events":
+        run.events.append(message)
+    elif topic == "/log":
+        run.logs.append(message)
+    elif message.get("level", 0) >= 4:       # foxglove.Log ERROR / FATAL
+        run.errors.append(message)
+
+
+def states(path: str | Path, body: str) -> Iterator[dict]:
+    """The state messages of ``body`` in time order (stops quietly at a break)."""
+    topic = f"/{body}{STATE_SUFFIX}"
+    try:
+        with open(path, "rb") as stream:
+            reader = make_reader(stream)
+            if reader.get_summary() is not None:
+                for _, _, message in reader.iter_messages(topics=[topic]):
+                    yield json.loads(message.data)
+                return
+    except Exception:
+        pass
+    channel_id = None
+    try:
+        for record in records(path):
+            if isinstance(record, Channel) and record.topic == topic:
+                channel_id = record.id
+            elif isinstance(record, Message) and record.channel_id == channel_id:
+                yield json.loads(record.data)
+    except Exception:
+        return
+
+
+def iter_raw_messages(path: str | Path) -> Iterator[tuple[str, int, bytes]]:
+    """``(topic, log_time_ns, data bytes)`` of every message in file order, up to any
+    break (a sound file is read chunk by chunk; a damaged one record by record)."""
+    if read_run(path).problem is None:
+        with open(path, "rb") as stream:
+            for _, channel, message in make_reader(stream).iter_messages(log_time_order=False):
+                yield channel.topic, message.log_time, bytes(message.data)
+        return
+    channels: dict[int, str] = {}
+    try:
+        for record in records(path):
+            if isinstance(record, Channel):
+                channels[record.id] = record.topic
+            elif isinstance(record, Message):
+                yield channels.get(record.channel_id, ""), record.log_time, bytes(record.data)
+    except Exception:
+        return
 
 
 def messages(path: str | Path, topics: list[str] | None = None) -> Iterator[tuple[str, int, dict]]:
@@ -18,11 +259,9 @@ def messages(path: str | Path, topics: list[str] | None = None) -> Iterator[tupl
 
 
 def raw_messages(path: str | Path) -> list[tuple[str, int, bytes]]:
-    """Every message as ``(topic, log_time_ns, data bytes)``, in file order."""
-    with open(path, "rb") as stream:
-        reader = make_reader(stream)
-        return [(channel.topic, message.log_time, bytes(message.data))
-                for _schema, channel, message in reader.iter_messages(log_time_order=False)]
+    """Every message as ``(topic, log_time_ns, data bytes)``, in file order
+    (:func:`iter_raw_messages` as a list)."""
+    return list(iter_raw_messages(path))
 
 
 def attachments(path: str | Path) -> dict[str, bytes]:

@@ -24,7 +24,7 @@ from pathlib import Path
 import numpy as np
 import orjson
 
-from rocketsim import __version__
+from rocketsim.version import __version__
 from rocketsim._jit import entry_point
 from rocketsim.frames.earth_fixed import earth_rotation_angle
 from rocketsim.telemetry import foxglove, splice

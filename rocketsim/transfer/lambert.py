@@ -32,7 +32,7 @@ import numpy as np
 
 from rocketsim._jit import njit
 from rocketsim.errors import InputError
-from rocketsim.transfer._broadcast import flat_rows
+from rocketsim.orbits._broadcast import flat_rows
 
 # |x - 1| below which T(x) uses Battin's hypergeometric series (section 2.2):
 # the closed form (eq. 18) cancels catastrophically near the parabola.

@@ -23,12 +23,15 @@ from collections import namedtuple
 import numpy as np
 
 from rocketsim.constants import FRICTION_REGULARISATION, G0
-from rocketsim.dynamics.state import N_STATE
+from rocketsim.layout import N_STATE
 from rocketsim.errors import InputError
-from rocketsim.vehicle import aero as A
-from rocketsim.vehicle import contact as K
-from rocketsim.vehicle import grid_fins as G
-from rocketsim.vehicle import rcs as RC
+from rocketsim.vehicle.aero import (A_AREA, A_BASE_AREA, A_ETA, A_NOSE_AREA, A_NOSE_X, A_ON,
+                                    A_REACH, A_WIND, EFFICIENCY_FINENESS, EFFICIENCY_SUBSONIC,
+                                    NOSE_FIRST_CA, NOSE_FIRST_MACH, N_REF, TAIL_FIRST_CA,
+                                    TAIL_FIRST_MACH)
+from rocketsim.vehicle.contact import N_CONTACT
+from rocketsim.vehicle.grid_fins import N_GRID, N_GRID_CMD
+from rocketsim.vehicle.rcs import N_RCS
 
 AeroArrays = namedtuple("AeroArrays", [
     "ref", "seg", "fin", "ca_nf", "ca_tf", "grid", "grid_cmd", "rcs", "rcs_cmd", "contact", "wind"])
@@ -46,9 +49,9 @@ def _empty(n_cols: int) -> np.ndarray:
 
 def no_aero() -> AeroArrays:
     """Arrays of a vehicle without aerodynamics or contact."""
-    return AeroArrays(np.zeros(A.N_REF), _empty(3), _empty(2), _table(None, A.NOSE_FIRST_MACH, A.NOSE_FIRST_CA),
-                      _table(None, A.TAIL_FIRST_MACH, A.TAIL_FIRST_CA), _empty(G.N_GRID),
-                      _empty(G.N_GRID_CMD), _empty(RC.N_RCS), np.zeros(0), _empty(K.N_CONTACT), np.zeros(3))
+    return AeroArrays(np.zeros(N_REF), _empty(3), _empty(2), _table(None, NOSE_FIRST_MACH, NOSE_FIRST_CA),
+                      _table(None, TAIL_FIRST_MACH, TAIL_FIRST_CA), _empty(N_GRID),
+                      _empty(N_GRID_CMD), _empty(N_RCS), np.zeros(0), _empty(N_CONTACT), np.zeros(3))
 
 
 def outline(stages, top_parts, nose_length: float, nose_shape: str):
@@ -130,15 +133,15 @@ def build_aero(spec, chosen, stage_base, top: bool, with_fairing: bool, tank_nam
     d_max = max(max(d for _, _, d in stages), max((d for _, d in top_parts), default=0.0))
     area = math.pi * d_max ** 2 / 4
 
-    ref = np.zeros(A.N_REF)
-    ref[A.A_ON] = 1.0
-    ref[A.A_AREA] = area
-    ref[A.A_ETA] = float(np.interp(total / d_max, A.EFFICIENCY_FINENESS, A.EFFICIENCY_SUBSONIC))
+    ref = np.zeros(N_REF)
+    ref[A_ON] = 1.0
+    ref[A_AREA] = area
+    ref[A_ETA] = float(np.interp(total / d_max, EFFICIENCY_FINENESS, EFFICIENCY_SUBSONIC))
     if nose_len > 0.0 and shape != "blunt":
-        ref[A.A_NOSE_X] = nose_centre_of_pressure(diameter, total, nose_len, base_d)
-        ref[A.A_NOSE_AREA] = math.pi * base_d ** 2 / 4
-    ref[A.A_BASE_AREA] = math.pi * chosen[0].diameter ** 2 / 4
-    ref[A.A_WIND] = 1.0 if has_wind else 0.0
+        ref[A_NOSE_X] = nose_centre_of_pressure(diameter, total, nose_len, base_d)
+        ref[A_NOSE_AREA] = math.pi * base_d ** 2 / 4
+    ref[A_BASE_AREA] = math.pi * chosen[0].diameter ** 2 / 4
+    ref[A_WIND] = 1.0 if has_wind else 0.0
 
     n = aero.segments
     dx = total / n
@@ -181,20 +184,20 @@ def build_aero(spec, chosen, stage_base, top: bool, with_fairing: bool, tank_nam
             phi = 0.5 * math.pi * j
             contact.append((x, r * math.cos(phi), r * math.sin(phi), kb, cb, 0.6, FRICTION_REGULARISATION))
     contact.append((total, 0.0, 0.0, kb, cb, 0.6, FRICTION_REGULARISATION))
-    contact = np.array(contact, dtype=float).reshape(-1, K.N_CONTACT)
+    contact = np.array(contact, dtype=float).reshape(-1, N_CONTACT)
     reach = max(math.sqrt(max(x * x, (x - total) ** 2) + y * y + z * z) for x, y, z in contact[:, :3])
-    ref[A.A_REACH] = reach
+    ref[A_REACH] = reach
 
     if not aero.aerodynamics:           # a vacuum spacecraft: its thrusters only
-        return no_aero()._replace(rcs=np.array(rcs, dtype=float).reshape(-1, RC.N_RCS),
+        return no_aero()._replace(rcs=np.array(rcs, dtype=float).reshape(-1, N_RCS),
                                   rcs_cmd=np.zeros(len(rcs)))
     return AeroArrays(
         ref, np.ascontiguousarray(seg),
         np.array(fins, dtype=float).reshape(-1, 2),
-        _table(aero.axial_nose_first, A.NOSE_FIRST_MACH, A.NOSE_FIRST_CA),
-        _table(aero.axial_tail_first, A.TAIL_FIRST_MACH, A.TAIL_FIRST_CA),
-        np.array(grid, dtype=float).reshape(-1, G.N_GRID), np.zeros((len(grid), G.N_GRID_CMD)),
-        np.array(rcs, dtype=float).reshape(-1, RC.N_RCS), np.zeros(len(rcs)),
+        _table(aero.axial_nose_first, NOSE_FIRST_MACH, NOSE_FIRST_CA),
+        _table(aero.axial_tail_first, TAIL_FIRST_MACH, TAIL_FIRST_CA),
+        np.array(grid, dtype=float).reshape(-1, N_GRID), np.zeros((len(grid), N_GRID_CMD)),
+        np.array(rcs, dtype=float).reshape(-1, N_RCS), np.zeros(len(rcs)),
         np.ascontiguousarray(contact), np.zeros(3))
 
 

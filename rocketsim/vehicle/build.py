@@ -22,8 +22,11 @@ from functools import lru_cache
 import numpy as np
 
 from rocketsim.constants import G0, UNUSABLE_PROPELLANT
-from rocketsim.dynamics.state import N_STATE, make_state
-from rocketsim.vehicle import engines as E
+from rocketsim.layout import N_STATE, make_state
+from rocketsim.vehicle.engines import (C_TAU, C_TAU0, E_AREA, E_DEAD, E_GIMBAL_RANGE,
+                                       E_GIMBAL_RATE, E_IGNITIONS, E_MDOT, E_PEXIT, E_SPOOL,
+                                       E_STAGE, E_TAIL, E_TAU_MAX, E_TAU_MIN, E_TAU_RATE, E_THRUST,
+                                       E_X, E_Y, E_Z, N_CMD, N_ENG, N_STAGE)
 from rocketsim.vehicle.aero_build import build_aero
 from rocketsim.vehicle.mass_properties import (N_FIXED, add_fixed, mass_properties, shell,
                                                solid_cylinder)
@@ -32,8 +35,8 @@ from rocketsim.vehicle.mass_properties import (N_FIXED, add_fixed, mass_properti
 VehicleArrays = namedtuple("VehicleArrays", [
     "fixed", "tank_bottom", "tank_radius", "tank_density", "tank_share", "eng", "cmd", "stage",
     "first_tank", "first_clock",
-    "air_h0", "air_dh", "air_density", "air_pressure", "air_temperature", "air_speed_of_sound",
-    "air_wind_east", "air_wind_north", "aero"])
+    "air",      # the air table: AtmosphereTable.arrays() (h0, dh, then six columns)
+    "aero"])
 
 
 @dataclass
@@ -99,7 +102,7 @@ class VehicleModel:
 
     def stage_engines(self, s: int) -> list[int]:
         """Indices of the engines of stage ``s``."""
-        return [e for e in range(self.n_engines) if int(self.arrays.eng[e, E.E_STAGE]) == s]
+        return [e for e in range(self.n_engines) if int(self.arrays.eng[e, E_STAGE]) == s]
 
 
 @lru_cache(maxsize=1)
@@ -158,18 +161,18 @@ def build(spec, first: int = 0, last: int | None = None, air=None, fairing: bool
                 add_fixed(fixed, group.mass, x, y=py, z=pz)
                 engine_names.append(f"{st.name}/{group.name}" + (f"/{k + 1}" if group.count > 1 else ""))
                 engine_groups.append(f"{st.name}/{group.name}")
-                row = np.zeros(E.N_ENG)
-                row[E.E_STAGE], row[E.E_X], row[E.E_Y], row[E.E_Z] = s, x, py, pz
-                row[E.E_THRUST] = group.thrust_vacuum
-                row[E.E_MDOT] = group.thrust_vacuum / (G0 * group.isp)
-                row[E.E_AREA] = group.exit_area
-                row[E.E_PEXIT] = group.exit_pressure or 0.0
-                row[E.E_TAU_MIN], row[E.E_TAU_MAX] = group.throttle
-                row[E.E_TAU_RATE] = group.throttle_rate
-                row[E.E_GIMBAL_RANGE], row[E.E_GIMBAL_RATE] = group.gimbal_range, group.gimbal_rate
-                row[E.E_DEAD], row[E.E_SPOOL], row[E.E_TAIL] = (group.ignition_delay, group.spool_up,
+                row = np.zeros(N_ENG)
+                row[E_STAGE], row[E_X], row[E_Y], row[E_Z] = s, x, py, pz
+                row[E_THRUST] = group.thrust_vacuum
+                row[E_MDOT] = group.thrust_vacuum / (G0 * group.isp)
+                row[E_AREA] = group.exit_area
+                row[E_PEXIT] = group.exit_pressure or 0.0
+                row[E_TAU_MIN], row[E_TAU_MAX] = group.throttle
+                row[E_TAU_RATE] = group.throttle_rate
+                row[E_GIMBAL_RANGE], row[E_GIMBAL_RATE] = group.gimbal_range, group.gimbal_rate
+                row[E_DEAD], row[E_SPOOL], row[E_TAIL] = (group.ignition_delay, group.spool_up,
                                                                 group.tail_off)
-                row[E.E_IGNITIONS] = 1 + group.restarts
+                row[E_IGNITIONS] = 1 + group.restarts
                 eng_rows.append(row)
         for part in st.point_masses:
             for py, pz in _ring(part.count, part.radius, 0.0):
@@ -186,18 +189,19 @@ def build(spec, first: int = 0, last: int | None = None, air=None, fairing: bool
     length = base + (max(spec.payload.length if spec.payload else 0.0,
                          spec.fairing.length if with_fairing else 0.0) if top else 0.0)
 
-    eng = np.array(eng_rows, dtype=float).reshape(len(eng_rows), E.N_ENG)
-    cmd = np.zeros((len(eng_rows), E.N_CMD))
-    cmd[:, E.C_TAU0] = eng[:, E.E_TAU_MAX]          # throttle rests at the top of its range
-    cmd[:, E.C_TAU] = eng[:, E.E_TAU_MAX]
-    h0, dh, density, pressure, temperature, sos, we, wn = _standard_air() if air is None else air.arrays()
+    eng = np.array(eng_rows, dtype=float).reshape(len(eng_rows), N_ENG)
+    cmd = np.zeros((len(eng_rows), N_CMD))
+    cmd[:, C_TAU0] = eng[:, E_TAU_MAX]          # throttle rests at the top of its range
+    cmd[:, C_TAU] = eng[:, E_TAU_MAX]
+    air_table = _standard_air() if air is None else air.arrays()
+    we, wn = air_table[6], air_table[7]
     aero = build_aero(spec, chosen, stage_base, top, with_fairing, tank_names,
                       bool(np.any(we != 0.0) or np.any(wn != 0.0)))
     arrays = VehicleArrays(
         fixed, _f(tank_bottom), _f(tank_radius), _f(tank_density), _f(tank_share), eng, cmd,
-        np.array(stage_rows, dtype=float).reshape(len(chosen), E.N_STAGE),
+        np.array(stage_rows, dtype=float).reshape(len(chosen), N_STAGE),
         N_STATE, N_STATE + len(tank_names),
-        float(h0), float(dh), density, pressure, temperature, sos, we, wn, aero)
+        air_table, aero)
     return VehicleModel(spec.name if first == 0 and top else f"{spec.name}[{chosen[0].name}..{chosen[-1].name}]",
                         [st.name for st in chosen], tank_names, engine_names,
                         _f(stage_base), _f([st.length for st in chosen]), _f([st.diameter for st in chosen]),

@@ -32,7 +32,11 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from rocketsim._jit import njit
+from rocketsim.frames.quaternion import quat_rotate
+from rocketsim.layout import P_POLAR_RADIUS, P_RADIUS, Q, R
 from rocketsim.vehicle.aero import moment_about_cm
 
 # columns of AeroArrays.contact
@@ -47,6 +51,25 @@ def point_height(px, py, pz, a, b):
     z2 = pz * pz
     r2 = rho2 + z2
     return math.sqrt(r2) - a * b / math.sqrt((b * b * rho2 + a * a * z2) / r2)
+
+
+def contact_heights(y, p, vehicle) -> np.ndarray:
+    """Height (m) of each contact point of ``vehicle`` above the ellipsoid, along the radius."""
+    return contact_point_heights(y, p, vehicle.arrays.aero.contact, vehicle.mass_properties(y)[1])
+
+
+@njit
+def contact_point_heights(y, p, contact, x_cm):
+    """Height (m) of each contact point (rows of ``contact``, body stations from the
+    base, m) above the ellipsoid of ``p``, along the radius, for state ``y`` whose
+    centre of mass sits at station ``x_cm`` (m)."""
+    out = np.empty(contact.shape[0])
+    offset = np.empty(3)
+    for i in range(contact.shape[0]):
+        offset[0], offset[1], offset[2] = contact[i, K_X] - x_cm, contact[i, K_Y], contact[i, K_Z]
+        o = quat_rotate(y[Q:Q + 4], offset)
+        out[i] = point_height(y[R] + o[0], y[R + 1] + o[1], y[R + 2] + o[2], p[P_RADIUS], p[P_POLAR_RADIUS])
+    return out
 
 
 @njit

@@ -18,7 +18,7 @@ import math
 import numpy as np
 
 from rocketsim._jit import Entries
-from rocketsim.vehicle import engines as E
+from rocketsim.vehicle import engines
 from rocketsim.vehicle.build import VehicleModel
 
 
@@ -44,7 +44,7 @@ class Propulsion:
         names, groups = self.model.engine_names, self.model.engine_groups
         stages = self.model.stage_names
         found = [e for e in range(n) if which in (names[e], groups[e], groups[e].split("/", 1)[1])
-                 or (which in stages and int(self.a.eng[e, E.E_STAGE]) == stages.index(which))]
+                 or (which in stages and int(self.a.eng[e, engines.E_STAGE]) == stages.index(which))]
         if not found:
             raise ValueError(f"no engine, group or stage named {which!r}; engines: {', '.join(names)}")
         return found
@@ -53,43 +53,43 @@ class Propulsion:
         """Command ignition; returns the names of the engines that accepted it (not already
         on, stage not dry, an ignition left)."""
         return [self.model.engine_names[e] for e in self.select(which)
-                if E.ignite(y, self.a.eng, self.a.cmd, self.a.stage, e, self.a.first_clock)]
+                if engines.ignite(y, self.a.eng, self.a.cmd, self.a.stage, e, self.a.first_clock)]
 
     def shutdown(self, y: np.ndarray, which=None) -> list[str]:
         """Command shutdown (tail-off follows); returns the names of the engines that were on."""
         return [self.model.engine_names[e] for e in self.select(which)
-                if E.shutdown(y, self.a.eng, self.a.cmd, e, self.a.first_clock)]
+                if engines.shutdown(y, self.a.eng, self.a.cmd, e, self.a.first_clock)]
 
     def throttle(self, t: float, value: float, which=None) -> None:
         """Command a throttle (clipped to each engine's range) at mission time ``t`` (s)."""
-        E.command_throttles(self.a.eng, self.a.cmd, np.array(self.select(which), dtype=np.int64),
+        engines.command_throttles(self.a.eng, self.a.cmd, np.array(self.select(which), dtype=np.int64),
                             float(t), float(value))
 
     def gimbal(self, t: float, gy: float, gz: float, which=None) -> None:
         """Command a gimbal deflection (rad; towards body +y and +z), clipped to each cone."""
         gy, gz = float(gy), float(gz)
-        E.command_gimbals(self.a.eng, self.a.cmd, np.array(self.select(which), dtype=np.int64),
+        engines.command_gimbals(self.a.eng, self.a.cmd, np.array(self.select(which), dtype=np.int64),
                           float(t), gy, gz, math.hypot(gy, gz))
 
     def states(self, y: np.ndarray, t: float, p_a: float) -> list[dict]:
         """Each engine at time ``t`` and ambient pressure ``p_a`` (Pa): on, spool fraction,
         throttle flown, gimbal (rad), thrust (N), mass flow (kg/s), ignitions left, separated."""
         a, out = self.a, []
-        separated = E.separated(a.eng, a.cmd, t, p_a)
+        separated = engines.separated(a.eng, a.cmd, t, p_a)
         thrust = self.thrusts(y, t, p_a)
         for e, name in enumerate(self.model.engine_names):
-            f, tau, gy, gz = E.engine_state(t, e, y[a.first_clock + e], a.eng, a.cmd, p_a)
-            if a.stage[int(a.eng[e, E.E_STAGE]), E.S_DRY] > 0.5:
+            f, tau, gy, gz = engines.engine_state(t, e, y[a.first_clock + e], a.eng, a.cmd, p_a)
+            if a.stage[int(a.eng[e, engines.E_STAGE]), engines.S_DRY] > 0.5:
                 f = 0.0
             out.append({
                 "name": name,
-                "on": bool(a.cmd[e, E.C_ON] > 0.5),
+                "on": bool(a.cmd[e, engines.C_ON] > 0.5),
                 "spool": f,
                 "throttle": tau,
                 "gimbal_rad": (gy, gz),
                 "thrust_N": float(thrust[e]),
-                "mass_flow_kg_s": f * tau * a.eng[e, E.E_MDOT],
-                "ignitions_left": int(a.eng[e, E.E_IGNITIONS] - a.cmd[e, E.C_IGNITED]),
+                "mass_flow_kg_s": f * tau * a.eng[e, engines.E_MDOT],
+                "ignitions_left": int(a.eng[e, engines.E_IGNITIONS] - a.cmd[e, engines.C_IGNITED]),
                 "separated": bool(separated[e]),
             })
         return out
@@ -97,7 +97,7 @@ class Propulsion:
     def thrusts(self, y: np.ndarray, t: float, p_a: float) -> np.ndarray:
         """Thrust (N) of every engine at time ``t`` and ambient pressure ``p_a`` (Pa)."""
         a = self.a
-        return E.thrusts(t, y, a.first_clock, a.eng, a.cmd, a.stage, p_a)
+        return engines.thrusts(t, y, a.first_clock, a.eng, a.cmd, a.stage, p_a)
 
     def propellant(self, y: np.ndarray) -> dict[str, float]:
         """Propellant left in each tank (kg), by ``stage/tank`` name."""

@@ -29,7 +29,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from rocketsim.dynamics.state import N_STATE, Q, R, V, W
+from rocketsim.layout import N_STATE, Q, R, V, W
 from rocketsim.frames.quaternion import quat_rotate
 from rocketsim.vehicle.build import VehicleModel, build
 from rocketsim.vehicle.engines import S_DRY, S_DRY_AT

@@ -34,7 +34,7 @@ import numpy as np
 from rocketsim.constants import EARTH_MU, MOON_MU, MOON_RADIUS
 from rocketsim.flight.maneuvers import burn, burn_time, time_to_periapsis, trim_periapsis, unit
 from rocketsim.flight.program import load_program_module
-from rocketsim.transfer.kepler import propagate
+from rocketsim.orbits import propagate
 from rocketsim.transfer.lambert import lambert
 
 ASCENT = load_program_module(Path(__file__).resolve().parent / "orbit_ascent.py")

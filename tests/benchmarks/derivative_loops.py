@@ -7,7 +7,7 @@ compiler from dropping the calls.
 import numba
 
 from rocketsim.dynamics.derivative import derivative
-from rocketsim.dynamics.state import V
+from rocketsim.layout import V
 
 
 @numba.njit

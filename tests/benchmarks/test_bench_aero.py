@@ -15,13 +15,13 @@ import math
 import numba
 import numpy as np
 
-from rocketsim.atmosphere.table import air_at
+from rocketsim.atmosphere.table import air_in
 from rocketsim.constants import EARTH_J2, EARTH_MU, EARTH_RADIUS_EQ, EARTH_RADIUS_POLAR
 from rocketsim.dynamics.derivative import body_air_velocity, derivative, radial_height
 from rocketsim.dynamics.rk4 import advance
-from rocketsim.dynamics.state import V, make_params
-from rocketsim.vehicle import engines as E
-from rocketsim.vehicle import grid_fins as G
+from rocketsim.layout import V, make_params
+from rocketsim.vehicle.engines import engine_forces, ignite
+from rocketsim.vehicle.grid_fins import command, grid_fin_forces
 from rocketsim.vehicle.aero import body_aero
 from rocketsim.vehicle.build import build
 from tests.benchmarks.derivative_loops import coasting_derivative_calls, powered_derivative_calls
@@ -43,9 +43,7 @@ def _mass(n, y, veh):
 def _air(n, y, p, veh):
     total = 0.0
     for i in range(n):
-        total += air_at(veh.air_h0, veh.air_dh, veh.air_density, veh.air_pressure, veh.air_temperature,
-                        veh.air_speed_of_sound, veh.air_wind_east, veh.air_wind_north,
-                        radial_height(y, p) + 1e-9 * i)[0]
+        total += air_in(veh.air, radial_height(y, p) + 1e-9 * i)[0]
     return total
 
 
@@ -53,7 +51,7 @@ def _air(n, y, p, veh):
 def _engines(n, y, dy, veh):
     total = 0.0
     for i in range(n):
-        total += E.engine_forces(1e-6 * i, y, dy, veh.first_tank, veh.first_clock, veh.eng, veh.cmd, veh.stage,
+        total += engine_forces(1e-6 * i, y, dy, veh.first_tank, veh.first_clock, veh.eng, veh.cmd, veh.stage,
                                  veh.tank_share, 26_000.0, 20.0)[0]
     return total
 
@@ -75,7 +73,7 @@ def _grid(n, y, veh):
     total = 0.0
     for i in range(n):
         u, v, w = body_air_velocity(y, a.wind)
-        total += G.grid_fin_forces(1e-6 * i, u, v, w, y[10], y[11], y[12], 0.41, 299.5, 20.0, a.grid,
+        total += grid_fin_forces(1e-6 * i, u, v, w, y[10], y[11], y[12], 0.41, 299.5, 20.0, a.grid,
                                    a.grid_cmd)[2]
     return total
 
@@ -88,9 +86,9 @@ def test_first_stage_derivative_in_the_atmosphere():
     y = booster.state(r, corotating(r) + np.array([300.0, 20.0, 0.0]), q=pitch_quaternion(math.radians(4.0)),
                       w=(0.01, 0.02, -0.01))
     for e in range(9):
-        E.ignite(y, a.eng, a.cmd, a.stage, e, a.first_clock)
+        ignite(y, a.eng, a.cmd, a.stage, e, a.first_clock)
     y[booster.clocks] = 10.0
-    G.command(a.aero.grid, a.aero.grid_cmd, 0.0, math.radians(3.0), math.radians(-2.0), math.radians(1.0))
+    command(a.aero.grid, a.aero.grid_cmd, 0.0, math.radians(3.0), math.radians(-2.0), math.radians(1.0))
     p = earth_params()
     rigid = make_params(5e5, (2e5, 1e8, 1e8), EARTH_MU, EARTH_RADIUS_EQ, EARTH_J2, EARTH_RADIUS_POLAR)
     y13 = np.ascontiguousarray(y[:13])
@@ -123,13 +121,13 @@ def test_first_stage_derivative_in_the_atmosphere():
     derivative(0.0, y, p, dy, a)
     derivative(0.0, y, p, dy0, bare)
     mass, x_cm = booster.mass_properties(y)[:2]
-    rho, _, _, sound = air_at(*a[10:18], radial_height(y, p))[:4]
-    thrust = E.engine_forces(0.0, y, np.zeros_like(y), a.first_tank, a.first_clock, a.eng, a.cmd, a.stage,
-                             a.tank_share, air_at(*a[10:18], radial_height(y, p))[1], x_cm)[0]
+    rho, _, _, sound = air_in(a.air, radial_height(y, p))[:4]
+    thrust = engine_forces(0.0, y, np.zeros_like(y), a.first_tank, a.first_clock, a.eng, a.cmd, a.stage,
+                             a.tank_share, air_in(a.air, radial_height(y, p))[1], x_cm)[0]
     u, v, w = body_air_velocity(y, a.aero.wind)
     f1 = body_aero(u, v, w, y[10], y[11], y[12], rho, sound, thrust, x_cm, a.aero.ref, a.aero.seg, a.aero.fin,
                    a.aero.ca_nf, a.aero.ca_tf)
-    f2 = G.grid_fin_forces(0.0, u, v, w, y[10], y[11], y[12], rho, sound, x_cm, a.aero.grid, a.aero.grid_cmd)
+    f2 = grid_fin_forces(0.0, u, v, w, y[10], y[11], y[12], rho, sound, x_cm, a.aero.grid, a.aero.grid_cmd)
     force_body = np.array(f1[:3]) + np.array(f2[:3])
     from rocketsim.frames.quaternion import quat_rotate
     expected = quat_rotate(y[6:10], force_body) / mass

@@ -19,7 +19,7 @@ import numpy as np
 
 from rocketsim.constants import EARTH_J2, EARTH_MU, EARTH_RADIUS_EQ, EARTH_RADIUS_POLAR
 from rocketsim.dynamics.rk4 import advance
-from rocketsim.dynamics.state import make_params, make_state
+from rocketsim.layout import make_params, make_state
 from rocketsim.frames.elements import elements_to_state
 from tests.benchmarks.timing import best_of
 
@@ -91,8 +91,8 @@ def _time_fly(cache_dir, tmp_path):
     script = (
         "import time; t0 = time.perf_counter()\n"
         "from rocketsim.scenario.load import load\n"
-        "from rocketsim.sim.world import World\n"
-        f"world = World.from_scenario(load({str(ROOT / 'scenarios' / 'iss-coast.yaml')!r}), duration=0.02)\n"
+        "from rocketsim.sim.build import build_world\n"
+        f"world = build_world(load({str(ROOT / 'scenarios' / 'iss-coast.yaml')!r}), duration=0.02)\n"
         "world.run()\n"
         "print(time.perf_counter() - t0)\n"
     )

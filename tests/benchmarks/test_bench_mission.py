@@ -64,7 +64,7 @@ from pathlib import Path
 
 from rocketsim._jit import Entries
 from rocketsim.scenario.load import load
-from rocketsim.sim import flight_events, vehicle_checks, world
+from rocketsim.sim import flight_events, schedule, vehicle_checks, world
 from rocketsim.sim.vehicle_checks import advance_checked
 from rocketsim.sim.flight import fly
 from rocketsim.telemetry.writer import TelemetryWriter
@@ -136,7 +136,7 @@ def _instrument(monkeypatch, clock: SectionClock) -> Counter:
     patch(world.World, "_run_autopilots", clock.wrap(world.World._run_autopilots, "autopilot"))
     # every sample (the rate's, and those at impacts, handovers and new bodies) and every
     # writing of the waiting samples, whoever asks for it (an event, a log line, the end)
-    patch(world.World, "_record", clock.wrap(world.World._record, "telemetry"))
+    patch(world.World, "record", clock.wrap(world.World.record, "telemetry"))
     patch(TelemetryWriter, "_flush", clock.wrap(TelemetryWriter._flush, "telemetry"))
     for cls, name, label in ((vehicle_checks.VehicleChecks, "after_step", "checks"),
                              (vehicle_checks.VehicleChecks, "every_step", "checks"),
@@ -144,8 +144,9 @@ def _instrument(monkeypatch, clock: SectionClock) -> Counter:
         patch(cls, name, clock.wrap(getattr(cls, name), label))
     # the loop's decisions: what to step and how (the rails tests run from the autopilot
     # and the batch length too: counted here, not there)
-    for name in ("_advance", "_batch_length", "_holding", "_on_rails"):
-        patch(world.World, name, clock.wrap(getattr(world.World, name), "loop"))
+    patch(world.World, "advance", clock.wrap(world.World.advance, "loop"))
+    for name in ("batch_length", "holding", "on_rails"):
+        patch(schedule.Schedule, name, clock.wrap(getattr(schedule.Schedule, name), "loop"))
     return steps
 
 

@@ -21,7 +21,7 @@ from rocketsim.constants import (DEG, EARTH_J2, EARTH_MU, EARTH_RADIUS_EQ, EARTH
                                  SUN_MU, SUN_RADIUS)
 from rocketsim.dynamics import cruise, nbody, rails
 from rocketsim.dynamics.rk4 import advance
-from rocketsim.dynamics.state import make_params, make_state
+from rocketsim.layout import make_params, make_state
 from rocketsim.frames.elements import elements_to_state
 from rocketsim.scenario.load import validate
 from rocketsim.scenario.models import VehicleSpec
@@ -66,8 +66,7 @@ def _stage_costs(stage, altitude, drag):
     rigid = p.copy()
     rigid[0:4] = (mass, ixx, iyy, iyy)
     fp = nbody.make_field("earth", JD0, bodies=(), drag=drag)
-    air = (a.air_h0, a.air_dh, a.air_density, a.air_pressure, a.air_temperature,
-           a.air_speed_of_sound, a.air_wind_east, a.air_wind_north)
+    air = a.air
     n = 50_000
     advance(y0, 0, H, 10, p, a)
     advance(y0[:13].copy(), 0, H, 10, rigid)

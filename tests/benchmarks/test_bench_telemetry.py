@@ -53,9 +53,9 @@ from mcap.stream_reader import StreamReader
 from rocketsim.scenario.load import load
 from rocketsim.sim import sampling
 from rocketsim.sim.flight import fly
-from rocketsim.sim.world import World
+from rocketsim.sim.build import build_world
 from rocketsim.telemetry.mcap_stream import ZSTD_LEVEL
-from rocketsim.telemetry.replay import read_run
+from rocketsim.telemetry.reader import read_run
 from rocketsim.telemetry.writer import TelemetryWriter
 from tests.benchmarks.timing import best_of
 
@@ -71,7 +71,7 @@ def _on_off(loaded, duration, out, pairs=9):
     builds, e.g. the day's air table); the final state flown without telemetry; and
     what one sample costs on its own (:func:`_one_sample`)."""
     def off(seconds=duration):
-        world = World.from_scenario(loaded, duration=seconds)
+        world = build_world(loaded, duration=seconds)
         world.run(None)
         return world
 
@@ -103,7 +103,7 @@ def _one_sample(world, path, loaded, duration, calls=1000):
     body = world.bodies[0]
     t_values = best_of(5, lambda: [sampling.values(body, world.gmst0, world.where) for _ in range(calls)])[0]
     kept = _Kept()
-    World.from_scenario(loaded, duration=duration).run(kept)
+    build_world(loaded, duration=duration).run(kept)
 
     def write():
         with TelemetryWriter(path, 0) as telemetry:
@@ -174,7 +174,7 @@ def _floor(loaded, duration, path, t_off):
     its telemetry): its numbers formatted as JSON (one ``orjson.dumps`` of the
     sample's float64 numbers) and its bytes compressed (the file's chunks, again at
     the writer's zstd level) and checksummed (CRC-32), against the 10 % budget."""
-    world = World.from_scenario(loaded, duration=duration)
+    world = build_world(loaded, duration=duration)
     world.run(None)
     values, _ = sampling.values(world.bodies[0], world.gmst0, world.where)
     calls = 1000

@@ -19,11 +19,11 @@ from rocketsim.atmosphere.day import standard_table
 from rocketsim.constants import EARTH_J2, EARTH_MU, EARTH_RADIUS_EQ, EARTH_RADIUS_POLAR, G0
 from rocketsim.dynamics.derivative import derivative
 from rocketsim.dynamics.rk4 import advance
-from rocketsim.dynamics.state import V, make_params
+from rocketsim.layout import V, make_params
 from rocketsim.scenario.load import validate
 from rocketsim.scenario.models import VehicleSpec
 from rocketsim.scenario.yaml_source import read_yaml
-from rocketsim.vehicle import engines as E
+from rocketsim.vehicle.engines import S_DRY, ignite
 from rocketsim.vehicle.build import build
 from tests.benchmarks.derivative_loops import coasting_derivative_calls, powered_derivative_calls
 
@@ -45,7 +45,7 @@ def test_mass_properties_and_nine_engines_per_stage():
     assert booster.n_engines == 9
     y = booster.state([EARTH_RADIUS_EQ + 5e3, 0.0, 0.0], [0.0, 465.0, 0.0])
     for e in range(9):
-        E.ignite(y, a.eng, a.cmd, a.stage, e, a.first_clock)
+        ignite(y, a.eng, a.cmd, a.stage, e, a.first_clock)
     y[booster.clocks] = 10.0
     p = make_params(1.0, (1.0, 1.0, 1.0), EARTH_MU, EARTH_RADIUS_EQ, EARTH_J2, EARTH_RADIUS_POLAR)
     rigid = make_params(5e5, (2e5, 1e8, 1e8), EARTH_MU, EARTH_RADIUS_EQ, EARTH_J2, EARTH_RADIUS_POLAR)
@@ -68,7 +68,7 @@ def test_mass_properties_and_nine_engines_per_stage():
     y13_orbit = np.ascontiguousarray(y_orbit[:13])
     t_step = best_of(3, lambda: advance(y_orbit, 0, 0.02, steps, p, a)) / steps
     t_coast_step = best_of(3, lambda: advance(y13_orbit, 0, 0.02, steps, rigid)) / steps
-    assert advance(y_orbit, 0, 0.02, steps, p, a)[1] == steps and a.stage[0, E.S_DRY] == 0.0
+    assert advance(y_orbit, 0, 0.02, steps, p, a)[1] == steps and a.stage[0, S_DRY] == 0.0
     print(f"[vehicle] powered RK4 step (20 ms): {t_step * 1e6:.2f} us = {0.02 / t_step:,.0f}x real "
           f"time; coasting step {t_coast_step * 1e6:.2f} us; ratio {t_step / t_coast_step:.1f}x")
 

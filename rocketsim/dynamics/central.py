@@ -20,11 +20,11 @@ import numpy as np
 
 from rocketsim.atmosphere.mars import mars_table
 from rocketsim.atmosphere.table import make_table
-from rocketsim.dynamics.nbody import F_CENTER, F_ROT, make_field
+from rocketsim.dynamics.nbody import FIELD_CENTER, FIELD_ROT, make_field
 from rocketsim.bodies.orientation import BODIES as ORIENTED, pole_and_meridian
 from rocketsim.dynamics.soi import (_ORBIT, CENTRAL, CHILDREN, SOI, central_body, central_params,
                                    frame_rotation, handover)
-from rocketsim.dynamics.state import Q, R, V
+from rocketsim.layout import Q, R, V
 from rocketsim.dynamics.third_bodies import bodies_at, field_of, with_field
 from rocketsim.ephemeris.solar_system import BODIES
 from rocketsim.frames.quaternion import quat_from_matrix, quat_multiply
@@ -47,7 +47,7 @@ def nbody_field(center: str, jd0_tt: float, gmst0: float, jd_tt_now: float | Non
 def center_name(p) -> str:
     """Name of the central body of a parameter vector (Earth without a field)."""
     fp = field_of(p)
-    return "earth" if fp is None else BODIES[int(fp[F_CENTER])]
+    return "earth" if fp is None else BODIES[int(fp[FIELD_CENTER])]
 
 
 def next_center(y, p, t: float) -> str | None:
@@ -57,7 +57,7 @@ def next_center(y, p, t: float) -> str | None:
     fp = field_of(p)
     if fp is None:
         return None
-    center = BODIES[int(fp[F_CENTER])]
+    center = BODIES[int(fp[FIELD_CENTER])]
     r = y[R:R + 3]
     if math.sqrt(r @ r) < WATCH_RADIUS[center]:
         return None
@@ -72,7 +72,7 @@ def recentre(y, p, t: float, new: str, gmst0: float):
     are not modified."""
     fp = field_of(p)
     r, v, fp_new = handover(y[R:R + 3], y[V:V + 3], fp, t, new, gmst0)
-    turn = fp_new[F_ROT:F_ROT + 9].reshape(3, 3).T @ fp[F_ROT:F_ROT + 9].reshape(3, 3)
+    turn = fp_new[FIELD_ROT:FIELD_ROT + 9].reshape(3, 3).T @ fp[FIELD_ROT:FIELD_ROT + 9].reshape(3, 3)
     out = np.array(y, dtype=float)
     out[R:R + 3] = r
     out[V:V + 3] = v
@@ -86,8 +86,8 @@ def to_frame(r, v, p_from, p_to, t: float):
     in the frame of ``p_to``'s (both carrying fields) at mission time ``t`` (s)."""
     fa, fb = field_of(p_from), field_of(p_to)
     s, u = bodies_at(fa, t)
-    j = int(fb[F_CENTER])
-    rot = fb[F_ROT:F_ROT + 9].reshape(3, 3).T @ fa[F_ROT:F_ROT + 9].reshape(3, 3)
+    j = int(fb[FIELD_CENTER])
+    rot = fb[FIELD_ROT:FIELD_ROT + 9].reshape(3, 3).T @ fa[FIELD_ROT:FIELD_ROT + 9].reshape(3, 3)
     return rot @ (np.asarray(r, float) - s[j]), rot @ (np.asarray(v, float) - u[j])
 
 

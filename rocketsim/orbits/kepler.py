@@ -33,7 +33,7 @@ import numpy as np
 
 from rocketsim._jit import njit
 from rocketsim.errors import InputError
-from rocketsim.transfer._broadcast import flat_rows
+from rocketsim.orbits._broadcast import flat_rows
 
 _MAX_ITER = 60
 

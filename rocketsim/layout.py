@@ -1,4 +1,4 @@
-"""The state vector of one body and the parameters its derivative reads.
+"""The state and parameter slots of one body: the layout every kernel reads.
 
 State ``y`` (float64, length :data:`N_STATE`), in the inertial frame:
 
@@ -11,20 +11,22 @@ index   name   meaning
 10:13   w      body rates about the body axes, rad/s (x is the roll axis)
 ======  =====  ==============================================================
 
-Later models append integrated quantities (propellant masses, engine spool
-states) after index 13 so that the same RK4 stages integrate them. A staged
-vehicle (:mod:`rocketsim.vehicle.build`) appends the propellant mass of each
-of its tanks (kg) and then the clock of each of its engines (s since its last
-ignition or shutdown command).
+A staged vehicle (:mod:`rocketsim.vehicle.build`) carries more integrated
+quantities after index 13, so that the same RK4 stages integrate them: the
+propellant mass of each of its tanks (kg), then the clock of each of its
+engines (s since its last ignition or shutdown command).
 
 Parameters ``p`` (float64, length :data:`N_PARAMS`) are what the derivative
 reads but does not integrate: the mass and the diagonal inertia of a rigid
 body, the central body's gravity (mu, reference radius, J2) and rotation rate
 (:data:`P_SPIN`: the ground and the air turn at it about the frame's z, the
-body's pole), and which model flies the body (:data:`P_CLASSIC`: 1 on the classic range, whose original
-model holds a staged vehicle's thrust, mass and upper-air density for the
-step; see :func:`rocketsim.dynamics.derivative.held_derivative`). Index
-constants below are the only names for these slots.
+body's pole), which model flies the body (:data:`P_CLASSIC`: 1 on the classic
+range, whose original model holds a staged vehicle's thrust, mass and upper-air
+density for the step; see :func:`rocketsim.dynamics.derivative.held_derivative`),
+and whether the body flies in the n-body field (:data:`P_NBODY`: 1 when the
+field and the other bodies' held positions follow the slots,
+:func:`rocketsim.dynamics.third_bodies.with_field`). Index constants below
+are the only names for these slots.
 """
 
 import numpy as np
@@ -49,7 +51,8 @@ P_J2 = 6            # central body's J2 (0 for a point mass)
 P_POLAR_RADIUS = 7  # m, central body's polar radius (ground proximity)
 P_CLASSIC = 8       # 1: the classic range's original model (held for the step), 0: realistic
 P_SPIN = 9          # rad/s, central body's rotation rate about the frame's z (its pole)
-N_PARAMS = 10
+P_NBODY = 10        # 1: the n-body field follows these slots (rocketsim.dynamics.third_bodies), 0: none
+N_PARAMS = 11
 
 
 def make_state(r, v, q=(1.0, 0.0, 0.0, 0.0), w=(0.0, 0.0, 0.0)) -> np.ndarray:
@@ -78,4 +81,5 @@ def make_params(mass, inertia, mu, radius, j2, polar_radius, classic=False,
     p[P_POLAR_RADIUS] = polar_radius
     p[P_CLASSIC] = 1.0 if classic else 0.0
     p[P_SPIN] = spin
+    p[P_NBODY] = 0.0
     return p

@@ -1,0 +1,1 @@
+"""The front door: what a notebook or a script imports to fly and read runs."""

@@ -1,0 +1,78 @@
+"""The local frame of a point over a turning ellipsoid, and velocities relative to it.
+
+The central body turns at ``spin`` (rad/s) about its inertial frame's ``z``
+(its pole): Earth at ``EARTH_OMEGA`` in the ECI of the mission epoch, the Moon
+and Mars at their IAU rates in their own frames (the parameters' ``P_SPIN``).
+A point's local east, north and up (the ellipsoid's normal) follow from its
+geodetic latitude and longitude on the body's ellipsoid (WGS84 about Earth);
+the ground and the air turn with the body, so the velocity relative to them
+is ``v - omega x r`` and the velocity the aerodynamics see ``v - omega x r - w``
+with ``w`` the wind (docs/physics.md, "Frames"). All vectors in the inertial
+frame's axes, m and m/s.
+"""
+
+import math
+
+import numpy as np
+
+from rocketsim._jit import njit
+from rocketsim.constants import EARTH_OMEGA, EARTH_RADIUS_EQ, EARTH_RADIUS_POLAR
+from rocketsim.frames.geodetic import ecef_to_geodetic_njit, enu_basis, geodetic_on
+
+# sin(pitch) above which the nose counts as vertical (within 0.01 deg): heading
+# and roll are then read from body z instead
+VERTICAL = math.cos(0.01 * math.pi / 180.0)
+_CALM = np.zeros(3)             # no wind: the air velocity is then the surface velocity
+
+
+@njit
+def air_velocity(r, v, wind, spin=EARTH_OMEGA):
+    """``v - omega x r - wind`` (m/s, frame axes) for position ``r`` (m) and velocity
+    ``v`` (m/s), ``omega = (0, 0, spin)`` the central body's rotation (rad/s; Earth's
+    by default)."""
+    out = np.empty(3)
+    out[0] = v[0] + spin * r[1] - wind[0]
+    out[1] = v[1] - spin * r[0] - wind[1]
+    out[2] = v[2] - wind[2]
+    return out
+
+
+@njit
+def turned(x, y, angle):
+    """``R3(angle) (x, y)``: components in axes turned by ``angle`` (rad) about z, in
+    the order of :func:`rocketsim.frames.earth_fixed.eci_to_ecef` (the same bits)."""
+    c = math.cos(angle)
+    s = math.sin(angle)
+    return c * x + s * y, -s * x + c * y
+
+
+@njit
+def where_and_how_fast(r, v, t, spin=EARTH_OMEGA, a=EARTH_RADIUS_EQ, b=EARTH_RADIUS_POLAR):
+    """One compiled call for the readings every step needs: ``(lat rad, lon rad, height
+    m, enu, surface velocity)`` of the position ``r`` (m) and velocity ``v`` (m/s) in the
+    central body's inertial frame at mission time ``t`` (s), on the central body's
+    ellipsoid (equatorial radius ``a``, polar ``b``, m: ``p[P_RADIUS]``,
+    ``p[P_POLAR_RADIUS]``; WGS84 by default) turning at ``spin`` (rad/s about the frame's
+    z, the body's pole: ``p[P_SPIN]``; Earth's by default). ``enu`` (3, 3) has the local
+    east, north and up (the ellipsoid's normal) unit vectors in the frame's axes as rows;
+    the surface velocity (m/s, same axes) is relative to the turning ground. About Earth,
+    geodetic over WGS84 with the same operations, in the same order, as
+    :func:`~rocketsim.frames.earth_fixed.eci_to_ecef`,
+    :func:`~rocketsim.frames.geodetic.ecef_to_geodetic`, ``ecef_to_eci`` and
+    :func:`air_velocity`; elsewhere the longitude is
+    counted from the frame's x turned by ``spin t``, not from the IAU prime meridian (the
+    local axes and the surface velocity do not depend on it;
+    :func:`rocketsim.dynamics.central.planetocentric` gives the body's own latitude and
+    longitude)."""
+    theta = 0.0 + spin * t
+    x, y = turned(r[0], r[1], theta)
+    if a == EARTH_RADIUS_EQ and b == EARTH_RADIUS_POLAR:
+        lat, lon, h = ecef_to_geodetic_njit(x, y, r[2])
+    else:
+        lat, lon, h = geodetic_on(x, y, r[2], a, b)
+    basis = enu_basis(lat, lon)
+    enu = np.empty((3, 3))
+    for k in range(3):
+        enu[k, 0], enu[k, 1] = turned(basis[k, 0], basis[k, 1], -theta)
+        enu[k, 2] = basis[k, 2]
+    return lat, lon, h, enu, air_velocity(r, v, _CALM, spin)

@@ -1,0 +1,132 @@
+"""The world's side of the flight computer's interface: one body as its program sees it.
+
+:class:`BodyCraft` implements :class:`rocketsim.flight.craft.Craft` over a
+world and one of its bodies: the readings are the body's true state, and each
+command is carried out by the world (the program runner hands control back,
+the schedule reads the cruise allowance and the attitude command, staging
+splits the body).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Callable
+
+import numpy as np
+
+from rocketsim.flight.readings import StateView
+from rocketsim.sim.body import Body
+
+class BodyCraft:
+    """``body`` of ``world`` (a :class:`~rocketsim.sim.world.World`) behind the
+    :class:`~rocketsim.flight.craft.Craft` interface."""
+
+    def __init__(self, world, body: Body):
+        self._world = world
+        self._body = body
+        self.name = body.name
+        self.epoch = world.epoch
+        self.target = world.target
+        self.pad_azimuth = world.pad_azimuth
+
+    # --- readings -----------------------------------------------------------
+    @property
+    def time(self) -> float:
+        return self._world.t
+
+    @property
+    def step_index(self) -> int:
+        return self._world.k
+
+    @property
+    def step_length(self) -> float:
+        return self._world.h
+
+    @property
+    def t(self) -> float:
+        return self._body.t
+
+    @property
+    def y(self) -> np.ndarray:
+        return self._body.y
+
+    @property
+    def p(self) -> np.ndarray:
+        return self._body.p
+
+    @property
+    def vehicle(self):
+        return self._body.vehicle
+
+    @property
+    def central(self) -> str:
+        return self._body.central
+
+    @property
+    def mu(self) -> float:
+        return self._body.mu
+
+    @property
+    def mass(self) -> float:
+        return self._body.mass
+
+    @property
+    def sensors(self):
+        return self._body.sensors
+
+    @property
+    def heat_shield(self):
+        checks = self._body.checks
+        return None if checks is None else checks.shield
+
+    @property
+    def shield_temperature(self) -> float:
+        checks = self._body.checks
+        return math.nan if checks is None or checks.shield is None else float(checks.temperature)
+
+    def truth(self) -> StateView:
+        return self._body.view()
+
+    def is_truth(self, view: StateView | None) -> bool:
+        return view is self._body._view
+
+    def flies_in_days_air(self) -> bool:
+        body = self._body
+        return body.vehicle.arrays.air[2] is body.atmosphere().density     # the density column
+
+    # --- commands -----------------------------------------------------------
+    def hand_back(self, until: float, predicate: Callable[[], bool] | None = None) -> None:
+        self._body.runner.hand_back(until, predicate)
+
+    def allow_cruise(self, until: float) -> None:
+        self._body.cruise_until = until
+
+    def command_attitude(self, command) -> None:
+        self._body.attitude_command = command
+        if command is None:
+            self.stop_rcs()
+
+    def stop_rcs(self) -> None:
+        if self._body.vehicle is not None:
+            self._body.vehicle.arrays.aero.rcs_cmd[:] = 0.0
+
+    def stage(self) -> str:
+        return self._world.separate(self._body).name
+
+    def jettison_fairing(self) -> tuple[str, str]:
+        return tuple(half.name for half in self._world.jettison_fairing(self._body))
+
+    def deploy_payload(self) -> str:
+        return self._world.deploy_payload(self._body).name
+
+    def log(self, message: str) -> None:
+        self._world.log(self._body, message)
+
+    def event(self, name: str, figures: dict) -> None:
+        self._world.event(self._body, name, figures)
+
+    def body_state(self, name: str, at: float | None = None) -> tuple[np.ndarray, np.ndarray]:
+        return self._world.body_state(self._body, name, at)
+
+    def predict(self, seconds: float, delta_v=None, periapsis: bool = False):
+        return self._world.predict(self._body, seconds, delta_v, periapsis)
