@@ -24,7 +24,7 @@ def test_every_kernel_module_and_its_imports_are_hashed():
                       if "njit" in path.read_text()}
     assert kernel_modules <= names
     # derivative.py inlines gravity and reads the state layout and constants.
-    assert {"bodies/gravity.py", "dynamics/state.py", "constants.py"} <= names
+    assert {"bodies/gravity.py", "layout.py", "constants.py"} <= names
 
 
 def test_pure_python_layers_do_not_invalidate_the_cache():

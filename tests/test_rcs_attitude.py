@@ -85,7 +85,7 @@ SLEW = """
 import numpy as np
 from rocketsim.frames.quaternion import quat_to_matrix
 def main(fc):
-    body = fc._body                  # the test reads the model's mass properties
+    body = fc._craft                 # the test reads the model's mass properties
     _, x_cm, ixx, iyy, izz = body.vehicle.mass_properties(body.y)
     fc.rcs(True)
     m = quat_to_matrix(fc.attitude)
@@ -176,7 +176,7 @@ def test_a_commanded_roll_is_held(write, tmp_path):
 
 FREE = """
 def main(fc):
-    body = fc._body
+    body = fc._craft
     _, _, ixx, iyy, izz = body.vehicle.mass_properties(body.y)
     fc.event("inertia", moments=[float(ixx), float(iyy), float(izz)])
     fc.point(0.0, 0.0)              # a command, but neither engines nor RCS to act on it
