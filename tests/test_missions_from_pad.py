@@ -1,4 +1,4 @@
-"""The Moon and Mars missions flown from the launch pad (issue 9, item 6).
+"""The Moon and Mars missions flown from the launch pad.
 
 scenarios/moon-from-pad.yaml and scenarios/mars-from-pad.yaml stack the
 lunar and the Mars orbiter on a Falcon 9 (``spacecraft:``) at Cape Canaveral

@@ -1,6 +1,6 @@
 """The n-body field against hand-computed fields, and the sphere-of-influence handover.
 
-References: the direct-minus-indirect field of EQUATIONS.md evaluated by hand
+References: the direct-minus-indirect field (docs/physics.md#n-body-field) evaluated by hand
 (closed form for a collinear case; an independent heliocentric numpy sum over
 the ephemeris, ``tests/nbody_reference.py``); radiation pressure from the
 solar irradiance over c (Kopp & Lean 2011); SOI radii from Curtis, *Orbital

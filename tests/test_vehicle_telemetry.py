@@ -1,4 +1,4 @@
-"""Telemetry of engines, propellant and heating (issue 10 item 1): the state message's
+"""Telemetry of engines, propellant and heating: the state message's
 ``throttle``, ``thrust``, ``mass_flow``, ``engines_running``, ``propellant``,
 ``propellant_tanks``, ``heat_flux`` and ``shield_temperature`` fields
 (:mod:`rocketsim.sim.sampling`), checked against independent computations

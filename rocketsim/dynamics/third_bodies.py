@@ -1,6 +1,6 @@
 """The other bodies' pull in a field about a central body, and the field a body carries.
 
-EQUATIONS.md ("Gravity", N-body field): with the central body ``c``, the
+docs/physics.md#n-body-field: with the central body ``c``, the
 other bodies ``k`` at ``s_k`` from ``c`` and the vehicle at ``r`` from ``c``,
 the perturbation is::
 
@@ -20,8 +20,8 @@ the step's start) and :func:`rocketsim.dynamics.derivative.derivative` adds
 :func:`held_perturbation` to the central body's gravity: the very arithmetic
 of the rails' field (:func:`rocketsim.dynamics.nbody.field_acceleration`),
 so an awake and a sleeping body about the Moon or Mars stay bit-identical.
-A parameter vector of plain length :data:`N_PARAMS` flies Earth's point mass
-and J2 alone, as before.
+A parameter vector of plain length :data:`N_PARAMS` flies the central body's
+point mass and J2 alone.
 """
 
 from __future__ import annotations

@@ -2,9 +2,8 @@
 
 The transfer arc (from :func:`rocketsim.transfer.lambert`) leaves the
 departure body with a hyperbolic excess velocity ``v_inf = v1 - v_body`` and
-arrives with ``v2 - v_target``. The relations (``spec/EQUATIONS.md``,
-"Lambert's problem and burns"; Curtis, *Orbital Mechanics for Engineering
-Students*, sections 8.6-8.7):
+arrives with ``v2 - v_target``. The relations (docs/physics.md#burns; Curtis,
+*Orbital Mechanics for Engineering Students*, sections 8.6-8.7):
 
 * characteristic energy ``C3 = |v_inf|^2``;
 * escape from a circular parking orbit of radius ``r_p`` with a single

@@ -1,8 +1,8 @@
 """Stagnation-point heating and a heat shield as one lumped thermal mass.
 
-Physics model ("Heating by the Sutton-Graves stagnation-point relation ...,
-reduced for a hot wall, with radiative cooling, and a heat shield treated as a
-single lumped mass with a 2 400 K limit"); EQUATIONS.md::
+docs/physics.md#heating: the Sutton-Graves stagnation-point relation, reduced
+for a hot wall, with radiative cooling, and a heat shield treated as a single
+lumped mass with a 2 400 K limit::
 
     q_cold = k sqrt(rho / r_n) v^3                (W/m^2; K. Sutton & R. A. Graves,
                                                    NASA TR R-376, 1971)
