@@ -122,8 +122,26 @@ def _aero_and_contact(t, y, p, dy, rho, sound, x_cm, aero, fx, fy, fz, mx, my, m
 def derivative(t, y, p, dy, veh=None):
     """Write ``dy/dt`` of state ``y`` at mission time ``t`` (s) into ``dy``.
 
-    ``veh``: the arrays of a staged vehicle, or None for a rigid body of
-    constant mass and inertia ``p``. Nothing is held: this is the model's
+    Parameters
+    ----------
+    t : float
+        Mission time, s.
+    y : array
+        The state (slots of :mod:`rocketsim.layout`): position m and velocity
+        m/s in the central body's inertial frame, attitude quaternion body ->
+        inertial, body rates rad/s; a staged vehicle's tank masses (kg) and
+        engine clocks (s) after slot 13.
+    p : array
+        The parameters (SI units: kg, kg m^2, m^3/s^2, m, rad/s), with the
+        n-body field when the body carries one.
+    dy : array
+        Written with the rates: m/s, m/s^2, 1/s, rad/s^2, kg/s, and 1 for the
+        clocks.
+    veh : VehicleArrays or None
+        The arrays of a staged vehicle, or None for a rigid body of constant
+        mass and inertia ``p``.
+
+    Nothing is held: this is the model's
     derivative at ``(t, y)`` (:func:`held_derivative` with ``(t, y)`` as the hold).
     """
     held_derivative(t, y, p, dy, veh, t, y)

@@ -46,7 +46,25 @@ DRY_TOLERANCE = 1e-13      # relative to the stage's load: where the split of a 
 
 @njit
 def rk4_step(y, t, h, p, veh=None):
-    """One classical RK4 step of size ``h`` (s) from ``(t, y)``; returns the new state."""
+    """One classical RK4 step of size ``h`` (s) from ``(t, y)``; returns the new state.
+
+    Parameters
+    ----------
+    y : array
+        The state (slots of :mod:`rocketsim.layout`: m, m/s, quaternion body ->
+        inertial, rad/s in body axes; a staged vehicle's tank masses in kg and
+        engine clocks in s after slot 13).
+    t : float
+        Mission time at the step's start, s.
+    h : float
+        Step, s.
+    p : array
+        The body's parameters (:mod:`rocketsim.layout`, SI units), with its
+        n-body field when it carries one.
+    veh : VehicleArrays or None
+        A staged vehicle's arrays (:class:`~rocketsim.vehicle.build.VehicleArrays`),
+        None for a rigid body.
+    """
     n = y.shape[0]
     k1 = np.empty(n)
     k2 = np.empty(n)
@@ -200,6 +218,9 @@ def _one_step(y, t, h, p, veh):
 @njit
 def step(y, t, h, p, veh=None):
     """Advance one flight-model step of ``h`` seconds (sub-stepped near the ground).
+
+    ``y`` (state), ``t`` (s), ``p`` and ``veh`` as :func:`rk4_step`'s; returns the
+    new state.
 
     A vehicle with wind in its day's air samples it here, once per step; a body
     in the n-body field holds the other bodies' positions here (per 5 s bucket

@@ -34,7 +34,8 @@ def c3(v_inf):
 
 
 def escape_dv(mu, r_park, v_inf):
-    """Δv (m/s) from a circular orbit of radius ``r_park`` (m) to excess speed ``v_inf`` (m/s).
+    """Δv (m/s) from a circular orbit of radius ``r_park`` (m) to excess speed ``v_inf`` (m/s)
+    about a body of gravitational parameter ``mu`` (m^3/s^2).
 
     One impulsive burn at the periapsis of the departure hyperbola, tangent
     to the parking orbit. ``v_inf`` is a speed; ``v_inf**2`` may be given
@@ -44,7 +45,8 @@ def escape_dv(mu, r_park, v_inf):
 
 
 def escape_dv_c3(mu, r_park, c3_value):
-    """Δv (m/s) from a circular orbit of radius ``r_park`` to energy ``C3`` (m^2/s^2).
+    """Δv (m/s) from a circular orbit of radius ``r_park`` (m) to energy ``C3`` (m^2/s^2)
+    about a body of gravitational parameter ``mu`` (m^3/s^2).
 
     Valid for negative ``C3`` too (an ellipse with periapsis at ``r_park``),
     as long as ``C3 > -mu / r_park`` (the burn raises the apoapsis).
@@ -55,7 +57,8 @@ def escape_dv_c3(mu, r_park, c3_value):
 
 
 def capture_dv(mu, r_periapsis, r_apoapsis, v_inf):
-    """Δv (m/s) to brake from excess speed ``v_inf`` into an orbit ``r_periapsis`` × ``r_apoapsis`` (m).
+    """Δv (m/s) to brake from excess speed ``v_inf`` (m/s) into an orbit ``r_periapsis`` ×
+    ``r_apoapsis`` (m) about a body of gravitational parameter ``mu`` (m^3/s^2).
 
     One impulsive burn at the periapsis of the arrival hyperbola, which is
     also the periapsis of the captured ellipse (``r_apoapsis >= r_periapsis``;
