@@ -51,7 +51,7 @@ MARS_J2 = 1.95545e-3
 # --- Sun (DE430) --------------------------------------------------------------
 SUN_MU = 1.32712440018e20                  # m^3/s^2
 
-# --- Integrator (physics model, "The integrator") ---------------------------
+# --- Integrator (docs/physics.md#integrator) ---------------------------------
 STEP = 0.02                                # s, the flight model's fixed step
 MAX_HEADLESS_STEP = 0.1                    # s, largest step a headless run accepts
 GROUND_SUBSTEP_HEIGHT = 2.0                # m, below this height the step is split
@@ -87,8 +87,8 @@ CO2_VISCOSITY_REF = 1.370e-5               # Pa s at CO2_VISCOSITY_T0
 CO2_VISCOSITY_T0 = 273.0                   # K
 CO2_SUTHERLAND_S = 222.0                   # K
 
-# --- Vehicles and engines (rocketsim.vehicle; physics model, "Thrust against
-# ambient pressure" and "Mass properties are recomputed every step") ---------
+# --- Vehicles and engines (rocketsim.vehicle; docs/physics.md#propulsion and
+# docs/physics.md#mass-properties) ---------------------------------------------
 UNUSABLE_PROPELLANT = 0.01                 # fraction of each stage's load that cannot be burned
 LIQUID_ROLL_INERTIA_FRACTION = 0.10        # share of a liquid column's own roll inertia counted
 ENGINE_TAIL_OFF = 0.25                     # s, shutdown to zero thrust
@@ -99,9 +99,8 @@ ENGINE_TAIL_OFF = 0.25                     # s, shutdown to zero thrust
 # 24 (1954) 319-321; Sutton & Biblarz, Rocket Propulsion Elements, 9th ed., 3.3).
 SUMMERFIELD_SEPARATION_RATIO = 0.4
 
-# --- Rails, cruise rails, the n-body field (physics model, "Rails: the same
-# step, a cheaper derivative", "Cruise rails: RK4 sized by the turn", "The
-# n-body field"; EQUATIONS.md "Cruise rails") ---------------------------------
+# --- Rails, cruise rails, the n-body field (docs/physics.md#sleep-rails,
+# docs/physics.md#cruise-rails, docs/physics.md#n-body-field) ---------------
 RAILS_FLOOR = 151_000.0                    # m, a sleeping body goes on rails above this height
 NBODY_HOLD = 5.0                           # s of mission time the other bodies' positions are held
 CRUISE_TURN_PER_SUBSTEP = 0.02             # rad, a cruise sub-step turns the path by about this
@@ -122,12 +121,12 @@ MOON_ORBIT_A = 384_400_000.0               # m
 SPEED_OF_LIGHT = 299_792_458.0             # m/s
 SOLAR_IRRADIANCE_1AU = 1361.0              # W/m^2
 
-# --- Aerodynamics, heating, structure, contact (issue 5; physics model,
-# "Aerodynamics, propulsion and heating, in brief"; EQUATIONS.md) -------------
+# --- Aerodynamics, heating, structure, contact (docs/physics.md#heating,
+# docs/physics.md#structural-limits, docs/physics.md#ground-contact) ---------
 # Sutton-Graves stagnation-point heating q = k sqrt(rho / r_n) v^3 (SI, W/m^2):
 # K. Sutton & R. A. Graves, "A general stagnation-point convective heating
-# equation for arbitrary gas mixtures", NASA TR R-376 (1971); the constants
-# for air and for the Mars (CO2) mixture as quoted in EQUATIONS.md.
+# equation for arbitrary gas mixtures", NASA TR R-376 (1971): the constants
+# for air and for the Mars (CO2) mixture.
 SUTTON_GRAVES_EARTH = 1.7415e-4            # kg^0.5 / m (SI units of the relation)
 SUTTON_GRAVES_MARS = 1.9027e-4
 HEAT_SHIELD_LIMIT = 2400.0                 # K, a lumped heat shield fails above this

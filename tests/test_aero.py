@@ -1,5 +1,6 @@
-"""Aerodynamics (issue 5): axial tables, normal force, static stability, pitch damping,
-grid fins and reaction control, each against an independent reference quoted below."""
+"""Aerodynamics (docs/physics.md#aerodynamics): axial tables, normal force, static
+stability, pitch damping, grid fins and reaction control, each against an independent
+reference quoted below."""
 
 import math
 
@@ -29,7 +30,7 @@ TF = np.column_stack((TAIL_FIRST_MACH, TAIL_FIRST_CA))
 # --- axial force --------------------------------------------------------------
 
 def test_axial_tables_hold_the_physics_models_points():
-    # Physics model, "Aerodynamics ... in brief": nose first 0.30 subsonic, 0.62 at
+    # docs/physics.md#axial-force: nose first 0.30 subsonic, 0.62 at
     # Mach 1.15, 0.25 hypersonic; tail first 0.85 rising to 1.45 at Mach 2.
     for mach, ca in ((0.0, 0.30), (0.5, 0.30), (1.15, 0.62), (8.0, 0.25), (20.0, 0.25)):
         assert axial_coefficient(mach, 1.0, 0.0, NF, TF) == ca

@@ -1,7 +1,8 @@
 """Mars: the Glenn engineering model below 40 km, and the smoothness of the profile above.
 
-Reference below 40 km: the NASA Glenn Research Center formulas, written out
-here from ../shared/spec/EQUATIONS.md (h in metres, T in °C, p in kPa):
+Reference below 40 km: the NASA Glenn Research Center formulas ("Mars Atmosphere
+Model - Metric Units", www.grc.nasa.gov/www/k-12/airplane/atmosmrm.html),
+written out here (h in metres, T in °C, p in kPa):
 T = -31 - 0.000998 h (h <= 7000), -23.4 - 0.00222 h (h > 7000);
 p = 0.699 exp(-0.00009 h); rho = p / (0.1921 (T + 273.1)).
 The speed of sound is sqrt(gamma R T) with the published model's 188.92

@@ -1,5 +1,5 @@
-"""The central body's rotation in the parameters (issue 9): the air and the ground turn
-with the body the vehicle flies about, not always with Earth.
+"""The central body's rotation in the parameters: the air and the ground turn with the
+body the vehicle flies about.
 
 ``p[P_SPIN]`` (rad/s about the frame's z, which is the body's pole: Earth's ECI, or
 the IAU-pole frame a sphere-of-influence handover sets up) is Earth's WGS84 rate

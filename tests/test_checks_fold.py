@@ -1,4 +1,4 @@
-"""One compiled call per step of a vehicle with aerodynamics (issue 6 speed): the
+"""One compiled call per step of a vehicle with aerodynamics (for speed): the
 autopilot's step, the RK4 advance and the checks' figures folded into
 :func:`rocketsim.sim.vehicle_checks.advance_checked`.
 

@@ -1,7 +1,7 @@
-"""The classic range (issue 11): the procedural equatorial site, the original model's
-switches (thrust, mass and the density above 86 km held for the step; the standard
-atmosphere shifted by the day's surface temperature with standard-gravity
-hydrostatics), a shipped program flying there, and determinism."""
+"""The classic range (docs/physics.md#classic-range): the procedural equatorial site,
+the original model's switches (thrust, mass and the density above 86 km held for the
+step; the standard atmosphere shifted by the day's surface temperature with
+standard-gravity hydrostatics), a shipped program flying there, and determinism."""
 
 import math
 from pathlib import Path

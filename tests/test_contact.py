@@ -1,9 +1,10 @@
-"""Ground contact (issue 5): a lander dropped onto its legs on the WGS84 ground.
+"""Ground contact (docs/physics.md#ground-contact): a lander dropped onto its legs on
+the WGS84 ground.
 
 References: energy (the rotating-frame Jacobi energy of a body on a turning
 Earth can only fall when the ground's forces are springs, dampers and
 friction); the static deflection of a spring ``m gamma / (n k)`` with
-``gamma`` Somigliana's normal gravity (WGS84, EQUATIONS.md: the
+``gamma`` Somigliana's normal gravity (WGS84, NIMA TR8350.2 eq. 4-1: the
 surface's effective gravity, gravity plus centrifugal, normal to the
 ellipsoid); free fall ``v = sqrt(v0^2 + 2 gamma h)``; and the stability limit
 of classical RK4 (|lambda h| about 2.8; e.g. Hairer & Wanner, Solving ODEs II,
@@ -30,7 +31,7 @@ N_LEGS = 4
 
 
 def somigliana(lat):
-    """Normal gravity on the WGS84 ellipsoid (m/s^2), EQUATIONS.md."""
+    """Normal gravity on the WGS84 ellipsoid (m/s^2), Somigliana (NIMA TR8350.2 eq. 4-1)."""
     s2 = math.sin(lat) ** 2
     return 9.7803253359 * (1 + 0.00193185265241 * s2) / math.sqrt(1 - 0.00669437999013 * s2)
 

@@ -1,11 +1,12 @@
 """Cruise rails against Dormand-Prince (DOP853 at rtol 1e-13) through the same field.
 
 The reference (``tests/nbody_reference.py``) sums the field independently in
-heliocentric J2000 from the ephemeris at every evaluation. Targets (issue 9):
-an Earth-to-Mars 280-day heliocentric cruise within 100 km (the seed: 29 km
-against its finer integration, 0.08 m against DOPRI), a lunar transfer within
-1 km (seed: 0.18 km), and the local error of one step falling ~32-fold when
-the step is halved (fifth-order local error of RK4).
+heliocentric J2000 from the ephemeris at every evaluation. Targets
+(docs/physics.md#cruise-rails): an Earth-to-Mars 280-day heliocentric cruise
+within 100 km (the seed description: 29 km against its finer integration, 0.08 m
+against DOPRI), a lunar transfer within 1 km (seed: 0.18 km), and the local
+error of one step falling ~32-fold when the step is halved (fifth-order local
+error of RK4).
 """
 
 import datetime as dt

@@ -5,8 +5,8 @@ References:
   3.1) is the rate relative to the mean equinox: one turn takes the mean
   sidereal day, 23 h 56 m 4.0905 s = 86 164.0905 s (Astronomical Almanac,
   glossary "sidereal day"; the stellar day, 86 164.0989 s, is not it).
-* spec/EQUATIONS.md: on the pad a vehicle moves east at omega_E R cos(lat),
-  465.1 m/s at the equator (R = 6 378 137 m).
+* The ground's motion: on the pad a vehicle moves east at omega_E R cos(lat),
+  465.1 m/s at the equator (R = 6 378 137 m; docs/physics.md#frames).
 * Calculus: the Earth-fixed velocity is the time derivative of the Earth-
   fixed position, checked by central differences.
 """

@@ -1,17 +1,16 @@
 """The shipped Electron-class ascent from Mahia reaches its sun-synchronous orbit
-(issue 6, the sun-synchronous ascent check) and deploys its payload there.
+and deploys its payload there.
 
 The reference for the inclination is computed here, independently of the
 scenario file: the J2 secular nodal rate (Vallado, *Fundamentals of
-Astrodynamics and Applications*, 4th ed., eq. 9-41; EQUATIONS.md "Nodal
-regression")
+Astrodynamics and Applications*, 4th ed., eq. 9-41; docs/physics.md#j2)
 
     dOmega/dt = -(3/2) n J2 (R/p)^2 cos i,   n = sqrt(mu/a^3),  p = a (1 - e^2)
 
 set equal to the mean Sun's rate, 360 deg per tropical year of 365.242 19
 days (Vallado, section 11.4, sun-synchronous orbits), and solved for i by
 bisection at a = R + 500 km, e = 0: 97.40 deg. The same function gives the
-physics model's quoted 98.2 deg at 700 km ("+0.986 deg a day that makes a
+seed description's quoted 98.2 deg at 700 km (docs/physics.md#j2) ("+0.986 deg a day that makes a
 700 km orbit at 98.2 deg sun-synchronous").
 
 Flown at a 0.1 s headless step (the largest) and 430 s of mission time (to
@@ -63,7 +62,7 @@ def flight(tmp_path_factory):
 
 
 def test_orbit_reached_at_the_sun_synchronous_inclination(flight):
-    """Issue 6: inclination within 0.1 deg of the SSO value for its altitude;
+    """The inclination within 0.1 deg of the SSO value for its altitude;
     the orbit near the 500 km target (periapsis above 95 % of it)."""
     orbit = flight["bodies"]["electron"]["by_name"]["orbit"]
     assert orbit["inclination_deg"] == pytest.approx(math.degrees(sun_synchronous_inclination(500e3)),

@@ -60,7 +60,7 @@ def test_meeus_example_47a():
     dl = (math.degrees(lon) % 360.0 - 133.162655) * 3600.0
     db = (math.degrees(lat) - -3.229126) * 3600.0
     dd = dist - 368409.7
-    # Issue 7: within 3", 0.3" and 6 km (the physics model: -2.81", -0.20",
+    # Within 3", 0.3" and 6 km (the seed description's figures: -2.81", -0.20",
     # -4.92 km). Measured: -2.81", -0.19", -4.93 km; the residual is Meeus's
     # own truncation of the same theory (60 terms against our ~600).
     assert abs(dl) < 3.0 and abs(db) < 0.3 and abs(dd) < 6.0, (dl, db, dd)
@@ -88,8 +88,8 @@ def _numpy_lbd(series, jd):
 
 
 def test_truncation_error_1950_2100(full):
-    # Issue 7: <= 0.2" in longitude and latitude, <= 0.4 km in distance
-    # (the physics model: 0.16", 0.17", 0.36 km). Our kernel with the
+    # <= 0.2" in longitude and latitude, <= 0.4 km in distance
+    # (the seed description's truncation: 0.16", 0.17", 0.36 km). Our kernel with the
     # truncated tables against the full series summed here with numpy.
     lon, lat, dist = _numpy_lbd(full, SPAN)
     ours = np.array([elp2000.geocentric_lbd(jd)[0] for jd in SPAN]).T
@@ -115,7 +115,7 @@ def test_generated_tables_match_the_generator(full):
 
 
 def test_velocity_is_the_derivative_of_position():
-    # Issue 7: analytic derivative vs centred finite difference, 1e-6 relative.
+    # Analytic derivative vs centred finite difference, 1e-6 relative.
     # h = 60 s; the step is the exact difference of the two float dates.
     for jd in (calendar_jd(1961, 2, 3.7), calendar_jd(2026, 11, 26.5), calendar_jd(2088, 8, 1.2)):
         h = 60.0 / 86400.0

@@ -52,7 +52,7 @@ def test_ecliptic_of_date_turn_at_j2000_is_the_obliquity_rotation():
 
 
 def test_correction_is_about_036_deg_by_2026():
-    # The physics model: by 2026 the equinox-of-date -> J2000 correction is
+    # docs/physics.md#ephemerides: by 2026 the equinox-of-date -> J2000 correction is
     # 0.36 deg, some 950 000 km at the Earth. It is the general precession in
     # longitude p_A (Lieske 1977) for a body on the ecliptic.
     jd = calendar_jd(2026, 1, 1.0)

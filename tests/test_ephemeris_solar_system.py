@@ -114,6 +114,6 @@ def test_mars_oppositions_2025_2031():
         earth, _ = erfa.epv00(jd, 0.0)
         mars = erfa.plan94(jd, 0.0, 4)
         elongation = _ecliptic_longitude(mars["p"] - earth["p"]) - _ecliptic_longitude(-earth["p"])
-        # Issue 7: 180.00 deg +- 0.04 deg at each computed opposition
+        # 180.00 deg +- 0.04 deg at each computed opposition (docs/physics.md#ephemerides)
         # (measured with ERFA: 179.994, 179.999, 180.005, 179.998 deg).
         assert abs(math.degrees(elongation % (2 * math.pi)) - 180.0) < 0.04

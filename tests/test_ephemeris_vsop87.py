@@ -68,8 +68,9 @@ def test_meeus_example_25b_earth_truncated_and_full(full):
 
 @pytest.mark.parametrize("body", ["earth", "mars"])
 def test_truncated_within_300_km_of_full_series_1950_2100(full, body):
-    # Issue 7: within 300 km of the full VSOP87D over 1950-2100 (the physics
-    # model's truncation reached 273 km for the Earth, 255 km for Mars).
+    # Within 300 km of the full VSOP87D over 1950-2100: the truncation's bound
+    # (docs/physics.md#ephemerides; the seed description's truncation reached
+    # 273 km for the Earth, 255 km for Mars).
     def xyz(lbr):
         lon, lat, r = lbr
         return np.array([r * np.cos(lat) * np.cos(lon), r * np.cos(lat) * np.sin(lon),
@@ -100,7 +101,7 @@ def test_generated_tables_match_the_generator(full):
 
 @pytest.mark.parametrize("body", ["earth", "mars"])
 def test_velocity_is_the_derivative_of_position(body):
-    # Issue 7: the analytic derivative agrees with a centred finite difference
+    # The analytic derivative agrees with a centred finite difference
     # of the position to 1e-6 relative. h = 600 s; the difference of the two
     # float Julian dates is used as the step, so the step is exact.
     for jd in (calendar_jd(1955, 3, 1.3), calendar_jd(2026, 11, 26.5), calendar_jd(2095, 7, 9.0)):

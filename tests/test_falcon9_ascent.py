@@ -1,4 +1,4 @@
-"""The shipped Falcon 9-class ascent reaches its orbit (issue 6, the LEO ascent check).
+"""The shipped Falcon 9-class ascent reaches its orbit, and its booster lands on LZ-1.
 
 Flown at a 0.05 s headless step to keep the suite fast: at this step the
 insertion orbit agrees with the 20 ms flight to 10 m in periapsis. 1 050 s of
@@ -31,7 +31,8 @@ def events(flight, body="falcon9-block5"):
 
 
 def test_orbit_reached_with_periapsis_and_inclination_on_target(flight):
-    """Issue 6: periapsis >= 190 km, inclination within 0.1 deg of 51.6 deg."""
+    """The program's target (200 km, 51.6 deg): periapsis >= 190 km, inclination within
+    0.1 deg of 51.6 deg."""
     orbit = events(flight)["orbit"]
     assert orbit["periapsis_altitude_m"] >= 190e3
     assert orbit["inclination_deg"] == pytest.approx(51.6, abs=0.1)
@@ -47,7 +48,7 @@ def test_the_ascent_events_come_in_order(flight):
 
 
 def test_max_q_is_where_the_physics_model_quotes_it(flight):
-    """The physics model's figure for this class of ascent: max-Q 36.4 kPa at
+    """The seed description's figure for this class of ascent: max-Q 36.4 kPa at
     11.0 km, Mach 1.51, 63 s after liftoff. The program's trajectory is not
     the seed's, so within 10 % in q and Mach and 2 km in altitude."""
     max_q = events(flight)["max_q"]
@@ -64,7 +65,7 @@ def test_standing_on_the_pad_is_not_a_touchdown(flight):
 # --- the booster's return to Landing Zone 1 (booster_return.py, flown in the same run) ---
 
 def test_booster_touches_down_on_lz1_upright_slow_and_on_target(flight):
-    """Issue 6, booster return (truth): touches down upright (tilt < 5 deg), vertical
+    """Booster return (truth): touches down upright (tilt < 5 deg), vertical
     speed < 2 m/s, within 15 m of the pad centre (LZ-1, the mission's target pad);
     figures from the summary's ``touchdown`` (the first contact)."""
     touchdown = flight["bodies"]["booster"]["touchdown"]
@@ -87,7 +88,7 @@ def test_booster_return_phases_come_in_order(flight):
 
 
 def test_the_fairing_halves_tumble_down_into_the_sea(flight):
-    """Issue 6, item 4: the fairing opens into two halves (950 kg each, half shells of
+    """The fairing opens into two halves (950 kg each, half shells of
     r = 2.6 m, L = 13.1 m) that tumble down with drag; they hit the Atlantic (no land
     at the point, Natural Earth mask) at the analytic terminal speed at sea level,
     ``sqrt(2 m g / (rho_0 C_D A))`` with the USSA 1976 sea-level density, ``C_D`` of a

@@ -22,7 +22,7 @@ def flight(tmp_path_factory):
 
 
 def test_booster_lands_within_the_limits_with_realistic_sensors(flight):
-    """Issue 6, booster return (realistic sensors): tilt < 5 deg, vertical speed < 2 m/s,
+    """Booster return (realistic sensors): tilt < 5 deg, vertical speed < 2 m/s,
     within 15 m of the pad centre, from the summary's ``touchdown``."""
     touchdown = flight["bodies"]["booster"]["touchdown"]
     print(f"\nbooster touchdown (realistic sensors): {touchdown}")

@@ -41,7 +41,7 @@ def readings(path, tmp_path):
 
 
 def test_effective_gravity_on_the_pad_at_the_equator(write, tmp_path):
-    """Issue 6: 9.78 m/s^2 on the pad at the equator (+-0.01). Reference:
+    """9.78 m/s^2 on the pad at the equator (+-0.01). Reference:
     WGS84 normal gravity at the equator, 9.7803 m/s^2, is gravity less the
     centrifugal omega^2 a = 0.0339 m/s^2; the effective gravity of a vehicle
     at rest on the pad is exactly that difference."""
@@ -51,7 +51,7 @@ def test_effective_gravity_on_the_pad_at_the_equator(write, tmp_path):
 
 
 def test_effective_gravity_is_nearly_zero_in_a_circular_orbit(scenario, tmp_path):
-    """Issue 6: below 0.05 m/s^2 in a circular orbit (J2 leaves a little)."""
+    """Below 0.05 m/s^2 in a circular orbit (J2 leaves a little)."""
     path = scenario(RECORD, duration="0.02 s")
     events = fly(load(path), tmp_path / "run.mcap")["bodies"]["probe"]["events"]
     assert abs(events[0]["g_eff"]) < 0.05
@@ -123,7 +123,7 @@ def main(fc):
 
 
 def test_accelerometers_read_the_grounds_push_on_the_pad_and_nothing_in_a_coast(write, scenario, tmp_path):
-    """fc.acceleration (issue 6: "acceleration (g)") is what accelerometers read,
+    """fc.acceleration (in g) is what accelerometers read,
     every force but gravity. References: (1) a body coasting in vacuum feels no
     force but gravity: 0 g to rounding; (2) the LM-class lander standing on its legs
     on an equatorial pad, settled after 8 s, is pushed up by the ground with the
@@ -156,7 +156,7 @@ def main(fc):
 
 
 def test_heating_is_sutton_graves_on_the_air_the_program_reads(write, tmp_path):
-    """fc.heating (issue 6: "heating"): a probe leaving the pad at 2 km/s through sea-level
+    """fc.heating: a probe leaving the pad at 2 km/s through sea-level
     air. Reference: Sutton & Graves (NASA TR R-376, 1971), q = k sqrt(rho / r_n) v^3 with
     k = 1.7415e-4 kg^0.5/m for air, on the 1 m reference nose radius of a vehicle without
     a heat shield; US 1976 sea-level density 1.225 kg/m^3; no shield, no temperature."""

@@ -1,6 +1,6 @@
-"""docs/fc.md, the `fc` reference (issue 6 item 1: "the `fc` API ... with an example for
-every call"): every public member of FlightComputer has a section there with an example
-that uses it, every example compiles, and the examples run.
+"""docs/fc.md, the `fc` reference, with an example for every call: every public member
+of FlightComputer has a section there with an example that uses it, every example
+compiles, and the examples run.
 
 Each python block of the page starts with ``# runs on: <scenario>`` or ``# not run:
 <why>``. Each scenario below is flown once with a program that runs all of its

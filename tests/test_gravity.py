@@ -13,7 +13,7 @@ from rocketsim.frames.geodetic import normal_gravity
 
 
 def potential(r):
-    """U = -mu/r [1 - J2 (R/r)^2 (3 sin^2 phi_c - 1)/2] (EQUATIONS.md), complex-safe."""
+    """U = -mu/r [1 - J2 (R/r)^2 (3 sin^2 phi_c - 1)/2] (docs/physics.md#j2), complex-safe."""
     x, y, z = r
     rr = np.sqrt(x * x + y * y + z * z)
     sin2 = z * z / (rr * rr)
@@ -40,7 +40,8 @@ def minus_gradient(r):
     [6.0e6, 2.0e6, -2.5e6],
 ])
 def test_j2_acceleration_is_minus_the_gradient_of_the_potential(r):
-    """The issue's check: |a - (-grad U)| < 1e-12 m/s^2."""
+    """The acceleration is the negative gradient of the J2 potential (taken here by
+    complex-step differentiation, exact to rounding): |a - (-grad U)| < 1e-12 m/s^2."""
     assert np.max(np.abs(gravity(r) - minus_gradient(r))) < 1e-12
 
 

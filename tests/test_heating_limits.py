@@ -1,4 +1,5 @@
-"""Heating and structural limits (issue 5), against published correlations and closed forms."""
+"""Heating and structural limits (docs/physics.md#heating, docs/physics.md#structural-limits),
+against published correlations and closed forms."""
 
 import math
 
@@ -34,7 +35,8 @@ def test_sutton_graves_matches_tauber_within_10_percent(height, speed, nose):
 
 
 def test_sutton_graves_constants_and_scalings():
-    # EQUATIONS.md: k = 1.7415e-4 (Earth air) and 1.9027e-4 (Mars CO2), q ~ sqrt(rho/r_n) V^3
+    # Sutton & Graves (NASA TR R-376, 1971): k = 1.7415e-4 (Earth air) and 1.9027e-4 (Mars CO2),
+    # q ~ sqrt(rho/r_n) V^3
     q = sutton_graves(1e-4, 6000.0, 1.0, SUTTON_GRAVES_EARTH)
     assert q == pytest.approx(1.7415e-4 * 1e-2 * 6000.0 ** 3, rel=1e-15)
     assert sutton_graves(1e-4, 6000.0, 1.0, SUTTON_GRAVES_MARS) / q == pytest.approx(1.9027 / 1.7415)
@@ -117,7 +119,8 @@ def test_heat_shield_past_2400_k_is_an_event_that_ends_the_vehicle():
 # --- structural limits ---------------------------------------------------------
 
 def test_bending_limit_is_250_kpa_deg():
-    # physics model: 250 kPa deg; at its max-Q of 36.4 kPa that is alpha = 6.87 deg
+    # docs/physics.md#structural-limits: 250 kPa deg; at a max-Q of 36.4 kPa that is
+    # alpha = 6.87 deg
     q = 36_400.0
     assert breakup(q, 6.8 * DEG, 0.0) is None
     hit = breakup(q, 7.0 * DEG, 0.0)
@@ -191,7 +194,7 @@ def test_a_16_g_burn_breaks_the_vehicle():
 
 
 def test_on_mars_the_shield_heats_with_the_co2_constant():
-    # EQUATIONS.md: k = 1.9027e-4 in CO2 (Sutton & Graves 1971); the body's central body
+    # k = 1.9027e-4 in CO2 (Sutton & Graves 1971); the body's central body
     # decides which (the air table here is Earth's: only the constant is under test)
     from rocketsim.constants import MARS_MU
     shield = {"nose_radius": "0.3 m", "mass": "20 kg", "specific_heat": 1000.0, "area": "0.2 m2",

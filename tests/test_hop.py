@@ -1,4 +1,4 @@
-"""A first-stage hop (issue 6): the Falcon 9 booster alone, light, lifts off, hovers
+"""A first-stage hop: the Falcon 9 booster alone, light, lifts off, hovers
 and lands back where it started; and the scenario fields that make it
 (``stages:``, ``propellant:``, rocketsim/scenario/stage_selection.py).
 

@@ -104,7 +104,7 @@ def test_a_flown_ballistic_arc_lands_near_the_prediction(tmp_path):
     towards the equator, and 0.012 s later (measured). That is J2, which the
     vacuum prediction leaves out: its pull along the meridian,
     ``3 mu J2 R^2 / r^4 sin(phi) cos(phi)`` (the latitudinal term of the J2
-    acceleration, EQUATIONS.md), is 0.0142 m/s^2 at 33 deg and 40 km, and
+    acceleration, docs/physics.md#j2), is 0.0142 m/s^2 at 33 deg and 40 km, and
     ``a t^2 / 2`` over 125 s is 111 m.
     """
     program = tmp_path / "predict.py"

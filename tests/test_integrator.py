@@ -1,5 +1,5 @@
 """The fixed-step RK4 flight integrator against conservation laws, analytic
-solutions and the Dormand-Prince reference (physics model, "The integrator")."""
+solutions and the Dormand-Prince reference (docs/physics.md#integrator)."""
 
 import math
 
@@ -49,7 +49,8 @@ def radial_free_fall(r0, t):
 
 
 def test_free_fall_in_vacuum_matches_the_analytic_solution():
-    """Within 1e-6 m after 10 s (issue 2)."""
+    """Radial free fall from rest in a point-mass field, against the analytic fall
+    ``t(r)`` of the radial Kepler problem: within 1e-6 m after 10 s."""
     r0 = EARTH_RADIUS_EQ + 100e3
     y0 = make_state([0.0, r0, 0.0], [0.0, 0.0, 0.0])
     y1, _ = advance(y0, 0, H, 500, point_mass_params())
@@ -103,8 +104,8 @@ def test_unpowered_convergence_is_fourth_order():
 
 @pytest.mark.parametrize("height, substeps", [(1.0, GROUND_SUBSTEPS), (3.0, 1)])
 def test_steps_within_two_metres_of_the_ground_are_split_in_four(height, substeps):
-    """Physics model: "Within 2 m of the ground the step is split into four
-    5 ms sub-steps". Checked bit for bit against explicit sub-steps."""
+    """docs/physics.md#integrator: within 2 m of the ground the step is split into
+    four 5 ms sub-steps. Checked bit for bit against explicit sub-steps."""
     y0 = make_state([0.0, 0.0, EARTH_RADIUS_POLAR + height], [0.0, 0.0, -1.0])
     p = point_mass_params()
     expected = y0

@@ -1,11 +1,11 @@
-"""Mars entry (scenarios/mars-entry.yaml): deorbit, ballistic entry, parachute conditions (issue 9).
+"""Mars entry (scenarios/mars-entry.yaml): deorbit, ballistic entry, parachute conditions.
 
 A capsule in a 400 km Mars orbit burns ~110 m/s retrograde, falls half an
 orbit and enters behind its heat shield through the Mars reference
 atmosphere (rocketsim.atmosphere.mars) down to parachute conditions: Mach
 below 2 more than 7 km up (the disk-gap-band parachutes of Viking, Phoenix
 and the Mars Science Laboratory opened between Mach 1.1 and 2.1, 6-13 km
-up). The shield must stay below 2 400 K (physics model). Reference for the
+up). The shield must stay below 2 400 K (docs/physics.md#heating). Reference for the
 heating: Allen & Eggers (NACA Report 1381, 1958): in a ballistic entry
 through an exponential atmosphere the stagnation heat flux ``~ sqrt(rho) v^3``
 peaks where ``v = e^(-1/6) v_E = 0.85 v_E`` (v_E the entry speed); gravity

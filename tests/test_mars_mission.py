@@ -1,11 +1,11 @@
-"""The Mars mission (scenarios/mars-orbit.yaml) flown whole (issue 9).
+"""The Mars mission (scenarios/mars-orbit.yaml) flown whole.
 
 In the 2026 window that ``rocketsim windows --target mars`` finds (departure
 2026-11-01 05:41:50 UTC, 310.2-day transfer; its mission fragment gives the
 scenario's epoch), the orbiter injects itself from a 200 km parking orbit,
 leaves Earth's sphere of influence for the Sun's, corrects its course twice,
-enters Mars's sphere and captures into a 400 x 33 000 km orbit. Must hold
-(issue 9): Mars orbit inserted. The headless step is 0.1 s (the burns'
+enters Mars's sphere and captures into a 400 x 33 000 km orbit. Must hold:
+Mars orbit inserted. The headless step is 0.1 s (the burns'
 closed loops need no finer one) and cruise rails carry the 310 days.
 """
 

@@ -1,4 +1,4 @@
-"""The Moon and Mars missions flown from the launch pad (issue 9, item 6).
+"""The Moon and Mars missions flown from the launch pad.
 
 scenarios/moon-from-pad.yaml and scenarios/mars-from-pad.yaml stack the
 lunar and the Mars orbiter on a Falcon 9 (``spacecraft:``) at Cape Canaveral
@@ -10,19 +10,15 @@ ascent's and the burns' closed loops need no finer one
 (tests/test_falcon9_ascent.py flies the ascent at 20 ms).
 
 The Mars mission is flown whole, from the pad to Mars orbit: 4.1-4.3 s of CPU
-(World.run; measured 2026-11-27 on a loaded 2-core machine, warm kernel
-cache; it took ~90 s when this file was first written, which flew it only
-through the injection). Where the time goes, the scenario's 311 d flown
-whole (9.2 s CPU): the ascent to the parking orbit 0.8 s, the parking-orbit
-coast while the spent stage falls 0.9 s, the injection burn 0.6 s, cruise to Mars with the course corrections 1.2 s, the
-approach trims and the insertion 0.8 s, and the last 0.88 d coasting in Mars
-orbit after the insertion (0.1 s sleep-rails steps) 5 s: the test stops at
-310.15 d, just after the insertion.
+(World.run, on a loaded 2-core machine with a warm kernel cache). Where the
+time goes, the scenario's 311 d flown whole (9.2 s CPU): the ascent to the
+parking orbit 0.8 s, the parking-orbit coast while the spent stage falls
+0.9 s, the injection burn 0.6 s, cruise to Mars with the course corrections
+1.2 s, the approach trims and the insertion 0.8 s, and the last 0.88 d
+coasting in Mars orbit after the insertion (0.1 s sleep-rails steps) 5 s:
+the test stops at 310.15 d, just after the insertion.
 
-The Moon mission is flown whole too (5.9 s of CPU, same machine), for about
-what this file's flight through the injection burn and its coast predicted
-to the Moon (DOP853 in the full field) cost before (the file: 13.6 -> 13.1 s
-user CPU with pytest's start).
+The Moon mission is flown whole too (5.9 s of CPU, same machine).
 """
 
 import datetime as dt

@@ -1,9 +1,9 @@
-"""The Moon mission (scenarios/moon-orbit.yaml) flown whole (issue 9).
+"""The Moon mission (scenarios/moon-orbit.yaml) flown whole.
 
 From a 200 km parking orbit the lunar orbiter injects itself towards the
 Moon, cruises on cruise rails through the n-body field, hands over to the
 Moon's sphere of influence, trims its approach and enters a lunar orbit.
-Must hold (issue 9): periapsis 80-120 km above the Moon's mean radius
+Must hold: periapsis 80-120 km above the Moon's mean radius
 (1 737.4 km, IAU 2015). The scenario's headless step is 0.1 s (the burns'
 closed loops need no finer one) so the test adds a few seconds, not a minute.
 """

@@ -1,6 +1,6 @@
 """The n-body field against hand-computed fields, and the sphere-of-influence handover.
 
-References: the direct-minus-indirect field of EQUATIONS.md evaluated by hand
+References: the direct-minus-indirect field (docs/physics.md#n-body-field) evaluated by hand
 (closed form for a collinear case; an independent heliocentric numpy sum over
 the ephemeris, ``tests/nbody_reference.py``); radiation pressure from the
 solar irradiance over c (Kopp & Lean 2011); SOI radii from Curtis, *Orbital
@@ -40,7 +40,7 @@ def test_collinear_sun_tide_matches_the_closed_form():
     expected = SUN_MU * r * (2 * AU - r) / (AU ** 2 * (AU - r) ** 2)
     assert ax == pytest.approx(expected, abs=1e-12)          # +5.5e-7 m/s^2, towards the Sun
     assert expected > 5e-7 and ay == 0.0 and az == 0.0
-    # on the far side the tide also points away from Earth (the sign the seed once had wrong)
+    # on the far side the tide also points away from Earth (the indirect term's sign decides it)
     ax_far, _, _ = nbody.perturbation(-r, 0.0, 0.0, s, fp)
     assert ax_far == pytest.approx(-SUN_MU * r * (2 * AU + r) / (AU ** 2 * (AU + r) ** 2), abs=1e-12)
 

@@ -1,7 +1,7 @@
 """J2 nodal regression against the analytic secular rate.
 
-EQUATIONS.md / Vallado (4th ed., eq. 9-41): dOmega/dt = -(3/2) n J2 (R/p)^2 cos i.
-The physics model quotes -5.0 deg/day for the ISS's 51.6 deg and +0.986
+Vallado (4th ed., eq. 9-41; docs/physics.md#j2): dOmega/dt = -(3/2) n J2 (R/p)^2 cos i.
+The seed description quotes -5.0 deg/day for the ISS's 51.6 deg and +0.986
 deg/day for a 700 km, 98.2 deg sun-synchronous orbit. The node is measured
 at each ascending-node crossing (the same argument of latitude every orbit,
 so the short-period J2 terms repeat and a straight-line fit gives the

@@ -1,4 +1,4 @@
-"""The flight-computer scheduling contract (issue 2, item 7)."""
+"""The flight-computer scheduling contract (README, "Flight-computer programs")."""
 
 import json
 import re

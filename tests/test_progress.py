@@ -1,4 +1,4 @@
-"""The progress bar of a long flight (issue 10, item 5): mission time, real-time factor and
+"""The progress bar of a long flight: mission time, real-time factor and
 phase on a terminal; nothing when stderr is not a terminal or the flight is short."""
 
 import io

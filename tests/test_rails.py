@@ -9,8 +9,8 @@ Mechanics, section 36: the symmetry axis turns on a cone of half-angle
 ``acos(I_1 w_1 / |H|)`` about the fixed angular momentum at ``|H| / I_t``)
 and DOP853 of Euler's equations for the attitude.
 
-The 24-hour LEO comparisons fly a headless 0.1 s step (the issue allows any
-h <= 0.1 s headless): 864 000 steps per integrator instead of 4.3 million
+The 24-hour LEO comparisons fly a headless 0.1 s step (the largest a headless
+run accepts, docs/physics.md#integrator): 864 000 steps per integrator instead of 4.3 million
 keeps this file inside its minute on two busy cores; rails and awake share
 the step, so the comparison is the same.
 """

@@ -1,4 +1,4 @@
-"""A sleeping vehicle holding an inertial direction goes on sleep rails, mode HELD (issue 9).
+"""A sleeping vehicle holding an inertial direction goes on sleep rails, mode HELD.
 
 The lunar orbiter (RCS quads handed to the autopilot) turns 2 deg onto an ECI
 direction given by fc.point_at and sleeps 300 s in a 300 km orbit. Once the

@@ -1,4 +1,4 @@
-"""A sleeping vehicle holding an attitude in a turning frame rides sleep rails, mode TRACK (issue 9).
+"""A sleeping vehicle holding an attitude in a turning frame rides sleep rails, mode TRACK.
 
 The lunar orbiter (RCS quads handed to the autopilot) in a 300 km Earth orbit,
 0.1 s headless step (as tests/test_rails_held.py, whose scenario it flies):

@@ -1,4 +1,4 @@
-"""A finned sounding rocket flown here and in RocketPy (issue 5's peer comparison).
+"""A finned sounding rocket flown here and in RocketPy, a peer library used only in tests.
 
 RocketPy (https://github.com/RocketPy-Team/RocketPy, a test-only dependency)
 flies the same rocket: the same masses, the same thrust curve (our engine's

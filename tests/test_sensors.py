@@ -1,11 +1,12 @@
-"""Sensor errors against their own specification (physics model, "Sensors").
+"""Sensor errors against their own specification (docs/physics.md#sensors).
 
 The reference is the first-order Gauss-Markov process itself: a stationary
 process of standard deviation sigma_b whose autocorrelation at lag L is
 exp(-L/tau) (e.g. Brown & Hwang, *Introduction to Random Signals and Applied
 Kalman Filtering*, 4th ed., sec. 2.9). Over a hold of 2 000 correlation
 times the estimates of sigma and tau have a relative standard error of about
-2-3 %, so the issue's 10 % is a 4-sigma bound.
+2-3 %, so a 10 % tolerance is a 4-sigma bound: it fails a wrong
+sigma or tau, not the sampling.
 """
 
 import math

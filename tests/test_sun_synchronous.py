@@ -1,9 +1,9 @@
 """The sun-synchronous inclination (rocketsim.bodies.sun_synchronous) and the
 mission target ``inclination: sso``.
 
-References: the physics model's figure, "+0.986 deg a day that makes a 700 km
-orbit at 98.2 deg sun-synchronous"; and the J2 nodal rate of Vallado (4th
-ed., eq. 9-41) solved for the inclination by bisection in
+References: the seed description's figure (docs/physics.md#j2), "+0.986 deg a
+day that makes a 700 km orbit at 98.2 deg sun-synchronous"; and the J2 nodal
+rate of Vallado (4th ed., eq. 9-41) solved for the inclination by bisection in
 tests/test_electron_sso.py (a different route to the same condition).
 """
 

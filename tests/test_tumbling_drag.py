@@ -1,4 +1,4 @@
-"""A part that nobody steers falls with a tumbling body's drag (issue 6, item 4).
+"""A part that nobody steers falls with a tumbling body's drag (docs/physics.md#tumbling-bodies).
 
 References: the terminal speed ``sqrt(2 m g / (rho C_D A))`` where drag balances
 weight, with the local gravity of a point mass plus J2 over the pole,

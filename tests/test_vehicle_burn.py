@@ -1,5 +1,6 @@
-"""Powered flight through the RK4 stages (issue 4): the rocket equation, fourth-order
-convergence against the Dormand-Prince reference, and a tank running dry inside a step."""
+"""Powered flight through the RK4 stages (docs/physics.md#integrator): the rocket
+equation, fourth-order convergence against the Dormand-Prince reference, and a tank
+running dry inside a step."""
 
 import math
 
@@ -39,8 +40,9 @@ def lit(model, y, spooled=False):
 
 @pytest.mark.parametrize("h", [0.02, 0.1])
 def test_vertical_burn_in_vacuum_matches_the_rocket_equation(h):
-    """Tsiolkovsky: dv = Isp g0 ln(m0 / m1) with m1 = m0 - 99 % of the load (issue 4:
-    within 0.007 %). It holds through the spool-up (thrust and flow scale together)."""
+    """Tsiolkovsky: dv = Isp g0 ln(m0 / m1) with m1 = m0 - 99 % of the load (within
+    0.007 %, the seed description's audit figure). It holds through the spool-up (thrust
+    and flow scale together)."""
     m = build(spec(single_stage()))
     y = lit(m, m.state([HIGH, 0.0, 0.0], [0.0, 0.0, 0.0]))
     m0 = m.mass_properties(y)[0]
@@ -94,8 +96,8 @@ def powered_segment(h, model, y0, duration):
 def test_powered_segment_converges_at_fourth_order_against_dop853():
     """A turning burn at 300 km (gimbal 0.2 deg: torque, rotation, J2 gravity, mass falling
     and inertia changing) for 10 s, against DOP853 at rtol 1e-13 on the same derivative:
-    the position error falls about 16-fold per halving of the step (issue 4; the seed's
-    audit: 'the position error of a powered segment fell from 0.91 m').
+    the position error falls about 16-fold per halving of the step (fourth order; the
+    seed description's audit: 'the position error of a powered segment fell from 0.91 m').
 
     Steps 0.2, 0.1 and 0.05 s: their errors (~2e-5 to ~7e-8 m) stand well above the
     rounding floor of a position of 6.7e6 m (one ulp is 9.3e-10 m). At 0.025 s the error is

@@ -1,5 +1,5 @@
-"""Engine commands and readings by engine, group or stage name (issue 4, the layer the
-flight computer of issue 6 calls). Reference: the published figures of the Falcon 9-class
+"""Engine commands and readings by engine, group or stage name (the layer the flight
+computer calls). Reference: the published figures of the Falcon 9-class
 file (8 227 kN in vacuum for the nine booster engines, 7 607 kN at sea level) and the
 engine timings of the file."""
 

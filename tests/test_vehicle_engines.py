@@ -1,7 +1,8 @@
-"""Engines (issue 4): thrust against ambient pressure vs the published figures of the
-shipped engines, dead time, spool-up, tail-off, throttle and gimbal slew, the gimbal
-cone, restarts and the Summerfield flow-separation floor. Each timing is checked against
-the engine's own figures at chosen instants (the analytic profile of the model)."""
+"""Engines (docs/physics.md#propulsion): thrust against ambient pressure vs the
+published figures of the shipped engines, dead time, spool-up, tail-off, throttle and
+gimbal slew, the gimbal cone, restarts and the Summerfield flow-separation floor. Each
+timing is checked against the engine's own figures at chosen instants (the analytic
+profile of the model)."""
 
 import math
 from pathlib import Path
@@ -86,7 +87,7 @@ def test_thrust_rises_monotonically_with_altitude_through_the_standard_atmospher
     pressures = standard_table().at(np.linspace(0, 80e3, 17))[1]
     thrust = [forces(m, 0.0, clock=10.0, p_a=p, y=y.copy())[0][0] for p in pressures]
     assert np.all(np.diff(thrust) > 0)
-    # T = T_vac - p_a A_e exactly (EQUATIONS.md), A_e = 0.5 m2
+    # T = T_vac - p_a A_e exactly (docs/physics.md#propulsion), A_e = 0.5 m2
     assert thrust[0] == pytest.approx(100e3 - pressures[0] * 0.5, rel=1e-14)
 
 
@@ -209,7 +210,7 @@ def test_vacuum_nozzle_runs_separated_at_sea_level():
 
 
 def test_mass_flow_instead_of_isp_gives_the_same_engine():
-    """mdot = T_vac / (g0 Isp): 100 kN at 300 s is 33.9908 kg/s (EQUATIONS.md)."""
+    """mdot = T_vac / (g0 Isp): 100 kN at 300 s is 33.9908 kg/s (docs/physics.md#propulsion)."""
     engine = dict(single_stage()["stages"][0]["engines"][0])
     del engine["isp_vacuum"]
     by_flow = build(spec(single_stage(engines=[dict(engine, mass_flow=100e3 / (G0 * 300))])))

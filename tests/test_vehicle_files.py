@@ -1,4 +1,4 @@
-"""Vehicle files (issue 4): bad input named by file, line and field; the shipped
+"""Vehicle files: bad input named by file, line and field; the shipped
 vehicles validate; ``rocketsim vehicle`` figures of the Falcon 9-class stack against
 the public figures quoted in its file."""
 
@@ -123,7 +123,8 @@ def test_vehicle_command_refuses_a_rigid_body(cli):
 
 
 def test_methalox_stages_carry_their_oxidiser_aft():
-    """Physics model: "methalox stages carry their oxidiser aft" (the LOX tank is the lower)."""
+    """docs/physics.md#mass-properties: methalox stages carry their oxidiser aft (the LOX
+    tank is the lower)."""
     from rocketsim.scenario.load import validate
     from rocketsim.scenario.models import VehicleSpec
     from rocketsim.scenario.yaml_source import read_yaml

@@ -1,4 +1,4 @@
-"""Mass properties of a staged vehicle against a hand calculation (issue 4).
+"""Mass properties of a staged vehicle against a hand calculation (docs/physics.md#mass-properties).
 
 The reference is worked here, part by part, in exact rational arithmetic
 (``fractions.Fraction``) and directly about the centre of mass (the kernel
@@ -6,7 +6,7 @@ sums about the base and shifts once), from the textbook formulas:
 thin cylindrical shell ``Ixx = m r^2``, ``Iyy = m (r^2/2 + L^2/12)``; solid
 cylinder ``Ixx = m r^2/2``, ``Iyy = m (3 r^2 + L^2)/12`` (e.g. Beer &
 Johnston, Vector Mechanics, inside back cover); point masses ``m d^2``; only
-10 % of a liquid column's own roll inertia (physics model).
+10 % of a liquid column's own roll inertia (docs/physics.md#mass-properties).
 """
 
 from fractions import Fraction as F

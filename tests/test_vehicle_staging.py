@@ -1,4 +1,4 @@
-"""A separated stage is a complete vehicle of its own (issue 4, "staging as data").
+"""A separated stage is a complete vehicle of its own (staging as data).
 
 References: the centre of mass and the momentum of a system are the mass-weighted
 sums of its parts' (Newton; no impulse at separation), and each part's mass

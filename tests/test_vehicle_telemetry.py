@@ -1,4 +1,4 @@
-"""Telemetry of engines, propellant and heating (issue 10 item 1): the state message's
+"""Telemetry of engines, propellant and heating: the state message's
 ``throttle``, ``thrust``, ``mass_flow``, ``engines_running``, ``propellant``,
 ``propellant_tanks``, ``heat_flux`` and ``shield_temperature`` fields
 (:mod:`rocketsim.sim.sampling`), checked against independent computations
@@ -257,7 +257,7 @@ def _both_encodings(world, body, folder: Path, monkeypatch, trials: int = 120) -
     templates of the three messages, :mod:`rocketsim.telemetry.splice`) writes the same
     file, byte for byte, as the straightforward one (``TelemetryWriter.state``:
     ``orjson.dumps`` of each message built as a dictionary, ``fields(values.tolist(),
-    int)``, as before the templates), for the body's own numbers and for the same
+    int)``), for the body's own numbers and for the same
     message shape filled with numbers of every kind: NaN and infinities (null),
     -0.0, subnormal, the largest double, exponents from -300 to 300. Small chunks, so
     that chunks end inside a sample's records (the chunk ends where one-by-one

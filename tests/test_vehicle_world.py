@@ -1,7 +1,7 @@
-"""A staged vehicle in a scenario (issue 4, the smallest hook in World.from_scenario):
-the world builds the runtime model, extends the state with the tanks and engine clocks,
-and advances it with the vehicle's arrays. Reference: a coasting staged vehicle with its
-engines off follows the same orbit as a rigid body (gravity does not depend on mass)."""
+"""A staged vehicle in a scenario (rocketsim.sim.build.build_world): the world builds the runtime
+model, extends the state with the tanks and engine clocks, and advances it with the
+vehicle's arrays. Reference: a coasting staged vehicle with its engines off follows the
+same orbit as a rigid body (gravity does not depend on mass)."""
 
 from pathlib import Path
 

@@ -1,4 +1,4 @@
-"""fc.cruise in the world: cruise rails where no shell is near, 20 ms steps inside one (issue 9).
+"""fc.cruise in the world: cruise rails where no shell is near, 20 ms steps inside one.
 
 References: DOP853 (``rocketsim.dynamics.reference``, rtol 1e-13) of the
 same field the world flies awake (Earth's point mass and J2), and the awake

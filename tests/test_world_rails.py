@@ -1,4 +1,4 @@
-"""A sleeping body in the world goes on rails and comes back the same (issue 9).
+"""A sleeping body in the world goes on rails and comes back the same.
 
 References: the awake RK4 kernel (``rocketsim.dynamics.rk4.advance``) for the
 orbit, which the rails must reproduce to the bit, and DOP853 of Euler's

@@ -1,10 +1,10 @@
-"""The world flies the n-body field and hands over at spheres of influence (issue 9).
+"""The world flies the n-body field and hands over at spheres of influence.
 
 A body starts in Earth's ECI 600 km outside the Moon's sphere of influence
-(Laplace radius ``a (mu_M / mu_E)^(2/5)`` = 66 200 km, EQUATIONS.md) closing
-on the Moon at 1 km/s. References: the awake RK4 kernel of the same field
-flown without any handover in Earth's frame
-(:func:`rocketsim.dynamics.rk4.advance`), the states re-expressed by
+(Laplace radius ``a (mu_M / mu_E)^(2/5)`` = 66 200 km,
+docs/physics.md#spheres-of-influence) closing on the Moon at 1 km/s. References:
+the awake RK4 kernel of the same field flown without any handover in Earth's
+frame (:func:`rocketsim.dynamics.rk4.advance`), the states re-expressed by
 :func:`rocketsim.dynamics.central.to_frame` (ephemeris positions and IAU pole
 rotations computed from the Moon's side, not the Earth's); DOP853 of the
 lunar-centred field (:mod:`rocketsim.dynamics.reference`) for a cruise
@@ -112,7 +112,8 @@ def test_positions_about_mars_read_as_planetocentric_latitude_longitude_and_heig
 
 
 def test_about_the_moon_a_sleeping_body_follows_the_awake_path_to_the_bit(write, scenario):
-    # issue 9: "rails about the Moon and Mars: bit-identical to awake". The same body in a
+    # Sleep rails about the Moon and Mars fly the awake field's arithmetic, so they must be
+    # bit-identical to awake (docs/physics.md#sleep-rails). The same body in a
     # 100 km lunar orbit flies 200 s once asleep (sleep rails, the full field held per 5 s)
     # and once stepping its program every step (awake RK4 of the derivative, the field
     # held by the step); the two must agree to the last bit

@@ -1,4 +1,4 @@
-"""A staged vehicle coasting with its engines off goes on sleep rails (issue 9).
+"""A staged vehicle coasting with its engines off goes on sleep rails.
 
 Reference: the same vehicle flown awake (its program stepping every step, so
 the world integrates the full derivative with the vehicle's mass properties

@@ -123,9 +123,9 @@ def profile_table(sounding: Sounding, latitude: float, standard_gravity: bool = 
                   ) -> AtmosphereTable:
     """The day's :class:`AtmosphereTable` from a profile at geodetic ``latitude`` (rad).
 
-    ``standard_gravity``: the classic range's hydrostatics (physics model: "on
-    real sites the hydrostatics use WGS84 normal gravity at the site's latitude
-    rather than standard gravity"): ``g = g0 (r0 / (r0 + z))^2`` with the 1976
+    ``standard_gravity``: the classic range's hydrostatics (docs/physics.md#classic-range;
+    real sites use WGS84 normal gravity at the site's latitude):
+    ``g = g0 (r0 / (r0 + z))^2`` with the 1976
     standard's ``r0`` (its eq. 17) in place of :func:`gravity`, so a classic
     day's pressure follows the standard's own barometric law.
     """

@@ -71,7 +71,20 @@ class AtmosphereTable:
 
 def make_table(h0, dh, density, pressure, temperature, speed_of_sound, viscosity,
                wind_east=None, wind_north=None) -> AtmosphereTable:
-    """Build a table from row arrays (copied to contiguous float64, read-only)."""
+    """Build a table from row arrays (copied to contiguous float64, read-only).
+
+    Parameters
+    ----------
+    h0 : float
+        Height of row 0 above the reference surface, m.
+    dh : float
+        Row spacing, m.
+    density, pressure, temperature, speed_of_sound, viscosity : array
+        One value per row: kg/m^3, Pa, K, m/s, Pa s.
+    wind_east, wind_north : array, optional
+        The air's velocity over the ground per row, m/s, towards east and north
+        (calm when omitted).
+    """
     def frozen(a):
         a = np.ascontiguousarray(a, dtype=np.float64).copy()
         a.setflags(write=False)

@@ -1,8 +1,8 @@
 """Gravity of an oblate body: point mass plus the full three-dimensional J2 term.
 
 One formula serves Earth, the Moon and Mars; each is evaluated in a frame whose
-``z`` axis is that body's pole (for Earth, the ECI frame). From EQUATIONS.md
-("Gravity"), with ``r = |r|``::
+``z`` axis is that body's pole (for Earth, the ECI frame). From
+docs/physics.md#j2, with ``r = |r|``::
 
     a = -mu r / r^3 - (3/2) J2 mu R^2 / r^5 [x(1 - 5z^2/r^2), y(1 - 5z^2/r^2), z(3 - 5z^2/r^2)]
 

@@ -161,7 +161,7 @@ def gravity_j2000(body: str, r_j2000: np.ndarray, jd_tt: float) -> np.ndarray:
 
     ``r_j2000``: position(s) relative to the body's centre, m, shape (3,) or
     (N, 3); J2 acts about the body's IAU pole at ``jd_tt`` (TT). Constants
-    from ``rocketsim.constants`` (EQUATIONS.md, "Gravity").
+    from ``rocketsim.constants`` (docs/physics.md#moon-and-mars).
     """
     mu, radius, j2 = GRAVITY[_check(body)]
     m = body_to_j2000(body, jd_tt)

@@ -2,7 +2,7 @@
 
 J2 turns an orbit's ascending node at the secular rate (Vallado,
 *Fundamentals of Astrodynamics and Applications*, 4th ed., eq. 9-41;
-EQUATIONS.md "Nodal regression")
+docs/physics.md#j2)
 
     dOmega/dt = -(3/2) n J2 (R/p)^2 cos i,    n = sqrt(mu/a^3),  p = a (1 - e^2)
 

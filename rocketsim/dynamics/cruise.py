@@ -1,7 +1,7 @@
 """Cruise rails: RK4 through the full n-body field, sub-steps sized by the turn.
 
-docs/physics.md, "Cruise rails". With ``tau = |v|^2 / |v x a|`` the time the path takes to turn
-through a radian:
+docs/physics.md#cruise-rails. With ``tau = |v|^2 / |v x a|`` the time the
+path takes to turn through a radian:
 
 - a sub-step lasts ``0.02 tau``, never less than 5 s, and is one classical
   RK4 step of position and velocity in the full field (the other bodies

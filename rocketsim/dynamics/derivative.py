@@ -1,17 +1,20 @@
 """The time derivative of a body's state: Newton and Euler in an inertial frame.
 
-From EQUATIONS.md ("Equations of motion")::
+The equations (docs/physics.md#equations-of-motion)::
 
     r' = v
     v' = g(r) + F/m
     q' = 1/2 q (x) (0, w)
     w' = I^-1 (tau - w x (I w)),   I = diag(Ixx, Iyy, Izz)
 
-No Coriolis or centrifugal terms: the frame is inertial. The foundation's
-rigid body carries no forces or torques but gravity (point mass + J2 of the
-central body, plus the other bodies' pull when ``p`` carries an n-body field:
-:mod:`rocketsim.dynamics.third_bodies`); later models add thrust, aerodynamics, RCS and contact to
-``F`` and ``tau`` here, evaluated at every RK4 stage.
+No Coriolis or centrifugal terms: the frame is inertial. Units SI; ``r``,
+``v`` in the central body's inertial frame, ``w`` and ``tau`` in body axes.
+Gravity is the central body's point mass + J2 (docs/physics.md#j2), plus the
+other bodies' pull when ``p`` carries an n-body field
+(:mod:`rocketsim.dynamics.third_bodies`, docs/physics.md#n-body-field). A
+rigid body (no ``veh``) feels gravity alone; a staged vehicle adds thrust,
+aerodynamics, RCS and contact to ``F`` and ``tau``, evaluated at every RK4
+stage.
 
 A staged vehicle passes ``veh``, its
 :class:`~rocketsim.vehicle.build.VehicleArrays`: then the mass and inertia
@@ -20,7 +23,7 @@ its engines add thrust and torque and drain the tanks, all at every stage
 (the ambient pressure for the thrust is looked up at the radial height in the
 vehicle's atmosphere table). The rate of change of the inertia and the jet
 damping it causes are not modelled. Without ``veh`` (``None``, the rigid body)
-that branch is compiled away and the coasting derivative is unchanged.
+that branch is compiled away.
 
 A vehicle with an ``aero:`` section (``veh.aero.ref[A_ON]``) also gets, at
 every stage, its aerodynamics from the air at the stage's height (axial,
@@ -77,9 +80,9 @@ def radial_height(y, p):
 @njit
 def body_air_velocity(y, wind, spin=EARTH_OMEGA):
     """Air-relative velocity of the centre of mass (m/s) in body axes:
-    ``q* (v - omega x r - wind) q`` (EQUATIONS.md), ``wind`` inertial (m/s), the air
-    turning with the central body at ``spin`` (rad/s about the frame's z: ``p[P_SPIN]``;
-    Earth's rate by default)."""
+    ``q* (v - omega x r - wind) q`` (docs/physics.md#equations-of-motion), ``wind``
+    inertial (m/s), the air turning with the central body at ``spin`` (rad/s about the
+    frame's z: ``p[P_SPIN]``; Earth's rate by default)."""
     ax = y[V] + spin * y[R + 1] - wind[0]
     ay = y[V + 1] - spin * y[R] - wind[1]
     az = y[V + 2] - wind[2]
@@ -119,8 +122,26 @@ def _aero_and_contact(t, y, p, dy, rho, sound, x_cm, aero, fx, fy, fz, mx, my, m
 def derivative(t, y, p, dy, veh=None):
     """Write ``dy/dt`` of state ``y`` at mission time ``t`` (s) into ``dy``.
 
-    ``veh``: the arrays of a staged vehicle, or None for a rigid body of
-    constant mass and inertia ``p``. Nothing is held: this is the model's
+    Parameters
+    ----------
+    t : float
+        Mission time, s.
+    y : array
+        The state (slots of :mod:`rocketsim.layout`): position m and velocity
+        m/s in the central body's inertial frame, attitude quaternion body ->
+        inertial, body rates rad/s; a staged vehicle's tank masses (kg) and
+        engine clocks (s) after slot 13.
+    p : array
+        The parameters (SI units: kg, kg m^2, m^3/s^2, m, rad/s), with the
+        n-body field when the body carries one.
+    dy : array
+        Written with the rates: m/s, m/s^2, 1/s, rad/s^2, kg/s, and 1 for the
+        clocks.
+    veh : VehicleArrays or None
+        The arrays of a staged vehicle, or None for a rigid body of constant
+        mass and inertia ``p``.
+
+    Nothing is held: this is the model's
     derivative at ``(t, y)`` (:func:`held_derivative` with ``(t, y)`` as the hold).
     """
     held_derivative(t, y, p, dy, veh, t, y)
@@ -132,7 +153,7 @@ def held_derivative(t, y, p, dy, veh, t_held, y_held):
 
     The realistic model (``p[P_CLASSIC] == 0``) ignores the hold: everything
     is evaluated at ``(t, y)``. On the classic range (``p[P_CLASSIC] == 1``,
-    the original model, physics model "The integrator") a staged vehicle's
+    the original model, docs/physics.md#classic-range) a staged vehicle's
     engines (thrust, torque, mass flow, and the ambient pressure they see),
     its mass properties and, when the step starts above 86 km, the air
     density are those at the step's start, held for the four stages; powered

@@ -12,7 +12,7 @@ exact pieces, at the flight model's step ``h``:
 
 - attitude and body rates: the awake rigid body's RK4 step
   (:func:`rocketsim.dynamics.rk4.step`, Euler's equations without torque),
-  bit for bit what a rigid body flew before it had drag;
+  bit for bit the attitude of a drag-free rigid body;
 - position and velocity: RK4 of gravity plus drag,
   :func:`rocketsim.dynamics.nbody.translational_rk4`, the one home of the
   point-mass drag (the sleep rails' too), with ``C_D A/m`` held for the step
@@ -20,7 +20,7 @@ exact pieces, at the flight model's step ``h``:
   body's air table (the day's about Earth, Mars's about Mars, none about the Moon).
 
 Where there is no air (above 600 km about Earth, the Moon, or no drag area) the
-translational part is the awake step's own: the body flies exactly as before.
+translational part is the awake step's own, bit for bit a drag-free rigid body's.
 """
 
 from __future__ import annotations

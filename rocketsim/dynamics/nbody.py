@@ -1,6 +1,6 @@
 """The n-body field about a central body: its point mass and J2, every other body's pull.
 
-From EQUATIONS.md ("Gravity", N-body field), with the central body ``c``,
+docs/physics.md#n-body-field: with the central body ``c``,
 the other bodies ``k`` at ``s_k`` from ``c`` and the vehicle at ``r`` from
 ``c``::
 
@@ -112,7 +112,8 @@ def no_air():
 
 
 # inlined (numba IR) here and above and below: a call per RK4 stage that passes the air
-# table's tuple of arrays cost rails four times their arithmetic (issue 9 benchmark)
+# table's tuple of arrays cost rails four times their arithmetic (measured by
+# tests/benchmarks/test_bench_rails.py)
 @njit(inline="always")
 def translational_acceleration(x, y, z, vx, vy, vz, p, s, fp, air, pos):
     """The field at ``(x, y, z)`` (m) and, with ``fp[FIELD_DRAG]`` set, point-mass drag

@@ -1,6 +1,6 @@
 """Sleep rails: the same 20 ms step on a cheaper derivative.
 
-Physics model, "Rails: the same step, a cheaper derivative": a body whose
+docs/physics.md#sleep-rails, the same step on a cheaper derivative: a body whose
 program sleeps, or that nobody flies, is advanced at the flight model's step
 by RK4 of its position and velocity only
 (:func:`rocketsim.dynamics.nbody.translational_rk4`):

@@ -1,10 +1,10 @@
 """Classical fourth-order Runge-Kutta at a fixed step, as the flight model flies.
 
-"The integrator" (physics model): every body is advanced by classical RK4 at
+docs/physics.md#integrator: every body is advanced by classical RK4 at
 a fixed step (20 ms by default, any headless step up to 0.1 s). Within 2 m of
 the ground the step is split into four equal sub-steps so stiff contact stays
 stable. The attitude quaternion is normalised after each (sub-)step, not
-inside the stages (EQUATIONS.md, "Equations of motion").
+inside the stages.
 
 Every function takes an optional ``veh``, the arrays of a staged vehicle
 (:class:`~rocketsim.vehicle.build.VehicleArrays`): its engines and mass
@@ -16,8 +16,8 @@ the stage's load), the stage is marked dry in ``veh.stage`` with that
 instant (its engines stop at once), and the rest of the step is flown
 without them. Steps are also split at every kink of an engine's thrust (end
 of dead time, spool-up, tail-off, slews), so a burn converges at fourth
-order through them. Without ``veh`` the rigid-body kernels are compiled
-exactly as before.
+order through them. Without ``veh`` (a rigid body) the vehicle branches are
+compiled away.
 
 On the classic range (``p[P_CLASSIC] = 1``) the same step flies the original
 model: each RK4 step's start is the hold of
@@ -46,7 +46,25 @@ DRY_TOLERANCE = 1e-13      # relative to the stage's load: where the split of a 
 
 @njit
 def rk4_step(y, t, h, p, veh=None):
-    """One classical RK4 step of size ``h`` (s) from ``(t, y)``; returns the new state."""
+    """One classical RK4 step of size ``h`` (s) from ``(t, y)``; returns the new state.
+
+    Parameters
+    ----------
+    y : array
+        The state (slots of :mod:`rocketsim.layout`: m, m/s, quaternion body ->
+        inertial, rad/s in body axes; a staged vehicle's tank masses in kg and
+        engine clocks in s after slot 13).
+    t : float
+        Mission time at the step's start, s.
+    h : float
+        Step, s.
+    p : array
+        The body's parameters (:mod:`rocketsim.layout`, SI units), with its
+        n-body field when it carries one.
+    veh : VehicleArrays or None
+        A staged vehicle's arrays (:class:`~rocketsim.vehicle.build.VehicleArrays`),
+        None for a rigid body.
+    """
     n = y.shape[0]
     k1 = np.empty(n)
     k2 = np.empty(n)
@@ -93,7 +111,7 @@ def near_ground(y, p, reach=0.0):
 @njit
 def hold_wind(y, t, p, veh):
     """Sample the day's wind at the vehicle's position at time ``t`` (s) and hold it
-    (inertial, m/s) in ``veh.aero.wind`` for the step (physics model, "The integrator"):
+    (inertial, m/s) in ``veh.aero.wind`` for the step (docs/physics.md#wind):
     :func:`wind_at` in the vehicle's air table."""
     veh.aero.wind[0], veh.aero.wind[1], veh.aero.wind[2] = wind_at(y, t, p, veh.air)
 
@@ -198,6 +216,9 @@ def _one_step(y, t, h, p, veh):
 @njit
 def step(y, t, h, p, veh=None):
     """Advance one flight-model step of ``h`` seconds (sub-stepped near the ground).
+
+    ``y`` (state), ``t`` (s), ``p`` and ``veh`` as :func:`rk4_step`'s; returns the
+    new state.
 
     A vehicle with wind in its day's air samples it here, once per step; a body
     in the n-body field holds the other bodies' positions here (per 5 s bucket

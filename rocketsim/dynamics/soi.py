@@ -1,9 +1,9 @@
 """Spheres of influence and the handover between central bodies.
 
-EQUATIONS.md ("Gravity"): ``r_SOI = a (mu / mu_parent)^(2/5)``, with ``a``
+docs/physics.md#spheres-of-influence: ``r_SOI = a (mu / mu_parent)^(2/5)`` (Laplace), with ``a``
 the body's orbital semi-major axis about its parent (Earth and Mars about
 the Sun, the Moon about Earth). Crossing one re-centres the frame on the new
-body with its IAU pole as ``z`` ("State, frames and time"); nothing else
+body with its IAU pole as ``z`` (docs/physics.md#frames); nothing else
 changes: position and velocity are the same vectors, expressed from the new
 centre in the new axes.
 

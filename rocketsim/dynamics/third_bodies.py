@@ -1,6 +1,6 @@
 """The other bodies' pull in a field about a central body, and the field a body carries.
 
-EQUATIONS.md ("Gravity", N-body field): with the central body ``c``, the
+docs/physics.md#n-body-field: with the central body ``c``, the
 other bodies ``k`` at ``s_k`` from ``c`` and the vehicle at ``r`` from ``c``,
 the perturbation is::
 

@@ -33,9 +33,10 @@ or below a bound:
   ``ELP_BOUND_KM`` = 1 km in distance; measured errors over 1950-2100
   (every 10 days): 0.15", 0.15" and 0.31 km.
 
-The physics model's truncation kept 198 terms for the Earth, 787 for Mars
-and 235/198/154 for the Moon; these bounds land near those counts (the counts
-are printed and written into the generated module).
+These bounds keep 204 terms for the Earth, 793 for Mars and 239/202/156 for
+the Moon (near the seed description's 198, 787 and 235/198/154; see
+docs/physics.md#ephemerides); the counts are printed and written into the
+generated module.
 """
 
 from __future__ import annotations

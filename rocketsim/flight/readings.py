@@ -225,7 +225,8 @@ class StateView:
 
     @_once
     def effective_gravity(self) -> float:
-        """``|g| - v_h^2 / r``, ``v_h`` the inertial horizontal speed (docs/physics.md, "Readings")."""
+        """``|g| - v_h^2 / r``, ``v_h`` the inertial horizontal speed
+        (docs/physics.md#effective-gravity)."""
         r = _norm(self.position)
         v = self.velocity
         v_radial = v @ self.position / r

@@ -1,6 +1,8 @@
 """Sensor errors: a wandering bias (first-order Gauss-Markov) plus white noise.
 
-Physics model, "Sensors"; EQUATIONS.md gives the discrete bias process::
+docs/physics.md#sensors. The discrete bias process (the exact discretisation of a
+first-order Gauss-Markov process; Brown & Hwang, *Introduction to Random Signals and
+Applied Kalman Filtering*, 4th ed., sec. 2.9)::
 
     b[k+1] = exp(-dt/tau) b[k] + sigma_b sqrt(1 - exp(-2 dt/tau)) n[k],   n ~ N(0, 1)
 
@@ -10,10 +12,9 @@ adding a sensor never changes another's numbers. Streams are drawn in blocks
 for speed; a block is a deterministic function of the seed, the key and the
 block's index, so the numbers do not depend on how they are consumed.
 
-The error budget (1 sigma; ``hard`` triples every figure). Where the physics
-model gives a figure it is quoted; the correlation times inside the model's
-"30-60 s" and the white-noise parts it leaves open are this project's
-choices:
+The error budget (1 sigma; ``hard`` triples every figure). The bias figures
+are those of docs/physics.md#sensors; the correlation times within its
+30-60 s and the white-noise parts are this project's choices:
 
 =================  =============================  =========  ==================
 quantity           bias sigma                     tau (s)    white sigma

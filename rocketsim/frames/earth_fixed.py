@@ -1,6 +1,6 @@
 """Earth-centred inertial (ECI) <-> Earth-fixed (ECEF) rotation.
 
-Frames (spec/EQUATIONS.md, "State, frames and time"): ECI has ``z`` along
+Frames (docs/physics.md#frames): ECI has ``z`` along
 Earth's spin axis and ``x`` through the Greenwich meridian at mission time 0
 (rotated by ``theta0`` when the launch instant's sidereal angle is wanted).
 Earth-fixed axes are ECI turned about ``z`` by

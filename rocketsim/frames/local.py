@@ -7,7 +7,7 @@ A point's local east, north and up (the ellipsoid's normal) follow from its
 geodetic latitude and longitude on the body's ellipsoid (WGS84 about Earth);
 the ground and the air turn with the body, so the velocity relative to them
 is ``v - omega x r`` and the velocity the aerodynamics see ``v - omega x r - w``
-with ``w`` the wind (docs/physics.md, "Frames"). All vectors in the inertial
+with ``w`` the wind (docs/physics.md#frames). All vectors in the inertial
 frame's axes, m and m/s.
 """
 

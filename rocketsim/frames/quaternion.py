@@ -1,6 +1,6 @@
 """Unit quaternions, scalar first ``(w, x, y, z)``, as compiled kernels.
 
-Convention (spec/EQUATIONS.md, "State, frames and time"): the attitude
+Convention (docs/physics.md#frames): the attitude
 quaternion ``q`` rotates *body axes into the frame* (the inertial frame in a
 flight), so a vector with body-axes components ``v_b`` has frame components
 ``quat_rotate(q, v_b) = q ⊗ (0, v_b) ⊗ q*`` and ``quat_to_matrix(q) @ v_b``.

@@ -1,10 +1,10 @@
 """The ``aero:`` section of a staged vehicle file: shape, fins, grid fins, legs, RCS, heat shield.
 
-Optional: a vehicle without it flies without aerodynamics or ground contact
-(as every vehicle did before issue 5). Positions are heights above the base
-of the named stage (as everywhere in a vehicle file); a leg's foot may sit
-below its stage's base (negative). The body's outline is the stack of the
-stages' cylinders, then the payload fairing (or payload) on top; the top
+Optional: a vehicle without it flies without aerodynamics or ground contact.
+Positions are heights above the base of the named stage (as everywhere in a
+vehicle file); a leg's foot may sit below its stage's base (negative). The
+body's outline is the stack of the stages' cylinders, then the payload fairing
+(or payload) on top; the top
 ``nose.length`` of it is the nose. See :mod:`rocketsim.vehicle.aero` for the
 models these figures feed.
 """

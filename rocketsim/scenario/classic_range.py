@@ -1,9 +1,9 @@
 """The classic range: a procedural equatorial launch site, generated from the scenario's seed.
 
 ``site: classic`` in a scenario stands for the site :func:`classic_site` makes
-from the scenario's ``seed`` (physics model: "a procedural equatorial range
-launching due east, kept so that programs written for the original planar
-simulator still fly as they did"). It is an ordinary
+from the scenario's ``seed``: a procedural equatorial range launching due
+east, kept so that programs written for the original planar simulator still
+fly as they did (docs/physics.md#classic-range). It is an ordinary
 :class:`~rocketsim.scenario.models.SiteSpec`, the shape of a real site's file,
 with ``model: classic`` (the original model flies from it: see
 :func:`rocketsim.dynamics.derivative.held_derivative` and

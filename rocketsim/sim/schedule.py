@@ -15,7 +15,7 @@ Within a batch a body is advanced by one of four integrators
   vehicle's checks folded in (:mod:`rocketsim.sim.vehicle_checks`).
 
 Every choice here is bit-neutral: the same step on rails or awake flies the
-same orbit to the bit (docs/physics.md, "Rails").
+same orbit to the bit (docs/physics.md#sleep-rails).
 """
 
 from __future__ import annotations

@@ -2,9 +2,8 @@
 
 The transfer arc (from :func:`rocketsim.transfer.lambert`) leaves the
 departure body with a hyperbolic excess velocity ``v_inf = v1 - v_body`` and
-arrives with ``v2 - v_target``. The relations (``spec/EQUATIONS.md``,
-"Lambert's problem and burns"; Curtis, *Orbital Mechanics for Engineering
-Students*, sections 8.6-8.7):
+arrives with ``v2 - v_target``. The relations (docs/physics.md#burns; Curtis,
+*Orbital Mechanics for Engineering Students*, sections 8.6-8.7):
 
 * characteristic energy ``C3 = |v_inf|^2``;
 * escape from a circular parking orbit of radius ``r_p`` with a single
@@ -35,7 +34,8 @@ def c3(v_inf):
 
 
 def escape_dv(mu, r_park, v_inf):
-    """Δv (m/s) from a circular orbit of radius ``r_park`` (m) to excess speed ``v_inf`` (m/s).
+    """Δv (m/s) from a circular orbit of radius ``r_park`` (m) to excess speed ``v_inf`` (m/s)
+    about a body of gravitational parameter ``mu`` (m^3/s^2).
 
     One impulsive burn at the periapsis of the departure hyperbola, tangent
     to the parking orbit. ``v_inf`` is a speed; ``v_inf**2`` may be given
@@ -45,7 +45,8 @@ def escape_dv(mu, r_park, v_inf):
 
 
 def escape_dv_c3(mu, r_park, c3_value):
-    """Δv (m/s) from a circular orbit of radius ``r_park`` to energy ``C3`` (m^2/s^2).
+    """Δv (m/s) from a circular orbit of radius ``r_park`` (m) to energy ``C3`` (m^2/s^2)
+    about a body of gravitational parameter ``mu`` (m^3/s^2).
 
     Valid for negative ``C3`` too (an ellipse with periapsis at ``r_park``),
     as long as ``C3 > -mu / r_park`` (the burn raises the apoapsis).
@@ -56,7 +57,8 @@ def escape_dv_c3(mu, r_park, c3_value):
 
 
 def capture_dv(mu, r_periapsis, r_apoapsis, v_inf):
-    """Δv (m/s) to brake from excess speed ``v_inf`` into an orbit ``r_periapsis`` × ``r_apoapsis`` (m).
+    """Δv (m/s) to brake from excess speed ``v_inf`` (m/s) into an orbit ``r_periapsis`` ×
+    ``r_apoapsis`` (m) about a body of gravitational parameter ``mu`` (m^3/s^2).
 
     One impulsive burn at the periapsis of the arrival hyperbola, which is
     also the periapsis of the captured ellipse (``r_apoapsis >= r_periapsis``;

@@ -1,12 +1,11 @@
 """Aerodynamic force and moment of a slender body of revolution, compiled.
 
-Physics model, "Aerodynamics, propulsion and heating, in brief", and
-EQUATIONS.md ("Aerodynamics, propulsion, heating"). Body axes: x along the
-stack from its base to the nose, y and z lateral; stations ``x`` are metres
-above the base. Everything here works on the air-relative velocity of the
-centre of mass in body axes ``(u, v, w)`` (m/s; ``u > 0`` nose first), the
-body rates ``omega`` (rad/s) and the station of the centre of mass ``x_cm``.
-Forces are in newtons on body axes, moments in N m about the centre of mass.
+docs/physics.md#aerodynamics. Body axes: x along the stack from its base to
+the nose, y and z lateral; stations ``x`` are metres above the base.
+Everything here works on the air-relative velocity of the centre of mass in
+body axes ``(u, v, w)`` (m/s; ``u > 0`` nose first), the body rates
+``omega`` (rad/s) and the station of the centre of mass ``x_cm``. Forces are
+in newtons on body axes, moments in N m about the centre of mass.
 
 Axial force. ``F_x = -1/2 rho |V| u S C_A(M)``: at zero angle of attack this
 is ``-q S C_A`` (``q = 1/2 rho V^2``); it scales with ``cos(alpha)`` and so
@@ -15,7 +14,7 @@ passes through zero, continuously, as the flow turns through 90 degrees.
 ``cos(alpha)`` from 80 to 100 degrees. Flying tail first under thrust the
 plume shields the base (see :func:`plume_shielding`).
 
-Normal force, per body segment (EQUATIONS.md)::
+Normal force, per body segment (docs/physics.md#normal-force)::
 
     dN = eta(M_c) C_dc(M_c) 1/2 rho V_c^2 D dx
 
@@ -33,8 +32,8 @@ crossflow Mach 1, towards the Newtonian 4/3 hypersonic). Reynolds-number
 effects (the supercritical drop of C_dc) are not modelled.
 
 Slender-body lift at the leading end (Munk; Jorgensen eq. (1) first term,
-``C_N = sin 2alpha cos(alpha/2)`` on the nose's base area; EQUATIONS.md
-keeps ``2 sin alpha cos alpha``)::
+``C_N = sin 2alpha cos(alpha/2)`` on the nose's base area; this module keeps
+``2 sin alpha cos alpha``, docs/physics.md#nose-lift)::
 
     F_lateral = -rho S_lead |u| (v_lead, w_lead)   (= q S 2 sin a cos a)
 
@@ -54,12 +53,12 @@ import numpy as np
 from rocketsim._jit import njit
 
 # --- tables ----------------------------------------------------------------
-# Axial coefficient, nose first: the physics model's points (0.30 subsonic,
+# Axial coefficient, nose first: docs/physics.md#axial-force's points (0.30 subsonic,
 # 0.62 at Mach 1.15, 0.25 hypersonic); the shape between them is this
 # module's (monotone up to the peak and down after it).
 NOSE_FIRST_MACH = np.array([0.0, 0.6, 0.8, 0.95, 1.15, 1.5, 2.0, 3.0, 5.0, 8.0])
 NOSE_FIRST_CA = np.array([0.30, 0.30, 0.34, 0.48, 0.62, 0.55, 0.45, 0.34, 0.27, 0.25])
-# Tail first: 0.85 subsonic rising to 1.45 at Mach 2 (physics model), held above.
+# Tail first: 0.85 subsonic rising to 1.45 at Mach 2 (docs/physics.md#axial-force), held above.
 TAIL_FIRST_MACH = np.array([0.0, 0.5, 0.8, 1.0, 1.2, 1.5, 2.0])
 TAIL_FIRST_CA = np.array([0.85, 0.85, 0.95, 1.12, 1.28, 1.38, 1.45])
 # Jorgensen (1977) fig. 4: crossflow drag of a 2-D circular cylinder against crossflow Mach.
@@ -124,8 +123,9 @@ def plume_shielding(c_t):
     """Fraction of the tail-first axial coefficient left with thrust coefficient
     ``C_T = T / (q S)`` against the flow: ``exp(-C_T)``.
 
-    The seed's law was lost (EQUATIONS.md). This one follows the trend of the
-    wind-tunnel data for a single central retro-nozzle collected by A. M.
+    docs/physics.md#plume-shielding. No published closed form exists for it;
+    this one follows the trend of the wind-tunnel data for a single central
+    retro-nozzle collected by A. M.
     Korzun, J. R. Cruz & R. D. Braun, "A survey of supersonic retropropulsion
     technology for Mars entry, descent, and landing", IEEE Aerospace Conference
     2008 (and J. Spacecraft Rockets 46(5), 2009), sec. 4, from C. R. Jarvinen &

@@ -1,8 +1,8 @@
 """Ground contact: legs, engine bells and the body's ends as springs on the ellipsoid, compiled.
 
-Physics model ("The integrator": within 2 m of the ground the step is split
-into four sub-steps "so that stiff leg springs and friction stay stable"; the
-issue's contact model). Each contact point ``i`` is fixed in the body at
+docs/physics.md#ground-contact (and docs/physics.md#integrator: within 2 m of
+the ground the step is split into sub-steps of at most 5 ms so that stiff leg
+springs and friction stay stable). Each contact point ``i`` is fixed in the body at
 ``(x, y, z)`` (m; x a station above the base). Its height ``h`` above the
 central body's ellipsoid is measured along the radius (as
 :func:`~rocketsim.dynamics.derivative.radial_height`); below the surface it

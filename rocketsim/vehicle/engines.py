@@ -1,6 +1,6 @@
 """Liquid rocket engines: thrust, mass flow, timing, throttle and gimbal, compiled.
 
-Physics model, "Thrust against ambient pressure" (EQUATIONS.md)::
+docs/physics.md#propulsion::
 
     T = f * (tau * T_vac - p_a * A_e)   (never below 0)
     mdot = f * tau * T_vac / (g0 * Isp_vac)

@@ -1,8 +1,8 @@
 """Grid fins: lattice fins on arms round the body, deflected on all three axes, compiled.
 
-Physics model: "Grid fins on all three axes, with a normal-force slope that
-dips as the lattice chokes near Mach 1, a stall limit, and a Mach-dependent
-drag on all four fins." Each fin sits at station ``x`` on an arm at angle
+docs/physics.md#grid-fins: grid fins on all three axes, with a normal-force
+slope that dips as the lattice chokes near Mach 1, a stall limit, and a
+Mach-dependent drag on all four fins. Each fin sits at station ``x`` on an arm at angle
 ``phi`` about the body x axis (arm direction ``(0, cos phi, sin phi)``, its
 centre of pressure ``r`` from the axis) and turns about its arm by ``delta``.
 With ``e_n = (0, -sin phi, cos phi)``, its chord and normal are::

@@ -1,8 +1,8 @@
 """Stagnation-point heating and a heat shield as one lumped thermal mass.
 
-Physics model ("Heating by the Sutton-Graves stagnation-point relation ...,
-reduced for a hot wall, with radiative cooling, and a heat shield treated as a
-single lumped mass with a 2 400 K limit"); EQUATIONS.md::
+docs/physics.md#heating: the Sutton-Graves stagnation-point relation, reduced
+for a hot wall, with radiative cooling, and a heat shield treated as a single
+lumped mass with a 2 400 K limit::
 
     q_cold = k sqrt(rho / r_n) v^3                (W/m^2; K. Sutton & R. A. Graves,
                                                    NASA TR R-376, 1971)
@@ -35,7 +35,20 @@ def sutton_graves_constant(mu: float) -> float:
 
 @njit
 def sutton_graves(rho, speed, nose_radius, k):
-    """Cold-wall stagnation-point convective heat flux (W/m^2)."""
+    """Cold-wall stagnation-point convective heat flux (W/m^2), ``k sqrt(rho / r_n) v^3``.
+
+    Parameters
+    ----------
+    rho : float
+        Free-stream density, kg/m^3 (no heating at or below 0).
+    speed : float
+        Air-relative speed, m/s.
+    nose_radius : float
+        Effective nose radius ``r_n``, m.
+    k : float
+        Sutton-Graves constant of the gas, kg^0.5/m
+        (:func:`sutton_graves_constant`).
+    """
     if rho <= 0.0:
         return 0.0
     return k * math.sqrt(rho / nose_radius) * speed ** 3
@@ -43,7 +56,19 @@ def sutton_graves(rho, speed, nose_radius, k):
 
 @njit
 def hot_wall_factor(wall_temperature, air_temperature, speed, cp):
-    """``1 - h_w / h_0`` (0 when the wall is as hot as the flow's total enthalpy)."""
+    """``1 - h_w / h_0`` (0 when the wall is as hot as the flow's total enthalpy).
+
+    Parameters
+    ----------
+    wall_temperature : float
+        The wall's temperature ``T_w``, K (``h_w = c_p T_w``).
+    air_temperature : float
+        The free stream's static temperature ``T``, K.
+    speed : float
+        Air-relative speed ``v``, m/s (``h_0 = c_p T + v^2 / 2``).
+    cp : float
+        Specific heat of the gas at constant pressure, J/(kg K).
+    """
     total = cp * air_temperature + 0.5 * speed * speed
     return max(0.0, 1.0 - cp * wall_temperature / total)
 
@@ -51,7 +76,28 @@ def hot_wall_factor(wall_temperature, air_temperature, speed, cp):
 @njit
 def shield_rate(temperature, rho, speed, air_temperature, nose_radius, k, cp, emissivity,
                 area, heat_capacity):
-    """dT/dt (K/s) of a lumped shield of ``heat_capacity = m c`` (J/K) and ``area`` (m^2)."""
+    """dT/dt (K/s) of a lumped shield: ``A (q_hot - eps sigma T^4) / (m c)``.
+
+    Parameters
+    ----------
+    temperature : float
+        The shield's temperature, K.
+    rho, speed, air_temperature : float
+        Free-stream density (kg/m^3), air-relative speed (m/s) and static
+        temperature (K).
+    nose_radius : float
+        Effective nose radius, m.
+    k : float
+        Sutton-Graves constant, kg^0.5/m.
+    cp : float
+        Specific heat of the gas at constant pressure, J/(kg K).
+    emissivity : float
+        The shield's emissivity (0-1).
+    area : float
+        Heated and radiating area, m^2.
+    heat_capacity : float
+        ``m c`` of the shield, J/K.
+    """
     q = sutton_graves(rho, speed, nose_radius, k) * hot_wall_factor(temperature, air_temperature, speed, cp)
     return area * (q - emissivity * STEFAN_BOLTZMANN * temperature ** 4) / heat_capacity
 
@@ -59,7 +105,10 @@ def shield_rate(temperature, rho, speed, air_temperature, nose_radius, k, cp, em
 @njit
 def advance_shield(temperature, h, rho, speed, air_temperature, nose_radius, k, cp, emissivity,
                    area, heat_capacity):
-    """The shield's temperature (K) after ``h`` seconds at the given flow (held): one RK4 step."""
+    """The shield's temperature (K) after ``h`` seconds at the given flow (held): one RK4 step.
+
+    ``h`` in s; the other parameters as :func:`shield_rate`'s.
+    """
     args = (rho, speed, air_temperature, nose_radius, k, cp, emissivity, area, heat_capacity)
     k1 = shield_rate(temperature, *args)
     k2 = shield_rate(temperature + 0.5 * h * k1, *args)

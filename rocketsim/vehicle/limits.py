@@ -1,7 +1,7 @@
 """Structural limits: the bending load ``q alpha`` and the axial load.
 
-Physics model: "Structural limits of 250 kPa deg of bending load (q alpha)
-and 15 g" (EQUATIONS.md: ``q alpha <= 250 kPa deg``, axial load <= 15 g).
+docs/physics.md#structural-limits: ``q alpha <= 250 kPa deg`` of bending
+load and an axial load of at most 15 g.
 ``q`` is the dynamic pressure (Pa), ``alpha`` the total angle of attack
 (deg; measured from the nearer end of the body's axis, so a booster flying
 tail first at 180 degrees carries no bending), and the axial load the

@@ -1,6 +1,6 @@
 """Mass, centre of mass and inertia of a staged vehicle as its tanks drain.
 
-Physics model, "Mass properties are recomputed every step": tank walls are
+docs/physics.md#mass-properties, recomputed at every RK4 stage: tank walls are
 thin shells, propellant columns solid cylinders settled at the bottom (aft
 end) of their tanks, engines, avionics, legs and fins point masses; only 10 %
 of a liquid column's own roll inertia counts (a liquid barely spins with its

@@ -1,7 +1,7 @@
 """Staging as data: a stack split into two complete vehicles at a stage boundary.
 
 The events that decide *when* to separate belong to the flight computer and
-the world (issue 6); this module only says *what* each part is afterwards.
+the world (:mod:`rocketsim.sim`); this module only says *what* each part is afterwards.
 Splitting the stack below stage ``k`` gives the lower part (stages
 ``0..k-1``, stations unchanged) and the upper part (stages ``k..top`` with
 payload and fairing, stations from its own base). Each part gets:

@@ -1,4 +1,4 @@
-"""Benchmark (issue 5): the full derivative of a nine-engine first stage in the atmosphere.
+"""Benchmark: the full derivative of a nine-engine first stage in the atmosphere.
 
 Target: at most 30 us per evaluation (gravity, air table, axial + crossflow
 aero over 20 segments, four grid fins, nine engines, mass properties), so a

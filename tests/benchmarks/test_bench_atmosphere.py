@@ -1,6 +1,6 @@
 """Benchmark: the 50 m table lookup against evaluating the 1976 standard directly.
 
-Issue 3 asks for at most 2 us per scalar lookup (as the flight loop calls it:
+Targets: at most 2 us per scalar lookup (as the flight loop calls it:
 from compiled code) and at least 5 million heights per second vectorised,
 each reported as a ratio against evaluating the 1976 model directly
 (:func:`us_standard_1976`, numpy-vectorised) in the same run. Run with ``-s``

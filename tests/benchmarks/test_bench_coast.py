@@ -1,4 +1,4 @@
-"""Benchmark (issue 2): one coasting rigid body with J2 at 20 ms.
+"""Benchmark: one coasting rigid body with J2 at 20 ms.
 
 Target: at least 1 000x real time (<= 20 us per step) on one core. Printed:
 the compiled kernel's cost per step and its real-time factor, the ratio

@@ -1,7 +1,7 @@
 """Benchmark: the solar-system state (prints figures; asserts only correctness).
 
 Run with ``python -m pytest tests/benchmarks/test_bench_ephemeris.py -s``.
-Issue 7's targets: the full state of the Sun, Earth, Moon and Mars
+Targets: the full state of the Sun, Earth, Moon and Mars
 (positions and velocities) at one instant in at most 50 us, and at least
 100 000 instants per second vectorised over an array of times. Both are
 printed against the baseline measured in the same run: the same kernels

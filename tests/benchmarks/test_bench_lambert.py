@@ -1,6 +1,6 @@
 """Speed of the vectorised Izzo solver and of a Mars porkchop (run with -s).
 
-Issue 8 asks for at least 500 000 zero-revolution solves per second on one
+Target: at least 500 000 zero-revolution solves per second on one
 core, reported against lamberthub's ``izzo2015`` measured in the same run
 (about 13 000 per second on the reference machine: 35x or more), and a
 365 x 365-day porkchop of the 2026 Mars window at 1-day resolution,

@@ -1,4 +1,4 @@
-"""Benchmark (issue 6): the shipped Falcon 9-class mission, flown whole, at 20 ms.
+"""Benchmark: the shipped Falcon 9-class mission, flown whole, at 20 ms.
 
 Target: at least 100x real time on one core (the whole mission, about nine
 minutes of flight, in under about 6 s), telemetry at 10 Hz included.
@@ -8,7 +8,7 @@ the booster's return included) through :func:`rocketsim.sim.flight.fly` with
 the file's 10 Hz telemetry. In the suite it flies the first ARC seconds (the
 ascent, staging and the start of the boost-back, two vehicles awake after
 separation: the suite's budget is ~15 s per benchmark); with
-``ROCKETSIM_BENCH_FULL=1`` it flies the whole mission, the issue's figure.
+``ROCKETSIM_BENCH_FULL=1`` it flies the whole mission, the target's figure.
 Printed (run with ``pytest -s``):
 
 * simulated seconds per wall second (the real-time factor);

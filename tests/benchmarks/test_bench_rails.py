@@ -1,4 +1,4 @@
-"""Benchmark (issue 9): cruise rails to Mars, and a sleeping LEO stage against an awake one.
+"""Benchmark: cruise rails to Mars, and a sleeping LEO stage against an awake one.
 
 Targets: the heliocentric leg to Mars on cruise rails in under 10 s on one
 core, reported with its error against DOP853 (rtol 1e-13, the same field

@@ -1,4 +1,4 @@
-"""Benchmark (issue 10): what telemetry costs, and how fast a run is summarised.
+"""Benchmark: what telemetry costs, and how fast a run is summarised.
 
 Printed (run with ``pytest -s``):
 1. a flight's wall time with 10 Hz telemetry over the same flight without
@@ -6,7 +6,7 @@ Printed (run with ``pytest -s``):
    Three flights: the shipped spaceport-ballistic mission (its program runs
    every 20 ms step), the first 40 s of the shipped Falcon 9-class mission
    (a staged vehicle: program, autopilot and checks every step, as in the
-   issue-6 mission) and a program-less orbital coast (steps batched in the
+   whole mission) and a program-less orbital coast (steps batched in the
    compiled kernel, so the sampling is nearly all the work). For each, what
    one sample costs on its own: its numbers (``sampling.values``: one compiled
    call, in a loop at the flight's end) and their writing (the flight's own
@@ -14,13 +14,13 @@ Printed (run with ``pytest -s``):
    ``orjson`` formats the numbers, one compiled call splices them into the
    state, transform and location messages' templates and frames the MCAP
    records in the chunk; the chunks' zstd compression and index included).
-   The writing was timed with one sample written over and over until
-   2026-11-27: zstd compresses repeated records to almost nothing, so the
-   writing seemed half of what it costs in a flight (ballistic 4.1 -> 8.6 us,
-   falcon9 5.5 -> 11.1 us once the flight's own samples are written).
-   For the coast, the floor of the encoding the issue asks for: the sample's
-   numbers as JSON and its bytes compressed and checksummed, against the 10 %
-   budget (a tenth of the flight's time per sample).
+   The flight's own samples, not one sample written over and over: zstd
+   compresses repeated records to almost nothing, which would time the
+   writing at about half its cost in a flight (ballistic 4.1 against 8.6 us,
+   falcon9 5.5 against 11.1 us).
+   For the coast, the floor of the encoding: the sample's numbers as JSON and
+   its bytes compressed and checksummed, against the 10 % budget (a tenth of
+   the flight's time per sample).
    Last figures (loaded 2-core machine, load 4-6; before the byte templates
    in brackets): ratio ballistic 1.1-1.4 (1.65-1.8), falcon9 1.10-1.16
    (1.13-1.23), coast 2.6-2.9 (3.4-3.6); per sample on its own, numbers and

@@ -1,4 +1,4 @@
-"""Benchmark (issue 4): mass properties plus nine engines per RK4 derivative stage.
+"""Benchmark: mass properties plus nine engines per RK4 derivative stage.
 
 Target: at most 10 us per stage for the vehicle's share. Printed: the powered
 derivative of the Falcon 9-class booster (nine Merlin 1D, two tanks, US 1976
