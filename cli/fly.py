@@ -9,8 +9,6 @@ from pathlib import Path
 
 import click
 
-from rocketsim.scenario.load import load
-from rocketsim.sim.flight import fly as fly_scenario
 from rocketsim_cli.errors import reports_input_errors
 from rocketsim_cli.progress import flight_progress
 from rocketsim_cli.summary import format_summary
@@ -44,6 +42,9 @@ def fly(scenario: Path, output: Path | None, step: float | None, duration: float
     Example:
         rocketsim fly scenarios/iss-coast.yaml -o iss.mcap --summary-json iss.json
     """
+    from rocketsim.scenario.load import load
+    from rocketsim.sim.flight import fly as fly_scenario
+
     loaded = load(scenario)
     output = output or Path(f"{scenario.stem}.mcap")
     previous = signal.signal(signal.SIGTERM, _raise_terminated)

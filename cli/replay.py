@@ -9,12 +9,15 @@ from __future__ import annotations
 import sys
 from datetime import datetime, timezone
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import click
 
 from rocketsim.errors import InputError
-from rocketsim.telemetry.replay import Run, UntrustedProgram, export, read_run, verify
 from rocketsim_cli.errors import reports_input_errors
+
+if TYPE_CHECKING:
+    from rocketsim.telemetry.replay import Run
 
 
 @click.command()
@@ -43,6 +46,8 @@ def replay(run_file: Path, export_to, plot: Path | None, check: bool, trust: boo
         rocketsim replay iss.mcap --export csv tables/ --plot iss.png
         rocketsim replay iss.mcap --verify --trust
     """
+    from rocketsim.telemetry.replay import export, read_run
+
     if not run_file.is_file():
         raise InputError(f"no such file: {run_file}", file=run_file)
     run = read_run(run_file)
@@ -68,6 +73,8 @@ def replay(run_file: Path, export_to, plot: Path | None, check: bool, trust: boo
 
 
 def _verify(run_file: Path, run: Run, trust: bool) -> int:
+    from rocketsim.telemetry.replay import UntrustedProgram, verify
+
     if run.program and trust:
         click.echo(f"--trust: executing the program {run.program} carried by {run_file}", err=True)
     try:
