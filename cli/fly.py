@@ -44,13 +44,16 @@ def fly(scenario: Path, output: Path | None, step: float | None, duration: float
     """
     from rocketsim.scenario.load import load
     from rocketsim.sim.flight import fly as fly_scenario
+    from rocketsim_cli.compiling import compile_message
 
     loaded = load(scenario)
     output = output or Path(f"{scenario.stem}.mcap")
     previous = signal.signal(signal.SIGTERM, _raise_terminated)
     try:
-        with flight_progress(duration or loaded.scenario.mission.duration) as on_progress:
-            summary = fly_scenario(loaded, output, step=step, duration=duration, on_progress=on_progress)
+        with compile_message():
+            with flight_progress(duration or loaded.scenario.mission.duration) as on_progress:
+                summary = fly_scenario(loaded, output, step=step, duration=duration,
+                                       on_progress=on_progress)
     except KeyboardInterrupt:
         click.echo(f"\ninterrupted; telemetry so far is in {output}", err=True)
         sys.exit(130)
