@@ -1,7 +1,7 @@
-"""A cold kernel cache announces itself on a terminal and stays silent elsewhere.
+"""A cold kernel cache: announced on a terminal, silent elsewhere, warmed by ``rocketsim compile``.
 
 The first flight on a machine compiles its kernels; ``rocketsim fly`` says so on
-a terminal. Here the cache of a small flight is copied and one kernel the
+a terminal, and ``rocketsim compile`` compiles them ahead into the cache. Here the cache of a small flight is copied and one kernel the
 flight calls at its end (``orbit_figures``, the summary's orbit) is deleted from
 the copy, so that ``rocketsim fly`` over the copy compiles exactly that one
 kernel (a few seconds, not the minute of a whole cold cache). stderr is a
@@ -79,3 +79,24 @@ def test_off_a_terminal_nothing_is_said(one_cold_kernel, tmp_path):
     assert process.returncode == 0
     assert list(cache.rglob(KERNEL)), "the kernel did compile"
     assert errors.decode() == ""
+
+
+def test_compile_flies_the_scenarios_into_the_cache(one_cold_kernel, tmp_path):
+    path, env, cache = one_cold_kernel
+    done = subprocess.run([sys.executable, "-m", "rocketsim_cli.main", "compile", str(path), "-j", "2"],
+                          env=env, capture_output=True, text=True, timeout=300)
+    assert done.returncode == 0, done.stderr
+    assert f"{path}: 1 kernel compiled in" in done.stderr       # one line per scenario off a terminal
+    assert "compiled 1 kernel for 1 scenario in" in done.stdout
+    assert "with 1 process into" in done.stdout                 # no more processes than scenarios
+    assert str(cache) in done.stdout
+    assert list(cache.rglob(KERNEL))
+
+
+def test_compile_names_a_bad_scenario_and_exits_2(write, tmp_path):
+    bad = write("bad.yaml", "name: bad\nvehicle: missing.yaml\nmission: missing.yaml\n")
+    done = subprocess.run([sys.executable, "-m", "rocketsim_cli.main", "compile", str(bad)],
+                          capture_output=True, text=True, timeout=300)
+    assert done.returncode == 2
+    assert "error:" in done.stderr and "bad.yaml" in done.stderr
+    assert "Traceback" not in done.stderr
