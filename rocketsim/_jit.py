@@ -97,6 +97,26 @@ def _numba_njit():
     return numba.njit
 
 
+def _call_template(dispatcher, args, kws):
+    """numba's ``get_call_template`` of ``dispatcher`` (how a kernel calling it types the
+    call) for the arguments' plain types: a constant argument (``orbit_into(out, 17, ...)``,
+    ``_rotation(2, angle)``) is typed as its kind (int64), not as the literal value, so
+    that one compiled signature serves every constant (numba compiled one per value).
+    A kernel that can only be typed with the literal (a branch on it that types only
+    when pruned) keeps it. Values and floating-point operations are the same either way.
+    """
+    from numba.core import errors, types
+
+    plain = tuple(types.unliteral(a) for a in args)
+    plain_kws = {k: types.unliteral(v) for k, v in kws.items()}
+    if plain != tuple(args) or plain_kws != kws:
+        try:
+            return type(dispatcher).get_call_template(dispatcher, plain, plain_kws)
+        except errors.TypingError:
+            pass
+    return type(dispatcher).get_call_template(dispatcher, args, kws)
+
+
 class Kernel:
     """A function compiled by numba on first need (see the module).
 
@@ -114,7 +134,9 @@ class Kernel:
     def dispatcher(self):
         """numba's dispatcher of this kernel (made, and numba imported, on first use)."""
         if self._dispatcher is None:
-            self._dispatcher = _numba_njit()(**self._options)(self.py_func)
+            dispatcher = _numba_njit()(**self._options)(self.py_func)
+            dispatcher.get_call_template = functools.partial(_call_template, dispatcher)
+            self._dispatcher = dispatcher
         return self._dispatcher
 
     @property
