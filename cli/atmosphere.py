@@ -5,10 +5,8 @@ from __future__ import annotations
 from pathlib import Path
 
 import click
-import numpy as np
 
 from rocketsim.errors import InputError
-from rocketsim.scenario.units import UnitError, parse_quantity
 from rocketsim_cli.errors import reports_input_errors
 
 _COLUMNS = ("height_m", "temperature_K", "pressure_Pa", "density_kg_m3", "speed_of_sound_m_s")
@@ -16,6 +14,7 @@ _WIND = ("wind_east_m_s", "wind_north_m_s")
 
 
 def _quantity(text: str, dimension: str, option: str) -> float:
+    from rocketsim.scenario.units import UnitError, parse_quantity
     try:
         return parse_quantity(text, dimension)
     except UnitError as error:
@@ -87,6 +86,8 @@ def atmosphere(weather, body, latitude, h_from, h_to, h_step, fmt, plot):
     where day.yaml is a weather section, e.g. "kind: random" and "seed: 7"
     on two lines, or "kind: sounding" and "file: 72357_OUN_20110522_12Z.txt".
     """
+    import numpy as np
+
     lat = _quantity(latitude, "angle", "--latitude")
     lo, hi = _quantity(h_from, "length", "--from"), _quantity(h_to, "length", "--to")
     step = _quantity(h_step, "length", "--step")

@@ -6,9 +6,6 @@ import math
 from pathlib import Path
 
 import click
-import yaml
-
-from rocketsim.scenario.classic_range import classic_site
 
 
 @click.command("classic-range")
@@ -26,6 +23,10 @@ def classic_range(seed, output):
     Example:
         rocketsim classic-range --seed 11 -o scenarios/sites/classic-11.yaml
     """
+    import yaml
+
+    from rocketsim.scenario.classic_range import classic_site
+
     site = classic_site(seed)
     degrees = ", ".join(f"{pad['name']} {_deg(pad['longitude']):.4f} deg E" for pad in site["pads"])
     note = (f"# The classic range of seed {seed}: pad {_deg(site['longitude']):.4f} deg E on the "

@@ -2,6 +2,7 @@
 
 from rocketsim_cli.atmosphere import atmosphere
 from rocketsim_cli.classic_range import classic_range
+from rocketsim_cli.compile_kernels import compile_kernels
 from rocketsim_cli.ephemeris import ephemeris
 from rocketsim_cli.fly import fly
 from rocketsim_cli.replay import replay
@@ -9,4 +10,4 @@ from rocketsim_cli.validate import schema, validate
 from rocketsim_cli.vehicle import vehicle
 from rocketsim_cli.windows import windows
 
-ALL = [fly, validate, schema, atmosphere, ephemeris, vehicle, windows, replay, classic_range]
+ALL = [fly, compile_kernels, validate, schema, atmosphere, ephemeris, vehicle, windows, replay, classic_range]

@@ -5,15 +5,17 @@ from __future__ import annotations
 import datetime as _dt
 import math
 
+from typing import TYPE_CHECKING
+
 import click
-import numpy as np
 
 from rocketsim.constants import AU
-from rocketsim.ephemeris.solar_system import BODIES, states
 from rocketsim.errors import InputError
-from rocketsim.scenario.units import UnitError, parse_quantity
-from rocketsim.timescales import Epoch
 from rocketsim_cli.errors import reports_input_errors
+from rocketsim_cli.lazy import LibraryChoice
+
+if TYPE_CHECKING:
+    import numpy as np
 
 MAX_ROWS = 200_000
 CSV_COLUMNS = "utc,tt_jd,x_km,y_km,z_km,vx_km_s,vy_km_s,vz_km_s"
@@ -33,6 +35,7 @@ def _utc(text: str, option: str) -> _dt.datetime:
 
 
 def _instants(start: _dt.datetime, stop: _dt.datetime, step_text: str) -> list[_dt.datetime]:
+    from rocketsim.scenario.units import UnitError, parse_quantity
     try:
         step = parse_quantity(step_text, "time")
     except UnitError as error:
@@ -51,13 +54,19 @@ def _instants(start: _dt.datetime, stop: _dt.datetime, step_text: str) -> list[_
 
 def _elongation_deg(sun: np.ndarray, body: np.ndarray) -> np.ndarray:
     """Angle Sun-Earth-body (deg) from geocentric vectors (N, 3)."""
+    import numpy as np
     cos = np.sum(sun * body, axis=1) / (np.linalg.norm(sun, axis=1) * np.linalg.norm(body, axis=1))
     return np.degrees(np.arccos(np.clip(cos, -1.0, 1.0)))
 
 
+def _bodies() -> tuple[str, ...]:
+    from rocketsim.ephemeris.solar_system import BODIES
+    return BODIES
+
+
 @click.command()
-@click.option("--body", type=click.Choice(BODIES), required=True, help="the body to place")
-@click.option("--center", type=click.Choice(BODIES), default=None,
+@click.option("--body", type=LibraryChoice(_bodies), required=True, help="the body to place")
+@click.option("--center", type=LibraryChoice(_bodies), default=None,
               help="origin of the vectors [default: the Sun for the planets, the Earth "
                    "for the Moon and the Sun]")
 @click.option("--from", "start", required=True, help="first UTC date, e.g. 2026-01-01")
@@ -77,6 +86,11 @@ def ephemeris(body, center, start, stop, step, fmt):
         rocketsim ephemeris --body mars --from 2026-01-01 --to 2027-01-01 --step 10d
         rocketsim ephemeris --body moon --from 2026-03-01 --to 2026-04-01 --format csv
     """
+    import numpy as np
+
+    from rocketsim.ephemeris.solar_system import states
+    from rocketsim.timescales import Epoch
+
     center = center or DEFAULT_CENTER[body]
     utc = _instants(_utc(start, "--from"), _utc(stop, "--to"), step)
     jd_tt = np.array([Epoch.from_utc(moment).jd_tt() for moment in utc])

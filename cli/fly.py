@@ -9,8 +9,6 @@ from pathlib import Path
 
 import click
 
-from rocketsim.scenario.load import load
-from rocketsim.sim.flight import fly as fly_scenario
 from rocketsim_cli.errors import reports_input_errors
 from rocketsim_cli.progress import flight_progress
 from rocketsim_cli.summary import format_summary
@@ -44,12 +42,18 @@ def fly(scenario: Path, output: Path | None, step: float | None, duration: float
     Example:
         rocketsim fly scenarios/iss-coast.yaml -o iss.mcap --summary-json iss.json
     """
+    from rocketsim.scenario.load import load
+    from rocketsim.sim.flight import fly as fly_scenario
+    from rocketsim_cli.compiling import compile_message
+
     loaded = load(scenario)
     output = output or Path(f"{scenario.stem}.mcap")
     previous = signal.signal(signal.SIGTERM, _raise_terminated)
     try:
-        with flight_progress(duration or loaded.scenario.mission.duration) as on_progress:
-            summary = fly_scenario(loaded, output, step=step, duration=duration, on_progress=on_progress)
+        with compile_message():
+            with flight_progress(duration or loaded.scenario.mission.duration) as on_progress:
+                summary = fly_scenario(loaded, output, step=step, duration=duration,
+                                       on_progress=on_progress)
     except KeyboardInterrupt:
         click.echo(f"\ninterrupted; telemetry so far is in {output}", err=True)
         sys.exit(130)

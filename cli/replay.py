@@ -9,14 +9,15 @@ from __future__ import annotations
 import sys
 from datetime import datetime, timezone
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import click
 
 from rocketsim.errors import InputError
-from rocketsim.api.verify import UntrustedProgram, verify
-from rocketsim.telemetry.reader import RunFile, read_run
-from rocketsim.telemetry.tables import export
 from rocketsim_cli.errors import reports_input_errors
+
+if TYPE_CHECKING:
+    from rocketsim.telemetry.reader import RunFile
 
 
 @click.command()
@@ -45,6 +46,9 @@ def replay(run_file: Path, export_to, plot: Path | None, check: bool, trust: boo
         rocketsim replay iss.mcap --export csv tables/ --plot iss.png
         rocketsim replay iss.mcap --verify --trust
     """
+    from rocketsim.telemetry.reader import read_run
+    from rocketsim.telemetry.tables import export
+
     if not run_file.is_file():
         raise InputError(f"no such file: {run_file}", file=run_file)
     run = read_run(run_file)
@@ -70,6 +74,8 @@ def replay(run_file: Path, export_to, plot: Path | None, check: bool, trust: boo
 
 
 def _verify(run_file: Path, run: RunFile, trust: bool) -> int:
+    from rocketsim.api.verify import UntrustedProgram, verify
+
     if run.program and trust:
         click.echo(f"--trust: executing the program {run.program} carried by {run_file}", err=True)
     try:

@@ -9,9 +9,7 @@ from pathlib import Path
 import click
 
 from rocketsim.errors import InputError
-from rocketsim.scenario.load import REFERENCED, load, validate as validate_source
-from rocketsim.scenario.models import Scenario
-from rocketsim.scenario.yaml_source import read_yaml
+from rocketsim_cli.lazy import LibraryChoice
 
 # file kinds by the top-level field only that kind has
 _KINDS = {"rigid_body": "vehicle", "stages": "vehicle", "latitude": "site", "start": "mission"}
@@ -43,6 +41,9 @@ def validate(files: tuple[Path, ...]) -> None:
 
 
 def _validate_one(path: Path) -> str:
+    from rocketsim.scenario.load import REFERENCED, load, validate as validate_source
+    from rocketsim.scenario.yaml_source import read_yaml
+
     source = read_yaml(path)
     if isinstance(source.data, dict) and "mission" in source.data:
         load(path)
@@ -56,8 +57,13 @@ def _validate_one(path: Path) -> str:
                      "'latitude' or 'start' field)", file=path, line=1, column=1)
 
 
+def _kinds() -> list[str]:
+    from rocketsim.scenario.load import REFERENCED
+    return ["scenario", *REFERENCED]
+
+
 @click.command()
-@click.option("--kind", type=click.Choice(["scenario", *REFERENCED]), default="scenario",
+@click.option("--kind", type=LibraryChoice(_kinds), default="scenario",
               show_default=True, help="Which file's schema to print.")
 def schema(kind: str) -> None:
     """Print the JSON Schema of a scenario file (or a vehicle, site, mission).
@@ -69,5 +75,8 @@ def schema(kind: str) -> None:
         rocketsim schema > rocketsim-scenario.schema.json
         rocketsim schema --kind vehicle > vehicle.schema.json
     """
+    from rocketsim.scenario.load import REFERENCED
+    from rocketsim.scenario.models import Scenario
+
     model = Scenario if kind == "scenario" else REFERENCED[kind]
     click.echo(json.dumps(model.model_json_schema(), indent=2))

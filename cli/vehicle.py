@@ -8,9 +8,6 @@ from pathlib import Path
 import click
 
 from rocketsim.errors import InputError
-from rocketsim.scenario.load import validate
-from rocketsim.scenario.models import VehicleSpec
-from rocketsim.scenario.yaml_source import read_yaml
 from rocketsim_cli.errors import reports_input_errors
 
 
@@ -33,6 +30,10 @@ def vehicle(file, fmt, plot):
         rocketsim vehicle vehicles/falcon9-block5.yaml
         rocketsim vehicle vehicles/falcon9-block5.yaml --format json --plot f9.png
     """
+    from rocketsim.scenario.load import validate
+    from rocketsim.scenario.models import VehicleSpec
+    from rocketsim.scenario.yaml_source import read_yaml
+
     if not file.is_file():
         raise InputError(f"vehicle file not found: {file}", file=file)
     spec = validate(read_yaml(file), VehicleSpec)

@@ -8,17 +8,18 @@ import math
 import sys
 from pathlib import Path
 
+from typing import TYPE_CHECKING
+
 import click
-import numpy as np
-import yaml
 
 from rocketsim.constants import SECONDS_PER_DAY
 from rocketsim.errors import InputError
-from rocketsim.scenario.units import UnitError, parse_quantity
-from rocketsim.timescales import Epoch
-from rocketsim.transfer import windows as transfer_windows
 from rocketsim_cli.ephemeris import _utc
 from rocketsim_cli.errors import reports_input_errors
+from rocketsim_cli.lazy import LibraryChoice
+
+if TYPE_CHECKING:
+    from rocketsim.transfer import windows as transfer_windows
 
 DEFAULTS = {
     # target: (from, to, step) of the departure dates searched by default
@@ -32,6 +33,7 @@ JSON_KEYS = ("departure_utc", "arrival_utc", "tof_days", "c3_km2_s2", "vinf_arri
 
 
 def _length(text: str, option: str) -> float:
+    from rocketsim.scenario.units import UnitError, parse_quantity
     try:
         value = parse_quantity(text, "length")
     except UnitError as error:
@@ -65,6 +67,7 @@ class _Clock:
     """TT Julian dates <-> UTC, anchored at the first departure (Delta T held)."""
 
     def __init__(self, start: _dt.datetime):
+        from rocketsim.timescales import Epoch
         self.epoch = Epoch.from_utc(start)
         self.jd_tt0 = self.epoch.jd_tt()
 
@@ -115,6 +118,7 @@ def _print(rows: list[dict], fmt: str, target: str) -> None:
 def _porkchop(path: Path, found: transfer_windows.Search, clock: _Clock) -> None:
     """Contours of C3 and arrival v_inf over departure x arrival dates."""
     import matplotlib
+    import numpy as np
     matplotlib.use("Agg")
     import matplotlib.dates as mdates
     import matplotlib.pyplot as plt
@@ -189,11 +193,17 @@ def _fragment(window: transfer_windows.Window, clock: _Clock, target: str,
             "# ephemerides). `mission` goes into a scenario's mission; `departure_burn` is\n"
             "# the target of the departure burn (J2000 mean equatorial frame; for the Moon\n"
             "# the burn vector itself, from a parking orbit in the Moon's plane).\n")
+    import yaml
     return note + yaml.safe_dump(data, sort_keys=False)
 
 
+def _targets() -> list[str]:
+    from rocketsim.transfer import windows as transfer_windows
+    return sorted(transfer_windows.TARGETS)
+
+
 @click.command()
-@click.option("--target", type=click.Choice(sorted(transfer_windows.TARGETS)), required=True,
+@click.option("--target", type=LibraryChoice(_targets), required=True,
               help="where to go")
 @click.option("--from", "start", default=None,
               help="first departure date, UTC [default: 2026-06-01 (mars), 2026-12-01 (moon)]")
@@ -241,6 +251,11 @@ def windows(target, start, stop, step, parking_orbit, capture_orbit, max_c3, max
             --max-c3 20 --by c3 --format json --mission-fragment mars-2026.yaml
         rocketsim windows --target moon --from 2026-12-01 --to 2026-12-15
     """
+    import numpy as np
+
+    from rocketsim.scenario.units import UnitError, parse_quantity
+    from rocketsim.transfer import windows as transfer_windows
+
     default_from, default_to, default_step = DEFAULTS[target]
     first = _utc(start or default_from, "--from")
     if stop is None and start is not None:

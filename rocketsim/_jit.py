@@ -6,6 +6,14 @@ without recompiling, ``fastmath`` stays off so results are IEEE-exact and
 bit-identical run to run, and division by zero follows numpy (inf/nan) rather
 than raising inside the hot path.
 
+numba itself (about half a second to import, more with the scipy it pulls in)
+is imported only when a kernel is first called or compiled: ``njit`` returns a
+:class:`Kernel`, which makes numba's dispatcher on first need. A command that
+only reads files (``rocketsim validate``, ``schema``, ``replay`` of a summary)
+imports the kernel modules for their constants and never loads numba. Another
+kernel refers to a :class:`Kernel` as to the dispatcher itself (numba types it
+through ``_numba_type_``), so kernels compile and inline exactly as before.
+
 numba's cache checks only the source file of the function it compiled, not
 the functions that function calls from other modules: after an edit to
 ``bodies/gravity.py`` a cached ``dynamics/derivative.py`` kernel would still
@@ -19,14 +27,13 @@ scenarios, telemetry) keeps the compiled kernels. Hashing costs a few
 milliseconds at import.
 """
 
+import functools
 import hashlib
 import os
 import re
 from pathlib import Path
 
-import numba
 import numpy as np
-from numba import njit as _numba_njit
 
 _OPTIONS = {"cache": True, "fastmath": False, "error_model": "numpy"}
 
@@ -63,7 +70,8 @@ def _kernel_sources(package: Path) -> list[Path]:
 
 
 def _source_hash() -> str:
-    digest = hashlib.sha256(numba.__version__.encode())
+    from importlib.metadata import version
+    digest = hashlib.sha256(version("numba").encode())
     package = Path(__file__).resolve().parent
     for path in _kernel_sources(package):
         digest.update(path.relative_to(package).as_posix().encode())
@@ -71,22 +79,88 @@ def _source_hash() -> str:
     return digest.hexdigest()[:16]
 
 
-def _cache_dir() -> str:
+def cache_dir() -> str:
+    """The folder of this source's compiled kernels: ``$NUMBA_CACHE_DIR`` if set, else
+    ``numba-<hash>`` below ``$ROCKETSIM_CACHE_DIR`` (default ``~/.cache/rocketsim``)."""
+    if os.environ.get("NUMBA_CACHE_DIR"):
+        return os.environ["NUMBA_CACHE_DIR"]
     root = os.environ.get("ROCKETSIM_CACHE_DIR") or os.path.join(
         os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache"), "rocketsim")
     return os.path.join(root, f"numba-{_source_hash()}")
 
 
-if not os.environ.get("NUMBA_CACHE_DIR"):
-    numba.config.CACHE_DIR = _cache_dir()
+@functools.cache
+def _numba_njit():
+    """numba's ``njit``, numba imported and pointed at :func:`cache_dir` (once)."""
+    import numba
+    numba.config.CACHE_DIR = cache_dir()
+    return numba.njit
+
+
+def _call_template(dispatcher, args, kws):
+    """numba's ``get_call_template`` of ``dispatcher`` (how a kernel calling it types the
+    call) for the arguments' plain types: a constant argument (``orbit_into(out, 17, ...)``,
+    ``_rotation(2, angle)``) is typed as its kind (int64), not as the literal value, so
+    that one compiled signature serves every constant (numba compiled one per value).
+    A kernel that can only be typed with the literal (a branch on it that types only
+    when pruned) keeps it. Values and floating-point operations are the same either way.
+    """
+    from numba.core import errors, types
+
+    plain = tuple(types.unliteral(a) for a in args)
+    plain_kws = {k: types.unliteral(v) for k, v in kws.items()}
+    if plain != tuple(args) or plain_kws != kws:
+        try:
+            return type(dispatcher).get_call_template(dispatcher, plain, plain_kws)
+        except errors.TypingError:
+            pass
+    return type(dispatcher).get_call_template(dispatcher, args, kws)
+
+
+class Kernel:
+    """A function compiled by numba on first need (see the module).
+
+    Calling it calls the compiled function; every other attribute (``compile``,
+    ``signatures``, ``typeof_pyval``...) is numba's dispatcher's.
+    """
+
+    def __init__(self, func, options: dict):
+        functools.update_wrapper(self, func)
+        self.py_func = func
+        self._options = options
+        self._dispatcher = None
+
+    @property
+    def dispatcher(self):
+        """numba's dispatcher of this kernel (made, and numba imported, on first use)."""
+        if self._dispatcher is None:
+            dispatcher = _numba_njit()(**self._options)(self.py_func)
+            dispatcher.get_call_template = functools.partial(_call_template, dispatcher)
+            self._dispatcher = dispatcher
+        return self._dispatcher
+
+    @property
+    def _numba_type_(self):
+        return self.dispatcher._numba_type_
+
+    def __call__(self, *args):
+        return self.dispatcher(*args)
+
+    def __getattr__(self, name):
+        if name.startswith("__"):
+            raise AttributeError(name)
+        return getattr(self.dispatcher, name)
+
+    def __repr__(self) -> str:
+        return f"<kernel {self.__module__}.{self.__qualname__}>"
 
 
 def njit(func=None, **options):
-    """Compile ``func`` (use as ``@njit`` or ``@njit(inline="always")``)."""
+    """Compile ``func`` on first need (use as ``@njit`` or ``@njit(inline="always")``)."""
     settings = {**_OPTIONS, **options}
     if func is None:
-        return _numba_njit(**settings)
-    return _numba_njit(**settings)(func)
+        return functools.partial(Kernel, options=settings)
+    return Kernel(func, settings)
 
 
 def entry_point(kernel, *args):

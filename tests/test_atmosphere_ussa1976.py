@@ -118,3 +118,19 @@ def test_out_of_range_heights_are_refused():
         us_standard_1976(1_000_001.0)
     with pytest.raises(ValueError):
         us_standard_1976(np.array([0.0, -6_000.0]))
+
+
+def test_the_upper_air_integrals_are_scipys_trapezoid_bit_for_bit(monkeypatch):
+    # The number densities above 86 km integrate with rocketsim's own cumulative
+    # trapezoid (no scipy.integrate at start-up); scipy's cumulative_trapezoid, the
+    # reference, must give the very same bits on the standard's own grid.
+    from scipy.integrate import cumulative_trapezoid
+
+    from rocketsim.atmosphere import ussa1976 as model
+
+    z = model._upper_rows()[0]                      # the table's own grid
+    ours = model.number_densities(z)
+    monkeypatch.setattr(model, "_integral", lambda y, x: cumulative_trapezoid(y, x=x, initial=0.0))
+    reference = model.number_densities(z)
+    for species, values in reference.items():
+        assert np.array_equal(ours[species], values), species

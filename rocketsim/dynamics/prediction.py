@@ -13,7 +13,6 @@ separate computation: it never changes the flight.
 from __future__ import annotations
 
 import numpy as np
-from scipy.integrate import solve_ivp
 
 from rocketsim.dynamics.nbody import field
 
@@ -27,6 +26,7 @@ def coast(r, v, t0: float, seconds: float, p, fp, *, periapsis: bool = False,
     next periapsis (the radial velocity turning from negative to positive)
     if that comes first. ``atol`` is in metres and m/s.
     """
+    from scipy.integrate import solve_ivp   # here: a flight that predicts nothing never loads it
     p = np.asarray(p, dtype=float)
     fp = np.asarray(fp, dtype=float)
 

@@ -74,7 +74,6 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy.optimize import lsq_linear
 
 from rocketsim.dynamics.rails import command_code
 from rocketsim.flight.steering import steer_step
@@ -115,6 +114,7 @@ def rcs_command(torques: np.ndarray, wanted: np.ndarray) -> np.ndarray:
     to ``wanted`` (N m, body axes): bounded-variable least squares."""
     if not np.any(wanted) or not np.any(torques):
         return np.zeros(torques.shape[1])
+    from scipy.optimize import lsq_linear   # here: scipy.optimize takes ~0.5 s to import
     return np.clip(lsq_linear(torques, wanted, bounds=(0.0, 1.0), method="bvls").x, 0.0, 1.0)
 
 

@@ -134,6 +134,10 @@ def load_program(path: Path) -> Callable:
     main = load_program_module(path).main
     if not callable(main):
         raise ProgramError("the program defines no main(fc) function", file=Path(path))
+    # A program may predict its coast (rocketsim.dynamics.prediction, scipy's integrator,
+    # imported there on first use): imported now, so that its import (a few tenths of a
+    # second of CPU) never counts against the program's budget for one step.
+    import scipy.integrate  # noqa: F401
     return main
 
 

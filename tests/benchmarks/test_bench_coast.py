@@ -3,15 +3,13 @@
 Target: at least 1 000x real time (<= 20 us per step) on one core. Printed:
 the compiled kernel's cost per step and its real-time factor, the ratio
 against a plain-numpy RK4 of the same equations measured in the same run,
-the whole `fly` loop with 10 Hz telemetry, and the compile / warm start of a
-fresh process. Run with ``pytest -s tests/benchmarks`` to see the figures.
+and the whole `fly` loop with 10 Hz telemetry (a fresh process's start-up, cold
+and warm: test_bench_startup.py). Run with ``pytest -s tests/benchmarks`` to see
+the figures.
 Nothing here asserts a time; the checks are that both integrators agree.
 """
 
 import math
-import os
-import subprocess
-import sys
 import time
 from pathlib import Path
 
@@ -83,27 +81,3 @@ def test_fly_loop_with_telemetry_speed(tmp_path):
     wall = time.perf_counter() - start
     print(f"\n[coast] rocketsim fly iss-coast, 10 Hz telemetry: {duration / wall:,.0f}x real time "
           f"({wall / (duration / H) * 1e6:.1f} us per 20 ms step, telemetry included)")
-
-
-def _time_fly(cache_dir, tmp_path):
-    env = {**os.environ, "ROCKETSIM_CACHE_DIR": str(cache_dir)}
-    env.pop("NUMBA_CACHE_DIR", None)
-    script = (
-        "import time; t0 = time.perf_counter()\n"
-        "from rocketsim.scenario.load import load\n"
-        "from rocketsim.sim.build import build_world\n"
-        f"world = build_world(load({str(ROOT / 'scenarios' / 'iss-coast.yaml')!r}), duration=0.02)\n"
-        "world.run()\n"
-        "print(time.perf_counter() - t0)\n"
-    )
-    out = subprocess.run([sys.executable, "-c", script], env=env, capture_output=True, text=True, check=True)
-    return float(out.stdout.strip())
-
-
-def test_compile_time_and_warm_start(tmp_path):
-    """First run in a fresh cache compiles the kernels; the second loads them."""
-    cache = tmp_path / "cache"
-    first = _time_fly(cache, tmp_path)
-    second = _time_fly(cache, tmp_path)
-    print(f"\n[coast] start to first step: {first:.2f} s with an empty kernel cache (compile), "
-          f"{second:.2f} s warm (target < 2 s); ratio {first / second:.1f}x")

@@ -1,0 +1,140 @@
+"""``rocketsim compile``: compile the flight kernels into the cache ahead of the first flight.
+
+The kernels are compiled for the machine they run on the first time a flight
+needs them (tens of seconds) and cached (:func:`rocketsim._jit.cache_dir`).
+This command pays that once, with all cores: it flies each scenario to its end
+in a pool of processes (the telemetry is thrown away), so every kernel those
+flights call is compiled by one of the processes and saved in the cache, where
+the others, and every later flight, load it.
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+import time
+from pathlib import Path
+
+import click
+
+from rocketsim.errors import InputError
+from rocketsim_cli.errors import reports_input_errors
+
+_counter = None          # a worker's share of the kernels-compiled count (multiprocessing.Value)
+
+
+def _start_worker(counter) -> None:
+    global _counter
+    _counter = counter
+
+
+def _warm(path: str) -> tuple[str, int, float, str | None]:
+    """Fly the scenario at ``path`` to its end, telemetry discarded: (path, kernels
+    compiled, seconds, error message or None)."""
+    import tempfile
+
+    from rocketsim.scenario.load import load
+    from rocketsim.sim.flight import fly
+    from rocketsim_cli.compiling import Compiles
+
+    done = [0]
+
+    def on_change(compiles) -> None:
+        if compiles.done > done[0]:
+            with _counter.get_lock():
+                _counter.value += compiles.done - done[0]
+            done[0] = compiles.done
+
+    start = time.perf_counter()
+    compiles = Compiles(on_change)
+    error = None
+    with tempfile.TemporaryDirectory() as folder, compiles.listening():
+        try:
+            fly(load(Path(path)), Path(folder) / "warm.mcap")
+        except InputError as failure:
+            error = f"error: {failure}"
+        except Exception as failure:  # noqa: BLE001 - reported, the other scenarios go on
+            error = f"error: {path}: {type(failure).__name__}: {failure}"
+    return path, compiles.done, time.perf_counter() - start, error
+
+
+def _count(n: int, noun: str) -> str:
+    return f"{n} {noun}" + ("" if n == 1 else "es" if noun.endswith("s") else "s")
+
+
+def _scenarios(given: tuple[Path, ...]) -> list[Path]:
+    if given:
+        return list(given)
+    found = sorted(Path("scenarios").glob("*.yaml"))
+    if not found:
+        raise InputError("no scenarios given and none in ./scenarios: name the scenarios your "
+                         "flights use, e.g. rocketsim compile scenarios/*.yaml")
+    return found
+
+
+@click.command("compile")
+@click.argument("scenarios", nargs=-1, type=click.Path(dir_okay=False, exists=True, path_type=Path))
+@click.option("-j", "--jobs", type=click.IntRange(min=1), default=None,
+              help="Processes compiling at once [default: one per core].")
+@reports_input_errors
+def compile_kernels(scenarios: tuple[Path, ...], jobs: int | None) -> None:
+    """Compile the kernels the SCENARIOS fly with into the cache, on all cores.
+
+    Each scenario (default: every scenarios/*.yaml here) is flown to its end
+    in a pool of processes, its telemetry thrown away; the kernels compiled
+    on the way are kept in the cache (ROCKETSIM_CACHE_DIR, default
+    ~/.cache/rocketsim), so that later flights start at once. Run it once
+    when building a CI image, a container or a campaign's workers.
+
+    \b
+    Example:
+        rocketsim compile scenarios/*.yaml
+        ROCKETSIM_CACHE_DIR=/shared/rocketsim rocketsim compile -j 8 scenarios/*.yaml
+    """
+    import multiprocessing
+
+    from rocketsim._jit import cache_dir
+    from rocketsim.scenario.load import load
+
+    paths = _scenarios(scenarios)
+    for path in paths:                  # a bad file fails now, not after minutes of compiling
+        load(path)
+    jobs = min(jobs or os.cpu_count() or 1, len(paths))
+    terminal = sys.stderr.isatty()
+    context = multiprocessing.get_context("spawn")
+    counter = context.Value("i", 0)
+    start = time.perf_counter()
+    failed = []
+
+    def show(finished: int) -> None:
+        if terminal:
+            sys.stderr.write(f"\rcompiling flight kernels: {finished}/{len(paths)} scenarios flown, "
+                             f"{counter.value} kernels compiled, {time.perf_counter() - start:.0f} s"
+                             "\x1b[K")
+            sys.stderr.flush()
+
+    with context.Pool(jobs, initializer=_start_worker, initargs=(counter,)) as pool:
+        pending = [pool.apply_async(_warm, (str(path),)) for path in paths]
+        finished = 0
+        show(0)
+        while pending:
+            pending[0].wait(0.25)
+            for result in [r for r in pending if r.ready()]:
+                pending.remove(result)
+                finished += 1
+                path, compiled, seconds, error = result.get()
+                if error:
+                    failed.append(error)
+                if terminal:
+                    if error:
+                        sys.stderr.write(f"\r{error}\x1b[K\n")
+                else:
+                    click.echo(f"{path}: {_count(compiled, 'kernel')} compiled in {seconds:.1f} s"
+                               + (f" ({error})" if error else ""), err=True)
+            show(finished)
+    if terminal:
+        sys.stderr.write("\r\x1b[K")
+    click.echo(f"compiled {_count(counter.value, 'kernel')} for {_count(len(paths), 'scenario')} in "
+               f"{time.perf_counter() - start:.1f} s with {_count(jobs, 'process')} into {cache_dir()}")
+    if failed:
+        sys.exit(2)

@@ -1,0 +1,123 @@
+"""Benchmark: start-up of the command line, whole processes, cold and warm kernel cache.
+
+Printed (never asserted), each against ``python -c pass`` measured in the same
+run, with the machine's load (``os.getloadavg()``); wall and CPU seconds of the
+child process (CPU is steadier on a loaded machine):
+
+* ``rocketsim --help``, ``validate``, ``schema``: target <= 0.3 s;
+* a warm ``rocketsim fly scenarios/iss-coast.yaml --duration 0``: target <= 0.6 s;
+
+and, only with ``ROCKETSIM_BENCH_COLD=1`` in the environment (each compiles
+every kernel of a flight from an empty cache, a minute or more on a loaded
+machine, too long for every run of the suite):
+
+* a cold ``rocketsim fly scenarios/iss-coast.yaml`` (target <= 8 s) and the ratio
+  cold / warm, with the kernels and signatures compiled;
+* a cold Falcon 9 mission, ``scenarios/falcon9-leo.yaml`` (target <= 20 s);
+* ``rocketsim compile`` of three scenarios on 1 and on 2 processes: the speed-up.
+
+Run: ``ROCKETSIM_BENCH_COLD=1 python -m pytest tests/benchmarks/test_bench_startup.py -s``.
+"""
+
+from __future__ import annotations
+
+import os
+import resource
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[2]
+COLD = os.environ.get("ROCKETSIM_BENCH_COLD") == "1"
+cold = pytest.mark.skipif(not COLD, reason="cold-cache benchmarks: set ROCKETSIM_BENCH_COLD=1")
+ROCKETSIM = [sys.executable, "-m", "rocketsim_cli.main"]
+
+
+def _load() -> str:
+    return "load " + " ".join(f"{x:.1f}" for x in os.getloadavg())
+
+
+def _run(command: list[str], env: dict | None = None) -> tuple[float, float]:
+    """(wall s, CPU s) of ``command`` run to its end in ROOT; it must succeed."""
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    start = time.perf_counter()
+    subprocess.run(command, cwd=ROOT, env=env, check=True, stdout=subprocess.DEVNULL,
+                   stderr=subprocess.DEVNULL)
+    wall = time.perf_counter() - start
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return wall, (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+
+
+def _best(command: list[str], repeats: int = 3, env: dict | None = None) -> tuple[float, float]:
+    runs = [_run(command, env) for _ in range(repeats)]
+    return min(r[0] for r in runs), min(r[1] for r in runs)
+
+
+def _cache_env(folder: Path) -> dict:
+    env = {k: v for k, v in os.environ.items() if k != "NUMBA_CACHE_DIR"}
+    env["ROCKETSIM_CACHE_DIR"] = str(folder)
+    return env
+
+
+def _compiled(folder: Path) -> str:
+    """Kernels (index files) and signatures (code files) in a cache folder."""
+    return (f"{len(list(folder.rglob('*.nbi')))} kernels, "
+            f"{len(list(folder.rglob('*.nbc')))} signatures")
+
+
+def test_light_commands_against_python():
+    base = _best([sys.executable, "-c", "pass"])
+    print(f"\n[startup] {_load()}; python -c pass: {base[0]:.3f} s wall, {base[1]:.3f} s CPU")
+    for args in (["--help"], ["validate", "scenarios/iss-coast.yaml"], ["schema"]):
+        wall, cpu = _best(ROCKETSIM + args)
+        print(f"[startup] rocketsim {' '.join(args)}: {wall:.3f} s wall ({wall / base[0]:.1f}x python), "
+              f"{cpu:.3f} s CPU (target <= 0.3 s)")
+
+
+def test_warm_fly_to_its_first_step(tmp_path):
+    command = ROCKETSIM + ["fly", "scenarios/iss-coast.yaml", "--duration", "0", "-o",
+                           str(tmp_path / "zero.mcap")]
+    _run(command)                                            # warm the cache
+    base = _best([sys.executable, "-c", "pass"])
+    wall, cpu = _best(command, repeats=2)
+    print(f"\n[startup] {_load()}; warm rocketsim fly iss-coast --duration 0: {wall:.2f} s wall, "
+          f"{cpu:.2f} s CPU (target <= 0.6 s); python -c pass {base[0]:.3f} s")
+
+
+def _cold_and_warm(scenario: str, tmp_path: Path, target: float) -> None:
+    folder = tmp_path / "cache"
+    env = _cache_env(folder)
+    command = ROCKETSIM + ["fly", scenario, "-o", str(tmp_path / "run.mcap")]
+    cold_wall, cold_cpu = _run(command, env)
+    warm_wall, warm_cpu = _run(command, env)
+    print(f"\n[startup] {_load()}; cold rocketsim fly {scenario}: {cold_wall:.1f} s wall, "
+          f"{cold_cpu:.1f} s CPU (target <= {target:g} s), {_compiled(folder)}; warm "
+          f"{warm_wall:.1f} s wall, {warm_cpu:.1f} s CPU; cold / warm {cold_wall / warm_wall:.1f}x wall, "
+          f"{cold_cpu / warm_cpu:.1f}x CPU")
+
+
+@cold
+def test_cold_coasting_flight(tmp_path):
+    _cold_and_warm("scenarios/iss-coast.yaml", tmp_path, 8.0)
+
+
+@cold
+def test_cold_falcon9_mission(tmp_path):
+    _cold_and_warm("scenarios/falcon9-leo.yaml", tmp_path, 20.0)
+
+
+@cold
+def test_compile_on_one_and_two_processes(tmp_path):
+    scenarios = ["scenarios/iss-coast.yaml", "scenarios/spaceport-ballistic.yaml",
+                 "scenarios/falcon9-hop.yaml"]
+    times = {}
+    for jobs in (1, 2):
+        folder = tmp_path / f"cache-{jobs}"
+        times[jobs] = _run(ROCKETSIM + ["compile", "-j", str(jobs), *scenarios], _cache_env(folder))
+        print(f"\n[startup] {_load()}; rocketsim compile -j {jobs} ({len(scenarios)} scenarios): "
+              f"{times[jobs][0]:.1f} s wall, {times[jobs][1]:.1f} s CPU, {_compiled(folder)}")
+    print(f"[startup] compile speed-up on 2 processes: {times[1][0] / times[2][0]:.2f}x wall "
+          f"(CPU spent {times[2][1] / times[1][1]:.2f}x that of one process)")

@@ -1,0 +1,102 @@
+"""A cold kernel cache: announced on a terminal, silent elsewhere, warmed by ``rocketsim compile``.
+
+The first flight on a machine compiles its kernels; ``rocketsim fly`` says so on
+a terminal, and ``rocketsim compile`` compiles them ahead into the cache. Here the cache of a small flight is copied and one kernel the
+flight calls at its end (``orbit_figures``, the summary's orbit) is deleted from
+the copy, so that ``rocketsim fly`` over the copy compiles exactly that one
+kernel (a few seconds, not the minute of a whole cold cache). stderr is a
+pseudo-terminal (the pty module) in one run and a pipe in the other.
+"""
+
+from __future__ import annotations
+
+import os
+import pty
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from rocketsim._jit import cache_dir
+from rocketsim.scenario.load import load
+from rocketsim.sim.flight import fly
+from rocketsim_cli.compiling import FIRST_RUN
+
+KERNEL = "sampling.orbit_figures-*"
+
+
+@pytest.fixture
+def one_cold_kernel(scenario, tmp_path):
+    """(scenario, environment) whose kernel cache lacks only ``orbit_figures``."""
+    path = scenario(duration="1 s")
+    fly(load(path), tmp_path / "warm.mcap")            # every kernel of the flight cached
+    warm = Path(cache_dir())
+    root = tmp_path / "cache"
+    shutil.copytree(warm, root / warm.name)
+    removed = list((root / warm.name).rglob(KERNEL))
+    assert removed, "the flight's cache holds orbit_figures"
+    for file in removed:
+        file.unlink()
+    env = {k: v for k, v in os.environ.items() if k != "NUMBA_CACHE_DIR"}
+    env["ROCKETSIM_CACHE_DIR"] = str(root)
+    return path, env, root / warm.name
+
+
+def _fly(path, env, tmp_path, stderr):
+    return subprocess.Popen([sys.executable, "-m", "rocketsim_cli.main", "fly", str(path),
+                             "-o", str(tmp_path / "cold.mcap")],
+                            env=env, stdout=subprocess.PIPE, stderr=stderr)
+
+
+def test_a_terminal_sees_the_kernels_compile(one_cold_kernel, tmp_path):
+    path, env, cache = one_cold_kernel
+    master, slave = pty.openpty()
+    process = _fly(path, env, tmp_path, slave)
+    os.close(slave)
+    shown = b""
+    while True:
+        try:
+            chunk = os.read(master, 4096)
+        except OSError:                                  # EIO: the child closed the terminal
+            break
+        if not chunk:
+            break
+        shown += chunk
+    os.close(master)
+    assert process.wait(timeout=300) == 0
+    text = shown.decode()
+    assert f"{FIRST_RUN}: 0 compiled sim.sampling.orbit_figures" in text
+    assert "compiled 1 flight kernel for this machine in" in text
+    assert list(cache.rglob(KERNEL)), "the compiled kernel went back into the cache"
+
+
+def test_off_a_terminal_nothing_is_said(one_cold_kernel, tmp_path):
+    path, env, cache = one_cold_kernel
+    process = _fly(path, env, tmp_path, subprocess.PIPE)
+    _, errors = process.communicate(timeout=300)
+    assert process.returncode == 0
+    assert list(cache.rglob(KERNEL)), "the kernel did compile"
+    assert errors.decode() == ""
+
+
+def test_compile_flies_the_scenarios_into_the_cache(one_cold_kernel, tmp_path):
+    path, env, cache = one_cold_kernel
+    done = subprocess.run([sys.executable, "-m", "rocketsim_cli.main", "compile", str(path), "-j", "2"],
+                          env=env, capture_output=True, text=True, timeout=300)
+    assert done.returncode == 0, done.stderr
+    assert f"{path}: 1 kernel compiled in" in done.stderr       # one line per scenario off a terminal
+    assert "compiled 1 kernel for 1 scenario in" in done.stdout
+    assert "with 1 process into" in done.stdout                 # no more processes than scenarios
+    assert str(cache) in done.stdout
+    assert list(cache.rglob(KERNEL))
+
+
+def test_compile_names_a_bad_scenario_and_exits_2(write, tmp_path):
+    bad = write("bad.yaml", "name: bad\nvehicle: missing.yaml\nmission: missing.yaml\n")
+    done = subprocess.run([sys.executable, "-m", "rocketsim_cli.main", "compile", str(bad)],
+                          capture_output=True, text=True, timeout=300)
+    assert done.returncode == 2
+    assert "error:" in done.stderr and "bad.yaml" in done.stderr
+    assert "Traceback" not in done.stderr

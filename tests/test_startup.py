@@ -1,0 +1,69 @@
+"""Start-up of the command line: light commands stay light.
+
+``rocketsim --help``, ``validate``, ``schema`` and ``replay`` of a run's summary
+read files and print; they must not import numba (half a second and more),
+scipy, or the simulator itself (``rocketsim.sim.world`` and the kernels'
+callers). Each command runs in a fresh interpreter, which reports the modules
+it ended up with.
+"""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+HEAVY = ("numba", "llvmlite", "scipy", "rocketsim.sim.world", "rocketsim.telemetry.splice")
+
+_RUN = """
+import json, sys
+from rocketsim_cli.main import main
+try:
+    main(sys.argv[2:], prog_name="rocketsim")
+except SystemExit as exit:
+    code = exit.code
+print(json.dumps({"code": code, "heavy": [m for m in json.loads(sys.argv[1]) if m in sys.modules]}))
+"""
+
+
+def _heavy_imports(*args: str) -> tuple[int, list[str]]:
+    done = subprocess.run([sys.executable, "-c", _RUN, json.dumps(HEAVY), *map(str, args)],
+                          cwd=ROOT, capture_output=True, text=True, check=True)
+    result = json.loads(done.stdout.strip().splitlines()[-1])
+    return result["code"], result["heavy"]
+
+
+@pytest.mark.parametrize("args", [
+    ["--help"],
+    ["fly", "--help"],
+    ["validate", "scenarios/iss-coast.yaml", "vehicles/cubesat-6u.yaml"],
+    ["schema"],
+    ["schema", "--kind", "vehicle"],
+    ["windows", "--help"],
+    ["ephemeris", "--help"],
+])
+def test_light_commands_import_neither_numba_nor_scipy_nor_the_simulator(args):
+    code, heavy = _heavy_imports(*args)
+    assert code in (0, None)
+    assert heavy == []
+
+
+def test_a_bad_choice_is_still_refused_without_importing_the_library():
+    code, heavy = _heavy_imports("schema", "--kind", "rocket")
+    assert code == 2
+    assert heavy == []
+
+
+def test_replay_of_a_summary_does_not_load_the_simulator(scenario, tmp_path):
+    from rocketsim.scenario.load import load
+    from rocketsim.sim.flight import fly
+
+    run_file = tmp_path / "run.mcap"
+    fly(load(scenario(duration="1 s")), run_file)
+    code, heavy = _heavy_imports("replay", run_file)
+    assert code == 0
+    assert heavy == []
