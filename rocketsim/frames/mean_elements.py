@@ -39,30 +39,17 @@ import math
 import numpy as np
 
 from rocketsim.constants import EARTH_J2, EARTH_MU, EARTH_RADIUS_EQ
-from rocketsim.frames.elements import Elements, elements_to_state, state_to_elements
+from rocketsim.frames.elements import (Elements, elements_to_state, mean_anomaly, state_to_elements,
+                                       true_anomaly)
 
 SAMPLES = 256          # mean anomalies per revolution for the short-period quadrature
 _ITERATIONS = 8        # osculating -> mean fixed-point iterations (each gains a factor ~J2)
 _TWO_PI = 2.0 * math.pi
 
 
-def _true_anomaly(mean_anomaly, e):
-    """True anomaly (rad) of the mean anomaly (rad) at eccentricity ``e`` (Kepler's equation by Newton)."""
-    ecc = np.array(mean_anomaly, dtype=float) + e * np.sin(mean_anomaly)
-    for _ in range(30):
-        ecc = ecc - (ecc - e * np.sin(ecc) - mean_anomaly) / (1.0 - e * np.cos(ecc))
-    return 2.0 * np.arctan2(np.sqrt(1.0 + e) * np.sin(0.5 * ecc), np.sqrt(1.0 - e) * np.cos(0.5 * ecc))
-
-
-def _mean_anomaly(nu, e):
-    """Mean anomaly (rad) of the true anomaly ``nu`` (rad) at eccentricity ``e``."""
-    ecc = 2.0 * math.atan2(math.sqrt(1.0 - e) * math.sin(0.5 * nu), math.sqrt(1.0 + e) * math.cos(0.5 * nu))
-    return ecc - e * math.sin(ecc)
-
-
 def _regular(el: Elements) -> np.ndarray:
     """``(a, i, raan, e cos w, e sin w, M + w)`` of classical elements."""
-    m = _mean_anomaly(el.nu, el.e)
+    m = mean_anomaly(el.nu, el.e)
     return np.array([el.a, el.i, el.raan, el.e * math.cos(el.argp), el.e * math.sin(el.argp), m + el.argp])
 
 
@@ -71,7 +58,7 @@ def _classical(x: np.ndarray, mu: float) -> Elements:
     a, i, raan, xi, zeta, lam = (float(v) for v in x)
     e = math.hypot(xi, zeta)
     argp = math.atan2(zeta, xi) if e > 0.0 else 0.0
-    nu = float(_true_anomaly(lam - argp, e))
+    nu = float(true_anomaly(lam - argp, e))
     return Elements(a=a, e=e, i=i, raan=raan % _TWO_PI, argp=argp % _TWO_PI, nu=nu % _TWO_PI, mu=mu)
 
 
@@ -82,7 +69,7 @@ def _short_period(x: np.ndarray, mu: float, radius: float, j2: float) -> np.ndar
     e = math.hypot(xi, zeta)
     argp = math.atan2(zeta, xi) if e > 0.0 else 0.0
     m = _TWO_PI * np.arange(SAMPLES) / SAMPLES
-    f = _true_anomaly(m, e)
+    f = true_anomaly(m, e)
     eta = math.sqrt(1.0 - e * e)
     p = a * eta * eta
     h = math.sqrt(mu * p)
