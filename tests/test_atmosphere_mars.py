@@ -39,9 +39,11 @@ def test_glenn_formulas_to_rounding(h):
 
 def test_glenn_temperature_step_at_7_km_is_the_published_one():
     # The two published lines do not meet: -37.986 °C and -38.940 °C at 7 km. The model is
-    # kept exactly as specified, so the step is the formulas' own 0.954 K.
+    # kept exactly as specified, so the step is the formulas' own 0.954 K, and the density
+    # (the pressure formula is one line) steps up by 235.114 / 234.160 - 1 = 0.41 %.
     below, above = mars_atmosphere(7000.0), mars_atmosphere(7000.0 + 1e-6)
     assert below.temperature - above.temperature == pytest.approx(0.954, abs=1e-3)
+    assert above.density / below.density - 1.0 == pytest.approx(0.00407, abs=2e-5)
 
 
 def _one_sided(h, eps=1.0):

@@ -103,7 +103,7 @@ def test_orbit_altitudes_are_over_the_central_body(probe_about, tmp_path):
     central body: a probe started in a 400 km circular orbit of Mars (the scenario's
     altitude over Mars's equatorial radius, 3396.19 km, IAU) reads ~400 km for all three
     (Earth-referenced they would read about -2 980 km)."""
-    path = probe_about("mars", "altitude: 400 km, inclination: 25 deg", """
+    path = probe_about("mars", "altitude: 400 km, inclination: 25 deg, elements: osculating", """
 def main(fc):
     fc.event("readings", periapsis=fc.periapsis, apoapsis=fc.apoapsis, alt=fc.altitude,
              central=fc.central_body)
@@ -191,7 +191,7 @@ def test_radar_altitude_over_the_moon_is_the_height_over_the_moon(probe_about, t
     and the clearance read its height over the Moon's surface, as fc.altitude does (truth
     sensors: the same number), about 100 km (the 1737.4 km sphere of IAU 2015). They read
     the WGS84 height of the Moon-centred position before, -4 540 km."""
-    path = probe_about("moon", "altitude: 100 km, inclination: 80 deg", RADAR)
+    path = probe_about("moon", "altitude: 100 km, inclination: 80 deg, elements: osculating", RADAR)
     r = fly(load(path), tmp_path / "run.mcap")["bodies"]["probe"]["events"][0]
     assert r["body"] == "moon"
     assert r["radar"] == r["altitude"] == r["clearance"]

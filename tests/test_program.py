@@ -99,7 +99,9 @@ def test_summary_json_lists_events_final_state_and_orbit(scenario, cli, tmp_path
     assert [e["name"] for e in body["events"]] == ["checkpoint"]
     assert body["events"][0]["time_s"] == pytest.approx(2.0)
     assert 410e3 < body["events"][0]["altitude_m"] < 440e3
-    assert body["orbit"]["inclination_deg"] == pytest.approx(51.6, abs=0.01)
+    # the start is in mean elements; the osculating inclination the summary reports
+    # ripples about the mean 51.6 deg by up to (3/4) J2 (R/a)^2 sin i cos i = 0.020 deg
+    assert body["orbit"]["inclination_deg"] == pytest.approx(51.6, abs=0.021)
     assert body["final"]["time_s"] == pytest.approx(10.0)
     assert "checkpoint" in result.output
 

@@ -330,7 +330,7 @@ def test_air_data_about_mars_are_mars_air_turning_with_mars(probe_about, tmp_pat
     h in m; Glenn Research Center, "Mars Atmosphere Model - Metric Units") and the air
     turning at Mars's IAU 2015 rate W-dot = 350.891982443297 deg/day: q = rho |v - Omega x r|^2 / 2."""
     from rocketsim.telemetry.reader import messages
-    path = probe_about("mars", "altitude: 30 km, inclination: 0 deg")
+    path = probe_about("mars", "altitude: 30 km, inclination: 0 deg, elements: osculating")
     fly(load(path), tmp_path / "run.mcap")
     first = next(m for _, _, m in messages(tmp_path / "run.mcap", ["/probe/state"]))
     assert first["central_body"] == "mars"

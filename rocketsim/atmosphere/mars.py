@@ -13,7 +13,7 @@ Surveyor radio-occultation data of April 1996)::
 
 The two temperature lines do not meet at 7 km (-37.99 °C below, -38.94 °C
 above): the model is used as published, so temperature and density step
-there by 0.95 K and 2.5 %. Uncertainty: about 1 % below 20 km; the model is
+there by 0.95 K and 0.41 % (denser above). Uncertainty: about 1 % below 20 km; the model is
 known to be too dense above (x1.8 at 30 km, x2.6 at 40 km;
 docs/physics.md#mars-atmosphere).
 

@@ -205,8 +205,22 @@ def time_to_apoapsis(r, v, mu: float = EARTH_MU) -> float:
     el = state_to_elements(r, v, mu)
     if not el.e < 1.0:
         return math.nan
-    half = 0.5 * el.nu
-    ecc_anom = 2.0 * math.atan2(math.sqrt(1.0 - el.e) * math.sin(half), math.sqrt(1.0 + el.e) * math.cos(half))
-    mean_anom = ecc_anom - el.e * math.sin(ecc_anom)
     n = math.sqrt(mu / el.a**3)
-    return _wrap(math.pi - mean_anom) / n
+    return _wrap(math.pi - mean_anomaly(el.nu, el.e)) / n
+
+
+def mean_anomaly(nu: float, e: float) -> float:
+    """Mean anomaly (rad, in (-pi, pi]) of the true anomaly ``nu`` (rad) of an
+    ellipse of eccentricity ``e``: the eccentric anomaly, then Kepler's equation."""
+    half = 0.5 * nu
+    ecc_anom = 2.0 * math.atan2(math.sqrt(1.0 - e) * math.sin(half), math.sqrt(1.0 + e) * math.cos(half))
+    return ecc_anom - e * math.sin(ecc_anom)
+
+
+def true_anomaly(mean_anom, e):
+    """True anomaly (rad) of the mean anomaly ``mean_anom`` (rad; scalar or array) of an
+    ellipse of eccentricity ``e``: Kepler's equation solved by Newton's method."""
+    ecc = np.array(mean_anom, dtype=float) + e * np.sin(mean_anom)
+    for _ in range(30):
+        ecc = ecc - (ecc - e * np.sin(ecc) - mean_anom) / (1.0 - e * np.cos(ecc))
+    return 2.0 * np.arctan2(np.sqrt(1.0 + e) * np.sin(0.5 * ecc), np.sqrt(1.0 - e) * np.cos(0.5 * ecc))

@@ -20,8 +20,9 @@ from typing import Annotated, Literal, Optional, Union
 
 from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
 
-from rocketsim.bodies.sun_synchronous import sun_synchronous_inclination
-from rocketsim.constants import MAX_HEADLESS_STEP, STEP
+from rocketsim.bodies.sun_synchronous import (sun_synchronous_inclination,
+                                              sun_synchronous_osculating_inclination)
+from rocketsim.constants import EARTH_RADIUS_EQ, MAX_HEADLESS_STEP, STEP
 from rocketsim.scenario.classic_range import CLASSIC, classic_site
 from rocketsim.scenario.weather import Weather
 from rocketsim.scenario.units import Angle, Duration, Frequency, Inertia, Length, Mass, Speed
@@ -111,22 +112,38 @@ class SiteSpec(Strict):
 
 # --- mission ------------------------------------------------------------------
 
+# how a mission file's orbital elements are read
+ElementsKind = Literal["mean", "osculating"]
+ELEMENTS_DESCRIPTION = (
+    "mean: Kozai's first-order J2 mean elements (the orbit with its twice-per-revolution J2 "
+    "ripple removed, as mission designers state orbits; rocketsim.frames.mean_elements); "
+    "osculating: the two-body elements of the instantaneous state")
+
+
 class OrbitStart(Strict):
     """Start in orbit about Earth (or ``body``) from classical elements at the mission epoch.
 
     Give ``altitude`` (circular, above the equatorial radius) or
-    ``semi_major_axis`` (with ``eccentricity``). About the Moon or Mars the
+    ``semi_major_axis`` (with ``eccentricity``). The elements are Kozai mean
+    elements unless ``elements: osculating`` (the starting state is then the
+    two-body state of the numbers as given); ``true_anomaly`` is that of the
+    mean ellipse for mean elements. ``inclination: sso`` (about Earth) asks for
+    the sun-synchronous inclination of the orbit
+    (:mod:`rocketsim.bodies.sun_synchronous`). About the Moon or Mars the
     mission flies ``gravity: n-body`` in that body's frame (its IAU pole as
     ``z``, ``x`` the node of its equator on the J2000 equator; ``raan`` from
-    that node).
+    that node) and mean elements are those of that body's J2.
     """
 
     body: Literal["earth", "moon", "mars"] = Field("earth", description="the body orbited")
+    elements: ElementsKind = Field("mean", description=ELEMENTS_DESCRIPTION)
 
     altitude: Optional[Length] = None
     semi_major_axis: Optional[Annotated[Length, Field(gt=0)]] = None
     eccentricity: Annotated[float, Field(ge=0, lt=1)] = 0.0
-    inclination: Angle
+    inclination: Union[Angle, Literal["sso"]] = Field(
+        description="an angle, or 'sso' (about Earth): sun-synchronous, the mean node turning "
+        "with the mean Sun")
     raan: Angle = 0.0
     arg_periapsis: Angle = 0.0
     true_anomaly: Angle = 0.0
@@ -137,6 +154,16 @@ class OrbitStart(Strict):
             raise ValueError("give exactly one of 'altitude' or 'semi_major_axis'")
         if self.altitude is not None and self.eccentricity != 0.0:
             raise ValueError("'altitude' means a circular orbit: use 'semi_major_axis' with 'eccentricity'")
+        if self.inclination == "sso":
+            if self.body != "earth":
+                raise ValueError("'inclination: sso' is sun-synchronous about Earth only")
+            a = self.semi_major_axis if self.altitude is None else EARTH_RADIUS_EQ + self.altitude
+            if self.elements == "mean":
+                i = sun_synchronous_inclination(a - EARTH_RADIUS_EQ, self.eccentricity)
+            else:
+                i = sun_synchronous_osculating_inclination(a, self.eccentricity, self.raan,
+                                                           self.arg_periapsis, self.true_anomaly)
+            object.__setattr__(self, "inclination", i)
         return self
 
 
@@ -178,19 +205,28 @@ class StartSpec(Strict):
 class TargetOrbit(Strict):
     """The orbit a mission aims for (programs read it as ``fc.target``).
 
-    ``inclination: sso`` asks for the sun-synchronous inclination at the
-    altitude (:func:`rocketsim.bodies.sun_synchronous.sun_synchronous_inclination`);
-    programs read the number.
+    The altitude and inclination are Kozai mean elements unless ``elements:
+    osculating`` (then the altitude is the osculating circular radius at the
+    ascending node). ``inclination: sso`` asks for the sun-synchronous
+    inclination of that orbit
+    (:func:`rocketsim.bodies.sun_synchronous.sun_synchronous_inclination`: the
+    mean node turning with the mean Sun); programs read the number.
     """
 
     altitude: Annotated[Length, Field(gt=0)] = Field(description="circular altitude above the equatorial radius")
-    inclination: Union[Literal["sso"], Angle] = Field(
+    elements: ElementsKind = Field("mean", description=ELEMENTS_DESCRIPTION)
+    inclination: Union[Angle, Literal["sso"]] = Field(
         description="an angle, or 'sso': sun-synchronous at the altitude (J2 nodal rate = the mean Sun's)")
 
     @model_validator(mode="after")
     def _sun_synchronous(self) -> "TargetOrbit":
         if self.inclination == "sso":
-            object.__setattr__(self, "inclination", sun_synchronous_inclination(self.altitude))
+            if self.elements == "mean":
+                i = sun_synchronous_inclination(self.altitude)
+            else:
+                i = sun_synchronous_osculating_inclination(EARTH_RADIUS_EQ + self.altitude, 0.0, 0.0,
+                                                           0.0, 0.0)
+            object.__setattr__(self, "inclination", i)
         return self
 
 

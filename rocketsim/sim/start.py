@@ -21,10 +21,10 @@ import math
 
 import numpy as np
 
-from rocketsim.constants import EARTH_MU, EARTH_RADIUS_EQ
 from rocketsim.dynamics.soi import CENTRAL
 from rocketsim.frames.earth_fixed import ecef_to_eci_velocity
-from rocketsim.frames.elements import elements_to_state
+from rocketsim.frames.elements import Elements, elements_to_state
+from rocketsim.frames.mean_elements import mean_to_osculating
 from rocketsim.frames.geodetic import enu_basis, geodetic_to_ecef
 from rocketsim.frames.quaternion import quat_from_matrix
 from rocketsim.scenario.models import MissionSpec, SiteSpec
@@ -52,11 +52,15 @@ def start_state(mission: MissionSpec, site: SiteSpec | None, gmst0: float):
         return r, v, site_attitude(site, start.site.elevation)
     if start.orbit is not None:
         orbit = start.orbit
-        mu, radius = (EARTH_MU, EARTH_RADIUS_EQ) if orbit.body == "earth" else CENTRAL[orbit.body][:2]
+        mu, radius, j2 = CENTRAL[orbit.body][:3]
         a = orbit.semi_major_axis if orbit.altitude is None else radius + orbit.altitude
         node = orbit.raan - gmst0 if orbit.body == "earth" else orbit.raan
-        r, v = elements_to_state(a, orbit.eccentricity, orbit.inclination, node,
-                                 orbit.arg_periapsis, orbit.true_anomaly, mu)
+        elements = Elements(a, orbit.eccentricity, orbit.inclination, node, orbit.arg_periapsis,
+                            orbit.true_anomaly, mu)
+        if orbit.elements == "mean":
+            elements = mean_to_osculating(elements, radius, j2)
+        r, v = elements_to_state(elements.a, elements.e, elements.i, elements.raan, elements.argp,
+                                 elements.nu, mu)
         return np.asarray(r), np.asarray(v), prograde_attitude(r, v)
     state = start.state
     r = np.array(state.position, dtype=float)
