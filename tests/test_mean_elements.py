@@ -19,7 +19,7 @@ import pytest
 
 from rocketsim.constants import EARTH_J2, EARTH_MU, EARTH_RADIUS_EQ, EARTH_RADIUS_POLAR
 from rocketsim.dynamics.reference import integrate_reference
-from rocketsim.dynamics.state import R, V, make_params, make_state
+from rocketsim.layout import R, V, make_params, make_state
 from rocketsim.frames.elements import Elements, state_to_elements
 from rocketsim.frames.mean_elements import (mean_elements_of_state, mean_to_osculating,
                                             osculating_to_mean, state_of_mean_elements)

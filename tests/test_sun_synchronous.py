@@ -18,7 +18,7 @@ from rocketsim.bodies.sun_synchronous import nodal_rate, sun_synchronous_inclina
 from rocketsim.constants import (EARTH_J2, EARTH_MU, EARTH_RADIUS_EQ, EARTH_RADIUS_POLAR,
                                  TROPICAL_YEAR)
 from rocketsim.dynamics import nbody, rails
-from rocketsim.dynamics.state import R, V, make_params, make_state
+from rocketsim.layout import R, V, make_params, make_state
 from rocketsim.frames.mean_elements import mean_elements_of_state
 from rocketsim.scenario.load import load
 from rocketsim.sim.start import start_state
