@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import json
 import signal
 import sys
 from pathlib import Path
@@ -11,6 +10,7 @@ import click
 
 from rocketsim.scenario.load import load
 from rocketsim.sim.flight import fly as fly_scenario
+from rocketsim.telemetry.writer import strict_json
 from rocketsim_cli.errors import reports_input_errors
 from rocketsim_cli.progress import flight_progress
 from rocketsim_cli.summary import format_summary
@@ -65,4 +65,4 @@ def fly(scenario: Path, output: Path | None, step: float | None, duration: float
     click.echo(format_summary(summary))
     click.echo(f"telemetry: {output}")
     if summary_json is not None:
-        summary_json.write_text(json.dumps(summary, indent=2, allow_nan=True) + "\n")
+        summary_json.write_text(strict_json(summary, indent=True) + "\n")
