@@ -351,10 +351,11 @@ class World:
         """The telemetry state message of ``body`` at its time (:mod:`rocketsim.sim.sampling`)."""
         return sampling.message(body, self.gmst0, self.where)
 
-    def _record(self, body: Body) -> None:
+    def _record(self, body: Body, leaving: bool = False) -> None:
         """Write ``body``'s telemetry sample: its state message (as :meth:`sample`) and the
-        Foxglove messages drawn from it, from the numbers alone (no dictionaries)."""
-        self.telemetry.sample(body.name, *sampling.values(body, self.gmst0, self.where))
+        Foxglove messages drawn from it, from the numbers alone (no dictionaries);
+        ``leaving``: its last in a frame it leaves at this instant (a handover)."""
+        self.telemetry.sample(body.name, *sampling.values(body, self.gmst0, self.where), leaving=leaving)
 
     def orbit_summary(self, body: Body) -> dict:
         """The osculating elements of ``body``'s state message (:func:`rocketsim.sim.sampling.orbit`)."""
@@ -584,7 +585,7 @@ class World:
         a sample in the old frame, the handover event, a sample in the new one."""
         old = body.central
         if self.telemetry is not None:
-            self._record(body)
+            self._record(body, leaving=True)
         body.y, body.p = recentre(body.y, body.p, body.t, new, self.gmst0)
         body.central, body.mu, body._view = new, float(body.p[P_MU]), None
         if body.vehicle is not None:

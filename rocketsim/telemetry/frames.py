@@ -21,12 +21,17 @@ Frames (``foxglove.FrameTransform``: a child frame's pose in its parent):
   different Mars frames (the pole moves): the second is ``mars_inertial_2``
   (and ``mars_fixed_2``);
 * ``<body>``: the body's axes at its centre of mass, under the inertial frame
-  its state is expressed in, re-parented at a handover;
+  its state is expressed in: the root's, or, about another centre, the frame
+  ``<body>/<inertial frame>`` (``lunar-orbiter/moon_inertial``). A frame has
+  one parent for the whole file (the app and its checks relate frames through
+  one tree), so at a handover the body goes on in the frame of its new
+  centre;
 * ``mission``: the centre of mass of the lead body (the first one, the
-  stack) with the axes of its inertial frame. Followed in the 3-D panel, it
-  keeps what is looked at near the origin: the app composes transforms in
-  64-bit floats but draws in 32-bit ones, about 0.5 m steps at Earth's radius
-  from the origin, a millionth of that a metre away.
+  stack) with the root's axes, under the root for the whole file, so it
+  follows the stack across handovers (from Earth to Mars). Followed in the
+  3-D panel, it keeps what is looked at near the origin: the app composes
+  transforms in 64-bit floats but draws in 32-bit ones, about 0.5 m steps at
+  Earth's radius from the origin, a millionth of that a metre away.
 
 A central body's frames are published on ``/<body>/transform`` (``/earth/transform``...)
 when its frame is first used and then once a second of mission time: Foxglove
@@ -93,6 +98,24 @@ class FrameTree:
         self._root_field = None
         self._at: dict[CentralFrame, int] = {}     # frame -> the second of its last transforms
 
+    @property
+    def root(self) -> str | None:
+        """The root frame's name (None before the first frame)."""
+        return None if self._root is None else self._frames[self._root][0]
+
+    def body_frame(self, body: str, frame: CentralFrame) -> tuple[str, str]:
+        """``(parent, child)`` of ``body``'s transform when its state is in ``frame``."""
+        parent = self.inertial(frame)
+        return parent, body if frame == self._root else f"{body}/{parent}"
+
+    def is_root(self, frame: CentralFrame) -> bool:
+        return frame == self._root
+
+    def in_root(self, frame: CentralFrame, r, t: float) -> np.ndarray:
+        """Position ``r`` (m, in ``frame``) in the root frame at mission time ``t`` (s)."""
+        place, turn = self._placement(frame, t)
+        return place + turn @ np.asarray(r, dtype=float)
+
     def inertial(self, frame: CentralFrame) -> str:
         """The name of ``frame``, a new frame of the tree if it is not one yet."""
         names = self._frames.get(frame)
@@ -106,16 +129,17 @@ class FrameTree:
             names = self._frames[frame] = frame_names(frame.center, k)
         return names[0]
 
-    def due(self, t: float, time: dict) -> list[tuple[str, dict]]:
-        """``(central body, FrameTransform)`` to write at mission time ``t`` (s), Foxglove
-        ``time``: the transforms of each frame new since the last call or not written in
-        this second of mission time."""
+    def due(self, t: float, stamp: int) -> list[tuple[str, dict]]:
+        """``(central body, FrameTransform)`` to write at mission time ``t`` (s), log time
+        ``stamp`` (ns): the transforms of each frame new since the last call or not
+        written in this second of mission time."""
         second = math.floor(t)
         out = []
         for frame, (inertial, fixed) in self._frames.items():
             if self._at.get(frame) == second:
                 continue
             self._at[frame] = second
+            time = foxglove.timestamp(stamp)
             if frame != self._root:
                 out.append((frame.center, self._in_root(frame, inertial, t, time)))
             if fixed is not None:
@@ -130,12 +154,16 @@ class FrameTree:
             return earth_rotation_angle(t)
         return float(pole_and_meridian(frame.center, frame.jd0_tt + t / _SECONDS_PER_DAY)[2])
 
-    def _in_root(self, frame: CentralFrame, name: str, t: float, time: dict) -> dict:
-        """``frame`` in the root: its centre where the ephemeris has it, its axes turned."""
+    def _placement(self, frame: CentralFrame, t: float) -> tuple[np.ndarray, np.ndarray]:
+        """``frame``'s centre in the root frame at ``t`` (m: where the ephemeris has it) and
+        the matrix turning its components into the root's."""
         root = self._root
         if self._root_field is None:
             self._root_field = make_field(root.center, root.jd0_tt, rotation=np.reshape(root.rotation, (3, 3)))
         place = bodies_at(self._root_field, t)[0][BODIES.index(frame.center)]
-        turn = np.reshape(root.rotation, (3, 3)).T @ np.reshape(frame.rotation, (3, 3))
-        return foxglove.frame_transform(time, self._frames[root][0], name, place.tolist(),
-                                        quat_from_matrix(turn).tolist())
+        return place, np.reshape(root.rotation, (3, 3)).T @ np.reshape(frame.rotation, (3, 3))
+
+    def _in_root(self, frame: CentralFrame, name: str, t: float, time: dict) -> dict:
+        """``frame`` in the root: its centre where the ephemeris has it, its axes turned."""
+        place, turn = self._placement(frame, t)
+        return foxglove.frame_transform(time, self.root, name, place.tolist(), quat_from_matrix(turn).tolist())

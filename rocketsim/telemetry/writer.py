@@ -95,6 +95,11 @@ def _present(message: dict) -> dict:
             for key, value in message.items() if not (value is None or value != value)}
 
 
+def _mission(time: dict, root: str, position) -> dict:
+    """The mission frame at ``position`` (m) in the root frame, with its axes."""
+    return foxglove.frame_transform(time, root, MISSION_FRAME, position, (1.0, 0.0, 0.0, 0.0))
+
+
 def _plain(value):
     if hasattr(value, "item"):          # numpy scalars orjson does not take natively
         return value.item()
@@ -173,23 +178,27 @@ class TelemetryWriter:
         frame = _EARTH if frame is None else frame
         (state, data), *foxglove_messages = self._messages(body, time, _present(message), frame)
         self._write(state, stamp, data)
-        for channel, data in self._frame_transforms(t, time):
+        for channel, data in self._frame_transforms(t, stamp) + self._mission_off_root(
+                body, frame, message["position"], t, time):
             self._write(channel, stamp, data)
         for channel, data in foxglove_messages:
             self._write(channel, stamp, data)
 
-    def sample(self, body: str, values: np.ndarray, fields) -> None:
+    def sample(self, body: str, values: np.ndarray, fields, leaving: bool = False) -> None:
         """What :meth:`state` writes for the message ``fields(values, int)`` in the frame
         ``fields.frame``, from a byte template of the message (worked out once per body,
         ``fields`` and set of values missing) filled with ``values`` (float64, not to be
         changed afterwards) in one compiled call (:mod:`rocketsim.telemetry.splice`): the
-        same bytes, without the dictionaries.
+        same bytes, without the dictionaries. ``leaving``: the body's last sample in a frame
+        it leaves at this instant (a handover, whose next sample has the same time in the
+        new frame): its state alone, the body's frame and location being those of its new
+        centre from this instant on.
 
         Samples wait, up to :data:`PENDING` of them, and are written together before
         anything else is (a message, an attachment, metadata, a body's channels, the
         end of the file): the file's order is the flight's, and writing them back to
         back keeps the writer's code and data in the processor's caches."""
-        self._pending.append((body, values, fields))
+        self._pending.append((body, values, fields, leaving))
         if len(self._pending) >= PENDING:
             self._flush()
 
@@ -199,41 +208,43 @@ class TelemetryWriter:
         queue once written (a Ctrl-C in between leaves the rest for :meth:`close`)."""
         pending = self._pending
         while pending:
-            body, values, fields = pending[0]
+            body, values, fields, leaving = pending[0]
             shape = self._plans.get(body)
             if shape is None or shape[0] is not fields or shape[1] != values.shape[0]:
                 shape = self._plans[body] = self._shape(body, values.shape[0], fields)
             _, size, optional, plans = shape
             run = [values]
-            for other, more, kind in islice(pending, 1, None):
-                if other != body or kind is not fields or more.shape[0] != size:
+            for other, more, kind, last in islice(pending, 1, None):
+                if other != body or kind is not fields or more.shape[0] != size or last != leaving:
                     break
                 run.append(more)
             block = np.stack(run)
             missing = np.isnan(block[:, optional])
-            start = 0
-            while start < len(run):
+            # where the set of missing values changes: a template for each stretch
+            cuts = (np.flatnonzero((missing[1:] != missing[:-1]).any(axis=1)) + 1).tolist()
+            for start, end in zip([0] + cuts, cuts + [len(run)]):
                 pattern = missing[start]
-                end = start + 1
-                while end < len(run) and (missing[end] == pattern).all():
-                    end += 1
-                key = pattern.tobytes()
+                key = (pattern.tobytes(), leaving)
                 plan = plans.get(key)
                 if plan is None:
-                    plan = plans[key] = self._plan(body, size, fields, set(optional[pattern].tolist()))
+                    plan = plans[key] = self._plan(body, size, fields, set(optional[pattern].tolist()),
+                                                   not leaving)
                 self._write_run(block[start:end], plan)
                 for _ in range(start, end):
                     pending.popleft()
-                start = end
 
     def _write_run(self, block: np.ndarray, plan: tuple) -> None:
         """The records of samples ``block`` (a row each) of one template ``plan``."""
-        text, cuts, t_index, most = plan
+        text, cuts, t_index, most, body, frame, position = plan
+        off_root = body == self._lead and not self._frames.is_root(frame)
         stamps, extras, ends, channels, first = [], [], [0], [], [0]
         for values in block:
             t = values.item(t_index)
             stamp = self._stamp(t)
-            for channel, data in self._frame_transforms(t, foxglove.timestamp(stamp)):
+            more = self._frame_transforms(t, stamp)
+            if off_root:
+                more += self._mission_off_root(body, frame, values[position], t, foxglove.timestamp(stamp))
+            for channel, data in more:
                 extras.append(encode(data))
                 ends.append(ends[-1] + len(extras[-1]))
                 channels.append(channel)
@@ -259,39 +270,52 @@ class TelemetryWriter:
         optional = sorted({slot.index for slot in _members(message)})
         return fields, n, np.array(optional, dtype=np.int64), {}
 
-    def _plan(self, body: str, n: int, fields, missing: set) -> tuple:
-        """``(text, plan, index of t, most bytes of its records)``: the template of a
-        body's messages (:func:`rocketsim.telemetry.splice.template`) without the object
-        members whose values are ``missing`` (indices)."""
+    def _plan(self, body: str, n: int, fields, missing: set, drawn: bool) -> tuple:
+        """``(text, plan, index of t, most bytes of its records, body, frame, indices of the
+        position)``: the template of a body's messages (:func:`rocketsim.telemetry.splice.template`) without the object
+        members whose values are ``missing`` (indices), the Foxglove ones only if ``drawn``."""
         message = fields(splice.slots(n), splice.Slot.integer)
-        messages = self._messages(body, splice.time_slots(), _without(message, missing), fields.frame)
+        messages = self._messages(body, splice.time_slots(), _without(message, missing), fields.frame,
+                                  drawn)
         text, cuts = splice.template(messages)
-        return text, cuts, message["t"].index, splice.most(text, cuts)
+        position = [slot.index for slot in message["position"]]
+        return text, cuts, message["t"].index, splice.most(text, cuts), body, fields.frame, position
 
-    def _messages(self, body: str, time: dict, message: dict, frame: CentralFrame) -> list[tuple[int, dict]]:
-        """``(channel, message)``: the body's state message and the Foxglove messages drawn
-        from it at ``time`` (:func:`rocketsim.telemetry.foxglove.timestamp`): its transform
-        in ``frame``, its location about Earth, the mission frame at the lead body."""
+    def _messages(self, body: str, time: dict, message: dict, frame: CentralFrame,
+                  drawn: bool = True) -> list[tuple[int, dict]]:
+        """``(channel, message)``: the body's state message and (if ``drawn``) the Foxglove
+        messages drawn from it at ``time`` (:func:`rocketsim.telemetry.foxglove.timestamp`):
+        its transform in ``frame``, its location about Earth; and the mission frame at the
+        lead body."""
         state, transform = self._bodies[body]
-        parent = self._frames.inertial(frame)
-        out = [(state, message),
-               (transform, foxglove.frame_transform(time, parent, body, message["position"],
-                                                    message["attitude"]))]
-        if frame.center == "earth":
+        parent, child = self._frames.body_frame(body, frame)
+        out = [(state, message)]
+        if drawn:
+            out.append((transform, foxglove.frame_transform(time, parent, child, message["position"],
+                                                            message["attitude"])))
+        if drawn and frame.center == "earth":
             location = self._channel(f"/{body}/location", foxglove.LOCATION_FIX)
             out.append((location, foxglove.location_fix(time, body, message["latitude_deg"],
                                                         message["longitude_deg"], message["altitude"])))
-        if body == self._lead:
-            out.append((self._mission, foxglove.frame_transform(time, parent, MISSION_FRAME,
-                                                                message["position"], (1.0, 0.0, 0.0, 0.0))))
+        if body == self._lead and self._frames.is_root(frame):
+            out.append((self._mission, _mission(time, parent, message["position"])))
         return out
 
-    def _frame_transforms(self, t: float, time: dict) -> list[tuple[int, dict]]:
+    def _mission_off_root(self, body: str, frame: CentralFrame, position, t: float,
+                          time: dict) -> list[tuple[int, dict]]:
+        """The mission frame's transform at the lead body about another centre than the
+        root's (none for another body or about the root's centre: its template has it)."""
+        if body != self._lead or self._frames.is_root(frame):
+            return []
+        place = self._frames.in_root(frame, position, t)
+        return [(self._mission, _mission(time, self._frames.root, place.tolist()))]
+
+    def _frame_transforms(self, t: float, stamp: int) -> list[tuple[int, dict]]:
         """``(channel, FrameTransform)`` of the central bodies' frames due after a state
-        message at ``t`` (s): :meth:`rocketsim.telemetry.frames.FrameTree.due`, each on
-        its body's ``/<body>/transform``."""
+        message at ``t`` (s), log time ``stamp`` (ns): :meth:`rocketsim.telemetry.frames.FrameTree.due`,
+        each on its body's ``/<body>/transform``."""
         return [(self._channel(f"/{center}/transform", foxglove.FRAME_TRANSFORM), message)
-                for center, message in self._frames.due(t, time)]
+                for center, message in self._frames.due(t, stamp)]
 
     def event(self, t: float, body: str, name: str, figures: dict) -> None:
         """An event with its figures (SI), and its line in ``/events/log``."""
