@@ -97,6 +97,7 @@ class FrameTree:
         self._root: CentralFrame | None = None
         self._root_field = None
         self._at: dict[CentralFrame, int] = {}     # frame -> the second of its last transforms
+        self._second = None                         # the second of the last call of due
 
     @property
     def root(self) -> str | None:
@@ -134,6 +135,9 @@ class FrameTree:
         ``stamp`` (ns): the transforms of each frame new since the last call or not
         written in this second of mission time."""
         second = math.floor(t)
+        if second == self._second and len(self._at) == len(self._frames):
+            return []               # all written in this second
+        self._second = second
         out = []
         for frame, (inertial, fixed) in self._frames.items():
             if self._at.get(frame) == second:

@@ -221,7 +221,8 @@ class TelemetryWriter:
             block = np.stack(run)
             missing = np.isnan(block[:, optional])
             # where the set of missing values changes: a template for each stretch
-            cuts = (np.flatnonzero((missing[1:] != missing[:-1]).any(axis=1)) + 1).tolist()
+            cuts = [] if (missing == missing[0]).all() else \
+                (np.flatnonzero((missing[1:] != missing[:-1]).any(axis=1)) + 1).tolist()
             for start, end in zip([0] + cuts, cuts + [len(run)]):
                 pattern = missing[start]
                 key = (pattern.tobytes(), leaving)
@@ -314,8 +315,9 @@ class TelemetryWriter:
         """``(channel, FrameTransform)`` of the central bodies' frames due after a state
         message at ``t`` (s), log time ``stamp`` (ns): :meth:`rocketsim.telemetry.frames.FrameTree.due`,
         each on its body's ``/<body>/transform``."""
+        due = self._frames.due(t, stamp)
         return [(self._channel(f"/{center}/transform", foxglove.FRAME_TRANSFORM), message)
-                for center, message in self._frames.due(t, stamp)]
+                for center, message in due] if due else due
 
     def event(self, t: float, body: str, name: str, figures: dict) -> None:
         """An event with its figures (SI), and its line in ``/events/log``."""
