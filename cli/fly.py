@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import json
 import signal
 import sys
 from pathlib import Path
@@ -44,6 +43,7 @@ def fly(scenario: Path, output: Path | None, step: float | None, duration: float
     """
     from rocketsim.scenario.load import load
     from rocketsim.sim.flight import fly as fly_scenario
+    from rocketsim.telemetry.writer import strict_json
     from rocketsim_cli.compiling import compile_message
 
     loaded = load(scenario)
@@ -69,4 +69,4 @@ def fly(scenario: Path, output: Path | None, step: float | None, duration: float
     click.echo(format_summary(summary))
     click.echo(f"telemetry: {output}")
     if summary_json is not None:
-        summary_json.write_text(json.dumps(summary, indent=2, allow_nan=True) + "\n")
+        summary_json.write_text(strict_json(summary, indent=True) + "\n")

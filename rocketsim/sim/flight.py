@@ -7,14 +7,13 @@ error logged as an event.
 
 from __future__ import annotations
 
-import json
 import os
 from pathlib import Path
 
 from rocketsim.version import __version__
 from rocketsim.scenario.load import LoadedScenario
 from rocketsim.sim.build import build_world
-from rocketsim.telemetry.writer import TelemetryWriter
+from rocketsim.telemetry.writer import TelemetryWriter, strict_json
 
 
 def fly(loaded: LoadedScenario, out: str | Path, *, step: float | None = None,
@@ -61,7 +60,7 @@ def fly(loaded: LoadedScenario, out: str | Path, *, step: float | None = None,
                 raise error from None
             raise
         telemetry.metadata("outcome", {"status": "ok"})
-        telemetry.metadata("summary", {"json": json.dumps(summary, allow_nan=True)})
+        telemetry.metadata("summary", {"json": strict_json(summary)})
     return summary
 
 

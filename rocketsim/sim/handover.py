@@ -26,7 +26,7 @@ def hand_over(world, body: Body, new: str) -> None:
     ``soi_handover`` event (``from``, ``to``), a sample in the new one."""
     old = body.central
     if world.telemetry is not None:
-        world.record(body)
+        world.record(body, leaving=True)
     body.y, body.p = recentre(body.y, body.p, body.t, new, world.gmst0)
     body.central, body.mu, body._view = new, float(body.p[P_MU]), None
     if body.vehicle is not None:

@@ -26,7 +26,7 @@ w, x, y, z, body -> ECI), body rates (rad/s), latitude, longitude and height
 ellipsoid elsewhere, :func:`rocketsim.dynamics.central.planetocentric`), inertial
 speed, the osculating elements (RAAN from the equinox about Earth, from the
 node of the body's equator on the J2000 equator elsewhere; altitudes over the
-central body's equatorial radius; apoapsis and period ``null`` unless
+central body's equatorial radius; apoapsis and period missing unless
 elliptic), mass (kg), inertial acceleration ``|dv/dt|`` and sensed acceleration
 ``|dv/dt - g|`` (m/s^2), airspeed (m/s), Mach and dynamic pressure (Pa) in the
 readings' air (the day's air about Earth, none elsewhere).
@@ -35,8 +35,8 @@ Fields of a staged vehicle:
 
 * ``throttle``: the throttle actually flown (after the slew limit and the
   flow-separation floor, 0-1 of vacuum thrust), averaged over the engines
-  running; ``null`` when none runs. ``group_throttle`` is the same by engine
-  group (``<stage>_<group>``, ``null`` for a group with no engine running);
+  running; missing when none runs. ``group_throttle`` is the same by engine
+  group (``<stage>_<group>``, missing for a group with no engine running);
 * ``thrust`` (N) in total and ``group_thrust`` (N) by engine group, at the
   ambient pressure of the state message's air;
 * ``mass_flow``: propellant drawn by all engines, kg/s;
@@ -54,6 +54,10 @@ Fields of a staged vehicle with a heat shield:
 * ``shield_temperature``: the lumped shield's temperature, K (as the checks
   integrate it after every step).
 
+A missing value is nan in the figures, None in :func:`message`'s dictionary, and
+left out of the file's message (:meth:`rocketsim.telemetry.writer.TelemetryWriter.sample`),
+so that every field written has its schema's type.
+
 Names with characters other than letters, digits, ``-`` and ``_`` have them
 replaced by ``_``, so Foxglove's message paths (``/<body>/state.group_thrust.booster_Merlin_1D_ring``)
 and CSV columns can name them.
@@ -63,7 +67,8 @@ from __future__ import annotations
 
 import math
 import weakref
-from functools import lru_cache, partial
+from functools import lru_cache
+from typing import NamedTuple
 
 import numpy as np
 
@@ -71,12 +76,16 @@ from rocketsim._jit import entry_point, njit
 from rocketsim.atmosphere.table import air_in
 from rocketsim.constants import DEG
 from rocketsim.dynamics.derivative import body_air_velocity, radial_height
+from rocketsim.dynamics.nbody import FIELD_JD0, FIELD_ROT
+from rocketsim.dynamics.soi import frame_rotation
 from rocketsim.layout import N_STATE, P_MASS, P_POLAR_RADIUS, P_RADIUS, P_SPIN, R, V
+from rocketsim.dynamics.third_bodies import P_BUCKET, field_of, hold_field
 from rocketsim.flight.readings import air_here
 from rocketsim.frames.local import where_and_how_fast
 from rocketsim.frames.elements import elements_tuple
 from rocketsim.dynamics.central import air_about
 from rocketsim.sim.vehicle_checks import accelerations
+from rocketsim.telemetry.frames import CentralFrame, central_frame
 from rocketsim.vehicle.engines import E_MDOT, E_STAGE, S_DRY, engine_state, thrusts
 from rocketsim.vehicle.heating import sutton_graves, sutton_graves_constant
 from rocketsim.vehicle.mass_properties import mass_properties
@@ -221,7 +230,7 @@ def figures(t, y, p, mu, node, geodetic, h0, dh, density, pressure, temperature,
 _NO_GROUPS = np.zeros(0, dtype=np.int64)
 
 
-def values(body, gmst0: float, where) -> tuple[np.ndarray, "partial"]:
+def values(body, gmst0: float, where) -> tuple[np.ndarray, "Shape"]:
     """Every number of the state message of ``body`` (a :class:`rocketsim.sim.world.Body`)
     at its time, in the layout of :func:`figures`, and the function that lays them out
     as the message: ``fields(values, integer)`` (``integer``: how a count is written,
@@ -230,21 +239,23 @@ def values(body, gmst0: float, where) -> tuple[np.ndarray, "partial"]:
     ``gmst0`` (rad): the Earth's sidereal angle at the epoch (the RAAN's origin about
     Earth); ``where(body)``: its (latitude rad, longitude rad, height m) away from Earth."""
     earth = body.central == "earth"
+    frame = _frame_of(body, gmst0)
     model = body.vehicle
     air = air_about(body.central, body.atmosphere() if earth else None).arrays()
+    p = _held(body)
     if model is None:
-        v = _call(body, None, (body.t, body.y, body.p, body.mu, gmst0 if earth else 0.0, earth, *air, None,
+        v = _call(body, None, (body.t, body.y, p, body.mu, gmst0 if earth else 0.0, earth, *air, None,
                                _NO_GROUPS, 0, 0.0, 0.0, math.nan))
-        shape = _shape(body.central, None, None, False)
+        shape = _shape(frame, None, None, False)
     else:
         group, groups, tanks = _layout(model)
         shield = body.checks.shield if body.checks is not None else None
         v = _call(body, model, (
-            body.t, body.y, body.p, body.mu, gmst0 if earth else 0.0, earth, *air, model.arrays, group,
+            body.t, body.y, p, body.mu, gmst0 if earth else 0.0, earth, *air, model.arrays, group,
             len(groups), shield.nose_radius if shield is not None else 0.0,
             sutton_graves_constant(body.mu),
             float(body.checks.temperature) if shield is not None else math.nan))
-        shape = _shape(body.central, groups, tanks, shield is not None)
+        shape = _shape(frame, groups, tanks, shield is not None)
     if not earth:
         lat, lon, v[HEIGHT] = where(body)
         v[LAT], v[LON] = lat / DEG, lon / DEG
@@ -257,12 +268,24 @@ def message(body, gmst0: float, where) -> dict:
     return fields(v.tolist(), int)
 
 
+def _held(body) -> np.ndarray:
+    """``body.p``, with the other bodies' positions held for the body's time if it carries
+    an n-body field that no step has held them in yet (its first sample, the sample after
+    a handover): the positions the step's derivative reads
+    (:func:`rocketsim.dynamics.third_bodies.hold_field`), so its accelerations are defined."""
+    p = body.p
+    if len(p) > P_BUCKET and p[P_BUCKET] != p[P_BUCKET]:
+        p = p.copy()
+        hold_field(p, body.t)
+    return p
+
+
 def _call(body, model, args):
     """``figures(*args)`` through its compiled entry, bound once per vehicle model (and
     once for every rigid body): :meth:`rocketsim._jit.Entries.call` without its look
     at every argument, as only the state and the parameters can be views."""
     global _RIGID
-    if not (body.y.flags.c_contiguous and body.p.flags.c_contiguous):
+    if not (body.y.flags.c_contiguous and args[2].flags.c_contiguous):
         return figures(*args)
     if model is None:
         if _RIGID is None:
@@ -277,10 +300,37 @@ def _call(body, model, args):
 _RIGID = None
 
 
+class Shape(NamedTuple):
+    """The ``fields`` of :func:`values`: the state message of one shape from its numbers
+    (``fields(values, integer)``), and the inertial frame it is expressed in."""
+
+    frame: CentralFrame
+    groups: tuple | None
+    tanks: tuple | None
+    shield: bool
+
+    def __call__(self, v, integer) -> dict:
+        return _fields(v, integer, self.frame.center, self.groups, self.tanks, self.shield)
+
+
 @lru_cache(maxsize=64)
-def _shape(central: str, groups, tanks, shield: bool) -> partial:
+def _shape(frame: CentralFrame, groups, tanks, shield: bool) -> Shape:
     """The ``fields`` of :func:`values` for one message shape, the same object each time."""
-    return partial(_fields, central=central, groups=groups, tanks=tanks, shield=shield)
+    return Shape(frame, groups, tanks, shield)
+
+
+def _frame_of(body, gmst0: float) -> CentralFrame:
+    """The inertial frame of ``body``'s state: its field's (centre, axes, epoch), else
+    Earth's ECI of the mission epoch (``gmst0``, rad)."""
+    fp = field_of(body.p)
+    if fp is None:
+        return _earth_frame(gmst0)
+    return central_frame(body.central, fp[FIELD_ROT:FIELD_ROT + 9], fp[FIELD_JD0])
+
+
+@lru_cache(maxsize=4)
+def _earth_frame(gmst0: float) -> CentralFrame:
+    return central_frame("earth", frame_rotation("earth", 0.0, gmst0), math.nan)
 
 
 def _fields(v, integer, central: str, groups, tanks, shield: bool) -> dict:

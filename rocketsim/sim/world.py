@@ -125,10 +125,11 @@ class World:
         """The telemetry state message of ``body`` at its time (:mod:`rocketsim.sim.sampling`)."""
         return sampling.message(body, self.gmst0, self.where)
 
-    def record(self, body: Body) -> None:
+    def record(self, body: Body, leaving: bool = False) -> None:
         """Write ``body``'s telemetry sample: its state message (as :meth:`sample`) and the
-        Foxglove messages drawn from it, from the numbers alone (no dictionaries)."""
-        self.telemetry.sample(body.name, *sampling.values(body, self.gmst0, self.where))
+        Foxglove messages drawn from it, from the numbers alone (no dictionaries);
+        ``leaving``: its last in a frame it leaves at this instant (a handover)."""
+        self.telemetry.sample(body.name, *sampling.values(body, self.gmst0, self.where), leaving=leaving)
 
     # --- the loop -----------------------------------------------------------
     def run(self, telemetry=None) -> dict:

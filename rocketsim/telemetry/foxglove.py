@@ -9,17 +9,10 @@ and meanings of Foxglove's message-schema reference
 LocationFix, Log, Timestamp, Vector3, Quaternion). The tests validate every
 message against Foxglove's published JSON schemas, kept as test fixtures.
 
-Frames: ``eci`` is the inertial frame of the mission (ECI of its epoch),
-``ecef`` the Earth-fixed frame turned about ``z`` by the Earth rotation angle,
-and each body's frame is its body axes with origin at its centre of mass.
+The frames the transforms name are those of :mod:`rocketsim.telemetry.frames`.
 """
 
 from __future__ import annotations
-
-import math
-
-INERTIAL_FRAME = "eci"
-EARTH_FRAME = "ecef"
 
 _TIME = {
     "type": "object", "title": "time",
@@ -48,7 +41,7 @@ FRAME_TRANSFORM = {
 
 LOCATION_FIX = {
     "title": "foxglove.LocationFix",
-    "description": "Where a body is over the WGS84 ellipsoid.",
+    "description": "Where a body is over the WGS84 ellipsoid (written only while it flies about Earth).",
     "type": "object",
     "properties": {
         "timestamp": {**_TIME, "description": "Timestamp of the message"},
@@ -108,13 +101,6 @@ def frame_transform(time: dict, parent: str, child: str, translation, quaternion
     return {"timestamp": time, "parent_frame_id": parent, "child_frame_id": child,
             "translation": {"x": tx, "y": ty, "z": tz},
             "rotation": {"x": x, "y": y, "z": z, "w": w}}
-
-
-def earth_transform(time: dict, angle: float) -> dict:
-    """The Earth-fixed frame in the inertial one at ``time``: a turn of ``angle`` (rad) about ``z``."""
-    half = 0.5 * angle
-    return frame_transform(time, INERTIAL_FRAME, EARTH_FRAME, (0.0, 0.0, 0.0),
-                           (math.cos(half), 0.0, 0.0, math.sin(half)))
 
 
 def location_fix(time: dict, frame: str, latitude_deg: float, longitude_deg: float,

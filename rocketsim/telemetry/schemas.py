@@ -17,7 +17,10 @@ BODY_STATE = {
     "description": "State of one body at one instant, in the frame of its central body: "
                    "the ECI of the mission epoch about Earth; about the Moon and Mars (n-body "
                    "missions) the body's IAU pole as z and the node of its equator on the J2000 "
-                   "equator as x, fixed at the sphere-of-influence handover.",
+                   "equator as x, fixed at the sphere-of-influence handover. A value that does not "
+                   "exist (the apoapsis of an unbound orbit, the throttle with no engine running) is "
+                   "left out of the message, never written as null: every field present has its "
+                   "declared type.",
     "type": "object",
     "properties": {
         "t": {"type": "number", "description": "mission time, s"},
@@ -33,24 +36,42 @@ BODY_STATE = {
         "altitude": {"type": "number", "description": "height above the WGS84 ellipsoid, m (about the "
                      "Moon or Mars over its ellipsoid, along the radius)"},
         "speed": {"type": "number", "description": "inertial speed, m/s"},
-        "orbit": {"$ref": "#/$defs/orbit"},
+        "orbit": {
+            "type": "object",
+            "description": "osculating classical elements about the central body",
+            "properties": {
+                "semi_major_axis": {"type": "number", "description": "m (negative: hyperbola)"},
+                "eccentricity": {"type": "number"},
+                "inclination_deg": {"type": "number"},
+                "raan_deg": {"type": "number", "description": "from the equinox (J2000 axes), deg"},
+                "arg_periapsis_deg": {"type": "number"},
+                "true_anomaly_deg": {"type": "number"},
+                "periapsis_altitude": {"type": "number",
+                                       "description": "above the central body's equatorial radius, m"},
+                "apoapsis_altitude": {"type": "number",
+                                      "description": "above the central body's equatorial radius, m "
+                                      "(absent if unbound)"},
+                "period": {"type": "number", "description": "s (absent if unbound)"},
+            },
+        },
         "central_body": {"type": "string", "enum": ["sun", "earth", "moon", "mars"],
                          "description": "the body the position, velocity and orbit are about; "
                          "at a handover the state is sampled in both frames at the same t"},
         "mass": {"type": "number", "description": "kg"},
-        "acceleration": {"type": "number", "description": "inertial acceleration |dv/dt|, m/s^2"},
+        "acceleration": {"type": "number", "description": "inertial acceleration |dv/dt|, m/s^2 "
+                         "(absent where it is not defined)"},
         "sensed_acceleration": {"type": "number",
                                 "description": "|dv/dt - gravity| (what an accelerometer reads), m/s^2"},
         "airspeed": {"type": "number", "description": "speed relative to the air, m/s"},
         "mach": {"type": "number", "description": "airspeed over the local speed of sound"},
         "dynamic_pressure": {"type": "number", "description": "q = rho v_air^2 / 2, Pa"},
         # a staged vehicle (rocketsim.sim.sampling)
-        "throttle": {"type": ["number", "null"], "description": "throttle flown (after slew and the "
-                     "flow-separation floor, 0-1 of vacuum thrust), mean of the engines running; null "
+        "throttle": {"type": "number", "description": "throttle flown (after slew and the "
+                     "flow-separation floor, 0-1 of vacuum thrust), mean of the engines running; absent "
                      "when none runs"},
-        "group_throttle": {"type": "object", "additionalProperties": {"type": ["number", "null"]},
-                           "description": "throttle flown by engine group <stage>_<group> (null: none "
-                           "of the group running)"},
+        "group_throttle": {"type": "object", "additionalProperties": {"type": "number"},
+                           "description": "throttle flown by engine group <stage>_<group> (a group "
+                           "with none of its engines running is absent)"},
         "thrust": {"type": "number", "description": "total thrust at the ambient pressure, N"},
         "group_thrust": {"type": "object", "additionalProperties": {"type": "number"},
                          "description": "thrust by engine group <stage>_<group>, N"},
@@ -68,26 +89,6 @@ BODY_STATE = {
     },
     "required": ["t", "position", "velocity", "attitude", "body_rates", "latitude_deg",
                  "longitude_deg", "altitude", "speed", "orbit"],
-    "$defs": {
-        "orbit": {
-            "type": "object",
-            "description": "osculating classical elements about the central body",
-            "properties": {
-                "semi_major_axis": {"type": "number", "description": "m (negative: hyperbola)"},
-                "eccentricity": {"type": "number"},
-                "inclination_deg": {"type": "number"},
-                "raan_deg": {"type": "number", "description": "from the equinox (J2000 axes), deg"},
-                "arg_periapsis_deg": {"type": "number"},
-                "true_anomaly_deg": {"type": "number"},
-                "periapsis_altitude": {"type": "number",
-                                       "description": "above the central body's equatorial radius, m"},
-                "apoapsis_altitude": {"type": ["number", "null"],
-                                      "description": "above the central body's equatorial radius, m "
-                                      "(null if unbound)"},
-                "period": {"type": ["number", "null"], "description": "s (null if unbound)"},
-            },
-        }
-    },
 }
 
 EVENT = {

@@ -30,7 +30,7 @@ from rocketsim._jit import njit
 FLOAT, INTEGER, SECONDS, NANOSECONDS = 0, 1, 2, 3
 _KINDS = "fisn"
 _MESSAGE = 5                                    # the MCAP opcode
-_HEADER = 1 + 8 + 2 + 4 + 8 + 8                 # opcode, length, channel, sequence, two times
+HEADER = 1 + 8 + 2 + 4 + 8 + 8                 # opcode, length, channel, sequence, two times
 _LONGEST = 24                                   # bytes of a number: "-1.2345678901234567e-308"
 _SLOT = re.compile(rb'"\\u0000([fisn])(\d+)\\u0000"')
 
@@ -81,10 +81,10 @@ def template(messages: list[tuple[int, dict]]) -> tuple[np.ndarray, np.ndarray]:
 
 
 def most(text: np.ndarray, plan: np.ndarray) -> int:
-    """Bytes the records of a template (:func:`template`) can take, an extra record's data aside."""
+    """Bytes the records of a template (:func:`template`) can take (the extra records aside)."""
     n_messages = int(plan[0])
     n_slots = int(plan[2:2 + 2 * n_messages:2].sum())
-    return text.shape[0] + n_slots * _LONGEST + (n_messages + 1) * _HEADER
+    return text.shape[0] + n_slots * _LONGEST + n_messages * HEADER
 
 
 @njit
@@ -112,8 +112,8 @@ def _put_int(out, at, x):
 
 
 @njit
-def records(numbers, values, stamps, sequence, text, plan, extras, extra_ends, extra_channel,
-            extra_after, out, at, index, n_index):
+def records(numbers, values, stamps, sequence, text, plan, extras, extra_ends, extra_channels,
+            extra_first, extra_after, out, at, index, n_index):
     """Write the MCAP Message records of samples of one template into ``out`` from ``at``
     and each record's (channel, log time, start) into ``index`` from entry ``n_index``
     (three numbers per entry); returns where the records and the index entries end.
@@ -123,10 +123,11 @@ def records(numbers, values, stamps, sequence, text, plan, extras, extra_ends, e
     and publish time (ns), whose seconds and nanoseconds fill the time slots;
     ``sequence`` the first record's sequence number (one more for each next record);
     ``text``, ``plan`` the messages' template (:func:`template`). ``extras``: the data
-    of one more record on ``extra_channel`` for some samples, written after the
-    template's message ``extra_after``: sample ``k``'s is
-    ``extras[extra_ends[k]:extra_ends[k + 1]]`` (none when empty). ``out`` must have
-    room for :func:`most` bytes a sample and the extra records."""
+    of more records, written after the template's message ``extra_after``: record ``e``'s
+    is ``extras[extra_ends[e]:extra_ends[e + 1]]`` on channel ``extra_channels[e]``, and
+    sample ``k``'s are the records ``extra_first[k]`` to ``extra_first[k + 1] - 1``.
+    ``out`` must have room for :func:`most` bytes a sample and the extra records with
+    their headers (``HEADER`` bytes each)."""
     n_samples, n = values.shape
     # where each number's bytes begin (after "[" or ","), then one past the row's "]"
     first = np.empty(n_samples * (n + 1), dtype=np.int64)
@@ -145,15 +146,15 @@ def records(numbers, values, stamps, sequence, text, plan, extras, extra_ends, e
     r = n_index
     for sample in range(n_samples):
         at, r = _sample(numbers, first[sample * (n + 1):(sample + 1) * (n + 1)], values[sample],
-                        stamps[sample], sequence + r - n_index, text, plan,
-                        extras[extra_ends[sample]:extra_ends[sample + 1]], extra_channel,
-                        extra_after, out, at, index, r)
+                        stamps[sample], sequence + r - n_index, text, plan, extras, extra_ends,
+                        extra_channels, extra_first[sample], extra_first[sample + 1], extra_after,
+                        out, at, index, r)
     return at, r
 
 
 @njit
-def _sample(numbers, first, values, stamp, sequence, text, plan, extra, extra_channel, extra_after,
-            out, at, index, r):
+def _sample(numbers, first, values, stamp, sequence, text, plan, extras, extra_ends, extra_channels,
+            first_extra, end_extra, extra_after, out, at, index, r):
     """One sample's records (see :func:`records`): ``first`` where its numbers begin."""
     n_messages = plan[0]
     seconds, nanoseconds = stamp // 1_000_000_000, stamp % 1_000_000_000
@@ -162,7 +163,7 @@ def _sample(numbers, first, values, stamp, sequence, text, plan, extra, extra_ch
         head = at
         _entry(index, r, plan[1 + 2 * m], stamp, at)
         r += 1
-        at += _HEADER
+        at += HEADER
         for _ in range(plan[2 + 2 * m]):
             end = plan[cut]
             at = _copy(out, at, text, piece, end)
@@ -182,11 +183,13 @@ def _sample(numbers, first, values, stamp, sequence, text, plan, extra, extra_ch
         at = _copy(out, at, text, piece, end)
         piece = end
         _header(out, head, at - head - 9, plan[1 + 2 * m], sequence + r - 1 - r0, stamp)
-        if m == extra_after and len(extra) > 0:
-            _entry(index, r, extra_channel, stamp, at)
-            r += 1
-            _header(out, at, len(extra) + _HEADER - 9, extra_channel, sequence + r - 1 - r0, stamp)
-            at = _copy(out, at + _HEADER, extra, 0, len(extra))
+        if m == extra_after:
+            for e in range(first_extra, end_extra):
+                start, end, channel = extra_ends[e], extra_ends[e + 1], extra_channels[e]
+                _entry(index, r, channel, stamp, at)
+                r += 1
+                _header(out, at, end - start + HEADER - 9, channel, sequence + r - 1 - r0, stamp)
+                at = _copy(out, at + HEADER, extras, start, end)
     return at, r
 
 

@@ -16,7 +16,6 @@ finished on success, on a program error and on Ctrl-C alike.
 
 from __future__ import annotations
 
-import math
 from collections import deque
 from itertools import islice
 from pathlib import Path
@@ -26,8 +25,8 @@ import orjson
 
 from rocketsim.version import __version__
 from rocketsim._jit import entry_point
-from rocketsim.frames.earth_fixed import earth_rotation_angle
 from rocketsim.telemetry import foxglove, splice
+from rocketsim.telemetry.frames import MISSION_FRAME, CentralFrame, FrameTree, central_frame
 from rocketsim.telemetry.mcap_stream import McapStream
 from rocketsim.telemetry.schemas import BODY_STATE, EVENT, schema_bytes
 
@@ -49,19 +48,56 @@ def encode(message: dict) -> bytes:
     return orjson.dumps(message, default=_plain, option=orjson.OPT_SERIALIZE_NUMPY)
 
 
+def strict_json(value, indent: bool = False) -> str:
+    """``value`` as strict JSON (RFC 8259, what every JSON reader takes): as :func:`encode`,
+    NaN and infinities as null; indented by two spaces with ``indent``."""
+    return orjson.dumps(value, default=_plain,
+                        option=orjson.OPT_SERIALIZE_NUMPY | (orjson.OPT_INDENT_2 if indent else 0)).decode()
+
+
 def _records():
     """:func:`rocketsim.telemetry.splice.records`' compiled entry (bound on first need:
-    its argument types never change, and the dispatcher's typing of fourteen arguments
+    its argument types never change, and the dispatcher's typing of fifteen arguments
     costs about as much as the call)."""
     global _RECORDS
     if _RECORDS is None:
         ints = np.zeros(1, dtype=np.int64)
         _RECORDS = entry_point(splice.records, b"", np.zeros((1, 1)), ints, 0, _NO_TEXT, ints, b"",
-                               ints, 0, 0, np.zeros(1, dtype=np.uint8), 0, ints, 0)
+                               ints, ints, ints, 0, np.zeros(1, dtype=np.uint8), 0, ints, 0)
     return _RECORDS
 
 
 _RECORDS = None
+
+
+_EARTH = central_frame("earth", np.eye(3), float("nan"))
+
+
+def _members(message):
+    """The slots that are values of object members in ``message`` (not vector items)."""
+    for value in message.values():
+        if isinstance(value, dict):
+            yield from _members(value)
+        elif isinstance(value, splice.Slot) and value.kind == "f":
+            yield value
+
+
+def _without(message: dict, missing: set) -> dict:
+    """``message`` without the members whose slots' values are ``missing`` (indices)."""
+    return {key: _without(value, missing) if isinstance(value, dict) else value
+            for key, value in message.items()
+            if not (isinstance(value, splice.Slot) and value.kind == "f" and value.index in missing)}
+
+
+def _present(message: dict) -> dict:
+    """``message`` without the members that are None or nan (vectors as they are)."""
+    return {key: _present(value) if isinstance(value, dict) else value
+            for key, value in message.items() if not (value is None or value != value)}
+
+
+def _mission(time: dict, root: str, position) -> dict:
+    """The mission frame at ``position`` (m) in the root frame, with its axes."""
+    return foxglove.frame_transform(time, root, MISSION_FRAME, position, (1.0, 0.0, 0.0, 0.0))
 
 
 def _plain(value):
@@ -71,8 +107,9 @@ def _plain(value):
 
 
 class TelemetryWriter:
-    """One MCAP telemetry file: per body its state, Foxglove transform and
-    location; the events; the program's log; the Earth's turn.
+    """One MCAP telemetry file: per body its state, Foxglove transform and (about
+    Earth) location; the central bodies' frames (:mod:`rocketsim.telemetry.frames`);
+    the events; the program's log.
 
     ``program_file`` names the program in the ``file`` field of its log lines.
     """
@@ -84,19 +121,22 @@ class TelemetryWriter:
         self._epoch_ns = epoch_ns
         self._schemas = {}
         self._channels: dict[str, int] = {}
-        self._bodies: dict[str, tuple[int, int, int]] = {}     # state, transform, location
+        self._bodies: dict[str, tuple[int, int]] = {}          # state, transform
+        self._lead = None                                       # the body the mission frame follows
         self._sequence = 0
         self._closed = False
         self._program_file = program_file
         self._events = self._channel("/events", EVENT)
         self._event_lines = self._channel("/events/log", foxglove.LOG)
         self._logs = self._channel("/log", foxglove.LOG)
-        self._earth = self._channel("/earth/transform", foxglove.FRAME_TRANSFORM)
-        self._earth_at = None
-        self._plans: dict[str, tuple] = {}      # body -> its messages' template (sample)
+        self._frames = FrameTree()
+        self._plans: dict[str, tuple] = {}      # body -> its messages' templates (sample)
         self._pending: deque[tuple] = deque()   # samples waiting to be written (sample)
 
     def _channel(self, topic: str, schema: dict) -> int:
+        channel = self._channels.get(topic)
+        if channel is not None:
+            return channel
         title = schema["title"]
         if title not in self._schemas:
             self._schemas[title] = self._writer.schema(title, "jsonschema", schema_bytes(schema))
@@ -106,15 +146,19 @@ class TelemetryWriter:
 
     def add_body(self, name: str) -> None:
         """Open the channels of a body: ``/<name>/state``, ``/<name>/transform``
-        (foxglove.FrameTransform) and ``/<name>/location`` (foxglove.LocationFix).
+        (foxglove.FrameTransform), and ``/<name>/location`` (foxglove.LocationFix) once it
+        flies about Earth: it is written only then, the Map panel having only Earth's tiles. The
+        first body added leads: ``/mission/transform`` follows it.
 
         Every scalar of the state message is a JSON-schema'd field that
         Foxglove's Plot panel reads by path (``/<name>/state.altitude``,
         ``.orbit.eccentricity``, ``.position[0]``): no second copy is written."""
         self._flush()
         self._bodies[name] = (self._channel(f"/{name}/state", BODY_STATE),
-                              self._channel(f"/{name}/transform", foxglove.FRAME_TRANSFORM),
-                              self._channel(f"/{name}/location", foxglove.LOCATION_FIX))
+                              self._channel(f"/{name}/transform", foxglove.FRAME_TRANSFORM))
+        if self._lead is None:
+            self._lead = name
+            self._mission = self._channel(f"/{MISSION_FRAME}/transform", foxglove.FRAME_TRANSFORM)
 
     def _stamp(self, t: float) -> int:
         return self._epoch_ns + round(t * 1e9)
@@ -123,98 +167,157 @@ class TelemetryWriter:
         self._writer.message(channel, stamp, stamp, encode(message), self._sequence)
         self._sequence += 1
 
-    def state(self, body: str, message: dict) -> None:
-        """A body's state message, and the Foxglove messages drawn from it."""
+    def state(self, body: str, message: dict, frame: CentralFrame | None = None) -> None:
+        """A body's state message, and the Foxglove messages drawn from it; ``frame``:
+        the inertial frame it is in (default: Earth's, without an ephemeris). Values
+        that are None or nan are left out (see :data:`rocketsim.telemetry.schemas.BODY_STATE`)."""
         self._flush()
         t = message["t"]
         stamp = self._stamp(t)
         time = foxglove.timestamp(stamp)
-        (state, data), *foxglove_messages = self._messages(body, time, message)
+        frame = _EARTH if frame is None else frame
+        (state, data), *foxglove_messages = self._messages(body, time, _present(message), frame)
         self._write(state, stamp, data)
-        earth = self._earth_turn(t, stamp)
-        if earth is not None:
-            self._write(self._earth, stamp, earth)
+        for channel, data in self._frame_transforms(t, stamp) + self._mission_off_root(
+                body, frame, message["position"], t, time):
+            self._write(channel, stamp, data)
         for channel, data in foxglove_messages:
             self._write(channel, stamp, data)
 
-    def sample(self, body: str, values: np.ndarray, fields) -> None:
-        """What :meth:`state` writes for the message ``fields(values, int)``, from a byte
-        template of the message (worked out once per body and ``fields``) filled with
-        ``values`` (float64, not to be changed afterwards) in one compiled call
-        (:mod:`rocketsim.telemetry.splice`): the same bytes, without the dictionaries.
+    def sample(self, body: str, values: np.ndarray, fields, leaving: bool = False) -> None:
+        """What :meth:`state` writes for the message ``fields(values, int)`` in the frame
+        ``fields.frame``, from a byte template of the message (worked out once per body,
+        ``fields`` and set of values missing) filled with ``values`` (float64, not to be
+        changed afterwards) in one compiled call (:mod:`rocketsim.telemetry.splice`): the
+        same bytes, without the dictionaries. ``leaving``: the body's last sample in a frame
+        it leaves at this instant (a handover, whose next sample has the same time in the
+        new frame): its state alone, the body's frame and location being those of its new
+        centre from this instant on.
 
         Samples wait, up to :data:`PENDING` of them, and are written together before
         anything else is (a message, an attachment, metadata, a body's channels, the
         end of the file): the file's order is the flight's, and writing them back to
         back keeps the writer's code and data in the processor's caches."""
-        self._pending.append((body, values, fields))
+        self._pending.append((body, values, fields, leaving))
         if len(self._pending) >= PENDING:
             self._flush()
 
     def _flush(self) -> None:
         """Write the samples waiting (see :meth:`sample`): each run of samples of one
-        body and message shape in one compiled call, leaving the queue once written (a
-        Ctrl-C in between leaves the rest for :meth:`close`)."""
+        body, message shape and set of missing values in one compiled call, leaving the
+        queue once written (a Ctrl-C in between leaves the rest for :meth:`close`)."""
         pending = self._pending
         while pending:
-            body, values, fields = pending[0]
-            plan = self._plans.get(body)
-            if plan is None or plan[0] is not fields or plan[1] != values.shape[0]:
-                plan = self._plans[body] = self._plan(body, values.shape[0], fields)
-            _, size, text, cuts, t_index, most = plan
+            body, values, fields, leaving = pending[0]
+            shape = self._plans.get(body)
+            if shape is None or shape[0] is not fields or shape[1] != values.shape[0]:
+                shape = self._plans[body] = self._shape(body, values.shape[0], fields)
+            _, size, optional, plans = shape
             run = [values]
-            for other, more, shape in islice(pending, 1, None):
-                if other != body or shape is not fields or more.shape[0] != size:
+            for other, more, kind, last in islice(pending, 1, None):
+                if other != body or kind is not fields or more.shape[0] != size or last != leaving:
                     break
                 run.append(more)
-            stamps, extras, ends = [], [], [0]
-            for values in run:
-                t = values.item(t_index)
-                stamp = self._stamp(t)
-                earth = self._earth_turn(t, stamp)
-                if earth is not None:
-                    extras.append(encode(earth))
-                ends.append(ends[-1] + (0 if earth is None else len(extras[-1])))
-                stamps.append(stamp)
             block = np.stack(run)
-            extra = b"".join(extras)
-            chunk, at, index, n = self._writer.reserve(most * len(run) + len(extra), 4 * len(run))
-            at, records = _records()(orjson.dumps(block, option=orjson.OPT_SERIALIZE_NUMPY), block,
-                                     np.array(stamps, dtype=np.int64), self._sequence, text, cuts,
-                                     extra, np.array(ends, dtype=np.int64), self._earth, 0, chunk, at,
-                                     index, n)
-            self._writer.added(at, records)
-            self._sequence += records - n
-            for _ in run:
-                pending.popleft()
+            missing = np.isnan(block[:, optional])
+            # where the set of missing values changes: a template for each stretch
+            cuts = [] if (missing == missing[0]).all() else \
+                (np.flatnonzero((missing[1:] != missing[:-1]).any(axis=1)) + 1).tolist()
+            for start, end in zip([0] + cuts, cuts + [len(run)]):
+                pattern = missing[start]
+                key = (pattern.tobytes(), leaving)
+                plan = plans.get(key)
+                if plan is None:
+                    plan = plans[key] = self._plan(body, size, fields, set(optional[pattern].tolist()),
+                                                   not leaving)
+                self._write_run(block[start:end], plan)
+                for _ in range(start, end):
+                    pending.popleft()
 
-    def _plan(self, body: str, n: int, fields) -> tuple:
-        """``(fields, n, text, plan, index of t, most bytes of its records)``:
-        the template of a body's three messages (:func:`rocketsim.telemetry.splice.template`)."""
+    def _write_run(self, block: np.ndarray, plan: tuple) -> None:
+        """The records of samples ``block`` (a row each) of one template ``plan``."""
+        text, cuts, t_index, most, body, frame, position = plan
+        off_root = body == self._lead and not self._frames.is_root(frame)
+        stamps, extras, ends, channels, first = [], [], [0], [], [0]
+        for values in block:
+            t = values.item(t_index)
+            stamp = self._stamp(t)
+            more = self._frame_transforms(t, stamp)
+            if off_root:
+                more += self._mission_off_root(body, frame, values[position], t, foxglove.timestamp(stamp))
+            for channel, data in more:
+                extras.append(encode(data))
+                ends.append(ends[-1] + len(extras[-1]))
+                channels.append(channel)
+            first.append(len(channels))
+            stamps.append(stamp)
+        extra = b"".join(extras)
+        chunk, at, index, n = self._writer.reserve(
+            most * len(block) + len(extra) + splice.HEADER * len(channels),
+            int(cuts[0]) * len(block) + len(channels))
+        at, records = _records()(orjson.dumps(block, option=orjson.OPT_SERIALIZE_NUMPY), block,
+                                 np.array(stamps, dtype=np.int64), self._sequence, text, cuts,
+                                 extra, np.array(ends, dtype=np.int64),
+                                 np.array(channels, dtype=np.int64), np.array(first, dtype=np.int64),
+                                 0, chunk, at, index, n)
+        self._writer.added(at, records)
+        self._sequence += records - n
+
+    def _shape(self, body: str, n: int, fields) -> tuple:
+        """``(fields, n, optional, templates)``: the value indices of a body's messages
+        that are left out when nan (those of object members, not of vectors), and a
+        dictionary for its templates by the values missing."""
         message = fields(splice.slots(n), splice.Slot.integer)
-        messages = self._messages(body, splice.time_slots(), message)
+        optional = sorted({slot.index for slot in _members(message)})
+        return fields, n, np.array(optional, dtype=np.int64), {}
+
+    def _plan(self, body: str, n: int, fields, missing: set, drawn: bool) -> tuple:
+        """``(text, plan, index of t, most bytes of its records, body, frame, indices of the
+        position)``: the template of a body's messages (:func:`rocketsim.telemetry.splice.template`) without the object
+        members whose values are ``missing`` (indices), the Foxglove ones only if ``drawn``."""
+        message = fields(splice.slots(n), splice.Slot.integer)
+        messages = self._messages(body, splice.time_slots(), _without(message, missing), fields.frame,
+                                  drawn)
         text, cuts = splice.template(messages)
-        return fields, n, text, cuts, message["t"].index, splice.most(text, cuts)
+        position = [slot.index for slot in message["position"]]
+        return text, cuts, message["t"].index, splice.most(text, cuts), body, fields.frame, position
 
-    def _messages(self, body: str, time: dict, message: dict) -> list[tuple[int, dict]]:
-        """``(channel, message)``: the body's state message and the Foxglove transform and
-        location drawn from it, at ``time`` (:func:`rocketsim.telemetry.foxglove.timestamp`)."""
-        state, transform, location = self._bodies[body]
-        return [(state, message),
-                (transform, foxglove.frame_transform(time, foxglove.INERTIAL_FRAME, body,
-                                                     message["position"], message["attitude"])),
-                (location, foxglove.location_fix(time, body, message["latitude_deg"],
-                                                 message["longitude_deg"], message["altitude"]))]
+    def _messages(self, body: str, time: dict, message: dict, frame: CentralFrame,
+                  drawn: bool = True) -> list[tuple[int, dict]]:
+        """``(channel, message)``: the body's state message and (if ``drawn``) the Foxglove
+        messages drawn from it at ``time`` (:func:`rocketsim.telemetry.foxglove.timestamp`):
+        its transform in ``frame``, its location about Earth; and the mission frame at the
+        lead body."""
+        state, transform = self._bodies[body]
+        parent, child = self._frames.body_frame(body, frame)
+        out = [(state, message)]
+        if drawn:
+            out.append((transform, foxglove.frame_transform(time, parent, child, message["position"],
+                                                            message["attitude"])))
+        if drawn and frame.center == "earth":
+            location = self._channel(f"/{body}/location", foxglove.LOCATION_FIX)
+            out.append((location, foxglove.location_fix(time, body, message["latitude_deg"],
+                                                        message["longitude_deg"], message["altitude"])))
+        if body == self._lead and self._frames.is_root(frame):
+            out.append((self._mission, _mission(time, parent, message["position"])))
+        return out
 
-    def _earth_turn(self, t: float, stamp: int) -> dict | None:
-        """The Earth's transform to write after a state message at ``t`` (s), once per
-        second of mission time: Foxglove interpolates between transforms, and the
-        Earth turns 0.004 deg in a second."""
-        second = math.floor(t)
-        if self._earth_at == second:
-            return None
-        self._earth_at = second
-        return foxglove.earth_transform(foxglove.timestamp(stamp), earth_rotation_angle(t))
+    def _mission_off_root(self, body: str, frame: CentralFrame, position, t: float,
+                          time: dict) -> list[tuple[int, dict]]:
+        """The mission frame's transform at the lead body about another centre than the
+        root's (none for another body or about the root's centre: its template has it)."""
+        if body != self._lead or self._frames.is_root(frame):
+            return []
+        place = self._frames.in_root(frame, position, t)
+        return [(self._mission, _mission(time, self._frames.root, place.tolist()))]
+
+    def _frame_transforms(self, t: float, stamp: int) -> list[tuple[int, dict]]:
+        """``(channel, FrameTransform)`` of the central bodies' frames due after a state
+        message at ``t`` (s), log time ``stamp`` (ns): :meth:`rocketsim.telemetry.frames.FrameTree.due`,
+        each on its body's ``/<body>/transform``."""
+        due = self._frames.due(t, stamp)
+        return [(self._channel(f"/{center}/transform", foxglove.FRAME_TRANSFORM), message)
+                for center, message in due] if due else due
 
     def event(self, t: float, body: str, name: str, figures: dict) -> None:
         """An event with its figures (SI), and its line in ``/events/log``."""

@@ -118,8 +118,8 @@ def _one_sample(world, path, loaded, duration, calls=1000):
 
 
 class _Kept:
-    """A flight's telemetry that keeps its samples ``(body, numbers, layout)`` and
-    writes nothing."""
+    """A flight's telemetry that keeps its samples ``(body, numbers, layout, leaving)``
+    and writes nothing."""
 
     def __init__(self):
         self.samples = []
@@ -127,8 +127,8 @@ class _Kept:
     def add_body(self, name):
         pass
 
-    def sample(self, body, values, fields):
-        self.samples.append((body, values, fields))
+    def sample(self, body, values, fields, leaving=False):
+        self.samples.append((body, values, fields, leaving))
 
     def event(self, *args):
         pass
