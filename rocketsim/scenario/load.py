@@ -13,6 +13,7 @@ path, what was expected, and for a misspelt field the closest valid name.
 from __future__ import annotations
 
 import difflib
+import reprlib
 import types
 import typing
 from dataclasses import dataclass, field
@@ -25,6 +26,10 @@ from rocketsim.scenario.classic_range import CLASSIC
 from rocketsim.scenario.models import MissionSpec, Scenario, SiteSpec, VehicleSpec
 from rocketsim.scenario.weather import load_weather
 from rocketsim.scenario.yaml_source import YamlSource, read_yaml
+
+# a value quoted in a message: a 60 000-character string is shown by its ends
+_SHORT = reprlib.Repr()
+_SHORT.maxstring = _SHORT.maxother = 80
 
 # fields of a scenario that may be a path to a file of their own, and its model
 REFERENCED = {"vehicle": VehicleSpec, "site": SiteSpec, "mission": MissionSpec,
@@ -181,7 +186,7 @@ def _describe(problem: dict, loc: tuple, model: type[BaseModel]) -> str:
     else:
         given = problem.get("input")
         if not isinstance(given, (dict, list)):
-            message += f" (got {given!r})"
+            message += f" (got {_SHORT.repr(given)})"
     return message
 
 

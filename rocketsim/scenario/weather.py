@@ -21,18 +21,18 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Annotated, Literal, Optional, Union
 
-from pydantic import BaseModel, ConfigDict, Field, RootModel, model_validator
+from pydantic import BaseModel, Field, RootModel, model_validator
 
 from rocketsim.atmosphere.day import classic_profile, profile_table, standard_table
 from rocketsim.atmosphere.random_day import random_profile
 from rocketsim.atmosphere.sounding import COLUMNS, from_columns, read_sounding
 from rocketsim.atmosphere.table import AtmosphereTable
 from rocketsim.constants import USSA_P0
-from rocketsim.scenario.units import Pressure, Temperature
+from rocketsim.scenario.units import STRICT, Pressure, Temperature
 
 
 class _Weather(BaseModel):
-    model_config = ConfigDict(extra="forbid", frozen=True)
+    model_config = STRICT
 
 
 class StandardWeather(_Weather):

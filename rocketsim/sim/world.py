@@ -39,7 +39,7 @@ from rocketsim.flight.readings import StateView
 from rocketsim.flight.sensors import Sensors
 from rocketsim.flight.steering import OMEGA_N, ZETA
 from rocketsim.scenario.load import LoadedScenario
-from rocketsim.scenario.models import check_step
+from rocketsim.scenario.models import check_duration, check_step
 from rocketsim.errors import InputError
 from rocketsim.frames.geodetic import enu_basis, geodetic_to_ecef
 from rocketsim.sim.central import air_about, next_center, nbody_field, planetocentric, recentre
@@ -182,7 +182,7 @@ class World:
                           # the classic range's original model (held for the step); stages inherit p
                           classic=scenario.site is not None and scenario.site.model == "classic"),
         )
-        world = cls(epoch, h, mission.duration if duration is None else duration, [body],
+        world = cls(epoch, h, mission.duration if duration is None else _checked_duration(duration), [body],
                     atmosphere=loaded.atmosphere)
         center = mission.start.orbit.body if mission.start.orbit is not None else "earth"
         if mission.gravity == "n-body" or center != "earth":
@@ -739,6 +739,13 @@ def _checked_step(step: float) -> float:
         return check_step(step)
     except ValueError as error:
         raise InputError(str(error), field="--step") from None
+
+
+def _checked_duration(duration: float) -> float:
+    try:
+        return check_duration(duration)
+    except ValueError as error:
+        raise InputError(str(error), field="--duration") from None
 
 
 def _channel_name(name: str) -> str:
