@@ -11,7 +11,7 @@ import click
 
 from rocketsim.scenario.load import load
 from rocketsim.sim.flight import fly as fly_scenario
-from rocketsim_cli.errors import reports_input_errors
+from rocketsim_cli.errors import check_writable, reports_input_errors
 from rocketsim_cli.progress import flight_progress
 from rocketsim_cli.summary import format_summary
 
@@ -46,6 +46,9 @@ def fly(scenario: Path, output: Path | None, step: float | None, duration: float
     """
     loaded = load(scenario)
     output = output or Path(f"{scenario.stem}.mcap")
+    check_writable(output, "--output")
+    if summary_json is not None:
+        check_writable(summary_json, "--summary-json")
     previous = signal.signal(signal.SIGTERM, _raise_terminated)
     try:
         with flight_progress(duration or loaded.scenario.mission.duration) as on_progress:
@@ -57,8 +60,10 @@ def fly(scenario: Path, output: Path | None, step: float | None, duration: float
         click.echo(f"\nterminated; telemetry so far is in {output}", err=True)
         sys.exit(143)
     except OSError as error:
-        click.echo(f"\nerror: {error}; what was written to {output} is readable with "
-                   f"'rocketsim replay {output}'", err=True)
+        written = output.is_file() and output.stat().st_size > 0
+        click.echo(f"\nerror: {error}; " + (f"what was written to {output} is readable with "
+                   f"'rocketsim replay {output}'" if written else f"nothing was written to {output}"),
+                   err=True)
         sys.exit(1)
     finally:
         signal.signal(signal.SIGTERM, previous)
