@@ -21,6 +21,7 @@ CASES = [
     ("fc.sleep(1e30)", "fc.sleep(): seconds must be within"),
     ("fc.sleep(float('inf'))", "fc.sleep(): seconds must be a finite number"),
     ("fc.sleep(-5)", "fc.sleep(): seconds must be within"),
+    ("fc.throttle(10**400)", "fc.throttle(): value must be a finite number, got inf"),
     ("fc.sleep('5')", "fc.sleep(): seconds must be a number, got '5'"),
     ("fc.point(float('nan'), 0.0)", "fc.point(): pitch must be a finite number, got nan"),
     ("fc.point(1e300, 0.0)", "fc.point(): pitch must be within"),

@@ -39,8 +39,8 @@ def number(call: str, name: str, value: Any, low: float = -math.inf, high: float
         raise TypeError(f"{call}(): {name} must be a number, got {_shown(value)}")
     try:
         x = float(value)
-    except OverflowError:
-        x = math.copysign(math.inf, value)
+    except OverflowError:               # an integer beyond a float's range
+        x = math.inf if value > 0 else -math.inf
     if not math.isfinite(x):
         raise ValueError(f"{call}(): {name} must be a finite number, got {x!r}")
     if not low <= x <= high:

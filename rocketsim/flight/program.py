@@ -158,22 +158,23 @@ def load_program_module(path: Path) -> SimpleNamespace:
     try:
         exec(code, namespace)
     except BaseException as error:  # noqa: BLE001 - the user's code may raise anything
-        if not _raised_by_program(error):
+        if not _raised_by_program(error, path):
             raise
         raise _program_error(error, path) from None
     namespace.setdefault("main", None)
     return SimpleNamespace(**{k: v for k, v in namespace.items() if k != "__builtins__"})
 
 
-def _raised_by_program(error: BaseException) -> bool:
+def _raised_by_program(error: BaseException, path: Path) -> bool:
     """Whether ``error`` ends the program rather than the simulator: any Exception, a
-    ``sys.exit()``, the CPU budget, any other BaseException the program raises
-    (GeneratorExit, its own classes); not Ctrl-C or the signals the simulator and
-    its command line raise (those stop the flight as they would without a program)."""
+    ``sys.exit()``, the CPU budget, or another BaseException the program's own code
+    raises (GeneratorExit, its own classes); not Ctrl-C, nor what a signal handler
+    raises while the program runs (SIGTERM's: they stop the flight as they would
+    without a program)."""
     if isinstance(error, (Exception, SystemExit, ProgramOverBudget)):
         return True
-    return not isinstance(error, KeyboardInterrupt) and \
-        not type(error).__module__.startswith(("rocketsim.", "rocketsim_cli"))
+    frames = traceback.extract_tb(error.__traceback__)
+    return not isinstance(error, KeyboardInterrupt) and bool(frames) and Path(frames[-1].filename) == path
 
 
 def _program_error(error: BaseException, path: Path, budget: float = 0.0,
@@ -220,7 +221,7 @@ class ProgramRunner:
                 ready = self._predicate()
             ready = truth(ready)
         except BaseException as error:  # noqa: BLE001
-            if not _raised_by_program(error):
+            if not _raised_by_program(error, self.path):
                 raise
             self.finished = True
             code = getattr(self._predicate, "__code__", None)    # the condition's own line
@@ -251,7 +252,7 @@ class ProgramRunner:
             with self._budget:
                 self._greenlet.switch(*args)
         except BaseException as error:  # noqa: BLE001
-            if not _raised_by_program(error):
+            if not _raised_by_program(error, self.path):
                 raise
             self.finished = True
             raise _program_error(error, self.path, self.cpu_budget) from None
