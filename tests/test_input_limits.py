@@ -138,3 +138,26 @@ def test_a_mission_of_more_than_a_century_is_refused_at_its_line(scenario, cli):
     assert_clean_error(result, "mission.yaml:6:", "duration", "a century")
     with pytest.raises(InputError):
         load(path)
+
+
+@pytest.mark.parametrize("name, why", [("9" * 400 + ".yaml", "File name too long"),
+                                       ("a\\0b.yaml", "embedded null byte")])
+def test_a_referenced_file_name_the_system_cannot_take_is_an_error_at_its_line(write, cli, name, why):
+    # found by tests/fuzz: the check that the file exists raised OSError / ValueError
+    path = write("scenario.yaml", f'name: x\nvehicle: "{name}"\nmission: mission.yaml\n')
+    assert_clean_error(cli("validate", path), "scenario.yaml:2:1: vehicle:", "cannot be a file name", why)
+
+
+def test_inline_sounding_columns_are_checked_where_they_are_written(write, cli):
+    # found by tests/fuzz: columns of different lengths passed validation and failed at
+    # the flight's start with no file or line
+    path = write("scenario.yaml", """\
+        name: probe
+        vehicle: {name: probe, rigid_body: {mass: 10 kg, inertia: [0.15, 0.12, 0.05]}}
+        mission: {epoch: 2026-11-26T12:00:00Z, start: {orbit: {altitude: 415 km, inclination: 0 deg}},
+                  duration: 1 s}
+        weather:
+          kind: sounding
+          columns: {PRES: [1000, 850, 700], HGHT: [100, 1500, 3000], TEMP: [20.0, 12.5]}
+        """)
+    assert_clean_error(cli("validate", path), "scenario.yaml:5:1: weather:", "column TEMP has 2 values, HGHT has 3")

@@ -128,8 +128,16 @@ def load(path: str | Path) -> LoadedScenario:
 
 
 def _resolve(scenario_path: Path, reference: str, source: YamlSource, loc: tuple) -> Path:
-    ref = (scenario_path.parent / reference).resolve()
-    if not ref.is_file():
+    try:
+        ref = (scenario_path.parent / reference).resolve()
+        found = ref.is_file()
+    except (OSError, ValueError) as error:     # a name too long for the system, a NUL in it
+        line, column = source.position(loc) or (None, None)
+        raise InputError(f"referenced file {_SHORT.repr(reference)} cannot be a file name "
+                         f"({getattr(error, 'strerror', None) or error})",
+                         file=scenario_path, line=line, column=column,
+                         field=".".join(map(str, loc))) from None
+    if not found:
         line, column = source.position(loc) or (None, None)
         raise InputError(f"referenced file {reference!r} not found (looked for {ref})",
                          file=scenario_path, line=line, column=column, field=".".join(map(str, loc)))
