@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import functools
 import sys
+from pathlib import Path
 
 import click
 
@@ -22,3 +23,18 @@ def reports_input_errors(command):
             sys.exit(2)
 
     return wrapper
+
+
+def check_writable(path: Path, option: str) -> None:
+    """Refuse an output ``path`` that cannot be created (no such folder, no permission, a
+    folder of that name) with an :class:`InputError` naming ``option``, before any work
+    is done; a file the check creates is removed again, an existing one left as it is."""
+    existed = path.exists()
+    try:
+        with open(path, "ab"):
+            pass
+    except OSError as error:
+        raise InputError(f"cannot create {path}: {error.strerror or error}; nothing was written",
+                         field=option) from None
+    if not existed:
+        path.unlink()

@@ -8,7 +8,7 @@ from pathlib import Path
 
 import click
 
-from rocketsim_cli.errors import reports_input_errors
+from rocketsim_cli.errors import check_writable, reports_input_errors
 from rocketsim_cli.progress import flight_progress
 from rocketsim_cli.summary import format_summary
 
@@ -48,6 +48,9 @@ def fly(scenario: Path, output: Path | None, step: float | None, duration: float
 
     loaded = load(scenario)
     output = output or Path(f"{scenario.stem}.mcap")
+    check_writable(output, "--output")
+    if summary_json is not None:
+        check_writable(summary_json, "--summary-json")
     previous = signal.signal(signal.SIGTERM, _raise_terminated)
     try:
         with compile_message():
@@ -61,8 +64,10 @@ def fly(scenario: Path, output: Path | None, step: float | None, duration: float
         click.echo(f"\nterminated; telemetry so far is in {output}", err=True)
         sys.exit(143)
     except OSError as error:
-        click.echo(f"\nerror: {error}; what was written to {output} is readable with "
-                   f"'rocketsim replay {output}'", err=True)
+        written = output.is_file() and output.stat().st_size > 0
+        click.echo(f"\nerror: {error}; " + (f"what was written to {output} is readable with "
+                   f"'rocketsim replay {output}'" if written else f"nothing was written to {output}"),
+                   err=True)
         sys.exit(1)
     finally:
         signal.signal(signal.SIGTERM, previous)

@@ -54,6 +54,10 @@ SUN_MU = 1.32712440018e20                  # m^3/s^2
 # --- Integrator (docs/physics.md#integrator) ---------------------------------
 STEP = 0.02                                # s, the flight model's fixed step
 MAX_HEADLESS_STEP = 0.1                    # s, largest step a headless run accepts
+MIN_STEP = 1e-4                            # s, smallest step: 1/200 of STEP (a shorter one is a typo
+                                           # that would turn a flight into billions of steps)
+MAX_DURATION = 100 * 365.25 * 86400.0      # s, longest mission time, a century (a flight's, an
+                                           # fc.sleep's): step counts stay exact integers
 GROUND_SUBSTEP_HEIGHT = 2.0                # m, below this height the step is split
 GROUND_SUBSTEPS = 4                        # sub-steps within GROUND_SUBSTEP_HEIGHT
 GROUND_SUBSTEP_MAX = 0.005                 # s, longest sub-step there at any step size

@@ -1,14 +1,27 @@
-"""Shared test helpers: write small scenarios into a temporary folder."""
+"""Shared test helpers: write small scenarios into a temporary folder; the fuzz profiles."""
 
 from __future__ import annotations
 
+import os
 import textwrap
 from pathlib import Path
 
 import pytest
 from click.testing import CliRunner
+from hypothesis import HealthCheck, settings
 
 ROOT = Path(__file__).resolve().parents[1]
+
+# Hypothesis profiles of tests/fuzz: "ci" (the default) replays the same examples every
+# run (derandomize) on a fixed budget; "long", for a developer, draws 17 times as many
+# fresh ones. Choose with --hypothesis-profile=long or ROCKETSIM_FUZZ_PROFILE=long.
+# max_examples is a unit: each fuzz test runs a multiple of it (tests/fuzz/harness.py).
+_FUZZ = dict(deadline=None, database=None, print_blob=True,
+             suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large,
+                                    HealthCheck.filter_too_much, HealthCheck.function_scoped_fixture])
+settings.register_profile("ci", max_examples=100, derandomize=True, **_FUZZ)
+settings.register_profile("long", max_examples=1700, derandomize=False, **_FUZZ)
+settings.load_profile(os.environ.get("ROCKETSIM_FUZZ_PROFILE", "ci"))
 
 VEHICLE = """\
 name: probe

@@ -85,9 +85,9 @@ def test_inline_columns_and_their_errors():
     assert _build(ok).at([345.0])[1][0] == pytest.approx(96_600.0, rel=1e-3)
     bad = {"kind": "sounding", "columns": {"PRES": [966, 925], "HGHT": [720, 345],
                                            "TEMP": [22.2, 20.4]}}
-    with pytest.raises(Exception) as caught:
+    with pytest.raises(Exception) as caught:        # refused as it is validated, at the column's cell
         _build(bad)
-    assert "weather.columns.HGHT[1]" in str(caught.value)
+    assert "columns.HGHT[1]: heights out of order" in str(caught.value)
 
 
 @pytest.mark.parametrize("data", [

@@ -17,7 +17,8 @@ ROOT = Path(__file__).resolve().parent.parent
 
 # bottom to top; a module belongs to the longest prefix that names it
 LAYERS = [
-    ("rocketsim.constants", "rocketsim.errors", "rocketsim._jit", "rocketsim.version"),
+    ("rocketsim.constants", "rocketsim.errors", "rocketsim._jit", "rocketsim.version",
+     "rocketsim.limits"),
     ("rocketsim.timescales", "rocketsim.frames", "rocketsim.layout"),
     ("rocketsim.bodies", "rocketsim.ephemeris", "rocketsim.atmosphere"),
     ("rocketsim.orbits",),

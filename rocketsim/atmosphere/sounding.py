@@ -36,6 +36,7 @@ import yaml
 
 from rocketsim.constants import WATER_AIR_MOLAR_RATIO
 from rocketsim.errors import InputError
+from rocketsim.limits import MAX_TEXT_BYTES, compose_yaml, read_bounded
 
 COLUMNS = ("PRES", "HGHT", "TEMP", "DWPT", "RELH", "MIXR", "DRCT", "SKNT")
 REQUIRED = ("PRES", "HGHT", "TEMP")
@@ -230,12 +231,7 @@ def parse_csv(text: str, source: str = "<sounding>") -> Sounding:
 
 def parse_yaml(text: str, source: str = "<sounding>") -> Sounding:
     """Read YAML: a mapping of column name to a list of values (optionally under ``columns:``)."""
-    try:
-        root = yaml.compose(text)
-    except yaml.YAMLError as error:
-        mark = getattr(error, "problem_mark", None)
-        raise InputError(f"not valid YAML: {getattr(error, 'problem', error)}", file=source,
-                         line=mark.line + 1 if mark else None) from None
+    root = compose_yaml(text, source)
     if isinstance(root, yaml.MappingNode):
         for key, value in root.value:
             if key.value == "columns":
@@ -266,10 +262,11 @@ def parse_yaml(text: str, source: str = "<sounding>") -> Sounding:
 def read_sounding(path: str | Path) -> Sounding:
     """Read a sounding file: ``.csv``, ``.yaml``/``.yml``, else the Wyoming text format."""
     path = Path(path)
+    data = read_bounded(path, MAX_TEXT_BYTES, "sounding")
     try:
-        text = path.read_text()
-    except OSError as error:
-        raise InputError(f"cannot read the sounding: {error.strerror}", file=path) from None
+        text = data.decode("utf-8")
+    except UnicodeDecodeError as error:
+        raise InputError(f"cannot read the sounding ({error})", file=path) from None
     suffix = path.suffix.lower()
     if suffix == ".csv":
         return parse_csv(text, str(path))

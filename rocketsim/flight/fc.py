@@ -19,8 +19,10 @@ from typing import Callable
 
 import numpy as np
 
-from rocketsim.constants import G0
+from rocketsim.constants import G0, MAX_DURATION
 from rocketsim.dynamics.central import planetocentric
+from rocketsim.ephemeris.solar_system import BODIES
+from rocketsim.flight import arguments
 from rocketsim.layout import P_RADIUS
 from rocketsim.flight.accelerometer import sensed_acceleration
 from rocketsim.flight.impact import predict_impact
@@ -54,8 +56,7 @@ class FlightComputer:
 
     def sleep(self, seconds: float) -> None:
         """Hand control back for ``seconds`` of mission time (at least one step)."""
-        if not seconds >= 0:
-            raise ValueError(f"fc.sleep() needs a duration >= 0 s, got {seconds!r}")
+        seconds = arguments.duration("fc.sleep", seconds)
         self._craft.hand_back(self._craft.time + max(seconds, self._craft.step_length))
 
     def cruise(self, seconds: float) -> None:
@@ -67,26 +68,25 @@ class FlightComputer:
         to 20 ms steps before an encounter and when it leaves the central
         body's sphere of influence. Example: ``fc.cruise(3 * 86400)``.
         """
-        if not seconds >= 0:
-            raise ValueError(f"fc.cruise() needs a duration >= 0 s, got {seconds!r}")
+        seconds = arguments.duration("fc.cruise", seconds)
         until = self._craft.time + max(seconds, self._craft.step_length)
         self._craft.allow_cruise(until)
         self._craft.hand_back(until)
 
     def wait_until(self, predicate: Callable[[], bool]) -> None:
         """Hand control back until ``predicate()`` is true (checked once per step)."""
-        if not callable(predicate):
-            raise TypeError("fc.wait_until() needs a function, e.g. lambda: fc.altitude > 1e5")
+        predicate = arguments.condition("fc.wait_until", predicate)
         self._craft.hand_back(self._craft.time + self._craft.step_length, predicate)
 
     # --- output -------------------------------------------------------------
     def log(self, *parts) -> None:
         """Write a line to the telemetry's ``/log`` channel."""
-        self._craft.log(" ".join(str(p) for p in parts))
+        self._craft.log(arguments.text("fc.log", "the line", " ".join(str(p) for p in parts)))
 
     def event(self, name: str, **figures) -> None:
         """Record a named event with its figures (numbers or strings)."""
-        self._craft.event(str(name), figures)
+        name, figures = arguments.text("fc.event", "name", str(name)), arguments.figures("fc.event", figures)
+        self._craft.event(name, figures)
 
     def warm_up(self) -> None:
         """Read everything once (builds the air table, loads compiled kernels)."""
@@ -294,28 +294,30 @@ class FlightComputer:
         and, if ``roll`` (rad) is given, turned that far about the nose from belly to the
         ground (the angle :attr:`roll` reads); ``roll=None`` leaves roll free (damped).
         Example: ``fc.point(math.radians(10), math.radians(90), roll=math.radians(180))``."""
-        self._steer(AttitudeCommand(pitch=float(pitch), heading=float(heading), roll=_roll(roll)))
+        pitch = arguments.angle("fc.point", "pitch", pitch, arguments.MAX_PITCH)
+        heading, roll = arguments.angle("fc.point", "heading", heading), arguments.roll("fc.point", roll)
+        self._steer(AttitudeCommand(pitch=pitch, heading=heading, roll=roll))
 
     def point_at(self, vector, frame: str = "eci", roll: float | None = None) -> None:
         """Point the nose along ``vector``: in ``"eci"`` axes, or ``"local"`` (east, north, up);
         ``roll`` (rad) as in :meth:`point`."""
-        v = np.asarray(vector, dtype=float)
+        v = arguments.vector("fc.point_at", "vector", vector)
+        frame = arguments.choice("fc.point_at", "frame", frame, ("eci", "local"))
+        roll = arguments.roll("fc.point_at", roll)
         if frame == "local":
             v = v @ self._view().enu
-        elif frame != "eci":
-            raise ValueError(f"unknown frame {frame!r}; use 'eci' or 'local'")
-        norm = float(np.linalg.norm(v))
-        if not norm > 0:
+        with np.errstate(over="ignore"):
+            norm = float(np.linalg.norm(v))
+        if not 0 < norm < math.inf:
             raise ValueError("fc.point_at() needs a non-zero vector")
-        self._steer(AttitudeCommand(direction=v / norm, roll=_roll(roll)))
+        self._steer(AttitudeCommand(direction=v / norm, roll=roll))
 
     def hold(self, mode: str, roll: float | None = None) -> None:
         """Follow a direction of the flight: one of prograde, retrograde, surface_prograde,
         surface_retrograde, normal, antinormal, radial, antiradial; ``roll`` (rad) as in
         :meth:`point`. Example: ``fc.hold("retrograde", roll=0.0)``."""
-        if mode not in MODES:
-            raise ValueError(f"unknown attitude mode {mode!r}; use one of {', '.join(MODES)}")
-        self._steer(AttitudeCommand(mode=mode, roll=_roll(roll)))
+        mode, roll = arguments.choice("fc.hold", "mode", mode, MODES), arguments.roll("fc.hold", roll)
+        self._steer(AttitudeCommand(mode=mode, roll=roll))
 
     def release(self) -> None:
         """Stop steering (the gimbals stay where they are, the RCS thrusters stop)."""
@@ -331,10 +333,10 @@ class FlightComputer:
         commanded attitude with them on all three axes, alongside the gimbals and grid
         fins, in a coast too (see :mod:`rocketsim.flight.autopilot`); they draw from
         their tanks. Records an ``rcs on`` / ``rcs off`` event. Example: ``fc.rcs(True)``."""
+        on = arguments.flag("fc.rcs", "on", on)
         vehicle = self._craft.vehicle
         if vehicle is None or not len(vehicle.arrays.aero.rcs):
             raise ValueError(f"{self._craft.name} has no RCS thrusters")
-        on = bool(on)
         if not on:
             self._craft.stop_rcs()
         if on != self._rcs:
@@ -479,6 +481,7 @@ class FlightComputer:
         (``"booster"``, ``"Merlin 1D ring"``, ``"booster/Merlin 1D ring/3"``) or index.
         Thrust follows after the ignition dead time and spool-up. Returns the
         engines that accepted (not already on, propellant left, an ignition left)."""
+        which = arguments.engines("fc.ignite", which)
         names = self._propulsion().ignite(self._craft.y, which)
         if names:
             self._craft.event("ignition", {"engines": names})
@@ -486,6 +489,7 @@ class FlightComputer:
 
     def shutdown(self, which=None) -> list[str]:
         """Command engines off (the tail-off follows); returns the engines that were on."""
+        which = arguments.engines("fc.shutdown", which)
         names = self._propulsion().shutdown(self._craft.y, which)
         if names:
             self._craft.event("shutdown", {"engines": names})
@@ -494,7 +498,8 @@ class FlightComputer:
     def throttle(self, value: float, which=None) -> None:
         """Command a throttle (0-1 of vacuum thrust, clipped to each engine's range and
         reached at its slew rate)."""
-        self._propulsion().throttle(self._craft.time, float(value), which)
+        value, which = arguments.number("fc.throttle", "value", value), arguments.engines("fc.throttle", which)
+        self._propulsion().throttle(self._craft.time, value, which)
 
     @property
     def engines(self) -> list[dict]:
@@ -613,6 +618,8 @@ class FlightComputer:
         """Position (m) and velocity (m/s) of ``name`` ("sun", "earth", "moon", "mars")
         relative to the central body, in the frame's axes, at mission time ``at`` (s;
         default now): the simulator's ephemeris. Example: ``r_moon, v_moon = fc.body_state("moon")``."""
+        name = arguments.choice("fc.body_state", "name", name, BODIES)
+        at = None if at is None else arguments.number("fc.body_state", "at", at, -MAX_DURATION, MAX_DURATION)
         return self._craft.body_state(name, at)
 
     def predict(self, seconds: float, delta_v=None, periapsis: bool = False):
@@ -622,6 +629,9 @@ class FlightComputer:
         periapsis about the central body if that comes first. Computed from the
         truth, not the navigation estimate. Example:
         ``t, r, v = fc.predict(86400, periapsis=True)``."""
+        seconds = arguments.duration("fc.predict", seconds)
+        delta_v = None if delta_v is None else arguments.vector("fc.predict", "delta_v", delta_v)
+        periapsis = arguments.flag("fc.predict", "periapsis", periapsis)
         return self._craft.predict(seconds, delta_v, periapsis)
 
     @property
@@ -629,7 +639,3 @@ class FlightComputer:
         """Time to the next apoapsis, s (nan if unbound)."""
         return self._view().time_to_apoapsis
 
-
-def _roll(roll) -> float | None:
-    """A commanded roll (rad) as a float, or None (roll free)."""
-    return None if roll is None else float(roll)

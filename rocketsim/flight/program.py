@@ -37,6 +37,8 @@ import greenlet
 import numba.core.event as ev
 
 from rocketsim.errors import InputError
+from rocketsim.flight.arguments import truth
+from rocketsim.limits import MAX_TEXT_BYTES, read_bounded
 
 # mission time tolerance for "the wake-up time has come" (s): steps are
 # accumulated in floating point, a sleep of 1.0 s must wake after 50 x 0.02 s
@@ -148,9 +150,9 @@ def load_program_module(path: Path) -> SimpleNamespace:
     program files sit beside scenarios, not on the import path."""
     path = Path(path)
     try:
-        source = path.read_text(encoding="utf-8")
-    except OSError as error:
-        raise InputError(f"cannot read the program ({error.strerror})", file=path) from None
+        source = read_bounded(path, MAX_TEXT_BYTES, "program").decode("utf-8")
+    except UnicodeDecodeError as error:
+        raise InputError(f"cannot read the program ({error})", file=path) from None
     try:
         code = compile(source, str(path), "exec")
     except SyntaxError as error:
@@ -159,15 +161,30 @@ def load_program_module(path: Path) -> SimpleNamespace:
     namespace = {"__name__": "rocketsim_program", "__file__": str(path)}
     try:
         exec(code, namespace)
-    except Exception as error:  # noqa: BLE001 - the user's code may raise anything
+    except BaseException as error:  # noqa: BLE001 - the user's code may raise anything
+        if not _raised_by_program(error, path):
+            raise
         raise _program_error(error, path) from None
     namespace.setdefault("main", None)
     return SimpleNamespace(**{k: v for k, v in namespace.items() if k != "__builtins__"})
 
 
-def _program_error(error: BaseException, path: Path, budget: float = 0.0) -> ProgramError:
-    """A :class:`ProgramError` pointing at the deepest line of ``path`` in the traceback."""
-    line = None
+def _raised_by_program(error: BaseException, path: Path) -> bool:
+    """Whether ``error`` ends the program rather than the simulator: any Exception, a
+    ``sys.exit()``, the CPU budget, or another BaseException the program's own code
+    raises (GeneratorExit, its own classes); not Ctrl-C, nor what a signal handler
+    raises while the program runs (SIGTERM's: they stop the flight as they would
+    without a program)."""
+    if isinstance(error, (Exception, SystemExit, ProgramOverBudget)):
+        return True
+    frames = traceback.extract_tb(error.__traceback__)
+    return not isinstance(error, KeyboardInterrupt) and bool(frames) and Path(frames[-1].filename) == path
+
+
+def _program_error(error: BaseException, path: Path, budget: float = 0.0,
+                   line: int | None = None) -> ProgramError:
+    """A :class:`ProgramError` pointing at the deepest line of ``path`` in the traceback
+    (else at ``line``)."""
     for frame in traceback.extract_tb(error.__traceback__):
         if Path(frame.filename) == path:
             line = frame.lineno
@@ -176,6 +193,9 @@ def _program_error(error: BaseException, path: Path, budget: float = 0.0) -> Pro
                             "back control (fc.step(), fc.sleep() or fc.wait_until()); is it in an "
                             "endless loop? (raise the limit with 'program_cpu_budget')",
                             file=path, line=line)
+    if isinstance(error, SystemExit):
+        return ProgramError(f"the program called sys.exit({error.code!r}); a program ends by "
+                            "returning from main(fc)", file=path, line=line)
     text = "".join(traceback.format_exception_only(type(error), error)).strip()
     return ProgramError(f"the program raised {text}", file=path, line=line)
 
@@ -202,10 +222,15 @@ class ProgramRunner:
             return True
         try:
             with self._budget:
-                ready = bool(self._predicate())
-        except (Exception, ProgramOverBudget) as error:  # noqa: BLE001
+                ready = self._predicate()
+            ready = truth(ready)
+        except BaseException as error:  # noqa: BLE001
+            if not _raised_by_program(error, self.path):
+                raise
             self.finished = True
-            raise _program_error(error, self.path, self.cpu_budget) from None
+            code = getattr(self._predicate, "__code__", None)    # the condition's own line
+            line = code.co_firstlineno if code is not None and Path(code.co_filename) == self.path else None
+            raise _program_error(error, self.path, self.cpu_budget, line) from None
         if ready:
             self._predicate = None
         return ready
@@ -230,7 +255,9 @@ class ProgramRunner:
         try:
             with self._budget:
                 self._greenlet.switch(*args)
-        except (Exception, ProgramOverBudget) as error:  # noqa: BLE001
+        except BaseException as error:  # noqa: BLE001
+            if not _raised_by_program(error, self.path):
+                raise
             self.finished = True
             raise _program_error(error, self.path, self.cpu_budget) from None
         if self._greenlet.dead:

@@ -13,10 +13,10 @@ from __future__ import annotations
 
 from typing import Annotated, Literal, Optional
 
-from pydantic import BaseModel, ConfigDict, Field, field_validator
+from pydantic import BaseModel, Field, field_validator
 
 from rocketsim.constants import FRICTION_REGULARISATION
-from rocketsim.scenario.units import (Angle, AngularRate, Area, Force, Length, Mass, Speed,
+from rocketsim.scenario.units import (STRICT, Angle, AngularRate, Area, Force, Length, Mass, Speed,
                                       SpecificImpulse, Temperature)
 
 PositiveLength = Annotated[Length, Field(gt=0)]
@@ -24,7 +24,7 @@ NonNegativeLength = Annotated[Length, Field(ge=0)]
 
 
 class _Strict(BaseModel):
-    model_config = ConfigDict(extra="forbid", frozen=True)
+    model_config = STRICT
 
 
 class NoseSpec(_Strict):

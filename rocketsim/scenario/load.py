@@ -13,6 +13,7 @@ path, what was expected, and for a misspelt field the closest valid name.
 from __future__ import annotations
 
 import difflib
+import reprlib
 import types
 import typing
 from dataclasses import dataclass, field
@@ -25,6 +26,10 @@ from rocketsim.scenario.classic_range import CLASSIC
 from rocketsim.scenario.models import MissionSpec, Scenario, SiteSpec, VehicleSpec
 from rocketsim.scenario.weather import load_weather
 from rocketsim.scenario.yaml_source import YamlSource, read_yaml
+
+# a value quoted in a message: a 60 000-character string is shown by its ends
+_SHORT = reprlib.Repr()
+_SHORT.maxstring = _SHORT.maxother = 80
 
 # fields of a scenario that may be a path to a file of their own, and its model
 REFERENCED = {"vehicle": VehicleSpec, "site": SiteSpec, "mission": MissionSpec,
@@ -123,8 +128,16 @@ def load(path: str | Path) -> LoadedScenario:
 
 
 def _resolve(scenario_path: Path, reference: str, source: YamlSource, loc: tuple) -> Path:
-    ref = (scenario_path.parent / reference).resolve()
-    if not ref.is_file():
+    try:
+        ref = (scenario_path.parent / reference).resolve()
+        found = ref.is_file()
+    except (OSError, ValueError) as error:     # a name too long for the system, a NUL in it
+        line, column = source.position(loc) or (None, None)
+        raise InputError(f"referenced file {_SHORT.repr(reference)} cannot be a file name "
+                         f"({getattr(error, 'strerror', None) or error})",
+                         file=scenario_path, line=line, column=column,
+                         field=".".join(map(str, loc))) from None
+    if not found:
         line, column = source.position(loc) or (None, None)
         raise InputError(f"referenced file {reference!r} not found (looked for {ref})",
                          file=scenario_path, line=line, column=column, field=".".join(map(str, loc)))
@@ -181,7 +194,7 @@ def _describe(problem: dict, loc: tuple, model: type[BaseModel]) -> str:
     else:
         given = problem.get("input")
         if not isinstance(given, (dict, list)):
-            message += f" (got {given!r})"
+            message += f" (got {_SHORT.repr(given)})"
     return message
 
 

@@ -18,14 +18,15 @@ import datetime as dt
 from pathlib import Path
 from typing import Annotated, Literal, Optional, Union
 
-from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
+from pydantic import BaseModel, Field, field_validator, model_validator
 
 from rocketsim.bodies.sun_synchronous import (sun_synchronous_inclination,
                                               sun_synchronous_osculating_inclination)
-from rocketsim.constants import EARTH_RADIUS_EQ, MAX_HEADLESS_STEP, STEP
+from rocketsim.constants import EARTH_RADIUS_EQ, MAX_DURATION, MAX_HEADLESS_STEP, MIN_STEP, STEP
+from rocketsim.limits import check_data
 from rocketsim.scenario.classic_range import CLASSIC, classic_site
 from rocketsim.scenario.weather import Weather
-from rocketsim.scenario.units import Angle, Duration, Frequency, Inertia, Length, Mass, Speed
+from rocketsim.scenario.units import STRICT, Angle, Duration, Frequency, Inertia, Length, Mass, Speed
 from rocketsim.scenario.aero_spec import AeroSpec, check_aero
 from rocketsim.scenario.vehicle import FairingSpec, PayloadSpec, StageSpec, check_staged
 from rocketsim.scenario.stage_selection import keep_stages, reload_tanks, stack_spacecraft
@@ -41,7 +42,7 @@ PositiveInertia = Annotated[Inertia, Field(gt=0)]
 class Strict(BaseModel):
     """Base of every scenario model: unknown fields are errors."""
 
-    model_config = ConfigDict(extra="forbid", frozen=True)
+    model_config = STRICT
 
 
 # --- vehicle ------------------------------------------------------------------
@@ -263,6 +264,11 @@ class MissionSpec(Strict):
         "the central body's point mass and J2 plus the Sun, Earth, Moon and Mars, handing "
         "over from sphere of influence to sphere of influence (Moon and Mars missions)")
 
+    @field_validator("duration")
+    @classmethod
+    def _duration_limit(cls, value: float) -> float:
+        return check_duration(value)
+
     @field_validator("epoch")
     @classmethod
     def _utc(cls, value: dt.datetime) -> dt.datetime:
@@ -321,6 +327,13 @@ class Scenario(Strict):
 
     @model_validator(mode="before")
     @classmethod
+    def _bounded(cls, data):
+        """A scenario handed over in memory is held to the limits a file is read within
+        (:func:`rocketsim.limits.check_data`): nesting, number of values, text lengths."""
+        return check_data(data)
+
+    @model_validator(mode="before")
+    @classmethod
     def _classic_range(cls, data):
         """``site: classic``: the procedural range generated from the scenario's seed."""
         if isinstance(data, dict) and data.get("site") == CLASSIC:
@@ -373,8 +386,19 @@ class Scenario(Strict):
 
 
 def check_step(value: float) -> float:
-    """The headless step limit: any step up to 0.1 s, nothing larger."""
+    """The headless step limit: any step from 0.1 ms up to 0.1 s, nothing else."""
     if value > MAX_HEADLESS_STEP:
         raise ValueError(f"step {value:g} s is larger than the {MAX_HEADLESS_STEP:g} s a headless "
                          "run accepts (the flight model flies 0.02 s)")
+    if not value >= MIN_STEP:     # nan too
+        raise ValueError(f"step {value:g} s is not at least the {MIN_STEP:g} s a run accepts "
+                         "(the flight model flies 0.02 s)")
+    return value
+
+
+def check_duration(value: float) -> float:
+    """A mission time to fly: more than 0 s, at most a century."""
+    if not value > 0 or not value <= MAX_DURATION:
+        raise ValueError(f"a duration of {value:g} s is not more than 0 s and at most "
+                         f"{MAX_DURATION:g} s (a century)")
     return value

@@ -16,7 +16,7 @@ import math
 import re
 from typing import Annotated, Any
 
-from pydantic import BeforeValidator, WithJsonSchema
+from pydantic import BeforeValidator, ConfigDict, WithJsonSchema
 
 # dimension -> {unit spelling: factor to the SI unit}
 UNITS: dict[str, dict[str, float]] = {
@@ -43,6 +43,10 @@ UNITS: dict[str, dict[str, float]] = {
     "dimensionless": {"": 1.0, "%": 0.01},
 }
 
+# the settings of every scenario model: unknown fields are errors, and so is a number
+# that is not finite (nan, inf, or a quantity such as "1e308 km" whose SI value overflows)
+STRICT = ConfigDict(extra="forbid", frozen=True, allow_inf_nan=False)
+
 _QUANTITY = re.compile(r"^\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*(.*?)\s*$")
 
 
@@ -51,7 +55,14 @@ class UnitError(ValueError):
 
 
 def parse_quantity(value: Any, dimension: str) -> float:
-    """Return the SI value of ``value`` (number or ``"<number> <unit>"``)."""
+    """Return the SI value of ``value`` (number or ``"<number> <unit>"``), a finite number."""
+    si = _si_value(value, dimension)
+    if not math.isfinite(si):
+        raise UnitError(f"expected a finite {dimension.replace('_', ' ')}")
+    return si
+
+
+def _si_value(value: Any, dimension: str) -> float:
     if isinstance(value, bool):
         raise UnitError(f"expected a {dimension}, got a boolean")
     if isinstance(value, (int, float)):

@@ -31,12 +31,13 @@ from __future__ import annotations
 import math
 from typing import Annotated, Optional
 
-from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
+from pydantic import BaseModel, Field, field_validator, model_validator
 from pydantic_core import InitErrorDetails, PydanticCustomError, ValidationError
 
 from rocketsim.constants import ENGINE_TAIL_OFF, G0
-from rocketsim.scenario.units import (Angle, AngularRate, Area, Density, Duration, Force, Fraction,
-                                      Length, Mass, MassFlow, Pressure, SpecificImpulse, Speed)
+from rocketsim.scenario.units import (STRICT, Angle, AngularRate, Area, Density, Duration, Force,
+                                      Fraction, Length, Mass, MassFlow, Pressure, SpecificImpulse,
+                                      Speed)
 
 PositiveLength = Annotated[Length, Field(gt=0)]
 NonNegativeLength = Annotated[Length, Field(ge=0)]
@@ -47,7 +48,7 @@ PositiveMass = Annotated[Mass, Field(gt=0)]
 class _Strict(BaseModel):
     """Unknown fields are errors (the same settings as ``models.Strict``, which imports us)."""
 
-    model_config = ConfigDict(extra="forbid", frozen=True)
+    model_config = STRICT
 
 
 def field_error(loc: tuple, message: str, value) -> ValidationError:

@@ -21,18 +21,19 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Annotated, Literal, Optional, Union
 
-from pydantic import BaseModel, ConfigDict, Field, RootModel, model_validator
+from pydantic import BaseModel, Field, RootModel, model_validator
 
 from rocketsim.atmosphere.day import classic_profile, profile_table, standard_table
 from rocketsim.atmosphere.random_day import random_profile
 from rocketsim.atmosphere.sounding import COLUMNS, from_columns, read_sounding
 from rocketsim.atmosphere.table import AtmosphereTable
 from rocketsim.constants import USSA_P0
-from rocketsim.scenario.units import Pressure, Temperature
+from rocketsim.errors import InputError
+from rocketsim.scenario.units import STRICT, Pressure, Temperature
 
 
 class _Weather(BaseModel):
-    model_config = ConfigDict(extra="forbid", frozen=True)
+    model_config = STRICT
 
 
 class StandardWeather(_Weather):
@@ -57,7 +58,16 @@ class SoundingWeather(_Weather):
             unknown = [name for name in self.columns if name.upper() not in COLUMNS]
             if unknown:
                 raise ValueError(f"unknown column {unknown[0]!r} (known: {', '.join(COLUMNS)})")
+            try:        # the sounding's own checks (lengths, plausible values), here where
+                from_columns(self.column_values(), None, prefix="columns.")   # the file is known
+            except InputError as error:
+                raise ValueError(f"{error.field}: {error.message}" if error.field else error.message) from None
         return self
+
+    def column_values(self) -> dict[str, list[float]]:
+        """The inline columns by upper-case name, a blank (None) as nan."""
+        return {k.upper(): [float("nan") if v is None else v for v in values]
+                for k, values in self.columns.items()}
 
 
 class RandomWeather(_Weather):
@@ -117,9 +127,7 @@ def build_atmosphere(weather: Weather, site_latitude: float, base_dir: str | Pat
         if weather.file is not None:
             profile = read_sounding(Path(base_dir) / weather.file)
         else:
-            columns = {k.upper(): [float("nan") if v is None else v for v in values]
-                       for k, values in weather.columns.items()}
-            profile = from_columns(columns, None, prefix="weather.columns.")
+            profile = from_columns(weather.column_values(), None, prefix="weather.columns.")
     elif isinstance(weather, RandomWeather):
         profile = random_profile(weather.seed, site_latitude)
     else:

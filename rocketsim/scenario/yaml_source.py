@@ -4,7 +4,8 @@
 from each path (a tuple of keys and list indices) to its 1-based
 ``(line, column)``, so a validation error deep in a file can be reported
 where the user wrote it. Duplicate keys are refused, which plain PyYAML
-silently accepts.
+silently accepts. Reading stays within the limits of :mod:`rocketsim.limits`
+(file size, nesting, values after aliases are expanded).
 """
 
 from __future__ import annotations
@@ -15,8 +16,11 @@ from typing import Any
 import yaml
 
 from rocketsim.errors import InputError
+from rocketsim.limits import MAX_VALUES, MAX_YAML_BYTES, ValueBudget, compose_yaml, read_bounded
 
 Position = tuple[int, int]
+
+MERGE_TAG = "tag:yaml.org,2002:merge"
 
 
 class YamlSource:
@@ -46,73 +50,95 @@ class YamlSource:
 
 
 def read_yaml(path: Path) -> YamlSource:
-    """Read ``path`` as YAML with positions; :class:`InputError` if unreadable."""
+    """Read ``path`` as YAML with positions; :class:`InputError` if unreadable or
+    beyond the limits of :mod:`rocketsim.limits` (size, nesting, alias expansion)."""
     path = Path(path)
+    data = read_bounded(path, MAX_YAML_BYTES, "YAML file")
     try:
-        text = path.read_text(encoding="utf-8")
-    except FileNotFoundError:
-        raise InputError("file not found", file=path) from None
-    except (OSError, UnicodeDecodeError) as error:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError as error:
         raise InputError(f"cannot read the file ({error})", file=path) from None
-    try:
-        node = yaml.compose(text, Loader=yaml.SafeLoader)
-    except yaml.MarkedYAMLError as error:
-        mark = error.problem_mark or error.context_mark
-        problem = error.problem or error.context or "invalid YAML"
-        raise InputError(f"YAML syntax error: {problem}", file=path,
-                         line=mark.line + 1 if mark else None,
-                         column=mark.column + 1 if mark else None) from None
-    positions: dict[tuple, Position] = {}
+    node = compose_yaml(text, path)
     if node is None:
         raise InputError("the file is empty; expected a YAML mapping", file=path, line=1)
-    data = _construct(node, (), positions, path)
-    return YamlSource(path, data, positions)
+    builder = _Builder(path)
+    try:
+        data = builder.build(node, ())
+    finally:
+        builder.loader.dispose()
+    return YamlSource(path, data, builder.positions)
 
 
-def _construct(node: yaml.Node, loc: tuple, positions: dict, path: Path) -> Any:
-    positions.setdefault(loc, (node.start_mark.line + 1, node.start_mark.column + 1))
-    if isinstance(node, yaml.MappingNode):
-        _flatten_merge_keys(node, path)
+class _Builder:
+    """Turns one document's nodes into data, keeping positions, within a
+    :class:`~rocketsim.limits.ValueBudget` (every value reached through an
+    alias counts again, so nested aliases cannot expand without bound)."""
+
+    def __init__(self, path: Path):
+        self.path = path
+        self.positions: dict[tuple, Position] = {}
+        self.budget = ValueBudget()
+        self.loader = yaml.SafeLoader("")          # constructs the scalars
+
+    def build(self, node: yaml.Node, loc: tuple) -> Any:
+        self.positions.setdefault(loc, _position(node))
+        if isinstance(node, yaml.MappingNode):
+            self._admit(loc, None, node)
+            result: dict = {}
+            merged: dict = {}
+            for key_node, value_node in node.value:
+                if key_node.tag == MERGE_TAG:
+                    merged = {**self._merged(value_node, loc), **merged}
+                    continue
+                key = self._scalar(key_node) if isinstance(key_node, yaml.ScalarNode) else None
+                if not isinstance(key, (str, int, float, bool)):
+                    raise self._error("a mapping key must be a plain name", key_node)
+                if key in result:
+                    raise self._error(f"duplicate key {key!r}", key_node)
+                self.positions[loc + (key,)] = _position(key_node)
+                result[key] = self.build(value_node, loc + (key,))
+            return {**merged, **result}
+        if isinstance(node, yaml.SequenceNode):
+            self._admit(loc, None, node)
+            return [self.build(item, loc + (i,)) for i, item in enumerate(node.value)]
+        value = self._scalar(node)
+        self._admit(loc, value, node)
+        return value
+
+    def _merged(self, node: yaml.Node, loc: tuple) -> dict:
+        """The mapping a merge key (``<<: *defaults`` or ``<<: [*a, *b]``) brings in: the
+        earlier of several mappings wins, as in the YAML merge-key specification."""
+        parts = node.value if isinstance(node, yaml.SequenceNode) else [node]
         result: dict = {}
-        for key_node, value_node in node.value:
-            key = _scalar(key_node, path) if isinstance(key_node, yaml.ScalarNode) else None
-            if not isinstance(key, (str, int, float, bool)):
-                raise InputError("a mapping key must be a plain name", file=path,
-                                 line=key_node.start_mark.line + 1,
-                                 column=key_node.start_mark.column + 1)
-            if key in result:
-                raise InputError(f"duplicate key {key!r}", file=path,
-                                 line=key_node.start_mark.line + 1,
-                                 column=key_node.start_mark.column + 1)
-            positions[loc + (key,)] = (key_node.start_mark.line + 1, key_node.start_mark.column + 1)
-            result[key] = _construct(value_node, loc + (key,), positions, path)
+        for part in parts:
+            if not isinstance(part, yaml.MappingNode):
+                raise self._error("YAML merge key: expected a mapping or a list of mappings to merge",
+                                  part)
+            result = {**self.build(part, loc), **result}
         return result
-    if isinstance(node, yaml.SequenceNode):
-        return [_construct(item, loc + (i,), positions, path) for i, item in enumerate(node.value)]
-    return _scalar(node, path)
+
+    def _admit(self, loc: tuple, value: Any, node: yaml.Node) -> None:
+        problem = self.budget.admit(len(loc), value)
+        if problem is None:
+            return
+        if self.budget.values > MAX_VALUES:
+            # an expansion is reported at the top-level field it happens under (the
+            # node itself may be an anchor's, far from where it is expanded)
+            loc = loc[:1]
+        line, column = self.positions.get(loc, _position(node))
+        raise InputError(problem, file=self.path, line=line, column=column,
+                         field=".".join(str(part) for part in loc) or None)
+
+    def _scalar(self, node: yaml.ScalarNode) -> Any:
+        try:
+            return self.loader.construct_object(node, deep=True)
+        except yaml.MarkedYAMLError as error:
+            raise self._error(f"YAML value: {error.problem}", node, error.problem_mark) from None
+
+    def _error(self, message: str, node: yaml.Node, mark=None) -> InputError:
+        mark = mark or node.start_mark
+        return InputError(message, file=self.path, line=mark.line + 1, column=mark.column + 1)
 
 
-def _flatten_merge_keys(node: yaml.MappingNode, path: Path) -> None:
-    """Apply YAML merge keys (``<<: *defaults``) in place, as PyYAML's loader does."""
-    loader = yaml.SafeLoader("")
-    try:
-        loader.flatten_mapping(node)
-    except yaml.MarkedYAMLError as error:
-        mark = error.problem_mark
-        raise InputError(f"YAML merge key: {error.problem}", file=path,
-                         line=mark.line + 1 if mark else None,
-                         column=mark.column + 1 if mark else None) from None
-    finally:
-        loader.dispose()
-
-
-def _scalar(node: yaml.ScalarNode, path: Path) -> Any:
-    loader = yaml.SafeLoader("")
-    try:
-        return loader.construct_object(node, deep=True)
-    except yaml.MarkedYAMLError as error:
-        mark = error.problem_mark or node.start_mark
-        raise InputError(f"YAML value: {error.problem}", file=path,
-                         line=mark.line + 1, column=mark.column + 1) from None
-    finally:
-        loader.dispose()
+def _position(node: yaml.Node) -> Position:
+    return node.start_mark.line + 1, node.start_mark.column + 1

@@ -21,7 +21,7 @@ from rocketsim.flight.sensors import Sensors
 from rocketsim.frames.geodetic import enu_basis, geodetic_to_ecef
 from rocketsim.layout import P_MU, R, make_params, make_state
 from rocketsim.scenario.load import LoadedScenario
-from rocketsim.scenario.models import check_step
+from rocketsim.scenario.models import check_duration, check_step
 from rocketsim.sim.body import Body, Vehicle, channel_name
 from rocketsim.sim.flight_events import FlightEvents
 from rocketsim.sim.handover import fly_in_air_of
@@ -50,7 +50,7 @@ def build_world(loaded: LoadedScenario, step: float | None = None,
                       # the classic range's original model (held for the step); stages inherit p
                       classic=scenario.site is not None and scenario.site.model == "classic"),
     )
-    world = World(epoch, h, mission.duration if duration is None else duration, [body],
+    world = World(epoch, h, mission.duration if duration is None else _checked_duration(duration), [body],
                   atmosphere=loaded.atmosphere)
     center = mission.start.orbit.body if mission.start.orbit is not None else "earth"
     if mission.gravity == "n-body" or center != "earth":
@@ -100,3 +100,10 @@ def _checked_step(step: float) -> float:
         return check_step(step)
     except ValueError as error:
         raise InputError(str(error), field="--step") from None
+
+
+def _checked_duration(duration: float) -> float:
+    try:
+        return check_duration(duration)
+    except ValueError as error:
+        raise InputError(str(error), field="--duration") from None

@@ -1,0 +1,163 @@
+"""Hostile files are refused within the bounds of rocketsim.limits, at their line.
+
+Each input here once hung the reader, took gigabytes or ended in a traceback;
+each must now be an input error (exit 2) naming the file, the line and the
+limit, reading no more than a bounded amount of memory.
+"""
+
+import os
+import tracemalloc
+
+import pytest
+
+from rocketsim.atmosphere.sounding import parse_yaml
+from rocketsim.errors import InputError
+from rocketsim.limits import MAX_DEPTH, MAX_TEXT_LENGTH, MAX_VALUES, MAX_YAML_BYTES, check_data
+from rocketsim.scenario.load import load
+from rocketsim.scenario.models import Scenario
+from rocketsim.scenario.yaml_source import read_yaml
+from tests.test_scenario_errors import assert_clean_error
+
+# nine lists of nine, eight levels deep: 9^9 = 387 million strings once expanded
+BILLION_LAUGHS = "a: &a [lol, lol, lol, lol, lol, lol, lol, lol, lol]\n" + "".join(
+    f"{b}: &{b} [{', '.join(['*' + a] * 9)}]\n" for a, b in zip("abcdefg", "bcdefgh")) + "mission: *h\n"
+
+
+def test_a_billion_laughs_is_refused_at_its_line_in_bounded_memory(write, cli):
+    path = write("laughs.yaml", BILLION_LAUGHS)
+    assert len(BILLION_LAUGHS) < 400
+    tracemalloc.start()
+    try:
+        result = cli("validate", path)
+        peak = tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+    # expanding stops at the 100 001st value, under the first field that gets there
+    assert_clean_error(result, "laughs.yaml:6:1", f"more than {MAX_VALUES} values")
+    # 100 000 values and their positions take tens of MB; the expansion would take ~40 GB
+    assert peak < 200e6, peak
+
+
+@pytest.mark.parametrize("text, where", [
+    ("a: " + "[" * 200 + "]" * 200 + "\n", "deep.yaml:1:"),           # would be a RecursionError
+    ("a: &a [*a]\n", "deep.yaml:1:4"),                                  # an alias of itself
+    ("a: &a {b: *a}\n", "deep.yaml:1:8"),
+    ("a:\n" + "".join("  " * i + f"k{i}:\n" for i in range(1, 40)) + "  " * 40 + "x: 1\n", "deep.yaml:"),
+])
+def test_nesting_deeper_than_the_limit_is_refused(write, cli, text, where):
+    result = cli("validate", write("deep.yaml", text))
+    assert_clean_error(result, where, f"nested deeper than {MAX_DEPTH} levels")
+
+
+def test_a_file_over_the_size_limit_is_refused_before_parsing(write, cli):
+    path = write("vehicle.yaml", "name: probe\n# " + "x" * MAX_YAML_BYTES + "\n")
+    assert_clean_error(cli("validate", path), "vehicle.yaml", f"larger than the {MAX_YAML_BYTES // 1024} KiB")
+
+
+def test_a_fifo_is_refused_not_read_forever(tmp_path, cli):
+    fifo = tmp_path / "vehicle.yaml"
+    os.mkfifo(fifo)
+    # opening a FIFO for reading blocks until a writer comes: keep one open
+    writer = os.open(fifo, os.O_RDWR | os.O_NONBLOCK)
+    try:
+        assert_clean_error(cli("validate", fifo), "vehicle.yaml", "not a regular file")
+    finally:
+        os.close(writer)
+
+
+def test_a_long_text_is_refused_and_a_quoted_value_stays_short(write, cli):
+    long = "y" * (MAX_TEXT_LENGTH + 1)
+    result = cli("validate", write("vehicle.yaml", f"name: {long}\nrigid_body: {{}}\n"))
+    assert_clean_error(result, "vehicle.yaml:1:1: name:", f"more than the {MAX_TEXT_LENGTH} allowed")
+    # a long value that is merely wrong is quoted by its ends, not in full
+    result = cli("validate", write("vehicle.yaml", f"name: probe\nrigid_body: {{mass: {'9' * 5000} kg}}\n"))
+    assert_clean_error(result, "vehicle.yaml:2:", "rigid_body.mass")
+    assert len(result.output) < 1000
+
+
+@pytest.mark.parametrize("value", [".nan", ".inf", "-.inf", "1e400", "'1e308 km'", "'1e309 m'"])
+def test_a_number_that_is_not_finite_is_refused_at_its_line(write, cli, value):
+    path = write("vehicle.yaml", f"name: probe\nrigid_body:\n  mass: 10 kg\n  inertia: [0.15, 0.12, 0.05]\n"
+                                 f"  length: {value}\n")
+    assert_clean_error(cli("validate", path), "vehicle.yaml:5:3", "rigid_body.length", "finite")
+
+
+def test_merge_keys_let_explicit_keys_win_and_earlier_merges_win(write):
+    source = read_yaml(write("m.yaml", """\
+        first: &first {x: 1, y: 1}
+        second: &second {x: 2, y: 2, z: 2}
+        merged:
+          <<: [*first, *second]
+          y: 3
+        """))
+    # the YAML merge-key rule: keys written in the mapping win, then the mappings in order
+    assert source.data["merged"] == {"x": 1, "y": 3, "z": 2}
+
+
+def test_merge_keys_cannot_expand_without_bound(write, cli):
+    levels = "a: &a {k0: 0, k1: 1, k2: 2, k3: 3, k4: 4, k5: 5, k6: 6, k7: 7}\n" + "".join(
+        f"{b}: &{b} {{{', '.join(f'{b}{i}: *{a}' for i in range(8))}}}\n" for a, b in zip("abcdefg", "bcdefgh"))
+    assert_clean_error(cli("validate", write("m.yaml", levels)), "m.yaml:", f"more than {MAX_VALUES} values")
+
+
+def test_a_scenario_handed_over_as_data_is_held_to_the_same_limits():
+    looped = {"name": "x"}
+    looped["self"] = looped
+    with pytest.raises(InputError, match=f"nested deeper than {MAX_DEPTH}") as caught:
+        Scenario.model_validate(looped)
+    assert caught.value.field.startswith("self.self")
+    with pytest.raises(InputError, match="more than the 65536 allowed") as caught:
+        Scenario.model_validate({"name": "x", "vehicle": {"name": "y" * (MAX_TEXT_LENGTH + 1)}})
+    assert caught.value.field == "vehicle.name"
+    shared = ["lol"] * 10
+    for _ in range(6):
+        shared = [shared] * 10          # a million values by reference, ten lists in memory
+    with pytest.raises(InputError, match=f"more than {MAX_VALUES} values"):
+        check_data({"mission": shared})
+
+
+def test_a_sounding_nested_too_deep_is_an_input_error():
+    with pytest.raises(InputError, match="nested deeper") as caught:
+        parse_yaml("PRES: " + "[" * 500 + "]" * 500 + "\n", "day.yaml")
+    assert caught.value.file == "day.yaml" and caught.value.line == 1
+
+
+@pytest.mark.parametrize("option, value, message", [
+    ("--step", "nan", "not at least"), ("--step", "1e-300", "not at least"),
+    ("--duration", "inf", "at most"), ("--duration", "nan", "not more than 0 s"),
+    ("--duration", "-1", "not more than 0 s")])
+def test_a_step_or_duration_out_of_range_on_the_command_line_is_refused(scenario, cli, tmp_path,
+                                                                        option, value, message):
+    result = cli("fly", scenario(), "-o", tmp_path / "run.mcap", option, value)
+    assert_clean_error(result, option, message)
+
+
+def test_a_mission_of_more_than_a_century_is_refused_at_its_line(scenario, cli):
+    path = scenario(duration="1e30 s")
+    result = cli("validate", path)
+    assert_clean_error(result, "mission.yaml:6:", "duration", "a century")
+    with pytest.raises(InputError):
+        load(path)
+
+
+@pytest.mark.parametrize("name, why", [("9" * 400 + ".yaml", "File name too long"),
+                                       ("a\\0b.yaml", "embedded null byte")])
+def test_a_referenced_file_name_the_system_cannot_take_is_an_error_at_its_line(write, cli, name, why):
+    # found by tests/fuzz: the check that the file exists raised OSError / ValueError
+    path = write("scenario.yaml", f'name: x\nvehicle: "{name}"\nmission: mission.yaml\n')
+    assert_clean_error(cli("validate", path), "scenario.yaml:2:1: vehicle:", "cannot be a file name", why)
+
+
+def test_inline_sounding_columns_are_checked_where_they_are_written(write, cli):
+    # found by tests/fuzz: columns of different lengths passed validation and failed at
+    # the flight's start with no file or line
+    path = write("scenario.yaml", """\
+        name: probe
+        vehicle: {name: probe, rigid_body: {mass: 10 kg, inertia: [0.15, 0.12, 0.05]}}
+        mission: {epoch: 2026-11-26T12:00:00Z, start: {orbit: {altitude: 415 km, inclination: 0 deg}},
+                  duration: 1 s}
+        weather:
+          kind: sounding
+          columns: {PRES: [1000, 850, 700], HGHT: [100, 1500, 3000], TEMP: [20.0, 12.5]}
+        """)
+    assert_clean_error(cli("validate", path), "scenario.yaml:5:1: weather:", "column TEMP has 2 values, HGHT has 3")
