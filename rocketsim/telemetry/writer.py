@@ -4,7 +4,9 @@ The file is chunked (zstd) so memory stays bounded however long the flight
 (:class:`~rocketsim.telemetry.mcap_stream.McapStream`); messages are JSON with
 registered JSON schemas. A body's sample (state, transform, location) is
 written from its numbers alone (:meth:`TelemetryWriter.sample`), the bytes
-orjson would write for the messages as dictionaries (:meth:`TelemetryWriter.state`). Timestamps are the mission
+orjson would write for the messages as dictionaries (:meth:`TelemetryWriter.state`)
+without their missing values (None, or nan and infinities, which JSON cannot
+spell: left out, so that every field has its schema's type). The frames are those of :mod:`rocketsim.telemetry.frames`. Timestamps are the mission
 epoch (UTC, ns since 1970) plus mission time, so Foxglove shows real dates and
 the same run always writes the same bytes: nothing here reads the wall clock.
 
@@ -16,6 +18,7 @@ finished on success, on a program error and on Ctrl-C alike.
 
 from __future__ import annotations
 
+import math
 from collections import deque
 from itertools import islice
 from pathlib import Path
@@ -73,12 +76,16 @@ _RECORDS = None
 _EARTH = central_frame("earth", np.eye(3), float("nan"))
 
 
-def _members(message):
-    """The slots that are values of object members in ``message`` (not vector items)."""
-    for value in message.values():
+_REQUIRED = frozenset(BODY_STATE["required"])
+
+
+def _members(message, required=_REQUIRED):
+    """The slots of ``message`` that may be left out: values of object members (not vector
+    items), but for the state's ``required`` fields."""
+    for key, value in message.items():
         if isinstance(value, dict):
-            yield from _members(value)
-        elif isinstance(value, splice.Slot) and value.kind == "f":
+            yield from _members(value, ())
+        elif isinstance(value, splice.Slot) and value.kind == "f" and key not in required:
             yield value
 
 
@@ -89,10 +96,12 @@ def _without(message: dict, missing: set) -> dict:
             if not (isinstance(value, splice.Slot) and value.kind == "f" and value.index in missing)}
 
 
-def _present(message: dict) -> dict:
-    """``message`` without the members that are None or nan (vectors as they are)."""
-    return {key: _present(value) if isinstance(value, dict) else value
-            for key, value in message.items() if not (value is None or value != value)}
+def _present(message: dict, required=_REQUIRED) -> dict:
+    """``message`` without the members that are None or not finite (vectors as they are),
+    but for the state's ``required`` fields."""
+    return {key: _present(value, ()) if isinstance(value, dict) else value
+            for key, value in message.items()
+            if key in required or not (value is None or isinstance(value, float) and not math.isfinite(value))}
 
 
 def _mission(time: dict, root: str, position) -> dict:
@@ -170,7 +179,7 @@ class TelemetryWriter:
     def state(self, body: str, message: dict, frame: CentralFrame | None = None) -> None:
         """A body's state message, and the Foxglove messages drawn from it; ``frame``:
         the inertial frame it is in (default: Earth's, without an ephemeris). Values
-        that are None or nan are left out (see :data:`rocketsim.telemetry.schemas.BODY_STATE`)."""
+        that are None or not finite are left out (see :data:`rocketsim.telemetry.schemas.BODY_STATE`)."""
         self._flush()
         t = message["t"]
         stamp = self._stamp(t)
@@ -219,7 +228,7 @@ class TelemetryWriter:
                     break
                 run.append(more)
             block = np.stack(run)
-            missing = np.isnan(block[:, optional])
+            missing = ~np.isfinite(block[:, optional])
             # where the set of missing values changes: a template for each stretch
             cuts = [] if (missing == missing[0]).all() else \
                 (np.flatnonzero((missing[1:] != missing[:-1]).any(axis=1)) + 1).tolist()
@@ -264,9 +273,9 @@ class TelemetryWriter:
         self._sequence += records - n
 
     def _shape(self, body: str, n: int, fields) -> tuple:
-        """``(fields, n, optional, templates)``: the value indices of a body's messages
-        that are left out when nan (those of object members, not of vectors), and a
-        dictionary for its templates by the values missing."""
+        """``(fields, n, optional, templates)``: the value indices of a body's state message
+        that are left out when not finite (:func:`_members`), and a dictionary for its
+        templates by the values missing."""
         message = fields(splice.slots(n), splice.Slot.integer)
         optional = sorted({slot.index for slot in _members(message)})
         return fields, n, np.array(optional, dtype=np.int64), {}
