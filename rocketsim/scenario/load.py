@@ -16,14 +16,18 @@ import difflib
 import reprlib
 import types
 import typing
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any, Callable
 
 from pydantic import BaseModel, ValidationError
 
 from rocketsim.errors import InputError
 from rocketsim.scenario.classic_range import CLASSIC
 from rocketsim.scenario.models import MissionSpec, Scenario, SiteSpec, VehicleSpec
+from rocketsim.scenario.overrides import Edited, Overrides
+from rocketsim.scenario.paths import PathError
 from rocketsim.scenario.weather import load_weather
 from rocketsim.scenario.yaml_source import YamlSource, read_yaml
 
@@ -41,23 +45,39 @@ class LoadedScenario:
     """A validated scenario and every file it was read from.
 
     ``files`` maps a role (``scenario``, ``vehicle``, ``site``, ``mission``,
-    ``weather``, ``sounding``, ``program``) to the file's resolved path;
-    these travel in the telemetry.
+    ``weather``, ``sounding``, ``program``, ``program/<stage>``) to the file's
+    resolved path; these travel in the telemetry. ``callables`` maps the role of a
+    program given as a Python callable to it (its file, when it has one, is in
+    ``files``). ``overrides``: the paths and values set over the files (they travel
+    in the telemetry too). A scenario given as a mapping has no ``scenario`` file; its
+    ``path`` is ``<base_dir>/<name>.yaml``, no file: its references are relative
+    to that folder.
     """
 
     scenario: Scenario
     path: Path
     files: dict[str, Path] = field(default_factory=dict)
+    callables: dict[str, Callable] = field(default_factory=dict)
+    overrides: dict[str, Any] = field(default_factory=dict)
 
     @property
     def program_path(self) -> Path | None:
-        return self.files.get("program")
+        """The program's file (a callable's: the file defining it)."""
+        return self.programs().get("program", (None, None))[1]
 
     @property
     def stage_program_paths(self) -> dict[str, Path]:
         """Programs of separating stages, by stage name."""
-        return {role.split("/", 1)[1]: path for role, path in self.files.items()
+        return {role.split("/", 1)[1]: path for role, (_, path) in self.programs().items()
                 if role.startswith("program/")}
+
+    def programs(self) -> dict[str, tuple[Callable | None, Path]]:
+        """``role -> (main, file)`` of every program: ``main`` the callable given, or
+        None for a file's ``main`` (to load)."""
+        found = {role: (None, path) for role, path in self.files.items()
+                 if role == "program" or role.startswith("program/")}
+        found.update({role: (main, program_file(main)) for role, main in self.callables.items()})
+        return found
 
     def atmosphere(self):
         """The day's 50 m atmosphere table (the standard atmosphere without weather)."""
@@ -69,29 +89,63 @@ class LoadedScenario:
                                 standard_gravity=site is not None and site.model == CLASSIC)
 
 
-def load(path: str | Path) -> LoadedScenario:
-    """Read and validate a scenario file and what it references."""
-    path = Path(path)
-    source = read_yaml(path)
+def load(scenario: str | Path | Mapping, overrides: Mapping[str, Any] | None = None, *,
+         base_dir: str | Path | None = None) -> LoadedScenario:
+    """Read and validate a scenario file (or a scenario given as a mapping) and what it
+    references, with ``overrides`` (path -> value, :mod:`rocketsim.scenario.overrides`)
+    set first.
+
+    A mapping's file references are relative to ``base_dir`` (default: the current
+    folder), and its errors name the field's path instead of a file and line. Its
+    ``program`` and ``programs`` may be Python callables ``main(fc)`` as well as files
+    (and so may the values of overrides of those fields)."""
+    edits = Overrides(overrides)
+    if isinstance(scenario, Mapping):
+        path = Path(base_dir or ".").resolve() / f"{scenario.get('name') or 'scenario'}.yaml"
+        source = edits.source(None, dict(scenario))
+        files = {}
+    else:
+        path = Path(scenario)
+        source = read_yaml(path)
+        files = {"scenario": path.resolve()}
     data = source.data
     if not isinstance(data, dict):
         raise InputError("expected a YAML mapping of scenario fields", file=path, line=1, column=1)
-    files = {"scenario": path.resolve()}
-    data = dict(data)
+    opened: dict[str, tuple[Path, YamlSource]] = {}
+
+    def open_reference(name: str, value: str):
+        if name not in REFERENCED and name != "weather" or (name == "site" and value == CLASSIC):
+            raise PathError(f"{name} is {value!r}, not a mapping or a file of fields")
+        ref = _resolve(path, value, source, (name,))
+        opened[name] = (ref, read_yaml(ref))
+        return opened[name][1].data
+
+    data = edits.apply(dict(data), Scenario, open_reference)
+    source = edits.source(source if isinstance(source, YamlSource) else None, data)
+    callables = _callables(data)
     for name, model in REFERENCED.items():
         value = data.get(name)
-        if isinstance(value, str) and not (name == "site" and value == CLASSIC):
+        if name in opened:
+            ref, read = opened[name]
+            data[name] = validate(edits.source(read, value, (name,)), model)
+            files[name] = ref
+        elif isinstance(value, str) and not (name == "site" and value == CLASSIC):
             if name == "site" and not value.endswith((".yaml", ".yml")):
                 line, column = source.position((name,)) or (None, None)
                 raise InputError(f"{value!r} is neither a site file (.yaml) nor {CLASSIC!r} "
-                                 "(the classic range)", file=path, line=line, column=column,
+                                 "(the classic range)", file=source.path, line=line, column=column,
                                  field=name)
             ref = _resolve(path, value, source, (name,))
             data[name] = validate(read_yaml(ref), model)
             files[name] = ref
     weather = data.get("weather")
     weather_source = source
-    if isinstance(weather, str):
+    if "weather" in opened:
+        ref, weather_source = opened["weather"]
+        weather_source = edits.source(weather_source, weather, ("weather",))
+        data["weather"] = load_weather(weather_source)
+        files["weather"] = ref
+    elif isinstance(weather, str):
         ref = _resolve(path, weather, source, ("weather",))
         weather_source = read_yaml(ref)
         data["weather"] = load_weather(ref)
@@ -101,6 +155,8 @@ def load(path: str | Path) -> LoadedScenario:
         ref = _resolve(path, program, source, ("program",))
         data["program"] = ref
         files["program"] = ref
+    elif "program" in callables and program.is_file():
+        files["program"] = program
     programs = data.get("programs")
     if isinstance(programs, dict):
         resolved = {}
@@ -110,21 +166,51 @@ def load(path: str | Path) -> LoadedScenario:
                 files[f"program/{stage}"] = resolved[stage]
             else:
                 resolved[stage] = reference
+                if f"program/{stage}" in callables and reference.is_file():
+                    files[f"program/{stage}"] = reference
         data["programs"] = resolved
     scenario = validate(source, Scenario, data)
-    stages = [s.name for s in scenario.vehicle.stages or []]
     for stage in scenario.programs:
-        if stage not in stages:
+        if stage not in [s.name for s in scenario.vehicle.stages or []]:
             line, column = source.position(("programs", stage)) or (None, None)
-            raise InputError(f"no stage named {stage!r} in vehicle {scenario.vehicle.name!r}"
-                             + (f" (stages: {', '.join(stages)})" if stages else ""),
-                             file=path, line=line, column=column, field=f"programs.{stage}")
+            raise unknown_stage(stage, scenario.vehicle, file=source.path, line=line, column=column)
     sounding = getattr(scenario.weather, "file", None)
     if sounding is not None:
         # a sounding file is relative to the file that names it
         loc = ("file",) if "weather" in files else ("weather", "file")
-        files["sounding"] = _resolve(weather_source.path, sounding, weather_source, loc)
-    return LoadedScenario(scenario, path.resolve(), files)
+        files["sounding"] = _resolve(weather_source.path or path, sounding, weather_source, loc)
+    return LoadedScenario(scenario, path.resolve(), files, callables, dict(overrides or {}))
+
+
+def unknown_stage(stage: str, vehicle: VehicleSpec, **where) -> InputError:
+    """The error for a program given to ``stage``, not a stage of ``vehicle``."""
+    stages = [s.name for s in vehicle.stages or []]
+    return InputError(f"no stage named {stage!r} in vehicle {vehicle.name!r}"
+                      + (f" (stages: {', '.join(stages)})" if stages else ""),
+                      field=f"programs.{stage}", **where)
+
+
+def _callables(data: dict) -> dict[str, Callable]:
+    """The programs of ``data`` given as Python callables, by role (``program``,
+    ``program/<stage>``), each replaced in ``data`` by the file that defines it
+    (:func:`program_file`)."""
+    found = {}
+    if callable(data.get("program")):
+        found["program"] = data["program"]
+    if isinstance(data.get("programs"), dict):
+        found.update({f"program/{stage}": main for stage, main in data["programs"].items()
+                      if callable(main)})
+        data["programs"] = {stage: program_file(main) if callable(main) else main
+                            for stage, main in data["programs"].items()}
+    if "program" in found:
+        data["program"] = program_file(found["program"])
+    return found
+
+
+def program_file(main: Callable) -> Path:
+    """The file that defines the callable ``main`` (where its errors' lines are)."""
+    code = getattr(main, "__code__", None) or getattr(getattr(main, "__call__", None), "__code__", None)
+    return Path(code.co_filename if code is not None else "<callable>").resolve()
 
 
 def _resolve(scenario_path: Path, reference: str, source: YamlSource, loc: tuple) -> Path:
@@ -140,7 +226,7 @@ def _resolve(scenario_path: Path, reference: str, source: YamlSource, loc: tuple
     if not found:
         line, column = source.position(loc) or (None, None)
         raise InputError(f"referenced file {reference!r} not found (looked for {ref})",
-                         file=scenario_path, line=line, column=column, field=".".join(map(str, loc)))
+                         file=source.path, line=line, column=column, field=".".join(map(str, loc)))
     return ref
 
 
@@ -172,8 +258,10 @@ def _input_error(error: ValidationError, source: YamlSource, model: type[BaseMod
     message = _describe(first, written, model)
     if len(problems) > 1:
         message += f" ({len(problems) - 1} more problem{'s' if len(problems) > 2 else ''} in this file)"
-    return InputError(message, file=source.path, line=line, column=column,
-                      field=".".join(str(part) for part in written) or None)
+    file, field = source.path, ".".join(str(part) for part in written) or None
+    if isinstance(source, Edited):     # a dict scenario, or a value an override set
+        file, field, message = source.place(written, message)
+    return InputError(message, file=file, line=line, column=column, field=field)
 
 
 def _describe(problem: dict, loc: tuple, model: type[BaseModel]) -> str:

@@ -99,15 +99,16 @@ KINDS = {"standard": StandardWeather, "sounding": SoundingWeather, "random": Ran
          "classic": ClassicWeather}
 
 
-def load_weather(path: str | Path):
-    """Read and validate a weather YAML file; errors name the file, line and field.
+def load_weather(path):
+    """Read and validate a weather YAML file (or the source of one already read, as
+    overrides left it); errors name the file, line and field.
 
     The model of the file's ``kind`` validates it directly, so error locations
     carry no union tag and point at the line of the offending field.
     """
     from rocketsim.scenario.load import validate
     from rocketsim.scenario.yaml_source import read_yaml
-    source = read_yaml(Path(path))
+    source = read_yaml(Path(path)) if isinstance(path, (str, Path)) else path
     kind = source.data.get("kind") if isinstance(source.data, dict) else None
     if kind in KINDS:
         return validate(source, KINDS[kind])

@@ -88,10 +88,12 @@ def build_world(loaded: LoadedScenario, step: float | None = None,
     world.target = mission.target
     world.pad_azimuth = scenario.site.pad_azimuth if scenario.site else math.nan
     world.program_cpu_budget = scenario.program_cpu_budget
+    programs = loaded.programs()
     for stage, path in loaded.stage_program_paths.items():
-        world.stage_programs[stage] = (load_program(path), path)
-    if loaded.program_path is not None:
-        world.attach_program(body, load_program(loaded.program_path), loaded.program_path)
+        world.stage_programs[stage] = (programs[f"program/{stage}"][0] or load_program(path), path)
+    if "program" in programs:
+        main, path = programs["program"]
+        world.attach_program(body, main or load_program(path), path)
     return world
 
 
