@@ -8,9 +8,28 @@ from pathlib import Path
 
 import click
 
+from rocketsim.errors import InputError
 from rocketsim_cli.errors import check_writable, reports_input_errors
 from rocketsim_cli.progress import flight_progress
 from rocketsim_cli.summary import format_summary
+from rocketsim_cli.units import Quantity
+
+
+def overrides(settings: tuple[str, ...]) -> dict:
+    """``--set PATH=VALUE`` options as overrides: each value read as a YAML value
+    (``3`` a number, ``26 t`` a string with a unit, ``[1, 2]`` a list)."""
+    import yaml
+    found = {}
+    for setting in settings:
+        path, equals, text = setting.partition("=")
+        if not equals or not path.strip():
+            raise InputError(f"expected PATH=VALUE, got {setting!r}", field="--set")
+        try:
+            found[path.strip()] = yaml.safe_load(text)
+        except yaml.YAMLError as error:
+            raise InputError(f"cannot read the value {text!r} ({getattr(error, 'problem', error)})",
+                             field=f"--set {path.strip()}") from None
+    return found
 
 
 class _Terminated(BaseException):
@@ -25,13 +44,18 @@ def _raise_terminated(signum, frame):
 @click.argument("scenario", type=click.Path(dir_okay=False, path_type=Path))
 @click.option("-o", "--output", type=click.Path(dir_okay=False, path_type=Path), default=None,
               help="MCAP file to write (default: the scenario's name with .mcap, here).")
-@click.option("--step", type=float, default=None, help="Integration step in s (at most 0.1).")
-@click.option("--duration", type=float, default=None, help="Mission time to fly in s (overrides the mission).")
+@click.option("--step", type=Quantity("time"), default=None,
+              help="Integration step, e.g. 20ms or '0.02 s' (at most 0.1 s; a bare number is s).")
+@click.option("--duration", type=Quantity("time"), default=None,
+              help="Mission time to fly, e.g. 10s, '3 h', 311d (overrides the mission; a bare number is s).")
+@click.option("--set", "settings", multiple=True, metavar="PATH=VALUE",
+              help="Change a field before flying, as the file would hold it, e.g. "
+                   "--set 'vehicle.stages[booster].structure_mass=26 t' (repeatable; paths as in the README).")
 @click.option("--summary-json", type=click.Path(dir_okay=False, path_type=Path), default=None,
               help="Also write the flight summary as JSON to this file.")
 @reports_input_errors
 def fly(scenario: Path, output: Path | None, step: float | None, duration: float | None,
-        summary_json: Path | None) -> None:
+        settings: tuple[str, ...], summary_json: Path | None) -> None:
     """Fly SCENARIO and write its telemetry as MCAP.
 
     Ctrl-C or SIGTERM stops the flight and still finishes the MCAP file
@@ -40,13 +64,14 @@ def fly(scenario: Path, output: Path | None, step: float | None, duration: float
     \b
     Example:
         rocketsim fly scenarios/iss-coast.yaml -o iss.mcap --summary-json iss.json
+        rocketsim fly scenarios/falcon9-hop.yaml --duration 30s --set seed=3
     """
     from rocketsim.scenario.load import load
     from rocketsim.sim.flight import fly as fly_scenario
     from rocketsim.telemetry.writer import strict_json
     from rocketsim_cli.compiling import compile_message
 
-    loaded = load(scenario)
+    loaded = load(scenario, overrides(settings))
     output = output or Path(f"{scenario.stem}.mcap")
     check_writable(output, "--output")
     if summary_json is not None:

@@ -1,5 +1,41 @@
-"""rocketsim: a headless six-degree-of-freedom rocket flight and mission simulator."""
+"""rocketsim: a headless six-degree-of-freedom rocket flight and mission simulator.
+
+The front door, for scripts and notebooks::
+
+    import rocketsim
+    run = rocketsim.fly("scenarios/falcon9-leo.yaml", duration=60)      # in memory
+    run.bodies["falcon9-block5"].table()                                # a pandas DataFrame
+    heavier = rocketsim.load("scenarios/falcon9-hop.yaml",
+                             overrides={"vehicle.stages[booster].structure_mass": "26 t"})
+
+* :func:`load` (path or mapping, overrides) -> a validated scenario;
+* :func:`fly` (scenario, telemetry=None or an MCAP path, step, duration, progress,
+  program, programs) -> a :class:`Run`;
+* :func:`open_run` (an MCAP path) -> the same :class:`Run`, executing nothing;
+* :class:`InputError`: what bad input raises (file, line, field, or path).
+
+The names load on first use (PEP 562), so ``import rocketsim.constants`` or the
+command line's light commands do not import the flight's compiled kernels.
+"""
 
 from rocketsim.version import __version__
 
-__all__ = ["__version__"]
+__all__ = ["__version__", "load", "fly", "open_run", "Run", "InputError"]
+
+_HOMES = {"load": "rocketsim.api.flying", "fly": "rocketsim.api.flying",
+          "open_run": "rocketsim.api.run", "Run": "rocketsim.api.run",
+          "InputError": "rocketsim.errors"}
+
+
+def __getattr__(name: str):
+    home = _HOMES.get(name)
+    if home is None:
+        raise AttributeError(f"module 'rocketsim' has no attribute {name!r}")
+    import importlib
+    value = getattr(importlib.import_module(home), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(__all__))

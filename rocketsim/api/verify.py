@@ -4,7 +4,8 @@ Flying a run executes the program it carries, so :func:`verify` refuses a run
 with a program unless called with ``trust=True``. The scenario, vehicle,
 site, weather and program are laid out from the run's attachments in their
 original folder layout (metadata ``files``), flown at the run's step and
-duration, and every message of the new file is compared with the original's
+duration with the overrides it was flown with (metadata ``overrides``), and
+every message of the new file is compared with the original's
 in file order: same topic, same log time, same bytes.
 """
 
@@ -81,7 +82,9 @@ def verify(path: str | Path, trust: bool = False) -> Verdict:
         again = Path(folder) / "again.mcap"
         flight_error = None
         try:
-            fly(load(scenario), again, step=float(info["step_s"]), duration=float(info["duration_s"]))
+            overrides = {path: json.loads(value) for path, value in run.metadata.get("overrides", {}).items()}
+            fly(load(scenario, overrides), again, step=float(info["step_s"]),
+                duration=float(info["duration_s"]))
         except Exception as error:      # the original may have ended the same way
             flight_error = f"{type(error).__name__}: {error}"
         return _compare(iter_raw_messages(path), iter_raw_messages(again), flight_error)

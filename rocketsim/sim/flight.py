@@ -27,11 +27,21 @@ def fly(loaded: LoadedScenario, out: str | Path, *, step: float | None = None,
     Errors in the scenario or the program are raised after the telemetry
     file has been finished.
     """
+    return fly_into(loaded, lambda epoch_ns, program: TelemetryWriter(out, epoch_ns, program),
+                    step=step, duration=duration, on_progress=on_progress)
+
+
+def fly_into(loaded: LoadedScenario, open_telemetry, *, step: float | None = None,
+             duration: float | None = None, on_progress=None) -> dict:
+    """:func:`fly` into the telemetry ``open_telemetry(epoch_ns, program_file)`` opens
+    (a context manager with the interface of
+    :class:`~rocketsim.telemetry.writer.TelemetryWriter`: an MCAP file, or samples kept
+    in memory by :class:`rocketsim.api.recorder.Recorder`)."""
     world = build_world(loaded, step=step, duration=duration)
     world.on_progress = None if on_progress is None else (lambda t: on_progress(t, world.phase))
     epoch_ns = round(world.epoch.utc.timestamp() * 1e9)
     program = loaded.program_path
-    with TelemetryWriter(out, epoch_ns, program.name if program else "") as telemetry:
+    with open_telemetry(epoch_ns, program.name if program else "") as telemetry:
         telemetry.metadata("rocketsim", {
             "version": __version__,
             "scenario": loaded.scenario.name,
@@ -47,6 +57,9 @@ def fly(loaded: LoadedScenario, out: str | Path, *, step: float | None = None,
         # can lay the attachments out again and re-fly the run
         telemetry.metadata("files", {role: Path(os.path.relpath(path, loaded.path.parent)).as_posix()
                                      for role, path in loaded.files.items()})
+        if loaded.overrides:        # set over the files: a re-flight sets them again
+            telemetry.metadata("overrides", {path: json.dumps(value, default=str)
+                                             for path, value in loaded.overrides.items()})
         try:
             summary = world.run(telemetry)
         except BaseException as caught:

@@ -2,7 +2,8 @@
 
 Figures in SI units (m, s, m/s), angles in degrees where a name says so; the
 orbit is the osculating one of the body's last state message
-(:func:`rocketsim.sim.sampling.orbit`), about its central body. ``world`` is a
+(:func:`rocketsim.sim.sampling.orbit`), about its ``central_body`` (``earth``,
+``moon``, ``mars``), which the orbit events name too. ``world`` is a
 :class:`~rocketsim.sim.world.World`.
 """
 
@@ -29,7 +30,7 @@ def summary(world) -> dict:
                 "altitude_m": height,
                 "speed_m_s": float(np.linalg.norm(body.velocity)),
             },
-            "orbit": sampling.orbit(body, world.gmst0),
+            "orbit": {**sampling.orbit(body, world.gmst0), "central_body": body.central},
         }
         landed = [e for e in body.events if e["name"] == "touchdown"]
         if landed:      # the first contact's figures (speeds m/s, tilt deg, distance m)

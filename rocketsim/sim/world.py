@@ -114,8 +114,11 @@ class World:
             self.telemetry.log(self.t, body.name, message)
 
     def event(self, body: Body, name: str, figures: dict) -> None:
-        """Record an event of ``body`` at the body's own time (SI figures)."""
+        """Record an event of ``body`` at the body's own time (SI figures); the summary's
+        record of an orbit event (one with a periapsis) names the body it is about."""
         record = {"name": name, "time_s": body.t, **figures}
+        if "periapsis_altitude_m" in figures:
+            record["central_body"] = body.central
         body.events.append(record)
         self.phase = f"{body.name}: {name}"
         if self.telemetry is not None:

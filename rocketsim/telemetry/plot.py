@@ -29,12 +29,20 @@ def _column(columns: dict, key: str) -> np.ndarray | None:
 
 def plot_run(path: str | Path, out: str | Path) -> Path:
     """Draw the run in ``path`` to the PNG ``out``; return ``out``."""
+    run = read_run(path)
+    draw(run, {body: table(path, body) for body in run.bodies}, out, Path(path).stem)
+    return Path(out)
+
+
+def draw(run, tables: dict, out, title: str) -> None:
+    """Draw ``run`` (a :class:`~rocketsim.telemetry.reader.RunFile`: its events, logs,
+    metadata) with each body's columns ``tables[body]`` (:func:`rocketsim.telemetry.tables.table`'s,
+    lists or arrays) to the PNG ``out`` (a path or a binary file); ``title`` names a run
+    whose metadata does not."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    run = read_run(path)
-    tables = {body: table(path, body) for body in run.bodies}
     figure, axes = plt.subplots(3, 3, figsize=(15, 11))
     panels = {
         "altitude": (axes[0, 0], "altitude", 1e-3, "altitude, km"),
@@ -117,11 +125,10 @@ def plot_run(path: str | Path, out: str | Path) -> Path:
             ax.text(0.5, 0.5, "not in this run's telemetry", ha="center", va="center",
                     transform=ax.transAxes, color="grey")
     info = run.metadata.get("rocketsim", {})
-    figure.suptitle(f"{info.get('scenario', Path(path).stem)}  (epoch {info.get('epoch_utc', '?')})")
+    figure.suptitle(f"{info.get('scenario', title)}  (epoch {info.get('epoch_utc', '?')})")
     figure.tight_layout()
-    figure.savefig(out, dpi=80)
+    figure.savefig(out, dpi=80, format="png")
     plt.close(figure)
-    return Path(out)
 
 
 def _caption(run) -> str:
