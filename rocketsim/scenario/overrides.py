@@ -86,7 +86,7 @@ def _set(node, annotation, steps: tuple[Step, ...], value, loc: tuple, where: st
     if step.key is not None:
         raise PathError(f"{where} is a list: select its items with [name], [index] or [*] "
                         f"before {step.key!r}")
-    if isinstance(node, dict) and step.name is not None and is_mapping(annotation):
+    if (node is None or isinstance(node, dict)) and step.name is not None and is_mapping(annotation):
         return _set(node, annotation, (Step(key=step.name),) + rest, value, loc, where, text, edited,
                     open_reference)
     if not isinstance(node, (list, tuple)):

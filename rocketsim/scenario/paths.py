@@ -160,16 +160,26 @@ def field_type(annotation, key: str):
     return None
 
 
+def nearest(given: str, names: list[str]) -> str | None:
+    """The valid name nearest ``given``: the closest spelling (difflib), else the first
+    name that contains it (``isp`` -> ``isp_vacuum``); None when none is near."""
+    close = difflib.get_close_matches(given, names, n=1, cutoff=0.5)
+    if close:
+        return close[0]
+    return next((name for name in names if given.lower() in name.lower()), None)
+
+
 def unknown_field(key: str, names: list[str], where: str) -> PathError:
     """The error for ``key``, not a field of ``where``: the nearest valid name, or all of them."""
-    close = difflib.get_close_matches(key, names, n=1, cutoff=0.5)
-    hint = f"; did you mean {close[0]!r}?" if close else (f"; its fields: {', '.join(names)}" if names else "")
+    close = nearest(key, names)
+    hint = f"; did you mean {close!r}?" if close else (f"; its fields: {', '.join(names)}" if names else "")
     return PathError(f"{where or 'the scenario'} has no field {key!r}{hint}")
 
 
 def unknown_name(name: str, names: list[str], where: str) -> PathError:
-    close = difflib.get_close_matches(name, names, n=1, cutoff=0.5)
-    hint = f"; did you mean {close[0]!r}?" if close else ""
+    """The error for ``[name]``, no item of the list ``where``: the nearest name and all."""
+    close = nearest(name, names)
+    hint = f"; did you mean {close!r}?" if close else ""
     return PathError(f"{where} has no item named {name!r}{hint}"
                      + (f" (items: {', '.join(names)})" if names else " (its items have no names: use "
                         "an index, [0])"))
