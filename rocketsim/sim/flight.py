@@ -7,6 +7,7 @@ error logged as an event.
 
 from __future__ import annotations
 
+import json
 import os
 from pathlib import Path
 
