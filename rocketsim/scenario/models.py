@@ -397,8 +397,8 @@ def check_step(value: float) -> float:
 
 
 def check_duration(value: float) -> float:
-    """A mission time to fly: more than 0 s, at most a century."""
-    if not value > 0 or not value <= MAX_DURATION:
-        raise ValueError(f"a duration of {value:g} s is not more than 0 s and at most "
+    """A mission time to fly: at least 0 s (0: the initial state alone), at most a century."""
+    if not value >= 0 or not value <= MAX_DURATION:
+        raise ValueError(f"a duration of {value:g} s is not at least 0 s and at most "
                          f"{MAX_DURATION:g} s (a century)")
     return value
