@@ -264,6 +264,35 @@ def test_the_summary_names_the_central_body():
     assert mars.bodies["mars-entry-capsule"].orbit["central_body"] == "mars"
 
 
+def test_the_summary_names_the_body_of_an_orbit_event():
+    """An event with a periapsis (``orbit``, ``mars_orbit``, ``deorbit``...) names, in the
+    summary, the body its body was about at the event; other events do not."""
+    from rocketsim.scenario.load import load
+    from rocketsim.sim.build import build_world
+    world = build_world(load(SCENARIOS / "mars-entry.yaml"), duration=1.0)
+    capsule = world.bodies[0]
+    world.event(capsule, "mars_orbit", {"periapsis_altitude_m": 400e3})
+    world.event(capsule, "hello", {"altitude_m": 1.0})
+    assert capsule.events[-2] == {"name": "mars_orbit", "time_s": 0.0, "periapsis_altitude_m": 400e3,
+                                  "central_body": "mars"}
+    assert "central_body" not in capsule.events[-1]
+
+
+def test_a_flight_that_fails_keeps_what_flew():
+    """A program that raises after 1 s: the error names the program's line, and the run
+    kept in memory up to it says so, as the file would."""
+    def main(fc):
+        fc.sleep(1.0)
+        raise RuntimeError("engine out")
+
+    with pytest.raises(InputError) as caught:
+        rocketsim.fly(SCENARIOS / "spaceport-ballistic.yaml", program=main)
+    assert "engine out" in str(caught.value) and caught.value.line == main.__code__.co_firstlineno + 2
+    run = caught.value.run
+    assert "engine out" in run.outcome and run.summary is None
+    assert run.bodies["sounding-payload"].table().index[-1] == pytest.approx(1.0, abs=0.11)
+
+
 def test_import_rocketsim_is_light():
     """``import rocketsim`` loads neither the compiled kernels nor pandas; every name of
     ``__all__`` resolves."""

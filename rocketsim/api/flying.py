@@ -48,14 +48,18 @@ def fly(scenario: str | Path | Mapping | LoadedScenario, telemetry: str | Path |
     MCAP file there. ``step``, ``duration`` (s) override the scenario's. ``progress``: True
     shows mission time and phase on stderr, or a callable ``progress(t, phase)``.
     ``program`` and ``programs`` (stage name -> program) fly in place of the scenario's:
-    a callable ``main(fc)`` or a program file."""
+    a callable ``main(fc)`` or a program file.
+
+    A flight that ends in an error (a program's exception, a state no longer finite,
+    Ctrl-C) raises it; kept in memory, the run up to the error is the exception's
+    ``run`` (written to a file, the file holds it)."""
     loaded = with_programs(load(scenario), program, programs or {})
     on_progress = _progress_line() if progress is True else progress or None
     # the flight's modules (numba's kernels) load with the first flight, not with rocketsim
     from rocketsim.api.recorder import Recorder
     from rocketsim.sim.flight import fly as fly_to_file, fly_into
+    recorders = []
     if telemetry is None:
-        recorders = []
 
         def open_recorder(epoch_ns: int, program_file: str) -> Recorder:
             recorders.append(Recorder(epoch_ns, program_file))
@@ -66,6 +70,10 @@ def fly(scenario: str | Path | Mapping | LoadedScenario, telemetry: str | Path |
             fly_into(loaded, open_recorder, step=step, duration=duration, on_progress=on_progress)
         else:
             fly_to_file(loaded, telemetry, step=step, duration=duration, on_progress=on_progress)
+    except BaseException as error:
+        if recorders:       # what flew before the error, as the file would keep it
+            error.run = Run(recorders[0].run, recorders[0].samples)
+        raise
     finally:
         if progress is True:
             print(file=sys.stderr)
