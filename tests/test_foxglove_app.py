@@ -24,7 +24,7 @@ from scipy.spatial.transform import Rotation
 
 from rocketsim.scenario.load import load
 from rocketsim.sim.flight import fly
-from rocketsim.sim.world import World
+from rocketsim.sim.build import build_world
 from rocketsim.telemetry.schemas import BODY_STATE, EVENT
 from rocketsim.telemetry import foxglove
 from rocketsim.telemetry.writer import TelemetryWriter
@@ -47,7 +47,7 @@ def hop(tmp_path_factory):
             kept.append((body, values, fields))
             super().sample(body, values, fields, leaving)
 
-    world = World.from_scenario(load(HOP), step=0.05)
+    world = build_world(load(HOP), step=0.05)
     with Keeping(out, 0) as telemetry:
         world.run(telemetry)
     return out, kept

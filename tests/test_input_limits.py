@@ -123,8 +123,8 @@ def test_a_sounding_nested_too_deep_is_an_input_error():
 
 
 @pytest.mark.parametrize("option, value, message", [
-    ("--step", "nan", "not at least"), ("--step", "1e-300", "not at least"),
-    ("--duration", "inf", "at most"), ("--duration", "nan", "not at least 0 s"),
+    ("--step", "nan", "got 'nan'"), ("--step", "1e-300", "not at least"),
+    ("--duration", "inf", "got 'inf'"), ("--duration", "nan", "got 'nan'"),
     ("--duration", "-1", "not at least 0 s")])
 def test_a_step_or_duration_out_of_range_on_the_command_line_is_refused(scenario, cli, tmp_path,
                                                                         option, value, message):

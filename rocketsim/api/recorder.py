@@ -44,8 +44,9 @@ class Recorder:
         self.samples.setdefault(name, Samples())
         self.run.counts.setdefault(f"/{name}/state", 0)
 
-    def sample(self, body: str, values, fields) -> None:
-        """A body's sample: the numbers of its state message (see the writer's)."""
+    def sample(self, body: str, values, fields, leaving: bool = False) -> None:
+        """A body's sample: the numbers of its state message (see the writer's;
+        ``leaving`` only decides the file's frames, which a run in memory has not)."""
         self.samples[body].add_values(values, fields)
         self.run.counts[f"/{body}/state"] += 1
         stamp = self._stamp(values.item(-2))       # the state's t (rocketsim.sim.sampling.figures)

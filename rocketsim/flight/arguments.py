@@ -128,13 +128,23 @@ def truth(value: Any) -> bool:
 
 def figures(call: str, values: dict) -> dict:
     """An event's figures by name: strings, bools, 64-bit integers and floats (nan too:
-    a figure may be unknown), as their Python types."""
-    return {key: _figure(call, key, value) for key, value in values.items()}
+    a figure may be unknown), as their Python types, or a flat list of those (a vector,
+    a list of names: a list, tuple or 1-D array of at most 1 000 items)."""
+    for key in values:
+        if key == "time_s":
+            raise ValueError(f"{call}(): the figure time_s is the event's own time; name it otherwise")
+    return {key: _figure_or_list(call, key, value) for key, value in values.items()}
+
+
+def _figure_or_list(call: str, key: str, value: Any):
+    if isinstance(value, (list, tuple)) or (isinstance(value, np.ndarray) and value.ndim == 1):
+        if len(value) > 1000:
+            raise ValueError(f"{call}(): the figure {key} has {len(value)} items (at most 1 000)")
+        return [_figure(call, key, item) for item in value]
+    return _figure(call, key, value)
 
 
 def _figure(call: str, key: str, value: Any):
-    if key == "time_s":
-        raise ValueError(f"{call}(): the figure time_s is the event's own time; name it otherwise")
     if isinstance(value, str):
         return text(call, key, value)
     if isinstance(value, (bool, np.bool_)):
