@@ -24,6 +24,9 @@ BLOCK = 1024            # rows of a block: a block is allocated whole
 FLOAT, INTEGER, TEXT = "f", "i", "c"
 
 
+# a vector's components keep their columns when missing (a file writes null in a vector)
+VECTOR_AXES = ("_x", "_y", "_z", "_w")
+
 class _Segment:
     """Samples with one layout: ``layout`` lists ``(column, kind, index or text)``."""
 
@@ -121,6 +124,8 @@ class Samples:
                 at += segment.rows
             if kind != TEXT:
                 values[~np.isfinite(values)] = np.nan        # JSON's null: NaN and infinities alike
+                if np.isnan(values).all() and not column.endswith(VECTOR_AXES):
+                    continue        # a value no sample has is left out of every message: no column
                 if kind == INTEGER and not np.isnan(values).any():
                     values = values.astype(np.int64)
             out[column] = values
