@@ -110,7 +110,7 @@ class Samples:
                 order.setdefault(column, kind)
         n = len(self)
         arrays = [segment.array() for segment in self.segments]
-        out = {}
+        out, first = {}, {}
         for column, kind in order.items():
             values = np.full(n, None, dtype=object) if kind == TEXT else np.full(n, np.nan)
             at = 0
@@ -126,7 +126,11 @@ class Samples:
                 values[~np.isfinite(values)] = np.nan        # JSON's null: NaN and infinities alike
                 if np.isnan(values).all() and not column.endswith(VECTOR_AXES):
                     continue        # a value no sample has is left out of every message: no column
+                if not column.endswith(VECTOR_AXES):
+                    first[column] = int(np.argmax(~np.isnan(values)))
                 if kind == INTEGER and not np.isnan(values).any():
                     values = values.astype(np.int64)
             out[column] = values
-        return out
+        # a file's table adds a column at the first message that has the value
+        rank = {column: i for i, column in enumerate(out)}
+        return {column: out[column] for column in sorted(out, key=lambda c: (first.get(c, 0), rank[c]))}
