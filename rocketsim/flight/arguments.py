@@ -128,13 +128,23 @@ def truth(value: Any) -> bool:
 
 def figures(call: str, values: dict) -> dict:
     """An event's figures by name: strings, bools, 64-bit integers and floats (nan too:
-    a figure may be unknown), as their Python types."""
-    return {key: _figure(call, key, value) for key, value in values.items()}
+    a figure may be unknown), or a list of them (a vector), as their Python types."""
+    for key in values:
+        if key == "time_s":
+            raise ValueError(f"{call}(): the figure time_s is the event's own time; name it otherwise")
+    return {key: [_figure(call, f"{key}[{i}]", item) for i, item in enumerate(_items(call, key, value))]
+            if isinstance(value, (list, tuple, np.ndarray)) and not _is_real(value)
+            else _figure(call, key, value) for key, value in values.items()}
+
+
+def _items(call: str, key: str, value) -> list:
+    if len(value) > MAX_TEXT_LENGTH:
+        raise ValueError(f"{call}(): the figure {key} has {len(value)} items, more than the "
+                         f"{MAX_TEXT_LENGTH} allowed")
+    return list(value)
 
 
 def _figure(call: str, key: str, value: Any):
-    if key == "time_s":
-        raise ValueError(f"{call}(): the figure time_s is the event's own time; name it otherwise")
     if isinstance(value, str):
         return text(call, key, value)
     if isinstance(value, (bool, np.bool_)):
@@ -144,8 +154,8 @@ def _figure(call: str, key: str, value: Any):
             raise ValueError(f"{call}(): the figure {key} is an integer beyond 64 bits")
         return int(value)
     if not _is_real(value):
-        raise TypeError(f"{call}(): the figure {key} must be a number, a string or a bool, "
-                        f"got {_shown(value)}")
+        raise TypeError(f"{call}(): the figure {key} must be a number, a string, a bool or a "
+                        f"list of them, got {_shown(value)}")
     return float(value)
 
 
