@@ -38,7 +38,8 @@ CASES = [
     ("fc.rcs(np.array([1, 2]))", "fc.rcs(): on must be True or False"),
     ("fc.throttle(float('nan'))", "fc.throttle(): value must be a finite number"),
     ("fc.ignite(1.5)", "fc.ignite(): which must be None, an engine index or name"),
-    ("fc.event('x', figure=[1, 2])", "fc.event(): the figure figure must be a number"),
+    ("fc.event('x', figure=[1, [2]])", "fc.event(): the figure figure[1] must be a number"),
+    ("fc.event('x', figure={'a': 1})", "fc.event(): the figure figure must be a number"),
     ("fc.event('x', n=10**30)", "fc.event(): the figure n is an integer beyond 64 bits"),
     ("fc.log('x' * 100_000)", "fc.log(): the line is 100000 characters long"),
     ("fc.body_state('pluto')", "fc.body_state(): name must be one of sun, earth, moon, mars"),
@@ -78,6 +79,8 @@ def test_good_arguments_pass_as_the_simulator_uses_them():
     assert arguments.flag("fc.rcs", "on", np.bool_(True)) is True
     assert arguments.engines("fc.ignite", ["booster", 0, np.int64(1)]) == ["booster", 0, np.int64(1)]
     assert arguments.figures("fc.event", {"n": np.int64(3), "x": np.float64(1.5), "ok": np.bool_(False),
-                                          "unknown": math.nan, "phase": "coast"}) == \
-        {"n": 3, "x": 1.5, "ok": False, "unknown": pytest.approx(math.nan, nan_ok=True), "phase": "coast"}
+                                          "unknown": math.nan, "phase": "coast",
+                                          "target": np.array([1.0, 0.0, 0.0]), "names": ("a", "b")}) == \
+        {"n": 3, "x": 1.5, "ok": False, "unknown": pytest.approx(math.nan, nan_ok=True), "phase": "coast",
+         "target": [1.0, 0.0, 0.0], "names": ["a", "b"]}
     assert arguments.truth(np.bool_(True)) is True

@@ -128,20 +128,20 @@ def truth(value: Any) -> bool:
 
 def figures(call: str, values: dict) -> dict:
     """An event's figures by name: strings, bools, 64-bit integers and floats (nan too:
-    a figure may be unknown), as their Python types, or a flat list of those (a vector,
-    a list of names: a list, tuple or 1-D array of at most 1 000 items)."""
+    a figure may be unknown), or a list of them (a vector), as their Python types."""
     for key in values:
         if key == "time_s":
             raise ValueError(f"{call}(): the figure time_s is the event's own time; name it otherwise")
-    return {key: _figure_or_list(call, key, value) for key, value in values.items()}
+    return {key: [_figure(call, f"{key}[{i}]", item) for i, item in enumerate(_items(call, key, value))]
+            if isinstance(value, (list, tuple, np.ndarray)) and not _is_real(value)
+            else _figure(call, key, value) for key, value in values.items()}
 
 
-def _figure_or_list(call: str, key: str, value: Any):
-    if isinstance(value, (list, tuple)) or (isinstance(value, np.ndarray) and value.ndim == 1):
-        if len(value) > 1000:
-            raise ValueError(f"{call}(): the figure {key} has {len(value)} items (at most 1 000)")
-        return [_figure(call, key, item) for item in value]
-    return _figure(call, key, value)
+def _items(call: str, key: str, value) -> list:
+    if len(value) > MAX_TEXT_LENGTH:
+        raise ValueError(f"{call}(): the figure {key} has {len(value)} items, more than the "
+                         f"{MAX_TEXT_LENGTH} allowed")
+    return list(value)
 
 
 def _figure(call: str, key: str, value: Any):
@@ -154,8 +154,8 @@ def _figure(call: str, key: str, value: Any):
             raise ValueError(f"{call}(): the figure {key} is an integer beyond 64 bits")
         return int(value)
     if not _is_real(value):
-        raise TypeError(f"{call}(): the figure {key} must be a number, a string or a bool, "
-                        f"got {_shown(value)}")
+        raise TypeError(f"{call}(): the figure {key} must be a number, a string, a bool or a "
+                        f"list of them, got {_shown(value)}")
     return float(value)
 
 

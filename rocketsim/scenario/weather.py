@@ -110,7 +110,7 @@ def load_weather(path):
     from rocketsim.scenario.yaml_source import read_yaml
     source = read_yaml(Path(path)) if isinstance(path, (str, Path)) else path
     kind = source.data.get("kind") if isinstance(source.data, dict) else None
-    if kind in KINDS:
+    if isinstance(kind, str) and kind in KINDS:
         return validate(source, KINDS[kind])
     return validate(source, WeatherFile).root
 

@@ -91,7 +91,7 @@ def _read_indexed(path: Path) -> RunFile:
             _keep_text(run, channel.topic, message.data)
         for topic in [t for t in run.counts if _is_state(t)]:
             for _, _, message in reader.iter_messages(topics=[topic], reverse=True):
-                run.final[topic[1:-len(STATE_SUFFIX)]] = json.loads(message.data)
+                run.final[topic[1:-len(STATE_SUFFIX)]] = _message(message.data, STATE_SUFFIX)
                 break
     return run
 
@@ -190,16 +190,34 @@ def _read_streamed(path: Path) -> RunFile:
         run.problem = f"unreadable ({type(error).__name__}: {error}); {sum(run.counts.values())} messages read"
     for topic, data in last_state.items():
         try:
-            run.final[topic[1:-len(STATE_SUFFIX)]] = json.loads(data)
-        except ValueError:
-            pass
+            run.final[topic[1:-len(STATE_SUFFIX)]] = _message(data, STATE_SUFFIX)
+        except ValueError as error:
+            run.problem = f"{error} in {topic}; {run.problem}"
     if not run.counts and run.problem:
         run.problem = "not an MCAP file, or nothing in it is readable: " + run.problem
     return run
 
 
-def _keep_text(run: RunFile, topic: str, data: bytes) -> None:
+# what a summary reads of each message, and its types: a damaged file's message that
+# lacks them is refused as damage (ValueError), not shown as a KeyError
+_NUMBER = (int, float, type(None))
+_FIELDS = {"/events": {"t": _NUMBER, "body": str, "name": str, "figures": dict},
+           "/log": {"message": str}, "/events/log": {"message": str, "level": int},
+           STATE_SUFFIX: {"t": _NUMBER, "altitude": _NUMBER, "latitude_deg": _NUMBER,
+                          "longitude_deg": _NUMBER, "speed": _NUMBER}}
+
+
+def _message(data: bytes, kind: str) -> dict:
+    """A message's JSON, with the fields of ``kind`` (a topic or STATE_SUFFIX) of their types."""
     message = json.loads(data)
+    if not isinstance(message, dict) or not all(
+            isinstance(message.get(key, ...), types) for key, types in _FIELDS[kind].items()):
+        raise ValueError(f"a damaged {kind} message")
+    return message
+
+
+def _keep_text(run: RunFile, topic: str, data: bytes) -> None:
+    message = _message(data, topic)
     if topic == "/events":
         run.events.append(message)
     elif topic == "/log":

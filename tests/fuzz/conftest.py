@@ -11,5 +11,6 @@ def pytest_terminal_summary(terminalreporter):
     kinds = ", ".join(f"{kind} {n}" for kind, n in sorted(COUNTS.items()))
     peaks = ", ".join(f"{kind} {rise / 2**20:.0f} MiB" for kind, rise in sorted(PEAKS.items()))
     terminalreporter.write_line(
-        f"fuzz ({settings.get_current_profile_name()} profile): {sum(COUNTS.values())} generated inputs ({kinds}); largest rise of "
-        f"resident memory during one input: {peaks or 'not measured'}")
+        f"fuzz ({settings.get_current_profile_name()} profile): {sum(COUNTS.values())} generated "
+        f"inputs ({kinds}); largest rise of resident memory during one input: "
+        f"{peaks or 'not measured'}")

@@ -96,7 +96,7 @@ def _replay(runs, data, *options) -> None:
             assert "error:" in output, output
 
 
-@settings(max_examples=examples(14))
+@settings(max_examples=examples(18))
 @given(st.data())
 def test_a_damaged_run_is_summarised_and_exported_or_refused(runs, data):
     file = data.draw(damaged(runs))
