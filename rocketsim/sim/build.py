@@ -37,7 +37,7 @@ def build_world(loaded: LoadedScenario, step: float | None = None,
     """The world of ``loaded``, ready to :meth:`~rocketsim.sim.world.World.run`;
     ``step`` and ``duration`` (s) override the scenario's."""
     scenario = loaded.scenario
-    h = scenario.step if step is None else _checked_step(step)
+    h = scenario.step if step is None else _checked(check_step, step, "--step")
     mission = scenario.mission
     epoch = Epoch.from_utc(mission.epoch, mission.dut1)
     r, v, q = start_state(mission, scenario.site, epoch.gmst())
@@ -50,8 +50,8 @@ def build_world(loaded: LoadedScenario, step: float | None = None,
                       # the classic range's original model (held for the step); stages inherit p
                       classic=scenario.site is not None and scenario.site.model == "classic"),
     )
-    world = World(epoch, h, mission.duration if duration is None else _checked_duration(duration), [body],
-                  atmosphere=loaded.atmosphere)
+    flown = mission.duration if duration is None else _checked(check_duration, duration, "--duration")
+    world = World(epoch, h, flown, [body], atmosphere=loaded.atmosphere)
     center = mission.start.orbit.body if mission.start.orbit is not None else "earth"
     if mission.gravity == "n-body" or center != "earth":
         body.p = with_field(central_params(body.p, center),
@@ -97,15 +97,9 @@ def build_world(loaded: LoadedScenario, step: float | None = None,
     return world
 
 
-def _checked_step(step: float) -> float:
+def _checked(check, value: float, option: str) -> float:
+    """``check(value)`` (a step or duration, s), its ValueError an input error naming ``option``."""
     try:
-        return check_step(step)
+        return check(value)
     except ValueError as error:
-        raise InputError(str(error), field="--step") from None
-
-
-def _checked_duration(duration: float) -> float:
-    try:
-        return check_duration(duration)
-    except ValueError as error:
-        raise InputError(str(error), field="--duration") from None
+        raise InputError(str(error), field=option) from None
