@@ -17,6 +17,7 @@ from rocketsim.errors import InputError
 from rocketsim_cli.ephemeris import _utc
 from rocketsim_cli.errors import reports_input_errors
 from rocketsim_cli.lazy import LibraryChoice
+from rocketsim_cli.units import Quantity
 
 if TYPE_CHECKING:
     from rocketsim.transfer import windows as transfer_windows
@@ -57,9 +58,18 @@ def _capture(text: str) -> tuple[float, float | None]:
     return periapsis, apoapsis
 
 
-def _positive(value, option):
+def _days(text: str) -> float:
+    """A time of flight in days: a bare number of days, or a time with its unit."""
+    try:
+        return float(text)
+    except ValueError:
+        from rocketsim.scenario.units import parse_quantity
+        return parse_quantity(text, "time") / SECONDS_PER_DAY
+
+
+def _positive(value, option, unit):
     if value is not None and not value > 0.0:
-        raise InputError(f"must be positive, got {value}", field=option)
+        raise InputError(f"must be positive, got {value:g} {unit}", field=option)
     return value
 
 
@@ -214,11 +224,13 @@ def _targets() -> list[str]:
               help="altitude of the circular parking orbit at Earth")
 @click.option("--capture-orbit", default="400km", show_default=True,
               help="capture orbit at the target: '400km' (circular) or '400km x 33000km'")
-@click.option("--max-c3", type=float, default=None, help="largest C3 accepted, km^2/s^2")
-@click.option("--max-vinf", type=float, default=None,
-              help="largest arrival v-infinity accepted, km/s")
+@click.option("--max-c3", type=Quantity("specific_energy", "20 km2/s2"), default=None,
+              help="largest C3 accepted, e.g. '20 km2/s2'")
+@click.option("--max-vinf", type=Quantity("speed", "3 km/s"), default=None,
+              help="largest arrival v-infinity accepted, e.g. '3 km/s'")
 @click.option("--tof", "tof_range", default=None,
-              help="time-of-flight range in days, e.g. 120:400 [default: 90:500 mars, 2:8 moon]")
+              help="time-of-flight range, days or with units, e.g. 120:400 or '2 d:200 h' "
+                   "[default: 90:500 mars, 2:8 moon]")
 @click.option("--by", "objective", type=click.Choice(["dv", "c3"]), default="dv",
               show_default=True, help="rank windows by total delta-v or by C3")
 @click.option("--count", type=click.IntRange(1, 20), default=3, show_default=True,
@@ -248,7 +260,7 @@ def windows(target, start, stop, step, parking_orbit, capture_orbit, max_c3, max
     Example:
         rocketsim windows --target mars --plot porkchop.png
         rocketsim windows --target mars --from 2026-09-01 --to 2027-01-31 \\
-            --max-c3 20 --by c3 --format json --mission-fragment mars-2026.yaml
+            --max-c3 '20 km2/s2' --by c3 --format json --mission-fragment mars-2026.yaml
         rocketsim windows --target moon --from 2026-12-01 --to 2026-12-15
     """
     import numpy as np
@@ -273,16 +285,17 @@ def windows(target, start, stop, step, parking_orbit, capture_orbit, max_c3, max
     tgt = transfer_windows.target(target)
     if tof_range is not None:
         try:
-            lo, hi = (float(v) for v in tof_range.split(":"))
-        except ValueError:
-            raise InputError(f"expected MIN:MAX in days, got {tof_range!r}", field="--tof") from None
+            lo, hi = (_days(v) for v in tof_range.split(":"))
+        except (ValueError, UnitError):
+            raise InputError(f"expected MIN:MAX, in days or with units ('120:400', '2 d:200 h'), "
+                             f"got {tof_range!r}", field="--tof") from None
         if not 0.0 < lo < hi:
             raise InputError(f"need 0 < MIN < MAX, got {tof_range!r}", field="--tof")
     else:
         lo, hi = tgt.tof_days
     if target == "mars":
-        _positive(max_c3, "--max-c3")          # lunar C3 is negative (bound orbits)
-    _positive(max_vinf, "--max-vinf")
+        _positive(max_c3, "--max-c3", "m2/s2")          # lunar C3 is negative (bound orbits)
+    _positive(max_vinf, "--max-vinf", "m/s")
     periapsis, apoapsis = _capture(capture_orbit)
     orbits = transfer_windows.Orbits(parking_altitude=_length(parking_orbit, "--parking-orbit"),
                                      capture_periapsis_altitude=periapsis,
@@ -301,8 +314,7 @@ def windows(target, start, stop, step, parking_orbit, capture_orbit, max_c3, max
                          f"{MAX_CELLS:,}; use a larger --step or a shorter range", field="--step")
 
     options = dict(target_name=target, objective=objective, orbits=orbits,
-                   max_c3=None if max_c3 is None else max_c3 * 1e6,
-                   max_vinf_arrival=None if max_vinf is None else max_vinf * 1e3,
+                   max_c3=max_c3, max_vinf_arrival=max_vinf,
                    tof_days=(lo, hi), count=count)
     if cells >= PROGRESS_CELLS and sys.stderr.isatty():
         with click.progressbar(length=departure.size, label="searching", file=sys.stderr) as bar:

@@ -26,6 +26,7 @@ References:
 
 import datetime as dt
 import math
+import json
 
 import numpy as np
 import pytest
@@ -166,8 +167,6 @@ def run_cli(*args):
 
 
 def test_cli_json_lists_the_2026_window_and_writes_plot_and_fragment(tmp_path):
-    import json
-
     import yaml
 
     plot = tmp_path / "porkchop.png"
@@ -225,7 +224,12 @@ def test_cli_moon_patched_conic_is_a_hohmann_transfer_to_the_moons_distance():
     (("--target", "mars", "--from", "2101-01-01"), "outside the span"),
     (("--target", "mars", "--capture-orbit", "400km x 100km"), "apoapsis"),
     (("--target", "mars", "--tof", "300:100"), "--tof"),
-    (("--target", "mars", "--max-c3", "-4"), "--max-c3"),
+    (("--target", "mars", "--max-c3", "-4 km2/s2"), "--max-c3"),
+    # C3 and v-infinity are quoted in km^2/s^2 and km/s, not SI: a bare number is refused
+    (("--target", "mars", "--max-c3", "20"), "needs a unit"),
+    (("--target", "mars", "--max-vinf", "3"), "needs a unit"),
+    (("--target", "mars", "--max-vinf", "3 parsecs"), "--max-vinf"),
+    (("--target", "mars", "--tof", "2 d:1 fortnight"), "--tof"),
     (("--target", "mars", "--from", "next tuesday"), "not a date"),
     (("--target", "venus",), "venus"),
 ])
@@ -234,6 +238,19 @@ def test_cli_bad_input_exits_2_with_one_clear_line(args, message):
     assert result.exit_code == 2
     assert message in result.output
     assert "Traceback" not in result.output
+
+
+def test_cli_limits_take_units_and_filter_the_windows():
+    """``--max-c3 '9.5 km2/s2'`` keeps only windows at or under 9.5 km^2/s^2 (the same
+    number as 9.5e6 m2/s2), and ``--tof`` with units is the same range as in days."""
+    common = ("--target", "mars", "--from", "2026-09-15", "--to", "2026-12-15", "--step", "3d",
+              "--by", "c3", "--format", "json", "--count", "5")
+    in_km = run_cli(*common, "--tof", "150:400", "--max-c3", "9.5 km2/s2")
+    in_si = run_cli(*common, "--tof", "150 d:9600 h", "--max-c3", "9.5e6 m2/s2")
+    assert in_km.exit_code == 0 and in_si.exit_code == 0, in_km.output + in_si.output
+    rows = json.loads(in_km.stdout)
+    assert rows and all(row["c3_km2_s2"] <= 9.5 for row in rows)
+    assert json.loads(in_si.stdout) == rows
 
 
 def test_cli_help_shows_an_example():

@@ -40,6 +40,8 @@ UNITS: dict[str, dict[str, float]] = {
     "specific_impulse": {"s": 1.0},
     "mass_flow": {"kg/s": 1.0},
     "acceleration": {"m/s2": 1.0, "m/s^2": 1.0, "g": 9.80665},
+    # C3 (twice the orbital energy per unit mass), as launch windows quote it in km^2/s^2
+    "specific_energy": {"m2/s2": 1.0, "m^2/s^2": 1.0, "km2/s2": 1e6, "km^2/s^2": 1e6},
     "dimensionless": {"": 1.0, "%": 0.01},
 }
 
