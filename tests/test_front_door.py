@@ -7,7 +7,8 @@ What is checked, each against an independent way to the same result:
   summary and log lines; and the tables hold the CSV export's columns and numbers;
 * a scenario given as a dict (its files' YAML read with PyYAML and inlined) flies
   bit-identically to the files; a program given as a callable (the file's own
-  ``main``) flies identically to the program file;
+  ``main``) flies identically to the program file; a dict scenario's run with a
+  function program flies again from the file alone (``replay --verify``);
 * an override of the booster's dry mass lands the booster exactly as a vehicle file
   with that mass written in does, and not as the nominal one;
 * bad paths and units name the path and the nearest valid name (exit 2 on the command
@@ -32,7 +33,8 @@ import yaml
 import rocketsim
 from rocketsim.api.run import same_table, unit_name
 from rocketsim.errors import InputError
-from rocketsim.flight.program import load_program_module
+from rocketsim.api.verify import verify
+from rocketsim.flight.program import load_program, load_program_module
 from rocketsim.telemetry.tables import table as csv_table
 from tests.conftest import ROOT
 
@@ -148,7 +150,28 @@ def test_a_dict_scenario_flies_as_its_files(hop_20s):
     assert isinstance(data["vehicle"], dict)
     run = rocketsim.fly(rocketsim.load(data, base_dir=SCENARIOS), step=0.05, duration=20.0)
     same_flight(run, hop_20s)
-    assert "scenario" not in run.metadata["files"]      # no scenario file: a dict
+    assert run.metadata["files"]["scenario"] == "falcon9-hop.yaml"     # the dict, as a file
+
+
+def test_a_dict_scenario_with_a_function_program_flies_again_from_its_file(hop_20s, tmp_path):
+    """A run of a dict scenario whose program is a function not named ``main`` carries
+    the scenario as YAML and the function's name: ``replay --verify`` flies it again
+    from the file alone, message for message (reference: the run itself), and the
+    flight is the file scenario's (reference: ``hop_20s``)."""
+    source = (SCENARIOS / "programs" / "hop.py").read_text()
+    assert source.count("def main(fc") == 1
+    program = tmp_path / "programs" / "my_hop.py"
+    program.parent.mkdir()
+    program.write_text(source.replace("def main(fc", "def climb(fc"))
+    data = _inlined(HOP)
+    data["program"] = load_program(program, "climb")
+    out = tmp_path / "run.mcap"
+    run = rocketsim.fly(rocketsim.load(data, base_dir=SCENARIOS), out, step=0.05, duration=20.0)
+    same_flight(run, hop_20s)
+    assert run.metadata["entries"] == {"program": "climb"}
+    verdict = verify(out, trust=True)
+    assert verdict.identical and verdict.flight_error is None, verdict
+    assert verdict.compared > 100
 
 
 def test_a_callable_program_flies_as_its_file(hop_20s):

@@ -6,7 +6,9 @@ site, weather and program are laid out from the run's attachments in their
 original folder layout (metadata ``files``), flown at the run's step and
 duration with the overrides it was flown with (metadata ``overrides``), and
 every message of the new file is compared with the original's
-in file order: same topic, same log time, same bytes.
+in file order: same topic, same log time, same bytes. A scenario given as a
+mapping travels as the YAML file it would be; programs fly in the roles they
+flew (a program given in place of the file's, a function not named ``main``).
 """
 
 from __future__ import annotations
@@ -18,6 +20,7 @@ import tempfile
 from dataclasses import dataclass
 from pathlib import Path, PurePosixPath
 
+from rocketsim.flight.program import load_program
 from rocketsim.scenario.load import load
 from rocketsim.sim.flight import fly
 from rocketsim.telemetry.reader import RunFile, iter_raw_messages, read_run
@@ -83,11 +86,28 @@ def verify(path: str | Path, trust: bool = False) -> Verdict:
         flight_error = None
         try:
             overrides = {path: json.loads(value) for path, value in run.metadata.get("overrides", {}).items()}
+            overrides.update(_programs(run, scenario))
             fly(load(scenario, overrides), again, step=float(info["step_s"]),
                 duration=float(info["duration_s"]))
         except Exception as error:      # the original may have ended the same way
             flight_error = f"{type(error).__name__}: {error}"
         return _compare(iter_raw_messages(path), iter_raw_messages(again), flight_error)
+
+
+def _programs(run: RunFile, scenario: Path) -> dict:
+    """Overrides flying the programs the run carries (laid out beside ``scenario``) in
+    the roles they flew, whatever the scenario file names: a program given in place
+    of the file's, or a function not named ``main`` (metadata ``entries``)."""
+    entries = run.metadata.get("entries", {})
+    found = {}
+    for role, rel in run.metadata["files"].items():
+        if role != "program" and not role.startswith("program/"):
+            continue
+        path = Path(os.path.normpath(scenario.parent / rel))
+        entry = entries.get(role, "main")
+        found["program" if role == "program" else f"programs[{role.split('/', 1)[1]}]"] = (
+            str(path) if entry == "main" else load_program(path, entry))
+    return found
 
 
 def _compare(original, again, flight_error) -> Verdict:

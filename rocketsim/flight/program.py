@@ -131,11 +131,12 @@ _COMPILING = _CompileTime()
 ev.register("numba:compiler_lock", _COMPILING)
 
 
-def load_program(path: Path) -> Callable:
-    """Compile and run a program file's top level; return its ``main``."""
-    main = load_program_module(path).main
+def load_program(path: Path, entry: str = "main") -> Callable:
+    """Compile and run a program file's top level; return its ``main`` (or the
+    function named ``entry``)."""
+    main = getattr(load_program_module(path), entry, None)
     if not callable(main):
-        raise ProgramError("the program defines no main(fc) function", file=Path(path))
+        raise ProgramError(f"the program defines no {entry}(fc) function", file=Path(path))
     # A program may predict its coast (rocketsim.dynamics.prediction, scipy's integrator,
     # imported there on first use): imported now, so that its import (a few tenths of a
     # second of CPU) never counts against the program's budget for one step.

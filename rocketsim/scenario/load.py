@@ -13,6 +13,7 @@ path, what was expected, and for a misspelt field the closest valid name.
 from __future__ import annotations
 
 import difflib
+import os
 import reprlib
 import types
 import typing
@@ -51,7 +52,9 @@ class LoadedScenario:
     ``files``). ``overrides``: the paths and values set over the files (they travel
     in the telemetry too). A scenario given as a mapping has no ``scenario`` file; its
     ``path`` is ``<base_dir>/<name>.yaml``, no file: its references are relative
-    to that folder.
+    to that folder. ``written`` is that mapping as a scenario file would hold it
+    (a callable program named by its file, relative to the folder), which the
+    telemetry carries in place of the file; None for a scenario read from a file.
     """
 
     scenario: Scenario
@@ -59,6 +62,7 @@ class LoadedScenario:
     files: dict[str, Path] = field(default_factory=dict)
     callables: dict[str, Callable] = field(default_factory=dict)
     overrides: dict[str, Any] = field(default_factory=dict)
+    written: dict | None = None
 
     @property
     def program_path(self) -> Path | None:
@@ -100,6 +104,7 @@ def load(scenario: str | Path | Mapping, overrides: Mapping[str, Any] | None = N
     ``program`` and ``programs`` may be Python callables ``main(fc)`` as well as files
     (and so may the values of overrides of those fields)."""
     edits = Overrides(overrides)
+    scenario_data = scenario
     if isinstance(scenario, Mapping):
         path = Path(base_dir or ".").resolve() / f"{scenario.get('name') or 'scenario'}.yaml"
         source = edits.source(None, dict(scenario))
@@ -179,7 +184,8 @@ def load(scenario: str | Path | Mapping, overrides: Mapping[str, Any] | None = N
         # a sounding file is relative to the file that names it
         loc = ("file",) if "weather" in files else ("weather", "file")
         files["sounding"] = _resolve(weather_source.path or path, sounding, weather_source, loc)
-    return LoadedScenario(scenario, path.resolve(), files, callables, dict(overrides or {}))
+    written = _as_written(scenario_data, path.parent) if isinstance(scenario_data, Mapping) else None
+    return LoadedScenario(scenario, path.resolve(), files, callables, dict(overrides or {}), written)
 
 
 def unknown_stage(stage: str, vehicle: VehicleSpec, **where) -> InputError:
@@ -205,6 +211,22 @@ def _callables(data: dict) -> dict[str, Callable]:
     if "program" in found:
         data["program"] = program_file(found["program"])
     return found
+
+
+def _as_written(data, folder: Path):
+    """``data`` (a scenario mapping's values) as YAML holds them: a callable as its
+    file relative to ``folder``, paths as text, tuples as lists, numbers as numbers."""
+    if callable(data):
+        return os.path.relpath(program_file(data), folder)
+    if isinstance(data, Mapping):
+        return {str(key): _as_written(value, folder) for key, value in data.items()}
+    if isinstance(data, (list, tuple)):
+        return [_as_written(value, folder) for value in data]
+    if isinstance(data, Path):
+        return str(data)
+    if hasattr(data, "item") and not isinstance(data, (str, bytes)):
+        return data.item()          # a numpy scalar
+    return data
 
 
 def program_file(main: Callable) -> Path:

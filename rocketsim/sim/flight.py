@@ -54,10 +54,19 @@ def fly_into(loaded: LoadedScenario, open_telemetry, *, step: float | None = Non
         for role, path in loaded.files.items():
             telemetry.attach(f"{role}/{path.name}", path.read_bytes(),
                              "text/x-python" if path.suffix == ".py" else "application/yaml")
+        layout = {role: Path(os.path.relpath(path, loaded.path.parent)).as_posix()
+                  for role, path in loaded.files.items()}
+        mapping = _scenario_text(loaded)
+        if mapping is not None:     # a scenario given as a mapping travels as the file it would be
+            telemetry.attach(f"scenario/{loaded.path.name}", mapping, "application/yaml")
+            layout["scenario"] = loaded.path.name
         # where each file sits relative to the scenario's folder, so a replay
         # can lay the attachments out again and re-fly the run
-        telemetry.metadata("files", {role: Path(os.path.relpath(path, loaded.path.parent)).as_posix()
-                                     for role, path in loaded.files.items()})
+        telemetry.metadata("files", layout)
+        entries = {role: main.__name__ for role, main in loaded.callables.items()
+                   if getattr(main, "__name__", "main") != "main"}
+        if entries:                 # programs given as functions not named main
+            telemetry.metadata("entries", entries)
         if loaded.overrides:        # set over the files: a re-flight sets them again
             telemetry.metadata("overrides", {path: json.dumps(value, default=str)
                                              for path, value in loaded.overrides.items()})
@@ -76,6 +85,18 @@ def fly_into(loaded: LoadedScenario, open_telemetry, *, step: float | None = Non
         telemetry.metadata("outcome", {"status": "ok"})
         telemetry.metadata("summary", {"json": strict_json(summary)})
     return summary
+
+
+def _scenario_text(loaded: LoadedScenario) -> bytes | None:
+    """The YAML of a scenario given as a mapping (None: read from a file, or holding
+    values YAML cannot write, and then the run cannot be flown again from itself)."""
+    if loaded.written is None or "scenario" in loaded.files:
+        return None
+    import yaml
+    try:
+        return yaml.safe_dump(loaded.written, sort_keys=False, allow_unicode=True).encode()
+    except yaml.YAMLError:
+        return None
 
 
 def _signal_behind(error: BaseException) -> BaseException:
