@@ -3,15 +3,15 @@
 from __future__ import annotations
 
 import math
-from pathlib import Path
 
 import click
+from rocketsim_cli.errors import OutputFile
 
 
 @click.command("classic-range")
 @click.option("--seed", type=int, default=0, show_default=True,
               help="the scenario's seed (site: classic generates its range from it)")
-@click.option("-o", "--output", type=click.Path(dir_okay=False, path_type=Path),
+@click.option("-o", "--output", type=OutputFile(),
               help="write the site file here instead of printing it")
 def classic_range(seed, output):
     """Print the classic range that 'site: classic' flies from with SEED: the pad on

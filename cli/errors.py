@@ -1,8 +1,10 @@
-"""Turn user-input errors into one paragraph on stderr and exit status 2."""
+"""Turn user-input errors into one paragraph on stderr and exit status 2; output
+paths that cannot be written are refused before any work is done."""
 
 from __future__ import annotations
 
 import functools
+import os
 import sys
 from pathlib import Path
 
@@ -38,3 +40,50 @@ def check_writable(path: Path, option: str) -> None:
                          field=option) from None
     if not existed:
         path.unlink()
+
+
+def check_folder(path: Path, option: str) -> None:
+    """Refuse an output folder ``path`` that cannot be made or written into (a file of
+    that name, or above it; no permission) with an :class:`InputError` naming ``option``;
+    nothing is created."""
+    above = path
+    while not above.exists() and above != above.parent:
+        above = above.parent
+    if not above.is_dir():
+        problem = f"{above} is not a folder"
+    elif not os.access(above, os.W_OK | os.X_OK):
+        problem = f"no permission to write in {above}"
+    else:
+        return
+    raise InputError(f"cannot create the folder {path}: {problem}; nothing was written", field=option)
+
+
+class OutputFile(click.Path):
+    """A click path option for a file the command writes: refused (exit 2, the
+    option named) when it cannot be created, before any work is done."""
+
+    def __init__(self):
+        super().__init__(dir_okay=False, path_type=Path)
+
+    def convert(self, value, param, ctx):
+        path = super().convert(value, param, ctx)
+        try:
+            check_writable(path, param.opts[-1] if param is not None else "output")
+        except InputError as error:
+            self.fail(error.message, param, ctx)
+        return path
+
+
+class OutputFolder(click.Path):
+    """A click path for a folder the command writes into, checked as :func:`check_folder`."""
+
+    def __init__(self):
+        super().__init__(file_okay=False, path_type=Path)
+
+    def convert(self, value, param, ctx):
+        path = super().convert(value, param, ctx)
+        try:
+            check_folder(path, param.opts[-1] if param is not None else "output")
+        except InputError as error:
+            self.fail(error.message, param, ctx)
+        return path
