@@ -7,7 +7,7 @@ from pathlib import Path
 import click
 
 from rocketsim.errors import InputError
-from rocketsim_cli.errors import OutputFile, reports_input_errors
+from rocketsim_cli.errors import output_file, reports_input_errors
 
 _COLUMNS = ("height_m", "temperature_K", "pressure_Pa", "density_kg_m3", "speed_of_sound_m_s")
 _WIND = ("wind_east_m_s", "wind_north_m_s")
@@ -70,7 +70,7 @@ def _plot(path: Path, heights, rows, wind: bool, title: str) -> None:
 @click.option("--step", "h_step", default="1 km", show_default=True, help="height step")
 @click.option("--format", "fmt", type=click.Choice(["table", "csv"]), default="table",
               show_default=True)
-@click.option("--plot", type=OutputFile(),
+@click.option("--plot", type=output_file(),
               help="also draw temperature, pressure, density and wind to this PNG")
 @reports_input_errors
 def atmosphere(weather, body, latitude, h_from, h_to, h_step, fmt, plot):

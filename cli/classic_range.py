@@ -5,13 +5,13 @@ from __future__ import annotations
 import math
 
 import click
-from rocketsim_cli.errors import OutputFile
+from rocketsim_cli.errors import output_file
 
 
 @click.command("classic-range")
 @click.option("--seed", type=int, default=0, show_default=True,
               help="the scenario's seed (site: classic generates its range from it)")
-@click.option("-o", "--output", type=OutputFile(),
+@click.option("-o", "--output", type=output_file(),
               help="write the site file here instead of printing it")
 def classic_range(seed, output):
     """Print the classic range that 'site: classic' flies from with SEED: the pad on

@@ -58,32 +58,28 @@ def check_folder(path: Path, option: str) -> None:
     raise InputError(f"cannot create the folder {path}: {problem}; nothing was written", field=option)
 
 
-class OutputFile(click.Path):
-    """A click path option for a file the command writes: refused (exit 2, the
-    option named) when it cannot be created, before any work is done."""
+class _CheckedPath(click.Path):
+    """A click path option the command writes to, refused (exit 2, the option named)
+    by ``check(path, option)`` before any work is done."""
 
-    def __init__(self):
-        super().__init__(dir_okay=False, path_type=Path)
+    def __init__(self, check, **kinds):
+        super().__init__(path_type=Path, **kinds)
+        self.check = check
 
     def convert(self, value, param, ctx):
         path = super().convert(value, param, ctx)
         try:
-            check_writable(path, param.opts[-1] if param is not None else "output")
+            self.check(path, param.opts[-1] if param is not None else "output")
         except InputError as error:
             self.fail(error.message, param, ctx)
         return path
 
 
-class OutputFolder(click.Path):
-    """A click path for a folder the command writes into, checked as :func:`check_folder`."""
+def output_file() -> click.Path:
+    """A file the command writes, checked as :func:`check_writable`."""
+    return _CheckedPath(check_writable, dir_okay=False)
 
-    def __init__(self):
-        super().__init__(file_okay=False, path_type=Path)
 
-    def convert(self, value, param, ctx):
-        path = super().convert(value, param, ctx)
-        try:
-            check_folder(path, param.opts[-1] if param is not None else "output")
-        except InputError as error:
-            self.fail(error.message, param, ctx)
-        return path
+def output_folder() -> click.Path:
+    """A folder the command writes into, checked as :func:`check_folder`."""
+    return _CheckedPath(check_folder, file_okay=False)

@@ -14,7 +14,7 @@ from typing import TYPE_CHECKING
 import click
 
 from rocketsim.errors import InputError
-from rocketsim_cli.errors import OutputFile, OutputFolder, reports_input_errors
+from rocketsim_cli.errors import output_file, output_folder, reports_input_errors
 
 if TYPE_CHECKING:
     from rocketsim.telemetry.reader import RunFile
@@ -23,10 +23,10 @@ if TYPE_CHECKING:
 @click.command()
 @click.argument("run_file", metavar="RUN.mcap", type=click.Path(dir_okay=False, path_type=Path))
 @click.option("--export", "export_to", type=(click.Choice(["csv", "parquet"]),
-                                             OutputFolder()),
+                                             output_folder()),
               default=None, metavar="csv|parquet DIR",
               help="Write one table per body (and events.csv) into DIR.")
-@click.option("--plot", type=OutputFile(), default=None,
+@click.option("--plot", type=output_file(), default=None,
               help="Draw the flight to this PNG (altitude, speed, q, acceleration, attitude, track...).")
 @click.option("--verify", "check", is_flag=True,
               help="Fly the run again from its attachments and compare every message.")

@@ -8,14 +8,14 @@ from pathlib import Path
 import click
 
 from rocketsim.errors import InputError
-from rocketsim_cli.errors import OutputFile, reports_input_errors
+from rocketsim_cli.errors import output_file, reports_input_errors
 
 
 @click.command()
 @click.argument("file", type=click.Path(dir_okay=False, path_type=Path))
 @click.option("--format", "fmt", type=click.Choice(["table", "json"]), default="table",
               show_default=True)
-@click.option("--plot", type=OutputFile(),
+@click.option("--plot", type=output_file(),
               help="also draw the stack to scale to this PNG")
 @reports_input_errors
 def vehicle(file, fmt, plot):

@@ -15,7 +15,7 @@ import click
 from rocketsim.constants import SECONDS_PER_DAY
 from rocketsim.errors import InputError
 from rocketsim_cli.ephemeris import _utc
-from rocketsim_cli.errors import OutputFile, reports_input_errors
+from rocketsim_cli.errors import output_file, reports_input_errors
 from rocketsim_cli.lazy import LibraryChoice
 from rocketsim_cli.units import Quantity
 
@@ -235,11 +235,11 @@ def _targets() -> list[str]:
               show_default=True, help="rank windows by total delta-v or by C3")
 @click.option("--count", type=click.IntRange(1, 20), default=3, show_default=True,
               help="how many windows to list")
-@click.option("--plot", "plot", type=OutputFile(), default=None,
+@click.option("--plot", "plot", type=output_file(), default=None,
               help="write a porkchop plot (PNG) here")
 @click.option("--format", "fmt", type=click.Choice(["table", "csv", "json"]), default="table",
               show_default=True)
-@click.option("--mission-fragment", type=OutputFile(),
+@click.option("--mission-fragment", type=output_file(),
               default=None, help="write the chosen window as a mission-file fragment (YAML)")
 @click.option("--pick", type=click.IntRange(1, 20), default=1, show_default=True,
               help="which listed window --mission-fragment writes")
