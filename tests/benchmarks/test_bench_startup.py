@@ -22,13 +22,12 @@ Run: ``ROCKETSIM_BENCH_COLD=1 python -m pytest tests/benchmarks/test_bench_start
 from __future__ import annotations
 
 import os
-import resource
-import subprocess
 import sys
-import time
 from pathlib import Path
 
 import pytest
+
+from tests.benchmarks.timing import load_text, whole_process
 
 ROOT = Path(__file__).resolve().parents[2]
 COLD = os.environ.get("ROCKETSIM_BENCH_COLD") == "1"
@@ -36,19 +35,9 @@ cold = pytest.mark.skipif(not COLD, reason="cold-cache benchmarks: set ROCKETSIM
 ROCKETSIM = [sys.executable, "-m", "rocketsim_cli.main"]
 
 
-def _load() -> str:
-    return "load " + " ".join(f"{x:.1f}" for x in os.getloadavg())
-
-
 def _run(command: list[str], env: dict | None = None) -> tuple[float, float]:
     """(wall s, CPU s) of ``command`` run to its end in ROOT; it must succeed."""
-    before = resource.getrusage(resource.RUSAGE_CHILDREN)
-    start = time.perf_counter()
-    subprocess.run(command, cwd=ROOT, env=env, check=True, stdout=subprocess.DEVNULL,
-                   stderr=subprocess.DEVNULL)
-    wall = time.perf_counter() - start
-    after = resource.getrusage(resource.RUSAGE_CHILDREN)
-    return wall, (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+    return whole_process(command, ROOT, env)[:2]
 
 
 def _best(command: list[str], repeats: int = 2, env: dict | None = None) -> tuple[float, float]:
@@ -70,7 +59,7 @@ def _compiled(folder: Path) -> str:
 
 def test_light_commands_against_python():
     base = _best([sys.executable, "-c", "pass"])
-    print(f"\n[startup] {_load()}; python -c pass: {base[0]:.3f} s wall, {base[1]:.3f} s CPU")
+    print(f"\n[startup] {load_text()}; python -c pass: {base[0]:.3f} s wall, {base[1]:.3f} s CPU")
     for args in (["--help"], ["validate", "scenarios/iss-coast.yaml"], ["schema"]):
         wall, cpu = _best(ROCKETSIM + args)
         print(f"[startup] rocketsim {' '.join(args)}: {wall:.3f} s wall ({wall / base[0]:.1f}x python), "
@@ -83,7 +72,7 @@ def test_warm_fly_to_its_first_step(tmp_path):
     _run(command)                                            # warm the cache
     base = _best([sys.executable, "-c", "pass"])
     wall, cpu = _best(command)
-    print(f"\n[startup] {_load()}; warm rocketsim fly iss-coast --duration 0: {wall:.2f} s wall, "
+    print(f"\n[startup] {load_text()}; warm rocketsim fly iss-coast --duration 0: {wall:.2f} s wall, "
           f"{cpu:.2f} s CPU (target <= 0.6 s); python -c pass {base[0]:.3f} s")
 
 
@@ -93,7 +82,7 @@ def _cold_and_warm(scenario: str, tmp_path: Path, target: float) -> None:
     command = ROCKETSIM + ["fly", scenario, "-o", str(tmp_path / "run.mcap")]
     cold_wall, cold_cpu = _run(command, env)
     warm_wall, warm_cpu = _run(command, env)
-    print(f"\n[startup] {_load()}; cold rocketsim fly {scenario}: {cold_wall:.1f} s wall, "
+    print(f"\n[startup] {load_text()}; cold rocketsim fly {scenario}: {cold_wall:.1f} s wall, "
           f"{cold_cpu:.1f} s CPU (target <= {target:g} s), {_compiled(folder)}; warm "
           f"{warm_wall:.1f} s wall, {warm_cpu:.1f} s CPU; cold / warm {cold_wall / warm_wall:.1f}x wall, "
           f"{cold_cpu / warm_cpu:.1f}x CPU")
@@ -117,7 +106,7 @@ def test_compile_on_one_and_two_processes(tmp_path):
     for jobs in (1, 2):
         folder = tmp_path / f"cache-{jobs}"
         times[jobs] = _run(ROCKETSIM + ["compile", "-j", str(jobs), *scenarios], _cache_env(folder))
-        print(f"\n[startup] {_load()}; rocketsim compile -j {jobs} ({len(scenarios)} scenarios): "
+        print(f"\n[startup] {load_text()}; rocketsim compile -j {jobs} ({len(scenarios)} scenarios): "
               f"{times[jobs][0]:.1f} s wall, {times[jobs][1]:.1f} s CPU, {_compiled(folder)}")
     print(f"[startup] compile speed-up on 2 processes: {times[1][0] / times[2][0]:.2f}x wall "
           f"(CPU spent {times[2][1] / times[1][1]:.2f}x that of one process)")
