@@ -1,8 +1,25 @@
-"""The fuzz tests' tally, printed at the end of the run."""
+"""The fuzz tests' tally, printed at the end of the run (gathered from every xdist
+worker when the suite runs on several processes)."""
 
+import pytest
 from hypothesis import settings
 
 from tests.fuzz.harness import COUNTS, PEAKS
+
+
+def pytest_sessionfinish(session):
+    output = getattr(session.config, "workeroutput", None)
+    if output is not None:          # an xdist worker: hand the tally to the controller
+        output["fuzz_counts"] = dict(COUNTS)
+        output["fuzz_peaks"] = dict(PEAKS)
+
+
+@pytest.hookimpl(optionalhook=True)
+def pytest_testnodedown(node, error):
+    output = getattr(node, "workeroutput", {})
+    COUNTS.update(output.get("fuzz_counts", {}))
+    for kind, rise in output.get("fuzz_peaks", {}).items():
+        PEAKS[kind] = max(PEAKS.get(kind, 0), rise)
 
 
 def pytest_terminal_summary(terminalreporter):
