@@ -24,15 +24,16 @@ BLOCK = 1024            # rows of a block: a block is allocated whole
 FLOAT, INTEGER, TEXT = "f", "i", "c"
 
 
-# a vector's components keep their columns when missing (a file writes null in a vector)
-VECTOR_AXES = ("_x", "_y", "_z", "_w")
-
 class _Segment:
-    """Samples with one layout: ``layout`` lists ``(column, kind, index or text)``."""
+    """Samples with one layout: ``layout`` lists ``(column, kind, index or text)``;
+    ``vectors``: the columns that are a vector's components (a vector keeps its
+    columns when missing: a file writes null in a vector, and leaves out any other
+    value it does not have)."""
 
-    def __init__(self, key, layout: tuple, width: int):
+    def __init__(self, key, layout: tuple, width: int, vectors: set):
         self.key = key
         self.layout = layout
+        self.vectors = frozenset(vectors)
         self.width = width
         self.blocks: list[np.ndarray] = []
         self.rows = 0
@@ -79,11 +80,12 @@ class Samples:
 
     def _segment_of(self, fields, n: int) -> _Segment:
         from rocketsim.telemetry import splice     # with the flight: it compiles kernels
-        row = flat_row(fields(splice.slots(n), splice.Slot.integer))
+        vectors = set()
+        row = flat_row(fields(splice.slots(n), splice.Slot.integer), vectors)
         layout = tuple((column, TEXT, value) if not isinstance(value, splice.Slot)
                        else (column, INTEGER if value.kind == "i" else FLOAT, value.index)
                        for column, value in row.items())
-        segment = _Segment((fields, n), layout, n)
+        segment = _Segment((fields, n), layout, n, vectors)
         self.segments.append(segment)
         return segment
 
@@ -97,7 +99,9 @@ class Samples:
         if segment is None or segment.key != key:
             numeric = [k for k in key if k[1] != TEXT]
             layout = tuple(k if k[1] == TEXT else (k[0], k[1], numeric.index(k)) for k in key)
-            segment = _Segment(key, layout, len(numeric))
+            vectors = set()
+            flat_row(message, vectors)
+            segment = _Segment(key, layout, len(numeric), vectors)
             self.segments.append(segment)
         segment.add([np.nan if v is None else v for v in row.values() if not isinstance(v, str)])
 
@@ -105,6 +109,7 @@ class Samples:
         """Every column over all samples, in the order the columns first appear: a
         column a segment lacks is NaN there (None for text)."""
         order: dict[str, str] = {}
+        vectors = set().union(*(segment.vectors for segment in self.segments))
         for segment in self.segments:
             for column, kind, _ in segment.layout:
                 order.setdefault(column, kind)
@@ -124,9 +129,9 @@ class Samples:
                 at += segment.rows
             if kind != TEXT:
                 values[~np.isfinite(values)] = np.nan        # JSON's null: NaN and infinities alike
-                if np.isnan(values).all() and not column.endswith(VECTOR_AXES):
+                if np.isnan(values).all() and column not in vectors:
                     continue        # a value no sample has is left out of every message: no column
-                if not column.endswith(VECTOR_AXES):
+                if column not in vectors:
                     first[column] = int(np.argmax(~np.isnan(values)))
                 if kind == INTEGER and not np.isnan(values).any():
                     values = values.astype(np.int64)

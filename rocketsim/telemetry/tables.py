@@ -17,14 +17,17 @@ from rocketsim.telemetry.reader import read_run, states
 _AXES = {"position": "xyz", "velocity": "xyz", "body_rates": "xyz", "attitude": "wxyz"}
 
 
-def flat_row(message: dict) -> dict:
+def flat_row(message: dict, vectors: set | None = None) -> dict:
     """A state message as one flat row: vectors by component (``position_x``,
-    ``attitude_w``...), the orbit as ``orbit_*``, other values as they are."""
+    ``attitude_w``...), the orbit as ``orbit_*``, other values as they are.
+    ``vectors``: a set the vectors' component columns are added to."""
     row = {}
     for key, value in message.items():
         if isinstance(value, list):
             axes = _AXES.get(key) or [str(i) for i in range(len(value))]
             row.update({f"{key}_{a}": v for a, v in zip(axes, value)})
+            if vectors is not None:
+                vectors.update(f"{key}_{a}" for a in axes[:len(value)])
         elif isinstance(value, dict):
             row.update({f"{key}_{k}": v for k, v in value.items() if not isinstance(v, (dict, list))})
         else:
