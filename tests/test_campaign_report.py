@@ -19,6 +19,7 @@ import pymap3d
 import pytest
 from scipy import stats
 
+from rocketsim.campaigns.landing import geojson
 from rocketsim.campaigns.report import report
 from rocketsim.errors import InputError
 
@@ -286,3 +287,28 @@ def test_bad_directories_are_input_errors_naming_the_file(tmp_path):
     meta.unlink()
     with pytest.raises(InputError, match="no meta.json"):
         report(directory)
+
+
+def test_bodies_with_few_landings(tmp_path):
+    """One landing has circles but no ellipses (three points are the fewest a covariance
+    ellipse takes); two landings on one spot have circles of radius 0, left out of the
+    GeoJSON (a polygon of no area). The figures against the construction (pymap3d)."""
+    directory, truth = synthetic(tmp_path / "few", n=12, errors=(), timeouts=())
+    results = pd.read_parquet(directory / "results.parquet")
+    results.loc[1:, ["booster.landing.latitude_deg", "booster.landing.longitude_deg"]] = np.nan
+    results.loc[2:, ["fairing.landing.latitude_deg", "fairing.landing.longitude_deg"]] = np.nan
+    results.loc[1, ["fairing.landing.latitude_deg", "fairing.landing.longitude_deg"]] = \
+        results.loc[0, ["fairing.landing.latitude_deg", "fairing.landing.longitude_deg"]].to_numpy()
+    results.to_parquet(directory / "results.parquet")
+    rep = report(directory)
+    booster, fairing = rep.dispersions["booster"], rep.dispersions["fairing"]
+    assert booster.n == 1 and not booster.ellipses and fairing.n == 2
+    east, north, _ = pymap3d.geodetic2enu(truth["lat"][0], truth["lon"][0], 0.0,
+                                          TARGET["latitude_deg"], TARGET["longitude_deg"], 0.0)
+    assert booster.circles[0].radius_m == pytest.approx(math.hypot(east, north), abs=1e-3)
+    assert all(c.radius_m == 0.0 for c in fairing.circles if c.about == "mean")
+    assert rep.text.count("no ellipses: fewer than 3 points") == 2
+    collection = geojson(TARGET, rep.dispersions.values())
+    circles = [(f["properties"]["body"], f["properties"]["about"]) for f in collection["features"]
+               if f["properties"]["feature"] == "circle"]
+    assert circles == [("booster", "target")] * 3 + [("fairing", "target")] * 3

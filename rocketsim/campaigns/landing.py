@@ -221,7 +221,8 @@ def geojson(target: dict, dispersions) -> dict:
     closed and counterclockwise) of the target (a Point, with the ``target`` mapping's
     ``name`` and ``kind``) and, for each :class:`Dispersion`, its landing points (a
     MultiPoint), its mean (a Point), its ellipses and circles (Polygons) with their figures
-    as properties. A ring that crosses the antimeridian is not split."""
+    as properties; an ellipse or circle of no area (points all on a line or on one spot) has
+    no polygon. A ring that crosses the antimeridian is not split."""
     features = [_feature({"type": "Point", "coordinates": [target["longitude_deg"], target["latitude_deg"]]},
                          {"feature": "target", "name": target.get("name"), "kind": target.get("kind")})]
     for d in dispersions:
@@ -232,12 +233,12 @@ def geojson(target: dict, dispersions) -> dict:
         features.append(_feature({"type": "Point", "coordinates": _ring(d.mean[:1], d.mean[1:], target)[0]},
                                  {"feature": "mean", "body": d.body, "east_m": float(d.mean[0]),
                                   "north_m": float(d.mean[1])}))
-        for e in d.ellipses:
+        for e in (e for e in d.ellipses if e.semi_minor_m > 0.0):
             features.append(_feature({"type": "Polygon", "coordinates": [_ring(*e.outline(), target)]},
                                      {"feature": "ellipse", "body": d.body, "probability": e.probability,
                                       "semi_major_m": e.semi_major_m, "semi_minor_m": e.semi_minor_m,
                                       "azimuth_deg": e.azimuth_deg, "share_of_points": e.share}))
-        for c in d.circles:
+        for c in (c for c in d.circles if c.radius_m > 0.0):
             features.append(_feature({"type": "Polygon", "coordinates": [_ring(*c.outline(), target)]},
                                      {"feature": "circle", "body": d.body, "probability": c.probability,
                                       "about": c.about, "radius_m": c.radius_m}))

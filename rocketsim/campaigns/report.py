@@ -54,7 +54,7 @@ _MAIN = (("landing", ("offset_m", "east_m", "north_m")),
          ("touchdown", ("vertical_speed_m_s", "horizontal_speed_m_s", "tilt_deg", "distance_to_target_m")),
          ("orbit", ("periapsis_altitude", "apoapsis_altitude", "periapsis_m", "apoapsis_m", "inclination_deg",
                     "eccentricity")),
-         ("final", ("altitude_m", "speed_m_s", "time_s")))
+         ("final", ("altitude_m", "speed_m_s")))
 
 
 @dataclass
@@ -212,7 +212,7 @@ def report(directory, plot_dir=None) -> Report:
         plot_dir.mkdir(parents=True, exist_ok=True)
         out.files = report_plots.draw_all(out, flown, main, target, plot_dir, meta.get("name") or directory.name)
         path = plot_dir / "landing.geojson"
-        path.write_text(json.dumps(landing.geojson(target, dispersions.values()), indent=1))
+        path.write_text(json.dumps(landing.geojson(target, dispersions.values()), indent=1, allow_nan=False))
         out.files.append(path)
     return out
 
