@@ -43,6 +43,7 @@ from rocketsim.errors import InputError
 
 META, INPUTS, RESULTS = "meta.json", "inputs.parquet", "results.parquet"
 MAIN_OUTPUTS = 16                     # histograms and sensitivities drawn and printed at most
+OUTCOMES_PRINTED = 8                  # the most frequent outcome strings the text lists
 TOP_INPUTS = 3                        # inputs the text names per output
 _NOT_OUTPUTS = ("run", "wall_time_s")
 _SECTIONS = ("final", "orbit", "touchdown", "landing")
@@ -227,13 +228,13 @@ def _probabilities(results, status, ok, bodies, extra):
         p, low, high = statistics.proportion(int(k), int(n))
         rows.append({"outcome": label, "k": int(k), "n": int(n), "of": of, "p": p, "low": low, "high": high})
 
-    add("errored (status error or timeout)", (status != "ok").sum(), finished, "finished runs")
+    add("errored (status not ok)", (status != "ok").sum(), finished, "finished runs")
     for name in ("error", "timeout"):
         add(f"status {name}", (status == name).sum(), finished, "finished runs")
     if "outcome" in results:
-        outcome = results["outcome"].astype(object).where(results["outcome"].notna(), None)
-        for value in sorted({str(v) for v in outcome if v is not None}):
-            add(f"outcome {value!r}", (outcome == value).sum(), finished, "finished runs")
+        outcome = results["outcome"].dropna().astype(str)
+        for value, k in sorted(outcome.value_counts().items(), key=lambda vk: (-vk[1], vk[0])):
+            add(f"outcome {value!r}", k, finished, "finished runs")
     n_ok = int(ok.sum())
     pattern = re.compile(r"^(?P<body>[^.]+)\.(?P<event>[^.]+)\.t_s$")
     for body in bodies:
@@ -359,11 +360,17 @@ def _text(meta, counts, results, status, stats_table, probabilities, dispersions
     lines.append("")
 
     lines.append(f"probabilities ({confidence} exact Clopper-Pearson intervals)")
-    if len(probabilities):
-        width = max(len(s) for s in probabilities["outcome"])
-        for row in probabilities.itertuples():
-            lines.append(f"  {row.outcome:<{width}} {row.k:>5} of {row.n:<5} {row.of:<13} {_percent(row.p):>8}"
+    outcomes = probabilities["outcome"].str.startswith("outcome ")
+    hidden = probabilities[outcomes].index[OUTCOMES_PRINTED:]
+    shown = probabilities.drop(index=hidden)
+    if len(shown):
+        width = min(60, max(len(s) for s in shown["outcome"]))
+        for row in shown.itertuples():
+            label = row.outcome if len(row.outcome) <= width else row.outcome[:width - 4] + " ...'"
+            lines.append(f"  {label:<{width}} {row.k:>5} of {row.n:<5} {row.of:<13} {_percent(row.p):>8}"
                          f"  [{_percent(row.low)}, {_percent(row.high)}]")
+    if len(hidden):
+        lines.append(f"  ... and {len(hidden)} rarer outcome strings (the probabilities table has them all)")
     lines.append("")
 
     where = f"{target.get('kind') or 'target'} {target.get('name') or ''}".strip()
