@@ -252,11 +252,11 @@ def test_a_campaign_with_no_finished_run(tmp_path):
     results.to_parquet(directory / "results.parquet")
     rep = report(directory)
     assert rep.counts["finished"] == 0 and rep.counts["missing"] == N + 3 and rep.errored == 0
-    assert "(no run flew to its end)" in rep.text and "(no body came down in an ok run)" in rep.text
+    assert "(no run flew to its end)" in rep.text and "(no body came down on Earth in an ok run)" in rep.text
 
 
 def test_bad_directories_are_input_errors_naming_the_file(tmp_path):
-    """A missing directory or file, JSON that is not, a target without its latitude, a
+    """A missing directory or file, JSON that is not, a target latitude that is not a number, a
     results table without status, a file that is not Parquet: InputError naming the file
     (and the line or the field)."""
     with pytest.raises(InputError, match="no such campaign directory"):
@@ -268,7 +268,7 @@ def test_bad_directories_are_input_errors_naming_the_file(tmp_path):
     with pytest.raises(InputError) as error:
         report(directory)
     assert error.value.file == str(meta) and error.value.line == 3
-    meta.write_text(json.dumps({**json.loads(good), "target": {"name": "LZ-1", "longitude_deg": -80.5}}))
+    meta.write_text(json.dumps({**json.loads(good), "target": {"latitude_deg": "28.5 N", "longitude_deg": -80.5}}))
     with pytest.raises(InputError) as error:
         report(directory)
     assert error.value.field == "target.latitude_deg" and error.value.file == str(meta)
@@ -328,3 +328,25 @@ def test_many_outcome_strings_are_counted_and_the_text_lists_the_commonest(tmp_p
     assert (outcomes.iloc[1:]["k"] == 1).all() and (outcomes["n"] == 30).all()
     assert sum(line.startswith("  outcome ") for line in rep.text.splitlines()) == 8
     assert "... and 5 rarer outcome strings" in rep.text
+
+
+def test_no_target_position_and_landings_elsewhere(tmp_path):
+    """A scenario without a pad or a site has a target of NaN degrees (what the engine
+    writes): no dispersion, no GeoJSON, the rest of the report as ever. A body whose final
+    central body is the Moon came down on no WGS84 map: left out of the dispersion, counted."""
+    directory, truth = synthetic(tmp_path / "nowhere", n=20, errors=(), timeouts=())
+    meta = json.loads((directory / "meta.json").read_text())
+    (directory / "meta.json").write_text(json.dumps(
+        {**meta, "target": {"name": None, "latitude_deg": math.nan, "longitude_deg": math.nan, "kind": "site"}}))
+    rep = report(directory, plot_dir=tmp_path / "plots")
+    assert rep.dispersions == {} and "target has no position" in rep.text
+    assert sorted(p.name for p in rep.files) == ["histograms.png", "sensitivities.png"]
+    assert rep.tables["probabilities"].set_index("outcome").loc["booster crashed (impact)", "n"] == 20
+    (directory / "meta.json").write_text(json.dumps(meta))
+    results = pd.read_parquet(directory / "results.parquet")
+    results["fairing.orbit.central_body"] = ["moon"] * 5 + ["earth"] * 15
+    results.to_parquet(directory / "results.parquet")
+    rep = report(directory)
+    assert rep.dispersions["fairing"].n == 15 and rep.dispersions["booster"].n == 20
+    assert "fairing: 5 landings about another central body are not in the dispersion" in rep.text
+    assert rep.tables["statistics"].loc["fairing.landing.east_m", "n"] == 15

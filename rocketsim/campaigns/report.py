@@ -98,10 +98,13 @@ def load(directory) -> tuple:
     if not isinstance(meta, dict):
         raise InputError("expected a JSON object", file=path, line=1)
     target = meta.get("target")
+    if target is not None and not isinstance(target, dict):
+        raise InputError("expected a mapping (name, latitude_deg, longitude_deg, kind) or null",
+                         file=path, field="target")
     for key in ("latitude_deg", "longitude_deg"):
-        value = target.get(key) if isinstance(target, dict) else None
-        if not isinstance(value, (int, float)) or isinstance(value, bool) or not np.isfinite(value):
-            raise InputError("expected a number (degrees)", file=path, field=f"target.{key}")
+        value = (target or {}).get(key)
+        if value is not None and (not isinstance(value, (int, float)) or isinstance(value, bool)):
+            raise InputError("expected a number (degrees) or null", file=path, field=f"target.{key}")
     tables = []
     for name, needed in ((INPUTS, ("run",)), (RESULTS, ("run", "status"))):
         path = directory / name
@@ -159,7 +162,7 @@ def report(directory, plot_dir=None) -> Report:
     import pandas as pd
     directory = Path(directory)
     meta, inputs, results = load(directory)
-    target = meta["target"]
+    target = _target(meta)
     extra = set(meta.get("outputs") or [])
     status = results["status"].astype(str)
     ok = (status == "ok").to_numpy()
@@ -170,24 +173,9 @@ def report(directory, plot_dir=None) -> Report:
     counts["missing"] = max(0, planned - counts["finished"])
     errored = counts["finished"] - counts["ok"]
 
-    # the outputs, with each landing body's east/north/offset about the target
     outputs = results.copy()
     bodies = _bodies(results.columns, extra)
-    dispersions = {}
-    for body in bodies:
-        lat, lon = f"{body}.landing.latitude_deg", f"{body}.landing.longitude_deg"
-        if lat not in outputs or lon not in outputs:
-            continue
-        east, north = landing.east_north(outputs[lat].to_numpy(float), outputs[lon].to_numpy(float),
-                                         target["latitude_deg"], target["longitude_deg"])
-        outputs[f"{body}.landing.east_m"] = east
-        outputs[f"{body}.landing.north_m"] = north
-        outputs[f"{body}.landing.offset_m"] = np.hypot(east, north)
-        down = ok & np.isfinite(east) & np.isfinite(north)
-        if down.any():
-            kinds = outputs.get(f"{body}.landing.kind")
-            kinds = None if kinds is None else ["" if pd.isna(k) else str(k) for k in kinds[down]]
-            dispersions[body] = landing.dispersion(body, east[down], north[down], kinds)
+    dispersions, elsewhere = _landings(outputs, ok, bodies, target)
     numeric = [c for c in outputs.columns if c not in _NOT_OUTPUTS
                and pd.api.types.is_numeric_dtype(outputs[c]) and not pd.api.types.is_bool_dtype(outputs[c])]
     flown = outputs[ok]
@@ -204,18 +192,63 @@ def report(directory, plot_dir=None) -> Report:
 
     tables = {"statistics": stats_table, "probabilities": probabilities, "landing": landing_table,
               "sensitivities": sensitivities}
-    text = _text(meta, counts, results, status, stats_table, probabilities, dispersions, target,
-                 sensitivities, main, ranked, unranked)
+    text = _text(meta, counts, results, status, stats_table, probabilities, dispersions, elsewhere,
+                 target, sensitivities, main, ranked, unranked)
     out = Report(directory, text, errored, counts, tables, dispersions)
     if plot_dir is not None:
         from rocketsim.campaigns import report_plots
         plot_dir = Path(plot_dir)
         plot_dir.mkdir(parents=True, exist_ok=True)
         out.files = report_plots.draw_all(out, flown, main, target, plot_dir, meta.get("name") or directory.name)
-        path = plot_dir / "landing.geojson"
-        path.write_text(json.dumps(landing.geojson(target, dispersions.values()), indent=1, allow_nan=False))
-        out.files.append(path)
+        if target is not None:
+            path = plot_dir / "landing.geojson"
+            path.write_text(json.dumps(landing.geojson(target, dispersions.values()), indent=1, allow_nan=False))
+            out.files.append(path)
     return out
+
+
+def _target(meta: dict) -> dict | None:
+    """meta.json's target, or None when it has no position (a scenario without a site)."""
+    target = meta.get("target") or {}
+    position = [target.get("latitude_deg"), target.get("longitude_deg")]
+    if any(v is None or not np.isfinite(v) for v in position):
+        return None
+    return target
+
+
+def _landings(outputs, ok, bodies, target) -> tuple[dict, dict]:
+    """``(dispersions, elsewhere)``: each body's :class:`~rocketsim.campaigns.landing.Dispersion`
+    over the ok runs where it came down on Earth, and per body the number of ok runs where it
+    came down about another central body (the final orbit's ``central_body``: a lunar
+    landing has no east/north on WGS84). Adds each body's ``<body>.landing.east_m``,
+    ``.north_m`` and ``.offset_m`` (m, about the target) to ``outputs``."""
+    import pandas as pd
+    dispersions, elsewhere = {}, {}
+    if target is None:
+        return dispersions, elsewhere
+    for body in bodies:
+        lat, lon = f"{body}.landing.latitude_deg", f"{body}.landing.longitude_deg"
+        if lat not in outputs or lon not in outputs:
+            continue
+        central = outputs.get(f"{body}.orbit.central_body")
+        on_earth = np.ones(len(outputs), dtype=bool) if central is None else \
+            np.array([pd.isna(c) or c == "earth" for c in central])
+        east, north = landing.east_north(outputs[lat].to_numpy(float), outputs[lon].to_numpy(float),
+                                         target["latitude_deg"], target["longitude_deg"])
+        east[~on_earth] = np.nan
+        north[~on_earth] = np.nan
+        outputs[f"{body}.landing.east_m"] = east
+        outputs[f"{body}.landing.north_m"] = north
+        outputs[f"{body}.landing.offset_m"] = np.hypot(east, north)
+        away = int((ok & ~on_earth & np.isfinite(outputs[lat].to_numpy(float))).sum())
+        if away:
+            elsewhere[body] = away
+        down = ok & np.isfinite(east) & np.isfinite(north)
+        if down.any():
+            kinds = outputs.get(f"{body}.landing.kind")
+            kinds = None if kinds is None else ["" if pd.isna(k) else str(k) for k in kinds[down]]
+            dispersions[body] = landing.dispersion(body, east[down], north[down], kinds)
+    return dispersions, elsewhere
 
 
 def _probabilities(results, status, ok, bodies, extra):
@@ -314,8 +347,8 @@ def _main_outputs(stats_table, bodies, asked) -> list[str]:
     return list(dict.fromkeys(names))[:MAIN_OUTPUTS]
 
 
-def _text(meta, counts, results, status, stats_table, probabilities, dispersions, target,
-          sensitivities, main, ranked, unranked) -> str:
+def _text(meta, counts, results, status, stats_table, probabilities, dispersions, elsewhere,
+          target, sensitivities, main, ranked, unranked) -> str:
     """The plain-text report (see :class:`Report`)."""
     import pandas as pd
     lines = [f"campaign {meta.get('name') or '?'}: seed {meta.get('seed')}, "
@@ -373,11 +406,16 @@ def _text(meta, counts, results, status, stats_table, probabilities, dispersions
         lines.append(f"  ... and {len(hidden)} rarer outcome strings (the probabilities table has them all)")
     lines.append("")
 
-    where = f"{target.get('kind') or 'target'} {target.get('name') or ''}".strip()
-    lines.append(f"landing dispersion about the {where} ({target['latitude_deg']:.6f} N, "
-                 f"{target['longitude_deg']:.6f} E), east/north on WGS84, m")
-    if not dispersions:
-        lines.append("  (no body came down in an ok run)")
+    if target is None:
+        lines.append("landing dispersion: none (meta.json's target has no position: no pad, no site)")
+    else:
+        where = f"{target.get('kind') or 'target'} {target.get('name') or ''}".strip()
+        lines.append(f"landing dispersion about the {where} ({target['latitude_deg']:.6f} N, "
+                     f"{target['longitude_deg']:.6f} E), east/north on WGS84, m")
+        if not dispersions:
+            lines.append("  (no body came down on Earth in an ok run)")
+    for body, count in elsewhere.items():
+        lines.append(f"  {body}: {count} landings about another central body are not in the dispersion")
     for body, d in dispersions.items():
         kinds = {k: d.kinds.count(k) for k in dict.fromkeys(d.kinds) if k}
         how = ", ".join(f"{n} {k}" for k, n in kinds.items())

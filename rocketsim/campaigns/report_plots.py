@@ -35,7 +35,7 @@ def _pyplot():
     return plt
 
 
-def draw_all(report, flown, main, target: dict, plot_dir: Path, title: str) -> list[Path]:
+def draw_all(report, flown, main, target: dict | None, plot_dir: Path, title: str) -> list[Path]:
     """Draw what ``report`` (a :class:`~rocketsim.campaigns.report.Report`) has to show into
     ``plot_dir``: the landing map when a body came down, the histograms of ``main`` (output
     columns of the ok runs' frame ``flown``) and their sensitivities; return the paths."""
