@@ -4,6 +4,7 @@ analytic t and chi-square intervals of a normal sample, and the known SRCs and S
 correlations of synthetic models (closed forms and quadrature)."""
 
 import math
+import warnings
 
 import numpy as np
 import pytest
@@ -105,6 +106,7 @@ def test_describe_of_degenerate_samples():
     assert out["n"] == 1 and out["mean"] == 4.0 and math.isnan(out["std"]) and math.isnan(out["mean_low"])
     out = describe([2.5] * 10, seed=0)
     assert out["std"] == 0.0 and all(out[f"{s}_low"] == out[s] == out[f"{s}_high"] for s in BOOTSTRAPPED)
+    assert describe([0.1] * 64, seed=0)["std"] == 0.0       # np.std gives 1.4e-17 here
     assert describe([], seed=0)["n"] == 0
 
 
@@ -166,3 +168,8 @@ def test_sensitivity_of_constant_and_short_samples_is_nan():
     assert out["src"][0] == pytest.approx(1.0) and out["r2"] == pytest.approx(1.0)
     assert math.isnan(sensitivity(x, np.ones(10))["r2"])
     assert math.isnan(sensitivity(x[:2], np.arange(2.0))["spearman"][0])
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")          # scipy warns of a constant input: none is passed on
+        wide = np.column_stack([np.arange(64.0), np.full(64, 0.1)])
+        assert np.isnan(sensitivity(wide, np.full(64, 0.1))["spearman"]).all()
+        assert np.isnan(sensitivity(wide, np.arange(64.0))["spearman"][1])

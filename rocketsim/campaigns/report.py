@@ -276,7 +276,7 @@ def _probabilities(results, status, ok, bodies, extra):
         order = {e: i for i, e in enumerate(_EVENT_LABELS)}
         for event in sorted(events, key=lambda e: (order.get(e, len(order)), events.index(e))):
             happened = np.isfinite(results[f"{body}.{event}.t_s"].to_numpy(float)) & ok
-            add(f"{body} {_EVENT_LABELS.get(event, event)}", happened.sum(), n_ok, "ok runs")
+            add(f"{body} {_EVENT_LABELS.get(event, f'event {event!r}')}", happened.sum(), n_ok, "ok runs")
     return pd.DataFrame(rows, columns=["outcome", "k", "n", "of", "p", "low", "high"])
 
 

@@ -2,11 +2,12 @@
 of sensitivities. PNG files, drawn the way :mod:`rocketsim.telemetry.plot` draws a run
 (matplotlib imported here, lazily, with the non-interactive Agg backend; 80 dpi).
 
-- ``landing.png``: a panel per body that came down: the landing points about the target
+- ``landing.png``: a row per body that came down: the landing points about the target
   (east/north on the target's tangent plane, m or km) over the land and coastline of
   :mod:`rocketsim.telemetry.land` (its 0.1 degree grid, sampled at each map point), the
-  50/90/99 % covariance ellipses (2-D probability), the R50/R90/R99 circles about the
-  target, the target and the mean.
+  50/90/99 % covariance ellipses (2-D probability), the target and the mean; on the left
+  framed on the target with the R50/R90/R99 circles about it, on the right zoomed on the
+  scatter with the circles about the mean.
 - ``histograms.png``: a panel per main output with its mean and 5-95 % range.
 - ``sensitivities.png``: a tornado per main output: Spearman's rho and the SRC of each
   input, largest |rho| on top, with the fit's R².
@@ -86,49 +87,59 @@ def _draw_land(ax, target: dict, east_limits, north_limits, scale: float) -> Non
 
 
 def landing_map(dispersions: dict, target: dict, out: Path, title: str) -> Path:
-    """Draw the landing map of ``dispersions`` (by body) about ``target`` to ``out``."""
+    """Draw the landing map of ``dispersions`` (by body) about ``target`` to ``out``: a row
+    per body, the scatter about the target (with the circles about it) on the left, zoomed
+    on the scatter (with the circles about the mean) on the right."""
     plt = _pyplot()
-    ncols, nrows = _grid(len(dispersions), 2)
-    figure, axes = plt.subplots(nrows, ncols, figsize=(9.5 * ncols, 6.5 * nrows), squeeze=False)
-    for ax, (body, d) in zip(axes.flat, dispersions.items()):
-        shapes = [e.outline() for e in d.ellipses] + [c.outline() for c in d.circles if c.about == "target"]
-        xs = np.concatenate([d.east_m, [0.0], *[s[0] for s in shapes]])
-        ys = np.concatenate([d.north_m, [0.0], *[s[1] for s in shapes]])
-        half = 0.55 * max(xs.max() - xs.min(), ys.max() - ys.min(), 1.0)
-        cx, cy = 0.5 * (xs.max() + xs.min()), 0.5 * (ys.max() + ys.min())
-        east_limits, north_limits = (cx - 1.1 * half, cx + 1.1 * half), (cy - half, cy + half)
-        scale, unit = (1e3, "km") if 2.0 * half > KM_ABOVE else (1.0, "m")
-        _draw_land(ax, target, east_limits, north_limits, scale)
-        kinds = np.array(d.kinds)
-        for kind, marker, colour in (("touchdown", "o", "C0"), ("impact", "x", "C3")):
-            chosen = kinds == kind
-            if chosen.any():
-                ax.plot(d.east_m[chosen] / scale, d.north_m[chosen] / scale, marker, ms=3, color=colour,
-                        ls="none", alpha=0.6, label=f"{kind} ({int(chosen.sum())})")
-        other = ~np.isin(kinds, ("touchdown", "impact"))
-        if other.any():
-            ax.plot(d.east_m[other] / scale, d.north_m[other] / scale, ".", ms=3, color="0.3",
-                    label=f"came down ({int(other.sum())})")
-        for e, style in zip(d.ellipses, _STYLES):
-            x, y = e.outline()
-            ax.plot(x / scale, y / scale, ls=style, color="C1", lw=1.2,
-                    label=f"{100 * e.probability:g} % ellipse (2-D)")
-        for c, style in zip([c for c in d.circles if c.about == "target"], _STYLES):
-            x, y = c.outline()
-            ax.plot(x / scale, y / scale, ls=style, color="0.35", lw=0.8,
-                    label=f"R{100 * c.probability:g} about the target {c.radius_m / scale:.3g} {unit}")
-        ax.plot([0.0], [0.0], "k+", ms=14, mew=2, label=f"target ({target.get('kind') or 'pad'})")
-        ax.plot([d.mean[0] / scale], [d.mean[1] / scale], "o", mfc="none", mec="C1", ms=8, label="mean")
-        ax.set_xlim(east_limits[0] / scale, east_limits[1] / scale)
-        ax.set_ylim(north_limits[0] / scale, north_limits[1] / scale)
-        ax.set_aspect("equal")
-        ax.grid(True, lw=0.4)
-        ax.set_xlabel(f"east of the target, {unit}")
-        ax.set_ylabel(f"north of the target, {unit}")
-        ax.set_title(f"{body}: {d.n} landings")
-        ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
-    return _finish(plt, figure, axes, len(dispersions), out,
+    figure, axes = plt.subplots(len(dispersions), 2, figsize=(19.0, 6.5 * len(dispersions)), squeeze=False)
+    for row, (body, d) in zip(axes, dispersions.items()):
+        for ax, about in zip(row, ("target", "mean")):
+            _landing_panel(ax, body, d, target, about)
+    return _finish(plt, figure, axes, axes.size, out,
                    f"{title}: landing dispersion about {target.get('name') or 'the target'}", None)
+
+
+def _landing_panel(ax, body: str, d, target: dict, about: str) -> None:
+    """One panel of :func:`landing_map`: the points, ellipses, mean and target of the
+    dispersion ``d`` with its circles about ``about`` (``target`` or ``mean``), framed on
+    them (the target too when about it)."""
+    circles = [c for c in d.circles if c.about == about]
+    shapes = [e.outline() for e in d.ellipses] + [c.outline() for c in circles]
+    origin = [0.0] if about == "target" else []
+    xs = np.concatenate([d.east_m, origin, *[s[0] for s in shapes]])
+    ys = np.concatenate([d.north_m, origin, *[s[1] for s in shapes]])
+    half = 0.55 * max(xs.max() - xs.min(), ys.max() - ys.min(), 1.0)
+    cx, cy = 0.5 * (xs.max() + xs.min()), 0.5 * (ys.max() + ys.min())
+    east_limits, north_limits = (cx - 1.1 * half, cx + 1.1 * half), (cy - half, cy + half)
+    scale, unit = (1e3, "km") if 2.0 * half > KM_ABOVE else (1.0, "m")
+    _draw_land(ax, target, east_limits, north_limits, scale)
+    kinds = np.array(d.kinds)
+    for kind, marker, colour in (("touchdown", "o", "C0"), ("impact", "x", "C3")):
+        chosen = kinds == kind
+        if chosen.any():
+            ax.plot(d.east_m[chosen] / scale, d.north_m[chosen] / scale, marker, ms=3, color=colour,
+                    ls="none", alpha=0.6, label=f"{kind} ({int(chosen.sum())})")
+    other = ~np.isin(kinds, ("touchdown", "impact"))
+    if other.any():
+        ax.plot(d.east_m[other] / scale, d.north_m[other] / scale, ".", ms=3, color="0.3",
+                label=f"came down ({int(other.sum())})")
+    for e, style in zip(d.ellipses, _STYLES):
+        x, y = e.outline()
+        ax.plot(x / scale, y / scale, ls=style, color="C1", lw=1.2, label=f"{100 * e.probability:g} % ellipse (2-D)")
+    for c, style in zip(circles, _STYLES):
+        x, y = c.outline()
+        ax.plot(x / scale, y / scale, ls=style, color="0.35", lw=0.8,
+                label=f"R{100 * c.probability:g} about the {about} {c.radius_m / scale:.3g} {unit}")
+    ax.plot([0.0], [0.0], "k+", ms=14, mew=2, label=f"target ({target.get('kind') or 'pad'})")
+    ax.plot([d.mean[0] / scale], [d.mean[1] / scale], "o", mfc="none", mec="C1", ms=8, label="mean")
+    ax.set_xlim(east_limits[0] / scale, east_limits[1] / scale)
+    ax.set_ylim(north_limits[0] / scale, north_limits[1] / scale)
+    ax.set_aspect("equal")
+    ax.grid(True, lw=0.4)
+    ax.set_xlabel(f"east of the target, {unit}")
+    ax.set_ylabel(f"north of the target, {unit}")
+    ax.set_title(f"{body}: {d.n} landings, about the {about}")
+    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
 
 
 def histograms(flown, columns: list[str], out: Path, title: str) -> Path:

@@ -67,8 +67,8 @@ def describe(values, seed, *, confidence: float = CONFIDENCE, n_resamples: int =
     if x.size < 2:
         point = np.array([x[0], np.nan, *[x[0]] * len(PERCENTILES)])
         low = high = np.full(len(BOOTSTRAPPED), np.nan)
-    elif np.all(x == x[0]):
-        point = low = high = _statistics(x)
+    elif np.all(x == x[0]):                 # every statistic the value, the spread exactly 0
+        point = low = high = np.array([x[0], 0.0, *[x[0]] * len(PERCENTILES)])
     else:
         point = _statistics(x)
         from scipy import stats     # here: scipy.stats takes ~0.5 s to import
@@ -118,11 +118,11 @@ def sensitivity(inputs, output) -> dict:
            "src": np.full(m, np.nan), "r2": np.nan}
     if n < 3:
         return out
+    varied = np.ptp(x, axis=0) > 0.0      # (not std > 0: the std of equal values can be 1e-17)
+    if np.ptp(y) == 0.0 or not varied.any():
+        return out
     sx = x.std(axis=0, ddof=1)
     sy = y.std(ddof=1)
-    varied = sx > 0.0
-    if sy == 0.0 or not varied.any():
-        return out
     from scipy import stats
     for j in np.flatnonzero(varied):
         result = stats.spearmanr(x[:, j], y)
