@@ -225,6 +225,18 @@ def test_plots_and_geojson_are_written(campaign):
     assert ellipses == ["booster"] * 3 + ["fairing"] * 3
 
 
+def test_rows_not_yet_gathered_are_noted(tmp_path):
+    """A campaign still flying (or stopped before it gathered its rows) has part files
+    beside results.parquet: the report reads only results.parquet and says so."""
+    directory, _ = synthetic(tmp_path / "flying", n=20, errors=(), timeouts=())
+    (directory / "results").mkdir()
+    for k in range(2):
+        (directory / "results" / f"part-{k:06d}.parquet").write_bytes(b"")
+    rep = report(directory)
+    assert rep.counts["finished"] == 20
+    assert "note: 2 part files" in rep.text and "--resume" in rep.text
+
+
 def test_the_same_directory_gives_the_same_report(campaign, tmp_path):
     """Deterministic: the same files (copied elsewhere) give the same text and tables,
     bootstrap intervals included."""
@@ -282,7 +294,7 @@ def test_bad_directories_are_input_errors_naming_the_file(tmp_path):
     with pytest.raises(InputError, match="not a readable Parquet file"):
         report(directory)
     results.unlink()
-    with pytest.raises(InputError, match="no results.parquet"):
+    with pytest.raises(InputError, match="no results.parquet .*--resume"):
         report(directory)
     meta.unlink()
     with pytest.raises(InputError, match="no meta.json"):

@@ -13,7 +13,7 @@ and which dispersed input drove each output.
   body's events (landed: a touchdown, crashed: an impact, reached orbit, broke up, came
   down, and every other event that has a column) over the ``ok`` runs, with exact
   Clopper-Pearson intervals;
-- ``landing``: per body that came down somewhere: the mean offset, standard deviations and
+- ``landing``: per body that came down on Earth: the mean offset, standard deviations and
   correlation of the east/north scatter, the 50/90/99 % covariance ellipses (chi-square
   with 2 degrees of freedom) and the R50/R90/R99 circles about the target and about the
   mean (:mod:`rocketsim.campaigns.landing`);
@@ -21,11 +21,15 @@ and which dispersed input drove each output.
   value has no order that means anything, nor is a choice among strings), Spearman's rho
   and the standardized regression coefficients with the fit's R².
 
-With ``plot_dir`` it also writes ``landing.png`` (the scatter on a local map with the
-coastline), ``histograms.png``, ``sensitivities.png`` (a tornado per main output) and
-``landing.geojson`` there (:mod:`rocketsim.campaigns.report_plots`). Everything the report
-says follows from the files and the campaign's seed: the same directory gives the same
-report, bootstrap intervals included.
+The *main outputs* (at most 16, those that vary) are the campaign's own ``outputs:``, then
+each body's landing offsets, touchdown speeds and tilt, orbit and final altitude and speed:
+the text names their three strongest inputs, and they are the histograms and tornadoes.
+With ``plot_dir`` the report also writes ``landing.png`` (the scatter on a local map with
+the coastline), ``histograms.png``, ``sensitivities.png`` and ``landing.geojson`` there
+(:mod:`rocketsim.campaigns.report_plots`). Everything the report says follows from the
+files and the campaign's seed: the same directory gives the same report, bootstrap
+intervals included. The bootstraps cost most: about 0.3 s per output per 10 000 runs
+(measured: 23 outputs of 10 000 runs in 8.8 s on a loaded 2-core machine).
 """
 
 from __future__ import annotations
@@ -53,8 +57,7 @@ _EVENT_LABELS = {"touchdown": "landed (touchdown)", "impact": "crashed (impact)"
 # the summary figures worth a histogram, by section, in this order (after the campaign's own outputs)
 _MAIN = (("landing", ("offset_m", "east_m", "north_m")),
          ("touchdown", ("vertical_speed_m_s", "horizontal_speed_m_s", "tilt_deg", "distance_to_target_m")),
-         ("orbit", ("periapsis_altitude", "apoapsis_altitude", "periapsis_m", "apoapsis_m", "inclination_deg",
-                    "eccentricity")),
+         ("orbit", ("periapsis_altitude", "apoapsis_altitude", "inclination_deg", "eccentricity")),
          ("final", ("altitude_m", "speed_m_s")))
 
 
@@ -109,7 +112,9 @@ def load(directory) -> tuple:
     for name, needed in ((INPUTS, ("run",)), (RESULTS, ("run", "status"))):
         path = directory / name
         if not path.exists():
-            raise InputError(f"the campaign directory has no {name}", file=path)
+            hint = (" (no run has finished yet, or its rows are still in results/part-*.parquet: "
+                    "`rocketsim campaign run CAMPAIGN -o DIR --resume` gathers them)") if name == RESULTS else ""
+            raise InputError(f"the campaign directory has no {name}{hint}", file=path)
         try:
             frame = pd.read_parquet(path)
         except Exception as exc:          # pyarrow's errors have no common base but Exception
@@ -194,6 +199,11 @@ def report(directory, plot_dir=None) -> Report:
               "sensitivities": sensitivities}
     text = _text(meta, counts, results, status, stats_table, probabilities, dispersions, elsewhere,
                  target, sensitivities, main, ranked, unranked)
+    parts = len(list((directory / "results").glob("part-*.parquet")))
+    if parts:       # rows the engine has not yet gathered into results.parquet
+        text += (f"\nnote: {parts} part files in {directory / 'results'} are not yet in results.parquet; "
+                 "their runs are not in this report (`rocketsim campaign run CAMPAIGN -o DIR --resume` "
+                 "gathers them)\n")
     out = Report(directory, text, errored, counts, tables, dispersions)
     if plot_dir is not None:
         from rocketsim.campaigns import report_plots
