@@ -100,14 +100,18 @@ def test_bootstrap_is_deterministic_for_a_seed():
 
 
 def test_describe_of_degenerate_samples():
-    """NaN and infinities are not counted; one value has no spread and no interval; a
-    repeated value is its own interval (every resample is the same sample)."""
+    """NaN and infinities are not counted; one value has no spread and no interval; nor
+    have fewer than 10 values an interval; a repeated value is its own interval (every
+    resample is the same sample)."""
     out = describe([np.nan, 4.0, np.inf], seed=0)
     assert out["n"] == 1 and out["mean"] == 4.0 and math.isnan(out["std"]) and math.isnan(out["mean_low"])
     out = describe([2.5] * 10, seed=0)
     assert out["std"] == 0.0 and all(out[f"{s}_low"] == out[s] == out[f"{s}_high"] for s in BOOTSTRAPPED)
     assert describe([0.1] * 64, seed=0)["std"] == 0.0       # np.std gives 1.4e-17 here
     assert describe([], seed=0)["n"] == 0
+    nine = describe(np.arange(9.0), seed=0)
+    assert nine["mean"] == 4.0 and math.isnan(nine["mean_low"]) and math.isnan(nine["p50_high"])
+    assert np.isfinite(describe(np.arange(10.0), seed=0)["mean_low"])
 
 
 def test_src_of_a_linear_model_are_the_analytic_ones():

@@ -5,12 +5,12 @@
   Fan 1996 definition 7), the minimum and the maximum of a sample, with bootstrap
   confidence intervals (``scipy.stats.bootstrap``, **percentile method**, 999 resamples,
   95 %) for all but the minimum and the maximum (a bootstrap interval of an extreme is
-  degenerate: no resample goes beyond the sample). Seeded, so the same sample and seed give
-  the same interval bit for bit. The percentile method rather than BCa: BCa's jackknife
-  costs one evaluation per run and its acceleration is unstable for the tail percentiles of
-  small samples; the percentile interval is what Efron & Tibshirani (1993, ch. 13) give
-  for a statistic whose bootstrap distribution is near-symmetric, as these are for the
-  sample sizes of a campaign.
+  degenerate: no resample goes beyond the sample), from 10 values up. Seeded, so the same
+  sample and seed give the same interval bit for bit. The percentile method rather than
+  BCa: BCa's jackknife costs one evaluation per run and its acceleration is unstable for
+  the tail percentiles of small samples; the percentile interval is what Efron &
+  Tibshirani (1993, ch. 13) give for a statistic whose bootstrap distribution is
+  near-symmetric, as these are for the sample sizes of a campaign.
 - :func:`proportion`: the share of runs with an outcome with its exact binomial
   (Clopper-Pearson 1934) interval, ``scipy.stats.binomtest(k, n).proportion_ci(method="exact")``:
   the beta quantiles ``B(alpha/2; k, n-k+1)`` and ``B(1-alpha/2; k+1, n-k)``, which
@@ -36,6 +36,8 @@ PERCENTILES = (1.0, 5.0, 50.0, 95.0, 99.0)
 N_RESAMPLES = 999                       # bootstrap resamples: a 95 % percentile interval's
                                         # ends are the 25th and 975th of 999 sorted values
 BOOTSTRAP_METHOD = "percentile"
+MIN_BOOTSTRAP = 10                      # values below which no interval is given: a resample of
+                                        # a few values is no picture of the sampling distribution
 _BATCH = 100                            # resamples evaluated at a time (bounded memory)
 
 # the statistics with a bootstrap interval, in the order of _statistics' rows
@@ -54,9 +56,10 @@ def describe(values, seed, *, confidence: float = CONFIDENCE, n_resamples: int =
     ``<name>_high`` (the bootstrap interval at ``confidence``), ``min`` and ``max``.
 
     ``seed`` is anything :func:`numpy.random.default_rng` takes (an int, a sequence of
-    ints): the resampling draws from that stream alone. Fewer than two values give NaN
-    statistics where they are undefined (the standard deviation, every interval); a sample
-    of one repeated value gives that value as its own interval (every resample is the same).
+    ints): the resampling draws from that stream alone. One value has no standard
+    deviation; fewer than :data:`MIN_BOOTSTRAP` values have no intervals (NaN); a sample of
+    one repeated value has a spread of exactly 0 and that value as its own interval (every
+    resample is the same).
     """
     x = np.asarray(values, dtype=float)
     x = x[np.isfinite(x)]
@@ -64,13 +67,18 @@ def describe(values, seed, *, confidence: float = CONFIDENCE, n_resamples: int =
     if x.size == 0:
         return out | {k: np.nan for name in BOOTSTRAPPED for k in (name, f"{name}_low", f"{name}_high")} \
             | {"min": np.nan, "max": np.nan}
+    constant = bool(np.all(x == x[0]))
     if x.size < 2:
         point = np.array([x[0], np.nan, *[x[0]] * len(PERCENTILES)])
-        low = high = np.full(len(BOOTSTRAPPED), np.nan)
-    elif np.all(x == x[0]):                 # every statistic the value, the spread exactly 0
-        point = low = high = np.array([x[0], 0.0, *[x[0]] * len(PERCENTILES)])
+    elif constant:                          # every statistic the value, the spread exactly 0
+        point = np.array([x[0], 0.0, *[x[0]] * len(PERCENTILES)])
     else:
         point = _statistics(x)
+    if x.size < MIN_BOOTSTRAP:
+        low = high = np.full(len(BOOTSTRAPPED), np.nan)
+    elif constant:
+        low = high = point
+    else:
         from scipy import stats     # here: scipy.stats takes ~0.5 s to import
         result = stats.bootstrap((x,), _statistics, n_resamples=n_resamples, batch=_BATCH,
                                  vectorized=True, confidence_level=confidence,
