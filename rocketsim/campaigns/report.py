@@ -154,6 +154,8 @@ def _fmt(x, digits: int = 4) -> str:
 
 
 def _interval(low, high, digits: int = 4) -> str:
+    if not (np.isfinite(low) and np.isfinite(high)):
+        return "-"
     return f"[{_fmt(low, digits)}, {_fmt(high, digits)}]"
 
 
