@@ -1,0 +1,188 @@
+"""The pictures of a campaign report: the landing map, the output histograms, the tornado
+of sensitivities. PNG files, drawn the way :mod:`rocketsim.telemetry.plot` draws a run
+(matplotlib imported here, lazily, with the non-interactive Agg backend; 80 dpi).
+
+- ``landing.png``: a row per body that came down: the landing points about the target
+  (east/north on the target's tangent plane, m or km) over the land and coastline of
+  :mod:`rocketsim.telemetry.land` (its 0.1 degree grid, sampled at each map point), the
+  50/90/99 % covariance ellipses (2-D probability), the target and the mean; on the left
+  framed on the target with the R50/R90/R99 circles about it, on the right zoomed on the
+  scatter with the circles about the mean.
+- ``histograms.png``: a panel per main output with its mean and 5-95 % range.
+- ``sensitivities.png``: a tornado per main output: Spearman's rho and the SRC of each
+  input, largest |rho| on top, with the fit's R².
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+
+from rocketsim.campaigns.landing import geodetic_of
+from rocketsim.telemetry.land import land_fraction
+
+KM_ABOVE = 5000.0                # m: a map wider than this is drawn in km
+LAND_GRID = 100                  # samples of the land grid per map axis
+_LAND = "#efe6d2"                # land fill; the coastline is telemetry.land's grey
+_STYLES = ("-", "--", ":")
+
+
+def _pyplot():
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    return plt
+
+
+def draw_all(report, flown, main, target: dict | None, plot_dir: Path, title: str) -> list[Path]:
+    """Draw what ``report`` (a :class:`~rocketsim.campaigns.report.Report`) has to show into
+    ``plot_dir``: the landing map when a body came down, the histograms of ``main`` (output
+    columns of the ok runs' frame ``flown``) and their sensitivities; return the paths."""
+    files = []
+    if report.dispersions:
+        files.append(landing_map(report.dispersions, target, plot_dir / "landing.png", title))
+    if main:
+        files.append(histograms(flown, main, plot_dir / "histograms.png", title))
+        table = report.tables["sensitivities"]
+        if len(table[table["output"].isin(main)]):
+            files.append(tornado(table, main, plot_dir / "sensitivities.png", title))
+    return files
+
+
+def _grid(count: int, columns: int):
+    ncols = max(1, min(count, columns))
+    return ncols, math.ceil(count / ncols)
+
+
+def _finish(plt, figure, axes, used: int, out: Path, title: str, spacing: dict | None) -> Path:
+    """Blank the panels past the ``used`` ones, title, lay out (``spacing`` for
+    ``subplots_adjust``: a grid of many panels, where ``tight_layout`` costs seconds; None
+    for ``tight_layout``), write the PNG ``out`` and close the figure."""
+    for ax in list(axes.flat)[used:]:
+        ax.axis("off")
+    figure.suptitle(title)
+    if spacing is None:
+        figure.tight_layout()
+    else:
+        figure.subplots_adjust(**{"right": 0.98, "bottom": 0.06, **spacing})
+    figure.savefig(out, dpi=80, format="png")
+    plt.close(figure)
+    return out
+
+
+def _draw_land(ax, target: dict, east_limits, north_limits, scale: float) -> None:
+    """Shade the land and draw the coastline on the map of ``target`` (limits in m)."""
+    east = np.linspace(*east_limits, LAND_GRID)
+    north = np.linspace(*north_limits, LAND_GRID)
+    e, n = np.meshgrid(east, north)
+    lat, lon = geodetic_of(e, n, target["latitude_deg"], target["longitude_deg"])
+    land = np.array([land_fraction(a, b) for a, b in zip(lat.ravel(), lon.ravel())]).reshape(e.shape)
+    if land.min() > 0.5:
+        ax.set_facecolor(_LAND)
+    elif land.max() >= 0.5:
+        ax.contourf(east / scale, north / scale, land, levels=[0.5, 1.5], colors=[_LAND])
+        ax.contour(east / scale, north / scale, land, levels=[0.5], colors="0.55", linewidths=0.6)
+
+
+def landing_map(dispersions: dict, target: dict, out: Path, title: str) -> Path:
+    """Draw the landing map of ``dispersions`` (by body) about ``target`` to ``out``: a row
+    per body, the scatter about the target (with the circles about it) on the left, zoomed
+    on the scatter (with the circles about the mean) on the right."""
+    plt = _pyplot()
+    figure, axes = plt.subplots(len(dispersions), 2, figsize=(19.0, 6.5 * len(dispersions)), squeeze=False)
+    for row, (body, d) in zip(axes, dispersions.items()):
+        for ax, about in zip(row, ("target", "mean")):
+            _landing_panel(ax, body, d, target, about)
+    return _finish(plt, figure, axes, axes.size, out,
+                   f"{title}: landing dispersion about {target.get('name') or 'the target'}", None)
+
+
+def _landing_panel(ax, body: str, d, target: dict, about: str) -> None:
+    """One panel of :func:`landing_map`: the points, ellipses, mean and target of the
+    dispersion ``d`` with its circles about ``about`` (``target`` or ``mean``), framed on
+    them (the target too when about it)."""
+    circles = [c for c in d.circles if c.about == about]
+    shapes = [e.outline() for e in d.ellipses] + [c.outline() for c in circles]
+    origin = [0.0] if about == "target" else []
+    xs = np.concatenate([d.east_m, origin, *[s[0] for s in shapes]])
+    ys = np.concatenate([d.north_m, origin, *[s[1] for s in shapes]])
+    half = 0.55 * max(xs.max() - xs.min(), ys.max() - ys.min(), 1.0)
+    cx, cy = 0.5 * (xs.max() + xs.min()), 0.5 * (ys.max() + ys.min())
+    east_limits, north_limits = (cx - 1.1 * half, cx + 1.1 * half), (cy - half, cy + half)
+    scale, unit = (1e3, "km") if 2.0 * half > KM_ABOVE else (1.0, "m")
+    _draw_land(ax, target, east_limits, north_limits, scale)
+    kinds = np.array(d.kinds)
+    for kind, marker, colour in (("touchdown", "o", "C0"), ("impact", "x", "C3")):
+        chosen = kinds == kind
+        if chosen.any():
+            ax.plot(d.east_m[chosen] / scale, d.north_m[chosen] / scale, marker, ms=3, color=colour,
+                    ls="none", alpha=0.6, label=f"{kind} ({int(chosen.sum())})")
+    other = ~np.isin(kinds, ("touchdown", "impact"))
+    if other.any():
+        ax.plot(d.east_m[other] / scale, d.north_m[other] / scale, ".", ms=3, color="0.3",
+                label=f"came down ({int(other.sum())})")
+    for e, style in zip(d.ellipses, _STYLES):
+        x, y = e.outline()
+        ax.plot(x / scale, y / scale, ls=style, color="C1", lw=1.2, label=f"{100 * e.probability:g} % ellipse (2-D)")
+    for c, style in zip(circles, _STYLES):
+        x, y = c.outline()
+        ax.plot(x / scale, y / scale, ls=style, color="0.35", lw=0.8,
+                label=f"R{100 * c.probability:g} about the {about} {c.radius_m / scale:.3g} {unit}")
+    ax.plot([0.0], [0.0], "k+", ms=14, mew=2, label=f"target ({target.get('kind') or 'pad'})")
+    ax.plot([d.mean[0] / scale], [d.mean[1] / scale], "o", mfc="none", mec="C1", ms=8, label="mean")
+    ax.set_xlim(east_limits[0] / scale, east_limits[1] / scale)
+    ax.set_ylim(north_limits[0] / scale, north_limits[1] / scale)
+    ax.set_aspect("equal")
+    ax.grid(True, lw=0.4)
+    ax.set_xlabel(f"east of the target, {unit}")
+    ax.set_ylabel(f"north of the target, {unit}")
+    ax.set_title(f"{body}: {d.n} landings, about the {about}")
+    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
+
+
+def histograms(flown, columns: list[str], out: Path, title: str) -> Path:
+    """Draw a histogram of each of ``columns`` of the ok runs' frame ``flown`` to ``out``."""
+    plt = _pyplot()
+    ncols, nrows = _grid(len(columns), 4)
+    figure, axes = plt.subplots(nrows, ncols, figsize=(4.2 * ncols, 3.2 * nrows), squeeze=False)
+    for ax, column in zip(axes.flat, columns):
+        x = flown[column].to_numpy(float)
+        x = x[np.isfinite(x)]
+        ax.hist(x, bins=int(min(50, max(10, math.sqrt(x.size)))), color="C0", alpha=0.8)
+        ax.axvline(x.mean(), color="C3", lw=1.2, label="mean")
+        for p, label in ((5, "5-95 %"), (95, None)):
+            ax.axvline(np.percentile(x, p), color="C3", lw=0.8, ls="--", label=label)
+        ax.set_title(f"{column} (n {x.size})", fontsize=8)
+        ax.tick_params(labelsize=7)
+        ax.grid(True, lw=0.4)
+    axes.flat[0].legend(fontsize=7)
+    return _finish(plt, figure, axes, len(columns), out, f"{title}: outputs of the ok runs",
+                   {"left": 0.05, "top": 0.9 if nrows == 1 else 0.93, "wspace": 0.25, "hspace": 0.45})
+
+
+def tornado(table, columns: list[str], out: Path, title: str) -> Path:
+    """Draw a tornado of the sensitivities ``table`` (the report's) for each of ``columns``
+    that has rows in it, to ``out``."""
+    plt = _pyplot()
+    shown = [c for c in columns if (table["output"] == c).any()]
+    ncols, nrows = _grid(len(shown), 3)
+    height = max(2.0, 0.35 * table["input"].nunique() + 1.2)
+    figure, axes = plt.subplots(nrows, ncols, figsize=(5.2 * ncols, height * nrows), squeeze=False)
+    for ax, column in zip(axes.flat, shown):
+        rows = table[table["output"] == column]
+        rows = rows.assign(order=rows["spearman"].abs().fillna(0.0)).sort_values("order", kind="stable")
+        y = np.arange(len(rows))
+        ax.barh(y - 0.2, rows["spearman"].fillna(0.0), height=0.38, color="C0", label="Spearman rho")
+        ax.barh(y + 0.2, rows["src"].fillna(0.0), height=0.38, color="C1", label="SRC")
+        ax.set_yticks(y, rows["input"], fontsize=7)
+        ax.axvline(0.0, color="k", lw=0.6)
+        ax.set_xlim(-1.05, 1.05)
+        r2 = rows["r2"].iloc[0]
+        ax.set_title(f"{column}\nlinear fit R^2 {r2:.2f}" if np.isfinite(r2) else column, fontsize=8)
+        ax.tick_params(axis="x", labelsize=7)
+        ax.grid(True, axis="x", lw=0.4)
+    axes.flat[0].legend(fontsize=7, loc="lower right")
+    return _finish(plt, figure, axes, len(shown), out, f"{title}: which dispersed input drives each output",
+                   {"left": 0.1, "top": 0.88 if nrows == 1 else 0.92, "wspace": 0.55, "hspace": 0.6})
