@@ -58,6 +58,10 @@ MIN_STEP = 1e-4                            # s, smallest step: 1/200 of STEP (a 
                                            # that would turn a flight into billions of steps)
 MAX_DURATION = 100 * 365.25 * 86400.0      # s, longest mission time, a century (a flight's, an
                                            # fc.sleep's): step counts stay exact integers
+MAX_START_DISTANCE = 1e13                  # m, farthest start from the central body (~67 au,
+                                           # past Neptune): the state's squares stay finite
+MAX_START_SPEED = 1e6                      # m/s, fastest start (1 000 km/s: no body of the
+                                           # solar system moves a fifth as fast)
 GROUND_SUBSTEP_HEIGHT = 2.0                # m, below this height the step is split
 GROUND_SUBSTEPS = 4                        # sub-steps within GROUND_SUBSTEP_HEIGHT
 GROUND_SUBSTEP_MAX = 0.005                 # s, longest sub-step there at any step size

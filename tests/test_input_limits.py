@@ -16,6 +16,7 @@ from rocketsim.limits import MAX_DEPTH, MAX_TEXT_LENGTH, MAX_VALUES, MAX_YAML_BY
 from rocketsim.scenario.load import load
 from rocketsim.scenario.models import Scenario
 from rocketsim.scenario.yaml_source import read_yaml
+from tests.conftest import VEHICLE
 from tests.test_scenario_errors import assert_clean_error
 
 # nine lists of nine, eight levels deep: 9^9 = 387 million strings once expanded
@@ -138,6 +139,27 @@ def test_a_mission_of_more_than_a_century_is_refused_at_its_line(scenario, cli):
     assert_clean_error(result, "mission.yaml:6:", "duration", "a century")
     with pytest.raises(InputError):
         load(path)
+
+
+@pytest.mark.parametrize("start, message", [
+    # found by tests/fuzz (long profile): 1e308 m overflowed the J2 short-period terms
+    ("orbit: {altitude: 1.0e+308, inclination: 51.6 deg}", "less than or equal to 10000000000000"),
+    ("orbit: {altitude: -7000 km, inclination: 51.6 deg}", "below its surface"),
+    ("orbit: {altitude: -25 km, inclination: 90 deg}", "below its surface"),
+    ("orbit: {body: moon, semi_major_axis: 1 km, inclination: 0 deg}", "below its surface"),
+    ("orbit: {semi_major_axis: 8000 km, eccentricity: 0.5, true_anomaly: 0 deg, "
+     "inclination: 0 deg}", "below its surface"),
+    ("state: {position: [1.0e+308, 0, 0], velocity: [0, 7.7 km/s, 0]}", "less than or equal to"),
+    ("state: {position: [7000 km, 0, 0], velocity: [0, -1.0e+300, 0]}", "greater than or equal to"),
+])
+def test_a_start_too_far_too_fast_or_underground_is_refused_at_its_line(write, cli, start, message):
+    """The start's distances and speeds are bounded (constants MAX_START_DISTANCE, 67 au,
+    and MAX_START_SPEED, 1 000 km/s), and an orbit that starts below the surface (the
+    polar radius) is refused: no overflow or square root of a negative number later."""
+    write("vehicle.yaml", VEHICLE)
+    write("mission.yaml", f"epoch: 2026-11-26T12:00:00Z\nstart:\n  {start}\nduration: 1 s\n")
+    path = write("scenario.yaml", "name: x\nvehicle: vehicle.yaml\nmission: mission.yaml\n")
+    assert_clean_error(cli("validate", path), "mission.yaml:3:", message)
 
 
 @pytest.mark.parametrize("name, why", [("9" * 400 + ".yaml", "File name too long"),

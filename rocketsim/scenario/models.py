@@ -15,6 +15,7 @@ Every model forbids unknown fields, so a misspelt field is an error (with a
 from __future__ import annotations
 
 import datetime as dt
+import math
 from pathlib import Path
 from typing import Annotated, Literal, Optional, Union
 
@@ -22,7 +23,9 @@ from pydantic import BaseModel, Field, field_validator, model_validator
 
 from rocketsim.bodies.sun_synchronous import (sun_synchronous_inclination,
                                               sun_synchronous_osculating_inclination)
-from rocketsim.constants import EARTH_RADIUS_EQ, MAX_DURATION, MAX_HEADLESS_STEP, MIN_STEP, STEP
+from rocketsim.constants import (EARTH_RADIUS_EQ, EARTH_RADIUS_POLAR, MARS_FLATTENING, MARS_RADIUS_EQ,
+                                 MAX_DURATION, MAX_HEADLESS_STEP, MAX_START_DISTANCE, MAX_START_SPEED,
+                                 MIN_STEP, MOON_RADIUS, STEP)
 from rocketsim.limits import check_data
 from rocketsim.scenario.classic_range import CLASSIC, classic_site
 from rocketsim.scenario.weather import Weather
@@ -121,6 +124,14 @@ ELEMENTS_DESCRIPTION = (
     "osculating: the two-body elements of the instantaneous state")
 
 
+# equatorial and polar radii (m) of the bodies an orbit can start about
+_RADII = {"earth": (EARTH_RADIUS_EQ, EARTH_RADIUS_POLAR), "moon": (MOON_RADIUS, MOON_RADIUS),
+          "mars": (MARS_RADIUS_EQ, MARS_RADIUS_EQ * (1.0 - MARS_FLATTENING))}
+# a start's lengths and speeds (m, m/s), within the constants' bounds either way
+_StartLength = Annotated[Length, Field(ge=-MAX_START_DISTANCE, le=MAX_START_DISTANCE)]
+_StartSpeed = Annotated[Speed, Field(ge=-MAX_START_SPEED, le=MAX_START_SPEED)]
+
+
 class OrbitStart(Strict):
     """Start in orbit about Earth (or ``body``) from classical elements at the mission epoch.
 
@@ -139,8 +150,8 @@ class OrbitStart(Strict):
     body: Literal["earth", "moon", "mars"] = Field("earth", description="the body orbited")
     elements: ElementsKind = Field("mean", description=ELEMENTS_DESCRIPTION)
 
-    altitude: Optional[Length] = None
-    semi_major_axis: Optional[Annotated[Length, Field(gt=0)]] = None
+    altitude: Optional[Annotated[Length, Field(le=MAX_START_DISTANCE)]] = None
+    semi_major_axis: Optional[Annotated[Length, Field(gt=0, le=MAX_START_DISTANCE)]] = None
     eccentricity: Annotated[float, Field(ge=0, lt=1)] = 0.0
     inclination: Union[Angle, Literal["sso"]] = Field(
         description="an angle, or 'sso' (about Earth): sun-synchronous, the mean node turning "
@@ -155,6 +166,13 @@ class OrbitStart(Strict):
             raise ValueError("give exactly one of 'altitude' or 'semi_major_axis'")
         if self.altitude is not None and self.eccentricity != 0.0:
             raise ValueError("'altitude' means a circular orbit: use 'semi_major_axis' with 'eccentricity'")
+        equatorial, polar = _RADII[self.body]
+        a = self.semi_major_axis if self.altitude is None else equatorial + self.altitude
+        e, nu = self.eccentricity, self.true_anomaly
+        start = a * (1.0 - e * e) / (1.0 + e * math.cos(nu))
+        if not start >= polar:
+            raise ValueError(f"the orbit starts {start:g} m from the centre of {self.body}, below its "
+                             f"surface (polar radius {polar:g} m): raise the altitude or semi-major axis")
         if self.inclination == "sso":
             if self.body != "earth":
                 raise ValueError("'inclination: sso' is sun-synchronous about Earth only")
@@ -171,8 +189,8 @@ class OrbitStart(Strict):
 class StateStart(Strict):
     """Start from a state vector in the inertial frame (ECI at the epoch)."""
 
-    position: tuple[Length, Length, Length]
-    velocity: tuple[Speed, Speed, Speed]
+    position: tuple[_StartLength, _StartLength, _StartLength]
+    velocity: tuple[_StartSpeed, _StartSpeed, _StartSpeed]
 
 
 class SiteStart(Strict):
@@ -183,7 +201,7 @@ class SiteStart(Strict):
     horizon towards the site's pad azimuth.
     """
 
-    velocity: tuple[Speed, Speed, Speed] = (0.0, 0.0, 0.0)
+    velocity: tuple[_StartSpeed, _StartSpeed, _StartSpeed] = (0.0, 0.0, 0.0)
     elevation: Angle = Field(1.5707963267948966, description="nose elevation, default vertical")
 
 
