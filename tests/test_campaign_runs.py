@@ -45,11 +45,16 @@ def serial(tmp_path_factory):
 
 
 def test_serial_local_cluster_and_resumed_campaigns_are_identical(serial, tmp_path):
+    """The cluster is the user's (a LocalCluster of two single-threaded worker processes
+    given by its scheduler's address, as --scheduler does); the embedded one is
+    flown by tests/test_campaign_interrupt.py."""
+    from distributed import LocalCluster
     campaign, directory = serial
     reference = pd.read_parquet(directory / "results.parquet")
     assert len(reference) == 12 and (reference["status"] == "ok").all()
     assert pd.read_parquet(directory / "inputs.parquet").shape == (12, 8)
-    rocketsim.campaign(campaign, tmp_path / "cluster", workers=2)
+    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster:
+        rocketsim.campaign(campaign, tmp_path / "cluster", scheduler=cluster.scheduler_address)
     same_results(reference, pd.read_parquet(tmp_path / "cluster" / "results.parquet"))
 
     def stop_after_five(done, failed, total):
@@ -63,6 +68,33 @@ def test_serial_local_cluster_and_resumed_campaigns_are_identical(serial, tmp_pa
     run(campaign, tmp_path / "resumed", workers=1, resume=True, progress=lambda *done: flown.append(done))
     assert flown[-1] == (7, 0, 7)           # exactly the seven missing runs
     same_results(reference, pd.read_parquet(tmp_path / "resumed" / "results.parquet"))
+
+
+def test_rows_left_in_part_files_by_a_crash_are_read_and_consolidated(serial, tmp_path):
+    """A client that dies leaves rows in results/part-*.parquet that results.parquet lacks:
+    read_results reads both, and resuming folds them in (and flies only what is missing)."""
+    from rocketsim.campaigns.cases import Plan
+    from rocketsim.campaigns.spec import read_campaign
+    from rocketsim.campaigns.store import Store, read_results
+    campaign, directory = serial
+    reference = pd.read_parquet(directory / "results.parquet")
+    store = Store(tmp_path / "crashed")
+    found = read_campaign(campaign)
+    store.open(found, Plan(found), resume=False)
+    rows = reference.to_dict("records")
+    for row in rows[:4]:
+        store.add(row)
+    store.consolidate()                 # results.parquet: runs 0-3
+    for row in rows[4:9]:
+        store.add(row)
+    store.flush()                       # a part file: runs 4-8; then the client dies
+    assert len(pd.read_parquet(tmp_path / "crashed" / "results.parquet")) == 4
+    assert list(read_results(tmp_path / "crashed")["run"]) == list(range(9))
+    flown = []
+    run(campaign, tmp_path / "crashed", workers=1, resume=True, progress=lambda *done: flown.append(done))
+    assert flown[-1] == (3, 0, 3)
+    assert not list((tmp_path / "crashed" / "results").glob("part-*.parquet"))
+    same_results(reference, pd.read_parquet(tmp_path / "crashed" / "results.parquet"))
 
 
 def test_rerun_reproduces_a_row_bit_for_bit_and_writes_a_replayable_file(serial, tmp_path):

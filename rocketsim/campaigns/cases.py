@@ -149,12 +149,15 @@ class Plan:
 
     def _placed(self, error: InputError) -> InputError:
         text = f"{error.field or ''} {error.message}"
+
         for name, places in getattr(self, "places", {}).items():
-            if any(place.path in text for place in places):
-                return self.campaign.error(f"{error}", "dispersions", name, "path")
+            for place in places:
+                if place.path in text:
+                    return self.campaign.error(f"{error}", "dispersions", name, "path")
         for path in self.fixed:
-            if path in text:
-                return self.campaign.error(f"{error}", "overrides", path)
+            if path in text:        # the campaign's field names the path: said once
+                shown = error.message if error.file is None and error.field == path else f"{error}"
+                return self.campaign.error(shown, "overrides", path)
         return error
 
     def _places(self, name: str, path: str) -> list[Place]:
