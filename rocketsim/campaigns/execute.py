@@ -19,11 +19,13 @@ it, the run's MCAP file. So run ``k`` flies bit for bit the same alone
   one per core) single-threaded worker processes, or an existing cluster's
   scheduler (``scheduler="tcp://host:8786"`` or ``scheduler_file``), whose workers
   must see the scenario's files and the campaign directory at the same paths.
-* Warm-up: the nominal run (every dispersion at its centre) is flown once in
-  this process first, so the compiled kernels it needs are in the disk cache
-  (:mod:`rocketsim._jit`), compiled once; then each worker flies it too, loading
-  the flight's modules and those kernels from the cache before its first run
-  (a run's ``wall_time_s`` is its own flight's).
+* Warm-up: the nominal run (every dispersion at its centre) is flown whole once
+  in this process first, so the compiled kernels it needs are in the disk cache
+  (:mod:`rocketsim._jit`), compiled once; then each worker flies its first
+  :data:`WORKER_WARM_S` seconds, importing the flight's modules and loading the
+  kernels of the flight's steps from the cache before its first run (the
+  kernels of later events, a staging, a landing, load in its first run, a few
+  milliseconds each).
 * Ctrl-C saves every finished run and raises :class:`Interrupted`; flying the
   campaign again with ``resume`` flies exactly the runs missing.
 """
@@ -43,6 +45,7 @@ from rocketsim.campaigns.spec import read_campaign
 from rocketsim.campaigns.store import Store, frame, read_results
 from rocketsim.errors import InputError
 
+WORKER_WARM_S = 1.0      # s of the nominal run a worker flies before its first run
 _PLANS: dict[str, Plan] = {}     # a worker's plans, by campaign text (read once per worker)
 
 
@@ -151,11 +154,13 @@ def run(campaign, directory: str | Path, *, workers: int | None = None, schedule
     import yaml
     log = log or (lambda message: None)
     found = read_campaign(campaign, base_dir)
-    plan = Plan(found)
+    Plan(found)         # every problem reported at its line of the campaign file, before anything else
+    # what flies is the resolved campaign: the text every worker reads, campaign.yaml of the directory
+    text = yaml.safe_dump(found.resolved(), sort_keys=False)
+    plan = plan_of(text)
     store = Store(directory)
     done = store.open(found, plan, resume)
     todo = [k for k in range(found.spec.runs) if k not in done]
-    text = yaml.safe_dump(plan.campaign.resolved(), sort_keys=False)
     if todo:
         counts = [0, 0]
 
@@ -195,7 +200,6 @@ def _in_process(text, todo, spec, finished, log, started) -> None:
 def _on_dask(text, todo, spec, finished, log, started, workers, scheduler, scheduler_file) -> None:
     import dask
     from distributed import Client, as_completed
-    import logging
     start = time.perf_counter()
     log(f"warm-up: the nominal run flown in this process in {warm(text, None):.2f} s")
     token = hashlib.sha256(text.encode()).hexdigest()[:12]
@@ -205,20 +209,17 @@ def _on_dask(text, todo, spec, finished, log, started, workers, scheduler, sched
             client = Client(scheduler, scheduler_file=None if scheduler_file is None else str(scheduler_file),
                             timeout="30s")
         else:
-            from distributed import LocalCluster
-            import os
-            cluster = LocalCluster(n_workers=workers or os.cpu_count() or 1, threads_per_worker=1,
-                                   processes=True, dashboard_address=None, silence_logs=logging.ERROR)
+            cluster = _local_cluster(workers)
             client = Client(cluster)
         try:
             start = time.perf_counter()
             addresses = list(client.scheduler_info()["workers"])
-            warming = [client.submit(warm, text, None, key=f"rocketsim-warm-{token}-{n}", workers=[address],
-                                     allow_other_workers=False, pure=False)
+            warming = [client.submit(warm, text, WORKER_WARM_S, key=f"rocketsim-warm-{token}-{n}",
+                                     workers=[address], allow_other_workers=False, pure=False)
                        for n, address in enumerate(addresses)]
             costs = client.gather(warming)
-            log(f"warm-up: {len(addresses)} workers flew the nominal run in {time.perf_counter() - start:.2f} s "
-                f"(each {min(costs):.2f} .. {max(costs):.2f} s)")
+            log(f"warm-up: {len(addresses)} workers flew the nominal run's first {WORKER_WARM_S:g} s in "
+                f"{time.perf_counter() - start:.2f} s (each {min(costs):.2f} .. {max(costs):.2f} s)")
             started()
             futures = {client.submit(fly_case, text, k, _keep(spec.telemetry, k), spec.timeout,
                                      key=f"rocketsim-run-{token}-{k}", retries=spec.retries,
@@ -238,6 +239,26 @@ def _on_dask(text, todo, spec, finished, log, started, workers, scheduler, sched
             client.close()
             if cluster is not None:
                 cluster.close()
+
+
+def _local_cluster(workers: int | None):
+    """A LocalCluster of ``workers`` (default: one per core) single-threaded worker processes,
+    no dashboard. Its workers ignore SIGINT (started while this process ignores it, which a
+    new process inherits): Ctrl-C at a terminal reaches the whole process group, and this
+    process, not each worker, stops the campaign and shuts them down."""
+    import logging
+    import os
+    import signal
+    import threading
+    from distributed import LocalCluster
+    main = threading.current_thread() is threading.main_thread()
+    previous = signal.signal(signal.SIGINT, signal.SIG_IGN) if main else None
+    try:
+        return LocalCluster(n_workers=workers or os.cpu_count() or 1, threads_per_worker=1, processes=True,
+                            dashboard_address=None, silence_logs=logging.ERROR)
+    finally:
+        if main:
+            signal.signal(signal.SIGINT, previous)
 
 
 def rerun(directory: str | Path, k: int, telemetry: str | Path):
