@@ -98,7 +98,7 @@ class Plan:
             except ValueError as error:
                 raise campaign.error(str(error), "correlations", k) from None
         self.sampler = Sampler(spec.seed, spec.runs, spec.sampling, laws, groups)
-        self._load(self.fixed | self._centre_overrides())      # every path and unit, once
+        self.nominal()      # every path and unit, once
 
     # --- what each run flies ------------------------------------------------------
 
@@ -119,6 +119,12 @@ class Plan:
     def scenario(self, k: int) -> LoadedScenario:
         """Run ``k``'s scenario, loaded with its overrides."""
         return load(self.campaign.scenario, self.overrides(k))
+
+    def nominal(self) -> LoadedScenario:
+        """The nominal run's scenario: every dispersion at its centre (a normal's mean, a
+        uniform's middle, the first choice, a seed's low); a problem an override causes is
+        reported at the campaign's line that gave it."""
+        return self._load(self.fixed | self._centre_overrides())
 
     def inputs_table(self):
         """Every run's inputs as a DataFrame: ``run``, then a column per dispersion
@@ -280,8 +286,7 @@ class Plan:
         return f"{value!r} rad" if place.angle else value
 
     def _centre_overrides(self) -> dict[str, Any]:
-        """Every dispersion at its centre (a normal's mean, a uniform's middle, the first
-        choice, a seed's low): one load checks every path and value kind."""
+        """Every dispersion at its centre (see :meth:`nominal`)."""
         found = {}
         for name, given in self.campaign.spec.dispersions.items():
             if isinstance(given, Seed):

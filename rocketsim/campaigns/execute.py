@@ -73,7 +73,7 @@ def plan_of(text: str) -> Plan:
 
 
 def _fly(plan: Plan, k: int, telemetry: Path | None, timeout: float | None):
-    """Fly run ``k`` (into the MCAP ``telemetry``, or in memory): ``(row, error)``."""
+    """Fly run ``k`` (into the MCAP ``telemetry``, or in memory): its row."""
     from rocketsim.api.flying import fly
     from rocketsim.api.run import open_run
     start = time.perf_counter()
@@ -119,11 +119,10 @@ def warm(text: str, duration: float | None = 0.0) -> float:
     seconds (None: to its end), in memory: the flight's modules and compiled kernels
     load (or compile into the cache). Returns the seconds it took."""
     from rocketsim.api.flying import fly
-    from rocketsim.scenario.load import load
     start = time.perf_counter()
     plan = plan_of(text)
     try:
-        fly(load(plan.campaign.scenario, plan.fixed | plan._centre_overrides()), duration=duration)
+        fly(plan.nominal(), duration=duration)
     except Exception:       # noqa: BLE001 - a nominal run that fails warms as far as it flew
         pass
     return time.perf_counter() - start
