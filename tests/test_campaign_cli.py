@@ -85,3 +85,13 @@ def test_a_directory_holds_one_campaign(tmp_path):
     # another campaign cannot resume it
     _, _, other = run_campaign(tmp_path, GOOD.replace("seed: 1", "seed: 2"), "--resume")
     assert other.exit_code == 2 and "holds another campaign" in other.output and "seed" in other.output
+
+
+def test_a_scheduler_that_cannot_be_reached_is_refused_before_the_directory_is_written(tmp_path):
+    (tmp_path / "scheduler.json").write_text("not a scheduler's file")
+    campaign = write_arc(tmp_path, GOOD)
+    result = CliRunner().invoke(main, ["campaign", "run", str(campaign), "-o", str(tmp_path / "other"),
+                                       "--scheduler-file", str(tmp_path / "scheduler.json")])
+    assert result.exit_code == 2, result.output
+    assert result.output.startswith("error: --scheduler-file: cannot reach the Dask scheduler")
+    assert not (tmp_path / "other").exists()

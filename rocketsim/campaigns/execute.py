@@ -157,6 +157,8 @@ def run(campaign, directory: str | Path, *, workers: int | None = None, schedule
     # what flies is the resolved campaign: the text every worker reads, campaign.yaml of the directory
     text = yaml.safe_dump(found.resolved(), sort_keys=False)
     plan = plan_of(text)
+    if scheduler is not None or scheduler_file is not None:
+        connect(scheduler, scheduler_file).close()     # reachable, before the directory is written
     store = Store(directory)
     done = store.open(found, plan, resume)
     todo = [k for k in range(found.spec.runs) if k not in done]
@@ -199,15 +201,14 @@ def _in_process(text, todo, spec, finished, log, started) -> None:
 def _on_dask(text, todo, spec, finished, log, started, workers, scheduler, scheduler_file) -> None:
     import dask
     from distributed import Client, as_completed
-    start = time.perf_counter()
-    log(f"warm-up: the nominal run flown in this process in {warm(text, None):.2f} s")
     token = hashlib.sha256(text.encode()).hexdigest()[:12]
     with dask.config.set({"distributed.scheduler.allowed-failures": spec.retries}):
         if scheduler is not None or scheduler_file is not None:
             cluster = None
-            client = Client(scheduler, scheduler_file=None if scheduler_file is None else str(scheduler_file),
-                            timeout="30s")
+            client = connect(scheduler, scheduler_file)
+            log(f"warm-up: the nominal run flown in this process in {warm(text, None):.2f} s")
         else:
+            log(f"warm-up: the nominal run flown in this process in {warm(text, None):.2f} s")
             cluster = _local_cluster(workers)
             client = Client(cluster)
         try:
@@ -238,6 +239,19 @@ def _on_dask(text, todo, spec, finished, log, started, workers, scheduler, sched
             client.close()
             if cluster is not None:
                 cluster.close()
+
+
+def connect(scheduler: str | None, scheduler_file: str | Path | None):
+    """A Dask client of the scheduler at ``scheduler`` (an address) or named by
+    ``scheduler_file``; :class:`InputError` when it cannot be reached within 10 s."""
+    from distributed import Client
+    given = scheduler if scheduler is not None else f"the scheduler file {scheduler_file}"
+    try:
+        return Client(scheduler, scheduler_file=None if scheduler_file is None else str(scheduler_file),
+                      timeout="10s")
+    except Exception as error:      # noqa: BLE001 - unreachable, a bad address, a file that is no scheduler's
+        raise InputError(f"cannot reach the Dask scheduler at {given}: {type(error).__name__}: {error}",
+                         field="--scheduler" if scheduler is not None else "--scheduler-file") from None
 
 
 def _local_cluster(workers: int | None):
