@@ -31,17 +31,19 @@ overhead's share of a shorter flight is larger: an upper bound of the whole
 flight's); with ``ROCKETSIM_BENCH_FULL=1`` the throughput campaign is eight
 Falcon 9 landings and the flight the whole one (480 s of mission).
 
-Last figures (2-core machine shared with four other engineers' work, load
-2.7-6.4: the second core was not ours, and the ratio is the machine's, not the
-campaign's). Suite: throughput 0.84-1.02x over three runs (serial 1.6-3.6
-runs/s, 2 workers 2.8-3.0 runs/s; a run's own wall time 370-420 ms serially,
-606 ms on a worker: the workers' runs waited for a core); warm-up 0.3-3.6 s in
-this process, 3.1-7.6 s for the two workers; per-run overhead 33-35 ms,
-1.2-1.4 % of the first 160 s of a Falcon 9 flight (2.4-2.8 s): building the
-scenario 19-28 ms, collecting the row 0.1 ms, scheduling 6-14 ms. Whole
-(ROCKETSIM_BENCH_FULL=1, load 4-5, eight landings): 0.85x; one landing flight
-5.64 s, building the scenario 26 ms (0.47 %). The 1.8x target is not shown on
-such a machine. Nothing asserts a time; the checks are that the runs
+Last figures (2-core machine shared with other engineers' work). Suite, at
+load 0.8 (the quietest moment): throughput 1.87x (serial 4.5-4.8 runs/s, 2
+workers 8.9 runs/s; a run's own wall time 190-220 ms serially, 209 ms on a
+worker); warm-up 1.5 s in this process, 1.3 s for the two workers (each
+0.8-0.9 s); per-run overhead 27 ms, 2.0 % of the first 160 s of a Falcon 9
+flight (1.38 s): building the scenario 24 ms, collecting the row 0.1 ms,
+scheduling 3.3 ms. At load 3-6 the ratio fell to 0.84-1.02x, the workers'
+runs 1.5 times slower than the serial ones (waiting for a core), the overhead
+1.2-1.4 %. Whole (ROCKETSIM_BENCH_FULL=1, load 0.8-1.6, eight landings): 1.48x
+(serial 0.19-0.22 runs/s, 2 workers 0.33; 4.5-5.1 s a run serially, 6.1 s on
+a worker, and the last run flown alone); one landing flight 5.44 s, per-run
+overhead 28 ms, 0.52 % of it (building 24 ms, collecting 0.1 ms, scheduling
+4.2 ms). Nothing asserts a time; the checks are that the runs
 flew and that the cluster's rows equal the serial ones.
 """
 
