@@ -12,6 +12,8 @@ The front door, for scripts and notebooks::
 * :func:`fly` (scenario, telemetry=None or an MCAP path, step, duration, progress,
   program, programs) -> a :class:`Run`;
 * :func:`open_run` (an MCAP path) -> the same :class:`Run`, executing nothing;
+* :func:`campaign` (a campaign file or mapping, directory, workers, scheduler) -> a
+  Monte Carlo campaign's results as a pandas DataFrame (:mod:`rocketsim.campaigns`);
 * :class:`InputError`: what bad input raises (file, line, field, or path).
 
 The names load on first use (PEP 562), so ``import rocketsim.constants`` or the
@@ -20,11 +22,11 @@ command line's light commands do not import the flight's compiled kernels.
 
 from rocketsim.version import __version__
 
-__all__ = ["__version__", "load", "fly", "open_run", "Run", "InputError"]
+__all__ = ["__version__", "load", "fly", "open_run", "Run", "InputError", "campaign"]
 
 _HOMES = {"load": "rocketsim.api.flying", "fly": "rocketsim.api.flying",
           "open_run": "rocketsim.api.run", "Run": "rocketsim.api.run",
-          "InputError": "rocketsim.errors"}
+          "InputError": "rocketsim.errors", "campaign": "rocketsim.campaigns.execute"}
 
 
 def __getattr__(name: str):

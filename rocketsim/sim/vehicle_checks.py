@@ -16,7 +16,8 @@ Events (figures in SI units, degrees where named):
 * ``heat shield failure``: ``temperature_k``, ``heat_flux_w_m2``; the body stops flying;
 * ``touchdown``: ``vertical_speed_m_s`` (negative: down), ``horizontal_speed_m_s``,
   ``tilt_deg`` (body x from the local vertical), ``distance_to_target_m`` (horizontal,
-  from the centre of mass to the mission's target pad, else the launch site);
+  from the centre of mass to the mission's target pad, else the launch site), and
+  about Earth ``latitude_deg``, ``longitude_deg`` (geodetic, WGS84) of the centre of mass;
 * a first contact faster than :data:`CRASH_SPEED` (10 m/s down) is a crash: the world
   records an ``impact`` with those figures instead and the body stops flying.
 """
@@ -140,8 +141,8 @@ class VehicleChecks:
             body.flying = False
 
     def touchdown_figures(self, body) -> dict:
-        """Vertical and horizontal speed over the ground, tilt and distance to the pad, at
-        the instant the first contact point reached the ground.
+        """Vertical and horizontal speed over the ground, tilt, distance to the pad and
+        (about Earth) where, at the instant the first contact point reached the ground.
 
         The step that touched down has already compressed the legs (by up to
         ``|v| h``), so the figures come from the state before that step, carried
@@ -163,6 +164,9 @@ class VehicleChecks:
         figures = {"vertical_speed_m_s": vertical,
                    "horizontal_speed_m_s": math.sqrt(across @ across),
                    "tilt_deg": tilt / DEG}
+        if body.central == "earth":
+            lat, lon, _ = StateView.of_state(t0, y0).geodetic
+            figures.update(latitude_deg=lat / DEG, longitude_deg=lon / DEG)
         if self.pad is not None and body.central == "earth":
             offset = eci_to_ecef(y0[R:R + 3], t0) - self.pad
             up_ecef = eci_to_ecef(up, t0)

@@ -1,0 +1,341 @@
+"""Flying a campaign: every run through the front door, in this process or on Dask.
+
+Each run ``k`` is the base scenario with run ``k``'s overrides
+(:meth:`rocketsim.campaigns.cases.Plan.overrides`), loaded and flown in memory by
+:func:`rocketsim.api.flying.fly`; a worker is handed the campaign (its
+resolved text, a few kilobytes) and ``k``, never a scenario or a run, and hands
+back one row (:mod:`rocketsim.campaigns.outputs`) and, when the retention keeps
+it, the run's MCAP file. So run ``k`` flies bit for bit the same alone
+(:func:`rerun`), serially, in a local pool or on a cluster, first time or resumed.
+
+* ``status`` ``ok``: the flight flew to its end (a crash or a break-up is its
+  ``outcome``, not an error); ``error``: the program raised, a state went
+  non-finite, a dispersed value was refused, or the worker flying it was lost
+  more than ``retries`` times; ``timeout``: it flew longer than the campaign's
+  ``timeout`` (wall time, checked between batches of steps), and was stopped.
+  A failed run is a row with its error; the campaign goes on.
+* Executors: ``workers=1`` flies in this process, without Dask (debugging);
+  otherwise an embedded :class:`distributed.LocalCluster` of ``workers`` (default:
+  one per core) single-threaded worker processes, or an existing cluster's
+  scheduler (``scheduler="tcp://host:8786"`` or ``scheduler_file``), whose workers
+  must see the scenario's files and the campaign directory at the same paths.
+* Warm-up: the nominal run (every dispersion at its centre) is flown whole once
+  in this process first, so the compiled kernels it needs are in the disk cache
+  (:mod:`rocketsim._jit`), compiled once; then each worker flies its first
+  :data:`WORKER_WARM_S` seconds, importing the flight's modules and loading the
+  kernels of the flight's steps from the cache before its first run (the
+  kernels of later events, a staging, a landing, load in its first run, a few
+  milliseconds each).
+* Ctrl-C saves every finished run and raises :class:`Interrupted`; flying the
+  campaign again with ``resume`` flies exactly the runs missing.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import math
+import tempfile
+import time
+from pathlib import Path
+from typing import Callable, Mapping
+
+from rocketsim.campaigns.cases import Plan
+from rocketsim.campaigns.outputs import run_columns
+from rocketsim.campaigns.spec import read_campaign
+from rocketsim.campaigns.store import Store, frame, read_results
+from rocketsim.errors import InputError
+
+WORKER_WARM_S = 1.0      # s of the nominal run a worker flies before its first run
+_PLANS: dict[str, Plan] = {}     # a worker's plans, by campaign text (read once per worker)
+
+
+class Interrupted(KeyboardInterrupt):
+    """Ctrl-C stopped a campaign; ``done`` runs are saved in ``directory``."""
+
+    def __init__(self, directory: Path, done: int, runs: int):
+        super().__init__(f"interrupted: {done} of {runs} runs are saved in {directory}")
+        self.directory, self.done, self.runs = directory, done, runs
+
+
+class _Timeout(Exception):
+    """A run flew longer than the campaign's timeout."""
+
+
+def plan_of(text: str) -> Plan:
+    """The :class:`Plan` of a resolved campaign's YAML text (read once per process)."""
+    plan = _PLANS.get(text)
+    if plan is None:
+        import yaml
+        plan = Plan(read_campaign(yaml.safe_load(text)))
+        _PLANS.clear()
+        _PLANS[text] = plan
+    return plan
+
+
+def _fly(plan: Plan, k: int, telemetry: Path | None, timeout: float | None):
+    """Fly run ``k`` (into the MCAP ``telemetry``, or in memory): its row."""
+    from rocketsim.api.flying import fly
+    from rocketsim.api.run import open_run
+    start = time.perf_counter()
+
+    def watch(t: float, phase: str) -> None:
+        if timeout is not None and time.perf_counter() - start > timeout:
+            raise _Timeout(f"stopped at T+{t:.1f} s after {timeout:g} s of wall time")
+
+    paths = plan.campaign.spec.outputs
+    row = {"run": k, "status": "ok", "error": None}
+    try:
+        run = fly(plan.scenario(k), telemetry, progress=watch)
+        row.update(run_columns(run, paths))
+    except _Timeout as error:
+        row.update(status="timeout", error=str(error), outcome="timeout")
+    except Exception as error:              # noqa: BLE001 - a failed run is a row, the campaign goes on
+        text = str(error) if isinstance(error, InputError) else f"{type(error).__name__}: {error}"
+        row.update(status="error", error=text, outcome=text)
+        partial = getattr(error, "run", None)
+        if partial is None and telemetry is not None and telemetry.is_file():
+            partial = open_run(telemetry)
+        if partial is not None:         # what flew before the error
+            row.update({**run_columns(partial, paths), "outcome": partial.outcome})
+    row["wall_time_s"] = time.perf_counter() - start
+    return row
+
+
+def fly_case(text: str, k: int, keep: str, timeout: float | None) -> tuple[dict, bytes | None]:
+    """A worker's task: run ``k`` of the campaign ``text``; ``keep`` its telemetry
+    (``all``: flown into an MCAP file; ``failed``: flown again into one if it failed;
+    ``none``). Returns ``(row, MCAP bytes or None)``."""
+    plan = plan_of(text)
+    with tempfile.TemporaryDirectory(prefix="rocketsim-run-") as folder:
+        path = Path(folder) / f"run-{k:06d}.mcap"
+        row = _fly(plan, k, path if keep == "all" else None, timeout)
+        if keep == "failed" and row["status"] == "error":
+            _fly(plan, k, path, timeout)       # the same flight, bit for bit, into a file
+        return row, (path.read_bytes() if path.is_file() else None)
+
+
+def warm(text: str, duration: float | None = 0.0) -> float:
+    """Fly the campaign's nominal run (every dispersion at its centre) for ``duration``
+    seconds (None: to its end), in memory: the flight's modules and compiled kernels
+    load (or compile into the cache). Returns the seconds it took."""
+    from rocketsim.api.flying import fly
+    start = time.perf_counter()
+    plan = plan_of(text)
+    try:
+        fly(plan.nominal(), duration=duration)
+    except Exception:       # noqa: BLE001 - a nominal run that fails warms as far as it flew
+        pass
+    return time.perf_counter() - start
+
+
+def _keep(retention, k: int) -> str:
+    if isinstance(retention, list):
+        return "all" if k in retention else "none"
+    return retention
+
+
+def _lost(k: int, error: BaseException) -> dict:
+    text = f"{type(error).__name__}: {error}"
+    return {"run": k, "status": "error", "error": f"the worker was lost: {text}", "outcome": text,
+            "wall_time_s": math.nan}
+
+
+def run(campaign, directory: str | Path, *, workers: int | None = None, scheduler: str | None = None,
+        scheduler_file: str | Path | None = None, resume: bool = False, base_dir=None,
+        progress: Callable[[int, int, int], None] | None = None,
+        log: Callable[[str], None] | None = None):
+    """Fly ``campaign`` (a campaign file or mapping) into ``directory``; the results table.
+
+    ``progress(done, failed, total)`` is called when the first run starts (0 done) and
+    as runs finish (``total``: the runs this call flies), ``log(message)`` with the warm-up's costs. Raises
+    :class:`~rocketsim.errors.InputError` for a bad campaign before anything flies,
+    :class:`Interrupted` on Ctrl-C (everything finished saved)."""
+    import yaml
+    log = log or (lambda message: None)
+    found = read_campaign(campaign, base_dir)
+    Plan(found)         # every problem reported at its line of the campaign file, before anything else
+    # what flies is the resolved campaign: the text every worker reads, campaign.yaml of the directory
+    text = yaml.safe_dump(found.resolved(), sort_keys=False)
+    plan = plan_of(text)
+    if scheduler is not None or scheduler_file is not None:
+        connect(scheduler, scheduler_file).close()     # reachable, before the directory is written
+    store = Store(directory)
+    done = store.open(found, plan, resume)
+    todo = [k for k in range(found.spec.runs) if k not in done]
+    if todo:
+        counts = [0, 0]
+
+        def finished(row: dict, telemetry: bytes | None) -> None:
+            store.add(row, telemetry)
+            counts[0] += 1
+            counts[1] += row["status"] != "ok"
+            if progress is not None:
+                progress(counts[0], counts[1], len(todo))
+
+        def started() -> None:
+            if progress is not None:
+                progress(0, 0, len(todo))
+
+        try:
+            if workers == 1 and scheduler is None and scheduler_file is None:
+                _in_process(text, todo, found.spec, finished, log, started)
+            else:
+                _on_dask(text, todo, found.spec, finished, log, started, workers, scheduler, scheduler_file)
+        except KeyboardInterrupt:
+            store.consolidate()
+            raise Interrupted(store.dir, len(done) + counts[0], found.spec.runs) from None
+        finally:
+            store.consolidate()
+    else:
+        store.consolidate()
+    return read_results(store.dir)
+
+
+def _in_process(text, todo, spec, finished, log, started) -> None:
+    log(f"warm-up: the nominal run flown in this process in {warm(text, None):.2f} s")
+    started()
+    for k in todo:
+        finished(*fly_case(text, k, _keep(spec.telemetry, k), spec.timeout))
+
+
+def _on_dask(text, todo, spec, finished, log, started, workers, scheduler, scheduler_file) -> None:
+    import dask
+    from distributed import Client, as_completed
+    token = hashlib.sha256(text.encode()).hexdigest()[:12]
+    with dask.config.set({"distributed.scheduler.allowed-failures": spec.retries}):
+        if scheduler is not None or scheduler_file is not None:
+            cluster = None
+            client = connect(scheduler, scheduler_file)
+            log(f"warm-up: the nominal run flown in this process in {warm(text, None):.2f} s")
+        else:
+            log(f"warm-up: the nominal run flown in this process in {warm(text, None):.2f} s")
+            cluster = _local_cluster(workers)
+            client = Client(cluster)
+        try:
+            start = time.perf_counter()
+            addresses = list(client.scheduler_info()["workers"])
+            warming = [client.submit(warm, text, WORKER_WARM_S, key=f"rocketsim-warm-{token}-{n}",
+                                     workers=[address], allow_other_workers=False, pure=False)
+                       for n, address in enumerate(addresses)]
+            costs = client.gather(warming)
+            log(f"warm-up: {len(addresses)} workers flew the nominal run's first {WORKER_WARM_S:g} s in "
+                f"{time.perf_counter() - start:.2f} s (each {min(costs):.2f} .. {max(costs):.2f} s)")
+            started()
+            futures = {client.submit(fly_case, text, k, _keep(spec.telemetry, k), spec.timeout,
+                                     key=f"rocketsim-run-{token}-{k}", retries=spec.retries,
+                                     priority=-k, pure=False): k for k in todo}
+            try:
+                for future in as_completed(futures):
+                    k = futures[future]
+                    try:
+                        row, telemetry = future.result()
+                    except Exception as error:      # noqa: BLE001 - lost too often: a row
+                        row, telemetry = _lost(k, error), None
+                    finished(row, telemetry)
+                    future.release()
+            finally:
+                client.cancel(list(futures), force=True)
+        finally:
+            client.close()
+            if cluster is not None:
+                cluster.close()
+
+
+def connect(scheduler: str | None, scheduler_file: str | Path | None):
+    """A Dask client of the scheduler at ``scheduler`` (an address) or named by
+    ``scheduler_file``; :class:`InputError` when it cannot be reached within 10 s."""
+    from distributed import Client
+    given = scheduler if scheduler is not None else f"the scheduler file {scheduler_file}"
+    try:
+        return Client(scheduler, scheduler_file=None if scheduler_file is None else str(scheduler_file),
+                      timeout="10s")
+    except Exception as error:      # noqa: BLE001 - unreachable, a bad address, a file that is no scheduler's
+        raise InputError(f"cannot reach the Dask scheduler at {given}: {type(error).__name__}: {error}",
+                         field="--scheduler" if scheduler is not None else "--scheduler-file") from None
+
+
+def _local_cluster(workers: int | None):
+    """A LocalCluster of ``workers`` (default: one per core) single-threaded worker processes,
+    no dashboard. Its workers ignore SIGINT (started while this process ignores it, which a
+    new process inherits): Ctrl-C at a terminal reaches the whole process group, and this
+    process, not each worker, stops the campaign and shuts them down."""
+    import logging
+    import os
+    import signal
+    import threading
+    from distributed import LocalCluster
+    main = threading.current_thread() is threading.main_thread()
+    previous = signal.signal(signal.SIGINT, signal.SIG_IGN) if main else None
+    try:
+        return LocalCluster(n_workers=workers or os.cpu_count() or 1, threads_per_worker=1, processes=True,
+                            dashboard_address=None, silence_logs=logging.ERROR)
+    finally:
+        if main:
+            signal.signal(signal.SIGINT, previous)
+
+
+def rerun(directory: str | Path, k: int, telemetry: str | Path):
+    """Fly run ``k`` of the campaign in ``directory`` alone into the MCAP file
+    ``telemetry``; ``(row, recorded)``: its row, and its row in the results (None if
+    it has none), both as one-row tables with the same columns."""
+    directory = Path(directory)
+    if not (directory / "campaign.yaml").is_file():
+        raise InputError(f"{directory} holds no campaign (no campaign.yaml)", field="DIR")
+    import yaml
+    plan = Plan(read_campaign(yaml.safe_load((directory / "campaign.yaml").read_text())))
+    runs = plan.campaign.spec.runs
+    if not 0 <= k < runs:
+        raise InputError(f"the campaign has runs 0 .. {runs - 1}, not {k}", field="K")
+    row = _fly(plan, k, Path(telemetry), plan.campaign.spec.timeout)
+    results = read_results(directory)
+    recorded = results[results["run"] == k]
+    mine = frame([[row]])
+    if recorded.empty:
+        return mine, None
+    names = list(dict.fromkeys(list(recorded.columns) + list(mine.columns)))
+    return mine.reindex(columns=names), recorded.reset_index(drop=True).reindex(columns=names)
+
+
+def same_row(a, b, ignore=("wall_time_s",)) -> list[str]:
+    """The columns where two one-row results tables differ: floats bit for bit, a
+    missing value (NaN, None) only where the other is missing too."""
+    import numpy as np
+
+    def missing(value) -> bool:
+        return value is None or (isinstance(value, float) and math.isnan(value))
+
+    differ = []
+    for name in a.columns:
+        x, y = a[name].iloc[0], b[name].iloc[0]
+        if name in ignore or (missing(x) and missing(y)):
+            continue
+        if isinstance(x, float) and isinstance(y, float):
+            same = np.float64(x).view(np.int64) == np.float64(y).view(np.int64)
+        else:
+            same = x == y
+        if not same:
+            differ.append(name)
+    return differ
+
+
+def campaign(campaign: str | Path | Mapping, directory: str | Path | None = None, *,
+             workers: int | None = None, scheduler: str | None = None,
+             scheduler_file: str | Path | None = None, resume: bool = False,
+             base_dir: str | Path | None = None):
+    """Fly a Monte Carlo campaign and return its results as a pandas DataFrame (a row
+    per run: ``run``, ``status``, ``error``, ``wall_time_s``, ``outcome`` and the
+    output columns of :mod:`rocketsim.campaigns.outputs`).
+
+    ``campaign``: a campaign file or mapping (its scenario relative to ``base_dir``);
+    ``directory``: where the campaign is written (:mod:`rocketsim.campaigns.store`;
+    default a temporary folder, removed); ``workers``: 1 flies in this process,
+    otherwise a local Dask cluster of that many processes (default one per core);
+    ``scheduler`` / ``scheduler_file``: an existing Dask cluster's; ``resume``: fly the
+    runs ``directory`` is missing. Every run's inputs derive from the campaign's
+    seed and the run's number alone (:mod:`rocketsim.campaigns.sampling`)."""
+    if directory is None:
+        with tempfile.TemporaryDirectory(prefix="rocketsim-campaign-") as folder:
+            return run(campaign, Path(folder) / "campaign", workers=workers, scheduler=scheduler,
+                       scheduler_file=scheduler_file, base_dir=base_dir)
+    return run(campaign, directory, workers=workers, scheduler=scheduler, scheduler_file=scheduler_file,
+               resume=resume, base_dir=base_dir)
