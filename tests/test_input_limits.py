@@ -133,6 +133,12 @@ def test_a_step_or_duration_out_of_range_on_the_command_line_is_refused(scenario
     assert_clean_error(result, option, message)
 
 
+def test_an_integer_too_large_for_a_float_is_refused_at_its_line(scenario, cli):
+    # found by tests/fuzz (long profile): float() of a 400-digit YAML integer overflowed
+    result = cli("validate", scenario(duration="1" + "0" * 400))
+    assert_clean_error(result, "mission.yaml:6:", "duration", "integer of 401 digits")
+
+
 def test_a_mission_of_more_than_a_century_is_refused_at_its_line(scenario, cli):
     path = scenario(duration="1e30 s")
     result = cli("validate", path)

@@ -70,7 +70,11 @@ def _si_value(value: Any, dimension: str) -> float:
     if isinstance(value, (int, float)):
         if dimension == "angle":
             raise UnitError("an angle needs a unit: write e.g. '28.5 deg' or '0.497 rad'")
-        return float(value)
+        try:
+            return float(value)
+        except OverflowError:       # an integer of hundreds of digits
+            raise UnitError(f"expected a finite {dimension.replace('_', ' ')}, got an integer of "
+                            f"{len(str(abs(value)))} digits") from None
     if not isinstance(value, str):
         raise UnitError(f"expected a {dimension} as a number or a string with a unit")
     match = _QUANTITY.match(value)
