@@ -61,3 +61,25 @@ def test_the_landing_figures_are_those_of_the_reported_point(flight):
     assert touchdown["descent_time_s"] == pytest.approx(touchdown["time_s"] - events["apogee"]["time_s"], abs=1e-9)
     assert touchdown["drift_time_s"] == pytest.approx(
         touchdown["time_s"] - events["parachute_deployed:drogue"]["time_s"], abs=1e-9)
+
+
+def test_the_telemetry_carries_the_motor_thrust_and_the_burning_mass():
+    """The state messages' thrust is the file's curve interpolated linearly (numpy, on
+    the raw points) and the mass falls by the impulse delivered, m0 I(t) / I_total."""
+    import numpy as np
+    import rocketsim
+    run = rocketsim.fly(SCENARIO, duration=3.0)
+    table = run.bodies["hobby-rocket"].table(units=False)
+    raw = [line.split() for line in (SCENARIO.parents[1] / "motors" / "Cesaroni_4895L1395-P.eng")
+           .read_text().splitlines() if line.strip() and not line.startswith(";")][1:]
+    t_curve = np.array([0.0] + [float(a) for a, _ in raw])
+    f_curve = np.array([0.0] + [float(b) for _, b in raw])
+    fine = np.linspace(0.0, 3.45, 345001)
+    impulse = np.concatenate(([0.0], np.cumsum(0.5 * (np.interp(fine[1:], t_curve, f_curve)
+                                                     + np.interp(fine[:-1], t_curve, f_curve)) * np.diff(fine))))
+    for t in (0.5, 1.0, 2.5):
+        row = table.loc[t]
+        assert row["thrust"] == pytest.approx(np.interp(t, t_curve, f_curve), rel=1e-12)
+        burnt = 2.475 * np.interp(t, fine, impulse) / impulse[-1]
+        assert row["mass"] == pytest.approx(16.423 - burnt, abs=1e-6)
+        assert row["engines_running"] == 1
