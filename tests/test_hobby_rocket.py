@@ -5,8 +5,9 @@ designation, 4 895 N s) delivered by burnout; the landing under the main at
 a few m/s is a touchdown, not an impact (docs/physics.md#parachutes); the
 touchdown's distance from the pad is the horizontal distance of its reported
 landing point from the site, by pymap3d (a peer used only in tests); the
-descent and drift times are the differences of the events' times. The whole
-flight (about 230 s, 20 ms steps) takes seconds.
+descent and drift times are the differences of the events' times; the
+rocket comes to rest on the site's flat ground at the pad's height. The whole
+flight (about 170 s, 20 ms steps) takes seconds.
 """
 
 import math
@@ -46,6 +47,11 @@ def test_the_flight_runs_its_sequence_and_lands_under_the_main(flight):
           f"{touchdown['distance_to_target_m']:.0f} m from the pad")
     assert -8.0 < touchdown["vertical_speed_m_s"] < -5.0
     assert not body.flying            # recovered: the flight ends at touchdown
+    # on the site's flat ground at the pad's height (ground_height 1 380 m), nose down
+    # (tilt 180 deg): the nose's tip touched, the centre of mass is its station above it
+    x_cm = body.vehicle.mass_properties(body.y)[1]
+    assert body.view().geodetic[2] - 1380.0 == pytest.approx(2.4 - x_cm, abs=0.05)
+    assert touchdown["tilt_deg"] > 170.0
     main = events["parachute_deployed:main"]
     assert main["trigger"] == "height 300 m" and 295.0 < main["height_m"] <= 300.0
     assert events["parachute_deployed:drogue"]["time_s"] == events["apogee"]["time_s"]
