@@ -75,7 +75,7 @@ class FlightEvents:
         self.on_rail = body.vehicle is not None and body.vehicle.arrays.rail[RL_ON] > 0.5
         self.rising = False                        # has risen since leaving the ground (apogee)
         self.apogee_at = None                      # s, mission time of the apogee event
-        self.inflated_seen: set[int] = set()
+        self.inflated_seen: set[str] = set()       # parachutes whose drag area is full, by name
         self.stage_names = stage_names            # the whole vehicle's, for MECO/SECO
         self.in_orbit = in_orbit(body.view().orbit)   # starting in orbit is not achieving it
 
@@ -150,11 +150,20 @@ class FlightEvents:
                     due = False
                 if due:
                     self.deploy(i, _trigger_name(trigger), vertical, height)
-            elif i not in self.inflated_seen:
+            elif spec.name not in self.inflated_seen:
                 full = chute[i, CH_DEPLOYED] + chute[i, CH_LAG] + chute[i, CH_INFLATION]
                 if body.t >= full:
-                    self.inflated_seen.add(i)
+                    self.inflated_seen.add(spec.name)
                     self.world.event(body, "parachute_inflated", {"parachute": spec.name, "at_s": float(full)})
+
+    def inherit(self, other: "FlightEvents") -> None:
+        """Take over what ``other`` (the stack's watcher, at a separation) has seen of the
+        motors, the parachutes and the apogee, so a separated stage reports none twice."""
+        self.dry_seen = set(other.dry_seen)
+        self.max_q_done = other.max_q_done
+        self.burnt_out = set(other.burnt_out)
+        self.inflated_seen = set(other.inflated_seen)
+        self.apogee_at, self.rising = other.apogee_at, other.rising
 
     def deploy(self, i: int, trigger: str, vertical: float | None = None, height: float | None = None) -> bool:
         """Deploy the body's parachute ``i`` now (``trigger``: what fired it) and record
