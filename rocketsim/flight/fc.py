@@ -403,6 +403,18 @@ class FlightComputer:
             self._nav.readings["clearance"] = self.radar_altitude - (self._true_height() - lowest)
         return self._nav.readings["clearance"]
 
+    def deploy_parachute(self, name: str) -> bool:
+        """Deploy the parachute ``name`` now (whatever its trigger in the vehicle file): its
+        opening lag and inflation follow (docs/physics.md#parachutes). Records
+        ``parachute_deployed``; returns False if it was already out. ``ValueError`` if the
+        vehicle has no parachute of that name. Example: ``fc.deploy_parachute("main")``."""
+        vehicle = self._craft.vehicle
+        names = [c.name for c in vehicle.parachutes] if vehicle is not None else []
+        if name not in names:
+            raise ValueError(f"{self._craft.name} has no parachute named {name!r}"
+                             + (f" (parachutes: {', '.join(names)})" if names else ""))
+        return self._craft.deploy_parachute(names.index(name))
+
     # --- the mission -----------------------------------------------------------
     @property
     def target(self):
@@ -510,15 +522,18 @@ class FlightComputer:
 
     @property
     def thrust(self) -> float:
-        """Total thrust of all engines now, N."""
+        """Total thrust of all engines and solid motors now, N."""
         body = self._craft
         if body.vehicle is None:
             return 0.0
-        return float(self._propulsion().thrusts(body.y, self._craft.time, body.truth().air[1]).sum())
+        propulsion = self._propulsion()
+        return float(propulsion.thrusts(body.y, self._craft.time, body.truth().air[1]).sum()) \
+            + propulsion.motor_thrust(self._craft.time)
 
     @property
     def propellant(self) -> dict[str, float]:
-        """Propellant left per tank (``stage/tank`` -> kg), with the gauge's error."""
+        """Propellant left per tank and solid motor (``stage/tank``, ``stage/motor`` -> kg),
+        with the gauge's error."""
         if self._craft.vehicle is None:
             return {}
         levels = self._propulsion().propellant(self._craft.y)

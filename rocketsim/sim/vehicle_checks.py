@@ -19,7 +19,11 @@ Events (figures in SI units, degrees where named):
   from the centre of mass to the mission's target pad, else the launch site), and
   about Earth ``latitude_deg``, ``longitude_deg`` (geodetic, WGS84) of the centre of mass;
 * a first contact faster than :data:`CRASH_SPEED` (10 m/s down) is a crash: the world
-  records an ``impact`` with those figures instead and the body stops flying.
+  records an ``impact`` with those figures instead and the body stops flying;
+* a vehicle with parachutes adds the landing point ``latitude_deg``, ``longitude_deg``
+  and the ``descent_time_s`` (from apogee) and ``drift_time_s`` (from the first
+  deployment) to its touchdown; one that touches down under a deployed parachute is
+  recovered: its flight ends there (on any of its contact points: on its side too).
 """
 
 from __future__ import annotations
@@ -32,7 +36,8 @@ from rocketsim._jit import Entries, njit
 from rocketsim.atmosphere.table import TOP, air_in
 from rocketsim.bodies.gravity import point_mass_j2
 from rocketsim.bodies.orientation import BODIES as ORIENTED, spin_rate
-from rocketsim.constants import AIR_CP, CO2_CP, DEG, HEAT_SHIELD_LIMIT, MARS_MU
+from rocketsim.constants import (AIR_CP, CO2_CP, DEG, G0, HEAT_SHIELD_LIMIT, MARS_MU,
+                                STRUCTURE_AXIAL_LIMIT_G, STRUCTURE_Q_ALPHA_LIMIT)
 from rocketsim.dynamics.derivative import body_air_velocity, derivative, radial_height
 from rocketsim.dynamics.rk4 import advance, near_ground
 from rocketsim.layout import P_J2, P_MU, P_RADIUS, Q, R, V, W
@@ -40,10 +45,11 @@ from rocketsim.flight.readings import StateView
 from rocketsim.flight.steering import steer_step
 from rocketsim.frames.earth_fixed import eci_to_ecef
 from rocketsim.frames.quaternion import quat_rotate
-from rocketsim.vehicle.aero import A_REACH
+from rocketsim.vehicle.aero import A_GROUND, A_REACH
 from rocketsim.vehicle.contact import contact_heights, contact_point_heights
 from rocketsim.vehicle.heating import advance_shield, sutton_graves, sutton_graves_constant
-from rocketsim.vehicle.mass_properties import mass_properties
+from rocketsim.vehicle.mass_properties import vehicle_mass_properties
+from rocketsim.vehicle.parachutes import CH_DEPLOYED
 from rocketsim.vehicle.limits import breakup
 
 AIRBORNE_CLEARANCE = 1.0       # m: lowest contact point this high = in the air (a bounce is not a new flight)
@@ -56,10 +62,15 @@ _NO_STEERING = (np.full(6, math.nan), False)
 
 
 class VehicleChecks:
-    """Per-body state of the checks; ``pad_ecef`` the target pad (Earth-fixed, m) or None."""
+    """Per-body state of the checks; ``pad_ecef`` the target pad (Earth-fixed, m) or None;
+    ``limits`` the vehicle file's ``aero.limits`` (None: the defaults)."""
 
-    def __init__(self, heat_shield=None, pad_ecef=None):
+    def __init__(self, heat_shield=None, pad_ecef=None, limits=None):
         self.shield = heat_shield
+        self.limits = (STRUCTURE_Q_ALPHA_LIMIT, STRUCTURE_AXIAL_LIMIT_G)
+        if limits is not None:
+            self.limits = (limits.q_alpha or STRUCTURE_Q_ALPHA_LIMIT,
+                           limits.axial_load / G0 if limits.axial_load else STRUCTURE_AXIAL_LIMIT_G)
         self.temperature = heat_shield.initial_temperature if heat_shield is not None else math.nan
         self.pad = None if pad_ecef is None else np.asarray(pad_ecef, dtype=float)
         self.touched_down = True     # a vehicle only touches down after being in the air
@@ -111,7 +122,7 @@ class VehicleChecks:
         else:
             rho, air_temperature, speed, q, alpha, axial, lowest = self._kernels.call(
                 step_figures, arrays, body.t, body.y, body.p, self._in_flight, arrays.aero.contact)
-        figures = breakup(q, alpha, axial)
+        figures = breakup(q, alpha, axial, *self.limits)
         if figures is not None:
             world.event(body, "breakup", figures)
             body.flying = False
@@ -122,9 +133,16 @@ class VehicleChecks:
         elif body.flying and not self.touched_down and lowest <= 0.0 and self.previous is not None:
             self.touched_down = True
             figures = self.touchdown_figures(body)
+            if body.vehicle.parachutes and body.watch is not None:
+                figures.update(body.watch.recovery())
             if figures["vertical_speed_m_s"] < -CRASH_SPEED:
                 return figures
             world.event(body, "touchdown", figures)
+            if np.any(~np.isnan(body.vehicle.arrays.chute[:, CH_DEPLOYED])):
+                # down under a canopy: recovered, the flight of this body ends here
+                body.flying = False
+                if world.telemetry is not None:
+                    world.record(body)
         self.previous = (body.t, body.y.copy())
         return None
 
@@ -213,9 +231,7 @@ def step_figures(t, y, p, veh, contact):
     The air moves with the ground and the wind held for the step (as the derivative
     sees it); the angle of attack is measured from the nose.
     """
-    n_tanks = veh.tank_bottom.shape[0]
-    x_cm = mass_properties(veh.fixed, veh.tank_bottom, veh.tank_radius, veh.tank_density,
-                           y[13:13 + n_tanks])[1]
+    x_cm = vehicle_mass_properties(veh, y)[1]
     rho, _, temperature, _, _, _ = air_in(veh.air, radial_height(y, p))
     u, v, w = body_air_velocity(y, veh.aero.wind)
     speed = math.sqrt(u * u + v * v + w * w)
@@ -227,7 +243,7 @@ def step_figures(t, y, p, veh, contact):
     ay = 2.0 * (qx * qy + qw * qz)
     az = 2.0 * (qx * qz - qw * qy)
     lowest = math.inf
-    for height in contact_point_heights(y, p, contact, x_cm):
+    for height in contact_point_heights(y, p, contact, x_cm, veh.aero.ref[A_GROUND]):
         lowest = min(lowest, height)
     return rho, temperature, speed, 0.5 * rho * speed * speed, alpha, sx * ax + sy * ay + sz * az, lowest
 
@@ -254,5 +270,5 @@ def advance_checked(y, k0, h, n_steps, p, veh, steer, code, fins):
         steer_step(veh, y, p, t, t, y[R:R + 3], y[V:V + 3], y[Q:Q + 4], y[W:W + 3], math.nan, veh.air, code, fins,
                    False)
     y, taken = advance(y, k0, h, n_steps, p, veh)
-    near = near_ground(y, p, veh.aero.ref[A_REACH])
+    near = near_ground(y, p, veh.aero.ref[A_REACH] + veh.aero.ref[A_GROUND])
     return y, taken, near, step_figures((k0 + taken) * h, y, p, veh, veh.aero.contact)

@@ -80,11 +80,24 @@ A_NOSE_AREA = 4     # m^2, base area of the nose (0: blunt top, no nose lift)
 A_BASE_AREA = 5     # m^2, area of the base (leading end when flying tail first)
 A_REACH = 6         # m, farthest any contact point can be from the centre of mass
 A_WIND = 7          # 1 when the day has wind (sampled once per step)
-N_REF = 8
+A_GROUND = 8        # m, height of the (flat) ground above the ellipsoid (0: the ellipsoid)
+N_REF = 9
 # rows of AeroArrays.seg: station of the segment's middle, its length, its diameter
 SEG_X, SEG_DX, SEG_D = 0, 1, 2
 # rows of AeroArrays.fin (planar fin sets): centre of pressure, C_N_alpha * S (m^2 per rad)
 FIN_X, FIN_CNA_S = 0, 1
+
+
+def centre_of_pressure(ref, fin) -> float:
+    """Station (m) of the centre of pressure at small angles of attack, nose first: where
+    the normal-force slopes act, the nose's slender-body lift (``2 S_nose`` per radian at
+    ``A_NOSE_X``) and the fins' (``C_N_alpha S`` at their centres of pressure), as
+    Barrowman's method sums them; the crossflow adds nothing at zero angle (it grows as
+    ``sin^2 alpha``). nan when nothing lifts."""
+    slope = 2.0 * ref[A_NOSE_AREA] + float(np.sum(fin[:, FIN_CNA_S]))
+    if slope <= 0.0:
+        return math.nan
+    return (2.0 * ref[A_NOSE_AREA] * ref[A_NOSE_X] + float(np.sum(fin[:, FIN_CNA_S] * fin[:, FIN_X]))) / slope
 
 
 @njit
