@@ -249,3 +249,26 @@ def test_cli_prints_the_day_and_refuses_a_site_off_the_grid_with_exit_2(tmp_path
     assert late.exit_code == 2 and "outside the file's times" in late.output
     none = runner.invoke(main, args)
     assert none.exit_code == 2 and "--epoch" in none.output
+
+
+def test_a_flight_in_reanalysis_weather_meets_the_files_wind_and_carries_the_file(tmp_path):
+    """A payload released straight up at 100 m/s from Three Oaks at the file's 16 UTC:
+    its first sample's airspeed is |(0, 0, 100) - wind| with the day's wind at the pad
+    (the table's, read above), and the NetCDF file travels in the run as 'reanalysis'."""
+    import rocketsim
+    from rocketsim.scenario.load import load
+    scenario = {"name": "reanalysis-release",
+                "vehicle": str(Path(__file__).parents[1] / "vehicles" / "sounding-payload.yaml"),
+                "site": {"name": "Three Oaks", "latitude": "41.775447 deg",
+                         "longitude": "-86.572467 deg", "height": "206 m"},
+                "mission": {"epoch": "2020-02-23T16:00:00Z", "duration": "1 s",
+                            "start": {"site": {"velocity": ["0 m/s", "0 m/s", "100 m/s"]}}},
+                "weather": {"kind": "reanalysis", "file": str(NDRT)}}
+    _, _, _, sound, east, north = load(scenario).atmosphere().at([206.0])
+    run = rocketsim.fly(scenario, tmp_path / "run.mcap")
+    first = next(iter(run.bodies.values())).table().iloc[0]
+    airspeed = math.sqrt(100.0 ** 2 + east[0] ** 2 + north[0] ** 2)
+    assert first["airspeed_m_s"] == pytest.approx(airspeed, rel=1e-9)
+    assert first["mach"] == pytest.approx(airspeed / sound[0], rel=1e-9)
+    carried = rocketsim.open_run(tmp_path / "run.mcap").file.attachments
+    assert carried["reanalysis/ndrt_2020_weather_data_ERA5.nc"] == NDRT.read_bytes()
