@@ -9,7 +9,7 @@ geopotential height; and RocketPy (a peer library used only in tests) reading
 the same ERA5 file.
 
 Real file: ERA5 over Three Oaks, Michigan, 2020-02-23 (the Notre Dame
-flight's day), copied from RocketPy's repository (tests/fixtures/measured/README.md).
+flight's day), copied from RocketPy's repository (scenarios/measured/README.md).
 """
 
 import datetime as dt
@@ -30,9 +30,9 @@ from rocketsim.errors import InputError
 from rocketsim.scenario.weather import ReanalysisWeather, build_atmosphere
 from rocketsim_cli.main import main
 
-MEASURED = Path(__file__).parent / "fixtures" / "measured"
-NDRT = MEASURED / "ndrt_2020_weather_data_ERA5.nc"
-NDRT_NEW = MEASURED / "ndrt_2020_weather_data_ERA5_new_cropped.nc"
+WEATHER = Path(__file__).parents[1] / "scenarios" / "measured" / "weather"
+NDRT = WEATHER / "ndrt_2020_weather_data_ERA5.nc"
+NDRT_NEW = Path(__file__).parent / "fixtures" / "measured" / "ndrt_2020_weather_data_ERA5_new_cropped.nc"
 UTC = dt.timezone.utc
 T16 = dt.datetime(2020, 2, 23, 16, tzinfo=UTC)
 
@@ -161,7 +161,7 @@ def test_the_days_pressure_meets_the_files_levels():
     allowed over the 4 km column; measured worst 0.066 %."""
     lat, lon = math.radians(41.775447), math.radians(-86.572467)
     table = build_atmosphere(ReanalysisWeather(kind="reanalysis", file=NDRT.name), lat,
-                             MEASURED, site_longitude=lon, epoch=T16)
+                             WEATHER, site_longitude=lon, epoch=T16)
     column = read_reanalysis(NDRT, 41.775447, -86.572467, T16)
     z = geometric_from_geopotential(column.height, lat)
     _, p, t, _, east, north = table.at(z)
@@ -195,7 +195,7 @@ def test_rocketpy_reads_the_same_era5_file_alike():
     env.set_atmospheric_model(type="Reanalysis", file=str(NDRT), dictionary="ECMWF_v0")
     lat, lon = math.radians(41.775447), math.radians(-86.572467)
     table = build_atmosphere(ReanalysisWeather(kind="reanalysis", file=NDRT.name), lat,
-                             MEASURED, site_longitude=lon, epoch=T16)
+                             WEATHER, site_longitude=lon, epoch=T16)
     heights = np.array([300.0, 700.0, 1200.0, 1800.0, 2500.0, 3500.0])
     _, p, t, _, east, north = table.at(heights)
     theirs = np.array([[env.temperature(h), env.wind_velocity_x(h), env.wind_velocity_y(h),
