@@ -62,6 +62,17 @@ mission:
   target: {orbit: {altitude: 400 km, inclination: 51.6 deg}, pad: landing zone}
   duration: 4 s
 """),
+    # the hobby rocket on its rail at a desert pad, a solid motor lit at T+0, parachutes
+    "hobby-rail": ("hobby-rocket", f"vehicle: {ROOT / 'vehicles' / 'hobby-rocket.yaml'}\n" + """site:
+  name: desert pad
+  latitude: 32.99 deg
+  longitude: -106.975 deg
+  height: 1380 m
+mission:
+  """ + EPOCH + """
+  start: {site: {rail: {length: 5.2 m, inclination: 85 deg, heading: 0 deg}}}
+  duration: 2 s
+"""),
     # a capsule with a heat shield in a 700 km Earth orbit
     "capsule-orbit": ("mars-entry-capsule", f"vehicle: {ROOT / 'vehicles' / 'mars-entry-capsule.yaml'}\n"
                       "mission:\n  " + EPOCH + """

@@ -55,7 +55,10 @@ from rocketsim.vehicle.contact import contact_forces
 from rocketsim.vehicle.engines import engine_forces
 from rocketsim.vehicle.grid_fins import grid_fin_forces
 from rocketsim.vehicle.rcs import rcs_forces
-from rocketsim.vehicle.mass_properties import mass_properties
+from rocketsim.vehicle.mass_properties import vehicle_mass_properties
+from rocketsim.vehicle.motors import motor_forces
+from rocketsim.vehicle.parachutes import CANOPY_RATE_TIME, canopy_drag
+from rocketsim.vehicle.rail import RL_ON, constrain_to_rail
 
 
 @njit
@@ -95,9 +98,10 @@ def body_air_velocity(y, wind, spin=EARTH_OMEGA):
 
 
 @njit
-def _aero_and_contact(t, y, p, dy, rho, sound, x_cm, aero, fx, fy, fz, mx, my, mz):
+def _aero_and_contact(t, y, p, dy, rho, sound, x_cm, aero, fx, fy, fz, mx, my, mz, contact=True):
     """Add the body's aerodynamics, grid fins, RCS and ground contact (body axes, about
-    the centre of mass) to the engines' force and moment ``(fx..mz)``."""
+    the centre of mass) to the engines' force and moment ``(fx..mz)``; no contact
+    without ``contact`` (on a launch rail, which carries the vehicle)."""
     wx, wy, wz = y[W], y[W + 1], y[W + 2]
     if rho > 0.0:
         u, v, w = body_air_velocity(y, aero.wind, p[P_SPIN])
@@ -112,7 +116,7 @@ def _aero_and_contact(t, y, p, dy, rho, sound, x_cm, aero, fx, fy, fz, mx, my, m
         fx, fy, fz, mx, my, mz = fx + a[0], fy + a[1], fz + a[2], mx + a[3], my + a[4], mz + a[5]
     # contact only within reach of the ground (a cheap bound first)
     r = math.sqrt(y[R] ** 2 + y[R + 1] ** 2 + y[R + 2] ** 2)
-    if r - p[P_RADIUS] < aero.ref[A_REACH] and radial_height(y, p) < aero.ref[A_REACH]:
+    if contact and r - p[P_RADIUS] < aero.ref[A_REACH] and radial_height(y, p) < aero.ref[A_REACH]:
         a = contact_forces(y, x_cm, p[P_RADIUS], p[P_POLAR_RADIUS], p[P_SPIN], aero.contact)
         fx, fy, fz, mx, my, mz = fx + a[0], fy + a[1], fz + a[2], mx + a[3], my + a[4], mz + a[5]
     return fx, fy, fz, mx, my, mz
@@ -181,12 +185,11 @@ def held_derivative(t, y, p, dy, veh, t_held, y_held):
         dy[k] = 0.0
     ixx, iyy, izz = p[P_IXX], p[P_IYY], p[P_IZZ]
     mx = my = mz = 0.0
+    canopy = 0.0
     if veh is not None:
         classic = p[P_CLASSIC] > 0.5
         t_e, y_e = (t_held, y_held) if classic else (t, y)     # engines and mass read these
-        n_tanks = veh.tank_bottom.shape[0]
-        mass, x_cm, ixx, iyy, izz = mass_properties(veh.fixed, veh.tank_bottom, veh.tank_radius,
-                                                    veh.tank_density, y_e[13:13 + n_tanks])
+        mass, x_cm, ixx, iyy, izz = vehicle_mass_properties(veh, y_e)
         rho, p_a, _, sound, _, _ = air_in(veh.air, radial_height(y, p))
         if classic:
             h_held = radial_height(y_held, p)
@@ -195,10 +198,13 @@ def held_derivative(t, y, p, dy, veh, t_held, y_held):
                 rho = rho_held
         fx, fy, fz, mx, my, mz = engine_forces(t_e, y_e, dy, veh.first_tank, veh.first_clock, veh.eng,
                                                veh.cmd, veh.stage, veh.tank_share, p_a, x_cm)
+        if veh.motor.shape[0] > 0:      # solid motors: along body x, on the axis (no moment)
+            fx += motor_forces(t_e, dy, veh.first_motor, veh.motor, veh.curve)
         aero = veh.aero
+        on_rail = veh.rail[RL_ON] > 0.5
         if aero.ref[A_ON] > 0.5:
             fx, fy, fz, mx, my, mz = _aero_and_contact(t, y, p, dy, rho, sound, x_cm, aero,
-                                                       fx, fy, fz, mx, my, mz)
+                                                       fx, fy, fz, mx, my, mz, not on_rail)
         elif aero.rcs.shape[0] > 0:     # a vacuum spacecraft (aero: {aerodynamics: false}): RCS only
             a = rcs_forces(y, dy, x_cm, aero.rcs, aero.rcs_cmd)
             fx, fy, fz, mx, my, mz = fx + a[0], fy + a[1], fz + a[2], mx + a[3], my + a[4], mz + a[5]
@@ -210,8 +216,21 @@ def held_derivative(t, y, p, dy, veh, t_held, y_held):
         dy[V] += (fx + qw * tx + (uy * tz - uz * ty)) / mass
         dy[V + 1] += (fy + qw * ty + (uz * tx - ux * tz)) / mass
         dy[V + 2] += (fz + qw * tz + (ux * ty - uy * tx)) / mass
+        if veh.chute.shape[0] > 0 and rho > 0.0:    # parachutes, at the centre of mass
+            cx, cy, cz, canopy = canopy_drag(t, y, rho, aero.wind, p[P_SPIN], veh.chute)
+            dy[V] += cx / mass
+            dy[V + 1] += cy / mass
+            dy[V + 2] += cz / mass
+        if on_rail:     # along the rail only, turning with the ground (rocketsim.vehicle.rail)
+            constrain_to_rail(t, y, dy, p[P_SPIN], veh.rail)
+            dy[W] = dy[W + 1] = dy[W + 2] = 0.0
+            return
     # Euler: I w' = tau - w x (I w)
     hx, hy, hz = ixx * wx, iyy * wy, izz * wz
     dy[W] = (mx - (wy * hz - wz * hy)) / ixx
     dy[W + 1] = (my - (wz * hx - wx * hz)) / iyy
     dy[W + 2] = (mz - (wx * hy - wy * hx)) / izz
+    if veh is not None and canopy > 0.0:
+        # under a canopy the suspension lines damp the body's rotation
+        for k in range(3):
+            dy[W + k] -= canopy * y[W + k] / CANOPY_RATE_TIME

@@ -40,8 +40,12 @@ from rocketsim.dynamics.third_bodies import hold_field
 from rocketsim.frames.geodetic import ecef_to_geodetic_njit
 from rocketsim.vehicle.aero import A_REACH, A_WIND
 from rocketsim.vehicle.engines import S_DRY, S_DRY_AT, S_RESERVE, S_TANK0, S_TANKS, next_kink
+from rocketsim.vehicle.motors import next_motor_kink
+from rocketsim.vehicle.parachutes import next_canopy_kink
+from rocketsim.vehicle.rail import RL_OFF_AT, RL_OFF_SPEED, RL_ON, RL_TRAVEL, rail_travel
 
 DRY_TOLERANCE = 1e-13      # relative to the stage's load: where the split of a step is placed
+RAIL_EXIT_TOLERANCE = 1e-9  # m of travel: where the step is split as the vehicle leaves its rail
 
 
 @njit
@@ -153,23 +157,34 @@ def _first_dry(y, veh):
 
 
 @njit
-def _dry_instant(y, t, h, p, veh, s, left_at_h):
-    """Length of the part of the step from ``(t, y)`` after which stage ``s`` is dry.
+def _left(y, t, p, veh, kind, s):
+    """What is left before a cut of the step: the usable propellant (kg) of stage ``s``
+    (``kind`` 0), or the travel (m) to the end of the launch rail (``kind`` 1)."""
+    if kind == 0:
+        return stage_left(y, veh, s)
+    return veh.rail[RL_TRAVEL] - rail_travel(y, t, p[P_SPIN], veh.rail)[0]
 
-    Safeguarded secant (Illinois) on ``g(x) = stage_left(rk4_step(y, t, x))``,
-    ``g(0) > 0 > g(h)``, to :data:`DRY_TOLERANCE` of the stage's load.
+
+@njit
+def _cut_instant(y, t, h, p, veh, kind, s, left_at_h, tolerance):
+    """Length of the part of the step from ``(t, y)`` after which nothing is left
+    (:func:`_left`): stage ``s`` is dry (``kind`` 0) or the vehicle leaves its rail
+    (``kind`` 1).
+
+    Safeguarded secant (Illinois) on ``g(x) = _left(rk4_step(y, t, x))``,
+    ``g(0) > 0 >= g(h) = left_at_h``, to ``tolerance`` (kg: :data:`DRY_TOLERANCE` of
+    the stage's load; m: :data:`RAIL_EXIT_TOLERANCE`).
     """
-    a, ga = 0.0, stage_left(y, veh, s)
+    a, ga = 0.0, _left(y, t, p, veh, kind, s)
     if ga <= 0.0:
         return 0.0
     b, gb = h, left_at_h
-    tolerance = DRY_TOLERANCE * veh.stage[s, S_RESERVE] / UNUSABLE_PROPELLANT
     x = b
     for _ in range(100):
         x = b - gb * (b - a) / (gb - ga)
         if not a < x < b:
             x = 0.5 * (a + b)
-        gx = stage_left(rk4_step(y, t, x, p, veh), veh, s)
+        gx = _left(rk4_step(y, t, x, p, veh), t + x, p, veh, kind, s)
         if abs(gx) <= tolerance:
             return x
         if gx > 0.0:
@@ -186,20 +201,40 @@ def _powered_step(y, t, h, p, veh):
     """An RK4 step of a staged vehicle, split at engine kinks and where a stage runs dry.
 
     The step is cut at every instant an engine's thrust has a kink
-    (:func:`~rocketsim.vehicle.engines.next_kink`) and at the instant a stage's
-    usable propellant is gone; each part is one RK4 step over a smooth stretch.
+    (:func:`~rocketsim.vehicle.engines.next_kink`) or a solid motor's curve has a
+    point (:func:`~rocketsim.vehicle.motors.next_motor_kink`), at the instant a
+    stage's usable propellant is gone and at the instant the vehicle leaves its
+    launch rail (:func:`_cut_instant`); each part is one RK4 step over a smooth stretch.
     """
     done = 0.0
     while True:
         rest = h - done
         part = next_kink(t + done, rest, y, veh.first_clock, veh.eng, veh.cmd, veh.stage)
+        if veh.motor.shape[0] > 0:      # the points of a solid motor's thrust curve
+            part = min(part, next_motor_kink(t + done, rest, veh.motor, veh.curve))
+        if veh.chute.shape[0] > 0:      # a parachute's inflation starting or ending
+            part = min(part, next_canopy_kink(t + done, rest, veh.chute))
         trial = rk4_step(y, t + done, part, p, veh)
+        leaves = False
+        if veh.rail[RL_ON] > 0.5:
+            left = _left(trial, t + done + part, p, veh, 1, 0)
+            if left <= 0.0:
+                part = _cut_instant(y, t + done, part, p, veh, 1, 0, left, RAIL_EXIT_TOLERANCE)
+                trial = rk4_step(y, t + done, part, p, veh)
+                leaves = True
         s = _first_dry(trial, veh)
         if s >= 0:
-            part = _dry_instant(y, t + done, part, p, veh, s, stage_left(trial, veh, s))
+            part = _cut_instant(y, t + done, part, p, veh, 0, s, stage_left(trial, veh, s),
+                                DRY_TOLERANCE * veh.stage[s, S_RESERVE] / UNUSABLE_PROPELLANT)
             trial = rk4_step(y, t + done, part, p, veh)
             veh.stage[s, S_DRY] = 1.0
             veh.stage[s, S_DRY_AT] = t + done + part
+            leaves = leaves and rail_travel(trial, t + done + part, p[P_SPIN], veh.rail)[0] >= \
+                veh.rail[RL_TRAVEL] * (1.0 - DRY_TOLERANCE)
+        if leaves:
+            veh.rail[RL_ON] = 0.0
+            veh.rail[RL_OFF_AT] = t + done + part
+            veh.rail[RL_OFF_SPEED] = rail_travel(trial, t + done + part, p[P_SPIN], veh.rail)[1]
         y = trial
         if part == rest:
             return y

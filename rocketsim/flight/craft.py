@@ -110,6 +110,9 @@ class Craft(Protocol):
     def deploy_payload(self) -> str:
         """Release the payload; returns its name."""
 
+    def deploy_parachute(self, index: int) -> bool:
+        """Deploy the vehicle's parachute ``index`` now; False if it was already out."""
+
     def log(self, message: str) -> None:
         """A line on the telemetry's ``/log`` channel."""
 

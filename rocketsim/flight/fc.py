@@ -403,6 +403,18 @@ class FlightComputer:
             self._nav.readings["clearance"] = self.radar_altitude - (self._true_height() - lowest)
         return self._nav.readings["clearance"]
 
+    def deploy_parachute(self, name: str) -> bool:
+        """Deploy the parachute ``name`` now (whatever its trigger in the vehicle file): its
+        opening lag and inflation follow (docs/physics.md#parachutes). Records
+        ``parachute_deployed``; returns False if it was already out. ``ValueError`` if the
+        vehicle has no parachute of that name. Example: ``fc.deploy_parachute("main")``."""
+        vehicle = self._craft.vehicle
+        names = [c.name for c in vehicle.parachutes] if vehicle is not None else []
+        if name not in names:
+            raise ValueError(f"{self._craft.name} has no parachute named {name!r}"
+                             + (f" (parachutes: {', '.join(names)})" if names else ""))
+        return self._craft.deploy_parachute(names.index(name))
+
     # --- the mission -----------------------------------------------------------
     @property
     def target(self):

@@ -34,7 +34,7 @@ from rocketsim.frames.local import VERTICAL, where_and_how_fast
 from rocketsim.frames.quaternion import quat_from_matrix, quat_to_matrix
 from rocketsim.vehicle.engines import E_GIMBAL_RANGE, E_X, command_gimbals, thrusts
 from rocketsim.vehicle.grid_fins import G_MAX, command, grid_fin_forces
-from rocketsim.vehicle.mass_properties import mass_properties
+from rocketsim.vehicle.mass_properties import vehicle_mass_properties
 
 OMEGA_N = 1.0     # rad/s, natural frequency of the attitude response
 ZETA = 0.9        # damping ratio
@@ -212,8 +212,7 @@ def steer_step(veh, y, p, t, t_nav, r, v, q, w, ambient_pressure, air_table, cod
             error = rotation_error(axes, target)
     if not found:
         error = attitude_error(axes, nose)
-    _, x_cm, ixx, iyy, izz = mass_properties(veh.fixed, veh.tank_bottom, veh.tank_radius,
-                                             veh.tank_density, y[veh.first_tank:veh.first_clock])
+    _, x_cm, ixx, iyy, izz = vehicle_mass_properties(veh, y)
     alpha = angular_acceleration(error, w)
     torque = np.empty(3)
     torque[0] = ixx * alpha[0]

@@ -129,7 +129,7 @@ def load(scenario: str | Path | Mapping, overrides: Mapping[str, Any] | None = N
         value = data.get(name)
         if name in opened:
             ref, read = opened[name]
-            data[name] = validate(edits.source(read, value, (name,)), model)
+            data[name] = validate(edits.source(read, value, (name,)), model, base_dir=ref.parent)
             files[name] = ref
         elif isinstance(value, str) and not (name == "site" and value == CLASSIC):
             if name == "site" and not value.endswith((".yaml", ".yml")):
@@ -171,7 +171,11 @@ def load(scenario: str | Path | Mapping, overrides: Mapping[str, Any] | None = N
                 if f"program/{stage}" in callables and reference.is_file():
                     files[f"program/{stage}"] = reference
         data["programs"] = resolved
-    scenario = validate(source, Scenario, data)
+    scenario = validate(source, Scenario, data, base_dir=path.parent)
+    for stage in scenario.vehicle.stages or []:
+        for motor in stage.motors:
+            if motor.file is not None:
+                files[f"motor/{stage.name}/{motor.name}"] = Path(motor.file)
     for stage in scenario.programs:
         if stage not in [s.name for s in scenario.vehicle.stages or []]:
             line, column = source.position(("programs", stage)) or (None, None)
@@ -233,13 +237,18 @@ def _resolve(scenario_path: Path, reference: str, source: YamlSource, loc: tuple
     return ref
 
 
-def validate(source: YamlSource, model: type[BaseModel], data=None):
-    """Validate ``source``'s data (or ``data`` read from it) against ``model``.
+def validate(source: YamlSource, model: type[BaseModel], data=None, base_dir: Path | None = None):
+    """Validate ``source``'s data (or ``data`` read from it) against ``model``; files the
+    data names (a solid motor's thrust curve) are relative to ``base_dir`` (default: the
+    source file's folder).
 
     Raises :class:`InputError` for the first problem, with its position.
     """
+    if base_dir is None and source.path is not None:
+        base_dir = Path(source.path).parent
     try:
-        return model.model_validate(source.data if data is None else data)
+        return model.model_validate(source.data if data is None else data,
+                                    context={"base_dir": base_dir})
     except ValidationError as error:
         raise _input_error(error, source, model) from None
 

@@ -175,16 +175,63 @@ class StateStart(Strict):
     velocity: tuple[Speed, Speed, Speed]
 
 
+class RailSpec(Strict):
+    """A launch rail on the pad (docs/physics.md#launch-rail): the vehicle stands on its
+    base at the rail's foot and slides along it, without turning, until its last (aft)
+    rail button leaves the rail's top: after a travel of ``length - last_button``.
+
+    On the mission's start, not the site: like RocketPy's ``Flight(rail_length,
+    inclination, heading)``, the rail's angle is set for each flight (tilted
+    away from the crowd, into the day's wind), while the site file stays the place.
+    """
+
+    length: Annotated[Length, Field(gt=0)] = Field(description="length of the rail")
+    inclination: Optional[Angle] = Field(
+        None, description="elevation of the rail above the horizon; default the start's elevation")
+    heading: Optional[Angle] = Field(
+        None, description="azimuth the rail leans towards, from north; default the site's pad azimuth")
+    last_button: Annotated[Length, Field(ge=0)] = Field(
+        0.0, description="height of the vehicle's aft rail button above its base (the last to leave)")
+
+    @model_validator(mode="after")
+    def _travel(self) -> "RailSpec":
+        if self.last_button >= self.length:
+            raise ValueError("the last rail button must sit lower than the rail is long "
+                             f"({self.last_button:g} m on a {self.length:g} m rail)")
+        if self.inclination is not None and not 0.0 < self.inclination <= 1.5707963267948966:
+            raise ValueError("a rail's inclination is above 0 deg and at most 90 deg")
+        return self
+
+
 class SiteStart(Strict):
-    """Start on the launch site, optionally moving relative to the ground.
+    """Start on the launch site, optionally moving relative to the ground, or off a rail.
 
     ``velocity`` is east, north, up relative to the rotating Earth (a
     free-flight release); the body's nose points along ``elevation`` above the
-    horizon towards the site's pad azimuth.
+    horizon towards the site's pad azimuth. With ``rail`` the vehicle starts at
+    rest on the rail, its nose along it (the rail's inclination and heading).
     """
 
     velocity: tuple[Speed, Speed, Speed] = (0.0, 0.0, 0.0)
     elevation: Angle = Field(1.5707963267948966, description="nose elevation, default vertical")
+    rail: Optional[RailSpec] = Field(None, description="a launch rail (a staged vehicle)")
+
+    @model_validator(mode="after")
+    def _on_rail(self) -> "SiteStart":
+        if self.rail is not None:
+            if any(self.velocity):
+                raise ValueError("a vehicle on a rail starts at rest: no 'velocity'")
+            if self.rail.inclination is not None and "elevation" in self.model_fields_set \
+                    and self.elevation != self.rail.inclination:
+                raise ValueError("give the rail's 'inclination' or the start's 'elevation', not both")
+        return self
+
+    @property
+    def nose_elevation(self) -> float:
+        """rad: the rail's inclination, else the start's elevation."""
+        if self.rail is not None and self.rail.inclination is not None:
+            return self.rail.inclination
+        return self.elevation
 
 
 class StartSpec(Strict):

@@ -29,12 +29,15 @@ propellant is unusable (:data:`rocketsim.constants.UNUSABLE_PROPELLANT`).
 from __future__ import annotations
 
 import math
-from typing import Annotated, Optional
+from typing import Annotated, Literal, Optional, Union
 
-from pydantic import BaseModel, Field, field_validator, model_validator
+from pathlib import Path
+
+from pydantic import BaseModel, Field, ValidationInfo, field_validator, model_validator
 from pydantic_core import InitErrorDetails, PydanticCustomError, ValidationError
 
 from rocketsim.constants import ENGINE_TAIL_OFF, G0
+from rocketsim.scenario.motor_file import MotorFileError, read_thrust_curve
 from rocketsim.scenario.units import (STRICT, Angle, AngularRate, Area, Density, Duration, Force,
                                       Fraction, Length, Mass, MassFlow, Pressure, SpecificImpulse,
                                       Speed)
@@ -159,6 +162,160 @@ class EngineSpec(_Strict):
         return self.isp_vacuum if self.isp_vacuum is not None else self.thrust_vacuum / (G0 * self.mass_flow)
 
 
+class GrainSpec(_Strict):
+    """The propellant grain of a solid motor: ``count`` BATES segments (hollow cylinders)
+    stacked along the axis, centred in the motor. Only the core burns (the ends are taken
+    as inhibited): the core widens as the propellant goes, each segment's length and
+    outer diameter stay; the propellant's density is the motor's propellant mass over
+    the grains' initial volume (docs/physics.md#solid-motors)."""
+
+    count: Annotated[int, Field(ge=1)] = 1
+    outer_diameter: PositiveLength
+    core_diameter: NonNegativeLength = Field(description="initial diameter of the core")
+    length: PositiveLength = Field(description="length of one segment")
+    separation: NonNegativeLength = Field(0.0, description="axial gap between segments")
+
+    @model_validator(mode="after")
+    def _hollow(self) -> "GrainSpec":
+        if self.core_diameter >= self.outer_diameter:
+            raise field_error(("core_diameter",), "the core must be narrower than the grain",
+                              self.core_diameter)
+        return self
+
+    @property
+    def stack_length(self) -> float:
+        """m, from the first segment's aft end to the last one's forward end."""
+        return self.count * self.length + (self.count - 1) * self.separation
+
+
+class MotorSpec(_Strict):
+    """A solid rocket motor: a thrust curve against the time since ignition, a case and a
+    propellant grain (docs/physics.md#solid-motors).
+
+    Give the curve as ``file`` (a RASP ``.eng`` file, whose header gives the diameter,
+    length, propellant and total masses, or a ``time,thrust`` CSV; relative to the
+    vehicle file) or inline as ``thrust`` pairs; figures the file does not give go in
+    the fields of the same names. The motor's aft end (its nozzle exit) sits at
+    ``position`` above the stage's base; it reaches ``length`` above that. Its thrust
+    acts along body x through the axis; propellant burns in proportion to the impulse
+    delivered, ``m(t) = m0 (1 - I(t)/I_total)``. The case (total less propellant mass) is
+    a thin cylindrical shell of the motor's size. Without ``grain`` the propellant is a
+    uniform cylinder of the motor's size losing density, its centre fixed at the
+    motor's centre.
+    """
+
+    name: str
+    file: Optional[str] = Field(None, description="thrust-curve file (.eng or .csv), relative "
+                                "to the vehicle file")
+    thrust: Optional[list[tuple[float, float]]] = Field(
+        None, description="(time s since ignition, thrust N) pairs, times increasing; "
+        "instead of 'file'")
+    position: NonNegativeLength = Field(0.0, description="height of the motor's aft end (nozzle "
+                                        "exit) above the stage base")
+    diameter: Optional[PositiveLength] = Field(None, description="motor diameter (default: the .eng header's)")
+    length: Optional[PositiveLength] = Field(None, description="motor length (default: the .eng header's)")
+    propellant_mass: Optional[PositiveMass] = Field(None, description="default: the .eng header's")
+    total_mass: Optional[PositiveMass] = Field(None, description="loaded motor, case and propellant "
+                                               "(default: the .eng header's)")
+    grain: Optional[GrainSpec] = None
+    ignition: Annotated[Duration, Field(ge=0)] = Field(
+        0.0, description="mission time of ignition (0: at the start, off the pad or rail)")
+
+    @model_validator(mode="after")
+    def _curve(self, info: ValidationInfo) -> "MotorSpec":
+        if (self.file is None) == (self.thrust is None):
+            raise ValueError(f"motor {self.name!r}: give exactly one of 'file' or 'thrust'")
+        if self.file is not None:
+            base = (info.context or {}).get("base_dir") if info is not None else None
+            path = (Path(base) if base is not None else Path()) / self.file
+            try:
+                curve = read_thrust_curve(path.resolve())
+            except MotorFileError as error:
+                raise field_error(("file",), str(error), self.file) from None
+            header = {"diameter": curve.diameter, "length": curve.length,
+                      "propellant_mass": curve.propellant_mass, "total_mass": curve.total_mass}
+            for key, value in header.items():
+                if value is not None and getattr(self, key) is not None:
+                    raise field_error((key,), f"the motor file's header gives the {key.replace('_', ' ')}; "
+                                      "give it in one place", getattr(self, key))
+                if value is not None:
+                    object.__setattr__(self, key, value)
+            object.__setattr__(self, "file", str(path.resolve()))
+            object.__setattr__(self, "thrust", [tuple(p) for p in curve.points])
+        else:
+            points = list(self.thrust)
+            if points and points[0][0] > 0.0:
+                points.insert(0, (0.0, 0.0))
+            if points and points[0][1] != 0.0:
+                raise field_error(("thrust",), "a thrust curve starts from no thrust at ignition "
+                                  "(a first point (0, T) would jump at an instant the step cannot split)",
+                                  self.thrust)
+            if len(points) < 2 or any(b[0] <= a[0] for a, b in zip(points, points[1:])) \
+                    or any(f < 0 for _, f in points) or not any(f > 0 for _, f in points):
+                raise field_error(("thrust",), "a thrust curve needs increasing times from 0, no "
+                                  "negative thrust and some thrust", self.thrust)
+            object.__setattr__(self, "thrust", points)
+        for key in ("diameter", "length", "propellant_mass", "total_mass"):
+            if getattr(self, key) is None:
+                raise field_error((key,), f"motor {self.name!r}: give its {key.replace('_', ' ')} "
+                                  "(a CSV or inline curve has no header)", None)
+        if self.propellant_mass >= self.total_mass:
+            raise field_error(("propellant_mass",), "the propellant mass must be less than the total "
+                              "mass (the case is the difference)", self.propellant_mass)
+        if self.grain is not None:
+            if self.grain.outer_diameter > self.diameter * (1 + 1e-12):
+                raise field_error(("grain", "outer_diameter"), "the grain is wider than its motor",
+                                  self.grain.outer_diameter)
+            if self.grain.stack_length > self.length * (1 + 1e-12):
+                raise field_error(("grain", "length"), "the grain stack is longer than its motor",
+                                  self.grain.length)
+        return self
+
+    @property
+    def case_mass(self) -> float:
+        """kg, the loaded motor less its propellant."""
+        return self.total_mass - self.propellant_mass
+
+    @property
+    def total_impulse(self) -> float:
+        """N s, the trapezoid integral of the (linearly interpolated) curve."""
+        pts = self.thrust
+        return sum(0.5 * (a[1] + b[1]) * (b[0] - a[0]) for a, b in zip(pts, pts[1:]))
+
+
+class AfterEvent(_Strict):
+    """An event of the body (by its name in the flight's events) and a delay after it."""
+
+    event: str = Field(description="name of an event of this body, e.g. burnout, apogee, off_rail")
+    delay: Annotated[Duration, Field(ge=0)] = 0.0
+
+
+class HeightTrigger(_Strict):
+    height: Length = Field(description="deploy on the way down at this height above the ground "
+                           "(the ellipsoid: the ground the body lands on)")
+
+
+class AfterTrigger(_Strict):
+    after: AfterEvent
+
+
+class ParachuteSpec(_Strict):
+    """A parachute (docs/physics.md#parachutes): its drag area, opening lag and inflation
+    time, and what deploys it: ``apogee`` (the vertical speed turns down), ``{height:
+    300 m}`` (on the way down), ``{after: {event: burnout, delay: 2 s}}``, or ``program``
+    (``fc.deploy_parachute(name)``; any parachute can be deployed by the program)."""
+
+    name: str
+    cd_s: Annotated[Area, Field(gt=0)] = Field(description="C_D S: drag coefficient times "
+                                               "reference area, fully inflated")
+    lag: Annotated[Duration, Field(ge=0)] = Field(1.0, description="from deployment to the start "
+                                                  "of inflation")
+    inflation: Annotated[Duration, Field(gt=0)] = Field(1.0, description="from the start of "
+                                                        "inflation to full drag area (linear)")
+    deploy: Union[Literal["apogee", "program"], HeightTrigger, AfterTrigger] = Field(
+        description="apogee, program, {height: <length>} or {after: {event: <name>, delay: <time>}}")
+
+
 class PointMassSpec(_Strict):
     """A point mass on the axis (avionics, legs, fins, interstage...), or a ring of them."""
 
@@ -183,6 +340,8 @@ class StageSpec(_Strict):
     tanks: list[TankSpec] = []
     engines: list[EngineSpec] = []
     point_masses: list[PointMassSpec] = []
+    motors: list[MotorSpec] = Field([], description="solid motors (thrust curves) of the stage")
+    parachutes: list[ParachuteSpec] = Field([], description="parachutes the stage carries")
     separates: bool = Field(True, description="drops away at staging (false: stays with the stage above)")
 
     @model_validator(mode="after")
@@ -208,6 +367,14 @@ class StageSpec(_Strict):
         if self.engines and not self.tanks:
             raise field_error(("engines",), f"stage {self.name!r} has engines but no tanks to feed "
                               "them (list its propellant under 'tanks')", None)
+        for i, motor in enumerate(self.motors):
+            if motor.position + motor.length > self.length * (1 + 1e-12):
+                raise field_error(("motors", i, "position"),
+                                  f"motor {motor.name!r} reaches above the top of stage {self.name!r}",
+                                  motor.position)
+            if motor.diameter > self.diameter * (1 + 1e-12):
+                raise field_error(("motors", i, "diameter"),
+                                  f"motor {motor.name!r} is wider than stage {self.name!r}", motor.diameter)
         for i, engine in enumerate(self.engines):
             if engine.position > self.length * (1 + 1e-12):
                 raise field_error(("engines", i, "position"),
@@ -217,14 +384,16 @@ class StageSpec(_Strict):
 
     @property
     def propellant_mass(self) -> float:
-        return sum(t.load for t in self.tanks)
+        """Propellant loaded in the tanks and the solid motors (kg)."""
+        return sum(t.load for t in self.tanks) + sum(m.propellant_mass for m in self.motors)
 
     @property
     def dry_mass(self) -> float:
-        """Structure, tank walls, engines and point masses (kg)."""
+        """Structure, tank walls, engines, point masses and motor cases (kg)."""
         return (self.structure_mass + sum(t.wall_mass for t in self.tanks)
                 + sum(e.mass * e.count for e in self.engines)
-                + sum(p.mass * p.count for p in self.point_masses))
+                + sum(p.mass * p.count for p in self.point_masses)
+                + sum(m.case_mass for m in self.motors))
 
 
 class PayloadSpec(_Strict):

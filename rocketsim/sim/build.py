@@ -11,6 +11,8 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from rocketsim.constants import EARTH_J2, EARTH_MU, EARTH_RADIUS_EQ, EARTH_RADIUS_POLAR
 from rocketsim.dynamics.central import nbody_field
 from rocketsim.dynamics.soi import central_params
@@ -18,14 +20,15 @@ from rocketsim.dynamics.third_bodies import with_field
 from rocketsim.errors import InputError
 from rocketsim.flight.program import load_program
 from rocketsim.flight.sensors import Sensors
+from rocketsim.frames.earth_fixed import ecef_to_eci_velocity
 from rocketsim.frames.geodetic import enu_basis, geodetic_to_ecef
-from rocketsim.layout import P_MU, R, make_params, make_state
+from rocketsim.layout import P_MU, R, V, W, make_params, make_state
 from rocketsim.scenario.load import LoadedScenario
 from rocketsim.scenario.models import check_duration, check_step
 from rocketsim.sim.body import Body, Vehicle, channel_name
 from rocketsim.sim.flight_events import FlightEvents
 from rocketsim.sim.handover import fly_in_air_of
-from rocketsim.sim.start import standing_on_ground, start_state
+from rocketsim.sim.start import on_rail, standing_on_ground, start_state
 from rocketsim.sim.vehicle_checks import VehicleChecks
 from rocketsim.sim.world import World
 from rocketsim.timescales import Epoch
@@ -65,7 +68,13 @@ def build_world(loaded: LoadedScenario, step: float | None = None,
         body.y = body.vehicle.state(r, v, q, mission.initial_rates)
         site_start = mission.start.site
         contact = body.vehicle.arrays.aero.contact
-        if site_start is not None and len(contact) and site_start.elevation == math.pi / 2 \
+        if site_start is not None and site_start.rail is not None:
+            x_cm = body.vehicle.mass_properties(body.y)[1]
+            r, w, rail = on_rail(scenario.site, site_start.rail, q, x_cm)
+            body.y[R:R + 3], body.y[V:V + 3] = r, ecef_to_eci_velocity(r, np.zeros(3), 0.0)
+            body.y[W:W + 3] = w
+            body.vehicle.arrays.rail[:] = rail
+        elif site_start is not None and len(contact) and site_start.elevation == math.pi / 2 \
                 and not any(site_start.velocity):
             # upright on the pad: feet on the ground, not the centre of mass
             up = enu_basis(scenario.site.latitude, scenario.site.longitude)[2]

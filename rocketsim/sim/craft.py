@@ -119,6 +119,9 @@ class BodyCraft:
     def deploy_payload(self) -> str:
         return self._world.deploy_payload(self._body).name
 
+    def deploy_parachute(self, index: int) -> bool:
+        return self._body.watch.deploy(index, "program")
+
     def log(self, message: str) -> None:
         self._world.log(self._body, message)
 

@@ -10,7 +10,24 @@ One :class:`FlightEvents` watches one body; the world calls
   at the peak: q, Mach, altitude).
 * ``stage_dry`` — a stage's usable propellant is gone (the engine model
   flags the instant); named ``MECO`` for the vehicle's first stage and
-  ``SECO`` for its second when that is how the burn ends.
+  ``SECO`` for its second when that is how the burn ends. A stage without
+  tanks (solid motors only) has none.
+* ``burnout`` — a solid motor's curve has ended (figures: the motor, the
+  instant ``burnout_s``, its total impulse).
+* ``apogee`` — a vehicle with parachutes that rose from the ground has begun to
+  come down (its vertical speed over the ground turned negative; figures:
+  ``altitude_m`` above the ground, the ellipsoid).
+* ``parachute_deployed`` — a parachute's trigger fired (its YAML trigger, at the
+  end of the step in which it was met, or ``fc.deploy_parachute``; figures: the
+  parachute, the trigger, ``height_m``, ``vertical_speed_m_s``);
+  ``parachute_inflated`` when its drag area is full (figures: the parachute,
+  ``at_s``, the exact instant).
+* ``off_rail`` — the vehicle's last rail button has left its launch rail
+  (figures: the instant ``at_s``, the speed along the rail ``speed_m_s``, and,
+  when the aerodynamics give a centre of pressure, the static margin
+  ``stability_margin_cal``: ``(x_cm - x_cp) / d`` in calibers of the reference
+  diameter, stations from the base, positive when the centre of pressure is
+  behind the centre of mass).
 * ``orbit`` — the first time a body that did not start in orbit coasts (no
   thrust) with a periapsis above 100 km (the Karman line): the elements as
   figures.
@@ -23,9 +40,17 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from rocketsim.atmosphere.table import TOP
 from rocketsim.constants import DEG, EARTH_RADIUS_EQ
-from rocketsim.vehicle.engines import C_ON, E_STAGE, E_TAIL, S_DRY, S_DRY_AT
+from rocketsim.vehicle.engines import C_ON, E_STAGE, E_TAIL, S_DRY, S_DRY_AT, S_TANKS
+from rocketsim.vehicle.aero import A_AREA, A_ON, centre_of_pressure
+from rocketsim.vehicle.motors import M_CURVE0, M_IGNITION, M_IMPULSE, M_POINTS
+from rocketsim.vehicle.parachutes import CH_DEPLOYED, CH_INFLATION, CH_LAG, deploy
+from rocketsim.vehicle.rail import RL_OFF_AT, RL_OFF_SPEED, RL_ON
+from rocketsim.scenario.vehicle import AfterTrigger, HeightTrigger
+from rocketsim.sim.vehicle_checks import ground_motion
 
 LIFTOFF_HEIGHT = 1.0          # m above the starting height
 MAX_Q_MIN = 1000.0            # Pa, a peak smaller than this is not "max-Q"
@@ -46,6 +71,11 @@ class FlightEvents:
         self.peak = None                          # (q, t, mach, altitude)
         self.max_q_done = False
         self.dry_seen: set[str] = set()
+        self.burnt_out: set[str] = set()           # solid motors whose curve has ended
+        self.on_rail = body.vehicle is not None and body.vehicle.arrays.rail[RL_ON] > 0.5
+        self.rising = False                        # has risen since leaving the ground (apogee)
+        self.apogee_at = None                      # s, mission time of the apogee event
+        self.inflated_seen: set[int] = set()
         self.stage_names = stage_names            # the whole vehicle's, for MECO/SECO
         self.in_orbit = in_orbit(body.view().orbit)   # starting in orbit is not achieving it
 
@@ -61,6 +91,12 @@ class FlightEvents:
             if not self.max_q_done:
                 self._max_q(body.view())
             self._stages_dry()
+            if body.vehicle.n_motors:
+                self._burnouts()
+            if self.on_rail and body.vehicle.arrays.rail[RL_ON] < 0.5:
+                self._off_rail()
+            if body.vehicle.parachutes:
+                self._parachutes()
         if not self.in_orbit and self.lifted and periapsis_bound(body.y, body.mu) > ORBIT_PERIAPSIS_BOUND:
             self._orbit(body.view())
 
@@ -80,11 +116,94 @@ class FlightEvents:
         model = self.body.vehicle
         stage = model.arrays.stage
         for s, name in enumerate(model.stage_names):
-            if stage[s, S_DRY] > 0.5 and name not in self.dry_seen:
+            if stage[s, S_DRY] > 0.5 and name not in self.dry_seen and stage[s, S_TANKS] > 0:
                 self.dry_seen.add(name)
                 index = self.stage_names.index(name) if name in self.stage_names else -1
                 label = {0: "MECO", 1: "SECO"}.get(index, "stage_dry")
                 self.world.event(self.body, label, {"stage": name, "burnout_s": float(stage[s, S_DRY_AT])})
+
+    def _parachutes(self) -> None:
+        body = self.body
+        model = body.vehicle
+        chute = model.arrays.chute
+        up, surface = ground_motion(body.central, body.t, body.y)
+        vertical = float(surface @ up)
+        height = self.world.where(body)[2]
+        if self.start_height is not None and self.lifted and self.apogee_at is None:
+            if vertical > 0.0:
+                self.rising = True
+            elif self.rising:
+                self.apogee_at = body.t
+                self.world.event(body, "apogee", {"altitude_m": height})
+        for i, spec in enumerate(model.parachutes):
+            if math.isnan(chute[i, CH_DEPLOYED]):
+                trigger = spec.deploy
+                if trigger == "apogee":
+                    due = self.apogee_at is not None
+                elif isinstance(trigger, HeightTrigger):
+                    due = self.lifted and vertical < 0.0 and height <= trigger.height
+                elif isinstance(trigger, AfterTrigger):
+                    after = trigger.after
+                    due = any(e["name"] == after.event and body.t >= e["time_s"] + after.delay - 1e-9
+                              for e in body.events)
+                else:
+                    due = False
+                if due:
+                    self.deploy(i, _trigger_name(trigger), vertical, height)
+            elif i not in self.inflated_seen:
+                full = chute[i, CH_DEPLOYED] + chute[i, CH_LAG] + chute[i, CH_INFLATION]
+                if body.t >= full:
+                    self.inflated_seen.add(i)
+                    self.world.event(body, "parachute_inflated", {"parachute": spec.name, "at_s": float(full)})
+
+    def deploy(self, i: int, trigger: str, vertical: float | None = None, height: float | None = None) -> bool:
+        """Deploy the body's parachute ``i`` now (``trigger``: what fired it) and record
+        it; False if it was already out."""
+        body = self.body
+        if not deploy(body.vehicle.arrays.chute, i, body.t):
+            return False
+        if vertical is None:
+            up, surface = ground_motion(body.central, body.t, body.y)
+            vertical, height = float(surface @ up), self.world.where(body)[2]
+        self.world.event(body, "parachute_deployed", {"parachute": body.vehicle.parachutes[i].name,
+                                                      "trigger": trigger, "height_m": height,
+                                                      "vertical_speed_m_s": vertical})
+        return True
+
+    def recovery(self) -> dict:
+        """The touchdown figures of a vehicle with parachutes: the landing point and the
+        descent (from apogee) and drift (from the first deployment) times, s."""
+        body = self.body
+        lat, lon, _ = self.world.where(body)
+        deployed = body.vehicle.arrays.chute[:, CH_DEPLOYED]
+        figures = {"latitude_deg": lat / DEG, "longitude_deg": lon / DEG}
+        if self.apogee_at is not None:
+            figures["descent_time_s"] = body.t - self.apogee_at
+        if not np.all(np.isnan(deployed)):
+            figures["drift_time_s"] = body.t - float(np.nanmin(deployed))
+        return figures
+
+    def _off_rail(self) -> None:
+        self.on_rail = False
+        model = self.body.vehicle
+        rail, aero = model.arrays.rail, model.arrays.aero
+        figures = {"at_s": float(rail[RL_OFF_AT]), "speed_m_s": float(rail[RL_OFF_SPEED])}
+        if aero.ref[A_ON] > 0.5:
+            x_cp = centre_of_pressure(aero.ref, aero.fin)
+            if not math.isnan(x_cp):
+                diameter = math.sqrt(4.0 * aero.ref[A_AREA] / math.pi)
+                figures["stability_margin_cal"] = (model.mass_properties(self.body.y)[1] - x_cp) / diameter
+        self.world.event(self.body, "off_rail", figures)
+
+    def _burnouts(self) -> None:
+        model = self.body.vehicle
+        motor, curve = model.arrays.motor, model.arrays.curve
+        for i, name in enumerate(model.motor_names):
+            end = motor[i, M_IGNITION] + curve[int(motor[i, M_CURVE0] + motor[i, M_POINTS]) - 1, 0]
+            if name not in self.burnt_out and self.body.t >= end:
+                self.burnt_out.add(name)
+                self.world.event(self.body, "burnout", {"motor": name, "burnout_s": float(end),
+                                                        "total_impulse_N_s": float(motor[i, M_IMPULSE])})
 
     def _orbit(self, view) -> None:
         orbit = view.orbit
@@ -116,7 +235,7 @@ def in_orbit(orbit) -> bool:
 
 def coasting(model, y, t: float) -> bool:
     """True when no engine of ``model`` thrusts: each is commanded off or its stage has
-    run dry, and its tail-off is over."""
+    run dry, and its tail-off is over; and no solid motor is inside its curve."""
     eng, cmd, stage = model.arrays.eng, model.arrays.cmd, model.arrays.stage
     clocks = y[model.clocks]
     for e in range(model.n_engines):
@@ -126,9 +245,23 @@ def coasting(model, y, t: float) -> bool:
                 return False
         elif cmd[e, C_ON] > 0.5 or clocks[e] < eng[e, E_TAIL]:
             return False
+    motor, curve = model.arrays.motor, model.arrays.curve
+    for i in range(model.n_motors):
+        since = t - motor[i, M_IGNITION]
+        if 0.0 <= since <= curve[int(motor[i, M_CURVE0] + motor[i, M_POINTS]) - 1, 0]:
+            return False
     return True
 
 
 def body_has_no_air(view) -> bool:
     """True above the flight model's air (600 km): no dynamic pressure to watch."""
     return view.geodetic[2] > TOP or math.isnan(view.geodetic[2])
+
+
+def _trigger_name(trigger) -> str:
+    """How an event names a parachute's trigger: ``apogee``, ``height 300 m``, ``after burnout + 2 s``."""
+    if isinstance(trigger, HeightTrigger):
+        return f"height {trigger.height:g} m"
+    if isinstance(trigger, AfterTrigger):
+        return f"after {trigger.after.event} + {trigger.after.delay:g} s"
+    return str(trigger)

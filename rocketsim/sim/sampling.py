@@ -88,7 +88,7 @@ from rocketsim.sim.vehicle_checks import accelerations
 from rocketsim.telemetry.frames import CentralFrame, central_frame
 from rocketsim.vehicle.engines import E_MDOT, E_STAGE, S_DRY, engine_state, thrusts
 from rocketsim.vehicle.heating import sutton_graves, sutton_graves_constant
-from rocketsim.vehicle.mass_properties import mass_properties
+from rocketsim.vehicle.mass_properties import vehicle_mass_properties
 
 _TWO_PI = 2.0 * math.pi
 
@@ -198,8 +198,7 @@ def figures(t, y, p, mu, node, geodetic, h0, dh, density, pressure, temperature,
     else:
         n_tanks = veh.tank_bottom.shape[0]
         out = np.empty(GROUPS + 2 * n_groups + n_tanks + 2)
-        out[MASS] = mass_properties(veh.fixed, veh.tank_bottom, veh.tank_radius, veh.tank_density,
-                                    y[N_STATE:N_STATE + n_tanks])[0]
+        out[MASS] = vehicle_mass_properties(veh, y)[0]
     out[:N_STATE] = y[:N_STATE]
     r, v = y[R:R + 3], y[V:V + 3]
     lat, lon, height, _, _ = where_and_how_fast(r, v, t, p[P_SPIN], p[P_RADIUS], p[P_POLAR_RADIUS])

@@ -21,19 +21,23 @@ import math
 
 import numpy as np
 
+from rocketsim.constants import EARTH_OMEGA
 from rocketsim.dynamics.soi import CENTRAL
 from rocketsim.frames.earth_fixed import ecef_to_eci_velocity
 from rocketsim.frames.elements import Elements, elements_to_state
 from rocketsim.frames.mean_elements import mean_to_osculating
 from rocketsim.frames.geodetic import enu_basis, geodetic_to_ecef
-from rocketsim.frames.quaternion import quat_from_matrix
+from rocketsim.frames.quaternion import quat_from_matrix, quat_rotate
 from rocketsim.scenario.models import MissionSpec, SiteSpec
+from rocketsim.vehicle.rail import RL_ON, RL_TRAVEL, RL_U, RL_X0, no_rail
 
 
-def site_attitude(site: SiteSpec, elevation: float) -> np.ndarray:
-    """Quaternion (body -> ECI at t = 0) of a vehicle on ``site``, nose at ``elevation``."""
+def site_attitude(site: SiteSpec, elevation: float, azimuth: float | None = None) -> np.ndarray:
+    """Quaternion (body -> ECI at t = 0) of a vehicle on ``site``, nose at ``elevation``
+    towards ``azimuth`` (rad from north; default the site's pad azimuth)."""
     east, north, up = enu_basis(site.latitude, site.longitude)
-    heading = math.sin(site.pad_azimuth) * east + math.cos(site.pad_azimuth) * north
+    azimuth = site.pad_azimuth if azimuth is None else azimuth
+    heading = math.sin(azimuth) * east + math.cos(azimuth) * north
     nose = math.cos(elevation) * heading + math.sin(elevation) * up
     z_axis = math.sin(elevation) * heading - math.cos(elevation) * up
     y_axis = np.cross(z_axis, nose)
@@ -49,7 +53,9 @@ def start_state(mission: MissionSpec, site: SiteSpec | None, gmst0: float):
         ground = start.site.velocity
         v_ecef = ground[0] * east + ground[1] * north + ground[2] * up
         v = ecef_to_eci_velocity(r, v_ecef, 0.0)
-        return r, v, site_attitude(site, start.site.elevation)
+        rail = start.site.rail
+        heading = None if rail is None else rail.heading
+        return r, v, site_attitude(site, start.site.nose_elevation, heading)
     if start.orbit is not None:
         orbit = start.orbit
         mu, radius, j2 = CENTRAL[orbit.body][:3]
@@ -76,6 +82,23 @@ def prograde_attitude(r, v) -> np.ndarray:
     z_axis /= np.linalg.norm(z_axis)
     y_axis = np.cross(z_axis, nose)
     return quat_from_matrix(np.column_stack((nose, y_axis, z_axis)))
+
+
+def on_rail(site: SiteSpec, rail, q0, x_cm: float):
+    """``(r, w, rail array)`` of a vehicle standing on its base at the foot of ``rail``
+    (a :class:`~rocketsim.scenario.models.RailSpec`) on ``site``, nose along it (``q0``,
+    body -> ECI at t = 0, from :func:`start_state`): its centre of mass ``x_cm`` (m
+    above its base) up the rail from the pad, its body rates the ground's turn (so it
+    keeps its attitude on the turning Earth), the rail's arrays
+    (:mod:`rocketsim.vehicle.rail`)."""
+    pad = geodetic_to_ecef(site.latitude, site.longitude, site.height)   # ECI = ECEF at t = 0
+    axis = quat_rotate(np.asarray(q0, dtype=float), np.array([1.0, 0.0, 0.0]))
+    r = np.asarray(pad, dtype=float) + x_cm * axis
+    w = quat_rotate(np.array([q0[0], -q0[1], -q0[2], -q0[3]]), np.array([0.0, 0.0, EARTH_OMEGA]))
+    arrays = no_rail()
+    arrays[RL_ON], arrays[RL_TRAVEL] = 1.0, rail.length - rail.last_button
+    arrays[RL_X0:RL_X0 + 3], arrays[RL_U:RL_U + 3] = r, axis
+    return r, w, arrays
 
 
 def standing_on_ground(r, up, x_cm: float, x_lowest: float) -> np.ndarray:

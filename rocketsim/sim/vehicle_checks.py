@@ -18,7 +18,11 @@ Events (figures in SI units, degrees where named):
   ``tilt_deg`` (body x from the local vertical), ``distance_to_target_m`` (horizontal,
   from the centre of mass to the mission's target pad, else the launch site);
 * a first contact faster than :data:`CRASH_SPEED` (10 m/s down) is a crash: the world
-  records an ``impact`` with those figures instead and the body stops flying.
+  records an ``impact`` with those figures instead and the body stops flying;
+* a vehicle with parachutes adds the landing point ``latitude_deg``, ``longitude_deg``
+  and the ``descent_time_s`` (from apogee) and ``drift_time_s`` (from the first
+  deployment) to its touchdown; one that touches down under a deployed parachute is
+  recovered: its flight ends there (on any of its contact points: on its side too).
 """
 
 from __future__ import annotations
@@ -42,7 +46,8 @@ from rocketsim.frames.quaternion import quat_rotate
 from rocketsim.vehicle.aero import A_REACH
 from rocketsim.vehicle.contact import contact_heights, contact_point_heights
 from rocketsim.vehicle.heating import advance_shield, sutton_graves, sutton_graves_constant
-from rocketsim.vehicle.mass_properties import mass_properties
+from rocketsim.vehicle.mass_properties import vehicle_mass_properties
+from rocketsim.vehicle.parachutes import CH_DEPLOYED
 from rocketsim.vehicle.limits import breakup
 
 AIRBORNE_CLEARANCE = 1.0       # m: lowest contact point this high = in the air (a bounce is not a new flight)
@@ -121,9 +126,16 @@ class VehicleChecks:
         elif body.flying and not self.touched_down and lowest <= 0.0 and self.previous is not None:
             self.touched_down = True
             figures = self.touchdown_figures(body)
+            if body.vehicle.parachutes and body.watch is not None:
+                figures.update(body.watch.recovery())
             if figures["vertical_speed_m_s"] < -CRASH_SPEED:
                 return figures
             world.event(body, "touchdown", figures)
+            if np.any(~np.isnan(body.vehicle.arrays.chute[:, CH_DEPLOYED])):
+                # down under a canopy: recovered, the flight of this body ends here
+                body.flying = False
+                if world.telemetry is not None:
+                    world.record(body)
         self.previous = (body.t, body.y.copy())
         return None
 
@@ -209,9 +221,7 @@ def step_figures(t, y, p, veh, contact):
     The air moves with the ground and the wind held for the step (as the derivative
     sees it); the angle of attack is measured from the nose.
     """
-    n_tanks = veh.tank_bottom.shape[0]
-    x_cm = mass_properties(veh.fixed, veh.tank_bottom, veh.tank_radius, veh.tank_density,
-                           y[13:13 + n_tanks])[1]
+    x_cm = vehicle_mass_properties(veh, y)[1]
     rho, _, temperature, _, _, _ = air_in(veh.air, radial_height(y, p))
     u, v, w = body_air_velocity(y, veh.aero.wind)
     speed = math.sqrt(u * u + v * v + w * w)

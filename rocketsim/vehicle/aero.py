@@ -87,6 +87,18 @@ SEG_X, SEG_DX, SEG_D = 0, 1, 2
 FIN_X, FIN_CNA_S = 0, 1
 
 
+def centre_of_pressure(ref, fin) -> float:
+    """Station (m) of the centre of pressure at small angles of attack, nose first: where
+    the normal-force slopes act, the nose's slender-body lift (``2 S_nose`` per radian at
+    ``A_NOSE_X``) and the fins' (``C_N_alpha S`` at their centres of pressure), as
+    Barrowman's method sums them; the crossflow adds nothing at zero angle (it grows as
+    ``sin^2 alpha``). nan when nothing lifts."""
+    slope = 2.0 * ref[A_NOSE_AREA] + float(np.sum(fin[:, FIN_CNA_S]))
+    if slope <= 0.0:
+        return math.nan
+    return (2.0 * ref[A_NOSE_AREA] * ref[A_NOSE_X] + float(np.sum(fin[:, FIN_CNA_S] * fin[:, FIN_X]))) / slope
+
+
 @njit
 def interp(xs, ys, x):
     """Linear interpolation in a table with increasing ``xs``, clamped at both ends."""

@@ -8,8 +8,9 @@ entries. Stations are metres above the base of the lowest stage built, so a
 separated stage is a complete vehicle of its own.
 
 The state of a staged vehicle is the rigid body's 13 numbers followed by the
-propellant mass of every tank (kg, stage by stage, in file order) and the
-clock of every engine (s since its last ignition or shutdown command).
+propellant mass of every tank (kg, stage by stage, in file order), the
+clock of every engine (s since its last ignition or shutdown command) and the
+propellant mass of every solid motor (kg, :mod:`rocketsim.vehicle.motors`).
 """
 
 from __future__ import annotations
@@ -30,13 +31,20 @@ from rocketsim.vehicle.engines import (C_TAU, C_TAU0, E_AREA, E_DEAD, E_GIMBAL_R
 from rocketsim.vehicle.aero_build import build_aero
 from rocketsim.vehicle.mass_properties import (N_FIXED, add_fixed, mass_properties, shell,
                                                solid_cylinder)
+from rocketsim.vehicle.motors import M_PROPELLANT, build_motors
+from rocketsim.vehicle.aero import A_WIND
+from rocketsim.vehicle.parachutes import N_CHUTE
+from rocketsim.vehicle.rail import no_rail
 
 # What the derivative reads for a staged vehicle (a numba-friendly tuple).
 VehicleArrays = namedtuple("VehicleArrays", [
     "fixed", "tank_bottom", "tank_radius", "tank_density", "tank_share", "eng", "cmd", "stage",
     "first_tank", "first_clock",
     "air",      # the air table: AtmosphereTable.arrays() (h0, dh, then six columns)
-    "aero"])
+    "aero",
+    "motor", "curve", "first_motor",     # solid motors (rocketsim.vehicle.motors)
+    "rail",                              # the launch rail (rocketsim.vehicle.rail)
+    "chute"])                            # parachutes (rocketsim.vehicle.parachutes)
 
 
 @dataclass
@@ -57,6 +65,8 @@ class VehicleModel:
     arrays: VehicleArrays
     engine_groups: list[str] = field(default_factory=list)   # "stage/group" of each engine
     has_fairing: bool = False
+    motor_names: list[str] = field(default_factory=list)     # "stage/motor" of each solid motor
+    parachutes: list = field(default_factory=list)           # ParachuteSpec of each row of arrays.chute
 
     @property
     def n_tanks(self) -> int:
@@ -67,8 +77,12 @@ class VehicleModel:
         return len(self.engine_names)
 
     @property
+    def n_motors(self) -> int:
+        return len(self.motor_names)
+
+    @property
     def n_state(self) -> int:
-        return N_STATE + self.n_tanks + self.n_engines
+        return N_STATE + self.n_tanks + self.n_engines + self.n_motors
 
     @property
     def tanks(self) -> slice:
@@ -78,23 +92,34 @@ class VehicleModel:
     @property
     def clocks(self) -> slice:
         """Slice of the state holding the engine clocks."""
-        return slice(N_STATE + self.n_tanks, self.n_state)
+        return slice(N_STATE + self.n_tanks, N_STATE + self.n_tanks + self.n_engines)
+
+    @property
+    def motors(self) -> slice:
+        """Slice of the state holding the solid motors' propellant masses."""
+        return slice(N_STATE + self.n_tanks + self.n_engines, self.n_state)
 
     def state(self, r, v, q=(1.0, 0.0, 0.0, 0.0), w=(0.0, 0.0, 0.0), propellant=None) -> np.ndarray:
-        """A state vector: body state, tanks as loaded (or ``propellant``), clocks at 0."""
+        """A state vector: body state, tanks as loaded (or ``propellant``), clocks at 0,
+        motors loaded."""
         y = np.zeros(self.n_state)
         y[:N_STATE] = make_state(r, v, q, w)
         y[self.tanks] = self.tank_load if propellant is None else propellant
+        y[self.motors] = self.arrays.motor[:, M_PROPELLANT]
         return y
 
-    def mass_properties(self, y_or_propellant) -> tuple[float, float, float, float, float]:
-        """``(mass, x_cm, Ixx, Iyy, Izz)`` for a state vector or the tanks' propellant masses."""
+    def mass_properties(self, y_or_propellant, motors=None) -> tuple[float, float, float, float, float]:
+        """``(mass, x_cm, Ixx, Iyy, Izz)`` for a state vector, or for the tanks' propellant
+        masses with the motors' ``motors`` (kg each; default loaded)."""
         a = self.arrays
         prop = np.asarray(y_or_propellant, dtype=float)
         if prop.shape[0] == self.n_state:
-            prop = prop[self.tanks]
+            prop, motors = prop[self.tanks], prop[self.motors]
+        elif motors is None:
+            motors = a.motor[:, M_PROPELLANT]
         return mass_properties(a.fixed, a.tank_bottom, a.tank_radius, a.tank_density,
-                               np.ascontiguousarray(prop))
+                               np.ascontiguousarray(prop), a.motor,
+                               np.ascontiguousarray(np.asarray(motors, dtype=float)))
 
     def stage_propellant(self, y) -> np.ndarray:
         """Propellant (kg) left in each stage, unusable reserve included."""
@@ -179,6 +204,13 @@ def build(spec, first: int = 0, last: int | None = None, air=None, fairing: bool
                 add_fixed(fixed, part.mass, base + part.position, y=py, z=pz)
         dry.append(st.dry_mass)
         base += st.length
+    motor, curve, cases = build_motors(chosen, stage_base)
+    for mass, centre, radius, length in cases:
+        add_fixed(fixed, mass, centre, *shell(mass, radius, length))
+    motor_names = [f"{st.name}/{m.name}" for st in chosen for m in st.motors]
+    chute = np.array([(s, c.cd_s, c.lag, c.inflation, math.nan) for s, st in enumerate(chosen)
+                      for c in st.parachutes], dtype=float).reshape(-1, N_CHUTE)
+    chutes = [c for st in chosen for c in st.parachutes]
     if top and spec.payload is not None:
         pl = spec.payload
         add_fixed(fixed, pl.mass, base + 0.5 * pl.length, *solid_cylinder(pl.mass, 0.5 * pl.diameter, pl.length))
@@ -195,18 +227,21 @@ def build(spec, first: int = 0, last: int | None = None, air=None, fairing: bool
     cmd[:, C_TAU] = eng[:, E_TAU_MAX]
     air_table = _standard_air() if air is None else air.arrays()
     we, wn = air_table[6], air_table[7]
-    aero = build_aero(spec, chosen, stage_base, top, with_fairing, tank_names,
-                      bool(np.any(we != 0.0) or np.any(wn != 0.0)))
+    windy = bool(np.any(we != 0.0) or np.any(wn != 0.0))
+    aero = build_aero(spec, chosen, stage_base, top, with_fairing, tank_names, windy)
+    if chutes and windy:
+        aero.ref[A_WIND] = 1.0          # a canopy drifts with the wind, aerodynamics or not
     arrays = VehicleArrays(
         fixed, _f(tank_bottom), _f(tank_radius), _f(tank_density), _f(tank_share), eng, cmd,
         np.array(stage_rows, dtype=float).reshape(len(chosen), N_STAGE),
         N_STATE, N_STATE + len(tank_names),
-        air_table, aero)
+        air_table, aero, motor, curve, N_STATE + len(tank_names) + len(eng_rows), no_rail(),
+        chute)
     return VehicleModel(spec.name if first == 0 and top else f"{spec.name}[{chosen[0].name}..{chosen[-1].name}]",
                         [st.name for st in chosen], tank_names, engine_names,
                         _f(stage_base), _f([st.length for st in chosen]), _f([st.diameter for st in chosen]),
                         _f(dry), _f(tank_load), np.array(tank_stage, dtype=np.int64), length, arrays,
-                        engine_groups, with_fairing)
+                        engine_groups, with_fairing, motor_names, chutes)
 
 
 def _f(values) -> np.ndarray:

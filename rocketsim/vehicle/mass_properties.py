@@ -19,7 +19,10 @@ moments to the centre of mass::
              Iyy = Iyy0 + sum (Iyy_c + m x_c^2) - M x_cm^2        (same for Izz)
 
 The lateral centre of mass is taken on the axis (engine rings and point-mass
-rings are symmetric).
+rings are symmetric). Solid motors' propellant (:mod:`.motors`) adds a hollow
+cylinder per motor, centred at its station ``x_m``, with ``r^2 = a - b m``::
+
+    Ixx_m = m (R^2 + r^2) / 2,   Iyy_m = Izz_m = m ((R^2 + r^2) / 4 + K) + m x_m^2
 """
 
 from __future__ import annotations
@@ -28,6 +31,7 @@ import numpy as np
 
 from rocketsim._jit import njit
 from rocketsim.constants import LIQUID_ROLL_INERTIA_FRACTION
+from rocketsim.vehicle.motors import M_CORE_A, M_CORE_B, M_LATERAL, M_RADIUS2, M_X_CENTRE
 
 # slots of the ``fixed`` array
 F_MASS = 0      # kg
@@ -39,14 +43,25 @@ N_FIXED = 5
 
 
 @njit
-def mass_properties(fixed, tank_bottom, tank_radius, tank_linear_density, propellant):
+def vehicle_mass_properties(veh, y):
+    """:func:`mass_properties` of state ``y`` of a staged vehicle with arrays ``veh``
+    (:class:`~rocketsim.vehicle.build.VehicleArrays`): its tanks and its motors."""
+    return mass_properties(veh.fixed, veh.tank_bottom, veh.tank_radius, veh.tank_density,
+                           y[veh.first_tank:veh.first_clock], veh.motor,
+                           y[veh.first_motor:veh.first_motor + veh.motor.shape[0]])
+
+
+@njit
+def mass_properties(fixed, tank_bottom, tank_radius, tank_linear_density, propellant, motor,
+                    motor_propellant):
     """``(mass kg, x_cm m, Ixx, Iyy, Izz kg m^2)`` of the vehicle.
 
     ``fixed`` (5,) sums everything that does not drain (see the module
     docstring); per tank: the station of its bottom (m), its radius (m), its
     propellant mass per metre of column ``rho pi r^2`` (kg/m), and the
-    propellant mass it holds now (kg). Inertia is about the centre of mass,
-    in body axes.
+    propellant mass it holds now (kg); per solid motor its row of ``motor``
+    (:mod:`.motors`) and the propellant it holds now (kg). Inertia is about the
+    centre of mass, in body axes.
     """
     mass = fixed[F_MASS]
     moment = fixed[F_MOMENT]
@@ -62,6 +77,16 @@ def mass_properties(fixed, tank_bottom, tank_radius, tank_linear_density, propel
         mass += m
         moment += m * xc
         ixx += LIQUID_ROLL_INERTIA_FRACTION * 0.5 * m * r2
+        iyy += lateral
+        izz += lateral
+    for i in range(motor.shape[0]):
+        m = max(motor_propellant[i], 0.0)
+        xc = motor[i, M_X_CENTRE]
+        spread = motor[i, M_RADIUS2] + motor[i, M_CORE_A] - motor[i, M_CORE_B] * m     # R^2 + r^2
+        lateral = m * (0.25 * spread + motor[i, M_LATERAL]) + m * xc * xc
+        mass += m
+        moment += m * xc
+        ixx += 0.5 * m * spread
         iyy += lateral
         izz += lateral
     x_cm = moment / mass

@@ -34,6 +34,7 @@ from rocketsim.frames.quaternion import quat_rotate
 from rocketsim.vehicle.build import VehicleModel, build
 from rocketsim.vehicle.engines import S_DRY, S_DRY_AT
 from rocketsim.vehicle.mass_properties import solid_cylinder
+from rocketsim.vehicle.parachutes import CH_DEPLOYED
 from rocketsim.vehicle.tumbling import cylinder_area, half_shell_area
 
 
@@ -51,7 +52,7 @@ def separate(spec, whole: VehicleModel, y: np.ndarray, k: int, air=None):
     upper = build(spec, k, air=air, fairing=whole.has_fairing)
     x_cm = whole.mass_properties(y)[1]
     parts = []
-    tank0 = engine0 = 0
+    tank0 = engine0 = motor0 = chute0 = 0
     for part, base, stage0 in ((lower, 0.0, 0), (upper, float(whole.stage_base[k]), k)):
         y_part = np.empty(part.n_state)
         y_part[Q:W + 3] = y[Q:W + 3]
@@ -59,11 +60,16 @@ def separate(spec, whole: VehicleModel, y: np.ndarray, k: int, air=None):
         clocks = slice(N_STATE + whole.n_tanks + engine0, N_STATE + whole.n_tanks + engine0 + part.n_engines)
         y_part[part.tanks] = y[tanks]
         y_part[part.clocks] = y[clocks]
+        y_part[part.motors] = y[whole.motors][motor0:motor0 + part.n_motors]
+        n_chutes = part.arrays.chute.shape[0]
+        part.arrays.chute[:, CH_DEPLOYED] = whole.arrays.chute[chute0:chute0 + n_chutes, CH_DEPLOYED]
+        chute0 += n_chutes
         _copy_commands(whole, part, engine0, stage0)
         y_part[R:R + 3], y_part[V:V + 3] = moved(y, base + part.mass_properties(y_part)[1] - x_cm)
         parts.append((part, y_part))
         tank0 += part.n_tanks
         engine0 += part.n_engines
+        motor0 += part.n_motors
     return parts[0], parts[1]
 
 
@@ -134,6 +140,7 @@ def _release_top(spec, model: VehicleModel, without: VehicleModel, y: np.ndarray
     are conserved (all parts moved from the whole's centre)."""
     y_new = y.copy()
     _copy_commands(model, without, 0, 0)
+    without.arrays.chute[:, CH_DEPLOYED] = model.arrays.chute[:, CH_DEPLOYED]
     x_cm = model.mass_properties(y)[1]
     y_new[R:R + 3], y_new[V:V + 3] = moved(y, without.mass_properties(y_new)[1] - x_cm)
     top = float(model.stage_base[-1] + spec.stages[-1].length)

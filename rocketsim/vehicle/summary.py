@@ -10,7 +10,8 @@ of the flight, not of this table)::
 
 with the stage's Isp = sum of thrust / (g0 * sum of mass flow) of its
 engines, in vacuum and at sea level (``T = T_vac - p0 A_e``,
-p0 = 101 325 Pa). Thrust-to-weight at liftoff: the bottom stage's sea-level
+p0 = 101 325 Pa); a solid motor counts at its mean thrust and flow, and
+burns all its propellant (its Isp is its total impulse over ``g0 m0``). Thrust-to-weight at liftoff: the bottom stage's sea-level
 thrust over the liftoff weight (``m g0``).
 """
 
@@ -18,15 +19,23 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from rocketsim.constants import G0, UNUSABLE_PROPELLANT, USSA_P0
 from rocketsim.vehicle.build import build
 
 
 def stage_engines(stage) -> tuple[float, float, float]:
-    """``(vacuum thrust N, sea-level thrust N, mass flow kg/s)`` of a stage's engines at full throttle."""
+    """``(vacuum thrust N, sea-level thrust N, mass flow kg/s)`` of a stage's engines at full
+    throttle, and of its solid motors at their mean thrust and flow (total impulse and
+    propellant over the curve's duration; the same at sea level: a curve is measured there)."""
     vacuum = sum(e.count * e.thrust_vacuum for e in stage.engines)
     sea = sum(e.count * max(0.0, e.thrust_vacuum - USSA_P0 * e.exit_area) for e in stage.engines)
     flow = sum(e.count * e.thrust_vacuum / (G0 * e.isp) for e in stage.engines)
+    for m in stage.motors:
+        burn = m.thrust[-1][0]
+        vacuum, sea, flow = vacuum + m.total_impulse / burn, sea + m.total_impulse / burn, \
+            flow + m.propellant_mass / burn
     return vacuum, sea, flow
 
 
@@ -38,7 +47,8 @@ def summary(spec) -> dict:
     stages = []
     for i, st in enumerate(spec.stages):
         vacuum, sea, flow = stage_engines(st)
-        usable = (1 - UNUSABLE_PROPELLANT) * sum(t.load for t in st.tanks if t.feeds_engines)
+        usable = (1 - UNUSABLE_PROPELLANT) * sum(t.load for t in st.tanks if t.feeds_engines) \
+            + sum(m.propellant_mass for m in st.motors)          # a solid motor burns it all
         ignition = sum(wet[i:]) + top
         burnout = ignition - usable
         ratio = math.log(ignition / burnout) if burnout > 0 else 0.0
@@ -62,7 +72,7 @@ def summary(spec) -> dict:
         })
     liftoff = sum(wet) + top
     full = model.mass_properties(model.tank_load)
-    empty = model.mass_properties(UNUSABLE_PROPELLANT * model.tank_load)
+    empty = model.mass_properties(UNUSABLE_PROPELLANT * model.tank_load, motors=np.zeros(model.n_motors))
     return {
         "name": spec.name,
         "length_m": model.length,

@@ -1,4 +1,4 @@
-"""From Mars orbit down to parachute conditions: deorbit, then a ballistic entry.
+"""From Mars orbit down under a parachute: deorbit, a ballistic entry, the disk-gap-band.
 
 For a capsule with a deorbit engine and a heat shield
 (vehicles/mars-entry-capsule.yaml) starting in a low circular Mars orbit.
@@ -14,6 +14,9 @@ For a capsule with a deorbit engine and a heat shield
    parachute conditions: Mach below 2 more than 7 km up (the supersonic
    disk-gap-band parachutes of Viking, Phoenix and the Mars Science
    Laboratory opened between Mach 1.1 and 2.1, 6 to 13 km up).
+4. Open the disk-gap-band there and descend on it; the flight ends (the
+   scenario's duration) near 2 km, where the Mars Science Laboratory left its
+   parachute for the powered descent, which is not flown.
 """
 
 import math
@@ -56,3 +59,4 @@ def main(fc):
     fc.wait_until(lambda: mach(fc) < PARACHUTE_MACH or height(fc.position) < PARACHUTE_HEIGHT)
     fc.event("parachute_conditions", mach=mach(fc), height_m=height(fc.position),
              speed_m_s=float(np.linalg.norm(fc.velocity)))
+    fc.deploy_parachute("disk-gap-band")

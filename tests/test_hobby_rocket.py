@@ -1,0 +1,63 @@
+"""The worked example, scenarios/hobby-rocket.yaml: a 4895L1395 rocket off a rail, two parachutes.
+
+Checked against independent figures: the motor's total impulse (its
+designation, 4 895 N s) delivered by burnout; the landing under the main at
+a few m/s is a touchdown, not an impact (docs/physics.md#parachutes); the
+touchdown's distance from the pad is the horizontal distance of its reported
+landing point from the site, by pymap3d (a peer used only in tests); the
+descent and drift times are the differences of the events' times. The whole
+flight (about 230 s, 20 ms steps) takes seconds.
+"""
+
+import math
+from pathlib import Path
+
+import pytest
+
+from rocketsim.scenario.load import load
+from rocketsim.sim.build import build_world
+
+pymap3d = pytest.importorskip("pymap3d")
+
+SCENARIO = Path(__file__).resolve().parents[1] / "scenarios" / "hobby-rocket.yaml"
+
+
+@pytest.fixture(scope="module")
+def flight():
+    loaded = load(SCENARIO)
+    world = build_world(loaded)
+    world.run()
+    body = world.bodies[0]
+    return loaded.scenario, body, {e["name"] + (f":{e['parachute']}" if "parachute" in e else ""): e
+                                   for e in body.events}
+
+
+def test_the_flight_runs_its_sequence_and_lands_under_the_main(flight):
+    _, body, events = flight
+    names = [e["name"] for e in body.events]
+    assert names == ["liftoff", "off_rail", "burnout", "max_q", "apogee", "parachute_deployed",
+                     "parachute_inflated", "parachute_deployed", "parachute_inflated", "touchdown"]
+    off = events["off_rail"]
+    assert 20.0 < off["speed_m_s"] < 40.0 and 1.5 < off["stability_margin_cal"] < 4.0
+    assert events["burnout"]["total_impulse_N_s"] == pytest.approx(4895.0, rel=0.01)
+    touchdown = events["touchdown"]
+    print(f"\n[hobby] off the rail {off['speed_m_s']:.1f} m/s, margin {off['stability_margin_cal']:.2f} cal; "
+          f"apogee {events['apogee']['altitude_m']:.0f} m; touchdown {touchdown['vertical_speed_m_s']:.2f} m/s, "
+          f"{touchdown['distance_to_target_m']:.0f} m from the pad")
+    assert -8.0 < touchdown["vertical_speed_m_s"] < -5.0
+    assert not body.flying            # recovered: the flight ends at touchdown
+    main = events["parachute_deployed:main"]
+    assert main["trigger"] == "height 300 m" and 295.0 < main["height_m"] <= 300.0
+    assert events["parachute_deployed:drogue"]["time_s"] == events["apogee"]["time_s"]
+
+
+def test_the_landing_figures_are_those_of_the_reported_point(flight):
+    scenario, body, events = flight
+    touchdown = events["touchdown"]
+    site = scenario.site
+    e, n, _ = pymap3d.geodetic2enu(touchdown["latitude_deg"], touchdown["longitude_deg"], 0.0,
+                                   math.degrees(site.latitude), math.degrees(site.longitude), 0.0)
+    assert touchdown["distance_to_target_m"] == pytest.approx(math.hypot(e, n), rel=1e-3)
+    assert touchdown["descent_time_s"] == pytest.approx(touchdown["time_s"] - events["apogee"]["time_s"], abs=1e-9)
+    assert touchdown["drift_time_s"] == pytest.approx(
+        touchdown["time_s"] - events["parachute_deployed:drogue"]["time_s"], abs=1e-9)
