@@ -26,10 +26,14 @@ from pathlib import Path
 import numpy as np
 
 DATA = Path(__file__).parent / "fixtures" / "measured"
-WEATHER = Path(__file__).parents[1] / "scenarios" / "measured" / "weather"
+SCENARIOS = Path(__file__).parents[1] / "scenarios" / "measured"
+WEATHER = SCENARIOS / "weather"
+MOTORS = Path(__file__).parents[1] / "motors"            # the RASP .eng files
 FEET = 0.3048                                    # m
-# (lowest, highest) altitude AGL of the descent-rate window, m
-DESCENT = {"ndrt-2020": (20.0, 120.0), "bella-lui": (100.0, 300.0)}
+# (lowest, highest) altitude AGL of the descent-rate window, m: under the open main for
+# Notre Dame (its log shows the main opening at about 110 m, 65 s, below the 550 ft
+# trigger's 168 m), under the one parachute for Bella Lui
+DESCENT = {"ndrt-2020": (10.0, 80.0), "bella-lui": (100.0, 300.0)}
 
 
 @dataclass(frozen=True)
@@ -76,6 +80,22 @@ def measured(name: str) -> Figures:
     return figures(name, log[:, 0], log[:, 1], log[:, 2])
 
 
+def rocketsim_figures(name: str) -> Figures:
+    """rocketsim's flight of scenarios/measured/<name>.yaml (in memory) as :class:`Figures`."""
+    import rocketsim
+    return figures_of_run(name, rocketsim.fly(SCENARIOS / f"{name}.yaml"))
+
+
+def figures_of_run(name: str, run) -> Figures:
+    """A rocketsim run's :class:`Figures`: the altitude above its first sample's (an altimeter
+    zeroed on the pad), the vertical speed its central differences at the 50 Hz samples."""
+    table = next(iter(run.bodies.values())).table()
+    t = table.index.to_numpy(float)
+    h = table["altitude_m"].to_numpy(float)
+    h = h - h[0]
+    return figures(name, t, h, np.gradient(h, t))
+
+
 # --- RocketPy, set up as its acceptance tests -----------------------------------------
 
 NDRT = {"latitude": 41.775447, "longitude": -86.572467, "date": (2020, 2, 23, 16),
@@ -84,13 +104,16 @@ BELLA = {"latitude": 47.213476, "longitude": 9.003336, "date": (2020, 2, 22, 13)
          "elevation": 407.0, "weather": "bella_lui_weather_data_ERA5.nc"}
 
 
-def rocketpy_flight(name: str, motors: Path):
-    """RocketPy's Flight of ``name`` (``motors``: the folder of the RASP .eng files)."""
+def rocketpy_flight(name: str, motors: Path, weather: Path | None = None,
+                    to_apogee: bool = False):
+    """RocketPy's Flight of ``name`` and its Environment (``motors``: the folder of the RASP
+    .eng files; ``weather``: an ERA5 file in place of the day's; ``to_apogee``: stop there,
+    RocketPy's ``terminate_on_apogee``)."""
     from rocketpy import Environment, Flight, Function, Rocket, SolidMotor
     site = NDRT if name == "ndrt-2020" else BELLA
     env = Environment(gravity=9.81, latitude=site["latitude"], longitude=site["longitude"],
                       date=site["date"], elevation=site["elevation"])
-    env.set_atmospheric_model(type="Reanalysis", file=str(WEATHER / site["weather"]),
+    env.set_atmospheric_model(type="Reanalysis", file=str(weather or WEATHER / site["weather"]),
                               dictionary="ECMWF_v0")
     env.max_expected_height = 2000
 
@@ -125,7 +148,7 @@ def rocketpy_flight(name: str, motors: Path):
         rocket.add_parachute("Main", cd_s=2.2 * np.pi * (120 * inch) ** 2 / 4, trigger=main,
                              sampling_rate=105, lag=1, noise=(0, 8.3, 0.5))
         return Flight(rocket=rocket, environment=env, rail_length=3.353, inclination=90,
-                      heading=181), env
+                      heading=181, terminate_on_apogee=to_apogee), env
     motor = SolidMotor(
         thrust_source=str(motors / "AeroTech_K828FJ.eng"), burn_time=2.43, dry_mass=1,
         dry_inertia=(0, 0, 0), center_of_dry_mass_position=0, grains_center_of_mass_position=-1,
@@ -150,7 +173,7 @@ def rocketpy_flight(name: str, motors: Path):
             lambda alpha, beta, mach, reynolds, pitch, yaw, roll: drag.get_value_opt(mach),
             seven, ["Drag Coefficient"], interpolation="linear", extrapolation="constant"))
     return Flight(rocket=rocket, environment=env, rail_length=4.2, inclination=89,
-                  heading=45), env
+                  heading=45, terminate_on_apogee=to_apogee), env
 
 
 # Bella Lui's drag coefficient against Mach (RocketPy's acceptance test)
@@ -158,9 +181,9 @@ BELLA_DRAG = [(0.01, 0.51), (0.02, 0.46), (0.04, 0.43), (0.28, 0.43), (0.29, 0.4
               (0.45, 0.44), (0.49, 0.46)]
 
 
-def rocketpy_figures(name: str, motors: Path) -> Figures:
+def rocketpy_figures(name: str, motors: Path, weather: Path | None = None) -> Figures:
     """RocketPy's flight of ``name`` as :class:`Figures` (its solution's own samples)."""
-    flight, env = rocketpy_flight(name, motors)
+    flight, env = rocketpy_flight(name, motors, weather)
     solution = np.asarray(flight.solution)
     t, z, vz = solution[:, 0], solution[:, 3] - env.elevation, solution[:, 6]
     return figures(name, t, z, vz)
