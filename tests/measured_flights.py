@@ -46,6 +46,7 @@ class Figures:
     apogee_time: float
     peak_vertical_speed: float
     descent_rate: float
+    apogee_drift: float = float("nan")     # m, horizontal distance from the pad at apogee
 
 
 def figures(name: str, time, altitude, vertical_speed=None) -> Figures:
@@ -89,11 +90,20 @@ def rocketsim_figures(name: str) -> Figures:
 def figures_of_run(name: str, run) -> Figures:
     """A rocketsim run's :class:`Figures`: the altitude above its first sample's (an altimeter
     zeroed on the pad), the vertical speed its central differences at the 50 Hz samples."""
+    from dataclasses import replace
+    from rocketsim.frames.geodetic import enu_basis, geodetic_to_ecef
     table = next(iter(run.bodies.values())).table()
     t = table.index.to_numpy(float)
-    h = table["altitude_m"].to_numpy(float)
-    h = h - h[0]
-    return figures(name, t, h, np.gradient(h, t))
+    height = table["altitude_m"].to_numpy(float)
+    h = height - height[0]
+    found = figures(name, t, h, np.gradient(h, t))
+    lat = np.radians(table["latitude_deg"].to_numpy(float))
+    lon = np.radians(table["longitude_deg"].to_numpy(float))
+    top = int(np.argmax(h))
+    moved = geodetic_to_ecef(lat[top], lon[top], height[top]) - geodetic_to_ecef(lat[0], lon[0],
+                                                                             height[0])
+    east, north, _ = enu_basis(lat[0], lon[0]) @ moved
+    return replace(found, apogee_drift=float(np.hypot(east, north)))
 
 
 # --- RocketPy, set up as its acceptance tests -----------------------------------------
@@ -105,10 +115,17 @@ BELLA = {"latitude": 47.213476, "longitude": 9.003336, "date": (2020, 2, 22, 13)
 
 
 def rocketpy_flight(name: str, motors: Path, weather: Path | None = None,
-                    to_apogee: bool = False):
+                    to_apogee: bool = False, physical: bool = False):
     """RocketPy's Flight of ``name`` and its Environment (``motors``: the folder of the RASP
     .eng files; ``weather``: an ERA5 file in place of the day's; ``to_apogee``: stop there,
-    RocketPy's ``terminate_on_apogee``)."""
+    RocketPy's ``terminate_on_apogee``).
+
+    ``physical`` (Notre Dame): the rocket as vehicles/ndrt-2020.yaml builds it, in place of
+    two figures of the acceptance test no rocket has: the motor in the tail (its nozzle at
+    -1.255 m, where the test adds the motor's own -1.255 m nozzle position once more, 1.2 m
+    below the tail) and the structure's pitch inertia of a thin shell of the body,
+    ``m (r^2/2 + L^2/12)``, in place of 83.351 kg m^2; and no boattail (rocketsim's
+    aerodynamics have none)."""
     from rocketpy import Environment, Flight, Function, Rocket, SolidMotor
     site = NDRT if name == "ndrt-2020" else BELLA
     env = Environment(gravity=9.81, latitude=site["latitude"], longitude=site["longitude"],
@@ -128,16 +145,20 @@ def rocketpy_flight(name: str, motors: Path, weather: Path | None = None,
             grain_density=1519.708, grain_outer_radius=0.033, grain_initial_inner_radius=0.015,
             grain_initial_height=0.120, nozzle_radius=49.5 / 2000, throat_radius=21.5 / 2000,
             interpolation_method="linear", nozzle_position=-1.255)
+        shell, radius, length = 23.321 - 4.323, 0.203 / 2, 2.041366     # the vehicle file's
+        pitch = shell * (radius ** 2 / 2 + length ** 2 / 12)
+        inertia = (pitch, pitch, shell * radius ** 2) if physical else (83.351, 83.351, 0.15982)
         rocket = Rocket(radius=203 / 2000, mass=23.321 - 2.475 - 1,
-                        inertia=(83.351, 83.351, 0.15982), power_off_drag=0.44,
+                        inertia=inertia, power_off_drag=0.44,
                         power_on_drag=0.44, center_of_mass_without_motor=0)
         rocket.set_rail_buttons(0.2, -0.5, 45)
-        rocket.add_motor(motor, -1.255)
+        rocket.add_motor(motor, 0.0 if physical else -1.255)
         rocket.add_nose(length=0.610, kind="tangent", position=0.71971 + 0.610)
         rocket.add_trapezoidal_fins(3, span=0.165, root_chord=0.152, tip_chord=0.0762,
                                     position=-1.04956)
-        rocket.add_tail(top_radius=203 / 2000, bottom_radius=155 / 2000, length=0.127,
-                        position=-1.194656)
+        if not physical:
+            rocket.add_tail(top_radius=203 / 2000, bottom_radius=155 / 2000, length=0.127,
+                            position=-1.194656)
 
         def main(p, h, y):        # 550 ft AGL, falling
             return y[5] < 0 and h < 167.64

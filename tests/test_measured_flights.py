@@ -21,8 +21,11 @@ a rocket that holds together, and they are why rocketsim misses some bounds
   at the pad, 16 m/s at 1.5 km) RocketPy loses 11 m of apogee to the calm
   day's, with a physical inertia (8 kg m^2) 32 m. rocketsim's rocket (2.08
   calibers off the rail, its thin-shell inertia) turns into the wind, drifts
-  325 m upwind by apogee and loses 48 m. In calm air the two simulators agree
-  within 0.04 % and meet the log within 0.1 % (test_in_calm_air_...).
+  326 m upwind by apogee and loses 48 m. RocketPy flying that physical rocket
+  (motor in the tail, the same inertia, no boattail) in the same wind does the
+  same: 1 270.7 m against 1 273.1 m, 339 m upwind (test_in_the_wind_...). In
+  calm air the two simulators agree within 0.04 % and meet the log within
+  0.1 % (test_in_calm_air_...).
 - Bella Lui: RocketPy's motor burns the 0.824 kg its grain geometry holds
   (782.4 kg/m^3), not the 1.45 kg of the AeroTech K828FJ's .eng header (an
   Isp of 267 s against 152 s for the same 2 157 N s); rocketsim's motor is the
@@ -126,6 +129,24 @@ def test_in_calm_air_rocketsim_and_rocketpy_fly_notre_dame_alike(tmp_path):
     assert ours.apogee == pytest.approx(peer.apogee - env.elevation, rel=0.005)
     assert ours.apogee_time == pytest.approx(peer.apogee_time, rel=0.01)
     assert _error(ours, log, "apogee") < 0.015
+
+
+def test_in_the_wind_rocketsim_and_rocketpy_fly_the_physical_notre_dame_alike():
+    """RocketPy flying Notre Dame as vehicles/ndrt-2020.yaml builds it (motor in the tail, the
+    thin-shell inertia, no boattail: tests.measured_flights.rocketpy_flight(physical=True))
+    in the day's ERA5 wind: apogee within 0.5 %, its time within 1 %, and the drift
+    upwind by apogee within 10 % (measured 1 270.7 m at 16.45 s and 339 m for RocketPy,
+    against 1 273.1 m at 16.44 s and 326 m): both rockets weathercock alike."""
+    import math
+    _, ours, _ = flights("ndrt-2020")
+    peer, env = rocketpy_flight("ndrt-2020", MOTORS, to_apogee=True, physical=True)
+    drift = math.hypot(peer.x(peer.apogee_time), peer.y(peer.apogee_time))
+    print(f"\n[physical] apogee rocketsim {ours.apogee:.1f} m at {ours.apogee_time:.2f} s, "
+          f"RocketPy {peer.apogee - env.elevation:.1f} m at {peer.apogee_time:.2f} s, "
+          f"drift {ours.apogee_drift:.0f} and {drift:.0f} m")
+    assert ours.apogee == pytest.approx(peer.apogee - env.elevation, rel=0.005)
+    assert ours.apogee_time == pytest.approx(peer.apogee_time, rel=0.01)
+    assert drift == pytest.approx(ours.apogee_drift, rel=0.1)
 
 
 def test_with_rocketpys_masses_rocketsim_and_rocketpy_fly_bella_lui_alike():
