@@ -272,3 +272,32 @@ def test_a_flight_in_reanalysis_weather_meets_the_files_wind_and_carries_the_fil
     assert first["mach"] == pytest.approx(airspeed / sound[0], rel=1e-9)
     carried = rocketsim.open_run(tmp_path / "run.mcap").file.attachments
     assert carried["reanalysis/ndrt_2020_weather_data_ERA5.nc"] == NDRT.read_bytes()
+
+
+def test_a_gfs_file_geopotential_height_pascals_and_relative_humidity(tmp_path):
+    """GFS (NOAA THREDDS) names: lat/lon/isobaric, pressure in Pa, geopotential height in
+    m' (no division by g0), relative humidity in %, turned into the mixing ratio
+    ``eps e / (p - e)`` with ``e = RH/100 * e_s(T)`` (Bolton 1980, as soundings are);
+    checked at a grid point against those formulas written out here."""
+    shape = ("time", "isobaric", "lat", "lon")
+    h = np.array([120.0, 800.0, 1500.0])[None, :, None, None] * np.ones((1, 3, 2, 2))
+    t = np.array([288.0, 284.0, 280.0])[None, :, None, None] * np.ones((1, 3, 2, 2))
+    rh = np.array([80.0, 60.0, 40.0])[None, :, None, None] * np.ones((1, 3, 2, 2))
+    xr.Dataset({"Geopotential_height_isobaric": (shape, h), "Temperature_isobaric": (shape, t),
+                "u-component_of_wind_isobaric": (shape, np.full((1, 3, 2, 2), 3.0)),
+                "v-component_of_wind_isobaric": (shape, np.full((1, 3, 2, 2), -4.0)),
+                "Relative_humidity_isobaric": (shape, rh)},
+               coords={"time": np.array(["2024-05-01T00:00"], dtype="datetime64[ns]"),
+                       "isobaric": ("isobaric", [100_000.0, 92_500.0, 85_000.0],
+                                    {"units": "Pa"}),
+                       "lat": [30.0, 30.5], "lon": [262.0, 262.5]}
+               ).to_netcdf(tmp_path / "gfs.nc", engine="netcdf4")
+    column = read_reanalysis(tmp_path / "gfs.nc", 30.5, -98.0, dt.datetime(2024, 5, 1, tzinfo=UTC))
+    assert np.array_equal(column.height, [120.0, 800.0, 1500.0])
+    assert np.array_equal(column.pressure, [100_000.0, 92_500.0, 85_000.0])
+    e = np.array([80.0, 60.0, 40.0]) / 100 * 6.112 * np.exp(
+        17.67 * (np.array([288.0, 284.0, 280.0]) - 273.15)
+        / (np.array([288.0, 284.0, 280.0]) - 273.15 + 243.5))
+    np.testing.assert_allclose(column.mixing_ratio, 0.62198 * e / (np.array([1000.0, 925.0, 850.0])
+                                                                  - e), rtol=1e-12)
+    assert np.array_equal(column.u, [3.0, 3.0, 3.0]) and np.array_equal(column.v, [-4.0] * 3)
