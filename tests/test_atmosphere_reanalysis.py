@@ -225,6 +225,15 @@ def test_errors_name_the_file_and_the_field(tmp_path):
         read_reanalysis(garbage, 46.2, -6.0, when)
     assert corrupt.value.file == str(garbage)
     assert corrupt.value.message.startswith("cannot read the file as NetCDF")
+    for units, message in (("hours since 1900-13-45", "cannot read the times"),
+                           ("fortnights after lunch", "the valid_time coordinate is not a time")):
+        day = xr.open_dataset(path).load()
+        day["valid_time"] = ("valid_time", [0.0, 6.0], {"units": units})
+        day.drop_encoding().to_netcdf(tmp_path / "bad_time.nc", engine="netcdf4")
+        with pytest.raises(InputError) as bad_time:
+            read_reanalysis(tmp_path / "bad_time.nc", 46.2, -6.0, when)
+        assert bad_time.value.field == "valid_time", units
+        assert bad_time.value.message.startswith(message), bad_time.value.message
     xr.open_dataset(path).drop_vars("u").to_netcdf(tmp_path / "no_u.nc", engine="netcdf4")
     with pytest.raises(InputError) as no_u:
         read_reanalysis(tmp_path / "no_u.nc", 46.2, -6.0, when)

@@ -162,10 +162,23 @@ def read_reanalysis(path: str | Path, latitude: float, longitude: float,
     try:
         data = xr.open_dataset(path, engine="netcdf4")
     except Exception as error:       # netCDF4/HDF5 raise OSError, ValueError, RuntimeError...
-        raise InputError(f"cannot read the file as NetCDF ({type(error).__name__}: {error})",
-                         file=path) from None
+        raise _unreadable(path, error) from None
     with data:
         return _column(data, path, latitude, longitude, when)
+
+
+def _unreadable(path, error) -> InputError:
+    """The error for a file xarray could not open: its times' units when the file opens
+    without decoding them, else not NetCDF at all."""
+    import xarray as xr
+    try:
+        with xr.open_dataset(path, engine="netcdf4", decode_times=False) as raw:
+            names = [n for n in TIME if n in raw.variables]
+    except Exception:                # not NetCDF (or HDF5) at all
+        return InputError(f"cannot read the file as NetCDF ({type(error).__name__}: {error})",
+                          file=path)
+    return InputError(f"cannot read the times ({error})", file=path,
+                      field=names[0] if names else None)
 
 
 def _column(data, path, latitude, longitude, when):
