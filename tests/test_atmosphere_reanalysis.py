@@ -234,6 +234,12 @@ def test_errors_name_the_file_and_the_field(tmp_path):
             read_reanalysis(tmp_path / "bad_time.nc", 46.2, -6.0, when)
         assert bad_time.value.field == "valid_time", units
         assert bad_time.value.message.startswith(message), bad_time.value.message
+    day = xr.open_dataset(path).load()
+    day["latitude"] = ("latitude", [46.5, np.nan, 46.0])
+    day.drop_encoding().to_netcdf(tmp_path / "nan_lat.nc", engine="netcdf4")
+    with pytest.raises(InputError) as nan_lat:
+        read_reanalysis(tmp_path / "nan_lat.nc", 46.2, -6.0, when)
+    assert nan_lat.value.field == "latitude" and "all finite" in nan_lat.value.message
     xr.open_dataset(path).drop_vars("u").to_netcdf(tmp_path / "no_u.nc", engine="netcdf4")
     with pytest.raises(InputError) as no_u:
         read_reanalysis(tmp_path / "no_u.nc", 46.2, -6.0, when)

@@ -181,6 +181,19 @@ def _unreadable(path, error) -> InputError:
                       field=names[0] if names else None)
 
 
+def _coordinate(data, name, path):
+    """The values of coordinate ``name`` as floats: some, all finite, none repeated."""
+    try:
+        values = np.asarray(data[name].values, dtype=float).ravel()
+    except (TypeError, ValueError):
+        raise InputError(f"{name} is not numeric", file=path, field=name) from None
+    if len(values) == 0 or not np.all(np.isfinite(values)) \
+            or len(np.unique(values)) != len(values):
+        raise InputError(f"{name} needs at least one value, all finite and distinct",
+                         file=path, field=name)
+    return values
+
+
 def _column(data, path, latitude, longitude, when):
     names = set(data.variables)
     lat_name = _required(LATITUDE, names, path, "latitude coordinate")
@@ -199,8 +212,8 @@ def _column(data, path, latitude, longitude, when):
     if humidity or relative:
         fields["humidity"] = humidity or relative
 
-    lats = np.asarray(data[lat_name].values, dtype=float).ravel()
-    lons = np.asarray(data[lon_name].values, dtype=float).ravel()
+    lats, lons, levels = (_coordinate(data, name, path) for name in (lat_name, lon_name,
+                                                                        level_name))
     lon = _site_longitude(lons, longitude)
     span = float(np.max(lons) - np.min(lons))
     step = float(np.min(np.abs(np.diff(np.sort(lons))))) if len(lons) > 1 else 0.0
@@ -224,7 +237,6 @@ def _column(data, path, latitude, longitude, when):
                          f"({_iso(times.min())} to {_iso(times.max())})", file=path,
                          field=time_name)
 
-    levels = np.asarray(data[level_name].values, dtype=float).ravel()
     unit = str(data[level_name].attrs.get("units", "")).strip().lower()
     pressure = levels if unit == "pa" or (unit not in ("hpa", "mb", "millibars")
                                           and levels.max() > 1100.0) else levels * 100.0
