@@ -5,8 +5,9 @@ designation, 4 895 N s) delivered by burnout; the landing under the main at
 a few m/s is a touchdown, not an impact (docs/physics.md#parachutes); the
 touchdown's distance from the pad is the horizontal distance of its reported
 landing point from the site, by pymap3d (a peer used only in tests); the
-descent and drift times are the differences of the events' times. The whole
-flight (about 230 s, 20 ms steps) takes seconds.
+descent and drift times are the differences of the events' times; the
+rocket comes to rest on the site's flat ground at the pad's height. The whole
+flight (about 170 s, 20 ms steps) takes seconds.
 """
 
 import math
@@ -46,6 +47,11 @@ def test_the_flight_runs_its_sequence_and_lands_under_the_main(flight):
           f"{touchdown['distance_to_target_m']:.0f} m from the pad")
     assert -8.0 < touchdown["vertical_speed_m_s"] < -5.0
     assert not body.flying            # recovered: the flight ends at touchdown
+    # on the site's flat ground at the pad's height (ground_height 1 380 m), nose down
+    # (tilt 180 deg): the nose's tip touched, the centre of mass is its station above it
+    x_cm = body.vehicle.mass_properties(body.y)[1]
+    assert body.view().geodetic[2] - 1380.0 == pytest.approx(2.4 - x_cm, abs=0.05)
+    assert touchdown["tilt_deg"] > 170.0
     main = events["parachute_deployed:main"]
     assert main["trigger"] == "height 300 m" and 295.0 < main["height_m"] <= 300.0
     assert events["parachute_deployed:drogue"]["time_s"] == events["apogee"]["time_s"]
@@ -61,3 +67,25 @@ def test_the_landing_figures_are_those_of_the_reported_point(flight):
     assert touchdown["descent_time_s"] == pytest.approx(touchdown["time_s"] - events["apogee"]["time_s"], abs=1e-9)
     assert touchdown["drift_time_s"] == pytest.approx(
         touchdown["time_s"] - events["parachute_deployed:drogue"]["time_s"], abs=1e-9)
+
+
+def test_the_telemetry_carries_the_motor_thrust_and_the_burning_mass():
+    """The state messages' thrust is the file's curve interpolated linearly (numpy, on
+    the raw points) and the mass falls by the impulse delivered, m0 I(t) / I_total."""
+    import numpy as np
+    import rocketsim
+    run = rocketsim.fly(SCENARIO, duration=3.0)
+    table = run.bodies["hobby-rocket"].table(units=False)
+    raw = [line.split() for line in (SCENARIO.parents[1] / "motors" / "Cesaroni_4895L1395-P.eng")
+           .read_text().splitlines() if line.strip() and not line.startswith(";")][1:]
+    t_curve = np.array([0.0] + [float(a) for a, _ in raw])
+    f_curve = np.array([0.0] + [float(b) for _, b in raw])
+    fine = np.linspace(0.0, 3.45, 345001)
+    impulse = np.concatenate(([0.0], np.cumsum(0.5 * (np.interp(fine[1:], t_curve, f_curve)
+                                                     + np.interp(fine[:-1], t_curve, f_curve)) * np.diff(fine))))
+    for t in (0.5, 1.0, 2.5):
+        row = table.loc[t]
+        assert row["thrust"] == pytest.approx(np.interp(t, t_curve, f_curve), rel=1e-12)
+        burnt = 2.475 * np.interp(t, fine, impulse) / impulse[-1]
+        assert row["mass"] == pytest.approx(16.423 - burnt, abs=1e-6)
+        assert row["engines_running"] == 1

@@ -99,3 +99,16 @@ def test_a_canopy_drifts_with_the_wind():
     east = float(world.bodies[0].view().surface_velocity @ world.bodies[0].view().enu[0])
     print(f"\n[parachute] under the canopy in a westerly of 8 m/s: drifting east at {east:.3f} m/s")
     assert east == pytest.approx(8.0, abs=0.05)
+
+
+def test_a_body_without_contact_points_comes_down_on_the_sites_flat_ground():
+    """With ``ground_height`` the ground is that high above the ellipsoid: the falling body
+    ends in an impact there (its centre of mass below it, within one step's fall)."""
+    data = scenario([{"name": "main", "cd_s": f"{CDS} m2", "lag": "1 s", "inflation": "2 s",
+                      "deploy": "apogee"}], height="1100 m", duration="60 s")
+    data["site"]["ground_height"] = "1000 m"
+    world = build_world(load(data))
+    world.run()
+    body = world.bodies[0]
+    assert body.events[-1]["name"] == "impact" and not body.flying
+    assert 1000.0 - 6.5 * 0.05 < world.where(body)[2] < 1000.0

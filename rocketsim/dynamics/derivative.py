@@ -50,7 +50,7 @@ from rocketsim.layout import (P_CLASSIC, P_IXX, P_NBODY, P_IYY, P_IZZ, P_J2, P_M
                                       P_POLAR_RADIUS, P_RADIUS, P_SPIN, Q, R, V, W)
 from rocketsim.dynamics.third_bodies import held_perturbation
 from rocketsim.frames.quaternion import quat_multiply
-from rocketsim.vehicle.aero import A_ON, A_REACH, body_aero
+from rocketsim.vehicle.aero import A_GROUND, A_ON, A_REACH, body_aero
 from rocketsim.vehicle.contact import contact_forces
 from rocketsim.vehicle.engines import engine_forces
 from rocketsim.vehicle.grid_fins import grid_fin_forces
@@ -116,8 +116,10 @@ def _aero_and_contact(t, y, p, dy, rho, sound, x_cm, aero, fx, fy, fz, mx, my, m
         fx, fy, fz, mx, my, mz = fx + a[0], fy + a[1], fz + a[2], mx + a[3], my + a[4], mz + a[5]
     # contact only within reach of the ground (a cheap bound first)
     r = math.sqrt(y[R] ** 2 + y[R + 1] ** 2 + y[R + 2] ** 2)
-    if contact and r - p[P_RADIUS] < aero.ref[A_REACH] and radial_height(y, p) < aero.ref[A_REACH]:
-        a = contact_forces(y, x_cm, p[P_RADIUS], p[P_POLAR_RADIUS], p[P_SPIN], aero.contact)
+    reach = aero.ref[A_REACH] + aero.ref[A_GROUND]      # the ground: the ellipsoid, or above it
+    if contact and r - p[P_RADIUS] < reach and radial_height(y, p) < reach:
+        a = contact_forces(y, x_cm, p[P_RADIUS], p[P_POLAR_RADIUS], p[P_SPIN], aero.contact,
+                           aero.ref[A_GROUND])
         fx, fy, fz, mx, my, mz = fx + a[0], fy + a[1], fz + a[2], mx + a[3], my + a[4], mz + a[5]
     return fx, fy, fz, mx, my, mz
 

@@ -38,7 +38,7 @@ from rocketsim.dynamics.derivative import held_derivative, radial_height
 from rocketsim.layout import P_NBODY, P_RADIUS, P_SPIN, Q, R
 from rocketsim.dynamics.third_bodies import hold_field
 from rocketsim.frames.geodetic import ecef_to_geodetic_njit
-from rocketsim.vehicle.aero import A_REACH, A_WIND
+from rocketsim.vehicle.aero import A_GROUND, A_REACH, A_WIND
 from rocketsim.vehicle.engines import S_DRY, S_DRY_AT, S_RESERVE, S_TANK0, S_TANKS, next_kink
 from rocketsim.vehicle.motors import next_motor_kink
 from rocketsim.vehicle.parachutes import next_canopy_kink
@@ -263,7 +263,7 @@ def step(y, t, h, p, veh=None):
         hold_field(p, t)            # the other bodies of an n-body field, held per 5 s
     reach = 0.0
     if veh is not None:
-        reach = veh.aero.ref[A_REACH]
+        reach = veh.aero.ref[A_REACH] + veh.aero.ref[A_GROUND]     # from the ellipsoid
         if veh.aero.ref[A_WIND] > 0.5:
             hold_wind(y, t, p, veh)
     if near_ground(y, p, reach):
@@ -285,10 +285,14 @@ def advance(y, k0, h, n_steps, p, veh=None):
     time never accumulates rounding). Identical, bit for bit, to calling
     :func:`step` once per step: a coast with nothing to decide between steps
     is batched this way. Stops early, after the step that took the body below
-    its central body's ellipsoid (an impact).
+    its central body's ellipsoid, or a vehicle's ground (``aero.ref[A_GROUND]``
+    above it): an impact.
     """
+    ground = 0.0
+    if veh is not None:
+        ground = veh.aero.ref[A_GROUND]
     for k in range(n_steps):
         y = step(y, (k0 + k) * h, h, p, veh)
-        if radial_height(y, p) < 0.0:
+        if radial_height(y, p) < ground:
             return y, k + 1
     return y, n_steps

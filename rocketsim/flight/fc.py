@@ -522,15 +522,18 @@ class FlightComputer:
 
     @property
     def thrust(self) -> float:
-        """Total thrust of all engines now, N."""
+        """Total thrust of all engines and solid motors now, N."""
         body = self._craft
         if body.vehicle is None:
             return 0.0
-        return float(self._propulsion().thrusts(body.y, self._craft.time, body.truth().air[1]).sum())
+        propulsion = self._propulsion()
+        return float(propulsion.thrusts(body.y, self._craft.time, body.truth().air[1]).sum()) \
+            + propulsion.motor_thrust(self._craft.time)
 
     @property
     def propellant(self) -> dict[str, float]:
-        """Propellant left per tank (``stage/tank`` -> kg), with the gauge's error."""
+        """Propellant left per tank and solid motor (``stage/tank``, ``stage/motor`` -> kg),
+        with the gauge's error."""
         if self._craft.vehicle is None:
             return {}
         levels = self._propulsion().propellant(self._craft.y)

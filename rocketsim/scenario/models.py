@@ -94,6 +94,10 @@ class SiteSpec(Strict):
     longitude: Angle = Field(description="longitude, east positive")
     height: Length = Field(0.0, description="height of the pad above the WGS84 ellipsoid")
     pad_azimuth: Angle = Field(1.5707963267948966, description="launch azimuth from north, default due east")
+    ground_height: Optional[Length] = Field(
+        None, description="height above the WGS84 ellipsoid of a flat ground around the site that "
+        "a vehicle launched from here lands on (its contact points, touchdown, impact, parachute "
+        "heights); default none: the ground is the ellipsoid itself. Usually the pad's height")
     source: str = ""
     model: Literal["realistic", "classic"] = Field(
         "realistic", description="the physics model flown from this site: 'classic' is the classic "

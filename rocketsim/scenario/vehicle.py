@@ -292,7 +292,7 @@ class AfterEvent(_Strict):
 
 class HeightTrigger(_Strict):
     height: Length = Field(description="deploy on the way down at this height above the ground "
-                           "(the ellipsoid: the ground the body lands on)")
+                           "(the ground the body lands on: the ellipsoid, or the site's ground_height)")
 
 
 class AfterTrigger(_Strict):

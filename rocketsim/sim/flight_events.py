@@ -16,7 +16,7 @@ One :class:`FlightEvents` watches one body; the world calls
   instant ``burnout_s``, its total impulse).
 * ``apogee`` — a vehicle with parachutes that rose from the ground has begun to
   come down (its vertical speed over the ground turned negative; figures:
-  ``altitude_m`` above the ground, the ellipsoid).
+  ``altitude_m`` above the ground: the ellipsoid, or the site's ``ground_height``).
 * ``parachute_deployed`` — a parachute's trigger fired (its YAML trigger, at the
   end of the step in which it was met, or ``fc.deploy_parachute``; figures: the
   parachute, the trigger, ``height_m``, ``vertical_speed_m_s``);
@@ -45,7 +45,7 @@ import numpy as np
 from rocketsim.atmosphere.table import TOP
 from rocketsim.constants import DEG, EARTH_RADIUS_EQ
 from rocketsim.vehicle.engines import C_ON, E_STAGE, E_TAIL, S_DRY, S_DRY_AT, S_TANKS
-from rocketsim.vehicle.aero import A_AREA, A_ON, centre_of_pressure
+from rocketsim.vehicle.aero import A_AREA, A_GROUND, A_ON, centre_of_pressure
 from rocketsim.vehicle.motors import M_CURVE0, M_IGNITION, M_IMPULSE, M_POINTS
 from rocketsim.vehicle.parachutes import CH_DEPLOYED, CH_INFLATION, CH_LAG, deploy
 from rocketsim.vehicle.rail import RL_OFF_AT, RL_OFF_SPEED, RL_ON
@@ -128,7 +128,7 @@ class FlightEvents:
         chute = model.arrays.chute
         up, surface = ground_motion(body.central, body.t, body.y)
         vertical = float(surface @ up)
-        height = self.world.where(body)[2]
+        height = self.world.where(body)[2] - model.arrays.aero.ref[A_GROUND]     # above the ground
         if self.start_height is not None and self.lifted and self.apogee_at is None:
             if vertical > 0.0:
                 self.rising = True
@@ -164,7 +164,8 @@ class FlightEvents:
             return False
         if vertical is None:
             up, surface = ground_motion(body.central, body.t, body.y)
-            vertical, height = float(surface @ up), self.world.where(body)[2]
+            vertical = float(surface @ up)
+            height = self.world.where(body)[2] - body.vehicle.arrays.aero.ref[A_GROUND]
         self.world.event(body, "parachute_deployed", {"parachute": body.vehicle.parachutes[i].name,
                                                       "trigger": trigger, "height_m": height,
                                                       "vertical_speed_m_s": vertical})

@@ -38,12 +38,13 @@ Fields of a staged vehicle:
   running; missing when none runs. ``group_throttle`` is the same by engine
   group (``<stage>_<group>``, missing for a group with no engine running);
 * ``thrust`` (N) in total and ``group_thrust`` (N) by engine group, at the
-  ambient pressure of the state message's air;
-* ``mass_flow``: propellant drawn by all engines, kg/s;
+  ambient pressure of the state message's air; solid motors count in the total;
+* ``mass_flow``: propellant drawn by all engines and burnt by solid motors, kg/s;
 * ``engines_running``: engines whose spool fraction is above zero on a stage
-  with usable propellant left (spooling up, at thrust, or tailing off);
-* ``propellant``: all propellant on board, kg (the unusable reserve
-  included), and ``propellant_tanks`` by tank (``<stage>_<tank>``, kg).
+  with usable propellant left (spooling up, at thrust, or tailing off), and
+  solid motors inside their curve;
+* ``propellant``: all propellant on board, kg (the unusable reserve and the
+  solid motors' included), and ``propellant_tanks`` by tank (``<stage>_<tank>``, kg).
 
 Fields of a staged vehicle with a heat shield:
 
@@ -89,6 +90,7 @@ from rocketsim.telemetry.frames import CentralFrame, central_frame
 from rocketsim.vehicle.engines import E_MDOT, E_STAGE, S_DRY, engine_state, thrusts
 from rocketsim.vehicle.heating import sutton_graves, sutton_graves_constant
 from rocketsim.vehicle.mass_properties import vehicle_mass_properties
+from rocketsim.vehicle.motors import M_IMPULSE, M_PROPELLANT, motor_thrust
 
 _TWO_PI = 2.0 * math.pi
 
@@ -163,10 +165,18 @@ def _vehicle_into(out, t, y, p, p_a, veh, group, n_groups, nose_radius, k_heat):
     for j in range(veh.tank_bottom.shape[0]):
         out[tanks + j] = y[N_STATE + j]
         propellant += y[N_STATE + j]
+    burning = 0
+    for i in range(veh.motor.shape[0]):     # solid motors: in the totals (no group, no throttle)
+        motor = motor_thrust(t, veh.motor, veh.curve, i)
+        if motor > 0.0:
+            total += motor
+            flow += veh.motor[i, M_PROPELLANT] * motor / veh.motor[i, M_IMPULSE]
+            burning += 1
+        propellant += y[veh.first_motor + i]
     out[VEHICLE] = total_tau / running if running > 0 else math.nan
     out[VEHICLE + 1] = total
     out[VEHICLE + 2] = flow
-    out[VEHICLE + 3] = running
+    out[VEHICLE + 3] = running + burning
     out[VEHICLE + 4] = propellant
     out[VEHICLE + 5] = math.nan
     if nose_radius > 0.0:

@@ -43,7 +43,7 @@ from rocketsim.flight.readings import StateView
 from rocketsim.flight.steering import steer_step
 from rocketsim.frames.earth_fixed import eci_to_ecef
 from rocketsim.frames.quaternion import quat_rotate
-from rocketsim.vehicle.aero import A_REACH
+from rocketsim.vehicle.aero import A_GROUND, A_REACH
 from rocketsim.vehicle.contact import contact_heights, contact_point_heights
 from rocketsim.vehicle.heating import advance_shield, sutton_graves, sutton_graves_constant
 from rocketsim.vehicle.mass_properties import vehicle_mass_properties
@@ -233,7 +233,7 @@ def step_figures(t, y, p, veh, contact):
     ay = 2.0 * (qx * qy + qw * qz)
     az = 2.0 * (qx * qz - qw * qy)
     lowest = math.inf
-    for height in contact_point_heights(y, p, contact, x_cm):
+    for height in contact_point_heights(y, p, contact, x_cm, veh.aero.ref[A_GROUND]):
         lowest = min(lowest, height)
     return rho, temperature, speed, 0.5 * rho * speed * speed, alpha, sx * ax + sy * ay + sz * az, lowest
 
@@ -260,5 +260,5 @@ def advance_checked(y, k0, h, n_steps, p, veh, steer, code, fins):
         steer_step(veh, y, p, t, t, y[R:R + 3], y[V:V + 3], y[Q:Q + 4], y[W:W + 3], math.nan, veh.air, code, fins,
                    False)
     y, taken = advance(y, k0, h, n_steps, p, veh)
-    near = near_ground(y, p, veh.aero.ref[A_REACH])
+    near = near_ground(y, p, veh.aero.ref[A_REACH] + veh.aero.ref[A_GROUND])
     return y, taken, near, step_figures((k0 + taken) * h, y, p, veh, veh.aero.contact)

@@ -46,6 +46,7 @@ from rocketsim.sim.handover import hand_over, watch_soi
 from rocketsim.sim.schedule import Schedule, inertia, rails_field
 from rocketsim.sim.summary import summary
 from rocketsim.timescales import Epoch
+from rocketsim.vehicle.aero import A_GROUND
 
 NO_AIR = no_air()
 
@@ -286,7 +287,8 @@ class World:
         body.t = (k0 + taken) * self.h
         watch_soi(self, body)
         crash = None if body.checks is None else body.checks.after_step(self, body, self.h)
-        if body.flying and (crash is not None or taken < n or radial_height(body.y, body.p) < 0.0):
+        ground = 0.0 if body.vehicle is None else body.vehicle.arrays.aero.ref[A_GROUND]
+        if body.flying and (crash is not None or taken < n or radial_height(body.y, body.p) < ground):
             # the body went below the ground in its last step (the batch's last one
             # included, where advance cannot say so by stopping early), or its first
             # contact was a crash (its speeds at the contact, not after the springs): it has hit

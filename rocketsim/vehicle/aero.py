@@ -80,7 +80,8 @@ A_NOSE_AREA = 4     # m^2, base area of the nose (0: blunt top, no nose lift)
 A_BASE_AREA = 5     # m^2, area of the base (leading end when flying tail first)
 A_REACH = 6         # m, farthest any contact point can be from the centre of mass
 A_WIND = 7          # 1 when the day has wind (sampled once per step)
-N_REF = 8
+A_GROUND = 8        # m, height of the (flat) ground above the ellipsoid (0: the ellipsoid)
+N_REF = 9
 # rows of AeroArrays.seg: station of the segment's middle, its length, its diameter
 SEG_X, SEG_DX, SEG_D = 0, 1, 2
 # rows of AeroArrays.fin (planar fin sets): centre of pressure, C_N_alpha * S (m^2 per rad)

@@ -37,7 +37,7 @@ import numpy as np
 from rocketsim._jit import njit
 from rocketsim.frames.quaternion import quat_rotate
 from rocketsim.layout import P_POLAR_RADIUS, P_RADIUS, Q, R
-from rocketsim.vehicle.aero import moment_about_cm
+from rocketsim.vehicle.aero import A_GROUND, moment_about_cm
 
 # columns of AeroArrays.contact
 K_X, K_Y, K_Z, K_STIFF, K_DAMP, K_MU, K_EPS = 0, 1, 2, 3, 4, 5, 6
@@ -54,31 +54,35 @@ def point_height(px, py, pz, a, b):
 
 
 def contact_heights(y, p, vehicle) -> np.ndarray:
-    """Height (m) of each contact point of ``vehicle`` above the ellipsoid, along the radius."""
-    return contact_point_heights(y, p, vehicle.arrays.aero.contact, vehicle.mass_properties(y)[1])
+    """Height (m) of each contact point of ``vehicle`` above its ground (the ellipsoid, or
+    the flat ground ``aero.ref[A_GROUND]`` above it), along the radius."""
+    aero = vehicle.arrays.aero
+    return contact_point_heights(y, p, aero.contact, vehicle.mass_properties(y)[1], aero.ref[A_GROUND])
 
 
 @njit
-def contact_point_heights(y, p, contact, x_cm):
+def contact_point_heights(y, p, contact, x_cm, ground=0.0):
     """Height (m) of each contact point (rows of ``contact``, body stations from the
-    base, m) above the ellipsoid of ``p``, along the radius, for state ``y`` whose
-    centre of mass sits at station ``x_cm`` (m)."""
+    base, m) above the ground ``ground`` m over the ellipsoid of ``p``, along the radius,
+    for state ``y`` whose centre of mass sits at station ``x_cm`` (m)."""
     out = np.empty(contact.shape[0])
     offset = np.empty(3)
     for i in range(contact.shape[0]):
         offset[0], offset[1], offset[2] = contact[i, K_X] - x_cm, contact[i, K_Y], contact[i, K_Z]
         o = quat_rotate(y[Q:Q + 4], offset)
-        out[i] = point_height(y[R] + o[0], y[R + 1] + o[1], y[R + 2] + o[2], p[P_RADIUS], p[P_POLAR_RADIUS])
+        out[i] = point_height(y[R] + o[0], y[R + 1] + o[1], y[R + 2] + o[2], p[P_RADIUS],
+                              p[P_POLAR_RADIUS]) - ground
     return out
 
 
 @njit
-def contact_forces(y, x_cm, a, b, spin, contact):
+def contact_forces(y, x_cm, a, b, spin, contact, ground=0.0):
     """Force (N, body axes) and moment (N m about the centre of mass) of the ground.
 
     ``y`` the state (inertial position, velocity, attitude ``q`` body ->
     inertial, body rates), ``a``/``b`` the ellipsoid's radii (m), ``spin`` the
-    ground's rotation rate about inertial z (rad/s).
+    ground's rotation rate about inertial z (rad/s), ``ground`` the height (m) of a flat
+    ground above the ellipsoid (0: the ellipsoid itself; its normal is the ellipsoid's).
     """
     fx = fy = fz = mx = my = mz = 0.0
     qw, ux, uy, uz = y[6], y[7], y[8], y[9]
@@ -97,7 +101,7 @@ def contact_forces(y, x_cm, a, b, spin, contact):
         px = y[0] + ox
         py = y[1] + oy
         pz = y[2] + oz
-        h = point_height(px, py, pz, a, b)
+        h = point_height(px, py, pz, a, b) - ground
         if h >= 0.0:
             continue
         # velocity of the point relative to the turning ground: v + q (w x b) - spin z x p

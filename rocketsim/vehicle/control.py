@@ -18,7 +18,7 @@ import math
 import numpy as np
 
 from rocketsim._jit import Entries
-from rocketsim.vehicle import engines
+from rocketsim.vehicle import engines, motors
 from rocketsim.vehicle.build import VehicleModel
 
 
@@ -99,6 +99,13 @@ class Propulsion:
         a = self.a
         return engines.thrusts(t, y, a.first_clock, a.eng, a.cmd, a.stage, p_a)
 
+    def motor_thrust(self, t: float) -> float:
+        """Thrust (N) of all solid motors at mission time ``t`` (s)."""
+        a = self.a
+        return float(sum(motors.motor_thrust(float(t), a.motor, a.curve, i) for i in range(self.model.n_motors)))
+
     def propellant(self, y: np.ndarray) -> dict[str, float]:
-        """Propellant left in each tank (kg), by ``stage/tank`` name."""
-        return dict(zip(self.model.tank_names, (float(m) for m in y[self.model.tanks])))
+        """Propellant left in each tank and solid motor (kg), by ``stage/tank`` and
+        ``stage/motor`` name."""
+        return dict(zip(self.model.tank_names + self.model.motor_names,
+                        (float(m) for m in np.concatenate((y[self.model.tanks], y[self.model.motors])))))

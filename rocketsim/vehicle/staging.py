@@ -33,6 +33,7 @@ from rocketsim.layout import N_STATE, Q, R, V, W
 from rocketsim.frames.quaternion import quat_rotate
 from rocketsim.vehicle.build import VehicleModel, build
 from rocketsim.vehicle.engines import S_DRY, S_DRY_AT
+from rocketsim.vehicle.aero import A_GROUND
 from rocketsim.vehicle.mass_properties import solid_cylinder
 from rocketsim.vehicle.parachutes import CH_DEPLOYED
 from rocketsim.vehicle.tumbling import cylinder_area, half_shell_area
@@ -61,6 +62,7 @@ def separate(spec, whole: VehicleModel, y: np.ndarray, k: int, air=None):
         y_part[part.tanks] = y[tanks]
         y_part[part.clocks] = y[clocks]
         y_part[part.motors] = y[whole.motors][motor0:motor0 + part.n_motors]
+        part.arrays.aero.ref[A_GROUND] = whole.arrays.aero.ref[A_GROUND]
         n_chutes = part.arrays.chute.shape[0]
         part.arrays.chute[:, CH_DEPLOYED] = whole.arrays.chute[chute0:chute0 + n_chutes, CH_DEPLOYED]
         chute0 += n_chutes
@@ -141,6 +143,7 @@ def _release_top(spec, model: VehicleModel, without: VehicleModel, y: np.ndarray
     y_new = y.copy()
     _copy_commands(model, without, 0, 0)
     without.arrays.chute[:, CH_DEPLOYED] = model.arrays.chute[:, CH_DEPLOYED]
+    without.arrays.aero.ref[A_GROUND] = model.arrays.aero.ref[A_GROUND]
     x_cm = model.mass_properties(y)[1]
     y_new[R:R + 3], y_new[V:V + 3] = moved(y, without.mass_properties(y_new)[1] - x_cm)
     top = float(model.stage_base[-1] + spec.stages[-1].length)

@@ -1,0 +1,114 @@
+"""The hobby rocket (solid motor, rail, drogue and main) flown here and in RocketPy.
+
+RocketPy (https://github.com/RocketPy-Team/RocketPy, a peer used only in
+tests) flies vehicles/hobby-rocket.yaml's figures: the same 4895L1395 file,
+the same five BATES grains burning on their cores only
+(``only_radial_burn``), the case as the motor's dry mass with a thin shell's
+inertia, the rest of the rocket's mass, centre of mass and inertia from our
+own mass model (the inputs), our default axial-force table as its drag
+curve, the same nose and fins, the same 5.2 m rail at 85 deg towards north
+(no rail buttons there and ``last_button: 0`` here: the base leaves the top of
+the rail in both), the standard atmosphere and no wind, and the same
+parachutes (RocketPy has no inflation time: its lag is ours plus half the
+inflation, the centroid of our linear growth). The pad is on the ellipsoid,
+RocketPy's ground at elevation 0.
+
+Agreement required: off-rail speed within 1 %, apogee within 3 % (as the
+liquid peer test), the touchdown speed under the main within 3 %, once the
+one difference of the descents is accounted for: here the drogue stays on
+its harness when the main opens (drag areas add), RocketPy flies each
+parachute alone, the latest replacing the one before; so RocketPy's speed
+under the main alone is scaled by ``sqrt(C_D S_main / (C_D S_main + C_D S_drogue))``.
+What differs and is not matched: RocketPy's Earth does not turn and its
+gravity is Somigliana's, not point mass + J2; after the rail, RocketPy
+flies from the upper button's exit, we do from the base's; under its
+canopies RocketPy flies a point mass with the parachute's drag only, we keep
+the body's own (small) drag.
+"""
+
+import copy
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+rocketpy = pytest.importorskip("rocketpy")
+
+from rocketsim.scenario.load import load  # noqa: E402
+from rocketsim.sim.build import build_world  # noqa: E402
+from rocketsim.vehicle.aero import NOSE_FIRST_CA, NOSE_FIRST_MACH  # noqa: E402
+from rocketsim.vehicle.build import build  # noqa: E402
+from rocketsim.vehicle.mass_properties import shell  # noqa: E402
+from tests.aero_vehicles import shipped  # noqa: E402
+
+ROOT = Path(__file__).resolve().parents[1]
+LAT, LON = 32.99, -106.975
+RAIL, INCLINATION, HEADING = 5.2, 85.0, 0.0
+
+
+def _ours():
+    data = {"name": "peer", "vehicle": str(ROOT / "vehicles" / "hobby-rocket.yaml"),
+            "site": {"name": "pad", "latitude": f"{LAT} deg", "longitude": f"{LON} deg", "height": "0 m"},
+            "mission": {"epoch": "2026-06-13T15:00:00Z", "duration": "400 s",
+                        "start": {"site": {"rail": {"length": f"{RAIL} m", "inclination": f"{INCLINATION} deg",
+                                                    "heading": f"{HEADING} deg"}}}}}
+    world = build_world(load(data))
+    world.run()
+    return {e["name"] + (f":{e['parachute']}" if "parachute" in e else ""): e for e in world.bodies[0].events}
+
+
+def _rocketpy():
+    from rocketpy import Environment, Flight, Rocket, SolidMotor
+    spec = shipped("hobby-rocket.yaml")
+    motor_spec = spec.stages[0].motors[0]
+    bare = copy.deepcopy(spec)
+    bare.stages[0].motors.clear()
+    dry_mass, dry_cm, ixx, iyy, _ = build(bare).mass_properties([])
+    case = motor_spec.case_mass
+    case_ixx, case_iyy = shell(case, 0.5 * motor_spec.diameter, motor_spec.length)
+    grain = motor_spec.grain
+    outer, core = 0.5 * grain.outer_diameter, 0.5 * grain.core_diameter
+    density = motor_spec.propellant_mass / (grain.count * math.pi * (outer ** 2 - core ** 2) * grain.length)
+    motor = SolidMotor(
+        thrust_source=str(ROOT / "motors" / "Cesaroni_4895L1395-P.eng"), dry_mass=case,
+        dry_inertia=(case_iyy, case_iyy, case_ixx), nozzle_radius=0.0248, throat_radius=0.0107,
+        grain_number=grain.count, grain_density=density, grain_outer_radius=outer,
+        grain_initial_inner_radius=core, grain_initial_height=grain.length,
+        grain_separation=grain.separation, grains_center_of_mass_position=0.5 * motor_spec.length,
+        center_of_dry_mass_position=0.5 * motor_spec.length, nozzle_position=0.0,
+        interpolation_method="linear", coordinate_system_orientation="nozzle_to_combustion_chamber",
+        only_radial_burn=True)
+    drag = list(zip(NOSE_FIRST_MACH.tolist(), NOSE_FIRST_CA.tolist()))
+    rocket = Rocket(radius=0.07, mass=dry_mass, inertia=(iyy, iyy, ixx), power_off_drag=drag,
+                    power_on_drag=drag, center_of_mass_without_motor=dry_cm,
+                    coordinate_system_orientation="tail_to_nose")
+    rocket.add_motor(motor, position=0.0)
+    rocket.add_nose(length=0.5, kind="tangent", position=2.4)
+    rocket.add_trapezoidal_fins(n=4, root_chord=0.22, tip_chord=0.08, span=0.14, position=0.22,
+                                sweep_length=0.12)
+    for chute in spec.stages[0].parachutes:
+        trigger = "apogee" if chute.deploy == "apogee" else chute.deploy.height
+        rocket.add_parachute(chute.name, cd_s=chute.cd_s, trigger=trigger, sampling_rate=100,
+                             lag=chute.lag + 0.5 * chute.inflation)
+    env = Environment(latitude=LAT, longitude=LON, elevation=0.0)
+    env.set_atmospheric_model(type="standard_atmosphere")
+    return Flight(rocket=rocket, environment=env, rail_length=RAIL, inclination=INCLINATION,
+                  heading=HEADING, rtol=1e-8, max_time=400)
+
+
+def test_off_rail_apogee_and_landing_agree_with_rocketpy():
+    ours = _ours()
+    flight = _rocketpy()
+    off, apogee, touchdown = ours["off_rail"], ours["apogee"]["altitude_m"], ours["touchdown"]
+    peer_off = float(flight.out_of_rail_velocity)
+    peer_apogee = float(flight.apogee - flight.env.elevation)
+    drogue, main = (c.cd_s for c in shipped("hobby-rocket.yaml").stages[0].parachutes)
+    peer_landing = abs(float(flight.impact_velocity)) * math.sqrt(main / (main + drogue))
+    print(f"\n[peer] off the rail: rocketsim {off['speed_m_s']:.2f} m/s, RocketPy {peer_off:.2f} m/s; "
+          f"apogee {apogee:.1f} m against {peer_apogee:.1f} m ({100 * (apogee / peer_apogee - 1):+.2f} %); "
+          f"touchdown {-touchdown['vertical_speed_m_s']:.2f} m/s against {peer_landing:.2f} m/s")
+    assert off["speed_m_s"] == pytest.approx(peer_off, rel=0.01)
+    assert apogee == pytest.approx(peer_apogee, rel=0.03)
+    assert -touchdown["vertical_speed_m_s"] == pytest.approx(peer_landing, rel=0.03)
+    assert np.isfinite(touchdown["drift_time_s"])
