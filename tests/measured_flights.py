@@ -4,7 +4,9 @@ The logs and weather are RocketPy's (scenarios/measured/README.md); the
 rockets' figures and RocketPy's set-up are those of RocketPy's acceptance
 tests (tests/acceptance/test_ndrt_2020_rocket.py and test_bella_lui_rocket.py
 in that repository, MIT licence), flown here with RocketPy's default
-settings. Used by tests/test_measured_flights.py and by
+settings (its weather dictionary named ``ECMWF_v0``, the one RocketPy falls
+back to, with a warning, when its tests' ``ECMWF`` does not match these
+files' old ERA5 names). Used by tests/test_measured_flights.py and by
 tests/fixtures/measured/plot_comparison.py (the README's table and plot).
 
 Every figure is taken the same way from a log and from a simulation:
