@@ -54,9 +54,9 @@ def _fly(seconds, fold, monkeypatch):
     took the fold's figures (out of contact) and steered inside it."""
     seen = {"figures": [], "near": 0, "far": 0, "steered": 0}
 
-    def recording_breakup(q, alpha, axial, original=vehicle_checks.breakup):
+    def recording_breakup(q, alpha, axial, *limits, original=vehicle_checks.breakup):
         seen["figures"].append((q, alpha, axial))
-        return original(q, alpha, axial)
+        return original(q, alpha, axial, *limits)
 
     monkeypatch.setattr(vehicle_checks, "breakup", recording_breakup)
     if fold:

@@ -98,3 +98,11 @@ def test_off_the_rail_a_finned_rocket_reports_its_static_margin():
     x_cm = body.vehicle.mass_properties(body.y)[1]
     assert off["stability_margin_cal"] == pytest.approx((x_cm - x_cp) / 0.1, rel=1e-9)
     assert off["stability_margin_cal"] > 1.0         # a stable rocket: the fins well aft
+
+
+def test_a_rail_under_a_rigid_body_is_an_input_error():
+    from rocketsim.errors import InputError
+    data = scenario(85.0)
+    data["vehicle"] = {"name": "block", "rigid_body": {"mass": "10 kg", "inertia": [1, 1, 1]}}
+    with pytest.raises(InputError, match="goes with a staged vehicle"):
+        load(data)

@@ -112,3 +112,29 @@ def test_a_body_without_contact_points_comes_down_on_the_sites_flat_ground():
     body = world.bodies[0]
     assert body.events[-1]["name"] == "impact" and not body.flying
     assert 1000.0 - 6.5 * 0.05 < world.where(body)[2] < 1000.0
+
+
+def test_a_main_that_releases_the_drogue_descends_on_its_own_drag_area():
+    """``releases: [drogue]``: the drogue is cut away when the main begins to inflate, so
+    the descent is the main's terminal speed alone (not the two drag areas added)."""
+    chutes = [{"name": "drogue", "cd_s": "1 m2", "lag": "0.5 s", "inflation": "0.5 s", "deploy": "apogee"},
+              {"name": "main", "cd_s": f"{CDS} m2", "lag": "1 s", "inflation": "2 s", "releases": ["drogue"],
+               "deploy": {"after": {"event": "parachute_inflated", "delay": "3 s"}}}]
+    world = build_world(load(scenario(chutes)))
+    body = world.bodies[0]
+    seen = {}
+
+    def watch(t):
+        h = world.where(body)[2]
+        if h < 1000.0 and not seen:
+            seen["at"] = (h, float(body.view().vertical_speed))
+            world.n_steps = world.k
+    world.on_progress = watch
+    world.run()
+    events = {e["name"]: e for e in body.events}
+    main = next(e for e in body.events if e["name"] == "parachute_deployed" and e["parachute"] == "main")
+    assert events["parachute_released"]["parachute"] == "drogue"
+    assert events["parachute_released"]["at_s"] == pytest.approx(main["time_s"] + 1.0, abs=1e-12)
+    h, vertical = seen["at"]
+    g = somigliana(LATITUDE) - 3.086e-6 * h
+    assert -vertical == pytest.approx(math.sqrt(2 * MASS * g / (density(h) * CDS)), rel=1e-3)

@@ -18,7 +18,9 @@ liquid peer test), the touchdown speed under the main within 3 %, once the
 one difference of the descents is accounted for: here the drogue stays on
 its harness when the main opens (drag areas add), RocketPy flies each
 parachute alone, the latest replacing the one before; so RocketPy's speed
-under the main alone is scaled by ``sqrt(C_D S_main / (C_D S_main + C_D S_drogue))``.
+under the main alone is scaled by ``sqrt(C_D S_main / (C_D S_main + C_D S_drogue))``;
+and flown again with the main releasing the drogue (``releases``), the
+speeds agree unscaled.
 What differs and is not matched: RocketPy's Earth does not turn and its
 gravity is Somigliana's, not point mass + J2; after the rail, RocketPy
 flies from the upper button's exit, we do from the base's; under its
@@ -36,6 +38,7 @@ import pytest
 rocketpy = pytest.importorskip("rocketpy")
 
 from rocketsim.scenario.load import load  # noqa: E402
+from rocketsim.scenario.yaml_source import read_yaml  # noqa: E402
 from rocketsim.sim.build import build_world  # noqa: E402
 from rocketsim.vehicle.aero import NOSE_FIRST_CA, NOSE_FIRST_MACH  # noqa: E402
 from rocketsim.vehicle.build import build  # noqa: E402
@@ -47,13 +50,16 @@ LAT, LON = 32.99, -106.975
 RAIL, INCLINATION, HEADING = 5.2, 85.0, 0.0
 
 
-def _ours():
-    data = {"name": "peer", "vehicle": str(ROOT / "vehicles" / "hobby-rocket.yaml"),
+def _ours(release_drogue: bool = False):
+    vehicle = read_yaml(ROOT / "vehicles" / "hobby-rocket.yaml").data
+    if release_drogue:      # RocketPy's way: the main replaces the drogue
+        vehicle["stages"][0]["parachutes"][1]["releases"] = ["drogue"]
+    data = {"name": "peer", "vehicle": vehicle,
             "site": {"name": "pad", "latitude": f"{LAT} deg", "longitude": f"{LON} deg", "height": "0 m"},
             "mission": {"epoch": "2026-06-13T15:00:00Z", "duration": "400 s",
                         "start": {"site": {"rail": {"length": f"{RAIL} m", "inclination": f"{INCLINATION} deg",
                                                     "heading": f"{HEADING} deg"}}}}}
-    world = build_world(load(data))
+    world = build_world(load(data, base_dir=ROOT / "vehicles"))    # the motor file beside the vehicle
     world.run()
     return {e["name"] + (f":{e['parachute']}" if "parachute" in e else ""): e for e in world.bodies[0].events}
 
@@ -112,3 +118,8 @@ def test_off_rail_apogee_and_landing_agree_with_rocketpy():
     assert apogee == pytest.approx(peer_apogee, rel=0.03)
     assert -touchdown["vertical_speed_m_s"] == pytest.approx(peer_landing, rel=0.03)
     assert np.isfinite(touchdown["drift_time_s"])
+    # with the drogue released by the main, as RocketPy flies them: no scaling
+    released = _ours(release_drogue=True)["touchdown"]
+    print(f"[peer] the drogue released by the main: touchdown {-released['vertical_speed_m_s']:.2f} m/s "
+          f"against {abs(float(flight.impact_velocity)):.2f} m/s")
+    assert -released["vertical_speed_m_s"] == pytest.approx(abs(float(flight.impact_velocity)), rel=0.03)

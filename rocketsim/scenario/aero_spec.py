@@ -16,8 +16,8 @@ from typing import Annotated, Literal, Optional
 from pydantic import BaseModel, Field, field_validator
 
 from rocketsim.constants import FRICTION_REGULARISATION
-from rocketsim.scenario.units import (STRICT, Angle, AngularRate, Area, Force, Length, Mass, Speed,
-                                      SpecificImpulse, Temperature)
+from rocketsim.scenario.units import (STRICT, Acceleration, Angle, AngularRate, Area, Force, Length,
+                                      Mass, Speed, SpecificImpulse, Temperature)
 
 PositiveLength = Annotated[Length, Field(gt=0)]
 NonNegativeLength = Annotated[Length, Field(ge=0)]
@@ -105,6 +105,17 @@ class HeatShieldSpec(_Strict):
     initial_temperature: Annotated[Temperature, Field(gt=0)] = 290.0
 
 
+class LimitsSpec(_Strict):
+    """A vehicle's own structural limits (docs/physics.md#structural-limits), in place of
+    the defaults sized for launchers (250 kPa deg, 15 g): a small hobby rocket takes
+    far higher loads."""
+
+    q_alpha: Optional[Annotated[float, Field(gt=0)]] = Field(
+        None, description="bending load q alpha that breaks the vehicle, Pa deg")
+    axial_load: Optional[Annotated[Acceleration, Field(gt=0)]] = Field(
+        None, description="axial load that breaks the vehicle, e.g. '40 g'")
+
+
 class AeroSpec(_Strict):
     """Aerodynamics and ground contact of a staged vehicle."""
 
@@ -125,6 +136,7 @@ class AeroSpec(_Strict):
     body_contact_damping: Annotated[float, Field(ge=0)] = Field(2.0e5, description="N s/m")
     rcs: list[ThrusterSpec] = []
     heat_shield: Optional[HeatShieldSpec] = None
+    limits: LimitsSpec = Field(LimitsSpec(), description="structural limits in place of the defaults")
 
     @field_validator("axial_nose_first", "axial_tail_first")
     @classmethod

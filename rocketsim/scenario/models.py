@@ -419,6 +419,10 @@ class Scenario(Strict):
             object.__setattr__(self, "vehicle", reload_tanks(self.vehicle, self.propellant))
         if self.mission.start.site is not None and self.site is None:
             raise ValueError("mission starts on a site: give 'site'")
+        if self.mission.start.site is not None and self.mission.start.site.rail is not None \
+                and self.vehicle.stages is None:
+            raise ValueError("a launch rail (mission.start.site.rail) goes with a staged vehicle, "
+                             "not a rigid_body")
         pad = self.mission.target.pad
         if isinstance(pad, str):
             found = [p for p in (self.site.pads if self.site else []) if p.name == pad]

@@ -314,6 +314,9 @@ class ParachuteSpec(_Strict):
                                                         "inflation to full drag area (linear)")
     deploy: Union[Literal["apogee", "program"], HeightTrigger, AfterTrigger] = Field(
         description="apogee, program, {height: <length>} or {after: {event: <name>, delay: <time>}}")
+    releases: list[str] = Field([], description="parachutes (by name) cut away when this one "
+                                "begins to inflate (a drogue released by the main); default none: "
+                                "they stay on and their drag areas add")
 
 
 class PointMassSpec(_Strict):
@@ -425,3 +428,16 @@ def check_staged(stages: list[StageSpec], extra_engines) -> None:
                           "stage's 'engines' (stages are listed bottom to top)", extra_engines)
     if not stages:
         raise field_error(("stages",), "a staged vehicle needs at least one stage", stages)
+    names = [c.name for st in stages for c in st.parachutes]
+    for s, st in enumerate(stages):
+        for i, chute in enumerate(st.parachutes):
+            if names.count(chute.name) > 1:
+                raise field_error(("stages", s, "parachutes", i, "name"), f"two parachutes are named "
+                                  f"{chute.name!r}: fc.deploy_parachute and 'releases' name them", chute.name)
+    for s, st in enumerate(stages):
+        for i, chute in enumerate(st.parachutes):
+            for k, other in enumerate(chute.releases):
+                if other not in names or other == chute.name:
+                    raise field_error(("stages", s, "parachutes", i, "releases", k),
+                                      f"parachute {chute.name!r} releases {other!r}, not another "
+                                      f"parachute of the vehicle ({', '.join(names)})", other)

@@ -89,7 +89,8 @@ def build_world(loaded: LoadedScenario, step: float | None = None,
                 pad = geodetic_to_ecef(target_pad.latitude, target_pad.longitude, 0.0)
             else:
                 pad = None if site is None else geodetic_to_ecef(site.latitude, site.longitude, site.height)
-            body.checks = VehicleChecks(scenario.vehicle.aero.heat_shield, pad_ecef=pad)
+            body.checks = VehicleChecks(scenario.vehicle.aero.heat_shield, pad_ecef=pad,
+                                        limits=scenario.vehicle.aero.limits)
         body.stack = scenario.vehicle
         if center != "earth":
             fly_in_air_of(world, body)

@@ -21,7 +21,8 @@ One :class:`FlightEvents` watches one body; the world calls
   end of the step in which it was met, or ``fc.deploy_parachute``; figures: the
   parachute, the trigger, ``height_m``, ``vertical_speed_m_s``);
   ``parachute_inflated`` when its drag area is full (figures: the parachute,
-  ``at_s``, the exact instant).
+  ``at_s``, the exact instant); ``parachute_released`` when a parachute another
+  one ``releases`` is cut away (figures: the parachute, ``by``, ``at_s``).
 * ``off_rail`` — the vehicle's last rail button has left its launch rail
   (figures: the instant ``at_s``, the speed along the rail ``speed_m_s``, and,
   when the aerodynamics give a centre of pressure, the static margin
@@ -47,7 +48,7 @@ from rocketsim.constants import DEG, EARTH_RADIUS_EQ
 from rocketsim.vehicle.engines import C_ON, E_STAGE, E_TAIL, S_DRY, S_DRY_AT, S_TANKS
 from rocketsim.vehicle.aero import A_AREA, A_GROUND, A_ON, centre_of_pressure
 from rocketsim.vehicle.motors import M_CURVE0, M_IGNITION, M_IMPULSE, M_POINTS
-from rocketsim.vehicle.parachutes import CH_DEPLOYED, CH_INFLATION, CH_LAG, deploy
+from rocketsim.vehicle.parachutes import CH_CUT_BY, CH_DEPLOYED, CH_INFLATION, CH_LAG, cut_away, deploy
 from rocketsim.vehicle.rail import RL_OFF_AT, RL_OFF_SPEED, RL_ON
 from rocketsim.scenario.vehicle import AfterTrigger, HeightTrigger
 from rocketsim.sim.vehicle_checks import ground_motion
@@ -75,7 +76,8 @@ class FlightEvents:
         self.on_rail = body.vehicle is not None and body.vehicle.arrays.rail[RL_ON] > 0.5
         self.rising = False                        # has risen since leaving the ground (apogee)
         self.apogee_at = None                      # s, mission time of the apogee event
-        self.inflated_seen: set[int] = set()
+        self.inflated_seen: set[str] = set()       # parachutes whose drag area is full, by name
+        self.released_seen: set[str] = set()       # parachutes cut away, by name
         self.stage_names = stage_names            # the whole vehicle's, for MECO/SECO
         self.in_orbit = in_orbit(body.view().orbit)   # starting in orbit is not achieving it
 
@@ -150,11 +152,29 @@ class FlightEvents:
                     due = False
                 if due:
                     self.deploy(i, _trigger_name(trigger), vertical, height)
-            elif i not in self.inflated_seen:
-                full = chute[i, CH_DEPLOYED] + chute[i, CH_LAG] + chute[i, CH_INFLATION]
-                if body.t >= full:
-                    self.inflated_seen.add(i)
-                    self.world.event(body, "parachute_inflated", {"parachute": spec.name, "at_s": float(full)})
+            else:
+                if spec.name not in self.inflated_seen:
+                    full = chute[i, CH_DEPLOYED] + chute[i, CH_LAG] + chute[i, CH_INFLATION]
+                    if body.t >= full:
+                        self.inflated_seen.add(spec.name)
+                        self.world.event(body, "parachute_inflated", {"parachute": spec.name,
+                                                                      "at_s": float(full)})
+                if spec.name not in self.released_seen and cut_away(body.t, chute, i):
+                    self.released_seen.add(spec.name)
+                    j = int(chute[i, CH_CUT_BY])
+                    self.world.event(body, "parachute_released", {
+                        "parachute": spec.name, "by": model.parachutes[j].name,
+                        "at_s": float(chute[j, CH_DEPLOYED] + chute[j, CH_LAG])})
+
+    def inherit(self, other: "FlightEvents") -> None:
+        """Take over what ``other`` (the stack's watcher, at a separation) has seen of the
+        motors, the parachutes and the apogee, so a separated stage reports none twice."""
+        self.dry_seen = set(other.dry_seen)
+        self.max_q_done = other.max_q_done
+        self.burnt_out = set(other.burnt_out)
+        self.inflated_seen = set(other.inflated_seen)
+        self.released_seen = set(other.released_seen)
+        self.apogee_at, self.rising = other.apogee_at, other.rising
 
     def deploy(self, i: int, trigger: str, vertical: float | None = None, height: float | None = None) -> bool:
         """Deploy the body's parachute ``i`` now (``trigger``: what fired it) and record

@@ -78,11 +78,10 @@ def separate(world, body: Vehicle) -> Vehicle:
     body.stack = upper_stack(stack)
     new = add_body(world, stage, y_lower, body.p.copy(), body, vehicle=lower)
     if body.checks is not None:         # the stage is a vehicle with aero of its own
-        new.checks = VehicleChecks(stack.aero.heat_shield, pad_ecef=body.checks.pad)
+        new.checks = VehicleChecks(stack.aero.heat_shield, pad_ecef=body.checks.pad, limits=stack.aero.limits)
     if body.watch is not None:
         new.watch = FlightEvents(world, new, on_ground=False, stage_names=body.watch.stage_names)
-        new.watch.dry_seen = set(body.watch.dry_seen)
-        new.watch.max_q_done = body.watch.max_q_done
+        new.watch.inherit(body.watch)
     figures = {"stage": stage, "mass_kg": new.mass, "upper_mass_kg": body.mass}
     world.event(body, "separation", {**figures, "separated_body": new.name})
     world.event(new, "separation", {**figures, "from_body": body.name})

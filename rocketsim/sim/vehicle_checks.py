@@ -35,7 +35,8 @@ from rocketsim._jit import Entries, njit
 from rocketsim.atmosphere.table import TOP, air_in
 from rocketsim.bodies.gravity import point_mass_j2
 from rocketsim.bodies.orientation import BODIES as ORIENTED, spin_rate
-from rocketsim.constants import AIR_CP, CO2_CP, DEG, HEAT_SHIELD_LIMIT, MARS_MU
+from rocketsim.constants import (AIR_CP, CO2_CP, DEG, G0, HEAT_SHIELD_LIMIT, MARS_MU,
+                                STRUCTURE_AXIAL_LIMIT_G, STRUCTURE_Q_ALPHA_LIMIT)
 from rocketsim.dynamics.derivative import body_air_velocity, derivative, radial_height
 from rocketsim.dynamics.rk4 import advance, near_ground
 from rocketsim.layout import P_J2, P_MU, P_RADIUS, Q, R, V, W
@@ -60,10 +61,15 @@ _NO_STEERING = (np.full(6, math.nan), False)
 
 
 class VehicleChecks:
-    """Per-body state of the checks; ``pad_ecef`` the target pad (Earth-fixed, m) or None."""
+    """Per-body state of the checks; ``pad_ecef`` the target pad (Earth-fixed, m) or None;
+    ``limits`` the vehicle file's ``aero.limits`` (None: the defaults)."""
 
-    def __init__(self, heat_shield=None, pad_ecef=None):
+    def __init__(self, heat_shield=None, pad_ecef=None, limits=None):
         self.shield = heat_shield
+        self.limits = (STRUCTURE_Q_ALPHA_LIMIT, STRUCTURE_AXIAL_LIMIT_G)
+        if limits is not None:
+            self.limits = (limits.q_alpha or STRUCTURE_Q_ALPHA_LIMIT,
+                           limits.axial_load / G0 if limits.axial_load else STRUCTURE_AXIAL_LIMIT_G)
         self.temperature = heat_shield.initial_temperature if heat_shield is not None else math.nan
         self.pad = None if pad_ecef is None else np.asarray(pad_ecef, dtype=float)
         self.touched_down = True     # a vehicle only touches down after being in the air
@@ -115,7 +121,7 @@ class VehicleChecks:
         else:
             rho, air_temperature, speed, q, alpha, axial, lowest = self._kernels.call(
                 step_figures, arrays, body.t, body.y, body.p, self._in_flight, arrays.aero.contact)
-        figures = breakup(q, alpha, axial)
+        figures = breakup(q, alpha, axial, *self.limits)
         if figures is not None:
             world.event(body, "breakup", figures)
             body.flying = False

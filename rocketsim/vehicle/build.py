@@ -208,9 +208,11 @@ def build(spec, first: int = 0, last: int | None = None, air=None, fairing: bool
     for mass, centre, radius, length in cases:
         add_fixed(fixed, mass, centre, *shell(mass, radius, length))
     motor_names = [f"{st.name}/{m.name}" for st in chosen for m in st.motors]
-    chute = np.array([(s, c.cd_s, c.lag, c.inflation, math.nan) for s, st in enumerate(chosen)
-                      for c in st.parachutes], dtype=float).reshape(-1, N_CHUTE)
     chutes = [c for st in chosen for c in st.parachutes]
+    names = [c.name for c in chutes]
+    cut_by = {other: names.index(c.name) for c in chutes for other in c.releases}
+    chute = np.array([(s, c.cd_s, c.lag, c.inflation, math.nan, cut_by.get(c.name, -1))
+                      for s, st in enumerate(chosen) for c in st.parachutes], dtype=float).reshape(-1, N_CHUTE)
     if top and spec.payload is not None:
         pl = spec.payload
         add_fixed(fixed, pl.mass, base + 0.5 * pl.length, *solid_cylinder(pl.mass, 0.5 * pl.diameter, pl.length))

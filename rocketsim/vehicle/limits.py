@@ -20,17 +20,20 @@ def bending_alpha(alpha: float) -> float:
     return min(alpha, 180.0 * DEG - alpha)
 
 
-def breakup(q: float, alpha: float, axial_acceleration: float) -> dict | None:
+def breakup(q: float, alpha: float, axial_acceleration: float, q_alpha_limit: float = STRUCTURE_Q_ALPHA_LIMIT,
+            axial_limit_g: float = STRUCTURE_AXIAL_LIMIT_G) -> dict | None:
     """The breakup figures if a limit is passed, else None.
 
     ``q`` dynamic pressure (Pa), ``alpha`` total angle of attack (rad),
-    ``axial_acceleration`` sensed acceleration along body x (m/s^2).
+    ``axial_acceleration`` sensed acceleration along body x (m/s^2); the limits
+    (Pa deg, g0) are the defaults above unless the vehicle file's ``aero.limits``
+    gives its own.
     """
     q_alpha = q * bending_alpha(alpha) / DEG
     load = abs(axial_acceleration) / G0
-    if q_alpha > STRUCTURE_Q_ALPHA_LIMIT:
+    if q_alpha > q_alpha_limit:
         cause = "bending"
-    elif load > STRUCTURE_AXIAL_LIMIT_G:
+    elif load > axial_limit_g:
         cause = "axial load"
     else:
         return None

@@ -12,7 +12,9 @@ the linear one is this project's choice):
     C_D S(t) = C_D S min(1, max(0, (t - t_d - t_lag) / t_inf))
     F = -1/2 rho |v_air| v_air  sum C_D S(t)
 
-applied at the centre of mass, ``v_air = v - omega x r - wind`` the
+applied at the centre of mass (a parachute another one ``releases`` is cut
+away when that one begins to inflate: its drag stops there, as in
+simulators that fly one parachute at a time), ``v_air = v - omega x r - wind`` the
 centre of mass's velocity through the air (so a body under a canopy drifts
 with the wind). Under a canopy the body's own aerodynamics still act, and its
 rotation is damped towards the canopy's (taken as not turning): the body
@@ -38,15 +40,26 @@ CH_CDS = 1          # m^2, drag area when fully inflated
 CH_LAG = 2          # s, from deployment to the start of inflation
 CH_INFLATION = 3    # s, from the start of inflation to full drag area
 CH_DEPLOYED = 4     # s, mission time of deployment (nan: packed)
-N_CHUTE = 5
+CH_CUT_BY = 5       # row of the parachute whose opening cuts this one away (-1: none)
+N_CHUTE = 6
 CANOPY_RATE_TIME = 1.0     # s, time constant of the damping of the body's rates under a canopy
 
 
 @njit
+def cut_away(t, chute, i):
+    """True once parachute ``i`` has been cut away at mission time ``t`` (s): the parachute
+    that releases it (``CH_CUT_BY``) has begun to inflate (its deployment plus its lag)."""
+    j = int(chute[i, CH_CUT_BY])
+    if j < 0 or math.isnan(chute[j, CH_DEPLOYED]):
+        return False
+    return t > chute[j, CH_DEPLOYED] + chute[j, CH_LAG]
+
+
+@njit
 def inflated(t, chute, i):
-    """Inflated fraction (0..1) of parachute ``i`` at mission time ``t`` (s)."""
+    """Inflated fraction (0..1) of parachute ``i`` at mission time ``t`` (s); 0 once cut away."""
     deployed = chute[i, CH_DEPLOYED]
-    if math.isnan(deployed):
+    if math.isnan(deployed) or cut_away(t, chute, i):
         return 0.0
     since = t - deployed - chute[i, CH_LAG]
     if since <= 0.0:

@@ -25,7 +25,7 @@ from rocketsim.vehicle.grid_fins import command, grid_fin_forces
 from rocketsim.vehicle.aero import body_aero
 from rocketsim.vehicle.build import build
 from tests.benchmarks.derivative_loops import coasting_derivative_calls, powered_derivative_calls
-from rocketsim.vehicle.mass_properties import mass_properties
+from rocketsim.vehicle.mass_properties import vehicle_mass_properties
 from tests.aero_vehicles import corotating, earth_params, pitch_quaternion, shipped
 from tests.benchmarks.timing import best_of
 
@@ -34,8 +34,7 @@ from tests.benchmarks.timing import best_of
 def _mass(n, y, veh):
     total = 0.0
     for i in range(n):
-        total += mass_properties(veh.fixed, veh.tank_bottom, veh.tank_radius, veh.tank_density,
-                                 y[13:13 + veh.tank_bottom.shape[0]])[1]
+        total += vehicle_mass_properties(veh, y)[1]
     return total
 
 
