@@ -21,7 +21,7 @@ def _quantity(text: str, dimension: str, option: str) -> float:
         raise InputError(str(error), field=option) from None
 
 
-def _table(weather: Path | None, body: str, latitude: float):
+def _table(weather: Path | None, body: str, latitude: float, longitude: float, epoch):
     if body == "mars":
         if weather is not None:
             raise InputError("--weather is for Earth; Mars has one mean atmosphere",
@@ -31,7 +31,20 @@ def _table(weather: Path | None, body: str, latitude: float):
     from rocketsim.scenario.weather import StandardWeather, build_atmosphere, load_weather
     if weather is None:
         return build_atmosphere(StandardWeather(kind="standard"), latitude, ".")
-    return build_atmosphere(load_weather(weather), latitude, weather.resolve().parent)
+    return build_atmosphere(load_weather(weather), latitude, weather.resolve().parent,
+                            site_longitude=longitude, epoch=epoch)
+
+
+def _epoch(text: str | None):
+    """The ``--epoch`` option as a UTC datetime (None when not given)."""
+    import datetime as dt
+    if text is None:
+        return None
+    try:
+        value = dt.datetime.fromisoformat(text.strip())
+    except ValueError:
+        raise InputError(f"not an ISO 8601 instant: {text!r}", field="--epoch") from None
+    return value.replace(tzinfo=dt.timezone.utc) if value.tzinfo is None else value
 
 
 def _plot(path: Path, heights, rows, wind: bool, title: str) -> None:
@@ -61,10 +74,13 @@ def _plot(path: Path, heights, rows, wind: bool, title: str) -> None:
 
 @click.command()
 @click.option("--weather", type=click.Path(dir_okay=False, exists=True, path_type=Path),
-              help="weather YAML (kind: standard | sounding | random | classic)")
+              help="weather YAML (kind: standard | sounding | random | classic | reanalysis)")
 @click.option("--body", type=click.Choice(["earth", "mars"]), default="earth", show_default=True)
 @click.option("--latitude", default="45 deg", show_default=True,
-              help="site geodetic latitude (gravity, random days)")
+              help="site geodetic latitude (gravity, random days, reanalysis)")
+@click.option("--longitude", default="0 deg", show_default=True,
+              help="site longitude, east positive (reanalysis)")
+@click.option("--epoch", help="UTC instant, ISO 8601 (reanalysis), e.g. 2020-02-23T16:00Z")
 @click.option("--from", "h_from", default="0 m", show_default=True, help="lowest height")
 @click.option("--to", "h_to", default="100 km", show_default=True, help="highest height")
 @click.option("--step", "h_step", default="1 km", show_default=True, help="height step")
@@ -73,7 +89,7 @@ def _plot(path: Path, heights, rows, wind: bool, title: str) -> None:
 @click.option("--plot", type=output_file(),
               help="also draw temperature, pressure, density and wind to this PNG")
 @reports_input_errors
-def atmosphere(weather, body, latitude, h_from, h_to, h_step, fmt, plot):
+def atmosphere(weather, body, latitude, longitude, epoch, h_from, h_to, h_step, fmt, plot):
     """Print the air against height: temperature, pressure, density, speed of sound
     (and wind, when the day has any). Heights are geometric, above the reference
     ellipsoid (Earth) or sphere (Mars); the air above 600 km is not tabulated.
@@ -84,7 +100,8 @@ def atmosphere(weather, body, latitude, h_from, h_to, h_step, fmt, plot):
         rocketsim atmosphere --weather day.yaml --latitude "28.5 deg" --format csv
         rocketsim atmosphere --body mars --to 150km --plot mars.png
     where day.yaml is a weather section, e.g. "kind: random" and "seed: 7"
-    on two lines, or "kind: sounding" and "file: 72357_OUN_20110522_12Z.txt".
+    on two lines, or "kind: sounding" and "file: 72357_OUN_20110522_12Z.txt";
+    a reanalysis ("kind: reanalysis", "file: era5.nc") also needs --longitude and --epoch.
     """
     import numpy as np
 
@@ -98,7 +115,8 @@ def atmosphere(weather, body, latitude, h_from, h_to, h_step, fmt, plot):
                          field="--to")
     if (hi - lo) / step > 1_000_000:
         raise InputError("more than a million rows: use a larger --step", field="--step")
-    table = _table(weather, body, lat)
+    table = _table(weather, body, lat, _quantity(longitude, "angle", "--longitude"),
+                   _epoch(epoch))
     heights = lo + step * np.arange(int(np.floor((hi - lo) / step + 1e-9)) + 1)
     rho, p, t, a, we, wn = table.at(heights)
     wind = table.has_wind

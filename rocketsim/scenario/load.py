@@ -46,7 +46,7 @@ class LoadedScenario:
     """A validated scenario and every file it was read from.
 
     ``files`` maps a role (``scenario``, ``vehicle``, ``site``, ``mission``,
-    ``weather``, ``sounding``, ``program``, ``program/<stage>``) to the file's
+    ``weather``, ``sounding`` or ``reanalysis``, ``program``, ``program/<stage>``) to the file's
     resolved path; these travel in the telemetry. ``callables`` maps the role of a
     program given as a Python callable to it (its file, when it has one, is in
     ``files``). ``overrides``: the paths and values set over the files (they travel
@@ -90,7 +90,9 @@ class LoadedScenario:
         weather = self.scenario.weather or StandardWeather(kind="standard")
         base_dir = (self.files.get("weather") or self.path).parent
         return build_atmosphere(weather, site.latitude if site else 0.0, base_dir,
-                                standard_gravity=site is not None and site.model == CLASSIC)
+                                standard_gravity=site is not None and site.model == CLASSIC,
+                                site_longitude=site.longitude if site else None,
+                                epoch=self.scenario.mission.epoch)
 
 
 def load(scenario: str | Path | Mapping, overrides: Mapping[str, Any] | None = None, *,
@@ -185,9 +187,10 @@ def load(scenario: str | Path | Mapping, overrides: Mapping[str, Any] | None = N
             raise unknown_stage(stage, scenario.vehicle, file=source.path, line=line, column=column)
     sounding = getattr(scenario.weather, "file", None)
     if sounding is not None:
-        # a sounding file is relative to the file that names it
+        # a sounding (or reanalysis) file is relative to the file that names it
         loc = ("file",) if "weather" in files else ("weather", "file")
-        files["sounding"] = _resolve(weather_source.path or path, sounding, weather_source, loc)
+        files[scenario.weather.kind] = _resolve(weather_source.path or path, sounding,
+                                                weather_source, loc)
     written = _as_written(scenario_data, path.parent) if isinstance(scenario_data, Mapping) else None
     return LoadedScenario(scenario, path.resolve(), files, callables, dict(overrides or {}), written)
 

@@ -1,6 +1,6 @@
 """The ``weather:`` section of a scenario, and the day's atmosphere table it gives.
 
-One of four kinds, chosen by ``kind``::
+One of five kinds, chosen by ``kind``::
 
     weather: {kind: standard}                       # US Standard Atmosphere 1976, calm
     weather: {kind: sounding, file: soundings/72357_OUN_20110522_12Z.txt}
@@ -9,15 +9,20 @@ One of four kinds, chosen by ``kind``::
       columns: {PRES: [966, 925, 850], HGHT: [345, 720, 1454], TEMP: [22.2, 20.4, 22.0]}
     weather: {kind: random, seed: 7}                # a seeded random day
     weather: {kind: classic, surface_temperature: "31 C"}   # standard shifted to the day
+    weather: {kind: reanalysis, file: era5_day.nc}  # ERA5/GFS pressure levels (NetCDF)
 
 A sounding ``file`` is resolved relative to the scenario (or weather) file;
 ``.csv`` and ``.yaml`` files carry the Wyoming columns by name (see
 :mod:`rocketsim.atmosphere.sounding`), anything else is read as the
-University of Wyoming text listing.
+University of Wyoming text listing. A reanalysis ``file`` (resolved the same
+way) is taken at the site and the mission's epoch
+(:mod:`rocketsim.atmosphere.reanalysis`).
 """
 
 from __future__ import annotations
 
+import datetime as dt
+import math
 from pathlib import Path
 from typing import Annotated, Literal, Optional, Union
 
@@ -87,8 +92,16 @@ class ClassicWeather(_Weather):
         USSA_P0, description="sea-level pressure of the day")
 
 
-Weather = Annotated[Union[StandardWeather, SoundingWeather, RandomWeather, ClassicWeather],
-                    Field(discriminator="kind")]
+class ReanalysisWeather(_Weather):
+    """A reanalysis or forecast on pressure levels (ERA5, GFS NetCDF), taken at the launch
+    site and the mission's epoch."""
+
+    kind: Literal["reanalysis"]
+    file: str = Field(description="NetCDF file, relative to this file")
+
+
+Weather = Annotated[Union[StandardWeather, SoundingWeather, RandomWeather, ClassicWeather,
+                          ReanalysisWeather], Field(discriminator="kind")]
 
 
 class WeatherFile(RootModel[Weather]):
@@ -96,7 +109,7 @@ class WeatherFile(RootModel[Weather]):
 
 
 KINDS = {"standard": StandardWeather, "sounding": SoundingWeather, "random": RandomWeather,
-         "classic": ClassicWeather}
+         "classic": ClassicWeather, "reanalysis": ReanalysisWeather}
 
 
 def load_weather(path):
@@ -116,15 +129,26 @@ def load_weather(path):
 
 
 def build_atmosphere(weather: Weather, site_latitude: float, base_dir: str | Path,
-                     standard_gravity: bool = False) -> AtmosphereTable:
+                     standard_gravity: bool = False, site_longitude: float | None = None,
+                     epoch: dt.datetime | None = None) -> AtmosphereTable:
     """The day's 50 m :class:`AtmosphereTable` for ``weather`` at geodetic ``site_latitude``
-    (rad); a sounding ``file`` is resolved relative to ``base_dir``. ``standard_gravity``:
-    the classic range's hydrostatics (:func:`~rocketsim.atmosphere.day.profile_table`)."""
+    (rad); a sounding or reanalysis ``file`` is resolved relative to ``base_dir``.
+    ``standard_gravity``: the classic range's hydrostatics
+    (:func:`~rocketsim.atmosphere.day.profile_table`). A reanalysis is taken at
+    ``site_longitude`` (rad, east) and the UTC instant ``epoch``, both needed for it."""
     if isinstance(weather, WeatherFile):
         weather = weather.root
     if isinstance(weather, StandardWeather):
         return standard_table()
-    if isinstance(weather, SoundingWeather):
+    if isinstance(weather, ReanalysisWeather):
+        if site_longitude is None or epoch is None:
+            raise InputError("a reanalysis weather is taken at the launch site's longitude "
+                             "and the mission's epoch: give both (rocketsim atmosphere: "
+                             "--longitude, --epoch)", field="weather")
+        from rocketsim.atmosphere.reanalysis import read_reanalysis
+        profile = read_reanalysis(Path(base_dir) / weather.file, math.degrees(site_latitude),
+                                  math.degrees(site_longitude), epoch).sounding()
+    elif isinstance(weather, SoundingWeather):
         if weather.file is not None:
             profile = read_sounding(Path(base_dir) / weather.file)
         else:

@@ -16,6 +16,9 @@ from rocketsim.scenario.load import LoadedScenario
 from rocketsim.sim.build import build_world
 from rocketsim.telemetry.writer import TelemetryWriter, strict_json
 
+# media type of an attached file by its suffix (the rest are YAML: scenario, vehicle, ...)
+MEDIA_TYPES = {".py": "text/x-python", ".nc": "application/x-netcdf"}
+
 
 def fly(loaded: LoadedScenario, out: str | Path, *, step: float | None = None,
         duration: float | None = None, on_progress=None) -> dict:
@@ -53,7 +56,7 @@ def fly_into(loaded: LoadedScenario, open_telemetry, *, step: float | None = Non
         })
         for role, path in loaded.files.items():
             telemetry.attach(f"{role}/{path.name}", path.read_bytes(),
-                             "text/x-python" if path.suffix == ".py" else "application/yaml")
+                             MEDIA_TYPES.get(path.suffix.lower(), "application/yaml"))
         layout = {role: Path(os.path.relpath(path, loaded.path.parent)).as_posix()
                   for role, path in loaded.files.items()}
         mapping = _scenario_text(loaded)
