@@ -64,9 +64,9 @@ def read_bounded(path: str | Path, limit: int, what: str) -> bytes:
         raise InputError(f"is a folder, not a {what}", file=path) from None
     except OSError as error:
         raise InputError(f"cannot read the file ({error.strerror or error})", file=path) from None
-    if len(data) > limit:
+    if len(data) > limit:       # named at the line where the limit is crossed
         raise InputError(f"the file is larger than the {limit // 1024} KiB a {what} may have",
-                         file=path)
+                         file=path, line=data.count(b"\n", 0, limit) + 1)
     return data
 
 
