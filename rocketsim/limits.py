@@ -21,6 +21,9 @@ The limits, and why each is where it is:
   mapping, a list and a scalar are a value each; the largest shipped file has
   about 1 000).
 * :data:`MAX_TEXT_LENGTH`, 65 536 characters in one string.
+* :data:`MAX_QUANTITY`, 1e30 in SI units: the largest magnitude a quantity
+  (a length, a mass, a force...) may have, so that squares and cubes of what
+  was read stay finite.
 
 :func:`check_data` applies the last three to data handed over in memory (a
 scenario given as a dict), and :func:`compose_yaml` to YAML text before it
@@ -43,6 +46,10 @@ MAX_TEXT_BYTES = 4 * 1024 * 1024
 MAX_DEPTH = 32
 MAX_VALUES = 100_000
 MAX_TEXT_LENGTH = 65_536
+# the largest magnitude of any quantity in SI units (a length, a mass, a force...): no input
+# of a flight comes near it (a planet's mass is 6e24 kg, Neptune 4.5e12 m away), and its
+# square and cube stay finite, so no formula overflows on a value that passed
+MAX_QUANTITY = 1e30
 
 
 def read_bounded(path: str | Path, limit: int, what: str) -> bytes:

@@ -16,7 +16,7 @@ from rocketsim.limits import MAX_DEPTH, MAX_TEXT_LENGTH, MAX_VALUES, MAX_YAML_BY
 from rocketsim.scenario.load import load
 from rocketsim.scenario.models import Scenario
 from rocketsim.scenario.yaml_source import read_yaml
-from tests.conftest import VEHICLE
+from tests.conftest import MISSION, VEHICLE
 from tests.test_scenario_errors import assert_clean_error
 
 # nine lists of nine, eight levels deep: 9^9 = 387 million strings once expanded
@@ -138,6 +138,16 @@ def test_a_step_or_duration_out_of_range_on_the_command_line_is_refused(scenario
     assert_clean_error(result, option, message)
 
 
+@pytest.mark.parametrize("mass", ["1e31 kg", "1.0e+308", "-2e30 t"])
+def test_a_quantity_beyond_max_quantity_is_refused_at_its_line(write, cli, mass):
+    # found by tests/fuzz (long profile): a stage 1e308 m long overflowed length ** 2 in its
+    # inertia; every quantity is now held to MAX_QUANTITY (1e30 SI), its square and cube finite
+    write("mission.yaml", MISSION.format(duration="1 s"))
+    write("vehicle.yaml", VEHICLE.replace("mass: 10 kg", f"mass: {mass}"))
+    path = write("scenario.yaml", "name: x\nvehicle: vehicle.yaml\nmission: mission.yaml\n")
+    assert_clean_error(cli("validate", path), "vehicle.yaml:3:", "beyond the 1e+30")
+
+
 def test_an_integer_too_large_for_a_float_is_refused_at_its_line(scenario, cli):
     # found by tests/fuzz (long profile): float() of a 400-digit YAML integer overflowed
     result = cli("validate", scenario(duration="1" + "0" * 400))
@@ -153,15 +163,16 @@ def test_a_mission_of_more_than_a_century_is_refused_at_its_line(scenario, cli):
 
 
 @pytest.mark.parametrize("start, message", [
-    # found by tests/fuzz (long profile): 1e308 m overflowed the J2 short-period terms
-    ("orbit: {altitude: 1.0e+308, inclination: 51.6 deg}", "less than or equal to 10000000000000"),
+    # found by tests/fuzz (long profile): 1e308 m overflowed the J2 short-period terms (now
+    # also beyond MAX_QUANTITY); a start beyond 67 au or 1 000 km/s is refused on its own
+    ("orbit: {altitude: 1.0e+20, inclination: 51.6 deg}", "less than or equal to 10000000000000"),
     ("orbit: {altitude: -7000 km, inclination: 51.6 deg}", "below its surface"),
     ("orbit: {altitude: -25 km, inclination: 90 deg}", "below its surface"),
     ("orbit: {body: moon, semi_major_axis: 1 km, inclination: 0 deg}", "below its surface"),
     ("orbit: {semi_major_axis: 8000 km, eccentricity: 0.5, true_anomaly: 0 deg, "
      "inclination: 0 deg}", "below its surface"),
-    ("state: {position: [1.0e+308, 0, 0], velocity: [0, 7.7 km/s, 0]}", "less than or equal to"),
-    ("state: {position: [7000 km, 0, 0], velocity: [0, -1.0e+300, 0]}", "greater than or equal to"),
+    ("state: {position: [1.0e+20, 0, 0], velocity: [0, 7.7 km/s, 0]}", "less than or equal to"),
+    ("state: {position: [7000 km, 0, 0], velocity: [0, -1.0e+10, 0]}", "greater than or equal to"),
 ])
 def test_a_start_too_far_too_fast_or_underground_is_refused_at_its_line(write, cli, start, message):
     """The start's distances and speeds are bounded (constants MAX_START_DISTANCE, 67 au,

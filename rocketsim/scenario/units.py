@@ -18,6 +18,8 @@ from typing import Annotated, Any
 
 from pydantic import BeforeValidator, ConfigDict, WithJsonSchema
 
+from rocketsim.limits import MAX_QUANTITY
+
 # dimension -> {unit spelling: factor to the SI unit}
 UNITS: dict[str, dict[str, float]] = {
     "length": {"m": 1.0, "km": 1e3, "cm": 1e-2, "mm": 1e-3, "ft": 0.3048,
@@ -61,6 +63,9 @@ def parse_quantity(value: Any, dimension: str) -> float:
     si = _si_value(value, dimension)
     if not math.isfinite(si):
         raise UnitError(f"expected a finite {dimension.replace('_', ' ')}")
+    if abs(si) > MAX_QUANTITY:
+        raise UnitError(f"{si:g} (SI) is beyond the {MAX_QUANTITY:g} any {dimension.replace('_', ' ')} "
+                        "may have")
     return si
 
 

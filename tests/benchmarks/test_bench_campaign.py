@@ -58,7 +58,7 @@ from rocketsim.campaigns.cases import Plan
 from rocketsim.campaigns.execute import _local_cluster, run
 from rocketsim.campaigns.outputs import run_columns
 from rocketsim.campaigns.spec import read_campaign
-from tests.benchmarks.timing import best_of
+from tests.benchmarks.timing import best_of, load_text
 
 ROOT = Path(__file__).resolve().parents[2]
 FALCON9 = ROOT / "campaigns" / "falcon9-landing.yaml"
@@ -74,10 +74,6 @@ dispersions:
   v_north: {{path: "mission.start.site.velocity[1]", kind: normal, sigma: 5 m/s}}
   v_up: {{path: "mission.start.site.velocity[2]", kind: normal, sigma: 1 %}}
 """
-
-
-def load_text() -> str:
-    return "load " + " ".join(f"{x:.1f}" for x in os.getloadavg())
 
 
 def throughput(campaign, directory: Path, **executor):
