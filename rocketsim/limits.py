@@ -50,6 +50,9 @@ MAX_TEXT_LENGTH = 65_536
 # of a flight comes near it (a planet's mass is 6e24 kg, Neptune 4.5e12 m away), and its
 # square and cube stay finite, so no formula overflows on a value that passed
 MAX_QUANTITY = 1e30
+# the largest seed of a random stream: numpy's SeedSequence takes non-negative integers,
+# and a seed up to 2^64 - 1 travels exactly in telemetry metadata and Parquet (uint64)
+MAX_SEED = 2 ** 64 - 1
 
 
 def read_bounded(path: str | Path, limit: int, what: str) -> bytes:

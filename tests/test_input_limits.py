@@ -148,6 +148,14 @@ def test_a_quantity_beyond_max_quantity_is_refused_at_its_line(write, cli, mass)
     assert_clean_error(cli("validate", path), "vehicle.yaml:3:", "beyond the 1e+30")
 
 
+@pytest.mark.parametrize("extra, where", [
+    # found by tests/fuzz (long profile): numpy's SeedSequence refused a negative seed
+    ("seed: -3\n", "scenario.yaml:4:"), ("weather: {kind: random, seed: -1}\n", "scenario.yaml:4:"),
+    (f"seed: {2 ** 64}\n", "scenario.yaml:4:")])
+def test_a_seed_outside_0_to_2_64_is_refused_at_its_line(scenario, cli, extra, where):
+    assert_clean_error(cli("validate", scenario(extra=extra)), where, "seed")
+
+
 def test_an_integer_too_large_for_a_float_is_refused_at_its_line(scenario, cli):
     # found by tests/fuzz (long profile): float() of a 400-digit YAML integer overflowed
     result = cli("validate", scenario(duration="1" + "0" * 400))

@@ -26,7 +26,7 @@ from rocketsim.bodies.sun_synchronous import (sun_synchronous_inclination,
 from rocketsim.constants import (EARTH_RADIUS_EQ, EARTH_RADIUS_POLAR, MARS_FLATTENING, MARS_RADIUS_EQ,
                                  MAX_DURATION, MAX_HEADLESS_STEP, MAX_START_DISTANCE, MAX_START_SPEED,
                                  MIN_STEP, MOON_RADIUS, STEP)
-from rocketsim.limits import check_data
+from rocketsim.limits import MAX_SEED, check_data
 from rocketsim.scenario.classic_range import CLASSIC, classic_site
 from rocketsim.scenario.weather import Weather
 from rocketsim.scenario.units import STRICT, Angle, Duration, Frequency, Inertia, Length, Mass, Speed
@@ -383,7 +383,8 @@ class Scenario(Strict):
     program_cpu_budget: Annotated[Duration, Field(gt=0)] = Field(
         1.0, description="CPU time the program may use in one step before it is stopped")
     telemetry: TelemetrySpec = TelemetrySpec()
-    seed: int = Field(0, description="seed of every random stream of the run")
+    seed: int = Field(0, ge=0, le=MAX_SEED, description="seed of every random stream of the run "
+                      "(0 .. 2^64 - 1)")
     sensors: Literal["truth", "realistic", "hard"] = Field(
         "truth", description="what programs read: the true state, or a navigation estimate "
         "with realistic (or three times larger, 'hard') sensor errors")

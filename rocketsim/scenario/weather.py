@@ -34,6 +34,7 @@ from rocketsim.atmosphere.sounding import COLUMNS, from_columns, read_sounding
 from rocketsim.atmosphere.table import AtmosphereTable
 from rocketsim.constants import USSA_P0
 from rocketsim.errors import InputError
+from rocketsim.limits import MAX_SEED
 from rocketsim.scenario.units import STRICT, Pressure, Temperature
 
 
@@ -79,7 +80,7 @@ class RandomWeather(_Weather):
     """A seeded random day (same seed, same day)."""
 
     kind: Literal["random"]
-    seed: int = Field(description="seed of the day's random streams")
+    seed: int = Field(ge=0, le=MAX_SEED, description="seed of the day's random streams (0 .. 2^64 - 1)")
 
 
 class ClassicWeather(_Weather):
