@@ -156,6 +156,13 @@ def test_a_seed_outside_0_to_2_64_is_refused_at_its_line(scenario, cli, extra, w
     assert_clean_error(cli("validate", scenario(extra=extra)), where, "seed")
 
 
+@pytest.mark.parametrize("extra", [
+    # found by tests/fuzz (long profile): a rate of 5e-324 Hz made rate * step 0 (a division by 0)
+    "telemetry: {rate: 5.0e-324}\n", "telemetry: {rate: 0}\n"])
+def test_a_telemetry_rate_under_a_microhertz_is_refused_at_its_line(scenario, cli, extra):
+    assert_clean_error(cli("validate", scenario(extra=extra)), "scenario.yaml:4:", "telemetry.rate")
+
+
 def test_an_integer_too_large_for_a_float_is_refused_at_its_line(scenario, cli):
     # found by tests/fuzz (long profile): float() of a 400-digit YAML integer overflowed
     result = cli("validate", scenario(duration="1" + "0" * 400))

@@ -128,6 +128,8 @@ ELEMENTS_DESCRIPTION = (
     "osculating: the two-body elements of the instantaneous state")
 
 
+# a body rate at the start, rad/s: 10 000 rad/s (1 600 turns a second) is beyond any vehicle
+_Rate = Annotated[float, Field(ge=-1e4, le=1e4)]
 # equatorial and polar radii (m) of the bodies an orbit can start about
 _RADII = {"earth": (EARTH_RADIUS_EQ, EARTH_RADIUS_POLAR), "moon": (MOON_RADIUS, MOON_RADIUS),
           "mars": (MARS_RADIUS_EQ, MARS_RADIUS_EQ * (1.0 - MARS_FLATTENING))}
@@ -325,7 +327,7 @@ class MissionSpec(Strict):
     dut1: Annotated[float, Field(ge=-0.9, le=0.9)] = Field(0.0, description="UT1 - UTC, s")
     start: StartSpec
     duration: Annotated[Duration, Field(gt=0)] = Field(description="mission time to fly")
-    initial_rates: tuple[float, float, float] = Field(
+    initial_rates: tuple[_Rate, _Rate, _Rate] = Field(
         (0.0, 0.0, 0.0), description="body rates at the start, rad/s (roll, pitch, yaw)")
     target: TargetSpec = Field(TargetSpec(), description="what the mission aims for")
     gravity: Literal["earth", "n-body"] = Field(
@@ -352,7 +354,8 @@ class MissionSpec(Strict):
 # --- scenario -----------------------------------------------------------------
 
 class TelemetrySpec(Strict):
-    rate: Annotated[Frequency, Field(gt=0, le=50)] = Field(10.0, description="samples per second")
+    rate: Annotated[Frequency, Field(ge=1e-6, le=50)] = Field(
+        10.0, description="samples per second (1e-6 Hz, one every 11.6 days, .. 50 Hz)")
 
 
 class Scenario(Strict):
