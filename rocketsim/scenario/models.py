@@ -117,6 +117,16 @@ class SiteSpec(Strict):
             raise ValueError("latitude must be within -90 deg .. 90 deg")
         return value
 
+    @model_validator(mode="after")
+    def _pad_on_or_above_the_ground(self) -> "SiteSpec":
+        ground = 0.0 if self.ground_height is None else self.ground_height
+        if self.height < ground:
+            raise ValueError(f"the pad's height {self.height:g} m is below the ground ({ground:g} m: "
+                             + ("ground_height" if self.ground_height is not None else
+                                "the ellipsoid, as no ground_height is given") + "): a vehicle "
+                             "would start inside the ground")
+        return self
+
 
 # --- mission ------------------------------------------------------------------
 
