@@ -14,7 +14,11 @@ estimate, so it flies with ``sensors: realistic`` as with the truth. Phases:
 2. coast; the grid fins are handed to the autopilot;
 3. entry burn: below ENTRY_ALTITUDE, falling faster than ENTRY_SPEED, the
    engines burn against the air-relative velocity until the airspeed is down
-   to ENTRY_END_SPEED (or only the landing burn's propellant is left);
+   to ENTRY_END_SPEED (or only the landing burn's propellant is left), leaned
+   (as in the descent, towards the pad) so that the impact point predicted from
+   the burn's end is on the pad: how far the burn shortens the fall, which
+   OVERSHOOT only estimates, depends on the path the boost-back left (a wind in
+   the ascent changes it by kilometres);
 4. aerodynamic descent tail first on the grid fins: the nose is held on
    the air-relative velocity's reverse, leaned away from the direction the
    impact point must move (a body falling tail first is pushed away from
@@ -49,7 +53,7 @@ import math
 
 import numpy as np
 
-from rocketsim.constants import EARTH_J2
+from rocketsim.constants import EARTH_J2, EARTH_MU, EARTH_OMEGA
 from rocketsim.frames.earth_fixed import eci_to_ecef, eci_to_ecef_velocity
 from rocketsim.frames.geodetic import enu_basis, geodetic_to_ecef
 from rocketsim.flight.guidance import descent_point, warm_up
@@ -80,7 +84,10 @@ THREE_ENGINES = ("centre", "ring/1", "ring/5")    # boost-back and entry burns (
 LANDING_ENGINES = ("centre",)                      # the landing burn
 LANDING_DV = 450.0          # m/s kept for the landing burn (terminal speed and gravity loss)
 EXHAUST_SPEED = 2800.0      # m/s, effective exhaust speed of the engines low in the air (estimate)
-Q_ALPHA = 150e3             # Pa deg: lean allowed in the air (the limit is 250 kPa deg)
+# Pa deg: lean commanded in the air at most; the structure's limit is 250 kPa deg, and the
+# autopilot's lag through the wind's shears overshoots a command by up to ~100 kPa deg
+Q_ALPHA = 100e3
+ENTRY_PREDICTION_STEP = 0.2  # s, steps of the entry burn's prediction
 GUIDANCE_STEP = 0.1         # s between steering updates away from the decisions (see the module)
 NEAR_LANDING_BURN = 0.9     # share of the landing burn's trigger from which the descent checks every step
 
@@ -98,8 +105,8 @@ def main(fc):
     fc.deploy_grid_fins()
     fc.hold("surface_retrograde")
     fc.wait_until(lambda: fc.altitude < ENTRY_ALTITUDE and -fc.vertical_speed > ENTRY_SPEED)
-    full = entry_burn(fc, guide, three)
-    landing_full = full * len(landing) / len(three)
+    share = len(landing) / len(three)
+    landing_full = entry_burn(fc, guide, three, share) * share
     descend(fc, guide, landing_full)
     land(fc, guide, landing, landing_full)
 
@@ -112,6 +119,7 @@ class Guide:
         self.pad = geodetic_to_ecef(latitude, longitude, 0.0)
         self.enu = enu_basis(latitude, longitude)           # rows east, north, up (ECEF)
         self._miss, self._when = None, -math.inf
+        self._burn_miss, self._burn_when = None, -math.inf
 
     def state(self):
         """Earth-fixed position and velocity (m, m/s) of the estimate."""
@@ -133,6 +141,36 @@ class Guide:
         if self.fc.time - self._when >= age:
             self._miss, self._when = self.miss(thrust_accel), self.fc.time
         return self._miss
+
+    def recent_burn_end_miss(self, age, full, landing_share):
+        """The miss from the entry burn's end (as :meth:`burn_end_miss`), recomputed once
+        every ``age`` seconds."""
+        if self.fc.time - self._burn_when >= age:
+            self._burn_miss, self._burn_when = self.burn_end_miss(full, landing_share), self.fc.time
+        return self._burn_miss
+
+    def burn_end_miss(self, full, landing_share):
+        """(east, north) of the impact point from the pad (m) predicted from where the
+        entry burn, at ``full`` thrust (N) against the velocity, ends (ENTRY_END_SPEED, or
+        only the landing burn's propellant left), with the landing burn at
+        ``landing_share`` of that thrust. The burn is integrated in the Earth-fixed frame
+        (point-mass gravity, the Coriolis and centrifugal terms, no drag: it burns above
+        50 km) in ENTRY_PREDICTION_STEP steps, its mass flow ``full / EXHAUST_SPEED``."""
+        r, v = self.state()
+        mass, usable = self.fc.mass, self.usable()
+        spin = np.array((0.0, 0.0, EARTH_OMEGA))
+        dt = ENTRY_PREDICTION_STEP
+        flow = full / EXHAUST_SPEED * dt
+        while True:
+            speed = math.sqrt(v @ v)
+            if speed <= ENTRY_END_SPEED or usable <= landing_propellant(mass):
+                break
+            gravity = -EARTH_MU / (r @ r) ** 1.5 * r
+            a = -full / mass / speed * v + gravity - 2.0 * np.cross(spin, v) - np.cross(spin, np.cross(spin, r))
+            v = v + a * dt
+            r = r + v * dt
+            mass, usable = mass - flow, usable - flow
+        return (self.enu @ (impact(r, v, BALLISTIC, landing_share * full / mass) - self.pad))[:2]
 
     def miss(self, thrust_accel=0.0):
         """(east, north) of the predicted impact point from the pad, m (with the landing
@@ -209,15 +247,20 @@ def fc_nose(fc):
     return np.array([1.0 - 2.0 * (y * y + z * z), 2.0 * (x * y + w * z), 2.0 * (x * z - w * y)])
 
 
-def entry_burn(fc, guide, engines):
-    """Slow down against the air, keeping what the landing burn needs; returns the
-    engines' full-throttle thrust (N) measured."""
+def entry_burn(fc, guide, engines, landing_share):
+    """Slow down against the air, keeping what the landing burn needs, the thrust leaned
+    so that the impact point predicted from the burn's end (:meth:`Guide.burn_end_miss`)
+    is on the pad; returns the engines' full-throttle thrust (N) measured.
+    ``landing_share``: the landing burn's engines' share of that thrust."""
     fc.ignite(engines)
     fc.throttle(1.0)
     gauge = FullThrust(0.0)
-    while fc.airspeed > ENTRY_END_SPEED and guide.usable() > landing_propellant(fc):
-        fc.point_at(-fc.air_velocity)
-        gauge.read(fc)
+    while fc.airspeed > ENTRY_END_SPEED and guide.usable() > landing_propellant(fc.mass):
+        full = gauge.read(fc)
+        if full > 0.0:      # spooled up: the burn's own prediction
+            lean_onto(fc, guide.recent_burn_end_miss(0.5, full, landing_share), thrusting=True)
+        else:
+            fc.point_at(-fc.air_velocity)
         fc.step()
     fc.shutdown(engines)
     fc.event("entry burn end", airspeed_m_s=fc.airspeed, altitude_m=fc.altitude,
@@ -225,16 +268,16 @@ def entry_burn(fc, guide, engines):
     return gauge.full
 
 
-def landing_propellant(fc):
-    """Propellant (kg) a landing burn of LANDING_DV needs at the present mass."""
-    return fc.mass * (1.0 - math.exp(-LANDING_DV / EXHAUST_SPEED))
+def landing_propellant(mass):
+    """Propellant (kg) a landing burn of LANDING_DV needs at ``mass`` (kg)."""
+    return mass * (1.0 - math.exp(-LANDING_DV / EXHAUST_SPEED))
 
 
-def lean_towards(fc, guide, thrusting, thrust_accel=0.0):
-    """Point against the air-relative velocity, leaned so that the impact point moves
-    onto the pad: thrust leans towards the pad, a body falling tail first leans away."""
+def lean_onto(fc, miss, thrusting):
+    """Point against the air-relative velocity, leaned so that the impact point moves by
+    ``-miss`` (east, north; m) onto the pad: thrust leans towards the pad, a body falling
+    tail first leans away."""
     back = -fc.air_velocity / max(fc.airspeed, 1e-3)
-    miss = guide.recent_miss(0.5, thrust_accel)
     size = float(np.linalg.norm(miss))
     if size > 1.0:
         towards = horizontal(fc, -miss[0], -miss[1])
@@ -266,7 +309,7 @@ def within_air_limit(fc, direction):
 def descend(fc, guide, full):
     """Fall tail first on the grid fins until the landing burn must start."""
     while True:
-        lean_towards(fc, guide, thrusting=False, thrust_accel=full / fc.mass)
+        lean_onto(fc, guide.recent_miss(0.5, full / fc.mass), thrusting=False)
         fall = -fc.vertical_speed
         h = fc.clearance
         available = full / fc.mass - fc.gravity + fc.dynamic_pressure / BALLISTIC   # thrust, drag
