@@ -13,7 +13,10 @@ Printed (run with ``pytest -s``), with the machine's load:
 * runs per second serially (flown before and after the cluster's, the faster
   is the baseline: the machine is shared) and on a two-worker LocalCluster
   (from the first run's start to the last row, warm-up and cluster start
-  excluded), and their ratio; the runs' own wall times (median), serially and
+  excluded), and their ratio; the same runs flown by two plain processes side
+  by side (no Dask: what two flights at once get from the machine's two cores,
+  the ceiling of any scheduler here) and what share of it the cluster reaches;
+  the runs' own wall times (median), serially and
   on the workers: when the workers' runs are slower than the serial ones, the
   two cores were not both free;
 * per run: building the scenario (``Plan.scenario``: the file read with the
@@ -49,13 +52,14 @@ flew and that the cluster's rows equal the serial ones.
 
 from __future__ import annotations
 
+import multiprocessing
 import os
 import time
 from pathlib import Path
 
 from rocketsim.api.flying import fly
 from rocketsim.campaigns.cases import Plan
-from rocketsim.campaigns.execute import _local_cluster, run
+from rocketsim.campaigns.execute import WORKER_WARM_S, _local_cluster, fly_case, run, warm
 from rocketsim.campaigns.outputs import run_columns
 from rocketsim.campaigns.spec import read_campaign
 from tests.benchmarks.timing import best_of, load_text
@@ -83,6 +87,36 @@ def throughput(campaign, directory: Path, **executor):
                   progress=lambda done, failed, total: marks.append((time.perf_counter(), done)), **executor)
     (t0, _), (t1, done) = marks[0], marks[-1]
     return done / (t1 - t0), results, lines
+
+
+def _plain_worker(text, runs, barrier, done):
+    """One of the plain processes: warm up, wait for the other, fly ``runs``, report when."""
+    warm(text, WORKER_WARM_S)
+    barrier.wait()
+    for k in runs:
+        fly_case(text, k, "none", None)
+    done.put(time.perf_counter())
+
+
+def plain_processes_rate(campaign, processes: int = 2) -> float:
+    """Runs per second of ``campaign``'s runs flown by ``processes`` plain processes side
+    by side (run k by process k mod ``processes``, no Dask, each warmed up first): what
+    the machine itself gives two flights at once, the ceiling of any scheduler on it."""
+    import yaml
+    text = yaml.safe_dump(read_campaign(campaign).resolved(), sort_keys=False)
+    runs = read_campaign(campaign).spec.runs
+    context = multiprocessing.get_context("spawn")
+    barrier, done = context.Barrier(processes + 1), context.Queue()
+    children = [context.Process(target=_plain_worker, args=(text, range(n, runs, processes), barrier, done))
+                for n in range(processes)]
+    for child in children:
+        child.start()
+    barrier.wait()
+    start = time.perf_counter()
+    end = max(done.get() for _ in children)
+    for child in children:
+        child.join()
+    return runs / (end - start)
 
 
 def scheduling_cost(client, tasks: int = 400) -> float:
@@ -118,9 +152,12 @@ def test_campaign_throughput_and_per_run_overhead(tmp_path):
     columns = [c for c in serial.columns if c != "wall_time_s"]
     assert serial[columns].equals(parallel[columns]) and serial[columns].equals(again[columns])
     serial_rate = max(first_rate, second_rate)
+    plain_rate = plain_processes_rate(campaign)
     print(f"  throughput ({len(serial)} runs): serial {first_rate:.2f} and {second_rate:.2f} runs/s "
           f"(before and after), 2 workers {cluster_rate:.2f} runs/s: {cluster_rate / serial_rate:.2f}x "
           f"the faster serial (target >= 1.8x; {load_text()})")
+    print(f"  the machine's own ceiling: 2 plain processes {plain_rate:.2f} runs/s, {plain_rate / serial_rate:.2f}x "
+          f"the faster serial; the cluster gets {cluster_rate / plain_rate:.0%} of it")
     print(f"  a run's own wall time: serial {serial['wall_time_s'].median() * 1e3:.0f} and "
           f"{again['wall_time_s'].median() * 1e3:.0f} ms, on a worker {parallel['wall_time_s'].median() * 1e3:.0f} "
           "ms (medians; a worker's runs slower than the serial ones: the cores are shared)")
