@@ -317,6 +317,9 @@ class ParachuteSpec(_Strict):
     releases: list[str] = Field([], description="parachutes (by name) cut away when this one "
                                 "begins to inflate (a drogue released by the main); default none: "
                                 "they stay on and their drag areas add")
+    attachment: Optional[NonNegativeLength] = Field(
+        None, description="height above the stage base of the shock cord's attachment on the "
+        "axis, where the canopy's drag pulls (the body hangs from it); default the stage's top")
 
 
 class PointMassSpec(_Strict):
@@ -378,6 +381,11 @@ class StageSpec(_Strict):
             if motor.diameter > self.diameter * (1 + 1e-12):
                 raise field_error(("motors", i, "diameter"),
                                   f"motor {motor.name!r} is wider than stage {self.name!r}", motor.diameter)
+        for i, chute in enumerate(self.parachutes):
+            if chute.attachment is not None and chute.attachment > self.length * (1 + 1e-12):
+                raise field_error(("parachutes", i, "attachment"),
+                                  f"parachute {chute.name!r} is attached above the top of stage "
+                                  f"{self.name!r}", chute.attachment)
         for i, engine in enumerate(self.engines):
             if engine.position > self.length * (1 + 1e-12):
                 raise field_error(("engines", i, "position"),
