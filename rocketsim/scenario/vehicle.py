@@ -201,7 +201,8 @@ class MotorSpec(_Strict):
     delivered, ``m(t) = m0 (1 - I(t)/I_total)``. The case (total less propellant mass) is
     a thin cylindrical shell of the motor's size. Without ``grain`` the propellant is a
     uniform cylinder of the motor's size losing density, its centre fixed at the
-    motor's centre.
+    motor's centre. A motor lights once, at its ``ignition`` time or when the program
+    lights it (``ignition: program``), and burns to the end of its curve.
     """
 
     name: str
@@ -218,8 +219,9 @@ class MotorSpec(_Strict):
     total_mass: Optional[PositiveMass] = Field(None, description="loaded motor, case and propellant "
                                                "(default: the .eng header's)")
     grain: Optional[GrainSpec] = None
-    ignition: Annotated[Duration, Field(ge=0)] = Field(
-        0.0, description="mission time of ignition (0: at the start, off the pad or rail)")
+    ignition: Union[Annotated[Duration, Field(ge=0)], Literal["program"]] = Field(
+        0.0, description="mission time of ignition (0: at the start, off the pad or rail), or "
+        "program: lit by the flight program's fc.ignite (an upper stage, an air start)")
 
     @model_validator(mode="after")
     def _curve(self, info: ValidationInfo) -> "MotorSpec":

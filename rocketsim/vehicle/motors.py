@@ -20,7 +20,7 @@ rounding.
 Arrays: ``motor`` (motors x :data:`N_MOTOR`) with the columns below, and
 ``curve`` (points x 2: time s since ignition, thrust N) holding every
 motor's points one after another. ``M_IGNITION`` holds the mission time of
-ignition from the vehicle file (nan: never lit); the curve's first point is
+ignition, from the vehicle file or set by the program (nan: not lit); the curve's first point is
 ``(0, 0)``, so the ignition instant is a kink like the others and the whole
 burn is decided inside the compiled step.
 
@@ -135,7 +135,8 @@ def next_motor_kink(t, h, motor, curve):
 
 def build_motors(chosen, stage_base):
     """``(motor, curve, cases)`` of the stages ``chosen`` (specs, bottom to top) based at
-    ``stage_base`` (m): the arrays above, each motor lit at its file's ignition time, and
+    ``stage_base`` (m): the arrays above, each motor lit at its file's ignition time (not
+    lit: ``ignition: program``, for the program to light), and
     each motor's case as ``(mass kg, centre station m, radius m, length m)`` for the
     fixed masses."""
     rows, points, cases = [], [], []
@@ -146,7 +147,7 @@ def build_motors(chosen, stage_base):
             centre = base + m.position + 0.5 * m.length
             row = np.zeros(N_MOTOR)
             row[M_STAGE], row[M_X_NOZZLE], row[M_X_CENTRE] = s, base + m.position, centre
-            row[M_IGNITION] = m.ignition
+            row[M_IGNITION] = math.nan if m.ignition == "program" else m.ignition
             row[M_PROPELLANT], row[M_IMPULSE] = m.propellant_mass, impulse
             row[M_CURVE0], row[M_POINTS] = len(points), len(pts)
             if m.grain is None:
