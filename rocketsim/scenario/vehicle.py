@@ -219,6 +219,10 @@ class MotorSpec(_Strict):
     total_mass: Optional[PositiveMass] = Field(None, description="loaded motor, case and propellant "
                                                "(default: the .eng header's)")
     grain: Optional[GrainSpec] = None
+    thrust_scale: Annotated[float, Field(gt=0, le=10)] = Field(
+        1.0, description="multiplies the curve's thrust at every point, so its total impulse, "
+        "at the same times and propellant: one motor's scatter about its curve (a campaign's "
+        "dispersion of the impulse)")
     ignition: Union[Annotated[Duration, Field(ge=0)], Literal["program"]] = Field(
         0.0, description="mission time of ignition (0: at the start, off the pad or rail), or "
         "program: lit by the flight program's fc.ignite (an upper stage, an air start)")
@@ -280,9 +284,10 @@ class MotorSpec(_Strict):
 
     @property
     def total_impulse(self) -> float:
-        """N s, the trapezoid integral of the (linearly interpolated) curve."""
+        """N s, the trapezoid integral of the (linearly interpolated) curve, times
+        ``thrust_scale``."""
         pts = self.thrust
-        return sum(0.5 * (a[1] + b[1]) * (b[0] - a[0]) for a, b in zip(pts, pts[1:]))
+        return self.thrust_scale * sum(0.5 * (a[1] + b[1]) * (b[0] - a[0]) for a, b in zip(pts, pts[1:]))
 
 
 class AfterEvent(_Strict):

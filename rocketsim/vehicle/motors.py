@@ -1,8 +1,8 @@
 """Solid rocket motors: a thrust curve against time since ignition, compiled.
 
 docs/physics.md#solid-motors. A motor's thrust is its curve, linear between
-the file's points (RASP's interpolation), zero before ignition and after the
-last point; no correction for the ambient pressure (a curve is measured at
+the file's points (RASP's interpolation, its thrust times the motor's
+``thrust_scale``), zero before ignition and after the last point; no correction for the ambient pressure (a curve is measured at
 a static test stand at ground level). It acts along body +x on the axis
 through the nozzle, so it has no moment about the (on-axis) centre of mass.
 Propellant burns in proportion to the impulse delivered,
@@ -142,7 +142,7 @@ def build_motors(chosen, stage_base):
     rows, points, cases = [], [], []
     for s, (st, base) in enumerate(zip(chosen, stage_base)):
         for m in st.motors:
-            pts = np.array(m.thrust, dtype=float)
+            pts = np.array(m.thrust, dtype=float) * (1.0, m.thrust_scale)
             impulse = float(np.sum(0.5 * (pts[1:, 1] + pts[:-1, 1]) * np.diff(pts[:, 0])))
             centre = base + m.position + 0.5 * m.length
             row = np.zeros(N_MOTOR)
