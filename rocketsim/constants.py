@@ -148,3 +148,12 @@ CO2_CP = 846.0                             # J/(kg K), CO2 near 300 K (NIST webb
 # (F = -mu N v_t / sqrt(v_t^2 + eps^2)): a default for legs that give none; a
 # numerical choice (stability at the 5 ms sub-step), not a physical figure.
 FRICTION_REGULARISATION = 0.3              # m/s
+# The body's own contact springs (its ends and engine bells on the ground), unless the
+# vehicle file gives them: 2e7 N/m and 2e5 N s/m, softened for a vehicle of dry mass m
+# under 2 t to m r^2 and m r with r = 100 /s (a natural frequency of 100 rad/s at half
+# of critical damping on one point, as at 2 t; launcher-sized springs on a 20 kg rocket
+# are a mode of 1 000 rad/s, which RK4 cannot hold at the 5 ms ground sub-steps, 400 /s
+# at most). Numerical choices, not physical figures.
+BODY_CONTACT_STIFFNESS = 2.0e7             # N/m
+BODY_CONTACT_DAMPING = 2.0e5               # N s/m
+BODY_CONTACT_RATE = 100.0                  # 1/s

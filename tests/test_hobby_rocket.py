@@ -47,11 +47,12 @@ def test_the_flight_runs_its_sequence_and_lands_under_the_main(flight):
           f"{touchdown['distance_to_target_m']:.0f} m from the pad")
     assert -8.0 < touchdown["vertical_speed_m_s"] < -5.0
     assert not body.flying            # recovered: the flight ends at touchdown
-    # on the site's flat ground at the pad's height (ground_height 1 380 m), nose down
-    # (tilt 180 deg): the nose's tip touched, the centre of mass is its station above it
+    # on the site's flat ground at the pad's height (ground_height 1 380 m), tail down
+    # (tilt 0 deg), hanging from the shock cord at the top of its stage: the base touched,
+    # the centre of mass is its station above it
     x_cm = body.vehicle.mass_properties(body.y)[1]
-    assert body.view().geodetic[2] - 1380.0 == pytest.approx(2.4 - x_cm, abs=0.05)
-    assert touchdown["tilt_deg"] > 170.0
+    assert body.view().geodetic[2] - 1380.0 == pytest.approx(x_cm, abs=0.05)
+    assert touchdown["tilt_deg"] < 5.0
     main = events["parachute_deployed:main"]
     assert main["trigger"] == "height 300 m" and 295.0 < main["height_m"] <= 300.0
     assert events["parachute_deployed:drogue"]["time_s"] == events["apogee"]["time_s"]

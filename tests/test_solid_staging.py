@@ -6,7 +6,10 @@ until its ignition time and then follows its own curve (its burnout at
 ignition + the curve's last time, 3.0 + 2.5 s); each part reports its own
 burnout once; the booster's parachute deploys on its own trigger (one second
 after the separation event) on the booster's body; the masses of the parts
-add up to the stack's at the separation. A 7 s flight at 20 ms.
+add up to the stack's at the separation. The sustainer lights at its file's
+``ignition: 3 s``, or with ``ignition: program`` when the program lights it at
+T+3 s (``fc.ignite``, docs/physics.md#solid-motors): the same flight. A 7 s
+flight at 20 ms.
 """
 
 from pathlib import Path
@@ -23,10 +26,15 @@ def main(fc):
     fc.wait_until(lambda: fc.time >= 2.6)
     fc.stage()
 """
+LIGHT = """
+    fc.wait_until(lambda: fc.time >= 3.0)
+    assert fc.ignite("sustainer") == ["sustainer/K1000T"]
+"""
 
 
-def test_the_sustainer_lights_on_time_after_the_booster_separates(tmp_path):
-    (tmp_path / "program.py").write_text(PROGRAM)
+@pytest.mark.parametrize("ignition", ["3 s", "program"])
+def test_the_sustainer_lights_on_time_after_the_booster_separates(tmp_path, ignition):
+    (tmp_path / "program.py").write_text(PROGRAM + (LIGHT if ignition == "program" else ""))
     contact = {"body_contact_stiffness": 2e5, "body_contact_damping": 2e3,
                "limits": {"axial_load": "40 g"}}      # a K motor pushes the light sustainer at ~20 g
     vehicle = {"name": "two-stage", "stages": [
@@ -35,7 +43,7 @@ def test_the_sustainer_lights_on_time_after_the_booster_separates(tmp_path):
          "parachutes": [{"name": "booster chute", "cd_s": "0.5 m2",
                          "deploy": {"after": {"event": "separation", "delay": "1 s"}}}]},
         {"name": "sustainer", "length": "1.2 m", "diameter": "0.1 m", "structure_mass": "3 kg",
-         "motors": [{"name": "K1000T", "file": K1000T, "ignition": "3 s"}],
+         "motors": [{"name": "K1000T", "file": K1000T, "ignition": ignition}],
          "parachutes": [{"name": "main", "cd_s": "2 m2", "deploy": "apogee"}]}],
         "aero": {"nose": {"length": "0.3 m", "shape": "ogive"},
                  "fins": [{"stage": stage, "count": 4, "position": "0.2 m", "root_chord": "0.2 m",
@@ -61,6 +69,7 @@ def test_the_sustainer_lights_on_time_after_the_booster_separates(tmp_path):
     upper = [e["name"] for e in stack.events]
     lower = [e["name"] for e in booster.events]
     assert upper.count("burnout") == 2 and lower.count("burnout") == 0
+    assert upper.count("ignition") == (ignition == "program")
     burnouts = [e for e in stack.events if e["name"] == "burnout"]
     assert [b["motor"] for b in burnouts] == ["booster/K1000T", "sustainer/K1000T"]
     assert burnouts[1]["burnout_s"] == pytest.approx(5.5, abs=1e-12)

@@ -218,11 +218,13 @@ def held_derivative(t, y, p, dy, veh, t_held, y_held):
         dy[V] += (fx + qw * tx + (uy * tz - uz * ty)) / mass
         dy[V + 1] += (fy + qw * ty + (uz * tx - ux * tz)) / mass
         dy[V + 2] += (fz + qw * tz + (ux * ty - uy * tx)) / mass
-        if veh.chute.shape[0] > 0 and rho > 0.0:    # parachutes, at the centre of mass
-            cx, cy, cz, canopy = canopy_drag(t, y, rho, aero.wind, p[P_SPIN], veh.chute)
+        if veh.chute.shape[0] > 0 and rho > 0.0:    # parachutes, at their cords' attachments
+            cx, cy, cz, cmy, cmz, canopy = canopy_drag(t, y, rho, aero.wind, p[P_SPIN], veh.chute, x_cm)
             dy[V] += cx / mass
             dy[V + 1] += cy / mass
             dy[V + 2] += cz / mass
+            my += cmy
+            mz += cmz
         if on_rail:     # along the rail only, turning with the ground (rocketsim.vehicle.rail)
             constrain_to_rail(t, y, dy, p[P_SPIN], veh.rail)
             dy[W] = dy[W + 1] = dy[W + 2] = 0.0

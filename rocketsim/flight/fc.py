@@ -489,18 +489,26 @@ class FlightComputer:
         return self._engines
 
     def ignite(self, which=None) -> list[str]:
-        """Command ignition of all engines, or of an engine, group or stage by name
-        (``"booster"``, ``"Merlin 1D ring"``, ``"booster/Merlin 1D ring/3"``) or index.
-        Thrust follows after the ignition dead time and spool-up. Returns the
-        engines that accepted (not already on, propellant left, an ignition left)."""
+        """Command ignition of all engines and solid motors, or of an engine, group, stage or
+        motor by name (``"booster"``, ``"Merlin 1D ring"``, ``"booster/Merlin 1D ring/3"``,
+        ``"sustainer/K1000T"``) or an engine by index. An engine's thrust follows after its
+        ignition dead time and spool-up; a solid motor's curve starts now. Returns the
+        engines that accepted (not already on, propellant left, an ignition left) and the
+        motors lit (``ignition: program`` in the vehicle file, not lit yet: a motor
+        lights once)."""
         which = arguments.engines("fc.ignite", which)
-        names = self._propulsion().ignite(self._craft.y, which)
-        if names:
-            self._craft.event("ignition", {"engines": names})
-        return names
+        propulsion = self._propulsion()
+        chosen, motors = propulsion.choose(which)
+        names = propulsion.ignite(self._craft.y, chosen)
+        motors = propulsion.light(self._craft.time, motors)
+        if names or motors:
+            self._craft.event("ignition", {"engines": names, **({"motors": motors} if motors else {})})
+        return names + motors
 
     def shutdown(self, which=None) -> list[str]:
-        """Command engines off (the tail-off follows); returns the engines that were on."""
+        """Command engines off (the tail-off follows); returns the engines that were on.
+        ``ValueError`` if it names solid motors and no engine: a solid motor cannot be shut
+        down."""
         which = arguments.engines("fc.shutdown", which)
         names = self._propulsion().shutdown(self._craft.y, which)
         if names:

@@ -131,9 +131,11 @@ class AeroSpec(_Strict):
     fins: list[FinSetSpec] = []
     grid_fins: list[GridFinSpec] = []
     legs: list[LegSpec] = []
-    body_contact_stiffness: Annotated[float, Field(gt=0)] = Field(
-        2.0e7, description="N/m, the body's ends and engine bells touching the ground")
-    body_contact_damping: Annotated[float, Field(ge=0)] = Field(2.0e5, description="N s/m")
+    body_contact_stiffness: Optional[Annotated[float, Field(gt=0)]] = Field(
+        None, description="N/m, the body's ends and engine bells touching the ground; default "
+        "2e7, or 1e4 per kg of dry mass under 2 t (docs/physics.md#ground-contact)")
+    body_contact_damping: Optional[Annotated[float, Field(ge=0)]] = Field(
+        None, description="N s/m; default 2e5, or 100 per kg of dry mass under 2 t")
     rcs: list[ThrusterSpec] = []
     heat_shield: Optional[HeatShieldSpec] = None
     limits: LimitsSpec = Field(LimitsSpec(), description="structural limits in place of the defaults")

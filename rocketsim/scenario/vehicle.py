@@ -201,7 +201,8 @@ class MotorSpec(_Strict):
     delivered, ``m(t) = m0 (1 - I(t)/I_total)``. The case (total less propellant mass) is
     a thin cylindrical shell of the motor's size. Without ``grain`` the propellant is a
     uniform cylinder of the motor's size losing density, its centre fixed at the
-    motor's centre.
+    motor's centre. A motor lights once, at its ``ignition`` time or when the program
+    lights it (``ignition: program``), and burns to the end of its curve.
     """
 
     name: str
@@ -218,8 +219,13 @@ class MotorSpec(_Strict):
     total_mass: Optional[PositiveMass] = Field(None, description="loaded motor, case and propellant "
                                                "(default: the .eng header's)")
     grain: Optional[GrainSpec] = None
-    ignition: Annotated[Duration, Field(ge=0)] = Field(
-        0.0, description="mission time of ignition (0: at the start, off the pad or rail)")
+    thrust_scale: Annotated[float, Field(gt=0, le=10)] = Field(
+        1.0, description="multiplies the curve's thrust at every point, so its total impulse, "
+        "at the same times and propellant: one motor's scatter about its curve (a campaign's "
+        "dispersion of the impulse)")
+    ignition: Union[Annotated[Duration, Field(ge=0)], Literal["program"]] = Field(
+        0.0, description="mission time of ignition (0: at the start, off the pad or rail), or "
+        "program: lit by the flight program's fc.ignite (an upper stage, an air start)")
 
     @model_validator(mode="after")
     def _curve(self, info: ValidationInfo) -> "MotorSpec":
@@ -278,9 +284,10 @@ class MotorSpec(_Strict):
 
     @property
     def total_impulse(self) -> float:
-        """N s, the trapezoid integral of the (linearly interpolated) curve."""
+        """N s, the trapezoid integral of the (linearly interpolated) curve, times
+        ``thrust_scale``."""
         pts = self.thrust
-        return sum(0.5 * (a[1] + b[1]) * (b[0] - a[0]) for a, b in zip(pts, pts[1:]))
+        return self.thrust_scale * sum(0.5 * (a[1] + b[1]) * (b[0] - a[0]) for a, b in zip(pts, pts[1:]))
 
 
 class AfterEvent(_Strict):
@@ -317,6 +324,9 @@ class ParachuteSpec(_Strict):
     releases: list[str] = Field([], description="parachutes (by name) cut away when this one "
                                 "begins to inflate (a drogue released by the main); default none: "
                                 "they stay on and their drag areas add")
+    attachment: Optional[NonNegativeLength] = Field(
+        None, description="height above the stage base of the shock cord's attachment on the "
+        "axis, where the canopy's drag pulls (the body hangs from it); default the stage's top")
 
 
 class PointMassSpec(_Strict):
@@ -378,6 +388,11 @@ class StageSpec(_Strict):
             if motor.diameter > self.diameter * (1 + 1e-12):
                 raise field_error(("motors", i, "diameter"),
                                   f"motor {motor.name!r} is wider than stage {self.name!r}", motor.diameter)
+        for i, chute in enumerate(self.parachutes):
+            if chute.attachment is not None and chute.attachment > self.length * (1 + 1e-12):
+                raise field_error(("parachutes", i, "attachment"),
+                                  f"parachute {chute.name!r} is attached above the top of stage "
+                                  f"{self.name!r}", chute.attachment)
         for i, engine in enumerate(self.engines):
             if engine.position > self.length * (1 + 1e-12):
                 raise field_error(("engines", i, "position"),

@@ -16,7 +16,8 @@ One :class:`FlightEvents` watches one body; the world calls
   instant ``burnout_s``, its total impulse).
 * ``apogee`` — a vehicle with parachutes that rose from the ground has begun to
   come down (its vertical speed over the ground turned negative; figures:
-  ``altitude_m`` above the ground: the ellipsoid, or the site's ``ground_height``).
+  ``altitude_m`` above the ground: the ellipsoid, or the site's ``ground_height``,
+  and where: ``latitude_deg``, ``longitude_deg``).
 * ``parachute_deployed`` — a parachute's trigger fired (its YAML trigger, at the
   end of the step in which it was met, or ``fc.deploy_parachute``; figures: the
   parachute, the trigger, ``height_m``, ``vertical_speed_m_s``);
@@ -130,13 +131,15 @@ class FlightEvents:
         chute = model.arrays.chute
         up, surface = ground_motion(body.central, body.t, body.y)
         vertical = float(surface @ up)
-        height = self.world.where(body)[2] - model.arrays.aero.ref[A_GROUND]     # above the ground
+        lat, lon, h = self.world.where(body)
+        height = h - model.arrays.aero.ref[A_GROUND]     # above the ground
         if self.start_height is not None and self.lifted and self.apogee_at is None:
             if vertical > 0.0:
                 self.rising = True
             elif self.rising:
                 self.apogee_at = body.t
-                self.world.event(body, "apogee", {"altitude_m": height})
+                self.world.event(body, "apogee", {"altitude_m": height, "latitude_deg": lat / DEG,
+                                                  "longitude_deg": lon / DEG})
         for i, spec in enumerate(model.parachutes):
             if math.isnan(chute[i, CH_DEPLOYED]):
                 trigger = spec.deploy

@@ -130,7 +130,8 @@ class VehicleChecks:
             self._heat(world, body, rho, speed, air_temperature, h)
         if lowest > AIRBORNE_CLEARANCE:
             self.touched_down = False       # in the air: the next contact is a touchdown
-        elif body.flying and not self.touched_down and lowest <= 0.0 and self.previous is not None:
+        elif body.flying and not self.touched_down and self.previous is not None and (
+                lowest <= 0.0 or self._reached_ground(body, h)):
             self.touched_down = True
             figures = self.touchdown_figures(body)
             if body.vehicle.parachutes and body.watch is not None:
@@ -158,6 +159,23 @@ class VehicleChecks:
                 "heat_flux_w_m2": sutton_graves(rho, speed, s.nose_radius, k)})
             body.flying = False
 
+    def _approach(self, body) -> tuple[np.ndarray, np.ndarray, float, float]:
+        """``(up, surface velocity, vertical acceleration m/s^2, height m of the lowest contact
+        point)`` of the state before the last step (the derivative's acceleration: gravity,
+        thrust, drag)."""
+        t0, y0 = self.previous
+        up, surface = ground_motion(body.central, t0, y0)
+        dy = np.zeros_like(y0)
+        derivative(t0, y0, body.p, dy, body.vehicle.arrays)
+        return up, surface, float(dy[V:V + 3] @ up), float(contact_heights(y0, body.p, body.vehicle).min())
+
+    def _reached_ground(self, body, h: float) -> bool:
+        """True if the lowest contact point, flying on from the state before the last step
+        of ``h`` seconds, would have gone below the ground within it: a first contact whose
+        springs threw the body back up inside the step (a light body on stiff springs)."""
+        up, surface, vertical_acceleration, lowest = self._approach(body)
+        return lowest + float(surface @ up) * h + 0.5 * vertical_acceleration * h * h <= 0.0
+
     def touchdown_figures(self, body) -> dict:
         """Vertical and horizontal speed over the ground, tilt, distance to the pad and
         (about Earth) where, at the instant the first contact point reached the ground.
@@ -173,10 +191,8 @@ class VehicleChecks:
         vertical = float(surface @ up)
         across = surface - vertical * up
         if self.previous is not None:
-            dy = np.zeros_like(y0)
-            derivative(t0, y0, body.p, dy, body.vehicle.arrays)
-            lowest = max(float(contact_heights(y0, body.p, body.vehicle).min()), 0.0)
-            vertical = -math.sqrt(max(vertical ** 2 - 2.0 * float(dy[V:V + 3] @ up) * lowest, 0.0))
+            _, _, vertical_acceleration, lowest = self._approach(body)
+            vertical = -math.sqrt(max(vertical ** 2 - 2.0 * vertical_acceleration * max(lowest, 0.0), 0.0))
         axis = quat_rotate(y0[Q:Q + 4], np.array([1.0, 0.0, 0.0]))
         tilt = math.acos(max(-1.0, min(1.0, float(axis @ up))))
         figures = {"vertical_speed_m_s": vertical,

@@ -211,7 +211,8 @@ def build(spec, first: int = 0, last: int | None = None, air=None, fairing: bool
     chutes = [c for st in chosen for c in st.parachutes]
     names = [c.name for c in chutes]
     cut_by = {other: names.index(c.name) for c in chutes for other in c.releases}
-    chute = np.array([(s, c.cd_s, c.lag, c.inflation, math.nan, cut_by.get(c.name, -1))
+    chute = np.array([(s, c.cd_s, c.lag, c.inflation, math.nan, cut_by.get(c.name, -1),
+                       stage_base[s] + (st.length if c.attachment is None else c.attachment))
                       for s, st in enumerate(chosen) for c in st.parachutes], dtype=float).reshape(-1, N_CHUTE)
     if top and spec.payload is not None:
         pl = spec.payload

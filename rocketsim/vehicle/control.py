@@ -8,7 +8,10 @@ the same compiled functions the derivative uses.
 ``which`` selects engines: ``None`` (all), an index, a stage name
 (``"booster"``), a group name (``"booster/Merlin 1D ring"`` or just
 ``"Merlin 1D ring"``), an engine name (``"booster/Merlin 1D ring/3"``), or a
-list of those.
+list of those. Ignition and shutdown also take solid motors, by stage name
+(``"sustainer"``) or motor name (``"sustainer/K1000T"`` or just ``"K1000T"``):
+a motor lights once, at the instant the program lights it (docs/physics.md#solid-motors),
+and cannot be shut down.
 """
 
 from __future__ import annotations
@@ -19,6 +22,7 @@ import numpy as np
 
 from rocketsim._jit import Entries
 from rocketsim.vehicle import engines, motors
+from rocketsim.vehicle.motors import M_IGNITION
 from rocketsim.vehicle.build import VehicleModel
 
 
@@ -49,15 +53,54 @@ class Propulsion:
             raise ValueError(f"no engine, group or stage named {which!r}; engines: {', '.join(names)}")
         return found
 
+    def choose(self, which=None) -> tuple[list[int], list[int]]:
+        """``(engines, motors)``: the indices of the engines and of the solid motors named
+        by ``which`` (see the module; an index names an engine); ValueError if an item
+        names neither."""
+        if which is None:
+            return list(range(self.model.n_engines)), list(range(self.model.n_motors))
+        if isinstance(which, (list, tuple)):
+            chosen = [self.choose(item) for item in which]
+            return (sorted({e for found, _ in chosen for e in found}),
+                    sorted({m for _, found in chosen for m in found}))
+        motors = [] if isinstance(which, (int, np.integer)) else [
+            i for i, name in enumerate(self.model.motor_names) if which in (name, *name.split("/", 1))]
+        try:
+            return self.select(which), motors
+        except ValueError as error:
+            if motors:
+                return [], motors
+            if self.model.n_motors:
+                raise ValueError(f"{error}; solid motors: {', '.join(self.model.motor_names)}") from None
+            raise
+
     def ignite(self, y: np.ndarray, which=None) -> list[str]:
         """Command ignition; returns the names of the engines that accepted it (not already
         on, stage not dry, an ignition left)."""
         return [self.model.engine_names[e] for e in self.select(which)
                 if engines.ignite(y, self.a.eng, self.a.cmd, self.a.stage, e, self.a.first_clock)]
 
+    def light(self, t: float, chosen: list[int]) -> list[str]:
+        """Light the solid motors ``chosen`` (indices) at mission time ``t`` (s); returns the
+        names of those lit: not lit before (``ignition: program``; a motor lights once)."""
+        lit = []
+        for i in chosen:
+            if math.isnan(self.a.motor[i, M_IGNITION]):
+                self.a.motor[i, M_IGNITION] = t
+                lit.append(self.model.motor_names[i])
+        return lit
+
     def shutdown(self, y: np.ndarray, which=None) -> list[str]:
-        """Command shutdown (tail-off follows); returns the names of the engines that were on."""
-        return [self.model.engine_names[e] for e in self.select(which)
+        """Command shutdown (tail-off follows); returns the names of the engines that were on.
+        ValueError if ``which`` (or an item of it) names solid motors and no engine: a solid
+        motor burns to the end of its curve."""
+        for item in which if isinstance(which, (list, tuple)) else [which]:
+            chosen, motors = self.choose(item)
+            if motors and not chosen:
+                named = ", ".join(self.model.motor_names[i] for i in motors)
+                raise ValueError(f"{named}: a solid motor cannot be shut down (it burns to the end "
+                                 "of its thrust curve)")
+        return [self.model.engine_names[e] for e in self.choose(which)[0]
                 if engines.shutdown(y, self.a.eng, self.a.cmd, e, self.a.first_clock)]
 
     def throttle(self, t: float, value: float, which=None) -> None:

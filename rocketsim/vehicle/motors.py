@@ -1,8 +1,8 @@
 """Solid rocket motors: a thrust curve against time since ignition, compiled.
 
 docs/physics.md#solid-motors. A motor's thrust is its curve, linear between
-the file's points (RASP's interpolation), zero before ignition and after the
-last point; no correction for the ambient pressure (a curve is measured at
+the file's points (RASP's interpolation, its thrust times the motor's
+``thrust_scale``), zero before ignition and after the last point; no correction for the ambient pressure (a curve is measured at
 a static test stand at ground level). It acts along body +x on the axis
 through the nozzle, so it has no moment about the (on-axis) centre of mass.
 Propellant burns in proportion to the impulse delivered,
@@ -20,7 +20,7 @@ rounding.
 Arrays: ``motor`` (motors x :data:`N_MOTOR`) with the columns below, and
 ``curve`` (points x 2: time s since ignition, thrust N) holding every
 motor's points one after another. ``M_IGNITION`` holds the mission time of
-ignition from the vehicle file (nan: never lit); the curve's first point is
+ignition, from the vehicle file or set by the program (nan: not lit); the curve's first point is
 ``(0, 0)``, so the ignition instant is a kink like the others and the whole
 burn is decided inside the compiled step.
 
@@ -135,18 +135,19 @@ def next_motor_kink(t, h, motor, curve):
 
 def build_motors(chosen, stage_base):
     """``(motor, curve, cases)`` of the stages ``chosen`` (specs, bottom to top) based at
-    ``stage_base`` (m): the arrays above, each motor lit at its file's ignition time, and
+    ``stage_base`` (m): the arrays above, each motor lit at its file's ignition time (not
+    lit: ``ignition: program``, for the program to light), and
     each motor's case as ``(mass kg, centre station m, radius m, length m)`` for the
     fixed masses."""
     rows, points, cases = [], [], []
     for s, (st, base) in enumerate(zip(chosen, stage_base)):
         for m in st.motors:
-            pts = np.array(m.thrust, dtype=float)
+            pts = np.array(m.thrust, dtype=float) * (1.0, m.thrust_scale)
             impulse = float(np.sum(0.5 * (pts[1:, 1] + pts[:-1, 1]) * np.diff(pts[:, 0])))
             centre = base + m.position + 0.5 * m.length
             row = np.zeros(N_MOTOR)
             row[M_STAGE], row[M_X_NOZZLE], row[M_X_CENTRE] = s, base + m.position, centre
-            row[M_IGNITION] = m.ignition
+            row[M_IGNITION] = math.nan if m.ignition == "program" else m.ignition
             row[M_PROPELLANT], row[M_IMPULSE] = m.propellant_mass, impulse
             row[M_CURVE0], row[M_POINTS] = len(points), len(pts)
             if m.grain is None:

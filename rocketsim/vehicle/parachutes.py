@@ -12,17 +12,29 @@ the linear one is this project's choice):
     C_D S(t) = C_D S min(1, max(0, (t - t_d - t_lag) / t_inf))
     F = -1/2 rho |v_air| v_air  sum C_D S(t)
 
-applied at the centre of mass (a parachute another one ``releases`` is cut
-away when that one begins to inflate: its drag stops there, as in
-simulators that fly one parachute at a time), ``v_air = v - omega x r - wind`` the
-centre of mass's velocity through the air (so a body under a canopy drifts
-with the wind). Under a canopy the body's own aerodynamics still act, and its
-rotation is damped towards the canopy's (taken as not turning): the body
-rates decay as ``omega' = -f omega / tau`` with ``f`` the largest inflated
-fraction and ``tau`` :data:`CANOPY_RATE_TIME` (the suspension lines hold the
-body; a simple model, not a two-body canopy and payload). The instants the
-drag area has a kink (``t_d + t_lag``, ``t_d + t_lag + t_inf``) cut the step like
-an engine's (:func:`next_canopy_kink`).
+``v_air = v - omega x r - wind`` the centre of mass's velocity through the air
+(so a body under a canopy drifts with the wind); a parachute another one
+``releases`` is cut away when that one begins to inflate (its drag stops
+there, as in simulators that fly one parachute at a time).
+
+The body hangs from its canopies: each one's drag pulls along its shock cord,
+which runs from the cord's attachment point on the body's axis (station
+``CH_X``) towards the canopy trailing in the airflow, so each drag acts at its
+attachment point along ``-v_air`` and has the moment ``(x_a - x_cm) e_x x F``
+about the centre of mass (body axes). Hung above the centre of mass, the body
+swings to hang under it, its axis along the airflow: a rocket attached at its
+top falls tail first, at a small angle of attack. This is the payload's side
+of the parachute-payload models, where the riser's tension acts on the rigid
+payload at its attachment point (G. Guglieri, "Parachute-Payload System Flight
+Dynamics and Trajectory Simulation", Int. J. Aerospace Eng. 2012, 182907),
+with the canopy's side reduced to its drag: no cord stretch, no canopy motion
+of its own, the cord along the airflow. The body's own aerodynamics still act,
+and its rotation is damped towards the canopy's (taken as not turning): the
+body rates decay as ``omega' = -f omega / tau`` with ``f`` the largest inflated
+fraction and ``tau`` :data:`CANOPY_RATE_TIME` (the suspension lines and the
+canopy's own drag resisting a turn; a simple model, not a two-body canopy and
+payload). The instants the drag area has a kink (``t_d + t_lag``,
+``t_d + t_lag + t_inf``) cut the step like an engine's (:func:`next_canopy_kink`).
 
 ``chute`` (parachutes x :data:`N_CHUTE`): the columns below.
 """
@@ -31,8 +43,11 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from rocketsim._jit import njit
-from rocketsim.layout import R, V
+from rocketsim.frames.quaternion import quat_conjugate, quat_rotate
+from rocketsim.layout import Q, R, V
 from rocketsim.vehicle.motors import sooner, within_step
 
 CH_STAGE = 0        # index of the stage that carries it
@@ -41,7 +56,8 @@ CH_LAG = 2          # s, from deployment to the start of inflation
 CH_INFLATION = 3    # s, from the start of inflation to full drag area
 CH_DEPLOYED = 4     # s, mission time of deployment (nan: packed)
 CH_CUT_BY = 5       # row of the parachute whose opening cuts this one away (-1: none)
-N_CHUTE = 6
+CH_X = 6            # m, station of its shock cord's attachment on the axis (above the lowest base)
+N_CHUTE = 7
 CANOPY_RATE_TIME = 1.0     # s, time constant of the damping of the body's rates under a canopy
 
 
@@ -70,23 +86,31 @@ def inflated(t, chute, i):
 
 
 @njit
-def canopy_drag(t, y, rho, wind, spin, chute):
-    """``(fx, fy, fz, f)``: the parachutes' drag (N, inertial axes) at mission time ``t``
-    (s) in air of density ``rho`` (kg/m^3) moving with the ground (``spin`` rad/s about
-    the frame's z) plus ``wind`` (inertial, m/s), and the largest inflated fraction."""
+def canopy_drag(t, y, rho, wind, spin, chute, x_cm):
+    """``(fx, fy, fz, my, mz, f)``: the parachutes' drag (N, inertial axes) at mission time
+    ``t`` (s) in air of density ``rho`` (kg/m^3) moving with the ground (``spin`` rad/s
+    about the frame's z) plus ``wind`` (inertial, m/s); its moment (N m, body y and z; none
+    about the axis) about the centre of mass at station ``x_cm`` (m), each drag acting at
+    its shock cord's attachment; and the largest inflated fraction."""
     area = 0.0
+    arm = 0.0           # sum of C_D S(t) (x_a - x_cm), m^3
     largest = 0.0
     for i in range(chute.shape[0]):
         f = inflated(t, chute, i)
         area += f * chute[i, CH_CDS]
+        arm += f * chute[i, CH_CDS] * (chute[i, CH_X] - x_cm)
         largest = max(largest, f)
     if area == 0.0:
-        return 0.0, 0.0, 0.0, 0.0
-    ax = y[V] + spin * y[R + 1] - wind[0]
-    ay = y[V + 1] - spin * y[R] - wind[1]
-    az = y[V + 2] - wind[2]
-    k = -0.5 * rho * math.sqrt(ax * ax + ay * ay + az * az) * area
-    return k * ax, k * ay, k * az, largest
+        return 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+    air = np.empty(3)
+    air[0] = y[V] + spin * y[R + 1] - wind[0]
+    air[1] = y[V + 1] - spin * y[R] - wind[1]
+    air[2] = y[V + 2] - wind[2]
+    k = -0.5 * rho * math.sqrt(air[0] * air[0] + air[1] * air[1] + air[2] * air[2])
+    body = quat_rotate(quat_conjugate(y[Q:Q + 4]), air)     # the airflow in body axes
+    # (x_a - x_cm) e_x x F, F = k C_D S v_air (body axes), summed over the canopies
+    return (k * area * air[0], k * area * air[1], k * area * air[2], -k * arm * body[2],
+            k * arm * body[1], largest)
 
 
 @njit

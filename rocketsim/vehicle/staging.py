@@ -9,7 +9,8 @@ payload and fairing, stations from its own base). Each part gets:
 * its runtime model (:func:`~rocketsim.vehicle.build.build`), so its own mass
   properties;
 * its slice of the propellant masses and engine clocks, and its engines'
-  commands and its stages' dry flags;
+  commands, its stages' dry flags, its parachutes' deployments and its solid
+  motors' ignitions (a motor the program lit stays lit);
 * its centre-of-mass position and velocity: the whole stack's, moved along the
   body x axis by the offset of the part's centre of mass,
   ``r_i = r + R(q) d_i`` and ``v_i = v + R(q) (w x d_i)`` with
@@ -35,6 +36,7 @@ from rocketsim.vehicle.build import VehicleModel, build
 from rocketsim.vehicle.engines import S_DRY, S_DRY_AT
 from rocketsim.vehicle.aero import A_GROUND
 from rocketsim.vehicle.mass_properties import solid_cylinder
+from rocketsim.vehicle.motors import M_IGNITION
 from rocketsim.vehicle.parachutes import CH_DEPLOYED
 from rocketsim.vehicle.tumbling import cylinder_area, half_shell_area
 
@@ -62,6 +64,7 @@ def separate(spec, whole: VehicleModel, y: np.ndarray, k: int, air=None):
         y_part[part.tanks] = y[tanks]
         y_part[part.clocks] = y[clocks]
         y_part[part.motors] = y[whole.motors][motor0:motor0 + part.n_motors]
+        part.arrays.motor[:, M_IGNITION] = whole.arrays.motor[motor0:motor0 + part.n_motors, M_IGNITION]
         part.arrays.aero.ref[A_GROUND] = whole.arrays.aero.ref[A_GROUND]
         n_chutes = part.arrays.chute.shape[0]
         part.arrays.chute[:, CH_DEPLOYED] = whole.arrays.chute[chute0:chute0 + n_chutes, CH_DEPLOYED]
@@ -143,6 +146,7 @@ def _release_top(spec, model: VehicleModel, without: VehicleModel, y: np.ndarray
     y_new = y.copy()
     _copy_commands(model, without, 0, 0)
     without.arrays.chute[:, CH_DEPLOYED] = model.arrays.chute[:, CH_DEPLOYED]
+    without.arrays.motor[:, M_IGNITION] = model.arrays.motor[:, M_IGNITION]
     without.arrays.aero.ref[A_GROUND] = model.arrays.aero.ref[A_GROUND]
     x_cm = model.mass_properties(y)[1]
     y_new[R:R + 3], y_new[V:V + 3] = moved(y, without.mass_properties(y_new)[1] - x_cm)
