@@ -117,8 +117,8 @@ class McapStream:
         return channel_id
 
     # --- messages, in chunks -------------------------------------------------
-    def _new_chunk(self, least: int = 0) -> None:
-        self._chunk = np.empty(max(self._chunk_limit + _SLACK, 2 * least), dtype=np.uint8)
+    def _new_chunk(self) -> None:
+        self._chunk = np.empty(self._chunk_limit + _SLACK, dtype=np.uint8)
         self._view = memoryview(self._chunk)
         self._size = 0
         self._index = np.empty(3 * 1024, dtype=np.int64)   # (channel, log time, offset) per record
@@ -134,7 +134,9 @@ class McapStream:
             grown[:self._size] = self._chunk[:self._size]
             self._chunk, self._view = grown, memoryview(grown)
         if 3 * (self._n + records) > self._index.shape[0]:
-            self._index = np.concatenate([self._index, np.empty_like(self._index)])
+            grown = np.empty(2 * 3 * (self._n + records), dtype=np.int64)
+            grown[:3 * self._n] = self._index[:3 * self._n]
+            self._index = grown
         return self._chunk, self._size, self._index, self._n
 
     def added(self, size: int, records: int) -> None:
@@ -190,15 +192,13 @@ class McapStream:
             + struct.pack("<QQ", len(compressed), size)))
         self._first = first if self._first is None else min(self._first, first)
         self._last = last if self._last is None else max(self._last, last)
+        # what follows starts the next chunk, in the same arrays (fresh ones cost their
+        # pages' first touch again)
         rest, rest_records = self._size - size, self._n - records
-        tail = self._chunk[size:self._size].copy()
-        tail_index = self._index[3 * records:3 * self._n].reshape(rest_records, 3).copy()
-        self._new_chunk(rest)
-        if rest_records:
-            tail_index[:, 2] -= size
-            self._chunk[:rest] = tail
-            self._index[:3 * rest_records] = tail_index.ravel()
-            self._size, self._n = rest, rest_records
+        self._chunk[:rest] = self._chunk[size:self._size]
+        self._index[:3 * rest_records] = self._index[3 * records:3 * self._n]
+        self._index[2:3 * rest_records:3] -= size
+        self._size, self._n = rest, rest_records
 
     # --- attachments and metadata ---------------------------------------------
     def attachment(self, name: str, media_type: str, data: bytes, log_time: int,

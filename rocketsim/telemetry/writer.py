@@ -6,7 +6,8 @@ registered JSON schemas. A body's sample (state, transform, location) is
 written from its numbers alone (:meth:`TelemetryWriter.sample`), the bytes
 orjson would write for the messages as dictionaries (:meth:`TelemetryWriter.state`)
 without their missing values (None, or nan and infinities, which JSON cannot
-spell: left out, so that every field has its schema's type). The frames are those of :mod:`rocketsim.telemetry.frames`. Timestamps are the mission
+spell: left out, so that every field has its schema's type). The frames are
+those of :mod:`rocketsim.telemetry.frames`. Timestamps are the mission
 epoch (UTC, ns since 1970) plus mission time, so Foxglove shows real dates and
 the same run always writes the same bytes: nothing here reads the wall clock.
 
@@ -38,8 +39,8 @@ PROFILE = ""
 # while flying is one chunk; a file cut short loses at most the last one.
 CHUNK_SIZE = 256 * 1024
 LIBRARY = f"rocketsim {__version__}"
-# samples written together (TelemetryWriter.sample): a few kB of numbers held
-PENDING = 32
+# samples written together (TelemetryWriter.sample): some 10-60 kB of numbers held
+PENDING = 128
 _NO_TEXT = np.frombuffer(b"", dtype=np.uint8)      # a template's text: read-only bytes
 
 
@@ -214,7 +215,7 @@ class TelemetryWriter:
     def _flush(self) -> None:
         """Write the samples waiting (see :meth:`sample`): each run of samples of one
         body, message shape and set of missing values in one compiled call, leaving the
-        queue once written (a Ctrl-C in between leaves the rest for :meth:`close`)."""
+        queue once written."""
         pending = self._pending
         while pending:
             body, values, fields, leaving = pending[0]
@@ -244,31 +245,40 @@ class TelemetryWriter:
                     pending.popleft()
 
     def _write_run(self, block: np.ndarray, plan: tuple) -> None:
-        """The records of samples ``block`` (a row each) of one template ``plan``."""
+        """The records of samples ``block`` (a row each) of one template ``plan``, with the
+        central bodies' transforms due after them (:meth:`_frame_transforms`: asked at the
+        first sample and where the second of mission time changes, the only samples where
+        any can be due, frames being added only between runs) and, for the lead body off
+        the root's centre, the mission frame's transform after each."""
         text, cuts, t_index, most, body, frame, position = plan
+        times = block[:, t_index]
+        stamps = self._epoch_ns + np.rint(times * 1e9).astype(np.int64)     # as _stamp
         off_root = body == self._lead and not self._frames.is_root(frame)
-        stamps, extras, ends, channels, first = [], [], [0], [], [0]
-        for values in block:
-            t = values.item(t_index)
-            stamp = self._stamp(t)
+        if off_root:
+            asked = range(len(block))
+        else:
+            seconds = np.floor(times)
+            asked = np.flatnonzero(np.concatenate(([True], seconds[1:] != seconds[:-1]))).tolist()
+        extras, ends, channels = [], [0], []
+        counts = np.zeros(len(block) + 1, dtype=np.int64)     # extra records after each sample
+        for k in asked:
+            t, stamp = times.item(k), stamps.item(k)
             more = self._frame_transforms(t, stamp)
             if off_root:
-                more += self._mission_off_root(body, frame, values[position], t, foxglove.timestamp(stamp))
+                more += self._mission_off_root(body, frame, block[k, position], t, foxglove.timestamp(stamp))
             for channel, data in more:
                 extras.append(encode(data))
                 ends.append(ends[-1] + len(extras[-1]))
                 channels.append(channel)
-            first.append(len(channels))
-            stamps.append(stamp)
+            counts[k + 1] = len(more)
         extra = b"".join(extras)
         chunk, at, index, n = self._writer.reserve(
             most * len(block) + len(extra) + splice.HEADER * len(channels),
             int(cuts[0]) * len(block) + len(channels))
         at, records = _records()(orjson.dumps(block, option=orjson.OPT_SERIALIZE_NUMPY), block,
-                                 np.array(stamps, dtype=np.int64), self._sequence, text, cuts,
-                                 extra, np.array(ends, dtype=np.int64),
-                                 np.array(channels, dtype=np.int64), np.array(first, dtype=np.int64),
-                                 0, chunk, at, index, n)
+                                 stamps, self._sequence, text, cuts, extra,
+                                 np.array(ends, dtype=np.int64), np.array(channels, dtype=np.int64),
+                                 np.cumsum(counts), 0, chunk, at, index, n)
         self._writer.added(at, records)
         self._sequence += records - n
 
