@@ -14,7 +14,10 @@ the same run always writes the same bytes: nothing here reads the wall clock.
 The scenario and every file it references travel in the file as attachments,
 so a run can be shared as one file. :meth:`TelemetryWriter.close` writes the
 summary and index; callers use the writer as a context manager so the file is
-finished on success, on a program error and on Ctrl-C alike.
+finished on success, on a program error and on Ctrl-C alike. Each call that
+writes is whole or not begun (Ctrl-C and SIGTERM held while it runs,
+:mod:`rocketsim.telemetry.held_signals`): no sample is written twice or lost
+half-way, and the summary indexes what is on disk.
 """
 
 from __future__ import annotations
@@ -30,6 +33,7 @@ import orjson
 from rocketsim.version import __version__
 from rocketsim._jit import entry_point
 from rocketsim.telemetry import foxglove, splice
+from rocketsim.telemetry.held_signals import holding
 from rocketsim.telemetry.frames import MISSION_FRAME, CentralFrame, FrameTree, central_frame
 from rocketsim.telemetry.mcap_stream import McapStream
 from rocketsim.telemetry.schemas import BODY_STATE, EVENT, schema_bytes
@@ -154,6 +158,7 @@ class TelemetryWriter:
         self._channels[topic] = channel
         return channel
 
+    @holding
     def add_body(self, name: str) -> None:
         """Open the channels of a body: ``/<name>/state``, ``/<name>/transform``
         (foxglove.FrameTransform), and ``/<name>/location`` (foxglove.LocationFix) once it
@@ -177,6 +182,7 @@ class TelemetryWriter:
         self._writer.message(channel, stamp, stamp, encode(message), self._sequence)
         self._sequence += 1
 
+    @holding
     def state(self, body: str, message: dict, frame: CentralFrame | None = None) -> None:
         """A body's state message, and the Foxglove messages drawn from it; ``frame``:
         the inertial frame it is in (default: Earth's, without an ephemeris). Values
@@ -212,6 +218,7 @@ class TelemetryWriter:
         if len(self._pending) >= PENDING:
             self._flush()
 
+    @holding
     def _flush(self) -> None:
         """Write the samples waiting (see :meth:`sample`): each run of samples of one
         body, message shape and set of missing values in one compiled call, leaving the
@@ -338,6 +345,7 @@ class TelemetryWriter:
         return [(self._channel(f"/{center}/transform", foxglove.FRAME_TRANSFORM), message)
                 for center, message in due] if due else due
 
+    @holding
     def event(self, t: float, body: str, name: str, figures: dict) -> None:
         """An event with its figures (SI), and its line in ``/events/log``."""
         self._flush()
@@ -347,6 +355,7 @@ class TelemetryWriter:
         self._write(self._event_lines, stamp,
                     foxglove.log_line(stamp, foxglove.INFO, text, body, "", t, body))
 
+    @holding
     def log(self, t: float, body: str, message: str) -> None:
         """A line the program logged."""
         self._flush()
@@ -354,6 +363,7 @@ class TelemetryWriter:
         self._write(self._logs, stamp, foxglove.log_line(
             stamp, foxglove.INFO, message, body, self._program_file, t, body))
 
+    @holding
     def error(self, t: float, message: str) -> None:
         """The error that ended a flight (program exception, Ctrl-C...), in ``/events/log``."""
         self._flush()
@@ -361,15 +371,18 @@ class TelemetryWriter:
         self._write(self._event_lines, stamp, foxglove.log_line(
             stamp, foxglove.ERROR, message, "rocketsim", "", t, ""))
 
+    @holding
     def attach(self, name: str, data: bytes, media_type: str = "text/plain") -> None:
         """Attach a file (scenario, vehicle, program...) to the log."""
         self._flush()
         self._writer.attachment(name, media_type, data, self._epoch_ns)
 
+    @holding
     def metadata(self, name: str, values: dict[str, str]) -> None:
         self._flush()
         self._writer.metadata(name, {k: str(v) for k, v in values.items()})
 
+    @holding
     def close(self) -> None:
         """Write the summary and index and close the file (idempotent)."""
         if self._closed:
