@@ -23,6 +23,8 @@ half-way, and the summary indexes what is on disk.
 from __future__ import annotations
 
 import math
+import os
+import stat
 from collections import deque
 from itertools import islice
 from pathlib import Path
@@ -120,6 +122,21 @@ def _plain(value):
     raise TypeError(f"cannot write {type(value).__name__} to telemetry")
 
 
+def _create(path: Path):
+    """``path`` opened for writing as a new file: an earlier regular file there (with no
+    other name) is removed first rather than truncated, as ext4 (auto_da_alloc) writes a
+    file truncated to nothing out to disk when it is closed, some 4 ms for a 1 MB run
+    where a new file's writing costs 0.2 ms."""
+    try:
+        found = os.lstat(path)
+    except OSError:
+        pass
+    else:
+        if stat.S_ISREG(found.st_mode) and found.st_nlink == 1:
+            os.unlink(path)
+    return open(path, "wb")
+
+
 class TelemetryWriter:
     """One MCAP telemetry file: per body its state, Foxglove transform and (about
     Earth) location; the central bodies' frames (:mod:`rocketsim.telemetry.frames`);
@@ -130,7 +147,7 @@ class TelemetryWriter:
 
     def __init__(self, path: str | Path, epoch_ns: int, program_file: str = ""):
         self.path = Path(path)
-        self._file = open(self.path, "wb")
+        self._file = _create(self.path)
         self._writer = McapStream(self._file, PROFILE, LIBRARY, CHUNK_SIZE)
         self._epoch_ns = epoch_ns
         self._schemas = {}
