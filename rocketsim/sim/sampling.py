@@ -247,28 +247,56 @@ def values(body, gmst0: float, where) -> tuple[np.ndarray, "Shape"]:
 
     ``gmst0`` (rad): the Earth's sidereal angle at the epoch (the RAAN's origin about
     Earth); ``where(body)``: its (latitude rad, longitude rad, height m) away from Earth."""
-    earth = body.central == "earth"
-    frame = _frame_of(body, gmst0)
-    model = body.vehicle
-    air = air_about(body.central, body.atmosphere() if earth else None).arrays()
-    p = _held(body)
-    if model is None:
-        v = _call(body, None, (body.t, body.y, p, body.mu, gmst0 if earth else 0.0, earth, *air, None,
-                               _NO_GROUPS, 0, 0.0, 0.0, math.nan))
-        shape = _shape(frame, None, None, False)
+    _, entry, fixed, shape, shield, earth = _plan(body, gmst0)
+    y, p = body.y, _held(body)
+    arguments = (body.t, y, p) + fixed + ((float(body.checks.temperature) if shield else math.nan),)
+    if entry is None or not (y.flags.c_contiguous and p.flags.c_contiguous):
+        v = figures(*arguments)
     else:
-        group, groups, tanks = _layout(model)
-        shield = body.checks.shield if body.checks is not None else None
-        v = _call(body, model, (
-            body.t, body.y, p, body.mu, gmst0 if earth else 0.0, earth, *air, model.arrays, group,
-            len(groups), shield.nose_radius if shield is not None else 0.0,
-            sutton_graves_constant(body.mu),
-            float(body.checks.temperature) if shield is not None else math.nan))
-        shape = _shape(frame, groups, tanks, shield is not None)
+        v = entry(*arguments)
     if not earth:
         lat, lon, v[HEIGHT] = where(body)
         v[LAT], v[LON] = lat / DEG, lon / DEG
     return v, shape
+
+
+# id(body) -> [weak reference to the body, what values() works out once for it while its
+# parameters, vehicle model and checks, the air it flies in and the epoch's sidereal
+# angle stay the same objects]
+_PLANS: dict[int, list] = {}
+
+
+def _plan(body, gmst0: float) -> tuple:
+    """``(what it was worked out for, figures' entry, the arguments after the state and
+    parameters but for the shield's temperature, shape, has a shield, flies about Earth)``
+    of ``body``
+    (see :data:`_PLANS`): the frame, the shape, the layout and the air looked up once,
+    not at every sample."""
+    earth = body.central == "earth"
+    table = air_about(body.central, body.atmosphere() if earth else None)
+    model = body.vehicle
+    key = (body.p, model, None if model is None else model.arrays, body.checks, table, gmst0)
+    found = _PLANS.get(id(body))
+    if found is not None and found[0]() is body and all(a is b for a, b in zip(found[1][0], key)):
+        return found[1]
+    frame = _frame_of(body, gmst0)
+    head = (body.mu, gmst0 if earth else 0.0, earth, *table.arrays())
+    if model is None:
+        fixed = head + (None, _NO_GROUPS, 0, 0.0, 0.0)
+        shape, shield = _shape(frame, None, None, False), None
+    else:
+        group, groups, tanks = _layout(model)
+        shield = body.checks.shield if body.checks is not None else None
+        fixed = head + (model.arrays, group, len(groups), shield.nose_radius if shield is not None else 0.0,
+                        sutton_graves_constant(body.mu))
+        shape = _shape(frame, groups, tanks, shield is not None)
+    entry = _entry(model, (body.t, body.y, _held(body)) + fixed + (math.nan,)) \
+        if body.y.flags.c_contiguous else None
+    plan = (key, entry, fixed, shape, shield is not None, earth)
+    for gone in [k for k, (ref, _) in _PLANS.items() if ref() is None]:
+        del _PLANS[gone]            # bodies gone with their runs
+    _PLANS[id(body)] = [weakref.ref(body), plan]
+    return plan
 
 
 def message(body, gmst0: float, where) -> dict:
@@ -289,21 +317,20 @@ def _held(body) -> np.ndarray:
     return p
 
 
-def _call(body, model, args):
-    """``figures(*args)`` through its compiled entry, bound once per vehicle model (and
-    once for every rigid body): :meth:`rocketsim._jit.Entries.call` without its look
-    at every argument, as only the state and the parameters can be views."""
+def _entry(model, args):
+    """The compiled entry of ``figures(*args)``, bound once per vehicle model (and once
+    for every rigid body): :meth:`rocketsim._jit.Entries.call` without its look at every
+    argument, to call with contiguous state and parameters (a view is called through
+    the dispatcher)."""
     global _RIGID
-    if not (body.y.flags.c_contiguous and args[2].flags.c_contiguous):
-        return figures(*args)
     if model is None:
         if _RIGID is None:
             _RIGID = entry_point(figures, *args)
-        return _RIGID(*args)
+        return _RIGID
     record = _model(model)
     if record[2] is None or record[2][0] is not model.arrays:
         record[2] = (model.arrays, entry_point(figures, *args))
-    return record[2][1](*args)
+    return record[2][1]
 
 
 _RIGID = None

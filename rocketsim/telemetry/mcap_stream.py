@@ -21,6 +21,10 @@ specification (mcap.dev/spec) and is read back by the ``mcap`` package's reader:
 Chunks carry the CRC-32 of their uncompressed records; attachments carry
 their CRC-32. Memory held while writing is one chunk. Times are integers
 (ns); nothing reads the clock, so the same calls write the same bytes.
+
+Every call is whole or not begun: Ctrl-C and SIGTERM are held while it runs
+(:mod:`rocketsim.telemetry.held_signals`), so the summary :meth:`McapStream.finish`
+writes indexes exactly the records on disk, however the writing was stopped.
 """
 
 from __future__ import annotations
@@ -31,6 +35,8 @@ from typing import BinaryIO
 
 import numpy as np
 import zstandard
+
+from rocketsim.telemetry.held_signals import holding
 
 MAGIC = b"\x89MCAP0\r\n"
 
@@ -70,6 +76,7 @@ class McapStream:
     compressed and written. Call :meth:`finish` once at the end.
     """
 
+    @holding
     def __init__(self, stream: BinaryIO, profile: str = "", library: str = "",
                  chunk_size: int = 256 * 1024):
         self._out = stream
@@ -96,6 +103,7 @@ class McapStream:
         self._offset += len(data)
         return start
 
+    @holding
     def schema(self, name: str, encoding: str, data: bytes) -> int:
         """Register a schema; returns its id (from 1)."""
         schema_id = len(self._schemas) + 1
@@ -105,6 +113,7 @@ class McapStream:
         self._emit(record)
         return schema_id
 
+    @holding
     def channel(self, topic: str, message_encoding: str, schema_id: int,
                 metadata: dict[str, str] | None = None) -> int:
         """Register a channel; returns its id (from 1)."""
@@ -117,13 +126,14 @@ class McapStream:
         return channel_id
 
     # --- messages, in chunks -------------------------------------------------
-    def _new_chunk(self, least: int = 0) -> None:
-        self._chunk = np.empty(max(self._chunk_limit + _SLACK, 2 * least), dtype=np.uint8)
+    def _new_chunk(self) -> None:
+        self._chunk = np.empty(self._chunk_limit + _SLACK, dtype=np.uint8)
         self._view = memoryview(self._chunk)
         self._size = 0
         self._index = np.empty(3 * 1024, dtype=np.int64)   # (channel, log time, offset) per record
         self._n = 0
 
+    @holding
     def reserve(self, size: int, records: int) -> tuple[np.ndarray, int, np.ndarray, int]:
         """Room for ``size`` more bytes of ``records`` more records in the open chunk:
         ``(chunk, its size, index, records in it)``, for a caller that writes records
@@ -134,9 +144,12 @@ class McapStream:
             grown[:self._size] = self._chunk[:self._size]
             self._chunk, self._view = grown, memoryview(grown)
         if 3 * (self._n + records) > self._index.shape[0]:
-            self._index = np.concatenate([self._index, np.empty_like(self._index)])
+            grown = np.empty(2 * 3 * (self._n + records), dtype=np.int64)
+            grown[:3 * self._n] = self._index[:3 * self._n]
+            self._index = grown
         return self._chunk, self._size, self._index, self._n
 
+    @holding
     def added(self, size: int, records: int) -> None:
         """The open chunk now holds ``size`` bytes in ``records`` records (see
         :meth:`reserve`). A chunk ends after the first record that takes it to the
@@ -149,6 +162,7 @@ class McapStream:
             self._write_chunk(ends[k], first + k + 1)
             first = 0
 
+    @holding
     def message(self, channel: int, log_time: int, publish_time: int, data: bytes,
                 sequence: int = 0) -> None:
         """Add a message (times in ns) to the open chunk."""
@@ -190,17 +204,16 @@ class McapStream:
             + struct.pack("<QQ", len(compressed), size)))
         self._first = first if self._first is None else min(self._first, first)
         self._last = last if self._last is None else max(self._last, last)
+        # what follows starts the next chunk, in the same arrays (fresh ones cost their
+        # pages' first touch again)
         rest, rest_records = self._size - size, self._n - records
-        tail = self._chunk[size:self._size].copy()
-        tail_index = self._index[3 * records:3 * self._n].reshape(rest_records, 3).copy()
-        self._new_chunk(rest)
-        if rest_records:
-            tail_index[:, 2] -= size
-            self._chunk[:rest] = tail
-            self._index[:3 * rest_records] = tail_index.ravel()
-            self._size, self._n = rest, rest_records
+        self._chunk[:rest] = self._chunk[size:self._size]
+        self._index[:3 * rest_records] = self._index[3 * records:3 * self._n]
+        self._index[2:3 * rest_records:3] -= size
+        self._size, self._n = rest, rest_records
 
     # --- attachments and metadata ---------------------------------------------
+    @holding
     def attachment(self, name: str, media_type: str, data: bytes, log_time: int,
                    create_time: int = 0) -> None:
         """Attach a file (outside the chunks), with its CRC-32."""
@@ -213,6 +226,7 @@ class McapStream:
             "<QQQQQ", start, len(record), log_time, create_time, len(data))
             + _string(name) + _string(media_type)))
 
+    @holding
     def metadata(self, name: str, values: dict[str, str]) -> None:
         """A named map of strings (outside the chunks)."""
         record = _record(METADATA, _string(name) + _string_map(values))
@@ -222,6 +236,7 @@ class McapStream:
                                               + _string(name)))
 
     # --- the end ----------------------------------------------------------------
+    @holding
     def finish(self) -> None:
         """Write the last chunk, the data end, the summary section and the footer."""
         self._write_chunk()

@@ -21,14 +21,18 @@ Printed (run with ``pytest -s``):
    For the coast, the floor of the encoding: the sample's numbers as JSON and
    its bytes compressed and checksummed, against the 10 % budget (a tenth of
    the flight's time per sample).
-   Last figures (loaded 2-core machine, load 4-6; before the byte templates
-   in brackets): ratio ballistic 1.1-1.4 (1.65-1.8), falcon9 1.10-1.16
-   (1.13-1.23), coast 2.6-2.9 (3.4-3.6); per sample on its own, numbers and
-   writing, ballistic 3.1 + 4.2 us (5.6 + 7.0), falcon9 7.2 + 5.4 us
-   (12.1 + 7.9), coast 3.0 + 4.3 us; the coast's floor 3.6 us per sample (34
-   numbers as JSON 0.9 us, 1.56 kB compressed 2.35 us, CRC 0.36 us) against
-   a 0.8 us budget: its ratio cannot come under ~1.45 with JSON in zstd
-   chunks, whatever the code around it. The flights take 12-150 ms, so one
+   Last figures (2-core machine shared with other jobs, load 5.9-6.1, flown
+   alternately with the writer before the present one, in brackets): median
+   ratio of the pairs ballistic 1.29-1.33 (1.31-1.42), falcon9 1.07-1.29
+   (1.07-1.15), coast 2.77-2.88 (3.07-3.73); a sample's writing on its own
+   ballistic 5.2-6.3 us (10.4-15.3), coast 20-28 us (22-26). Under such a
+   load one flight's time swings by a factor of 2-4: only the ballistic
+   writing's halving is beyond the noise. The coast's floor per sample: 34
+   numbers as JSON 1.0-1.5 us, 1.8 kB of records compressed 5.4-6.5 us and
+   checksummed 0.4-0.6 us (at load 2.2: 1.4, 5.6 and 0.4 us) against a
+   budget of 1-3 us: with JSON in zstd chunks on the flight's thread the
+   coast's ratio cannot come under ~1.45, whatever the code around it. The
+   flights take 12-150 ms, so one
    run's ratio swings by 0.1-0.3 on a shared machine: each is flown in
    alternating pairs (9, 5 for falcon9), the ratio of the best times printed
    with the median of the pairs' ratios beside it;
