@@ -97,7 +97,7 @@ def main(fc):
     boost_back(fc, guide, three)
     fc.deploy_grid_fins()
     fc.hold("surface_retrograde")
-    fc.wait_until(lambda: fc.altitude < ENTRY_ALTITUDE and -fc.vertical_speed > ENTRY_SPEED)
+    fc.wait_until(fc.below("altitude", ENTRY_ALTITUDE) & fc.below("vertical_speed", -ENTRY_SPEED))
     full = entry_burn(fc, guide, three)
     landing_full = full * len(landing) / len(three)
     descend(fc, guide, landing_full)
