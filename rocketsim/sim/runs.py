@@ -24,8 +24,7 @@ dynamic-pressure peak while max-Q is pending (the step of the peak; its state
 ``y_peak``, from which the world takes the exact figures). A run stops after a
 step where
 
-* the vehicle is within its contact points' reach of the ground (the sub-steps,
-  the contact-free figures, a touchdown) or below it (an impact);
+* the vehicle has touched down or gone below the ground (an impact);
 * a structural limit may be passed, or the heat shield's limit;
 * max-Q may be reached or the peak's comparison is too close to call;
 * a stage has run dry, the vehicle has left its launch rail, a solid motor's
@@ -195,20 +194,20 @@ def fly_part(y, k0, h, n_max, p, fp, air, area_mass, length, floor, liftoff, orb
 
 
 @njit
-def fly_run(y, k0, h, n_max, p, veh, steer, code, fins, watch, carry, condition):
-    """Fly the staged vehicle with aerodynamics ``veh`` (its arrays) from state ``y`` at
-    step ``k0`` (of ``h`` s) for up to ``n_max`` steps, returning after the first step
-    where the Python side may have something to do (see the module). With ``steer``
+def fly_run(y, k0, h, n_max, p, veh, in_flight, steer, code, fins, watch, carry, condition):
+    """Fly the staged vehicle with aerodynamics ``veh`` (its arrays; ``in_flight`` the same
+    without contact points) from state ``y`` at step ``k0`` (of ``h`` s) for up to
+    ``n_max`` steps, returning after the first step where the Python side may have
+    something to do (see the module). With ``steer``
     the autopilot's step runs before each step, as
     :func:`~rocketsim.sim.vehicle_checks.advance_checked` runs it (the command
     ``code``, the grid fins when ``fins``); ``condition`` is the program's compiled
     condition (no rows: none). ``carry`` is updated in place to its values before
     the last step's checks.
 
-    Returns ``(y, y_before, steps taken, near, figures, reason, y_peak)``: the state
-    after the last step and before it, whether the last state is within the contact
-    points' reach of the ground (its figures to be computed again without contact),
-    the checks' figures at the last state (:func:`step_figures`), :data:`LIMIT`,
+    Returns ``(y, y_before, steps taken, figures, reason, y_peak)``: the state after the
+    last step and before it, the checks' figures at the last state (:func:`step_figures`,
+    the flight loads without contact forces), :data:`LIMIT`,
     :data:`PYTHON` or :data:`CONDITION`, and the state of the new dynamic-pressure peak
     (``carry[C_PEAK_STEP]`` steps into the run; 0: none).
     """
@@ -227,20 +226,21 @@ def fly_run(y, k0, h, n_max, p, veh, steer, code, fins, watch, carry, condition)
                        code, fins, False)
         y = step(y, t0, h, p, veh)
         t = (k0 + j) * h
-        figures = step_figures(t, y, p, veh, veh.aero.contact)
-        near = near_ground(y, p, reach)
+        # the flight loads without the contact forces: out of the contact points' reach the
+        # derivative adds none, within it the arrays without them (as the checks compute them)
+        figures = step_figures(t, y, p, in_flight if near_ground(y, p, reach) else veh, veh.aero.contact)
         if condition.shape[0] > 0 and holds(condition, t, y, p):
-            return y, before, j, near, figures, CONDITION, y_peak
-        if j == n_max or near or radial_height(y, p) < ground:
-            return y, before, j, near, figures, LIMIT if j == n_max else PYTHON, y_peak
+            return y, before, j, figures, CONDITION, y_peak
+        if j == n_max or radial_height(y, p) < ground:
+            return y, before, j, figures, LIMIT if j == n_max else PYTHON, y_peak
         quiet, temperature, touched = _checks_quiet(y, h, figures, carry, watch)
         if not quiet or not _events_quiet(y, t, p, veh, watch, dry, on_rail):
-            return y, before, j, near, figures, PYTHON, y_peak
+            return y, before, j, figures, PYTHON, y_peak
         peak = math.nan
         if watch[W_MAX_Q] > 0.5:
             quiet, peak = _max_q_quiet(y, t, p, veh.air, carry, watch)
             if not quiet:
-                return y, before, j, near, figures, PYTHON, y_peak
+                return y, before, j, figures, PYTHON, y_peak
         carry[C_TEMPERATURE], carry[C_TOUCHED] = temperature, touched
         if not math.isnan(peak):
             carry[C_PEAK_Q], carry[C_PEAK_STEP] = peak, j

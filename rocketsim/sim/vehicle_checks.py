@@ -148,15 +148,16 @@ class VehicleChecks:
             watch[runs.W_SOI] = WATCH_RADIUS[BODIES[int(fp[FIELD_CENTER])]]
         peak = events.run_watch(watch)
         carry = np.array((self.temperature, float(self.touched_down), peak, 0.0))
-        y, before, taken, near, figures, reason, y_peak = body.kernels.call(
-            runs.fly_run, arrays, body.y, k0, h, n, body.p, arrays, steer, code, fins, watch, carry, condition)
+        y, before, taken, figures, reason, y_peak = body.kernels.call(
+            runs.fly_run, arrays, body.y, k0, h, n, body.p, arrays, self._in_flight, steer, code, fins, watch,
+            carry, condition)
         self.temperature = float(carry[runs.C_TEMPERATURE])
         self.touched_down = bool(carry[runs.C_TOUCHED] > 0.5)
         if taken > 1:
             self.previous = ((k0 + taken - 1) * h, before.copy())
         if carry[runs.C_PEAK_STEP] > 0.0:
             events.peak_at((k0 + int(carry[runs.C_PEAK_STEP])) * h, y_peak)
-        self._figures = None if near else (y, figures)
+        self._figures = (y, figures)
         return y, taken, reason
 
     def after_step(self, world, body, h: float) -> dict | None:
