@@ -14,6 +14,10 @@ interact, so :func:`fly_window` flies each on its own:
   (:meth:`rocketsim.sim.vehicle_checks.VehicleChecks.fly_run`,
   :mod:`rocketsim.sim.runs`), each returning at a step where its checks or
   events may act, and that step handled as the loop handles every step;
+* a tumbling part below its rails floor (a fairing half) in compiled runs of its
+  free steps (:func:`rocketsim.sim.runs.fly_part`), returning where its liftoff,
+  orbit or impact may be; a rigid body with no event to watch and out of the
+  ground's reach in the loop's own batch (bit-identical to its steps one by one);
 * every other body one step at a time, exactly as the loop steps it (its
   autopilot, :meth:`~rocketsim.sim.world.World.advance`, its events).
 
@@ -32,7 +36,6 @@ import heapq
 import math
 
 from rocketsim.constants import G0
-
 from rocketsim.dynamics.derivative import radial_height
 from rocketsim.dynamics.third_bodies import field_of
 from rocketsim.flight.conditions import NO_CONDITION
@@ -72,11 +75,12 @@ class _Window:
         self.end = end
         self.waiter = waiter                # the body whose program waits on a compiled condition
         self.frontier = end                 # where the waiter's run stops: no other run goes beyond
-        self.queue: list[tuple] = []        # (step, body index, run or None: one step to fly)
+        self.queue: list[tuple] = []        # (step, body index, run: see start; None: one step to fly)
 
     def start(self, k: int, indices: list[int], plans: dict) -> None:
-        """Start a segment of each body of ``indices`` at step ``k``: a compiled run
-        (``plans[i]``: its steering and condition) or one step; the waiter's first."""
+        """Start a segment of each body of ``indices`` at step ``k`` as ``plans[i]`` says
+        (:func:`_plan`; None: one step), the waiter's first. A run's end goes on the queue:
+        ``(VEHICLE or PART, its last state[, its first step and state])``, ``(BATCH, k)``."""
         for i in sorted(indices, key=lambda i: i != self.waiter):
             plan = plans[i]
             if plan is None:
