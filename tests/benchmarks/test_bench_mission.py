@@ -41,16 +41,21 @@ at one per step.
 The shares come from timing wrappers put around those parts for this run
 only (about a microsecond per wrapped call, included in the figures).
 
-Last figures (the whole mission, five bodies). On a quiet 2-core machine (load
-0.8, 0533c0f), uninstrumented, in-process ``fly``, CPU best of 3: 3.04-3.34 s
-(180-198x real time). Before the folded step of a vehicle with aerodynamics
-(953fe44: the autopilot's step, the RK4 advance and the checks' figures in three
-compiled calls) 3.15 s, after it (220f493) 2.74-2.83 s on a machine shared with
-other work, same bits. This benchmark, instrumented (130c1b8, load ~1.6): 4.17 s
-(144x); physics 32 % (14.0 us per body-step), programs 19 %, loop 16 %,
-telemetry 14 % (29 us per sample or batch written), checks 7 % (3.0 us per
-body-step, was 9 with the second derivative), events 3.4 %, autopilot 2.3 %
-(3.2 us per call, was 15).
+Also printed: the machine's load, and the same flight uninstrumented, in-process
+(best of 2 in the suite, 1 for the whole mission): the real-time factor.
+Compiled runs (:mod:`rocketsim.sim.window`, :mod:`rocketsim.sim.runs`) count as
+physics: the autopilot's step, RK4, the checks' figures and the tests of the
+checks and events inside them; their Python around them (the window's queue, the
+runs' arguments) as the loop.
+
+Last figures (the whole mission, five bodies; a shared 2-core machine, load 3-4,
+812c3ac against 1d5674c, interleaved, in-process CPU best of 3): 4.79-4.89 s with
+compiled runs, 5.28-5.58 s before (123-125x against 108-114x real time). This
+benchmark, instrumented, load ~4.3: 9.69 s against 13.19 s before; whole flight /
+physics 3.2 against 3.8; per body-step loop 14.8 us (was 23.8), checks 3.4 (8.5),
+events 1.9 (5.1); the programs (24 %) and telemetry (19 %) now cost more than
+everything else but the physics (31 %): the runs are at most 5 steps long, a
+telemetry sample and the guidance's update every 0.1 s.
 Nothing asserts a time; the checks are that the mission reaches orbit and
 that the parts add up to no more than the whole.
 """
