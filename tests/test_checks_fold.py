@@ -20,7 +20,7 @@ from rocketsim.constants import G0
 from rocketsim.dynamics import rk4
 from rocketsim.flight.fc import FlightComputer
 from rocketsim.scenario.load import load
-from rocketsim.sim import vehicle_checks
+from rocketsim.sim import vehicle_checks, world as world_module
 from rocketsim.sim.vehicle_checks import VehicleChecks, advance_checked
 from rocketsim.sim.build import build_world
 from tests.test_contact import _World
@@ -80,6 +80,9 @@ def _fly(seconds, fold, monkeypatch):
                                      body.vehicle.arrays)
 
         monkeypatch.setattr(VehicleChecks, "advance", unfolded)
+    # every step through the loop's one-step path (not the compiled runs of rocketsim.sim.window,
+    # whose steps are those of the fold: tests/test_runs.py)
+    monkeypatch.setattr(world_module, "fly_window", lambda world, length: False)
     world = build_world(load(MISSION), duration=seconds)
     summary = world.run()
     monkeypatch.undo()

@@ -22,9 +22,10 @@ import numpy as np
 from rocketsim.constants import G0, MAX_DURATION
 from rocketsim.dynamics.central import planetocentric
 from rocketsim.ephemeris.solar_system import BODIES
-from rocketsim.flight import arguments
+from rocketsim.flight import arguments, conditions
 from rocketsim.layout import P_RADIUS
 from rocketsim.flight.accelerometer import sensed_acceleration
+from rocketsim.flight.conditions import Condition
 from rocketsim.flight.impact import predict_impact
 from rocketsim.flight.readings import StateView
 from rocketsim.frames.elements import Elements
@@ -74,9 +75,31 @@ class FlightComputer:
         self._craft.hand_back(until)
 
     def wait_until(self, predicate: Callable[[], bool]) -> None:
-        """Hand control back until ``predicate()`` is true (checked once per step)."""
+        """Hand control back until ``predicate()`` is true (checked once per step, on the
+        state at the start of the step). Any function of no arguments serves, e.g.
+        ``fc.wait_until(lambda: fc.altitude < 10_000)``; a condition made with
+        :meth:`below` and :meth:`above` reads the same and is tested in compiled code,
+        so the vehicle flies many steps per call meanwhile:
+        ``fc.wait_until(fc.below("altitude", 10_000))``."""
         predicate = arguments.condition("fc.wait_until", predicate)
         self._craft.hand_back(self._craft.time + self._craft.step_length, predicate)
+
+    def below(self, reading: str, value: float) -> Condition:
+        """The condition ``reading < value`` for :meth:`wait_until`: ``reading`` is
+        ``"altitude"`` (m) or ``"vertical_speed"`` (m/s), read as :attr:`altitude` and
+        :attr:`vertical_speed`; combine with ``&`` (and) and ``|`` (or). Example:
+        ``fc.wait_until(fc.below("altitude", 70e3) & fc.below("vertical_speed", -900))``
+        (:mod:`rocketsim.flight.conditions`)."""
+        return self._compare("fc.below", reading, value, conditions.BELOW)
+
+    def above(self, reading: str, value: float) -> Condition:
+        """The condition ``reading > value`` for :meth:`wait_until` (as :meth:`below`).
+        Example: ``fc.wait_until(fc.above("altitude", pad + 300))``."""
+        return self._compare("fc.above", reading, value, conditions.ABOVE)
+
+    def _compare(self, call: str, reading: str, value: float, op: float) -> Condition:
+        reading = arguments.choice(call, "reading", reading, conditions.READINGS)
+        return conditions.compare(self, reading, arguments.number(call, "value", value), op)
 
     # --- output -------------------------------------------------------------
     def log(self, *parts) -> None:
@@ -358,13 +381,26 @@ class FlightComputer:
         body = self._craft
         if command is None or body.vehicle is None:
             return None
-        nav = self._nav.current     # None, an earlier step's, or this step's (the truth's view when perfect)
-        if fold and not self._rcs and body.central == "earth" and (body.sensors is None or body.sensors.perfect) \
-                and (nav is None or nav.t != body.t or body.is_truth(nav)) and body.flies_in_days_air():
-            return command.code, self._fins
+        folded = self.folded() if fold else None
+        if folded is not None:
+            return folded
         nav, truth = self._view(), body.truth()
         steer(command, nav, body.vehicle, self._propulsion(), body.y, self._craft.time,
               math.nan if nav is truth else truth.air[1], fins=self._fins, rcs=self._rcs)
+
+    def folded(self) -> tuple | None:
+        """What a compiled step reads to run this step's autopilot itself, ``(command
+        code, fins)``, when nothing of it is left to Python (see :meth:`autopilot`);
+        None when it is (or nothing is commanded). Runs nothing."""
+        command = self._command
+        body = self._craft
+        if command is None or body.vehicle is None:
+            return None
+        nav = self._nav.current     # None, an earlier step's, or this step's (the truth's view when perfect)
+        if not self._rcs and body.central == "earth" and (body.sensors is None or body.sensors.perfect) \
+                and (nav is None or nav.t != body.t or body.is_truth(nav)) and body.flies_in_days_air():
+            return command.code, self._fins
+        return None
 
     # --- landing ------------------------------------------------------------------
     def deploy_grid_fins(self) -> None:

@@ -38,6 +38,7 @@ import numba.core.event as ev
 
 from rocketsim.errors import InputError
 from rocketsim.flight.arguments import truth
+from rocketsim.flight.conditions import Condition
 from rocketsim.limits import MAX_TEXT_BYTES, read_bounded
 
 # mission time tolerance for "the wake-up time has come" (s): steps are
@@ -245,6 +246,13 @@ class ProgramRunner:
     @property
     def waiting_on_predicate(self) -> bool:
         return self._predicate is not None
+
+    @property
+    def condition(self):
+        """The compiled form of the condition waited on
+        (:class:`~rocketsim.flight.conditions.Condition`'s ``code``), or None: not
+        waiting, or on a plain function (read in Python every step)."""
+        return self._predicate.code if isinstance(self._predicate, Condition) else None
 
     def resume(self, fc) -> None:
         """Run the program until it hands control back (or returns)."""

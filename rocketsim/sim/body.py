@@ -93,10 +93,18 @@ class Body:
     def view(self) -> StateView:
         """The truth's readings at the body's time (one view per step)."""
         if self._view is None or self._view.t != self.t:
-            # the central body's air: the day's about Earth, Mars's about Mars, none elsewhere
-            air = self.atmosphere if self.central == "earth" else partial(air_about, self.central, None)
-            self._view = StateView.of_state(self.t, self.y, air, self.mu, self.p)
+            self._view = self.view_of(self.t, self.y)
         return self._view
+
+    def view_of(self, t: float, y: np.ndarray) -> StateView:
+        """The truth's readings of the state ``y`` at mission time ``t`` (s) of this body."""
+        # the central body's air: the day's about Earth, Mars's about Mars, none elsewhere
+        air = self.atmosphere if self.central == "earth" else partial(air_about, self.central, None)
+        return StateView.of_state(t, y, air, self.mu, self.p)
+
+    def flies_in_days_air(self) -> bool:
+        """A staged vehicle whose arrays hold the day's air (its readings' air)."""
+        return self.vehicle.arrays.air[2] is self.atmosphere().density     # the density column
 
 
 @dataclass

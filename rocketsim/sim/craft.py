@@ -91,8 +91,7 @@ class BodyCraft:
         return view is self._body._view
 
     def flies_in_days_air(self) -> bool:
-        body = self._body
-        return body.vehicle.arrays.air[2] is body.atmosphere().density     # the density column
+        return self._body.flies_in_days_air()
 
     # --- commands -----------------------------------------------------------
     def hand_back(self, until: float, predicate: Callable[[], bool] | None = None) -> None:

@@ -52,6 +52,7 @@ from rocketsim.vehicle.motors import M_CURVE0, M_IGNITION, M_IMPULSE, M_POINTS
 from rocketsim.vehicle.parachutes import CH_CUT_BY, CH_DEPLOYED, CH_INFLATION, CH_LAG, cut_away, deploy
 from rocketsim.vehicle.rail import RL_OFF_AT, RL_OFF_SPEED, RL_ON
 from rocketsim.scenario.vehicle import AfterTrigger, HeightTrigger
+from rocketsim.sim import runs
 from rocketsim.sim.vehicle_checks import ground_motion
 
 LIFTOFF_HEIGHT = 1.0          # m above the starting height
@@ -102,6 +103,27 @@ class FlightEvents:
                 self._parachutes()
         if not self.in_orbit and self.lifted and periapsis_bound(body.y, body.mu) > ORBIT_PERIAPSIS_BOUND:
             self._orbit(body.view())
+
+    def run_watch(self, watch) -> float:
+        """Fill the slots of a compiled run's ``watch`` that these events decide
+        (:mod:`rocketsim.sim.runs`: max-Q pending, its definitions, the orbit test's
+        bound, the next motor burn-out); returns the dynamic-pressure peak so far
+        (Pa; nan: none). The run needs the body lifted off, its parachutes none."""
+        body = self.body
+        watch[runs.W_MAX_Q] = 0.0 if self.max_q_done else 1.0
+        watch[runs.W_MAX_Q_MIN], watch[runs.W_MAX_Q_DROP] = MAX_Q_MIN, MAX_Q_DROP
+        watch[runs.W_ORBIT] = math.inf if self.in_orbit else ORBIT_PERIAPSIS_BOUND
+        model = body.vehicle
+        motor, curve = model.arrays.motor, model.arrays.curve
+        watch[runs.W_BURNOUT] = min((_curve_end(motor, curve, i) for i, name in enumerate(model.motor_names)
+                                     if name not in self.burnt_out), default=math.inf)
+        return math.nan if self.peak is None else self.peak[0]
+
+    def peak_at(self, t: float, y) -> None:
+        """A compiled run found the peak of the dynamic pressure at state ``y`` of mission
+        time ``t`` (s): keep it as :meth:`_max_q` would have, from the truth's view there."""
+        view = self.body.view_of(t, y)
+        self.peak = (view.dynamic_pressure, t, view.mach, view.geodetic[2])
 
     def _max_q(self, view) -> None:
         if body_has_no_air(view):
@@ -223,7 +245,7 @@ class FlightEvents:
         model = self.body.vehicle
         motor, curve = model.arrays.motor, model.arrays.curve
         for i, name in enumerate(model.motor_names):
-            end = motor[i, M_IGNITION] + curve[int(motor[i, M_CURVE0] + motor[i, M_POINTS]) - 1, 0]
+            end = _curve_end(motor, curve, i)
             if name not in self.burnt_out and self.body.t >= end:
                 self.burnt_out.add(name)
                 self.world.event(self.body, "burnout", {"motor": name, "burnout_s": float(end),
@@ -239,6 +261,11 @@ class FlightEvents:
                 "periapsis_altitude_m": orbit.periapsis - EARTH_RADIUS_EQ,
                 "apoapsis_altitude_m": orbit.apoapsis - EARTH_RADIUS_EQ,
                 "inclination_deg": orbit.i / DEG, "eccentricity": orbit.e})
+
+
+def _curve_end(motor, curve, i: int) -> float:
+    """Mission time (s) at which solid motor ``i``'s thrust curve ends."""
+    return motor[i, M_IGNITION] + curve[int(motor[i, M_CURVE0] + motor[i, M_POINTS]) - 1, 0]
 
 
 def periapsis_bound(y, mu: float) -> float:

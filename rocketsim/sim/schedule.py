@@ -66,16 +66,51 @@ class Schedule:
         if self.cruise_batch:
             # every body cruises: one cruise step per batch, sampled at its end
             n = min([world.n_steps - world.k] + cruise)
-        t = world.t
         for body in world.bodies:
             runner = body.runner
             if not body.flying or runner is None or runner.finished:
                 continue
             if runner.waiting_on_predicate:
                 return 1
-            wake_steps = math.ceil((runner.wake_time() - t) / world.h - 1e-9)
-            n = min(n, max(1, wake_steps))
+            n = min(n, max(1, self.wake_steps(runner)))
         return max(1, n)
+
+    def wake_steps(self, runner) -> int:
+        """Steps from now to the wake-up of the program of ``runner``."""
+        return math.ceil((runner.wake_time() - self.world.t) / self.world.h - 1e-9)
+
+    def one_step(self, body: Body) -> bool:
+        """Whether the world's loop steps one step at a time for ``body``'s sake (as
+        :meth:`batch_length` decides): its checks run every step, its autopilot steers
+        every step, or its program waits on a condition."""
+        runner = body.runner
+        return body.flying and (
+            (body.checks is not None and body.checks.every_step(body))
+            or (body.attitude_command is not None and not self.holding(body))
+            or (runner is not None and not runner.finished and runner.waiting_on_predicate))
+
+    def window_length(self) -> int:
+        """Steps before the world's loop must decide anything while it steps one step at
+        a time: to the next telemetry sample, the end, or a program's wake-up; 1 while
+        a body cruises or a program waits on a condition read in Python. Within them
+        the bodies are flown in compiled runs where nothing needs Python
+        (:mod:`rocketsim.sim.window`)."""
+        world = self.world
+        n = min(world.n_steps - world.k, world.sample_every - world.k % world.sample_every)
+        for body in world.bodies:
+            if not body.flying:
+                continue
+            if self.cruising(body):
+                return 1
+            runner = body.runner
+            if runner is None or runner.finished:
+                continue
+            if runner.waiting_on_predicate:
+                if runner.condition is None:
+                    return 1
+                continue                    # tested in the body's compiled runs
+            n = min(n, max(1, self.wake_steps(runner)))
+        return n
 
     def on_rails(self, body: Body) -> bool:
         """Sleep rails for a body nobody flies or whose program sleeps beyond the next

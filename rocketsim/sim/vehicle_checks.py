@@ -39,7 +39,10 @@ from rocketsim.bodies.orientation import BODIES as ORIENTED, spin_rate
 from rocketsim.constants import (AIR_CP, CO2_CP, DEG, G0, HEAT_SHIELD_LIMIT, MARS_MU,
                                 STRUCTURE_AXIAL_LIMIT_G, STRUCTURE_Q_ALPHA_LIMIT)
 from rocketsim.dynamics.derivative import body_air_velocity, derivative, radial_height
+from rocketsim.dynamics.central import WATCH_RADIUS
 from rocketsim.dynamics.rk4 import advance, near_ground
+from rocketsim.dynamics.third_bodies import FIELD_CENTER, field_of
+from rocketsim.ephemeris.solar_system import BODIES
 from rocketsim.layout import P_J2, P_MU, P_RADIUS, Q, R, V, W
 from rocketsim.flight.readings import StateView
 from rocketsim.flight.steering import steer_step
@@ -110,6 +113,53 @@ class VehicleChecks:
         self._figures = None if near else (y, figures)
         return y, taken
 
+    def fly_run(self, body, k0: int, h: float, n: int, steering: tuple | None, events,
+                condition: np.ndarray) -> tuple[np.ndarray, int, int]:
+        """Fly ``body`` up to ``n`` steps of ``h`` seconds from step ``k0`` in one compiled
+        call, returning after the first step the Python side may have something to do
+        with (:func:`rocketsim.sim.runs.fly_run`); returns ``(y, steps taken, reason)``.
+        The checks' state is left as :meth:`after_step` would have left it before the
+        last step (the shield's temperature, the contact flag, the state before the
+        step), the figures of the last step for :meth:`after_step` to read, and the
+        flight events ``events`` (:class:`~rocketsim.sim.flight_events.FlightEvents`)
+        told of a new dynamic-pressure peak. ``steering`` as in :meth:`advance`, run
+        before every step; ``condition``: the program's compiled condition
+        (:mod:`rocketsim.flight.conditions`; no rows: none)."""
+        from rocketsim.sim import runs     # here: runs' kernel reads this module's step_figures
+
+        arrays = body.vehicle.arrays
+        self._bind(arrays)
+        steer = steering is not None
+        code, fins = steering if steer else _NO_STEERING
+        watch = np.full(runs.N_WATCH, math.inf)
+        watch[runs.W_Q_ALPHA], watch[runs.W_AXIAL] = self.limits
+        watch[runs.W_SHIELD] = 0.0
+        if self.shield is not None:
+            s = self.shield
+            watch[runs.W_SHIELD:runs.W_HEAT_CAPACITY + 1] = (
+                1.0, s.nose_radius, sutton_graves_constant(body.mu), _heat_capacity_of_air(body.mu),
+                s.emissivity, s.area, s.mass * s.specific_heat)
+        watch[runs.W_HEAT_LIMIT] = HEAT_SHIELD_LIMIT
+        watch[runs.W_WATCHED] = self._watched
+        watch[runs.W_CLEARANCE] = AIRBORNE_CLEARANCE
+        watch[runs.W_MU] = body.mu
+        fp = field_of(body.p)
+        if fp is not None:
+            watch[runs.W_SOI] = WATCH_RADIUS[BODIES[int(fp[FIELD_CENTER])]]
+        peak = events.run_watch(watch)
+        carry = np.array((self.temperature, float(self.touched_down), peak, 0.0))
+        y, before, taken, figures, reason, y_peak = body.kernels.call(
+            runs.fly_run, arrays, body.y, k0, h, n, body.p, arrays, self._in_flight, steer, code, fins, watch,
+            carry, condition)
+        self.temperature = float(carry[runs.C_TEMPERATURE])
+        self.touched_down = bool(carry[runs.C_TOUCHED] > 0.5)
+        if taken > 1:
+            self.previous = ((k0 + taken - 1) * h, before.copy())
+        if carry[runs.C_PEAK_STEP] > 0.0:
+            events.peak_at((k0 + int(carry[runs.C_PEAK_STEP])) * h, y_peak)
+        self._figures = (y, figures)
+        return y, taken, reason
+
     def after_step(self, world, body, h: float) -> dict | None:
         """Run the checks on the body's new state (after a step of ``h`` seconds). Returns
         the touchdown figures of a first contact faster than :data:`CRASH_SPEED` (a
@@ -150,7 +200,7 @@ class VehicleChecks:
     def _heat(self, world, body, rho, speed, air_temperature, h) -> None:
         s = self.shield
         k = sutton_graves_constant(body.mu)
-        cp = CO2_CP if body.mu == MARS_MU else AIR_CP        # the CO2 of Mars's air, else air
+        cp = _heat_capacity_of_air(body.mu)
         self.temperature = advance_shield(self.temperature, h, rho, speed, air_temperature, s.nose_radius,
                                           k, cp, s.emissivity, s.area, s.mass * s.specific_heat)
         if self.temperature > HEAT_SHIELD_LIMIT:
@@ -206,6 +256,11 @@ class VehicleChecks:
             up_ecef = eci_to_ecef(up, t0)
             figures["distance_to_target_m"] = float(np.linalg.norm(offset - (offset @ up_ecef) * up_ecef))
         return figures
+
+
+def _heat_capacity_of_air(mu: float) -> float:
+    """J/(kg K) of the air about the central body of ``mu``: the CO2 of Mars's, else air."""
+    return CO2_CP if mu == MARS_MU else AIR_CP
 
 
 def ground_motion(central: str, t: float, y) -> tuple[np.ndarray, np.ndarray]:

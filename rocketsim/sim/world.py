@@ -45,6 +45,7 @@ from rocketsim.sim.craft import BodyCraft
 from rocketsim.sim.handover import hand_over, watch_soi
 from rocketsim.sim.schedule import Schedule, inertia, rails_field
 from rocketsim.sim.summary import summary
+from rocketsim.sim.window import fly_window
 from rocketsim.timescales import Epoch
 from rocketsim.vehicle.aero import A_GROUND
 
@@ -149,12 +150,13 @@ class World:
                 self._run_programs()
                 self._run_autopilots()
                 n = self.schedule.batch_length()
-                for body in self.bodies:
-                    if body.flying:
-                        self.advance(body, n)
-                    if body.flying and body.watch is not None:
-                        body.watch.after_step()
-                self.k += n
+                if n > 1 or not fly_window(self, self.schedule.window_length()):
+                    for body in self.bodies:
+                        if body.flying:
+                            self.advance(body, n)
+                        if body.flying and body.watch is not None:
+                            body.watch.after_step()
+                    self.k += n
                 if self.k % self.sample_every == 0 or self.k >= self.n_steps or self.schedule.cruise_batch:
                     self._check_finite()
                     self._sample_all()
@@ -183,15 +185,19 @@ class World:
 
     def _run_autopilots(self) -> None:
         for body in self.bodies:
-            if body.flying and body.attitude_command is not None and body.fc is not None:
-                if self.schedule.holding(body):     # held on rails: the autopilot rests, its RCS off
-                    if body.vehicle is not None:
-                        body.vehicle.arrays.aero.rcs_cmd[:] = 0.0
-                    continue
-                # a vehicle with checks runs the autopilot's compiled step in its advance
-                folded = body.fc.autopilot(fold=body.checks is not None)
+            self.run_autopilot(body)
+
+    def run_autopilot(self, body: Body) -> None:
+        """Run ``body``'s autopilot for the step starting now, if it steers (a vehicle
+        with checks runs its compiled step in its advance: :attr:`Body.steering`)."""
+        if body.flying and body.attitude_command is not None and body.fc is not None:
+            if self.schedule.holding(body):     # held on rails: the autopilot rests, its RCS off
                 if body.vehicle is not None:
-                    body.steering = folded
+                    body.vehicle.arrays.aero.rcs_cmd[:] = 0.0
+                return
+            folded = body.fc.autopilot(fold=body.checks is not None)
+            if body.vehicle is not None:
+                body.steering = folded
 
     def body_state(self, body: Body, name: str, t: float | None = None):
         """Position (m) and velocity (m/s) of the Sun, Earth, Moon or Mars relative to
@@ -273,8 +279,8 @@ class World:
             watch_soi(self, body)
             return
         if body.vehicle is None and body.drag is not None:     # a tumbling part: gravity and drag
-            air = NO_AIR if self.atmosphere is None else air_about(body.central, self.atmosphere).arrays()
-            y, taken = advance_free(body.y, k0, self.h, n, body.p, rails_field(body), air, *body.drag)
+            y, taken = advance_free(body.y, k0, self.h, n, body.p, rails_field(body), self.air_of(body),
+                                    *body.drag)
         elif body.vehicle is None:
             y, taken = advance(body.y, k0, self.h, n, body.p)
         elif body.checks is not None:       # with the autopilot's step first, the checks' figures after
@@ -284,11 +290,22 @@ class World:
             y, taken = body.kernels.call(advance, body.vehicle.arrays, body.y, k0, self.h, n, body.p,
                                          body.vehicle.arrays)
         body.y = y
-        body.t = (k0 + taken) * self.h
+        self.after_advance(body, k0 + taken, taken < n)
+
+    def air_of(self, body: Body):
+        """The air table (its arrays) a tumbling part ``body`` flies through: its central
+        body's (:func:`rocketsim.dynamics.central.air_about`), none without the day's air."""
+        return NO_AIR if self.atmosphere is None else air_about(body.central, self.atmosphere).arrays()
+
+    def after_advance(self, body: Body, k: int, short: bool = False) -> None:
+        """``body`` has been advanced to step ``k`` (its state ``y``): its time, the
+        handover, the checks and the impact (also when it stopped ``short`` of the steps
+        asked, below the ground)."""
+        body.t = k * self.h
         watch_soi(self, body)
         crash = None if body.checks is None else body.checks.after_step(self, body, self.h)
         ground = 0.0 if body.vehicle is None else body.vehicle.arrays.aero.ref[A_GROUND]
-        if body.flying and (crash is not None or taken < n or radial_height(body.y, body.p) < ground):
+        if body.flying and (crash is not None or short or radial_height(body.y, body.p) < ground):
             # the body went below the ground in its last step (the batch's last one
             # included, where advance cannot say so by stopping early), or its first
             # contact was a crash (its speeds at the contact, not after the springs): it has hit

@@ -12,9 +12,11 @@ records the event with these figures and ends the body.
 
 from __future__ import annotations
 
+from rocketsim._jit import njit
 from rocketsim.constants import DEG, G0, STRUCTURE_AXIAL_LIMIT_G, STRUCTURE_Q_ALPHA_LIMIT
 
 
+@njit
 def bending_alpha(alpha: float) -> float:
     """Angle (rad) between the flow and the nearer end of the axis, 0 to 90 degrees."""
     return min(alpha, 180.0 * DEG - alpha)

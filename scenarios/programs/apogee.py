@@ -14,5 +14,5 @@ def main(fc):
             fc.event("apogee", altitude_m=highest)
             break
         highest = fc.altitude
-    fc.wait_until(lambda: fc.altitude < 10_000)
+    fc.wait_until(fc.below("altitude", 10_000))
     fc.log("below 10 km")

@@ -104,7 +104,7 @@ def main(fc):
     boost_back(fc, guide, three)
     fc.deploy_grid_fins()
     fc.hold("surface_retrograde")
-    fc.wait_until(lambda: fc.altitude < ENTRY_ALTITUDE and -fc.vertical_speed > ENTRY_SPEED)
+    fc.wait_until(fc.below("altitude", ENTRY_ALTITUDE) & fc.below("vertical_speed", -ENTRY_SPEED))
     share = len(landing) / len(three)
     landing_full = entry_burn(fc, guide, three, share) * share
     descend(fc, guide, landing_full)

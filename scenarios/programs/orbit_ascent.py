@@ -84,7 +84,7 @@ def ascend(fc):
     fc.throttle(1.0)
     fc.point(math.pi / 2, azimuth)
     pad = fc.altitude
-    fc.wait_until(lambda: fc.altitude > pad + KICK_HEIGHT)
+    fc.wait_until(fc.above("altitude", pad + KICK_HEIGHT))
     thrust_to_weight = fc.thrust / (fc.mass * fc.gravity)
     fc.point(math.pi / 2 - KICK_PER_TW * (thrust_to_weight - 1.0), azimuth)
     fc.sleep(KICK_TIME)

@@ -1,0 +1,227 @@
+"""A window of steps flown without the world's loop: compiled runs where nothing needs Python.
+
+While any body must be stepped one step at a time (a vehicle in the air's reach,
+an autopilot steering, a program waiting on a condition:
+:meth:`rocketsim.sim.schedule.Schedule.one_step`), the world's loop would run
+every body's Python once per step. Up to the next step where the loop itself
+has something to decide (a telemetry sample, a program's wake-up, the end:
+:meth:`~rocketsim.sim.schedule.Schedule.window_length`) the bodies do not
+interact, so :func:`fly_window` flies each on its own:
+
+* a vehicle with aerodynamics that has lifted off, steered by the autopilot's
+  compiled step or not at all, its program asleep or waiting on a compiled
+  condition (:mod:`rocketsim.flight.conditions`), no parachutes, in compiled runs
+  (:meth:`rocketsim.sim.vehicle_checks.VehicleChecks.fly_run`,
+  :mod:`rocketsim.sim.runs`), each returning at a step where its checks or
+  events may act, and that step handled as the loop handles every step;
+* a tumbling part below its rails floor (a fairing half) in compiled runs of its
+  free steps (:func:`rocketsim.sim.runs.fly_part`), returning where its liftoff,
+  orbit or impact may be; a rigid body with no event to watch and out of the
+  ground's reach in the loop's own batch (bit-identical to its steps one by one);
+* every other body one step at a time, exactly as the loop steps it (its
+  autopilot, :meth:`~rocketsim.sim.world.World.advance`, its events).
+
+Everything the Python side does that others can see (events, telemetry) happens
+in the loop's order: by step, and within a step in the order of the bodies. The
+window ends early at the step after which a program's compiled condition is
+true (the program runs at the next step) and once no body needs one step at a
+time (the loop batches from there). At most one program may wait on a
+condition in a window: the others' runs stop where that one's run stops, so
+none flies past a step its condition may end the window at.
+"""
+
+from __future__ import annotations
+
+import heapq
+import math
+
+from rocketsim.constants import G0
+from rocketsim.dynamics.derivative import radial_height
+from rocketsim.dynamics.third_bodies import field_of
+from rocketsim.flight.conditions import NO_CONDITION
+from rocketsim.layout import V
+from rocketsim.sim import runs
+from rocketsim.sim.flight_events import LIFTOFF_HEIGHT, ORBIT_PERIAPSIS_BOUND
+from rocketsim.sim.schedule import rails_field
+
+VEHICLE, PART, BATCH = "vehicle", "part", "batch"   # how a body flies a segment (see _plan)
+
+
+def fly_window(world, length: int) -> bool:
+    """Fly the world's bodies ``length`` steps from its step ``k`` (fewer when the window
+    ends early, see the module), with the loop's autopilots already run for the first;
+    leaves the world's step count at the window's end. False (nothing done) when the
+    window has less than two steps or cannot be flown this way: a program waits on a
+    condition in a body that cannot fly compiled runs, or two programs wait."""
+    if length < 2:
+        return False
+    k = world.k
+    flying = [(i, body) for i, body in enumerate(world.bodies) if body.flying]
+    waiters = [i for i, body in flying if _waiting(body)]
+    plans = {i: _plan(world, body, True, length * world.h) for i, body in flying}
+    if len(waiters) > 1 or any(plans[i] is None for i in waiters):
+        return False
+    window = _Window(world, k + length, waiters[0] if waiters else None)
+    window.start(k, [i for i, _ in flying], plans)
+    window.fly()
+    return True
+
+
+class _Window:
+    """The bodies' queue of steps where the Python side acts (see the module)."""
+
+    def __init__(self, world, end: int, waiter: int | None):
+        self.world = world
+        self.end = end
+        self.waiter = waiter                # the body whose program waits on a compiled condition
+        self.frontier = end                 # where the waiter's run stops: no other run goes beyond
+        self.queue: list[tuple] = []        # (step, body index, run: see start; None: one step to fly)
+
+    def start(self, k: int, indices: list[int], plans: dict) -> None:
+        """Start a segment of each body of ``indices`` at step ``k`` as ``plans[i]`` says
+        (:func:`_plan`; None: one step), the waiter's first. A run's end goes on the queue:
+        ``(VEHICLE or PART, its last state[, its first step and state])``, ``(BATCH, k)``."""
+        for i in sorted(indices, key=lambda i: i != self.waiter):
+            plan = plans[i]
+            if plan is None:
+                heapq.heappush(self.queue, (k + 1, i, None))
+                continue
+            world = self.world
+            body = world.bodies[i]
+            top = self.end if i == self.waiter else min(self.end, self.frontier)
+            if plan[0] == VEHICLE:
+                y, taken, reason = body.checks.fly_run(body, k, world.h, top - k, plan[1], body.watch, plan[2])
+                body.steering = None
+                if i == self.waiter:
+                    self.frontier = k + taken
+                    if reason == runs.CONDITION:
+                        self.end = k + taken    # the program is due at the next step
+            elif plan[0] == PART:
+                y, taken = self._part(body, k, body.y, top - k)
+                heapq.heappush(self.queue, (k + taken, i, (PART, y, k, body.y)))
+                continue
+            else:                           # BATCH: flown when its turn comes, from step k
+                y, taken = k, top - k
+            heapq.heappush(self.queue, (k + taken, i, (plan[0], y)))
+
+    def fly(self) -> None:
+        """Handle the queue's steps in order (by step, then body) to the window's end."""
+        world = self.world
+        last = world.k
+        while self.queue:
+            s = self.queue[0][0]
+            due = []
+            while self.queue and self.queue[0][0] == s:
+                due.append(heapq.heappop(self.queue))
+            for _, i, run in due:
+                self._finish(i, s, run)
+            last = world.k = s
+            if s >= self.end:
+                continue
+            if any(i == self.waiter for _, i, _ in due):
+                self.frontier = self.end    # until its next run says where it stops
+            movers = [i for _, i, _ in due if world.bodies[i].flying]
+            if not self._one_step(movers):
+                self._close(s)              # nobody needs one step at a time: the loop batches from here
+                continue
+            plans = {i: _plan(world, world.bodies[i], False, (self.end - s) * world.h) for i in movers}
+            if any(plans[i] is None and _waiting(world.bodies[i]) for i in movers):
+                self.end = s                # its condition is read in Python from the next step
+                continue
+            for i in movers:
+                if plans[i] is None:
+                    world.run_autopilot(world.bodies[i])
+            self.start(s, movers, plans)
+        world.k = last
+
+    def _finish(self, i: int, s: int, run) -> None:
+        """The step ``s`` of body ``i`` as the loop ends it (after a compiled run's last
+        step, or flying the one step or the batch first), its events included."""
+        world = self.world
+        body = world.bodies[i]
+        world.k = s - 1
+        if run is None:
+            world.advance(body, 1)
+        elif run[0] == BATCH:
+            world.k = run[1]
+            world.advance(body, s - run[1])
+        else:
+            body.y = run[1]
+            world.after_advance(body, s)
+        if body.flying and body.watch is not None:
+            body.watch.after_step()
+
+    def _one_step(self, movers: list[int]) -> bool:
+        """Whether the loop would step the next step one step at a time: a vehicle's
+        compiled run goes on (its checks run every step), or a body at this step needs it."""
+        schedule = self.world.schedule
+        return any(run is not None and run[0] == VEHICLE for _, _, run in self.queue) or \
+            any(schedule.one_step(self.world.bodies[i]) for i in movers)
+
+    def _close(self, s: int) -> None:
+        """End the window at step ``s``: the tumbling parts and batches under way are
+        brought to it (their steps to ``s`` have nothing for Python, and a part's run
+        is flown again to ``s`` from where it started: the same steps, the same bits)."""
+        self.end = s
+        world = self.world
+        for _, i, run in sorted(self.queue):
+            body = world.bodies[i]
+            if run[0] == PART:
+                k0, y0 = run[2], run[3]
+                run = (PART, self._part(body, k0, y0, s - k0)[0])
+            self._finish(i, s, run)
+        self.queue = []
+
+    def _part(self, body, k: int, y, n: int) -> tuple:
+        """A tumbling part's run from state ``y`` at step ``k``, up to ``n`` steps."""
+        world = self.world
+        watch = body.watch          # None: no events to watch
+        return runs.fly_part(y, k, world.h, n, body.p, rails_field(body), world.air_of(body), *body.drag,
+                             world.schedule.rails_floor(body),
+                             math.inf if watch is None or watch.lifted else watch.start_height + LIFTOFF_HEIGHT,
+                             math.inf if watch is None or watch.in_orbit else ORBIT_PERIAPSIS_BOUND, body.mu,
+                             math.inf)
+
+
+def _waiting(body) -> bool:
+    runner = body.runner
+    return runner is not None and not runner.finished and runner.waiting_on_predicate
+
+
+def _plan(world, body, first: bool, seconds: float):
+    """How ``body`` flies from the world's step (see the module): ``(VEHICLE, steering,
+    condition)``, a compiled run of a vehicle with aerodynamics; ``(PART,)``, a tumbling
+    part's; ``(BATCH,)``, the loop's batch of a body none of whose steps has anything for
+    Python; None: one step at a time. ``first``: the loop has run the autopilots of this
+    step (a folded one left its step in ``body.steering``); ``seconds``: to the window's end."""
+    checks, watch = body.checks, body.watch
+    if body.vehicle is None:
+        if (body.runner is not None and not body.runner.finished) or field_of(body.p) is not None:
+            return None
+        height = radial_height(body.y, body.p)
+        if body.drag is not None and height <= world.schedule.rails_floor(body):
+            return (PART,)
+        # a batch: no event to watch, nor the ground within reach before the window ends
+        # (at its speed and twice the surface gravity: no impact to record out of turn)
+        v = body.y[V:V + 3]
+        reach = math.sqrt(v @ v) * seconds + G0 * seconds * seconds
+        if body.drag is None and height > reach and (watch is None or (watch.lifted and watch.in_orbit)):
+            return (BATCH,)
+        return None
+    if watch is None or not watch.lifted or checks is None or body.vehicle.parachutes:
+        return None
+    if not checks.every_step(body) or world.schedule.cruising(body):
+        return None
+    condition = NO_CONDITION
+    if _waiting(body):
+        condition = body.runner.condition
+        if condition is None or body.central != "earth" or not (body.sensors is None or body.sensors.perfect):
+            return None
+    steering = None
+    if body.attitude_command is not None:
+        steering = body.steering if first else body.fc.folded()
+        if steering is None:
+            return None
+    if not watch.max_q_done and (watch.peak is None or body.central != "earth" or not body.flies_in_days_air()):
+        return None
+    return VEHICLE, steering, condition

@@ -1,0 +1,144 @@
+"""Compiled runs of steps (rocketsim.sim.window, rocketsim.sim.runs) and the compiled
+conditions of fc.wait_until (rocketsim.flight.conditions).
+
+A pure speed change: the reference is the world's one-step loop, which these tests
+run side by side with the compiled runs (the window switched off): the same
+telemetry, message for message and bit for bit, the same events and final states.
+The compiled conditions are checked against the readings they stand for, on
+states drawn at random about Earth.
+"""
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from rocketsim.flight.conditions import ABOVE, BELOW, holds
+from rocketsim.flight.readings import StateView
+from rocketsim.layout import make_params
+from rocketsim.constants import EARTH_J2, EARTH_MU, EARTH_RADIUS_EQ, EARTH_RADIUS_POLAR
+from rocketsim.scenario.load import load
+from rocketsim.sim import runs, window, world as world_module
+from rocketsim.sim.flight import fly
+from rocketsim.sim.vehicle_checks import VehicleChecks
+from rocketsim.telemetry.reader import iter_raw_messages
+
+ROOT = Path(__file__).resolve().parents[1]
+MISSION = ROOT / "scenarios" / "falcon9-leo.yaml"
+# the ascent (the kick's compiled condition, max-Q, MECO), the staging, the boost-back,
+# the fairing halves' fall and the start of the booster's compiled wait for its entry:
+# every kind of segment of a window, in 230 s of the 600 s mission (the suite's budget)
+ARC = 230.0
+
+
+def _flight(tmp_path, name, monkeypatch, windows: bool, counts: dict):
+    """The mission's first ARC seconds with the windows (counting their runs' steps) or
+    one step at a time; returns the summary and the telemetry's messages."""
+    if windows:
+        vehicle_run, part_run = VehicleChecks.fly_run, runs.fly_part
+
+        def counted(checks, body, k0, h, n, steering, events, condition):
+            y, taken, reason = vehicle_run(checks, body, k0, h, n, steering, events, condition)
+            counts["vehicle steps"] += taken
+            counts["conditions"] += reason == runs.CONDITION
+            counts["waiting"] += condition.shape[0] > 0
+            return y, taken, reason
+
+        def counted_part(*args):
+            y, taken = part_run(*args)
+            counts["part steps"] += taken
+            return y, taken
+
+        monkeypatch.setattr(VehicleChecks, "fly_run", counted)
+        monkeypatch.setattr(runs, "fly_part", counted_part)
+    else:
+        monkeypatch.setattr(world_module, "fly_window", lambda world, length: False)
+    out = tmp_path / f"{name}.mcap"
+    summary = fly(load(MISSION), out, duration=ARC)
+    monkeypatch.undo()
+    return summary, list(iter_raw_messages(out))
+
+
+def test_compiled_runs_fly_the_same_telemetry_as_one_step_at_a_time(tmp_path, monkeypatch):
+    counts = {"vehicle steps": 0, "part steps": 0, "conditions": 0, "waiting": 0}
+    summary, messages = _flight(tmp_path, "runs", monkeypatch, True, counts)
+    summary_before, messages_before = _flight(tmp_path, "steps", monkeypatch, False, counts)
+    assert summary == summary_before
+    assert len(messages) == len(messages_before) > 10_000
+    assert messages == messages_before
+    # the runs did fly: most vehicle and part steps, and the kick's condition ended one
+    assert counts["vehicle steps"] > 10_000 and counts["part steps"] > 500
+    assert counts["conditions"] >= 1 and counts["waiting"] > 10
+    events = {e["name"] for b in summary["bodies"].values() for e in b["events"]}
+    assert {"liftoff", "max_q", "MECO", "separation", "boost-back end", "fairing jettison"} <= events
+
+
+def _earth_states(count, seed=7):
+    """States about Earth: from below the ground to 700 km, climbing and falling."""
+    rng = np.random.default_rng(seed)
+    for _ in range(count):
+        direction = rng.normal(size=3)
+        r = direction / np.linalg.norm(direction) * (EARTH_RADIUS_EQ + rng.uniform(-30e3, 700e3))
+        v = rng.normal(size=3) * rng.choice((10.0, 300.0, 3000.0))
+        q = rng.normal(size=4)
+        y = np.concatenate((r, v, q / np.linalg.norm(q), np.zeros(3)))
+        yield rng.uniform(0.0, 5000.0), y
+
+
+def test_a_compiled_condition_reads_what_the_readings_read():
+    # the same boolean from the same numbers: thresholds at the readings themselves
+    # (ties), a hair either side, and far away
+    p = make_params(1.0, (1.0, 1.0, 1.0), EARTH_MU, EARTH_RADIUS_EQ, EARTH_J2, EARTH_RADIUS_POLAR)
+    checked = 0
+    for t, y in _earth_states(400):
+        view = StateView.of_state(t, y, None, EARTH_MU, p)
+        readings = (view.geodetic[2], view.vertical_speed)
+        for index, value in enumerate(readings):
+            for threshold in (value, np.nextafter(value, math.inf), np.nextafter(value, -math.inf), value + 1e3):
+                for op, truth in ((BELOW, value < threshold), (ABOVE, value > threshold)):
+                    code = np.array(((op, float(index), threshold),))
+                    assert holds(code, t, y, p) == truth
+                    checked += 1
+        # combinations, postfix: (altitude below) and (climb below), or both ways
+        a, c = readings
+        code = np.array(((BELOW, 0.0, a + 1.0), (BELOW, 1.0, c), (3.0, 0.0, 0.0)))
+        assert holds(code, t, y, p) == (a < a + 1.0 and c < c)
+        code = np.array(((BELOW, 0.0, a - 1.0), (ABOVE, 1.0, c - 1.0), (4.0, 0.0, 0.0)))
+        assert holds(code, t, y, p) == (a < a - 1.0 or c > c - 1.0)
+    assert checked == 400 * 2 * 4 * 2
+
+
+class _Readings:
+    """What fc.below/above read, as the flight computer's readings (a stand-in)."""
+
+    altitude, vertical_speed = 1000.0, -50.0
+
+
+def test_conditions_are_called_as_the_lambdas_they_stand_for():
+    from rocketsim.flight import conditions
+
+    fc = _Readings()
+    low = conditions.compare(fc, "altitude", 2000.0, BELOW)
+    falling = conditions.compare(fc, "vertical_speed", -60.0, BELOW)
+    assert low() is True and falling() is False
+    assert (low & falling)() is False and (low | falling)() is True
+    assert (low & falling).code.shape == (3, 3) and (low & falling).code[2, 0] == conditions.AND
+    fc.vertical_speed = -70.0
+    assert (low & falling)() is True
+    with pytest.raises(TypeError, match="combines"):
+        low & (lambda: True)
+
+
+def test_fc_below_refuses_a_reading_it_cannot_test():
+    from rocketsim.flight.fc import FlightComputer
+
+    fc = FlightComputer.__new__(FlightComputer)
+    with pytest.raises(ValueError, match=r"fc.below\(\): reading must be one of altitude, vertical_speed"):
+        fc.below("speed", 10.0)
+    with pytest.raises(ValueError, match=r"fc.above\(\): value must be a finite number"):
+        fc.above("altitude", math.nan)
+
+
+def test_a_window_needs_two_steps():
+    assert window.fly_window(None, 1) is False
