@@ -55,7 +55,7 @@ def test_negative_mass(scenario, cli):
     path = scenario()
     path.with_name("vehicle.yaml").write_text(VEHICLE.replace("10 kg", "-10 kg"))
     result = cli("validate", path)
-    assert_clean_error(result, "vehicle.yaml:3:3", "rigid_body.mass", "greater than 0")
+    assert_clean_error(result, "vehicle.yaml:3:3", "rigid_body.mass", "must be at least 0.0001 kg")
 
 
 def test_angle_without_unit_is_refused(scenario, cli):
