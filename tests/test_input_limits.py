@@ -1,10 +1,13 @@
-"""Hostile files are refused within the bounds of rocketsim.limits, at their line.
+"""Hostile files are refused within the bounds of rocketsim.limits and
+rocketsim.scenario.bounds, at their line.
 
-Each input here once hung the reader, took gigabytes or ended in a traceback;
-each must now be an input error (exit 2) naming the file, the line and the
-limit, reading no more than a bounded amount of memory.
+Each input here once hung the reader, took gigabytes, ended in a traceback or
+flew a vehicle whose state went non-finite; each must now be an input error
+(exit 2) naming the file, the line and the limit or physical bound, reading no
+more than a bounded amount of memory.
 """
 
+import json
 import os
 import tracemalloc
 
@@ -332,3 +335,13 @@ def test_a_motor_file_beyond_the_physical_bounds_is_refused_at_its_line(write, c
     path = write("v.yaml", "name: r\nstages:\n  - name: S\n    length: 1 m\n    diameter: 0.1 m\n"
                            "    structure_mass: 1 kg\n    motors: [{name: M, file: m.eng}]\n")
     assert_clean_error(cli("validate", path), "v.yaml:7:", message)
+
+
+def test_the_schema_names_each_bound_and_why(cli):
+    schema = json.loads(cli("schema", "--kind", "vehicle").output)
+    engine = schema["$defs"]["EngineSpec"]["properties"]
+    assert engine["thrust_vacuum"]["description"].startswith("vacuum thrust of one engine")
+    assert "[bounds: above 0 N and at most 1e+08 N: no engine" in engine["thrust_vacuum"]["description"]
+    assert "at least 1 and at most 1000" in engine["count"]["description"]
+    stage = schema["$defs"]["StageSpec"]["properties"]
+    assert "at least 0.001 m and at most 1000 m" in stage["length"]["description"]

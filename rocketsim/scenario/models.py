@@ -367,7 +367,8 @@ class TargetOrbit(Strict):
     mean node turning with the mean Sun); programs read the number.
     """
 
-    altitude: Annotated[Length, Field(gt=0)] = Field(description="circular altitude above the equatorial radius")
+    altitude: Annotated[Length, Field(gt=0, le=MAX_START_DISTANCE)] = Field(
+        description="circular altitude above the equatorial radius")
     elements: ElementsKind = Field("mean", description=ELEMENTS_DESCRIPTION)
     inclination: Union[Angle, Literal["sso"]] = Field(
         description="an angle, or 'sso': sun-synchronous at the altitude (J2 nodal rate = the mean Sun's)")
