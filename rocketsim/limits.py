@@ -27,7 +27,8 @@ The limits, and why each is where it is:
 
 :func:`check_data` applies the last three to data handed over in memory (a
 scenario given as a dict), and :func:`compose_yaml` to YAML text before it
-becomes data.
+becomes data. Within these, a vehicle's figures are held to what a vehicle can
+physically have by :mod:`rocketsim.scenario.bounds` (docs/physics.md#input-bounds).
 """
 
 from __future__ import annotations

@@ -57,7 +57,7 @@ def test_a_value_the_field_refuses_is_reported_at_the_dispersion(tmp_path):
                                                                 "low: -310 kg, high: -290 kg"))
     assert result.exit_code == 2, result.output
     assert result.output.startswith(f"error: {campaign}:7:")
-    assert "vehicle.rigid_body.mass" in result.output and "greater than 0" in result.output
+    assert "vehicle.rigid_body.mass" in result.output and "at least 0.0001 kg" in result.output
     assert not out.exists()
 
 

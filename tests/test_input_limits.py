@@ -1,10 +1,13 @@
-"""Hostile files are refused within the bounds of rocketsim.limits, at their line.
+"""Hostile files are refused within the bounds of rocketsim.limits and
+rocketsim.scenario.bounds, at their line.
 
-Each input here once hung the reader, took gigabytes or ended in a traceback;
-each must now be an input error (exit 2) naming the file, the line and the
-limit, reading no more than a bounded amount of memory.
+Each input here once hung the reader, took gigabytes, ended in a traceback or
+flew a vehicle whose state went non-finite; each must now be an input error
+(exit 2) naming the file, the line and the limit or physical bound, reading no
+more than a bounded amount of memory.
 """
 
+import json
 import os
 import tracemalloc
 
@@ -18,6 +21,7 @@ from rocketsim.scenario.models import Scenario
 from rocketsim.scenario.yaml_source import read_yaml
 from tests.conftest import MISSION, VEHICLE
 from tests.test_scenario_errors import assert_clean_error
+from tests.test_vehicle_files import GOOD
 
 # nine lists of nine, eight levels deep: 9^9 = 387 million strings once expanded
 BILLION_LAUGHS = "a: &a [lol, lol, lol, lol, lol, lol, lol, lol, lol]\n" + "".join(
@@ -230,3 +234,114 @@ def test_inline_sounding_columns_are_checked_where_they_are_written(write, cli):
           columns: {PRES: [1000, 850, 700], HGHT: [100, 1500, 3000], TEMP: [20.0, 12.5]}
         """)
     assert_clean_error(cli("validate", path), "scenario.yaml:5:1: weather:", "column TEMP has 2 values, HGHT has 3")
+
+
+# the staged vehicle of tests/test_vehicle_files.py, one line a field, with legs and a thruster
+STAGED = GOOD + """\
+        count: 1
+        spool_up: 1 s
+        gimbal_range: 5 deg
+aero:
+  nose: {length: 2 m, shape: ogive}
+  legs: [{stage: S1, position: -1 m, radius: 2 m, stiffness: 1.0e+7, damping: 1.0e+5}]
+  rcs: [{stage: S1, tank: T, position: 9 m, direction: [0, 1, 0], thrust: 400 N, isp: 70 s}]
+"""
+
+
+@pytest.mark.parametrize("written, changed, where, message", [
+    # found by tests/fuzz (long profile): figures scaled by a careless edit (x 1e-6, x 1e6,
+    # x 0) flew a vehicle whose state went non-finite in the first steps; each is now
+    # refused at its line, naming the physical bound (rocketsim.scenario.bounds)
+    ("length: 10 m", "length: 1.0e+7 m", "v.yaml:4:", "at most 1000 m"),
+    ("diameter: 2 m", "diameter: 1.0e-6 m", "v.yaml:5:", "at least 0.001 m"),
+    ("structure_mass: 1000 kg", "structure_mass: 0 kg", "v.yaml:6:", "at least 0.0001 kg"),
+    ("density: 1000 kg/m3", "density: 1.0e+9 kg/m3", "v.yaml:10:", "at most 100000 kg/m3"),
+    ("count: 1", "count: 1000000", "v.yaml:20:", "at most 1000"),
+    ("thrust_vacuum: 100 kN", "thrust_vacuum: 1.0e+12 N", "v.yaml:16:", "at most 1e+08 N"),
+    ("isp_vacuum: 300 s", "isp_vacuum: 3.0e-4 s", "v.yaml:17:", "at least 1 s"),
+    ("isp_vacuum: 300 s", "mass_flow: 1.0e-9 kg/s", "v.yaml:17:", "specific impulse of 1.01972e+13 s"),
+    ("exit_area: 0.5 m2", "exit_area: 5.0e+11 m2", "v.yaml:18:", "at most 1e+06 m2"),
+    ("spool_up: 1 s", "spool_up: 1.0e-6 s", "v.yaml:21:", "at least 0.001 s"),
+    ("gimbal_range: 5 deg", "gimbal_range: 500 deg", "v.yaml:22:", "at most 1.5708 rad"),
+    ("stiffness: 1.0e+7", "stiffness: 1.0e+20", "v.yaml:25:", "at most 1e+12 N/m"),
+    ("direction: [0, 1, 0]", "direction: [1.0e+300, 1.0e+300, 0]", "v.yaml:26:", "within 1e30"),
+    ("isp: 70 s", "isp: 7.0e+9 s", "v.yaml:26:", "at most 100000 s"),
+    ("length: 2 m, shape", "length: 200 m, shape", "v.yaml:24:", "longer than the stack"),
+    ("count: 1", "count: 3\n        layout_radius: 5 m", "v.yaml:21:", "wider than stage"),
+])
+def test_a_vehicle_figure_beyond_its_physical_bound_is_refused_at_its_line(write, cli, written, changed,
+                                                                        where, message):
+    assert written in STAGED
+    path = write("v.yaml", STAGED.replace(written, changed, 1))
+    assert_clean_error(cli("validate", path), where, message)
+
+
+def test_the_staged_vehicle_of_these_tests_is_valid(write, cli):
+    assert cli("validate", write("v.yaml", STAGED)).exit_code == 0
+
+
+@pytest.mark.parametrize("inertia, message", [
+    ("[0.15, 0.12, 0.5]", "more than the other two moments together"),
+    ("[1.0e-12, 1.0e-12, 1.0e-12]", "radius of gyration of 3.16228e-07 m"),
+    ("[1.0e+9, 1.0e+9, 1.0e+9]", "radius of gyration of 10000 m"),
+])
+def test_a_rigid_body_with_inertia_no_body_has_is_refused_at_its_line(write, cli, inertia, message):
+    path = write("v.yaml", VEHICLE.replace("[0.15, 0.12, 0.05]", inertia))
+    assert_clean_error(cli("validate", path), "v.yaml:4:", "rigid_body.inertia", message)
+
+
+def test_an_orbit_whose_osculating_start_is_underground_is_refused_at_its_line(write, cli):
+    # found by tests/fuzz (long profile): a Falcon 9 at a mean altitude of 0 km. The mean
+    # radius passed the polar-radius check, but J2's short-period terms put the osculating
+    # start 4 km below the ellipsoid, and the legs' springs, kilometres deep, made the state
+    # non-finite at T+0.02 s. 10 km up is 3.6 km above the ground: it flies (and breaks up)
+    write("vehicle.yaml", VEHICLE)
+    for altitude, code in (("2 km", 2), ("10 km", 0)):
+        write("mission.yaml", MISSION.format(duration="1 s").replace("415 km", altitude)
+              .replace("51.6 deg", "28.5 deg"))
+        path = write("scenario.yaml", "name: x\nvehicle: vehicle.yaml\nmission: mission.yaml\n")
+        result = cli("validate", path)
+        assert result.exit_code == code, result.output
+    write("mission.yaml", MISSION.format(duration="1 s").replace("415 km", "2 km")
+          .replace("51.6 deg", "28.5 deg"))
+    assert_clean_error(cli("validate", path), "mission.yaml:3:", "below its surface there",
+                       "osculating orbit of these mean elements")
+
+
+def test_a_state_inside_the_earth_is_refused_at_its_line(write, cli):
+    write("vehicle.yaml", VEHICLE)
+    write("mission.yaml", "epoch: 2026-11-26T12:00:00Z\nstart:\n  state: {position: [0, 0, 6000 km], "
+                          "velocity: [7 km/s, 0, 0]}\nduration: 1 s\n")
+    path = write("scenario.yaml", "name: x\nvehicle: vehicle.yaml\nmission: mission.yaml\n")
+    assert_clean_error(cli("validate", path), "mission.yaml:3:", "starts inside the Earth")
+
+
+def test_a_cpu_budget_the_system_timer_cannot_hold_is_refused_at_its_line(scenario, cli, tmp_path):
+    # setitimer takes no more than about 3e9 s: a budget of 1e10 s raised OverflowError
+    # from the program's first step, a traceback
+    path = scenario(program="def main(fc):\n    fc.sleep(0.1)\n", extra="program_cpu_budget: 1.0e+10 s\n")
+    assert_clean_error(cli("fly", path, "-o", tmp_path / "run.mcap"), "scenario.yaml:4:",
+                       "program_cpu_budget", "at most 3600 s")
+
+
+@pytest.mark.parametrize("text, message", [
+    ("; a motor\nK 54 300 P 0.1 0.2 X\n0.5 2.0e+9\n1 0\n", "line 3: thrust_N must be at least 0 N"),
+    ("; a motor\nK 54 300 P 0.1 0.2 X\n0.5 5\n1.0e+9 0\n", "line 4: time_s must be at least 0 s and at most 3600 s"),
+    ("; a motor\nK 1.0e+9 300 P 0.1 0.2 X\n0.5 5\n1 0\n", "line 2: diameter_mm must be"),
+    ("; a motor\nK 54 300 P 0.1 0.2 X\n1.0e-9 1.0e-9\n2.0e-9 0\n", "delivers 1e-18 N s"),
+])
+def test_a_motor_file_beyond_the_physical_bounds_is_refused_at_its_line(write, cli, text, message):
+    write("m.eng", text)
+    path = write("v.yaml", "name: r\nstages:\n  - name: S\n    length: 1 m\n    diameter: 0.1 m\n"
+                           "    structure_mass: 1 kg\n    motors: [{name: M, file: m.eng}]\n")
+    assert_clean_error(cli("validate", path), "v.yaml:7:", message)
+
+
+def test_the_schema_names_each_bound_and_why(cli):
+    schema = json.loads(cli("schema", "--kind", "vehicle").output)
+    engine = schema["$defs"]["EngineSpec"]["properties"]
+    assert engine["thrust_vacuum"]["description"].startswith("vacuum thrust of one engine")
+    assert "[bounds: above 0 N and at most 1e+08 N: no engine" in engine["thrust_vacuum"]["description"]
+    assert "at least 1 and at most 1000" in engine["count"]["description"]
+    stage = schema["$defs"]["StageSpec"]["properties"]
+    assert "at least 0.001 m and at most 1000 m" in stage["length"]["description"]

@@ -55,7 +55,7 @@ def test_negative_mass(scenario, cli):
     path = scenario()
     path.with_name("vehicle.yaml").write_text(VEHICLE.replace("10 kg", "-10 kg"))
     result = cli("validate", path)
-    assert_clean_error(result, "vehicle.yaml:3:3", "rigid_body.mass", "greater than 0")
+    assert_clean_error(result, "vehicle.yaml:3:3", "rigid_body.mass", "must be at least 0.0001 kg")
 
 
 def test_angle_without_unit_is_refused(scenario, cli):
@@ -135,3 +135,11 @@ def test_an_epoch_before_1970_is_refused_not_written_wrong(scenario, cli, tmp_pa
     mission.write_text(mission.read_text().replace("2026-11-26T12:00:00Z", "1969-07-16T13:32:00Z"))
     result = cli("fly", path, "-o", tmp_path / "run.mcap")
     assert_clean_error(result, "mission.yaml:1:1", "epoch", "before 1970-01-01")
+
+
+def test_a_wait_until_condition_without_a_line_of_its_own_is_named_at_the_call(scenario, cli):
+    # found by tests/fuzz (long profile): fc.wait_until(print) returned None from a builtin,
+    # which has no line in the program: the error named the program but no line
+    path = scenario(program="def main(fc):\n    fc.step()\n    fc.wait_until(print)\n")
+    result = cli("fly", path, "-o", path.with_name("out.mcap"))
+    assert_clean_error(result, "program.py:3: ", "the condition must return True or False, got None")

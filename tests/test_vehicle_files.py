@@ -50,7 +50,7 @@ def test_tank_longer_than_its_stage(write, cli, command):
 def test_negative_isp(write, cli):
     path = write("v.yaml", GOOD.replace("isp_vacuum: 300 s", "isp_vacuum: -300 s"))
     assert_clean_error(cli("validate", path), "v.yaml:17:", "stages.0.engines.0.isp_vacuum",
-                       "must be positive")
+                       "must be at least 1 s")
 
 
 def test_engine_without_a_stage(write, cli):

@@ -183,13 +183,19 @@ def _raised_by_program(error: BaseException, path: Path) -> bool:
     return not isinstance(error, KeyboardInterrupt) and bool(frames) and Path(frames[-1].filename) == path
 
 
+def _deepest_line(frames, path: Path, line: int | None = None) -> int | None:
+    """The line of the deepest of ``frames`` (a traceback's or a stack's) in ``path``, else ``line``."""
+    for frame in frames:
+        if Path(frame.filename) == path:
+            line = frame.lineno
+    return line
+
+
 def _program_error(error: BaseException, path: Path, budget: float = 0.0,
                    line: int | None = None) -> ProgramError:
     """A :class:`ProgramError` pointing at the deepest line of ``path`` in the traceback
     (else at ``line``)."""
-    for frame in traceback.extract_tb(error.__traceback__):
-        if Path(frame.filename) == path:
-            line = frame.lineno
+    line = _deepest_line(traceback.extract_tb(error.__traceback__), path, line)
     if isinstance(error, ProgramOverBudget):
         return ProgramError(f"the program ran {budget:g} s of CPU time in one step without handing "
                             "back control (fc.step(), fc.sleep() or fc.wait_until()); is it in an "
@@ -213,6 +219,7 @@ class ProgramRunner:
         self._greenlet: greenlet.greenlet | None = None
         self._wake_time = 0.0
         self._predicate: Callable[[], bool] | None = None
+        self._predicate_line: int | None = None     # the program's line that handed it over
         self.finished = False
 
     # --- called by the simulator -------------------------------------------
@@ -230,8 +237,9 @@ class ProgramRunner:
             if not _raised_by_program(error, self.path):
                 raise
             self.finished = True
-            code = getattr(self._predicate, "__code__", None)    # the condition's own line
-            line = code.co_firstlineno if code is not None and Path(code.co_filename) == self.path else None
+            code = getattr(self._predicate, "__code__", None)    # the condition's own line, else
+            line = (code.co_firstlineno if code is not None and Path(code.co_filename) == self.path
+                    else self._predicate_line)                    # that of fc.wait_until's call
             raise _program_error(error, self.path, self.cpu_budget, line) from None
         if ready:
             self._predicate = None
@@ -285,6 +293,8 @@ class ProgramRunner:
             raise RuntimeError("fc.step()/sleep()/wait_until() called outside the flight program")
         self._wake_time = wake_time
         self._predicate = predicate
+        if predicate is not None:
+            self._predicate_line = _deepest_line(traceback.extract_stack(), self.path)
         current.parent.switch()
 
 

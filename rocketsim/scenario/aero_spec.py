@@ -16,11 +16,24 @@ from typing import Annotated, Literal, Optional
 from pydantic import BaseModel, Field, field_validator
 
 from rocketsim.constants import FRICTION_REGULARISATION
+from rocketsim.scenario.bounds import (ANGLE, AREA, BODY_MASS, COUNT, DIRECTION, EXTENT, ISP,
+                                       MAX_AXIAL_LOAD, MAX_COEFFICIENT, MAX_DAMPING, MAX_FRICTION,
+                                       MAX_FRICTION_SPEED, MAX_MACH, MAX_Q_ALPHA,
+                                       MAX_SPECIFIC_HEAT, MAX_STIFFNESS, MAX_TEMPERATURE,
+                                       MIN_FRICTION_SPEED, MIN_SPECIFIC_HEAT, SIZE, SLEW, STATION,
+                                       THRUST, within)
 from rocketsim.scenario.units import (STRICT, Acceleration, Angle, AngularRate, Area, Force, Length,
                                       Mass, Speed, SpecificImpulse, Temperature)
 
-PositiveLength = Annotated[Length, Field(gt=0)]
-NonNegativeLength = Annotated[Length, Field(ge=0)]
+# a vehicle's figures, within the physical bounds of rocketsim.scenario.bounds
+PositiveLength = Annotated[Length, SIZE]
+STIFFNESS = within(0.0, MAX_STIFFNESS, "stiffness", "N/m", above=True)
+DAMPING = within(0.0, MAX_DAMPING, "damping", "N s/m")
+NonNegativeLength = Annotated[Length, EXTENT]
+Station = Annotated[Length, STATION]
+# a (Mach, C_A) row of an axial-force table
+AxialRow = tuple[Annotated[float, within(0.0, MAX_MACH, "mach")],
+                 Annotated[float, within(0.0, MAX_COEFFICIENT, "coefficient")]]
 
 
 class _Strict(BaseModel):
@@ -39,7 +52,7 @@ class FinSetSpec(_Strict):
 
     stage: str = Field(description="name of the stage the fins are on")
     count: Annotated[int, Field(ge=3, le=4)] = 4
-    position: Length = Field(description="height of the root chord's leading (upper) edge above the stage base")
+    position: Station = Field(description="height of the root chord's leading (upper) edge above the stage base")
     root_chord: PositiveLength
     tip_chord: NonNegativeLength
     span: PositiveLength = Field(description="from the body to the tip")
@@ -50,26 +63,28 @@ class GridFinSpec(_Strict):
     """Grid fins on arms round the stage (``count`` evenly spaced from body +y)."""
 
     stage: str
-    count: Annotated[int, Field(ge=2)] = 4
-    position: Length = Field(description="height of the fins' centre above the stage base")
+    count: Annotated[int, Field(ge=2), COUNT] = 4
+    position: Station = Field(description="height of the fins' centre above the stage base")
     radius: PositiveLength = Field(description="distance of each fin's centre of pressure from the axis")
-    area: Annotated[Area, Field(gt=0)] = Field(description="frontal (reference) area of one fin")
-    max_deflection: Annotated[Angle, Field(gt=0)] = Field(0.349, description="deflection limit (default 20 deg)")
-    rate: Annotated[AngularRate, Field(gt=0)] = Field(1.047, description="slew limit (default 60 deg/s)")
-    stall: Annotated[Angle, Field(gt=0)] = Field(0.436, description="stall angle of the lattice (default 25 deg)")
+    area: Annotated[Area, AREA] = Field(description="frontal (reference) area of one fin")
+    max_deflection: Annotated[Angle, Field(gt=0), ANGLE] = Field(0.349, description="deflection limit (default 20 deg)")
+    rate: Annotated[AngularRate, Field(gt=0), SLEW] = Field(1.047, description="slew limit (default 60 deg/s)")
+    stall: Annotated[Angle, Field(gt=0), ANGLE] = Field(0.436, description="stall angle of the lattice (default 25 deg)")
 
 
 class LegSpec(_Strict):
     """Landing legs: ``count`` feet on a ring, each a stiff spring with damping and friction."""
 
     stage: str
-    count: Annotated[int, Field(ge=3)] = 4
-    position: Length = Field(description="height of the feet above the stage base (negative: below it)")
+    count: Annotated[int, Field(ge=3), COUNT] = 4
+    position: Station = Field(description="height of the feet above the stage base (negative: below it)")
     radius: PositiveLength = Field(description="radius of the ring of feet")
-    stiffness: Annotated[float, Field(gt=0)] = Field(description="spring stiffness of one leg, N/m")
-    damping: Annotated[float, Field(ge=0)] = Field(description="damping of one leg, N s/m")
-    friction: Annotated[float, Field(ge=0)] = Field(0.6, description="Coulomb friction coefficient")
-    friction_speed: Annotated[Speed, Field(gt=0)] = Field(
+    stiffness: Annotated[float, STIFFNESS] = Field(description="spring stiffness of one leg, N/m")
+    damping: Annotated[float, DAMPING] = Field(description="damping of one leg, N s/m")
+    friction: Annotated[float, within(0.0, MAX_FRICTION, "friction")] = Field(
+        0.6, description="Coulomb friction coefficient")
+    friction_speed: Annotated[Speed, within(MIN_FRICTION_SPEED, MAX_FRICTION_SPEED, "friction speed",
+                                            "m/s")] = Field(
         FRICTION_REGULARISATION, description="sliding speed below which friction is regularised "
         "(a damper of mu N / speed; keep mu N r^2 / (speed I_roll) under ~400 /s)")
 
@@ -79,12 +94,14 @@ class ThrusterSpec(_Strict):
 
     stage: str
     tank: str = Field(description="name of the tank (of that stage) it draws from")
-    position: Length = Field(description="height above the stage base")
-    y: Length = 0.0
-    z: Length = 0.0
-    direction: tuple[float, float, float] = Field(description="thrust direction in body axes (normalised)")
-    thrust: Annotated[Force, Field(gt=0)]
-    isp: Annotated[SpecificImpulse, Field(gt=0)]
+    position: Station = Field(description="height above the stage base")
+    y: Station = 0.0
+    z: Station = 0.0
+    direction: tuple[Annotated[float, DIRECTION], Annotated[float, DIRECTION],
+                     Annotated[float, DIRECTION]] = Field(
+        description="thrust direction in body axes (normalised)")
+    thrust: Annotated[Force, THRUST]
+    isp: Annotated[SpecificImpulse, ISP]
 
     @field_validator("direction")
     @classmethod
@@ -98,11 +115,13 @@ class HeatShieldSpec(_Strict):
     """A heat shield as one lumped thermal mass at the stagnation point."""
 
     nose_radius: PositiveLength = Field(description="effective nose radius for Sutton-Graves")
-    mass: Annotated[Mass, Field(gt=0)]
-    specific_heat: Annotated[float, Field(gt=0)] = Field(description="J/(kg K)")
-    area: Annotated[Area, Field(gt=0)] = Field(description="heated (and radiating) area")
+    mass: Annotated[Mass, BODY_MASS]
+    specific_heat: Annotated[float, within(MIN_SPECIFIC_HEAT, MAX_SPECIFIC_HEAT, "specific heat",
+                                           "J/(kg K)")] = Field(description="J/(kg K)")
+    area: Annotated[Area, AREA] = Field(description="heated (and radiating) area")
     emissivity: Annotated[float, Field(gt=0, le=1)] = 0.85
-    initial_temperature: Annotated[Temperature, Field(gt=0)] = 290.0
+    initial_temperature: Annotated[Temperature, within(0.0, MAX_TEMPERATURE, "temperature", "K",
+                                                       above=True)] = 290.0
 
 
 class LimitsSpec(_Strict):
@@ -110,9 +129,11 @@ class LimitsSpec(_Strict):
     the defaults sized for launchers (250 kPa deg, 15 g): a small hobby rocket takes
     far higher loads."""
 
-    q_alpha: Optional[Annotated[float, Field(gt=0)]] = Field(
+    q_alpha: Optional[Annotated[float, within(0.0, MAX_Q_ALPHA, "structural limit", "Pa deg",
+                                              above=True)]] = Field(
         None, description="bending load q alpha that breaks the vehicle, Pa deg")
-    axial_load: Optional[Annotated[Acceleration, Field(gt=0)]] = Field(
+    axial_load: Optional[Annotated[Acceleration, within(0.0, MAX_AXIAL_LOAD, "structural limit",
+                                                        "m/s2", above=True)]] = Field(
         None, description="axial load that breaks the vehicle, e.g. '40 g'")
 
 
@@ -124,17 +145,17 @@ class AeroSpec(_Strict):
         "that only flies in vacuum); the section then carries only its RCS thrusters")
     nose: NoseSpec = NoseSpec(length=0.0, shape="blunt")
     segments: Annotated[int, Field(ge=10, le=200)] = Field(20, description="body segments for the crossflow")
-    axial_nose_first: Optional[list[tuple[float, float]]] = Field(
+    axial_nose_first: Optional[list[AxialRow]] = Field(
         None, description="(Mach, C_A) pairs, increasing Mach; default the physics model's table")
-    axial_tail_first: Optional[list[tuple[float, float]]] = Field(
+    axial_tail_first: Optional[list[AxialRow]] = Field(
         None, description="(Mach, C_A) pairs, increasing Mach; default the physics model's table")
     fins: list[FinSetSpec] = []
     grid_fins: list[GridFinSpec] = []
     legs: list[LegSpec] = []
-    body_contact_stiffness: Optional[Annotated[float, Field(gt=0)]] = Field(
+    body_contact_stiffness: Optional[Annotated[float, STIFFNESS]] = Field(
         None, description="N/m, the body's ends and engine bells touching the ground; default "
         "2e7, or 1e4 per kg of dry mass under 2 t (docs/physics.md#ground-contact)")
-    body_contact_damping: Optional[Annotated[float, Field(ge=0)]] = Field(
+    body_contact_damping: Optional[Annotated[float, DAMPING]] = Field(
         None, description="N s/m; default 2e5, or 100 per kg of dry mass under 2 t")
     rcs: list[ThrusterSpec] = []
     heat_shield: Optional[HeatShieldSpec] = None
@@ -155,12 +176,19 @@ class AeroSpec(_Strict):
         return value
 
 
-def check_aero(aero: AeroSpec | None, stages) -> None:
+def check_aero(aero: AeroSpec | None, stages, payload=None) -> None:
     """Every part of ``aero`` names a stage of the vehicle (and a thruster a tank of its
-    stage); raises a located ValidationError (relative to the vehicle)."""
+    stage), and the nose is no longer than the stack under it (its stages and
+    ``payload``, the top once a fairing is gone); raises a located ValidationError
+    (relative to the vehicle)."""
     if aero is None or stages is None:
         return
     from rocketsim.scenario.vehicle import field_error
+    stack = sum(st.length for st in stages) + (payload.length if payload is not None else 0.0)
+    if aero.nose.length > stack * (1 + 1e-12):
+        raise field_error(("aero", "nose", "length"), f"the nose ({aero.nose.length:g} m) is longer "
+                          f"than the stack it tops ({stack:g} m: the stages and the payload)",
+                          aero.nose.length)
     by_name = {st.name: st for st in stages}
     for label in ("fins", "grid_fins", "legs", "rcs"):
         for i, part in enumerate(getattr(aero, label)):

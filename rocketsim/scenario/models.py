@@ -23,23 +23,32 @@ from pydantic import BaseModel, Field, field_validator, model_validator
 
 from rocketsim.bodies.sun_synchronous import (sun_synchronous_inclination,
                                               sun_synchronous_osculating_inclination)
-from rocketsim.constants import (EARTH_RADIUS_EQ, EARTH_RADIUS_POLAR, MARS_FLATTENING, MARS_RADIUS_EQ,
-                                 MAX_DURATION, MAX_HEADLESS_STEP, MAX_START_DISTANCE, MAX_START_SPEED,
-                                 MIN_STEP, MOON_RADIUS, STEP)
+from rocketsim.constants import (EARTH_J2, EARTH_MU, EARTH_RADIUS_EQ, EARTH_RADIUS_POLAR, MARS_FLATTENING,
+                                 MARS_J2, MARS_MU, MARS_RADIUS_EQ, MAX_DURATION, MAX_HEADLESS_STEP,
+                                 MAX_START_DISTANCE, MAX_START_SPEED, MIN_STEP, MOON_J2, MOON_MU,
+                                 MOON_RADIUS, STEP)
+from rocketsim.frames.elements import Elements, elements_to_state
+from rocketsim.frames.mean_elements import mean_to_osculating
 from rocketsim.limits import MAX_SEED, check_data
+from rocketsim.scenario.bounds import (BODY_MASS, BOUNDS, EXTENT, MAX_PROGRAM_CPU, MAX_SITE_HEIGHT,
+                                       MAX_SIZE, MIN_SITE_HEIGHT, MIN_SIZE, SIZE, within)
 from rocketsim.scenario.classic_range import CLASSIC, classic_site
 from rocketsim.scenario.weather import Weather
 from rocketsim.scenario.units import STRICT, Angle, Duration, Frequency, Inertia, Length, Mass, Speed
 from rocketsim.scenario.aero_spec import AeroSpec, check_aero
-from rocketsim.scenario.vehicle import FairingSpec, PayloadSpec, StageSpec, check_staged
+from rocketsim.scenario.vehicle import FairingSpec, PayloadSpec, StageSpec, check_staged, field_error
 from rocketsim.scenario.stage_selection import keep_stages, reload_tanks, stack_spacecraft
 
 UNIX_EPOCH = dt.datetime(1970, 1, 1, tzinfo=dt.timezone.utc)
 
-PositiveMass = Annotated[Mass, Field(gt=0)]
+PositiveMass = Annotated[Mass, BODY_MASS]
 # a path to a YAML file of its own, resolved by the loader relative to the scenario
 FileReference = Annotated[str, Field(pattern=r"\.ya?ml$")]
 PositiveInertia = Annotated[Inertia, Field(gt=0)]
+# a height of a site above the WGS84 ellipsoid
+SiteHeight = Annotated[Length, within(MIN_SITE_HEIGHT, MAX_SITE_HEIGHT, "site height", "m")]
+# a latitude, -90 deg .. 90 deg
+Latitude = Annotated[Angle, within(-math.pi / 2, math.pi / 2, "latitude", "rad")]
 
 
 class Strict(BaseModel):
@@ -55,9 +64,27 @@ class RigidBodySpec(Strict):
 
     mass: PositiveMass = Field(description="total mass")
     inertia: tuple[PositiveInertia, PositiveInertia, PositiveInertia] = Field(
-        description="principal moments of inertia about the centre of mass: roll (x), pitch (y), yaw (z)")
-    length: Annotated[Length, Field(gt=0)] = Field(1.0, description="overall length (for plots)")
-    diameter: Annotated[Length, Field(gt=0)] = Field(1.0, description="reference diameter")
+        description="principal moments of inertia about the centre of mass: roll (x), pitch (y), "
+        "yaw (z); each at most the sum of the other two (as any body's are), and each the mass "
+        f"times a radius of gyration of {MIN_SIZE:g} m .. {MAX_SIZE:g} m ({BOUNDS['size']})")
+    length: Annotated[Length, SIZE] = Field(1.0, description="overall length (for plots)")
+    diameter: Annotated[Length, SIZE] = Field(1.0, description="reference diameter")
+
+    @model_validator(mode="after")
+    def _physical_inertia(self) -> "RigidBodySpec":
+        moments = self.inertia
+        for k, moment in enumerate(moments):
+            gyration = math.sqrt(moment / self.mass)
+            if not MIN_SIZE <= gyration <= MAX_SIZE:
+                raise field_error(("inertia", k), f"{moment:g} kg m2 on {self.mass:g} kg is a radius "
+                                  f"of gyration of {gyration:g} m, not {MIN_SIZE:g} m .. {MAX_SIZE:g} m: "
+                                  f"{BOUNDS['size']}", moment)
+            others = sum(moments) - moment
+            if moment > others * (1 + 1e-9):
+                raise field_error(("inertia", k), f"{moment:g} kg m2 is more than the other two "
+                                  f"moments together ({others:g} kg m2): no body's principal moments "
+                                  "are (each is at most the sum of the other two)", moment)
+        return self
 
 
 class VehicleSpec(Strict):
@@ -80,7 +107,7 @@ class VehicleSpec(Strict):
             raise ValueError("give exactly one of 'rigid_body' or 'stages'")
         if self.stages is not None:
             check_staged(self.stages, self.engines)
-            check_aero(self.aero, self.stages)
+            check_aero(self.aero, self.stages, self.payload)
         elif (self.engines is not None or self.payload is not None or self.fairing is not None
               or self.aero is not None):
             raise ValueError("'engines', 'payload', 'fairing' and 'aero' go with 'stages', not 'rigid_body'")
@@ -95,9 +122,9 @@ class SiteSpec(Strict):
     name: str
     latitude: Angle = Field(description="geodetic latitude")
     longitude: Angle = Field(description="longitude, east positive")
-    height: Length = Field(0.0, description="height of the pad above the WGS84 ellipsoid")
+    height: SiteHeight = Field(0.0, description="height of the pad above the WGS84 ellipsoid")
     pad_azimuth: Angle = Field(1.5707963267948966, description="launch azimuth from north, default due east")
-    ground_height: Optional[Length] = Field(
+    ground_height: Optional[SiteHeight] = Field(
         None, description="height above the WGS84 ellipsoid of a flat ground around the site that "
         "a vehicle launched from here lands on (its contact points, touchdown, impact, parachute "
         "heights); default none: the ground is the ellipsoid itself. Usually the pad's height")
@@ -140,9 +167,18 @@ ELEMENTS_DESCRIPTION = (
 
 # a body rate at the start, rad/s: 10 000 rad/s (1 600 turns a second) is beyond any vehicle
 _Rate = Annotated[float, Field(ge=-1e4, le=1e4)]
-# equatorial and polar radii (m) of the bodies an orbit can start about
-_RADII = {"earth": (EARTH_RADIUS_EQ, EARTH_RADIUS_POLAR), "moon": (MOON_RADIUS, MOON_RADIUS),
-          "mars": (MARS_RADIUS_EQ, MARS_RADIUS_EQ * (1.0 - MARS_FLATTENING))}
+# gravitational parameter (m^3/s^2), equatorial and polar radii (m) and J2 of the bodies an
+# orbit can start about (the J2 reference radius is the equatorial one)
+_BODIES = {"earth": (EARTH_MU, EARTH_RADIUS_EQ, EARTH_RADIUS_POLAR, EARTH_J2),
+           "moon": (MOON_MU, MOON_RADIUS, MOON_RADIUS, MOON_J2),
+           "mars": (MARS_MU, MARS_RADIUS_EQ, MARS_RADIUS_EQ * (1.0 - MARS_FLATTENING), MARS_J2)}
+
+
+def inside_body(r, body: str) -> bool:
+    """Whether the point ``r`` (m, in the body's frame: ``z`` along its pole) lies inside
+    ``body``'s ellipsoid (or on it)."""
+    _, equatorial, polar, _ = _BODIES[body]
+    return (r[0] ** 2 + r[1] ** 2) / equatorial ** 2 + r[2] ** 2 / polar ** 2 <= 1.0
 # a start's lengths and speeds (m, m/s), within the constants' bounds either way
 _StartLength = Annotated[Length, Field(ge=-MAX_START_DISTANCE, le=MAX_START_DISTANCE)]
 _StartSpeed = Annotated[Speed, Field(ge=-MAX_START_SPEED, le=MAX_START_SPEED)]
@@ -182,7 +218,7 @@ class OrbitStart(Strict):
             raise ValueError("give exactly one of 'altitude' or 'semi_major_axis'")
         if self.altitude is not None and self.eccentricity != 0.0:
             raise ValueError("'altitude' means a circular orbit: use 'semi_major_axis' with 'eccentricity'")
-        equatorial, polar = _RADII[self.body]
+        mu, equatorial, polar, j2 = _BODIES[self.body]
         a = self.semi_major_axis if self.altitude is None else equatorial + self.altitude
         e, nu = self.eccentricity, self.true_anomaly
         start = a * (1.0 - e * e) / (1.0 + e * math.cos(nu))
@@ -199,7 +235,34 @@ class OrbitStart(Strict):
                 i = sun_synchronous_osculating_inclination(a, self.eccentricity, self.raan,
                                                            self.arg_periapsis, self.true_anomaly)
             object.__setattr__(self, "inclination", i)
+        self._starts_above_the_surface(a, mu, equatorial, j2)
         return self
+
+    def _starts_above_the_surface(self, a: float, mu: float, radius: float, j2: float) -> None:
+        """The point the flight starts from (for mean elements, that of the osculating
+        orbit, J2's short-period terms added: tens of km lower at some anomalies) lies
+        outside the body's ellipsoid; a start inside it would begin the flight with its
+        contact springs compressed by kilometres."""
+        elements = Elements(a, self.eccentricity, self.inclination, self.raan, self.arg_periapsis,
+                            self.true_anomaly, mu)
+        try:
+            if self.elements == "mean":
+                elements = mean_to_osculating(elements, radius, j2)
+            r, _ = elements_to_state(elements.a, elements.e, elements.i, elements.raan,
+                                     elements.argp, elements.nu, mu)
+        except (ArithmeticError, ValueError):
+            r = None
+        if r is None or not all(math.isfinite(c) for c in r):
+            raise ValueError("these mean elements have no osculating orbit (J2's short-period "
+                             f"terms do not converge this close to {self.body} or this eccentric): "
+                             "raise the altitude, or give 'elements: osculating'")
+        if inside_body(r, self.body):
+            distance = math.sqrt(sum(c * c for c in r))
+            raise ValueError(f"the orbit starts {distance:g} m from the centre of {self.body}, "
+                             "below its surface there" + (" (the starting point of the osculating "
+                                                          "orbit of these mean elements)"
+                                                          if self.elements == "mean" else "")
+                             + ": raise the altitude or semi-major axis")
 
 
 class StateStart(Strict):
@@ -207,6 +270,14 @@ class StateStart(Strict):
 
     position: tuple[_StartLength, _StartLength, _StartLength]
     velocity: tuple[_StartSpeed, _StartSpeed, _StartSpeed]
+
+    @field_validator("position")
+    @classmethod
+    def _above_the_surface(cls, value):
+        if inside_body(value, "earth"):
+            raise ValueError(f"the state starts inside the Earth ({math.sqrt(sum(c * c for c in value)):g} m "
+                             "from its centre, on or below the WGS84 ellipsoid there)")
+        return value
 
 
 class RailSpec(Strict):
@@ -219,12 +290,12 @@ class RailSpec(Strict):
     away from the crowd, into the day's wind), while the site file stays the place.
     """
 
-    length: Annotated[Length, Field(gt=0)] = Field(description="length of the rail")
+    length: Annotated[Length, SIZE] = Field(description="length of the rail")
     inclination: Optional[Angle] = Field(
         None, description="elevation of the rail above the horizon; default the start's elevation")
     heading: Optional[Angle] = Field(
         None, description="azimuth the rail leans towards, from north; default the site's pad azimuth")
-    last_button: Annotated[Length, Field(ge=0)] = Field(
+    last_button: Annotated[Length, EXTENT] = Field(
         0.0, description="height of the vehicle's aft rail button above its base (the last to leave)")
 
     @model_validator(mode="after")
@@ -247,7 +318,8 @@ class SiteStart(Strict):
     """
 
     velocity: tuple[_StartSpeed, _StartSpeed, _StartSpeed] = (0.0, 0.0, 0.0)
-    elevation: Angle = Field(1.5707963267948966, description="nose elevation, default vertical")
+    elevation: Annotated[Angle, within(-math.pi / 2, math.pi / 2, "elevation", "rad")] = Field(
+        1.5707963267948966, description="nose elevation, default vertical")
     rail: Optional[RailSpec] = Field(None, description="a launch rail (a staged vehicle)")
 
     @model_validator(mode="after")
@@ -295,7 +367,8 @@ class TargetOrbit(Strict):
     mean node turning with the mean Sun); programs read the number.
     """
 
-    altitude: Annotated[Length, Field(gt=0)] = Field(description="circular altitude above the equatorial radius")
+    altitude: Annotated[Length, Field(gt=0, le=MAX_START_DISTANCE)] = Field(
+        description="circular altitude above the equatorial radius")
     elements: ElementsKind = Field("mean", description=ELEMENTS_DESCRIPTION)
     inclination: Union[Angle, Literal["sso"]] = Field(
         description="an angle, or 'sso': sun-synchronous at the altitude (J2 nodal rate = the mean Sun's)")
@@ -316,7 +389,7 @@ class TargetPad(Strict):
     """A landing pad on the WGS84 ellipsoid (the ground; no terrain)."""
 
     name: str = "pad"
-    latitude: Angle
+    latitude: Latitude
     longitude: Angle
 
 
@@ -393,7 +466,7 @@ class Scenario(Strict):
         default_factory=dict, description="programs of stages that separate: stage name -> "
         "program file; a stage without one coasts as a body nobody flies")
     step: Annotated[Duration, Field(gt=0)] = Field(STEP, description="integration step, at most 0.1 s")
-    program_cpu_budget: Annotated[Duration, Field(gt=0)] = Field(
+    program_cpu_budget: Annotated[Duration, within(0.0, MAX_PROGRAM_CPU, "cpu", "s", above=True)] = Field(
         1.0, description="CPU time the program may use in one step before it is stopped")
     telemetry: TelemetrySpec = TelemetrySpec()
     seed: int = Field(0, ge=0, le=MAX_SEED, description="seed of every random stream of the run "

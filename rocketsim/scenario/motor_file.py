@@ -16,7 +16,9 @@ CSV: lines ``time_s,thrust_N`` (``;`` or ``#`` comments and a non-numeric
 header line allowed). A CSV has no header figures: the motor's diameter,
 length and masses must then be given in the vehicle file.
 
-Every problem raises :class:`MotorFileError` naming the file and its line.
+Every problem raises :class:`MotorFileError` naming the file and its line, and
+so does a figure beyond the physical bounds of :mod:`rocketsim.scenario.bounds`
+(a size, a mass, a thrust, a time).
 """
 
 from __future__ import annotations
@@ -24,6 +26,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from pathlib import Path
+
+from rocketsim.scenario.bounds import BODY_MASS, BURN_TIME, CURVE_THRUST, SIZE
 
 
 class MotorFileError(ValueError):
@@ -73,6 +77,10 @@ def _eng(path: Path, text: str) -> ThrustCurve:
     if any(value <= 0 for value in figures):
         raise MotorFileError(f"{path}, line {n}: diameter, length, propellant and total mass must "
                              "be positive")
+    for (value, label), bound, scale in zip(((diameter, "diameter_mm"), (length, "length_mm"),
+                                             (propellant, "propellant_kg"), (total, "total_kg")),
+                                            (SIZE, SIZE, BODY_MASS, BODY_MASS), (1e-3, 1e-3, 1.0, 1.0)):
+        _bounded(path, n, float(value) * scale, label, bound)
     if figures[2] >= figures[3]:
         raise MotorFileError(f"{path}, line {n}: the propellant mass ({figures[2]:g} kg) must be less "
                              f"than the total mass ({figures[3]:g} kg): the case is the difference")
@@ -113,6 +121,15 @@ def _number(path: Path, n: int, text: str, label: str) -> float:
     return value
 
 
+def _bounded(path: Path, n: int, value: float, label: str, bound) -> None:
+    """Refuse ``value`` (SI) of ``label`` on line ``n`` beyond ``bound`` (a
+    :class:`~rocketsim.scenario.bounds.Within`)."""
+    try:
+        bound.check(value)
+    except ValueError as error:
+        raise MotorFileError(f"{path}, line {n}: {label} {error} (got {value:g})") from None
+
+
 def _points(path: Path, rows) -> tuple[tuple[float, float], ...]:
     """The curve from ``(line, time, thrust)`` rows: times increasing, thrusts not negative,
     starting at ``(0, 0)``."""
@@ -131,6 +148,8 @@ def _points(path: Path, rows) -> tuple[tuple[float, float], ...]:
                                  f"(got {t:g} s after {previous:g} s)")
         if thrust < 0.0:
             raise MotorFileError(f"{path}, line {n}: thrust cannot be negative (got {thrust:g} N)")
+        _bounded(path, n, t, "time_s", BURN_TIME)
+        _bounded(path, n, thrust, "thrust_N", CURVE_THRUST)
         points.append((t, thrust))
         previous = t
     if len(points) < 2 or not any(thrust > 0.0 for _, thrust in points):

@@ -19,6 +19,7 @@ from typing import Annotated, Any
 from pydantic import BeforeValidator, ConfigDict, WithJsonSchema
 
 from rocketsim.limits import MAX_QUANTITY
+from rocketsim.scenario.bounds import document_bounds
 
 # dimension -> {unit spelling: factor to the SI unit}
 UNITS: dict[str, dict[str, float]] = {
@@ -48,8 +49,10 @@ UNITS: dict[str, dict[str, float]] = {
 }
 
 # the settings of every scenario model: unknown fields are errors, and so is a number
-# that is not finite (nan, inf, or a quantity such as "1e308 km" whose SI value overflows)
-STRICT = ConfigDict(extra="forbid", frozen=True, allow_inf_nan=False)
+# that is not finite (nan, inf, or a quantity such as "1e308 km" whose SI value overflows);
+# the schema's descriptions name the physical bounds of fields (rocketsim.scenario.bounds)
+STRICT = ConfigDict(extra="forbid", frozen=True, allow_inf_nan=False,
+                    json_schema_extra=document_bounds)
 
 _QUANTITY = re.compile(r"^\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*(.*?)\s*$")
 

@@ -36,16 +36,23 @@ from pathlib import Path
 from pydantic import BaseModel, Field, ValidationInfo, field_validator, model_validator
 from pydantic_core import InitErrorDetails, PydanticCustomError, ValidationError
 
-from rocketsim.constants import ENGINE_TAIL_OFF, G0
+from rocketsim.constants import ENGINE_TAIL_OFF, G0, MAX_DURATION
+from rocketsim.scenario.bounds import (ANGLE, BODY_MASS, BOUNDS, BURN_TIME, COUNT, CURVE_THRUST,
+                                       EXTENT, ISP, MAX_COUNT, MAX_DENSITY, MAX_MASS, MAX_PRESSURE,
+                                       MAX_SEPARATION_SPEED, MAX_SIZE, MAX_THROTTLE_RATE,
+                                       MIN_DENSITY, MIN_IMPULSE, PART_MASS, RESPONSE, SIZE, SLEW,
+                                       THRUST, within)
 from rocketsim.scenario.motor_file import MotorFileError, read_thrust_curve
 from rocketsim.scenario.units import (STRICT, Angle, AngularRate, Area, Density, Duration, Force,
                                       Fraction, Length, Mass, MassFlow, Pressure, SpecificImpulse,
                                       Speed)
 
-PositiveLength = Annotated[Length, Field(gt=0)]
-NonNegativeLength = Annotated[Length, Field(ge=0)]
-NonNegativeMass = Annotated[Mass, Field(ge=0)]
-PositiveMass = Annotated[Mass, Field(gt=0)]
+# a vehicle's figures, within the physical bounds of rocketsim.scenario.bounds
+PositiveLength = Annotated[Length, SIZE]
+NonNegativeLength = Annotated[Length, EXTENT]
+NonNegativeMass = Annotated[Mass, PART_MASS]
+PositiveMass = Annotated[Mass, BODY_MASS]
+Count = Annotated[int, COUNT]
 
 
 class _Strict(BaseModel):
@@ -69,7 +76,8 @@ class TankSpec(_Strict):
 
     name: str
     propellant: str = Field(description="what it holds, e.g. LOX, RP-1, LCH4, LH2")
-    density: Annotated[Density, Field(gt=0)] = Field(description="propellant density")
+    density: Annotated[Density, within(MIN_DENSITY, MAX_DENSITY, "density", "kg/m3")] = Field(
+        description="propellant density")
     radius: PositiveLength = Field(description="inner radius of the cylinder")
     length: PositiveLength = Field(description="length of the cylinder")
     position: NonNegativeLength = Field(description="height of the tank's bottom above the stage base")
@@ -109,35 +117,31 @@ class EngineSpec(_Strict):
     """
 
     name: str
-    count: Annotated[int, Field(ge=1)] = 1
+    count: Count = 1
     layout_radius: NonNegativeLength = Field(0.0, description="radius of the ring the engines sit on")
     layout_angle: Angle = Field(0.0, description="angle of the first engine from body +y about +x")
     position: NonNegativeLength = Field(0.0, description="height of the gimbal points above the stage base")
     mass: NonNegativeMass = Field(0.0, description="mass of one engine (a point mass at its gimbal point)")
-    thrust_vacuum: Annotated[Force, Field(gt=0)] = Field(description="vacuum thrust of one engine at full throttle")
-    isp_vacuum: Optional[SpecificImpulse] = Field(None, description="vacuum specific impulse")
-    mass_flow: Optional[MassFlow] = Field(None, description="mass flow of one engine at full throttle")
-    exit_area: Annotated[Area, Field(ge=0)] = Field(description="nozzle exit area")
-    exit_pressure: Optional[Annotated[Pressure, Field(gt=0)]] = Field(
+    thrust_vacuum: Annotated[Force, THRUST] = Field(description="vacuum thrust of one engine at full throttle")
+    isp_vacuum: Optional[Annotated[SpecificImpulse, ISP]] = Field(None, description="vacuum specific impulse")
+    mass_flow: Optional[Annotated[MassFlow, Field(gt=0)]] = Field(
+        None, description="mass flow of one engine at full throttle (the specific impulse it "
+        "gives with the thrust is held to the bounds of isp_vacuum)")
+    exit_area: Annotated[Area, within(0.0, MAX_SIZE ** 2, "size", "m2")] = Field(description="nozzle exit area")
+    exit_pressure: Optional[Annotated[Pressure, within(0.0, MAX_PRESSURE, "pressure", "Pa", above=True)]] = Field(
         None, description="nozzle exit pressure at full throttle (flow separation check); "
         "none: the nozzle never separates")
     throttle: tuple[Fraction, Fraction] = Field((1.0, 1.0), description="throttle range [min, max], fractions")
-    throttle_rate: Annotated[float, Field(gt=0)] = Field(
+    throttle_rate: Annotated[float, within(0.0, MAX_THROTTLE_RATE, "throttle rate", "/s", above=True)] = Field(
         1.0, description="throttle slew limit, fraction of full thrust per second")
-    gimbal_range: Annotated[Angle, Field(ge=0)] = Field(0.0, description="half-angle of the gimbal cone")
-    gimbal_rate: Annotated[AngularRate, Field(ge=0)] = Field(0.0, description="gimbal slew limit")
+    gimbal_range: Annotated[Angle, ANGLE] = Field(0.0, description="half-angle of the gimbal cone")
+    gimbal_rate: Annotated[AngularRate, SLEW] = Field(0.0, description="gimbal slew limit")
     ignition_delay: Annotated[Duration, Field(ge=0.2, le=0.5)] = Field(
         0.3, description="dead time from the ignition command to first thrust (0.2-0.5 s)")
-    spool_up: Annotated[Duration, Field(gt=0)] = Field(1.0, description="time from first thrust to full thrust")
-    tail_off: Annotated[Duration, Field(gt=0)] = Field(ENGINE_TAIL_OFF, description="time from shutdown to no thrust")
-    restarts: Annotated[int, Field(ge=0)] = Field(0, description="ignitions allowed after the first")
-
-    @field_validator("isp_vacuum", "mass_flow")
-    @classmethod
-    def _positive(cls, value, info):
-        if value is not None and value <= 0:
-            raise ValueError(f"{info.field_name} must be positive (got {value:g})")
-        return value
+    spool_up: Annotated[Duration, RESPONSE] = Field(1.0, description="time from first thrust to full thrust")
+    tail_off: Annotated[Duration, RESPONSE] = Field(ENGINE_TAIL_OFF, description="time from shutdown to no thrust")
+    restarts: Annotated[int, within(0, MAX_COUNT, "count")] = Field(
+        0, description="ignitions allowed after the first")
 
     @field_validator("throttle")
     @classmethod
@@ -154,6 +158,12 @@ class EngineSpec(_Strict):
     def _one_flow(self) -> "EngineSpec":
         if (self.isp_vacuum is None) == (self.mass_flow is None):
             raise ValueError(f"engine {self.name!r}: give exactly one of 'isp_vacuum' or 'mass_flow'")
+        if self.mass_flow is not None:
+            try:
+                ISP.check(self.isp)
+            except ValueError as error:
+                raise field_error(("mass_flow",), f"with the thrust it gives a specific impulse of "
+                                  f"{self.isp:g} s, which {error}", self.mass_flow) from None
         return self
 
     @property
@@ -169,7 +179,7 @@ class GrainSpec(_Strict):
     outer diameter stay; the propellant's density is the motor's propellant mass over
     the grains' initial volume (docs/physics.md#solid-motors)."""
 
-    count: Annotated[int, Field(ge=1)] = 1
+    count: Count = 1
     outer_diameter: PositiveLength
     core_diameter: NonNegativeLength = Field(description="initial diameter of the core")
     length: PositiveLength = Field(description="length of one segment")
@@ -208,14 +218,15 @@ class MotorSpec(_Strict):
     name: str
     file: Optional[str] = Field(None, description="thrust-curve file (.eng or .csv), relative "
                                 "to the vehicle file")
-    thrust: Optional[list[tuple[float, float]]] = Field(
+    thrust: Optional[list[tuple[Annotated[float, BURN_TIME], Annotated[float, CURVE_THRUST]]]] = Field(
         None, description="(time s since ignition, thrust N) pairs, times increasing; "
         "instead of 'file'")
     position: NonNegativeLength = Field(0.0, description="height of the motor's aft end (nozzle "
                                         "exit) above the stage base")
     diameter: Optional[PositiveLength] = Field(None, description="motor diameter (default: the .eng header's)")
     length: Optional[PositiveLength] = Field(None, description="motor length (default: the .eng header's)")
-    propellant_mass: Optional[PositiveMass] = Field(None, description="default: the .eng header's")
+    propellant_mass: Optional[Annotated[Mass, within(0.0, MAX_MASS, "mass", "kg", above=True)]] = Field(
+        None, description="default: the .eng header's")
     total_mass: Optional[PositiveMass] = Field(None, description="loaded motor, case and propellant "
                                                "(default: the .eng header's)")
     grain: Optional[GrainSpec] = None
@@ -223,7 +234,7 @@ class MotorSpec(_Strict):
         1.0, description="multiplies the curve's thrust at every point, so its total impulse, "
         "at the same times and propellant: one motor's scatter about its curve (a campaign's "
         "dispersion of the impulse)")
-    ignition: Union[Annotated[Duration, Field(ge=0)], Literal["program"]] = Field(
+    ignition: Union[Annotated[Duration, Field(ge=0, le=MAX_DURATION)], Literal["program"]] = Field(
         0.0, description="mission time of ignition (0: at the start, off the pad or rail), or "
         "program: lit by the flight program's fc.ignite (an upper stage, an air start)")
 
@@ -265,6 +276,10 @@ class MotorSpec(_Strict):
             if getattr(self, key) is None:
                 raise field_error((key,), f"motor {self.name!r}: give its {key.replace('_', ' ')} "
                                   "(a CSV or inline curve has no header)", None)
+        if self.total_impulse < MIN_IMPULSE:
+            raise field_error(("file",) if self.file is not None else ("thrust",),
+                              f"the thrust curve delivers {self.total_impulse:g} N s, less than the "
+                              f"{MIN_IMPULSE:g} N s of any motor: {BOUNDS['impulse']}", self.file or self.thrust)
         if self.propellant_mass >= self.total_mass:
             raise field_error(("propellant_mass",), "the propellant mass must be less than the total "
                               "mass (the case is the difference)", self.propellant_mass)
@@ -335,7 +350,7 @@ class PointMassSpec(_Strict):
     name: str
     mass: PositiveMass
     position: NonNegativeLength = Field(description="height above the stage base")
-    count: Annotated[int, Field(ge=1)] = 1
+    count: Count = 1
     radius: NonNegativeLength = Field(0.0, description="radius of the ring (legs, fins)")
 
 
@@ -345,9 +360,10 @@ class StageSpec(_Strict):
     name: str
     length: PositiveLength
     diameter: PositiveLength
-    structure_mass: NonNegativeMass = Field(
+    structure_mass: PositiveMass = Field(
         description="dry mass of the structure alone (a thin shell of the stage's size); "
-        "tank walls, engines and point masses are listed separately")
+        "tank walls, engines and point masses are listed separately. Every stage has one: "
+        "it keeps the mass and inertia of a stage flying on its own, its tanks dry, positive")
     structure_centre: Optional[NonNegativeLength] = Field(
         None, description="height of the structure's centre of mass above the base; default mid-stage")
     tanks: list[TankSpec] = []
@@ -398,6 +414,11 @@ class StageSpec(_Strict):
                 raise field_error(("engines", i, "position"),
                                   f"engine {engine.name!r} sits above the top of stage {self.name!r}",
                                   engine.position)
+            if engine.layout_radius > 0.5 * self.diameter * (1 + 1e-12):
+                raise field_error(("engines", i, "layout_radius"),
+                                  f"the ring of engine {engine.name!r} (radius {engine.layout_radius:g} m) "
+                                  f"is wider than stage {self.name!r} (diameter {self.diameter:g} m)",
+                                  engine.layout_radius)
         return self
 
     @property
@@ -433,7 +454,7 @@ class FairingSpec(_Strict):
     length: PositiveLength
     diameter: PositiveLength
     jettison: bool = True
-    separation_speed: Annotated[Speed, Field(ge=0)] = 2.0
+    separation_speed: Annotated[Speed, within(0.0, MAX_SEPARATION_SPEED, "separation", "m/s")] = 2.0
 
 
 def check_staged(stages: list[StageSpec], extra_engines) -> None:

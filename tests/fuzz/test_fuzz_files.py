@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import copy
 import re
+from fractions import Fraction
 import tempfile
 from pathlib import Path
 
@@ -148,9 +149,16 @@ def _nearby(draw, value):
     negated (its unit kept), a list or mapping one item short or long, a name misspelt."""
     if isinstance(value, bool):
         return not value
-    if isinstance(value, (int, float)):
-        changed = value * draw(st.sampled_from(_FACTORS))
-        return int(changed) if isinstance(value, int) and abs(changed) < 2**63 else changed
+    if isinstance(value, int):          # exact: an integer of 400 digits (10**400) scales too
+        changed = value * Fraction(draw(st.sampled_from(_FACTORS)))
+        if abs(changed) < 2**63:
+            return int(changed)
+        try:
+            return float(changed)
+        except OverflowError:           # beyond a float: stays an integer
+            return int(changed)
+    if isinstance(value, float):
+        return value * draw(st.sampled_from(_FACTORS))
     if isinstance(value, str):
         quantity = _QUANTITY.match(value)
         if quantity:
@@ -204,3 +212,11 @@ def test_a_mutated_file_flies_or_is_refused_at_its_line(case_files):
             code, output = invoke("fly", folder / "scenario.yaml", "-o", folder / "run.mcap",
                                   "--duration", "0.1")
         assert code == 0 or (code == 2 and _AT_LINE.search(output)), output
+
+
+def test_a_careless_edit_scales_an_integer_beyond_a_float_exactly():
+    # found by the long profile: the generator itself overflowed scaling 10**400 (a value
+    # an earlier change had put there) by a float factor
+    scaled = {_nearby(lambda strategy: factor, 10**400) for factor in _FACTORS}
+    assert 0 in scaled and -10**400 in scaled and 10**400 * 1000 in scaled
+    assert _nearby(lambda strategy: 0.5, 7) == 3 and _nearby(lambda strategy: 1e6, 2**62) == 2.0**62 * 1e6
