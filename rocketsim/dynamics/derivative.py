@@ -39,8 +39,6 @@ its RCS thrusters only.
 
 import math
 
-import numpy as np
-
 from rocketsim._jit import njit
 from rocketsim.atmosphere.table import air_in
 from rocketsim.atmosphere.ussa1976 import Z_86
@@ -49,7 +47,7 @@ from rocketsim.bodies.gravity import point_mass_j2
 from rocketsim.layout import (P_CLASSIC, P_IXX, P_NBODY, P_IYY, P_IZZ, P_J2, P_MU,
                                       P_POLAR_RADIUS, P_RADIUS, P_SPIN, Q, R, V, W)
 from rocketsim.dynamics.third_bodies import held_perturbation
-from rocketsim.frames.quaternion import quat_multiply
+from rocketsim.frames.quaternion import hamilton_product
 from rocketsim.vehicle.aero import A_GROUND, A_ON, A_REACH, body_aero
 from rocketsim.vehicle.contact import contact_forces
 from rocketsim.vehicle.engines import engine_forces
@@ -179,9 +177,8 @@ def held_derivative(t, y, p, dy, veh, t_held, y_held):
     dy[V + 2] = az
 
     wx, wy, wz = y[W], y[W + 1], y[W + 2]
-    dq = quat_multiply(y[Q:Q + 4], np.array((0.0, wx, wy, wz)))
-    for k in range(4):
-        dy[Q + k] = 0.5 * dq[k]
+    dq = hamilton_product(y[Q], y[Q + 1], y[Q + 2], y[Q + 3], 0.0, wx, wy, wz)
+    dy[Q], dy[Q + 1], dy[Q + 2], dy[Q + 3] = 0.5 * dq[0], 0.5 * dq[1], 0.5 * dq[2], 0.5 * dq[3]
 
     for k in range(13, y.shape[0]):
         dy[k] = 0.0

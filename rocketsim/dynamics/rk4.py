@@ -70,25 +70,21 @@ def rk4_step(y, t, h, p, veh=None):
         None for a rigid body.
     """
     n = y.shape[0]
-    k1 = np.empty(n)
-    k2 = np.empty(n)
-    k3 = np.empty(n)
-    k4 = np.empty(n)
+    k = np.empty((4, n))
     tmp = np.empty(n)
-    # the step's start is the hold of the classic range's model (ignored by the realistic one)
-    held_derivative(t, y, p, k1, veh, t, y)
-    for i in range(n):
-        tmp[i] = y[i] + 0.5 * h * k1[i]
-    held_derivative(t + 0.5 * h, tmp, p, k2, veh, t, y)
-    for i in range(n):
-        tmp[i] = y[i] + 0.5 * h * k2[i]
-    held_derivative(t + 0.5 * h, tmp, p, k3, veh, t, y)
-    for i in range(n):
-        tmp[i] = y[i] + h * k3[i]
-    held_derivative(t + h, tmp, p, k4, veh, t, y)
     out = np.empty(n)
+    # the four stages: k_s at t + c_s h from y + c_s h k_(s-1), c = (0, 1/2, 1/2, 1); the
+    # step's start is the hold of the classic range's model (ignored by the realistic one)
+    for s in range(4):
+        at, ys = t, y
+        if s > 0:
+            c = 1.0 if s == 3 else 0.5
+            for i in range(n):
+                tmp[i] = y[i] + c * h * k[s - 1, i]
+            at, ys = t + c * h, tmp
+        held_derivative(at, ys, p, k[s], veh, t, y)
     for i in range(n):
-        out[i] = y[i] + h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i])
+        out[i] = y[i] + h / 6.0 * (k[0, i] + 2.0 * k[1, i] + 2.0 * k[2, i] + k[3, i])
     norm = math.sqrt(out[Q] ** 2 + out[Q + 1] ** 2 + out[Q + 2] ** 2 + out[Q + 3] ** 2)
     for i in range(4):
         out[Q + i] /= norm

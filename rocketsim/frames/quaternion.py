@@ -10,7 +10,8 @@ c-axes into a, and its matrix is ``M(q_ab) @ M(q_bc)``.
 
 Every function is compiled with :func:`rocketsim._jit.njit` so the dynamics
 kernels can call them; they work the same when called from Python on float64
-numpy arrays. They take and return plain arrays of shape (4,), (3,) or (3, 3).
+numpy arrays. They take and return plain arrays of shape (4,), (3,) or (3, 3)
+(:func:`hamilton_product` takes and returns components).
 """
 
 from __future__ import annotations
@@ -23,15 +24,20 @@ from rocketsim._jit import njit
 
 
 @njit
+def hamilton_product(aw, ax, ay, az, bw, bx, by, bz):
+    """Hamilton product ``a (x) b`` of two quaternions given by their components, as a
+    4-tuple (no array: for the hot kernels)."""
+    return (aw * bw - ax * bx - ay * by - az * bz,
+            aw * bx + ax * bw + ay * bz - az * by,
+            aw * by - ax * bz + ay * bw + az * bx,
+            aw * bz + ax * by - ay * bx + az * bw)
+
+
+@njit
 def quat_multiply(a, b):
-    """Hamilton product ``a ⊗ b`` of two quaternions (4,) -> (4,)."""
-    aw, ax, ay, az = a[0], a[1], a[2], a[3]
-    bw, bx, by, bz = b[0], b[1], b[2], b[3]
+    """Hamilton product ``a (x) b`` of two quaternions (4,) -> (4,)."""
     out = np.empty(4)
-    out[0] = aw * bw - ax * bx - ay * by - az * bz
-    out[1] = aw * bx + ax * bw + ay * bz - az * by
-    out[2] = aw * by - ax * bz + ay * bw + az * bx
-    out[3] = aw * bz + ax * by - ay * bx + az * bw
+    out[0], out[1], out[2], out[3] = hamilton_product(a[0], a[1], a[2], a[3], b[0], b[1], b[2], b[3])
     return out
 
 

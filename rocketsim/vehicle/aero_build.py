@@ -157,8 +157,9 @@ def build_aero(spec, chosen, stage_base, top: bool, with_fairing: bool, tank_nam
     grid = []
     for k, g, base in _built(spec, aero.grid_fins, base_of, "grid_fins"):
         for j in range(g.count):
-            grid.append((base + g.position, 2 * math.pi * j / g.count, g.radius, g.area,
-                         g.max_deflection, g.rate, g.stall))
+            phi = 2 * math.pi * j / g.count
+            grid.append((base + g.position, phi, g.radius, g.area, g.max_deflection, g.rate, g.stall,
+                         math.cos(phi), math.sin(phi)))
 
     rcs = []
     for k, th, base in _built(spec, aero.rcs, base_of, "rcs"):

@@ -165,6 +165,10 @@ def engine_forces(t, y, dy, first_tank, first_clock, eng, cmd, stage, tank_share
     """
     fx = fy = fz = 0.0
     mx = my = mz = 0.0
+    # the direction's (cos d, sin d / d) of the last deflection seen: engines of a group
+    # share their gimbal command, so most engines reuse the one before's
+    last_gy = last_gz = 0.0
+    tilted, cd, sd = False, 1.0, 0.0
     for e in range(eng.shape[0]):
         dy[first_clock + e] = 1.0
         s = int(eng[e, E_STAGE])
@@ -180,10 +184,14 @@ def engine_forces(t, y, dy, first_tank, first_clock, eng, cmd, stage, tank_share
         thrust = f * (tau * eng[e, E_THRUST] - p_a * eng[e, E_AREA])
         if thrust <= 0.0:
             continue
-        d = math.sqrt(gy * gy + gz * gz)
-        if d > 0.0:
-            sd = math.sin(d) / d
-            ex, ey, ez = thrust * math.cos(d), thrust * sd * gy, thrust * sd * gz
+        if gy != last_gy or gz != last_gz:
+            last_gy, last_gz = gy, gz
+            d = math.sqrt(gy * gy + gz * gz)
+            tilted = d > 0.0
+            if tilted:
+                cd, sd = math.cos(d), math.sin(d) / d
+        if tilted:
+            ex, ey, ez = thrust * cd, thrust * sd * gy, thrust * sd * gz
         else:
             ex, ey, ez = thrust, 0.0, 0.0
         rx, ry, rz = eng[e, E_X] - x_cm, eng[e, E_Y], eng[e, E_Z]

@@ -45,9 +45,9 @@ GRID_MACH = np.array([0.0, 0.6, 0.8, 0.95, 1.05, 1.2, 1.5, 2.0, 3.0, 5.0])
 GRID_CN_ALPHA = np.array([2.9, 3.0, 3.1, 2.2, 1.8, 2.3, 2.4, 2.0, 1.4, 0.9])   # per rad
 GRID_CD = np.array([0.60, 0.65, 0.80, 1.30, 1.50, 1.10, 0.90, 0.75, 0.60, 0.50])
 
-# columns of AeroArrays.grid
-G_X, G_PHI, G_R, G_AREA, G_MAX, G_RATE, G_STALL = 0, 1, 2, 3, 4, 5, 6
-N_GRID = 7
+# columns of AeroArrays.grid (G_COS_PHI, G_SIN_PHI: cos and sin of G_PHI, once at build)
+G_X, G_PHI, G_R, G_AREA, G_MAX, G_RATE, G_STALL, G_COS_PHI, G_SIN_PHI = 0, 1, 2, 3, 4, 5, 6, 7, 8
+N_GRID = 9
 # columns of AeroArrays.grid_cmd
 GC_DELTA0, GC_CMD, GC_T0 = 0, 1, 2
 N_GRID_CMD = 3
@@ -78,8 +78,8 @@ def grid_fin_forces(t, u, v, w, wx, wy, wz, rho, sound, x_cm, grid, grid_cmd):
     for i in range(grid.shape[0]):
         row = grid[i]
         d = row[G_X] - x_cm
-        cphi = math.cos(row[G_PHI])
-        sphi = math.sin(row[G_PHI])
+        cphi = row[G_COS_PHI]
+        sphi = row[G_SIN_PHI]
         ry = row[G_R] * cphi
         rz = row[G_R] * sphi
         # flow at the fin: V + omega x r
@@ -132,7 +132,7 @@ def command(grid: np.ndarray, grid_cmd: np.ndarray, t: float, pitch: float, yaw:
     for i in range(grid.shape[0]):
         row = grid[i]
         now = deflection(t, row, grid_cmd[i])
-        target = pitch * math.cos(row[G_PHI]) - yaw * math.sin(row[G_PHI]) + roll
+        target = pitch * row[G_COS_PHI] - yaw * row[G_SIN_PHI] + roll
         grid_cmd[i, GC_DELTA0] = now
         grid_cmd[i, GC_CMD] = max(-row[G_MAX], min(row[G_MAX], target))
         grid_cmd[i, GC_T0] = t
