@@ -118,8 +118,7 @@ class Guide:
         self.fc = fc
         self.pad = geodetic_to_ecef(latitude, longitude, 0.0)
         self.enu = enu_basis(latitude, longitude)           # rows east, north, up (ECEF)
-        self._miss, self._when = None, -math.inf
-        self._burn_miss, self._burn_when = None, -math.inf
+        self._recent = {}                                  # name -> (mission time s, value)
 
     def state(self):
         """Earth-fixed position and velocity (m, m/s) of the estimate."""
@@ -136,18 +135,22 @@ class Guide:
         """Propellant (kg) the engines can still burn (the gauges less the unusable part)."""
         return sum(self.fc.propellant.values()) - UNUSABLE
 
+    def recent(self, name, age, compute):
+        """``compute()``, recomputed once every ``age`` seconds (kept under ``name``)."""
+        when, value = self._recent.get(name, (-math.inf, None))
+        if self.fc.time - when >= age:
+            when, value = self.fc.time, compute()
+            self._recent[name] = (when, value)
+        return value
+
     def recent_miss(self, age=1.0, thrust_accel=0.0):
         """The miss (as :meth:`miss`), recomputed once every ``age`` seconds."""
-        if self.fc.time - self._when >= age:
-            self._miss, self._when = self.miss(thrust_accel), self.fc.time
-        return self._miss
+        return self.recent("miss", age, lambda: self.miss(thrust_accel))
 
     def recent_burn_end_miss(self, age, full, landing_share):
         """The miss from the entry burn's end (as :meth:`burn_end_miss`), recomputed once
         every ``age`` seconds."""
-        if self.fc.time - self._burn_when >= age:
-            self._burn_miss, self._burn_when = self.burn_end_miss(full, landing_share), self.fc.time
-        return self._burn_miss
+        return self.recent("burn end miss", age, lambda: self.burn_end_miss(full, landing_share))
 
     def burn_end_miss(self, full, landing_share):
         """(east, north) of the impact point from the pad (m) predicted from where the
