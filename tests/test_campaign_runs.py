@@ -17,7 +17,7 @@ import pytest
 from click.testing import CliRunner
 
 import rocketsim
-from rocketsim.campaigns.execute import Interrupted, run
+from rocketsim.campaigns.execute import QUIET_WORKERS, Interrupted, _local_cluster, run
 from rocketsim_cli.main import main
 from tests.campaign_files import MIXED, write_arc
 
@@ -68,6 +68,23 @@ def test_serial_local_cluster_and_resumed_campaigns_are_identical(serial, tmp_pa
     run(campaign, tmp_path / "resumed", workers=1, resume=True, progress=lambda *done: flown.append(done))
     assert flown[-1] == (7, 0, 7)           # exactly the seven missing runs
     same_results(reference, pd.read_parquet(tmp_path / "resumed" / "results.parquet"))
+
+
+def test_the_embedded_clusters_workers_keep_the_gil_to_the_flight():
+    """The embedded cluster's worker runs neither the dashboard's profiler nor the 20 ms
+    event-loop tick (each takes the GIL from the flight thread 50-100 times a second):
+    its Dask settings are those of QUIET_WORKERS, and its periodic callbacks show them."""
+    import dask
+    from distributed import Client
+
+    def settings(dask_worker):
+        callbacks = dask_worker.periodic_callbacks
+        return ({name: dask.config.get(name) for name in QUIET_WORKERS},
+                "profile-cycle" in callbacks, callbacks["tick"].callback_time)
+
+    with _local_cluster(1) as cluster, Client(cluster) as client:
+        (seen,) = client.run(settings).values()
+    assert seen == (QUIET_WORKERS, False, 1000.0)
 
 
 def test_rows_left_in_part_files_by_a_crash_are_read_and_consolidated(serial, tmp_path):
