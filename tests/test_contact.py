@@ -21,7 +21,7 @@ from rocketsim.dynamics.rk4 import rk4_step, step
 from rocketsim.frames.geodetic import enu_basis, geodetic_to_ecef
 from rocketsim.frames.quaternion import quat_from_matrix
 from rocketsim.sim.vehicle_checks import VehicleChecks
-from rocketsim.vehicle.contact import contact_heights
+from rocketsim.vehicle.contact import contact_heights, tip_over_angle
 from rocketsim.vehicle.build import build
 from tests.aero_vehicles import corotating, earth_params, shipped
 
@@ -102,6 +102,8 @@ def test_the_same_drop_at_20_ms_without_sub_steps_is_unstable(lander):
 
 
 class _World:
+    telemetry = None
+
     def __init__(self):
         self.events = []
 
@@ -152,10 +154,11 @@ def test_touchdown_event_reports_speed_tilt_and_distance_to_the_pad(lander):
     assert figures["distance_to_target_m"] == pytest.approx(3.0, abs=1e-3)
 
 
-def fly_drop(write, speed: float, duration: float, target: str = "") -> dict:
-    """The lander dropped by World from a scenario at ``speed`` (m/s, down) with its feet
-    2 m above the ellipsoid (the site's height; the ground is the WGS84 ellipsoid,
-    terrain is not modelled); ``target`` a mission ``target:`` entry. Its summary."""
+def fly_drop(write, speed: float, duration: float, target: str = "", east: float = 0.0) -> dict:
+    """The lander dropped by World from a scenario at ``speed`` (m/s, down) and ``east``
+    (m/s) with its feet 2 m above the ellipsoid (the site's height; the ground is the
+    WGS84 ellipsoid, terrain is not modelled); ``target`` a mission ``target:`` entry.
+    Its summary."""
     from rocketsim.scenario.load import load
     from rocketsim.sim.build import build_world
     from tests.aero_vehicles import ROOT
@@ -163,7 +166,7 @@ def fly_drop(write, speed: float, duration: float, target: str = "") -> dict:
     x_cm = model.mass_properties(model.state([0, 0, 0], [0, 0, 0]))[1]
     write("site.yaml", f"name: flat\nlatitude: 28.5 deg\nlongitude: -80.6 deg\nheight: {2.0 + 1.2 + x_cm} m\n")
     write("mission.yaml", "epoch: 2026-11-26T12:00:00Z\nstart:\n  site:\n"
-                          f"    velocity: [0 m/s, 0 m/s, {-speed!r} m/s]\nduration: {duration!r} s\n{target}")
+                          f"    velocity: [{east!r} m/s, 0 m/s, {-speed!r} m/s]\nduration: {duration!r} s\n{target}")
     path = write("drop.yaml", f"name: drop\nvehicle: {ROOT / 'vehicles' / 'lander.yaml'}\nsite: site.yaml\n"
                               "mission: mission.yaml\n")
     (body,) = build_world(load(path)).run()["bodies"].values()
@@ -181,6 +184,17 @@ def test_the_world_reports_touchdown_and_the_lander_rests(write):
     # the pad is the site, straight below the start (Coriolis moves it by millimetres)
     assert events["touchdown"]["distance_to_target_m"] < 0.01
     assert body["final"]["altitude_m"] == pytest.approx(1.2 + x_cm - mass_static(model, x_cm), abs=2e-3)
+
+
+def test_the_lander_touching_down_sliding_east_slides_and_stays_up(write):
+    """At 10 m/s east the lander's feet drag (friction 0.6) but its footprint is wide:
+    friction's moment about the leading feet stays under gravity's (0.6 < tan 40 deg =
+    0.85, the tilt past which it would fall), so it slides to a stop upright: one
+    touchdown, no tip-over, the flight flown to its end."""
+    body = fly_drop(write, 2.0, 4.0, east=10.0)
+    assert [e["name"] for e in body["events"]] == ["touchdown"]
+    assert body["final"]["time_s"] == pytest.approx(4.0)
+    assert body["events"][0]["horizontal_speed_m_s"] == pytest.approx(10.0, abs=0.1)
 
 
 def mass_static(model, x_cm):
@@ -203,6 +217,7 @@ def test_a_booster_standing_tilted_on_its_legs_rights_itself_or_tips_over(tilt_d
     x_cm = model.mass_properties(model.state([0, 0, 0], [0, 0, 0], propellant=prop))[1]
     critical = math.degrees(math.atan(8.5 * math.cos(math.pi / 4) / (x_cm + 1.0)))
     assert (tilt_deg > critical) == tips
+    assert math.degrees(tip_over_angle(model.arrays.aero.contact, x_cm)) == pytest.approx(critical, rel=1e-12)
     enu = enu_basis(LAT, LON)
     up, north = enu[2], enu[1]
     tilt = math.radians(tilt_deg)
@@ -214,14 +229,50 @@ def test_a_booster_standing_tilted_on_its_legs_rights_itself_or_tips_over(tilt_d
     lowest = contact_heights(model.state(r, corotating(r), q=q, w=w, propellant=prop), p, model).min()
     r = r - (lowest - 5e-4) * up                           # the downhill feet just touching
     y = model.state(r, corotating(r), q=q, w=w, propellant=prop)
+    # the checks watch it as after a touchdown: past the critical tilt it is reported
+    # tipping over (its centre of mass beyond the feet) and stops; the dynamics fly on
+    checks, body, world = VehicleChecks(), _Body(model, y, p), _World()
+    checks.landed, checks.touched_down = True, True
     tilts = []
-    for s in range(8):                                     # 8 s
-        y, _ = advance(y, 50 * s, 0.02, 50, p, model.arrays)
+    for k in range(400):                                   # 8 s
+        y, _ = advance(y, k, 0.02, 1, p, model.arrays)
+        body.y, body.t = y, 0.02 * (k + 1)
+        checks.after_step(world, body, 0.02)
         tilts.append(math.degrees(math.acos(quat_rotate(y[6:10], np.array([1.0, 0.0, 0.0])) @ up)))
     if tips:
         assert max(tilts) > 80.0
+        ((name, figures),) = world.events
+        assert name == "tip-over" and not body.flying
+        assert figures["tilt_deg"] == pytest.approx(tilt_deg, abs=0.1)    # at once: it starts past it
     else:
         assert max(tilts) < tilt_deg and tilts[-1] < 8.0
+        assert world.events == [] and body.flying
+
+
+def test_a_compiled_run_hands_a_landed_body_to_python_short_of_tipping_over():
+    """The compiled runs' checks are quiet for a landed body standing upright and not
+    for one tilted past the watch (the cosine of the tip-over angle less the margin),
+    so the Python side sees the step where it starts to fall."""
+    from rocketsim.sim import runs
+    watch = np.full(runs.N_WATCH, math.inf)
+    watch[runs.W_SHIELD], watch[runs.W_CLEARANCE] = 0.0, 1.0
+    watch[runs.W_TIP] = math.cos(math.radians(20.0))
+    figures = (0.0, 288.0, 0.0, 0.0, 0.0, 0.0, -0.01)       # no air, no loads, the feet on the ground
+    carry = np.array((math.nan, 1.0, 0.0, 0.0))
+    r = np.array(geodetic_to_ecef(LAT, LON, 20.0))
+    up = r / np.linalg.norm(r)
+    side = np.cross(up, [0.0, 0.0, 1.0])
+    side /= np.linalg.norm(side)
+    for tilt_deg, quiet in ((19.0, True), (21.0, False)):
+        t = math.radians(tilt_deg)
+        bx = math.cos(t) * up + math.sin(t) * side
+        bz = np.cross(bx, np.cross(up, bx))
+        bz /= np.linalg.norm(bz)
+        y = np.zeros(13)
+        y[0:3], y[6:10] = r, quat_from_matrix(np.column_stack((bx, np.cross(bz, bx), bz)))
+        assert runs._checks_quiet(y, 0.02, figures, carry, watch)[0] is quiet
+    watch[runs.W_TIP] = -math.inf                            # before a touchdown: never
+    assert runs._checks_quiet(y, 0.02, figures, carry, watch)[0]
 
 
 def test_touchdown_distance_is_measured_to_the_mission_target_pad(write):

@@ -52,7 +52,7 @@ TOP_INPUTS = 3                        # inputs the text names per output
 _NOT_OUTPUTS = ("run", "wall_time_s")
 _SECTIONS = ("final", "orbit", "touchdown", "landing")
 _EVENT_LABELS = {"touchdown": "landed (touchdown)", "impact": "crashed (impact)",
-                 "orbit": "reached orbit", "breakup": "broke up",
+                 "orbit": "reached orbit", "breakup": "broke up", "tip-over": "tipped over after landing",
                  "landing": "came down (touchdown or impact)"}
 # the summary figures worth a histogram, by section, in this order (after the campaign's own outputs)
 _MAIN = (("landing", ("offset_m", "east_m", "north_m")),

@@ -80,7 +80,9 @@ W_MU = 15                           # m^3/s^2
 W_BURNOUT = 16                      # s: the next end of a solid motor's curve (inf: none)
 W_SOI = 17                          # m: the sphere-of-influence watch radius (inf: none)
 W_CLEARANCE = 18                    # m: the lowest contact point this high is in the air
-N_WATCH = 19
+W_TIP = 19                          # cosine of the tilt from the radial past which a landed body may
+                                    # tip over (-inf: not landed)
+N_WATCH = 20
 # the slots of ``carry``
 C_TEMPERATURE, C_TOUCHED, C_PEAK_Q, C_PEAK_STEP = 0, 1, 2, 3
 N_CARRY = 4
@@ -137,7 +139,18 @@ def _checks_quiet(y, h, figures, carry, watch):
         touched = 0.0
     elif touched < 0.5 and lowest <= 0.0:
         return False, temperature, touched
+    elif _axis_up(y) < watch[W_TIP]:
+        return False, temperature, touched
     return True, temperature, touched
+
+
+@njit
+def _axis_up(y):
+    """Cosine of the angle between the body's x axis and the geocentric radial."""
+    w, a, b, c = y[Q], y[Q + 1], y[Q + 2], y[Q + 3]
+    x, y_, z = y[R], y[R + 1], y[R + 2]
+    return ((1.0 - 2.0 * (b * b + c * c)) * x + 2.0 * (a * b + w * c) * y_ + 2.0 * (a * c - w * b) * z) / \
+        math.sqrt(x * x + y_ * y_ + z * z)
 
 
 @njit

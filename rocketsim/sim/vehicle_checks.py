@@ -20,6 +20,11 @@ Events (figures in SI units, degrees where named):
   about Earth ``latitude_deg``, ``longitude_deg`` (geodetic, WGS84) of the centre of mass;
 * a first contact faster than :data:`CRASH_SPEED` (10 m/s down) is a crash: the world
   records an ``impact`` with those figures instead and the body stops flying;
+* ``tip-over``: the touchdown figures (speeds, tilt, distance, where) at the step where
+  a body that has touched down, still on the ground, leans past the tilt at which its
+  centre of mass leaves the footprint of its feet
+  (:func:`~rocketsim.vehicle.contact.tip_over_angle`): it is falling over, and stops
+  flying (a landing that ends on its side is lost, however slow);
 * a vehicle with parachutes adds the landing point ``latitude_deg``, ``longitude_deg``
   and the ``descent_time_s`` (from apogee) and ``drift_time_s`` (from the first
   deployment) to its touchdown; one that touches down under a deployed parachute is
@@ -49,7 +54,7 @@ from rocketsim.flight.steering import steer_step
 from rocketsim.frames.earth_fixed import eci_to_ecef
 from rocketsim.frames.quaternion import quat_rotate
 from rocketsim.vehicle.aero import A_GROUND, A_REACH
-from rocketsim.vehicle.contact import contact_heights, contact_point_heights
+from rocketsim.vehicle.contact import contact_heights, contact_point_heights, tip_over_angle
 from rocketsim.vehicle.heating import advance_shield, sutton_graves, sutton_graves_constant
 from rocketsim.vehicle.mass_properties import vehicle_mass_properties
 from rocketsim.vehicle.parachutes import CH_DEPLOYED
@@ -60,6 +65,7 @@ AIRBORNE_CLEARANCE = 1.0       # m: lowest contact point this high = in the air 
 # booster lands at 1-2 m/s, an Apollo capsule splashed down at ~9 m/s under its parachutes);
 # the body ends in an impact instead of a touchdown (the contact springs would bounce it back)
 CRASH_SPEED = 10.0
+TIP_MARGIN = 0.5 * DEG       # rad: the compiled runs hand a landed body to Python this far short of tipping
 # what advance_checked reads when the autopilot does not steer in its call (unused)
 _NO_STEERING = (np.full(6, math.nan), False)
 
@@ -77,6 +83,7 @@ class VehicleChecks:
         self.temperature = heat_shield.initial_temperature if heat_shield is not None else math.nan
         self.pad = None if pad_ecef is None else np.asarray(pad_ecef, dtype=float)
         self.touched_down = True     # a vehicle only touches down after being in the air
+        self.landed = False         # a touchdown has been reported
         self.previous = None        # (t, y) before the last step, for the touchdown figures
         self._arrays = self._in_flight = self._watched = None
         self._kernels = Entries()   # step_figures bound to the vehicle's arrays
@@ -142,6 +149,7 @@ class VehicleChecks:
         watch[runs.W_HEAT_LIMIT] = HEAT_SHIELD_LIMIT
         watch[runs.W_WATCHED] = self._watched
         watch[runs.W_CLEARANCE] = AIRBORNE_CLEARANCE
+        watch[runs.W_TIP] = self._tip_watch(body)
         watch[runs.W_MU] = body.mu
         fp = field_of(body.p)
         if fp is not None:
@@ -180,6 +188,14 @@ class VehicleChecks:
             self._heat(world, body, rho, speed, air_temperature, h)
         if lowest > AIRBORNE_CLEARANCE:
             self.touched_down = False       # in the air: the next contact is a touchdown
+        elif self.landed and body.flying and self._tilted(body):
+            figures = self.touchdown_figures(body)
+            if figures["tilt_deg"] * DEG > self._tip_over_angle(body):
+                world.event(body, "tip-over", figures)      # its centre of mass past its feet
+                body.flying = False
+                if world.telemetry is not None:
+                    world.record(body)
+                return None
         elif body.flying and not self.touched_down and self.previous is not None and (
                 lowest <= 0.0 or self._reached_ground(body, h)):
             self.touched_down = True
@@ -189,6 +205,7 @@ class VehicleChecks:
             if figures["vertical_speed_m_s"] < -CRASH_SPEED:
                 return figures
             world.event(body, "touchdown", figures)
+            self.landed = True
             if np.any(~np.isnan(body.vehicle.arrays.chute[:, CH_DEPLOYED])):
                 # down under a canopy: recovered, the flight of this body ends here
                 body.flying = False
@@ -196,6 +213,23 @@ class VehicleChecks:
                     world.record(body)
         self.previous = (body.t, body.y.copy())
         return None
+
+    def _tip_over_angle(self, body) -> float:
+        """:func:`~rocketsim.vehicle.contact.tip_over_angle` of the body now (rad)."""
+        return tip_over_angle(body.vehicle.arrays.aero.contact, body.vehicle.mass_properties(body.y)[1])
+
+    def _tip_watch(self, body) -> float:
+        """Cosine of the tilt from the geocentric radial past which a landed body may be
+        tipping over: :meth:`_tip_over_angle` less :data:`TIP_MARGIN` (the radial and the
+        ellipsoid's normal, which the tilt is measured from, differ by up to 0.19 deg);
+        ``-inf`` before a touchdown."""
+        return math.cos(max(self._tip_over_angle(body) - TIP_MARGIN, 0.0)) if self.landed else -math.inf
+
+    def _tilted(self, body) -> bool:
+        """Whether the body's x axis is tilted from the geocentric radial past :meth:`_tip_watch`."""
+        r = body.y[R:R + 3]
+        axis = quat_rotate(body.y[Q:Q + 4], np.array([1.0, 0.0, 0.0]))
+        return float(axis @ r) / math.sqrt(float(r @ r)) < self._tip_watch(body)
 
     def _heat(self, world, body, rho, speed, air_temperature, h) -> None:
         s = self.shield

@@ -53,6 +53,25 @@ def point_height(px, py, pz, a, b):
     return math.sqrt(r2) - a * b / math.sqrt((b * b * rho2 + a * a * z2) / r2)
 
 
+def tip_over_angle(contact: np.ndarray, x_cm: float) -> float:
+    """The tilt (rad, body x from the vertical) past which a body standing on the
+    contact points of its lowest station (its feet, else the base ring) falls over:
+    ``atan2(d, x_cm - x_feet)``, ``d`` the distance from the body axis to the nearest
+    edge of the feet's convex hull in the body's y-z plane (``r cos(pi / n)`` for
+    ``n`` feet on a ring of radius ``r``). Tilted further towards that edge, the
+    centre of mass stands outside the footprint and gravity turns the body on over
+    the edge (docs/physics.md#ground-contact). Zero when the feet are fewer than
+    three or in a line: such a body stands on no footprint."""
+    from scipy.spatial import ConvexHull, QhullError
+    feet = contact[contact[:, K_X] <= contact[:, K_X].min() + 1e-9]
+    try:
+        hull = ConvexHull(feet[:, K_Y:K_Z + 1])
+    except (QhullError, ValueError):
+        return 0.0
+    edge = float(-hull.equations[:, 2].max())       # unit normals: offset = -distance of the axis
+    return math.atan2(max(edge, 0.0), x_cm - float(feet[0, K_X]))
+
+
 def contact_heights(y, p, vehicle) -> np.ndarray:
     """Height (m) of each contact point of ``vehicle`` above its ground (the ellipsoid, or
     the flat ground ``aero.ref[A_GROUND]`` above it), along the radius."""
