@@ -28,18 +28,22 @@ compiled runs' checks and event tests at every step, and the Python of the
 world's loop between its wake-ups (every telemetry sample's step: here every
 5th step, with or without a file).
 
-Last figures (2-core machine shared with two other jobs, load 2.0-2.2):
-with telemetry 185-197 ms (real-time factor 560-600), without 103-128 ms
-(860-1 060), the steps alone 41-45 ms (2 440-2 660), RocketPy 620-880 ms
-(120-170); rocketsim / RocketPy with telemetry 3.3-4.9x (target 10x),
-without 6.3-7.1x, the steps alone 15.7-20.3x. Where rocketsim's time goes
-(thread CPU, the flight without telemetry, ~100 ms): the compiled runs
-~80 ms (15 us a step against the bare step's 7.5 us: each step also computes
-the checks' figures, a fifth derivative among them, and the event tests),
-their Python set-up ~14 ms (13 us per run, one run per 5 steps), the rest of
-the world's loop ~25 ms (its window, the flight events and checks after each
-run); the telemetry adds 30-60 ms (sampling ~15 us and
-writing ~13 us per sample, 1 101 samples, and the file's fixed ~5 ms).
+Last figures (2-core machine shared with two other jobs, load 2.0-2.2, four
+runs): with telemetry 138-197 ms (real-time factor 560-800), without
+103-128 ms (860-1 060), the steps alone 41-45 ms (2 440-2 660), RocketPy
+616-876 ms (120-171); rocketsim / RocketPy with telemetry 3.3-4.9x (target
+10x), without 5.6-7.1x, the steps alone 15.1-20.3x.
+Where rocketsim's time goes (thread CPU at load 2.5: with telemetry 137 ms,
+without 100 ms, without and in windows of 500 steps (0.1 Hz sampling)
+74 ms, the steps alone 43 ms, RocketPy 570 ms): the RK4 steps 7.4 us each;
+the compiled runs' checks and event tests ~25 ms (the checks' figures
+3.4 us a step, 2.6 us of it a fifth derivative for the axial load; the
+max-Q test 0.5 us a step while pending); the world's Python between the
+runs ~27 us per 5-step window (~30 ms: 13 us the run's set-up, the rest the
+window's plans and the events and checks after each run); the telemetry
+~37 ms (per sample ~15 us its figures, ~13 us its writing; ~5 ms the
+file's fixed cost). The 43 steps on the pad before liftoff are flown one
+at a time (~2 ms).
 
 Nothing here asserts a time; the checks are that the flights with and
 without telemetry end in the same state to the bit, that the telemetry's
