@@ -1,5 +1,7 @@
 """A finned sounding rocket flown here and in RocketPy, a peer library used only in tests.
 
+The rocket and both flights are built in tests/sounding_peer.py.
+
 RocketPy (https://github.com/RocketPy-Team/RocketPy, a test-only dependency)
 flies the same rocket: the same masses, the same thrust curve (our engine's
 dead time, linear spool-up, constant thrust, cut-off when the usable
@@ -14,110 +16,17 @@ not J2's, and its rail replaces our pad contact; each is well under 1 % of
 the apogee here.
 """
 
-import math
-
-import numpy as np
 import pytest
 
 rocketpy = pytest.importorskip("rocketpy")
 
-from rocketsim.constants import EARTH_OMEGA, G0  # noqa: E402
-from rocketsim.dynamics.rk4 import step  # noqa: E402
-from rocketsim.frames.geodetic import ecef_to_geodetic, enu_basis, geodetic_to_ecef  # noqa: E402
-from rocketsim.frames.quaternion import quat_from_matrix  # noqa: E402
-from rocketsim.vehicle.aero import NOSE_FIRST_CA, NOSE_FIRST_MACH  # noqa: E402
-from rocketsim.vehicle.engines import ignite  # noqa: E402
-from rocketsim.vehicle.build import build  # noqa: E402
-from tests.aero_vehicles import corotating, earth_params, spec  # noqa: E402
-
-LAT, LON = math.radians(32.99), math.radians(-106.97)      # a desert range (Spaceport America)
-THRUST, ISP, PROPELLANT = 9000.0, 230.0, 120.0             # N, s, kg
-DEAD, SPOOL = 0.3, 0.5                                     # s
-DRAG = [(m, c) for m, c in zip(NOSE_FIRST_MACH, NOSE_FIRST_CA)]
-ROCKET = {
-    "name": "peer sounding rocket",
-    "stages": [{"name": "rocket", "length": "6 m", "diameter": "0.3 m", "structure_mass": "80 kg",
-                "tanks": [{"name": "T", "propellant": "X", "density": 1000.0, "radius": "0.14 m",
-                           "length": "3 m", "position": "0.5 m", "propellant_mass": f"{PROPELLANT} kg"}],
-                "engines": [{"name": "motor", "thrust_vacuum": f"{THRUST} N", "isp_vacuum": f"{ISP} s",
-                             "exit_area": "0 m2", "ignition_delay": f"{DEAD} s", "spool_up": f"{SPOOL} s"}],
-                "point_masses": [{"name": "payload", "mass": "30 kg", "position": "5.2 m"}]}],
-    "aero": {"nose": {"length": "1 m", "shape": "ogive"}, "axial_nose_first": DRAG,
-             "fins": [{"stage": "rocket", "count": 4, "position": "0.5 m", "root_chord": "0.4 m",
-                       "tip_chord": "0.2 m", "span": "0.3 m", "sweep": "0.2 m"}]},
-}
-
-
-def _our_apogee():
-    model = build(spec(ROCKET))
-    a = model.arrays
-    y0 = model.state([0, 0, 0], [0, 0, 0])
-    x_cm = model.mass_properties(y0)[1]
-    enu = enu_basis(LAT, LON)
-    up = enu[2]
-    axes = np.column_stack((up, enu[0], np.cross(up, enu[0])))
-    # standing on its base on the pad (the base's contact springs carry it until liftoff)
-    r = np.array(geodetic_to_ecef(LAT, LON, x_cm))
-    y = model.state(r, corotating(r), q=quat_from_matrix(axes), w=axes.T @ np.array([0, 0, EARTH_OMEGA]))
-    ignite(y, a.eng, a.cmd, a.stage, 0, a.first_clock)
-    p = earth_params()
-    start = ecef_to_geodetic(y[0:3])[2]
-    best = start
-    for k in range(20_000):
-        y = step(y, 0.02 * k, 0.02, p, a)
-        h = float(ecef_to_geodetic(y[0:3])[2])     # ECI = ECEF turned by omega t: height is the same
-        if h < best and k > 100:
-            break
-        best = max(best, h)
-    return best - start, model, x_cm
-
-
-def _rocketpy_apogee(model, x_cm):
-    from rocketpy import Environment, Flight, GenericMotor, Rocket
-    a = model.arrays
-    mdot = THRUST / (G0 * ISP)
-    usable = 0.99 * PROPELLANT
-    full = (usable - mdot * SPOOL / 2) / mdot
-    end = DEAD + SPOOL + full
-    # RocketPy's clock starts when the thrust first lifts the weight (before that our
-    # rocket stands on the pad; RocketPy's rail does not start from zero thrust): the
-    # spool ramp from there on, and the propellant left then
-    weight = (model.mass_properties(np.concatenate((np.zeros(13), [PROPELLANT], np.zeros(1))))[0]
-              * 9.7955)                                        # Somigliana at 33 deg
-    t_lift = SPOOL * weight / THRUST
-    burnt = mdot * t_lift ** 2 / (2 * SPOOL)
-    weight = (model.mass_properties(np.concatenate((np.zeros(13), [PROPELLANT - burnt], np.zeros(1))))[0]
-              * 9.7955)
-    t_lift = SPOOL * weight / THRUST * 1.001
-    burnt = mdot * t_lift ** 2 / (2 * SPOOL)
-    curve = [(0.0, THRUST * t_lift / SPOOL), (SPOOL - t_lift, THRUST), (end - DEAD - t_lift, THRUST)]
-    usable -= burnt
-    end -= DEAD + t_lift
-    motor = GenericMotor(thrust_source=curve, burn_time=(0.0, end), chamber_radius=0.14, chamber_height=3.0,
-                         chamber_position=2.0, propellant_initial_mass=usable, nozzle_radius=0.05,
-                         dry_mass=0.0, center_of_dry_mass_position=0.0, nozzle_position=0.0,
-                         coordinate_system_orientation="nozzle_to_combustion_chamber")
-    # everything but the usable propellant: structure, payload, tank's unusable 1 %
-    dry = model.mass_properties(np.concatenate((np.zeros(13), [0.01 * PROPELLANT], np.zeros(1))))
-    # (RocketPy's chamber: a cylinder of the tank's size; its inertia differs from our
-    # settled column's, which matters little in a vertical flight)
-    dry_mass, dry_cm, ixx, iyy = dry[0], dry[1], dry[2], dry[3]
-    rocket = Rocket(radius=0.15, mass=dry_mass, inertia=(iyy, iyy, ixx),
-                    power_off_drag=DRAG, power_on_drag=DRAG, center_of_mass_without_motor=dry_cm,
-                    coordinate_system_orientation="tail_to_nose")
-    rocket.add_motor(motor, position=0.0)
-    rocket.add_nose(length=1.0, kind="tangent", position=6.0)
-    rocket.add_trapezoidal_fins(n=4, root_chord=0.4, tip_chord=0.2, span=0.3, position=0.5, sweep_length=0.2)
-    env = Environment(latitude=math.degrees(LAT), longitude=math.degrees(LON), elevation=0.0)
-    env.set_atmospheric_model(type="standard_atmosphere")
-    flight = Flight(rocket=rocket, environment=env, rail_length=5.0, inclination=90.0, heading=0.0,
-                    terminate_on_apogee=True, rtol=1e-8)
-    return flight.apogee - flight.z(0.0), flight
+from tests.sounding_peer import our_apogee, rocketpy_flight  # noqa: E402
 
 
 def test_apogee_agrees_with_rocketpy_within_3_percent():
-    ours, model, x_cm = _our_apogee()
-    peer, flight = _rocketpy_apogee(model, x_cm)
+    ours, model = our_apogee()
+    flight = rocketpy_flight(model)
+    peer = flight.apogee - flight.z(0.0)
     print(f"\n[peer] apogee above the pad: rocketsim {ours:.1f} m, RocketPy {peer:.1f} m, "
           f"difference {100 * (ours / peer - 1):+.2f} %")
     assert ours == pytest.approx(peer, rel=0.03)
