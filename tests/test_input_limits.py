@@ -11,15 +11,18 @@ import json
 import os
 import tracemalloc
 
+import numpy as np
 import pytest
 
 from rocketsim.atmosphere.sounding import parse_yaml
+from rocketsim.constants import G0, GROUND_SUBSTEP_MAX, MAX_HEADLESS_STEP
 from rocketsim.errors import InputError
 from rocketsim.limits import MAX_DEPTH, MAX_TEXT_LENGTH, MAX_VALUES, MAX_YAML_BYTES, check_data
+from rocketsim.scenario.bounds import MAX_CONTACT_RATE, MIN_DESCENT_SPEED, contact_rate, descent_speed
 from rocketsim.scenario.load import load
 from rocketsim.scenario.models import Scenario
 from rocketsim.scenario.yaml_source import read_yaml
-from tests.conftest import MISSION, VEHICLE
+from tests.conftest import MISSION, ROOT, VEHICLE
 from tests.test_scenario_errors import assert_clean_error
 from tests.test_vehicle_files import GOOD
 
@@ -264,6 +267,12 @@ aero:
     ("spool_up: 1 s", "spool_up: 1.0e-6 s", "v.yaml:21:", "at least 0.001 s"),
     ("gimbal_range: 5 deg", "gimbal_range: 500 deg", "v.yaml:22:", "at most 1.5708 rad"),
     ("stiffness: 1.0e+7", "stiffness: 1.0e+20", "v.yaml:25:", "at most 1e+12 N/m"),
+    # within 1e12 N/m, but four legs of 1e10 N/m on the 1 t stage are a mode of 6 325 /s
+    # (sqrt(4e10 / 1000)), far beyond RK4 at 5 ms; dampers of 1e7 N s/m one of 4e4 /s (c / m)
+    ("stiffness: 1.0e+7", "stiffness: 1.0e+10", "v.yaml:25:", "aero.legs.0.stiffness: 4 legs "
+     "(stiffness 4e+10 N/m together) on 1000 kg (the dry mass they hold up) are a mode of 6324.56 /s"),
+    ("damping: 1.0e+5", "damping: 1.0e+7", "v.yaml:25:", "aero.legs.0.damping: 4 legs (damping "
+     "4e+07 N s/m together) on 1000 kg (the dry mass they hold up) are a mode of 39999 /s"),
     ("direction: [0, 1, 0]", "direction: [1.0e+300, 1.0e+300, 0]", "v.yaml:26:", "within 1e30"),
     ("isp: 70 s", "isp: 7.0e+9 s", "v.yaml:26:", "at most 100000 s"),
     ("length: 2 m, shape", "length: 200 m, shape", "v.yaml:24:", "longer than the stack"),
@@ -345,3 +354,64 @@ def test_the_schema_names_each_bound_and_why(cli):
     assert "at least 1 and at most 1000" in engine["count"]["description"]
     stage = schema["$defs"]["StageSpec"]["properties"]
     assert "at least 0.001 m and at most 1000 m" in stage["length"]["description"]
+
+
+# the hobby rocket of vehicles/hobby-rocket.yaml (13.9 kg dry with its nose cone, the payload),
+# its motor file named where it is
+HOBBY = (ROOT / "vehicles" / "hobby-rocket.yaml").read_text().replace(
+    "../motors/", f"{(ROOT / 'motors').as_posix()}/")
+
+
+@pytest.mark.parametrize("written, changed, where, message", [
+    # a drag area a million times any parachute's: it flew 136 s to an altitude of 1e24 km
+    # and exited 0 (its descent's mode, 2 g / v, far beyond RK4 at the step)
+    ("cd_s: 5.65 m2", "cd_s: 1.0e+12 m2", "hobby.yaml:43:9: stages.0.parachutes.1.cd_s",
+     "at most 10000 m2: the largest parachutes flown"),
+    # within 1e4 m2, but 300 m2 on the 13.9 kg body descends at 0.86 m/s, sqrt(2 m g0 / (rho0 C_D S))
+    ("cd_s: 5.65 m2", "cd_s: 300 m2", "hobby.yaml:43:9: stages.0.parachutes.1.cd_s",
+     "(13.948 kg, dry) under all its parachutes (300.445 m2 of C_D S) would descend at 0.862 m/s"),
+    ("inflation: 1.5 s", "inflation: 1.0e-9 s", "hobby.yaml:45:9: stages.0.parachutes.1.inflation",
+     "at least 0.001 s"),
+    ("lag: 1.0 s               # ejection", "lag: 1.0e+9 s  # ejection",
+     "hobby.yaml:39:9: stages.0.parachutes.0.lag", "at most 3600 s"),
+    ("deploy: {height: 300 m}", "deploy: {height: -3 m}",
+     "hobby.yaml:46:18: stages.0.parachutes.1.deploy.height", "must be at least 0 m"),
+    # the union's other branch (after:) knows no 'height': this said "unknown field
+    # 'height'; did you mean 'height'?"
+    ("deploy: {height: 300 m}", "deploy: {height: 300 stone}",
+     "hobby.yaml:46:18: stages.0.parachutes.1.deploy.height", "unknown unit 'stone' for a length"),
+    # four base points of 1e10 N/m on 13.9 kg: a mode of 5.4e4 /s; it touched down at 7e9 m/s
+    ("body_contact_stiffness: 2.0e5", "body_contact_stiffness: 1.0e+10",
+     "hobby.yaml:59:3: aero.body_contact_stiffness", "a mode of 53551.8 /s, faster than 500 /s"),
+])
+def test_parachutes_and_contact_springs_beyond_their_bounds_are_refused_at_their_line(
+        write, cli, written, changed, where, message):
+    assert written in HOBBY
+    path = write("hobby.yaml", HOBBY.replace(written, changed, 1))
+    assert_clean_error(cli("validate", path), where, message)
+
+
+def test_the_hobby_rocket_of_these_tests_is_valid(write, cli):
+    assert cli("validate", write("hobby.yaml", HOBBY)).exit_code == 0
+
+
+def rk4_growth(z: complex) -> float:
+    """|R(z)|, RK4's amplification of the mode y' = lambda y over a step, z = lambda h
+    (E. Hairer, G. Wanner, Solving Ordinary Differential Equations II, section IV.2)."""
+    return abs(1 + z + z ** 2 / 2 + z ** 3 / 6 + z ** 4 / 24)
+
+
+def test_the_mass_bounds_keep_rk4_stable_at_their_steps():
+    # a contact's mode of MAX_CONTACT_RATE at the longest ground sub-step, at any damping
+    # (the roots of m s^2 + c s + k, in the left half-plane), does not grow
+    z = MAX_CONTACT_RATE * GROUND_SUBSTEP_MAX
+    assert max(rk4_growth(z * np.exp(1j * a)) for a in np.linspace(np.pi / 2, np.pi, 1001)) <= 1.0
+    assert rk4_growth(2.9j) > 1.0           # an undamped one of 580 /s would
+    # a descent at its terminal speed v: m v' = m g - rho C_D S v^2 / 2 linearised is a
+    # mode of -2 g / v; at MIN_DESCENT_SPEED and the longest step it does not grow
+    assert rk4_growth(-2 * G0 / MIN_DESCENT_SPEED * MAX_HEADLESS_STEP) <= 1.0
+    # the figures the bounds are checked with, against numpy's roots and the drag balance
+    for m, k, c in ((1000.0, 4e10, 4e5), (1000.0, 4e7, 4e7), (2.0, 1e4, 1e2)):
+        assert contact_rate(m, k, c) == pytest.approx(max(abs(np.roots([m, c, k]))), rel=1e-9)
+    v = descent_speed(13.948, 300.0)
+    assert 0.5 * 1.225 * 300.0 * v ** 2 == pytest.approx(13.948 * G0, rel=1e-5)  # USSA's 1.2250 kg/m3

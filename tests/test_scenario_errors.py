@@ -3,6 +3,7 @@
 import pytest
 
 from rocketsim.errors import InputError
+from rocketsim.api.flying import fly
 from rocketsim.scenario.load import load
 from rocketsim.telemetry.reader import messages, metadata
 from tests.conftest import MISSION, VEHICLE
@@ -87,10 +88,19 @@ def test_a_state_that_diverges_ends_the_flight_with_a_clear_error(scenario, cli)
     mission.write_text(mission.read_text() + "initial_rates: [3000, 100, 0]\n")
     out = path.with_name("out.mcap")
     result = cli("fly", path, "-o", out)
-    assert_clean_error(result, "step", "state of probe is no longer finite", "smaller step")
+    # named: the scenario's file (where the step is) and the vehicle's
+    assert_clean_error(result, f"error: {path.resolve()}: step: the state of probe (vehicle file "
+                       f"{path.with_name('vehicle.yaml').resolve()}) is no longer finite", "smaller step")
     states = [m for _, _, m in messages(out, ["/probe/state"])]
     assert states and all(None not in m["position"] for m in states)
     assert metadata(out)["outcome"]["status"] == "error"
+    # a vehicle written inline has no file of its own: the scenario's is named alone
+    path.write_text(path.read_text().replace(
+        "vehicle: vehicle.yaml", "vehicle: {name: probe, rigid_body: {mass: 10 kg, inertia: [0.15, 0.12, 0.05]}}"))
+    with pytest.raises(InputError) as caught:
+        fly(path)
+    assert caught.value.message.startswith("the state of probe is no longer finite at T+")
+    assert caught.value.file == str(path.resolve()) and caught.value.field == "step"
 
 
 def test_the_error_is_an_input_error_for_library_callers(scenario):

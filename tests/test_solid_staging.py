@@ -35,7 +35,9 @@ LIGHT = """
 @pytest.mark.parametrize("ignition", ["3 s", "program"])
 def test_the_sustainer_lights_on_time_after_the_booster_separates(tmp_path, ignition):
     (tmp_path / "program.py").write_text(PROGRAM + (LIGHT if ignition == "program" else ""))
-    contact = {"body_contact_stiffness": 2e5, "body_contact_damping": 2e3,
+    # springs soft enough for the 3.4 kg booster alone at the 5 ms ground sub-steps (its
+    # four base points: a mode of 150 /s, docs/physics.md#input-bounds)
+    contact = {"body_contact_stiffness": 2e4, "body_contact_damping": 2e2,
                "limits": {"axial_load": "40 g"}}      # a K motor pushes the light sustainer at ~20 g
     vehicle = {"name": "two-stage", "stages": [
         {"name": "booster", "length": "0.8 m", "diameter": "0.1 m", "structure_mass": "2 kg",

@@ -15,13 +15,15 @@ from typing import Annotated, Literal, Optional
 
 from pydantic import BaseModel, Field, field_validator
 
-from rocketsim.constants import FRICTION_REGULARISATION
-from rocketsim.scenario.bounds import (ANGLE, AREA, BODY_MASS, COUNT, DIRECTION, EXTENT, ISP,
-                                       MAX_AXIAL_LOAD, MAX_COEFFICIENT, MAX_DAMPING, MAX_FRICTION,
+from rocketsim.constants import (BODY_CONTACT_DAMPING, BODY_CONTACT_RATE, BODY_CONTACT_STIFFNESS,
+                                 FRICTION_REGULARISATION)
+from rocketsim.scenario.bounds import (ANGLE, AREA, BODY_MASS, BOUNDS, COUNT, DIRECTION, EXTENT, ISP,
+                                       MAX_AXIAL_LOAD, MAX_COEFFICIENT, MAX_CONTACT_RATE,
+                                       MAX_DAMPING, MAX_FRICTION,
                                        MAX_FRICTION_SPEED, MAX_MACH, MAX_Q_ALPHA,
                                        MAX_SPECIFIC_HEAT, MAX_STIFFNESS, MAX_TEMPERATURE,
                                        MIN_FRICTION_SPEED, MIN_SPECIFIC_HEAT, SIZE, SLEW, STATION,
-                                       THRUST, within)
+                                       THRUST, contact_rate, within)
 from rocketsim.scenario.units import (STRICT, Acceleration, Angle, AngularRate, Area, Force, Length,
                                       Mass, Speed, SpecificImpulse, Temperature)
 
@@ -161,6 +163,16 @@ class AeroSpec(_Strict):
     heat_shield: Optional[HeatShieldSpec] = None
     limits: LimitsSpec = Field(LimitsSpec(), description="structural limits in place of the defaults")
 
+    def body_springs(self, dry_mass: float) -> tuple[float, float]:
+        """``(stiffness N/m, damping N s/m)`` of each of the body's contact points: the
+        file's, else the defaults of :data:`~rocketsim.constants.BODY_CONTACT_STIFFNESS`,
+        softened for a vehicle of ``dry_mass`` (kg) under 2 t to a natural frequency of
+        :data:`~rocketsim.constants.BODY_CONTACT_RATE` (docs/physics.md#ground-contact)."""
+        k = min(BODY_CONTACT_STIFFNESS, dry_mass * BODY_CONTACT_RATE ** 2)
+        c = min(BODY_CONTACT_DAMPING, dry_mass * BODY_CONTACT_RATE)
+        return (k if self.body_contact_stiffness is None else self.body_contact_stiffness,
+                c if self.body_contact_damping is None else self.body_contact_damping)
+
     @field_validator("axial_nose_first", "axial_tail_first")
     @classmethod
     def _table(cls, value):
@@ -198,3 +210,36 @@ def check_aero(aero: AeroSpec | None, stages, payload=None) -> None:
             if label == "rcs" and part.tank not in [t.name for t in by_name[part.stage].tanks]:
                 raise field_error(("aero", label, i, "tank"), f"stage {part.stage!r} has no tank named "
                                   f"{part.tank!r}", part.tank)
+    if not aero.aerodynamics:           # no ground contact
+        return
+    from rocketsim.scenario.vehicle import lightest_body
+    held = {st.name: lightest_body(stages, s, payload) for s, st in enumerate(stages)}
+    for i, leg in enumerate(aero.legs):
+        # all the feet on the ground together, holding the lightest body of the leg's stage
+        _check_contact(("aero", "legs", i), f"{leg.count} legs", held[leg.stage],
+                       leg.count * leg.stiffness, leg.count * leg.damping)
+    if aero.body_contact_stiffness is not None or aero.body_contact_damping is not None:
+        # the lightest body standing on the four points of its base ring
+        lightest = min(held.values())
+        k, c = aero.body_springs(lightest)
+        _check_contact(("aero",), "the body's 4 base points", lightest, 4 * k, 4 * c,
+                       "body_contact_stiffness", "body_contact_damping")
+
+
+def _check_contact(loc: tuple, what: str, mass: float, stiffness: float, damping: float,
+                   stiffness_field: str = "stiffness", damping_field: str = "damping") -> None:
+    """Refuse (a located ValidationError at ``loc`` + the field) contact springs
+    ``stiffness`` (N/m) and dampers ``damping`` (N s/m), all of ``what`` together,
+    whose fastest mode on ``mass`` (kg) is beyond
+    :data:`~rocketsim.scenario.bounds.MAX_CONTACT_RATE`: the damper's field when the
+    mode is overdamped (c^2 > 4 m k), else the spring's."""
+    from rocketsim.scenario.vehicle import field_error
+    rate = contact_rate(mass, stiffness, damping)
+    if rate <= MAX_CONTACT_RATE:
+        return
+    overdamped = damping * damping > 4.0 * mass * stiffness
+    name = damping_field if overdamped else stiffness_field
+    figure = (f"damping {damping:g} N s/m" if overdamped else f"stiffness {stiffness:g} N/m")
+    raise field_error(loc + (name,), f"{what} ({figure} together) on {mass:g} kg (the dry mass they "
+                      f"hold up) are a mode of {rate:g} /s, faster than {MAX_CONTACT_RATE:g} /s: "
+                      f"{BOUNDS['contact rate']}", damping if overdamped else stiffness)

@@ -22,10 +22,17 @@ propellant density        0.01 .. 1e5 kg/m3     a gas at low pressure .. osmium'
 pressure                  up to 1e8 Pa          combustion chambers run at up to 30 MPa
 identical parts           at most 1000          Super Heavy has 33 engines
 engine response time      1 ms .. 1 h           spool-up and tail-off take tenths of a second
+parachute drag area       up to 1e4 m2          Orion's mains, the largest flown, are about
+                                                800 m2 each (C_D S), 2 400 m2 the cluster
 ========================  ====================  ===========================================
 
-The rest (actuator rates, contact springs, friction, Mach tables) are listed in
-:data:`BOUNDS` with their reasons. A bounded field's JSON schema description
+The rest (actuator rates, contact springs, friction, Mach tables, parachute
+timing) are listed in :data:`BOUNDS` with their reasons. Two bounds relate figures
+to the mass they act on, as the integrator needs (docs/physics.md#input-bounds):
+a stage's dry mass under all its canopies descends at least
+:data:`MIN_DESCENT_SPEED` in sea-level air (:func:`descent_speed`), and a contact
+spring and damper on the lightest body they hold has no mode faster than
+:data:`MAX_CONTACT_RATE` (:func:`contact_rate`). A bounded field's JSON schema description
 names its bound (:func:`document_bounds`).
 """
 
@@ -37,6 +44,7 @@ from dataclasses import dataclass
 
 from pydantic_core import core_schema
 
+from rocketsim.constants import G0, GAS_CONSTANT_USSA, USSA_M0, USSA_P0, USSA_T0
 from rocketsim.limits import MAX_QUANTITY
 
 MIN_SIZE = 1e-3                 # m, the smallest positive size of a part (a millimetre)
@@ -58,6 +66,7 @@ MAX_THROTTLE_RATE = 1e3         # fraction of full thrust per second
 MAX_SEPARATION_SPEED = 100.0    # m/s, of a jettisoned fairing's halves
 MAX_STIFFNESS = 1e12            # N/m, of a leg or the body's contact spring
 MAX_DAMPING = 1e10              # N s/m
+MAX_CONTACT_RATE = 500.0        # 1/s, |lambda| of a contact's fastest mode: 2.5 per 5 ms sub-step
 MAX_FRICTION = 10.0             # Coulomb friction coefficient
 MIN_FRICTION_SPEED = 1e-3       # m/s
 MAX_FRICTION_SPEED = 100.0      # m/s
@@ -68,6 +77,11 @@ MAX_SPECIFIC_HEAT = 1e5         # J/(kg K)
 MAX_TEMPERATURE = 1e4           # K, of a heat shield at the start
 MAX_Q_ALPHA = 1e12              # Pa deg, a structural limit
 MAX_AXIAL_LOAD = 1e7            # m/s^2, a structural limit (about 1e6 g)
+MAX_DRAG_AREA = 1e4             # m^2, C_D S of one parachute
+MIN_DESCENT_SPEED = 1.0         # m/s, of a stage's dry mass under all its canopies, sea-level air
+MAX_DEPLOY_HEIGHT = 100_000.0   # m, a parachute's deployment height above the ground
+# kg/m^3, the US Standard Atmosphere 1976's sea-level density, p0 M0 / (R* T0): 1.2250
+SEA_LEVEL_DENSITY = USSA_P0 * USSA_M0 / (GAS_CONSTANT_USSA * USSA_T0)
 MIN_SITE_HEIGHT = -12_000.0     # m, the deepest ocean trench is 11 km below sea level
 MAX_SITE_HEIGHT = 100_000.0     # m, the Karman line: above it a flight starts from orbit
 MAX_PROGRAM_CPU = 3600.0        # s of CPU a program may be given for one step
@@ -95,6 +109,16 @@ BOUNDS = {
     "separation": "a fairing's halves are pushed apart at a few m/s, not faster than 100 m/s",
     "stiffness": "a landing leg's spring is about 1e8 N/m; 1e12 N/m is steel a metre thick",
     "damping": "landing-leg dampers are about 1e6 N s/m",
+    "contact rate": "RK4 holds a mode of |lambda| dt up to 2.6 (of a damped spring) or 2.8 "
+                    "(undamped), 520 /s at the 5 ms ground sub-steps; landing legs' modes are "
+                    "tens to hundreds of /s",
+    "drag area": "the largest parachutes flown, Orion's mains, are 35 m across, about 800 m2 of "
+                 "C_D S each and 2 400 m2 the cluster of three",
+    "descent": "RK4 at the longest step, 0.1 s, holds a descent at its terminal speed v "
+               "(a mode of 2 g / v) only above 0.7 m/s; an empty nylon canopy descends at 0.9 m/s",
+    "opening": "a parachute's lines pay out and its canopy fills in tenths of a second to "
+               "seconds, not under a millisecond nor over an hour",
+    "deploy height": "a parachute opens in the air, below 100 km above the ground",
     "friction": "friction coefficients are below 2 for any pair of materials",
     "friction speed": "friction is regularised below a speed of 1 mm/s .. 100 m/s",
     "mach": "Mach numbers of a flight stay below 100 (entry from the Moon is Mach 36)",
@@ -169,6 +193,28 @@ RESPONSE = within(MIN_RESPONSE, MAX_RESPONSE, "response", "s")
 DIRECTION = within(-MAX_QUANTITY, MAX_QUANTITY, "direction")
 BURN_TIME = within(0.0, MAX_RESPONSE, "burn", "s")             # a time of a thrust curve
 CURVE_THRUST = within(0.0, MAX_THRUST, "thrust", "N")           # a thrust of a thrust curve
+
+
+DRAG_AREA = within(0.0, MAX_DRAG_AREA, "drag area", "m2", above=True)
+OPENING_LAG = within(0.0, MAX_RESPONSE, "opening", "s")
+INFLATION = within(MIN_RESPONSE, MAX_RESPONSE, "opening", "s")
+DEPLOY_HEIGHT = within(0.0, MAX_DEPLOY_HEIGHT, "deploy height", "m")
+
+
+def descent_speed(mass: float, drag_area: float) -> float:
+    """m/s, the terminal speed ``sqrt(2 m g0 / (rho0 C_D S))`` of ``mass`` (kg) under the
+    drag area ``drag_area`` (m^2) in sea-level air (:data:`SEA_LEVEL_DENSITY`)."""
+    return math.sqrt(2.0 * mass * G0 / (SEA_LEVEL_DENSITY * drag_area))
+
+
+def contact_rate(mass: float, stiffness: float, damping: float) -> float:
+    """1/s, the largest |lambda| of the modes of ``mass`` (kg) on a spring ``stiffness``
+    (N/m) and damper ``damping`` (N s/m): the roots of m s^2 + c s + k = 0, ``sqrt(k/m)``
+    underdamped, ``(c + sqrt(c^2 - 4 m k)) / (2 m)`` overdamped."""
+    disc = damping * damping - 4.0 * mass * stiffness
+    if disc < 0.0:
+        return math.sqrt(stiffness / mass)
+    return (damping + math.sqrt(disc)) / (2.0 * mass)
 
 
 def _bounds_in(annotation) -> list[Within]:

@@ -280,6 +280,11 @@ def _input_error(error: ValidationError, source: YamlSource, model: type[BaseMod
     # drop the file-name branch's complaint when the inline one explains more
     problems = error.errors(include_url=False)
     problems = [p for p in problems if not {"str", "constrained-str"} & set(p["loc"])] or problems
+    # each branch of a union complains: a field one branch has and finds wrong is unknown
+    # to the others; name what the branch that has it says
+    unknown = {(p["loc"][:-2], p["loc"][-1]) for p in problems if p["type"] == "extra_forbidden"}
+    problems = [p for p in problems if p["type"] != "extra_forbidden" and p["loc"]
+                and (p["loc"][:-2], p["loc"][-1]) in unknown] or problems
     # a misspelt field shows as an unknown one plus a missing one: name the
     # misspelling first, since it is what the user has to fix
     first = min(problems, key=lambda p: p["type"] != "extra_forbidden")

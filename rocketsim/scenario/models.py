@@ -106,7 +106,7 @@ class VehicleSpec(Strict):
         if (self.rigid_body is None) == (self.stages is None):
             raise ValueError("give exactly one of 'rigid_body' or 'stages'")
         if self.stages is not None:
-            check_staged(self.stages, self.engines)
+            check_staged(self.stages, self.engines, self.payload)
             check_aero(self.aero, self.stages, self.payload)
         elif (self.engines is not None or self.payload is not None or self.fairing is not None
               or self.aero is not None):

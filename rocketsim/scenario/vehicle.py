@@ -38,10 +38,11 @@ from pydantic_core import InitErrorDetails, PydanticCustomError, ValidationError
 
 from rocketsim.constants import ENGINE_TAIL_OFF, G0, MAX_DURATION
 from rocketsim.scenario.bounds import (ANGLE, BODY_MASS, BOUNDS, BURN_TIME, COUNT, CURVE_THRUST,
-                                       EXTENT, ISP, MAX_COUNT, MAX_DENSITY, MAX_MASS, MAX_PRESSURE,
-                                       MAX_SEPARATION_SPEED, MAX_SIZE, MAX_THROTTLE_RATE,
-                                       MIN_DENSITY, MIN_IMPULSE, PART_MASS, RESPONSE, SIZE, SLEW,
-                                       THRUST, within)
+                                       DEPLOY_HEIGHT, DRAG_AREA, EXTENT, INFLATION, ISP, MAX_COUNT,
+                                       MAX_DENSITY, MAX_MASS, MAX_PRESSURE, MAX_SEPARATION_SPEED,
+                                       MAX_SIZE, MAX_THROTTLE_RATE, MIN_DENSITY, MIN_DESCENT_SPEED,
+                                       MIN_IMPULSE, OPENING_LAG, PART_MASS, RESPONSE, SIZE, SLEW,
+                                       THRUST, descent_speed, within)
 from rocketsim.scenario.motor_file import MotorFileError, read_thrust_curve
 from rocketsim.scenario.units import (STRICT, Angle, AngularRate, Area, Density, Duration, Force,
                                       Fraction, Length, Mass, MassFlow, Pressure, SpecificImpulse,
@@ -313,8 +314,9 @@ class AfterEvent(_Strict):
 
 
 class HeightTrigger(_Strict):
-    height: Length = Field(description="deploy on the way down at this height above the ground "
-                           "(the ground the body lands on: the ellipsoid, or the site's ground_height)")
+    height: Annotated[Length, DEPLOY_HEIGHT] = Field(
+        description="deploy on the way down at this height above the ground (the ground the "
+        "body lands on: the ellipsoid, or the site's ground_height)")
 
 
 class AfterTrigger(_Strict):
@@ -328,12 +330,12 @@ class ParachuteSpec(_Strict):
     (``fc.deploy_parachute(name)``; any parachute can be deployed by the program)."""
 
     name: str
-    cd_s: Annotated[Area, Field(gt=0)] = Field(description="C_D S: drag coefficient times "
-                                               "reference area, fully inflated")
-    lag: Annotated[Duration, Field(ge=0)] = Field(1.0, description="from deployment to the start "
+    cd_s: Annotated[Area, DRAG_AREA] = Field(description="C_D S: drag coefficient times "
+                                             "reference area, fully inflated")
+    lag: Annotated[Duration, OPENING_LAG] = Field(1.0, description="from deployment to the start "
                                                   "of inflation")
-    inflation: Annotated[Duration, Field(gt=0)] = Field(1.0, description="from the start of "
-                                                        "inflation to full drag area (linear)")
+    inflation: Annotated[Duration, INFLATION] = Field(1.0, description="from the start of "
+                                                      "inflation to full drag area (linear)")
     deploy: Union[Literal["apogee", "program"], HeightTrigger, AfterTrigger] = Field(
         description="apogee, program, {height: <length>} or {after: {event: <name>, delay: <time>}}")
     releases: list[str] = Field([], description="parachutes (by name) cut away when this one "
@@ -457,7 +459,15 @@ class FairingSpec(_Strict):
     separation_speed: Annotated[Speed, within(0.0, MAX_SEPARATION_SPEED, "separation", "m/s")] = 2.0
 
 
-def check_staged(stages: list[StageSpec], extra_engines) -> None:
+def lightest_body(stages: list[StageSpec], s: int, payload: PayloadSpec | None) -> float:
+    """kg, the least mass of a body carrying stage ``s`` (of ``stages``, bottom to top):
+    its dry mass, and on the top stage the payload's (carried until a program deploys
+    it); what its parachutes slow and its legs hold up (docs/physics.md#input-bounds)."""
+    top = s == len(stages) - 1 and payload is not None
+    return stages[s].dry_mass + (payload.mass if top else 0.0)
+
+
+def check_staged(stages: list[StageSpec], extra_engines, payload: PayloadSpec | None = None) -> None:
     """Cross-field checks of a staged vehicle (raise a located ValidationError)."""
     if extra_engines is not None:
         raise field_error(("engines",), "an engine must belong to a stage: list it under a "
@@ -471,6 +481,17 @@ def check_staged(stages: list[StageSpec], extra_engines) -> None:
                 raise field_error(("stages", s, "parachutes", i, "name"), f"two parachutes are named "
                                   f"{chute.name!r}: fc.deploy_parachute and 'releases' name them", chute.name)
     for s, st in enumerate(stages):
+        if st.parachutes:
+            # every canopy open at once on the lightest body that carries them
+            i = max(range(len(st.parachutes)), key=lambda i: st.parachutes[i].cd_s)
+            mass, area = lightest_body(stages, s, payload), sum(c.cd_s for c in st.parachutes)
+            speed = descent_speed(mass, area)
+            if speed < MIN_DESCENT_SPEED:
+                raise field_error(("stages", s, "parachutes", i, "cd_s"), f"the lightest body "
+                                  f"carrying stage {st.name!r} ({mass:g} kg, dry) under all its "
+                                  f"parachutes ({area:g} m2 of C_D S) would descend at {speed:.3g} m/s "
+                                  f"in sea-level air, slower than {MIN_DESCENT_SPEED:g} m/s: "
+                                  f"{BOUNDS['descent']}", st.parachutes[i].cd_s)
         for i, chute in enumerate(st.parachutes):
             for k, other in enumerate(chute.releases):
                 if other not in names or other == chute.name:

@@ -79,6 +79,8 @@ class World:
         self.program_cpu_budget = 1.0
         self.target = None                  # the mission's target (TargetSpec)
         self.pad_azimuth = math.nan
+        self.scenario_file = None           # Path of the scenario's file (None: given as a mapping)
+        self.vehicle_file = None            # Path of the vehicle's file (None: written inline)
 
     @property
     def atmosphere(self):
@@ -322,13 +324,17 @@ class World:
 
     def _check_finite(self) -> None:
         """Stop the flight with an input error when a body's state is no longer finite
-        (a step too large for its dynamics, or an unphysical vehicle). Checked at
-        the telemetry rate, before sampling: the file ends with finite samples."""
+        (a step too large for its dynamics, or an unphysical vehicle), naming the
+        scenario's file and the vehicle's (every body of the world is part of that
+        vehicle). Checked at the telemetry rate, before sampling: the file ends with
+        finite samples."""
         for body in self.bodies:
             if body.flying and not math.isfinite(float(body.y.sum())):
-                raise InputError(f"the state of {body.name} is no longer finite at T+{body.t:.2f} s: the "
-                                 f"step of {self.h:g} s is too large for its dynamics (stiff contact, a fast "
-                                 "spin) or its vehicle is unphysical; fly with a smaller step", field="step")
+                vehicle = "" if self.vehicle_file is None else f" (vehicle file {self.vehicle_file})"
+                raise InputError(f"the state of {body.name}{vehicle} is no longer finite at T+{body.t:.2f} s: "
+                                 f"the step of {self.h:g} s is too large for its dynamics (stiff contact, "
+                                 "a fast spin) or its vehicle is unphysical; fly with a smaller step",
+                                 file=self.scenario_file, field="step")
 
     def _sample_all(self) -> None:
         if self.telemetry is None:

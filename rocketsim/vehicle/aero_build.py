@@ -22,8 +22,7 @@ from collections import namedtuple
 
 import numpy as np
 
-from rocketsim.constants import (BODY_CONTACT_DAMPING, BODY_CONTACT_RATE, BODY_CONTACT_STIFFNESS,
-                                 FRICTION_REGULARISATION, G0)
+from rocketsim.constants import FRICTION_REGULARISATION, G0
 from rocketsim.layout import N_STATE
 from rocketsim.errors import InputError
 from rocketsim.vehicle.aero import (A_AREA, A_BASE_AREA, A_ETA, A_NOSE_AREA, A_NOSE_X, A_ON,
@@ -182,7 +181,7 @@ def build_aero(spec, chosen, stage_base, top: bool, with_fairing: bool, tank_nam
     # the body: a ring at the base (engine bells, skirt), a ring below the nose and the tip
     dry = sum(st.dry_mass for st in chosen) + sum(
         part.mass for part, on in ((spec.payload, top), (spec.fairing, with_fairing)) if on and part is not None)
-    kb, cb = body_contact_springs(aero, dry)
+    kb, cb = aero.body_springs(dry)
     for x, r in ((0.0, 0.5 * chosen[0].diameter), (nose_base, 0.5 * base_d)):
         for j in range(4):
             phi = 0.5 * math.pi * j
@@ -203,17 +202,6 @@ def build_aero(spec, chosen, stage_base, top: bool, with_fairing: bool, tank_nam
         np.array(grid, dtype=float).reshape(-1, N_GRID), np.zeros((len(grid), N_GRID_CMD)),
         np.array(rcs, dtype=float).reshape(-1, N_RCS), np.zeros(len(rcs)),
         np.ascontiguousarray(contact), np.zeros(3))
-
-
-def body_contact_springs(aero, dry_mass: float) -> tuple[float, float]:
-    """``(stiffness N/m, damping N s/m)`` of each of the body's contact points: the vehicle
-    file's, else the defaults of :data:`~rocketsim.constants.BODY_CONTACT_STIFFNESS`,
-    softened for a vehicle of ``dry_mass`` (kg) under 2 t to a natural frequency of
-    :data:`~rocketsim.constants.BODY_CONTACT_RATE` (docs/physics.md#ground-contact)."""
-    k = min(BODY_CONTACT_STIFFNESS, dry_mass * BODY_CONTACT_RATE ** 2)
-    c = min(BODY_CONTACT_DAMPING, dry_mass * BODY_CONTACT_RATE)
-    return (k if aero.body_contact_stiffness is None else aero.body_contact_stiffness,
-            c if aero.body_contact_damping is None else aero.body_contact_damping)
 
 
 def _built(spec, parts, base_of, label):
