@@ -18,6 +18,7 @@ import pytest
 from rocketsim._jit import Entries
 from rocketsim.constants import G0
 from rocketsim.dynamics import rk4
+from rocketsim.dynamics.third_bodies import nbody_flag
 from rocketsim.flight.fc import FlightComputer
 from rocketsim.scenario.load import load
 from rocketsim.sim import vehicle_checks, world as world_module
@@ -77,7 +78,7 @@ def _fly(seconds, fold, monkeypatch):
         def unfolded(checks, body, k0, h, n, steering=None):
             assert steering is None
             return body.kernels.call(rk4.advance, body.vehicle.arrays, body.y, k0, h, n, body.p,
-                                     body.vehicle.arrays)
+                                     body.vehicle.arrays, nbody_flag(body.p))
 
         monkeypatch.setattr(VehicleChecks, "advance", unfolded)
     # every step through the loop's one-step path (not the compiled runs of rocketsim.sim.window,

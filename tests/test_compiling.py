@@ -1,4 +1,5 @@
-"""A cold kernel cache: announced on a terminal, silent elsewhere, warmed by ``rocketsim compile``.
+"""A cold kernel cache: announced on a terminal, silent elsewhere, warmed by ``rocketsim compile``;
+and a flight compiles only the kernels it flies.
 
 The first flight on a machine compiles its kernels; ``rocketsim fly`` says so on
 a terminal, and ``rocketsim compile`` compiles them ahead into the cache. Here the cache of a small flight is copied and one kernel the
@@ -6,10 +7,16 @@ flight calls at its end (``orbit_figures``, the summary's orbit) is deleted from
 the copy, so that ``rocketsim fly`` over the copy compiles exactly that one
 kernel (a few seconds, not the minute of a whole cold cache). stderr is a
 pseudo-terminal (the pty module) in one run and a pipe in the other.
+
+The same copy, without the flight model's step instead, shows what compiling the
+step brings in: for a body without an n-body field, not the hold of the other
+bodies (``third_bodies.hold_field`` and the ephemeris it evaluates, about a third
+of a cold coasting flight), which the step's ``nbody=None`` compiles away.
 """
 
 from __future__ import annotations
 
+import json
 import os
 import pty
 import shutil
@@ -27,21 +34,28 @@ from rocketsim_cli.compiling import FIRST_RUN
 KERNEL = "sampling.orbit_figures-*"
 
 
-@pytest.fixture
-def one_cold_kernel(scenario, tmp_path):
-    """(scenario, environment) whose kernel cache lacks only ``orbit_figures``."""
-    path = scenario(duration="1 s")
+def _cache_without(path, tmp_path, *kernels):
+    """(environment, cache folder): a copy of the kernel cache after a flight of
+    ``path``, without the files of ``kernels`` (file name patterns)."""
     fly(load(path), tmp_path / "warm.mcap")            # every kernel of the flight cached
     warm = Path(cache_dir())
     root = tmp_path / "cache"
     shutil.copytree(warm, root / warm.name)
-    removed = list((root / warm.name).rglob(KERNEL))
-    assert removed, "the flight's cache holds orbit_figures"
-    for file in removed:
-        file.unlink()
+    for kernel in kernels:
+        removed = list((root / warm.name).rglob(kernel))
+        assert removed, f"the flight's cache holds {kernel}"
+        for file in removed:
+            file.unlink()
     env = {k: v for k, v in os.environ.items() if k != "NUMBA_CACHE_DIR"}
     env["ROCKETSIM_CACHE_DIR"] = str(root)
-    return path, env, root / warm.name
+    return env, root / warm.name
+
+
+@pytest.fixture
+def one_cold_kernel(scenario, tmp_path):
+    """(scenario, environment) whose kernel cache lacks only ``orbit_figures``."""
+    path = scenario(duration="1 s")
+    return (path, *_cache_without(path, tmp_path, KERNEL))
 
 
 def _fly(path, env, tmp_path, stderr):
@@ -100,3 +114,26 @@ def test_compile_names_a_bad_scenario_and_exits_2(write, tmp_path):
     assert done.returncode == 2
     assert "error:" in done.stderr and "bad.yaml" in done.stderr
     assert "Traceback" not in done.stderr
+
+
+_COMPILED = """
+import json, sys
+from rocketsim.dynamics import rk4, third_bodies
+from rocketsim.scenario.load import load
+from rocketsim.sim.flight import fly
+fly(load(sys.argv[1]), sys.argv[2])
+print(json.dumps({k.__name__: len(k.signatures) for k in (rk4.step, third_bodies.hold_field)}))
+"""
+
+
+def test_a_flight_without_an_n_body_field_does_not_compile_its_hold(scenario, tmp_path):
+    # a coasting body about Earth alone: its step (and advance) compiled afresh in a
+    # fresh process, the rest from the cache
+    path = scenario(duration="1 s")
+    env, _ = _cache_without(path, tmp_path, "rk4.step-*", "rk4.advance-*")
+    done = subprocess.run([sys.executable, "-c", _COMPILED, str(path), str(tmp_path / "cold.mcap")],
+                          env=env, capture_output=True, text=True, timeout=300)
+    assert done.returncode == 0, done.stderr
+    compiled = json.loads(done.stdout.strip().splitlines()[-1])
+    assert compiled["step"] >= 1, "the flight compiled its step"
+    assert compiled["hold_field"] == 0

@@ -15,7 +15,7 @@ import numpy as np
 
 from rocketsim.dynamics import soi
 from rocketsim.dynamics.rk4 import advance
-from rocketsim.dynamics.third_bodies import bodies_at, field_of
+from rocketsim.dynamics.third_bodies import bodies_at, field_of, nbody_flag
 from rocketsim.scenario.load import load
 from rocketsim.dynamics.central import nbody_field, to_frame
 from rocketsim.sim.build import build_world
@@ -77,7 +77,7 @@ def test_handover_to_the_moon_keeps_position_and_velocity_continuous(write, scen
     # ten batches (1 s) later, back in Earth's frame, against a flight that never handed over
     t_b, y_b, p_b, _ = records[i + 9]
     k_a, k_b = round(t_a / world.h), round(t_b / world.h)
-    reference, _ = advance(y_a, k_a, world.h, k_b - k_a, p_a.copy())
+    reference, _ = advance(y_a, k_a, world.h, k_b - k_a, p_a.copy(), None, nbody_flag(p_a))
     r, v = to_frame(y_b[:3], y_b[3:6], p_b, p_a, t_b)
     print(f"\n[handover] t = {handover['time_s']:.2f} s, 1 s later: "
           f"{np.linalg.norm(r - reference[:3]):.2e} m, {np.linalg.norm(v - reference[3:6]):.2e} m/s")

@@ -34,7 +34,7 @@ from rocketsim.atmosphere.table import air_in
 from rocketsim.dynamics.derivative import radial_height
 from rocketsim.dynamics.nbody import translational_rk4
 from rocketsim.dynamics.rk4 import step, wind_at
-from rocketsim.layout import P_NBODY, P_SPIN, R, V
+from rocketsim.layout import P_SPIN, R, V
 from rocketsim.dynamics.third_bodies import FIELD_DRAG, FIELD_WIND, P_HELD
 from rocketsim.vehicle.tumbling import tumbling_cd
 
@@ -56,18 +56,19 @@ def drag_factor(y, p, air, wind, area_mass, length):
 
 
 @njit
-def free_step(y, t, h, p, fp, air, area_mass, length):
+def free_step(y, t, h, p, fp, air, area_mass, length, nbody=None):
     """One step of ``h`` s from mission time ``t`` (a new state). ``fp``: the field
     array (:func:`rocketsim.dynamics.nbody.make_field`) of the body's central body,
-    a scratch copy whose drag slot is set here."""
-    out = step(y, t, h, p)          # attitude (and the n-body hold in p) as the awake body
+    a scratch copy whose drag slot is set here; ``nbody`` as
+    :func:`rocketsim.dynamics.rk4.step`'s."""
+    out = step(y, t, h, p, None, nbody)     # attitude (and the n-body hold in p) as the awake body
     wind = wind_at(y, t, p, air)
     k = drag_factor(y, p, air, wind, area_mass, length)
     if k == 0.0:
         return out
     fp[FIELD_DRAG] = k
     fp[FIELD_WIND], fp[FIELD_WIND + 1], fp[FIELD_WIND + 2] = wind
-    if p[P_NBODY] > 0.5:
+    if nbody is not None:
         s = p[P_HELD:P_HELD + 12].reshape((4, 3)).copy()
     else:
         s = np.zeros((4, 3))
@@ -78,14 +79,14 @@ def free_step(y, t, h, p, fp, air, area_mass, length):
 
 
 @njit
-def advance_free(y, k0, h, n_steps, p, fp, air, area_mass, length):
+def advance_free(y, k0, h, n_steps, p, fp, air, area_mass, length, nbody=None):
     """Advance up to ``n_steps`` steps (step ``k`` from mission time ``(k0 + k) h``);
     returns ``(y, steps_taken)``. Stops early, after the step that took the body
     below its central body's ellipsoid (an impact). Bit-identical to calling
-    :func:`free_step` once per step."""
+    :func:`free_step` once per step (``nbody`` as its)."""
     fp = fp.copy()
     for k in range(n_steps):
-        y = free_step(y, (k0 + k) * h, h, p, fp, air, area_mass, length)
+        y = free_step(y, (k0 + k) * h, h, p, fp, air, area_mass, length, nbody)
         if radial_height(y, p) < 0.0:
             return y, k + 1
     return y, n_steps

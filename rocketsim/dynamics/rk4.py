@@ -35,7 +35,7 @@ from rocketsim.atmosphere.table import air_in, wind_earth_fixed
 from rocketsim.constants import (GROUND_SUBSTEP_HEIGHT, GROUND_SUBSTEP_MAX, GROUND_SUBSTEPS,
                                 UNUSABLE_PROPELLANT)
 from rocketsim.dynamics.derivative import held_derivative, radial_height
-from rocketsim.layout import P_NBODY, P_RADIUS, P_SPIN, Q, R
+from rocketsim.layout import P_RADIUS, P_SPIN, Q, R
 from rocketsim.dynamics.third_bodies import hold_field
 from rocketsim.frames.geodetic import ecef_to_geodetic_njit
 from rocketsim.vehicle.aero import A_GROUND, A_REACH, A_WIND
@@ -245,7 +245,7 @@ def _one_step(y, t, h, p, veh):
 
 
 @njit
-def step(y, t, h, p, veh=None):
+def step(y, t, h, p, veh=None, nbody=None):
     """Advance one flight-model step of ``h`` seconds (sub-stepped near the ground).
 
     ``y`` (state), ``t`` (s), ``p`` and ``veh`` as :func:`rk4_step`'s; returns the
@@ -254,8 +254,12 @@ def step(y, t, h, p, veh=None):
     A vehicle with wind in its day's air samples it here, once per step; a body
     in the n-body field holds the other bodies' positions here (per 5 s bucket
     of the step's start time, :func:`~rocketsim.dynamics.third_bodies.hold_field`).
+    ``nbody`` says which: True when ``p`` carries an n-body field, None when it
+    does not (:func:`~rocketsim.dynamics.third_bodies.nbody_flag`). It is a switch
+    on the argument's type, like ``veh``: with None the hold, and the ephemeris
+    it evaluates, are not compiled at all.
     """
-    if p[P_NBODY] > 0.5:
+    if nbody is not None:
         hold_field(p, t)            # the other bodies of an n-body field, held per 5 s
     reach = 0.0
     if veh is not None:
@@ -274,7 +278,7 @@ def step(y, t, h, p, veh=None):
 
 
 @njit
-def advance(y, k0, h, n_steps, p, veh=None):
+def advance(y, k0, h, n_steps, p, veh=None, nbody=None):
     """Advance up to ``n_steps`` flight-model steps; returns ``(y, steps_taken)``.
 
     Step ``k`` starts at mission time ``k h`` (``k`` counted from ``k0``, so
@@ -282,13 +286,13 @@ def advance(y, k0, h, n_steps, p, veh=None):
     :func:`step` once per step: a coast with nothing to decide between steps
     is batched this way. Stops early, after the step that took the body below
     its central body's ellipsoid, or a vehicle's ground (``aero.ref[A_GROUND]``
-    above it): an impact.
+    above it): an impact. ``nbody`` as :func:`step`'s.
     """
     ground = 0.0
     if veh is not None:
         ground = veh.aero.ref[A_GROUND]
     for k in range(n_steps):
-        y = step(y, (k0 + k) * h, h, p, veh)
+        y = step(y, (k0 + k) * h, h, p, veh, nbody)
         if radial_height(y, p) < ground:
             return y, k + 1
     return y, n_steps

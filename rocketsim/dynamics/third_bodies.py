@@ -136,6 +136,13 @@ def field_of(p):
     return None if p[P_NBODY] < 0.5 else np.array(p[P_FIELD:P_FIELD + N_FIELD])
 
 
+def nbody_flag(p):
+    """The ``nbody`` argument of the flight model's step for the parameters ``p``
+    (:func:`rocketsim.dynamics.rk4.step`): True when ``p`` carries an n-body field,
+    None when it does not (the step's hold of the other bodies compiled away)."""
+    return True if p[P_NBODY] > 0.5 else None
+
+
 @njit
 def hold_field(p, t):
     """Hold the other bodies' positions in ``p`` for the 5 s bucket of mission time

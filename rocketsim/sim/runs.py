@@ -183,18 +183,19 @@ def _orbit_and_soi_quiet(y, p, orbit_bound, mu, soi):
 
 
 @njit
-def fly_part(y, k0, h, n_max, p, fp, air, area_mass, length, floor, liftoff, orbit_bound, mu, soi):
+def fly_part(y, k0, h, n_max, p, fp, air, area_mass, length, floor, liftoff, orbit_bound, mu, soi,
+             nbody=None):
     """Fly a tumbling part (:mod:`rocketsim.dynamics.free_body`: the field ``fp``, the air
     table ``air``, its area over mass and length) from state ``y`` at step ``k0`` for up
     to ``n_max`` steps of ``h`` s, as :func:`~rocketsim.dynamics.free_body.advance_free`
-    flies it, returning ``(y, steps taken)`` after the first step that ends below the
+    flies it (``nbody`` as its), returning ``(y, steps taken)`` after the first step that ends below the
     ground, above ``floor`` (m: its rails floor, sleep rails from the next step), near
     or above the liftoff height ``liftoff`` (m over the ellipsoid, the readings'
     height; inf: lifted off), past the orbit test's bound or the watch radius (see
     :func:`_orbit_and_soi_quiet`)."""
     fp = fp.copy()
     for j in range(1, n_max + 1):
-        y = free_step(y, (k0 + j - 1) * h, h, p, fp, air, area_mass, length)
+        y = free_step(y, (k0 + j - 1) * h, h, p, fp, air, area_mass, length, nbody)
         height = radial_height(y, p)
         if not (0.0 <= height < floor * (1.0 - MARGIN)) or not _orbit_and_soi_quiet(y, p, orbit_bound, mu, soi):
             return y, j
@@ -207,7 +208,7 @@ def fly_part(y, k0, h, n_max, p, fp, air, area_mass, length, floor, liftoff, orb
 
 
 @njit
-def fly_run(y, k0, h, n_max, p, veh, in_flight, steer, code, fins, watch, carry, condition):
+def fly_run(y, k0, h, n_max, p, veh, in_flight, steer, code, fins, watch, carry, condition, nbody=None):
     """Fly the staged vehicle with aerodynamics ``veh`` (its arrays; ``in_flight`` the same
     without contact points) from state ``y`` at step ``k0`` (of ``h`` s) for up to
     ``n_max`` steps, returning after the first step where the Python side may have
@@ -216,7 +217,7 @@ def fly_run(y, k0, h, n_max, p, veh, in_flight, steer, code, fins, watch, carry,
     :func:`~rocketsim.sim.vehicle_checks.advance_checked` runs it (the command
     ``code``, the grid fins when ``fins``); ``condition`` is the program's compiled
     condition (no rows: none). ``carry`` is updated in place to its values before
-    the last step's checks.
+    the last step's checks. ``nbody`` as :func:`rocketsim.dynamics.rk4.step`'s.
 
     Returns ``(y, y_before, steps taken, figures, reason, y_peak)``: the state after the
     last step and before it, the checks' figures at the last state (:func:`step_figures`,
@@ -237,7 +238,7 @@ def fly_run(y, k0, h, n_max, p, veh, in_flight, steer, code, fins, watch, carry,
         if steer:
             steer_step(veh, y, p, t0, t0, y[R:R + 3], y[V:V + 3], y[Q:Q + 4], y[W:W + 3], math.nan, veh.air,
                        code, fins, False)
-        y = step(y, t0, h, p, veh)
+        y = step(y, t0, h, p, veh, nbody)
         t = (k0 + j) * h
         # the flight loads without the contact forces: out of the contact points' reach the
         # derivative adds none, within it the arrays without them (as the checks compute them)

@@ -46,7 +46,7 @@ from rocketsim.constants import (AIR_CP, CO2_CP, DEG, G0, HEAT_SHIELD_LIMIT, MAR
 from rocketsim.dynamics.derivative import body_air_velocity, derivative, radial_height
 from rocketsim.dynamics.central import WATCH_RADIUS
 from rocketsim.dynamics.rk4 import advance, near_ground
-from rocketsim.dynamics.third_bodies import FIELD_CENTER, field_of
+from rocketsim.dynamics.third_bodies import FIELD_CENTER, field_of, nbody_flag
 from rocketsim.ephemeris.solar_system import BODIES
 from rocketsim.layout import P_J2, P_MU, P_RADIUS, Q, R, V, W
 from rocketsim.flight.readings import StateView
@@ -116,7 +116,7 @@ class VehicleChecks:
         steer = steering is not None
         code, fins = steering if steer else _NO_STEERING
         y, taken, near, figures = body.kernels.call(advance_checked, arrays, body.y, k0, h, n, body.p, arrays,
-                                                    steer, code, fins)
+                                                    steer, code, fins, nbody_flag(body.p))
         self._figures = None if near else (y, figures)
         return y, taken
 
@@ -158,7 +158,7 @@ class VehicleChecks:
         carry = np.array((self.temperature, float(self.touched_down), peak, 0.0))
         y, before, taken, figures, reason, y_peak = body.kernels.call(
             runs.fly_run, arrays, body.y, k0, h, n, body.p, arrays, self._in_flight, steer, code, fins, watch,
-            carry, condition)
+            carry, condition, nbody_flag(body.p))
         self.temperature = float(carry[runs.C_TEMPERATURE])
         self.touched_down = bool(carry[runs.C_TOUCHED] > 0.5)
         if taken > 1:
@@ -354,10 +354,10 @@ def step_figures(t, y, p, veh, contact):
 
 
 @njit
-def advance_checked(y, k0, h, n_steps, p, veh, steer, code, fins):
+def advance_checked(y, k0, h, n_steps, p, veh, steer, code, fins, nbody=None):
     """:func:`~rocketsim.dynamics.rk4.advance` of a staged vehicle with aerodynamics
-    (arrays ``veh``), then :func:`step_figures` at the new state, in one compiled call.
-    Returns ``(y, steps taken, near, figures)``.
+    (arrays ``veh``, ``nbody`` as its), then :func:`step_figures` at the new state, in one
+    compiled call. Returns ``(y, steps taken, near, figures)``.
 
     With ``steer``, the autopilot's step comes first, as the world's loop runs it
     before the advance: :func:`~rocketsim.flight.steering.steer_step` reading the
@@ -374,6 +374,6 @@ def advance_checked(y, k0, h, n_steps, p, veh, steer, code, fins):
         t = k0 * h
         steer_step(veh, y, p, t, t, y[R:R + 3], y[V:V + 3], y[Q:Q + 4], y[W:W + 3], math.nan, veh.air, code, fins,
                    False)
-    y, taken = advance(y, k0, h, n_steps, p, veh)
+    y, taken = advance(y, k0, h, n_steps, p, veh, nbody)
     near = near_ground(y, p, veh.aero.ref[A_REACH] + veh.aero.ref[A_GROUND])
     return y, taken, near, step_figures((k0 + taken) * h, y, p, veh, veh.aero.contact)

@@ -37,7 +37,7 @@ import math
 
 from rocketsim.constants import G0
 from rocketsim.dynamics.derivative import radial_height
-from rocketsim.dynamics.third_bodies import field_of
+from rocketsim.dynamics.third_bodies import field_of, nbody_flag
 from rocketsim.flight.conditions import NO_CONDITION
 from rocketsim.layout import V
 from rocketsim.sim import runs
@@ -180,7 +180,7 @@ class _Window:
                              world.schedule.rails_floor(body),
                              math.inf if watch is None or watch.lifted else watch.start_height + LIFTOFF_HEIGHT,
                              math.inf if watch is None or watch.in_orbit else ORBIT_PERIAPSIS_BOUND, body.mu,
-                             math.inf)
+                             math.inf, nbody_flag(body.p))
 
 
 def _waiting(body) -> bool:

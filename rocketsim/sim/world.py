@@ -34,7 +34,7 @@ from rocketsim.dynamics.nbody import no_air
 from rocketsim.dynamics.prediction import coast
 from rocketsim.dynamics.rails import FREE, advance_rails, hold_mode, settle
 from rocketsim.dynamics.rk4 import advance
-from rocketsim.dynamics.third_bodies import bodies_at, field_of
+from rocketsim.dynamics.third_bodies import bodies_at, field_of, nbody_flag
 from rocketsim.ephemeris.solar_system import BODIES
 from rocketsim.errors import InputError
 from rocketsim.flight.fc import FlightComputer
@@ -282,15 +282,15 @@ class World:
             return
         if body.vehicle is None and body.drag is not None:     # a tumbling part: gravity and drag
             y, taken = advance_free(body.y, k0, self.h, n, body.p, rails_field(body), self.air_of(body),
-                                    *body.drag)
+                                    *body.drag, nbody_flag(body.p))
         elif body.vehicle is None:
-            y, taken = advance(body.y, k0, self.h, n, body.p)
+            y, taken = advance(body.y, k0, self.h, n, body.p, None, nbody_flag(body.p))
         elif body.checks is not None:       # with the autopilot's step first, the checks' figures after
             y, taken = body.checks.advance(body, k0, self.h, n, body.steering)
             body.steering = None
         else:
             y, taken = body.kernels.call(advance, body.vehicle.arrays, body.y, k0, self.h, n, body.p,
-                                         body.vehicle.arrays)
+                                         body.vehicle.arrays, nbody_flag(body.p))
         body.y = y
         self.after_advance(body, k0 + taken, taken < n)
 
