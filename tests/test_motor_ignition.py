@@ -112,3 +112,23 @@ def test_a_motor_lit_on_the_stack_burns_on_after_the_separation():
     whole.arrays.motor[0, M_IGNITION] = 4.25
     (_, _), (upper, _) = separate(spec, whole, whole.state([7e6, 0, 0], [0, 7e3, 0]), 1)
     assert upper.arrays.motor[0, M_IGNITION] == 4.25
+
+
+def test_a_misspelt_ignition_word_is_named_with_its_line_and_the_word_meant(tmp_path):
+    """``ignition`` is a time or the word ``program``: a misspelt word gets both choices
+    and the nearest word, at its file's line, as one problem (not the time's complaint
+    plus a hidden one about the word)."""
+    from rocketsim.errors import InputError
+    (tmp_path / "dart.yaml").write_text(
+        "name: dart\nstages:\n  - name: dart\n    length: 1 m\n    diameter: 0.1 m\n"
+        f"    structure_mass: 5 kg\n    motors:\n      - name: K1000T\n        file: {K1000T}\n"
+        "        ignition: progam\n")
+    (tmp_path / "scenario.yaml").write_text(
+        "name: dart\nvehicle: dart.yaml\nsite: {name: range, latitude: 33 deg, longitude: -106.975 deg}\n"
+        "mission: {epoch: 2026-06-13T15:00:00Z, duration: 3 s, start: {site: {}}}\n")
+    with pytest.raises(InputError) as caught:
+        load(tmp_path / "scenario.yaml")
+    error = caught.value
+    assert error.file == str(tmp_path / "dart.yaml") and error.line == 10
+    assert error.message == ("expected '<number> <unit>' for a time, got 'progam'; or 'program' "
+                             "(did you mean 'program'?)")

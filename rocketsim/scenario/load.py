@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import difflib
 import os
+import re
 import reprlib
 import types
 import typing
@@ -295,12 +296,37 @@ def _input_error(error: ValidationError, source: YamlSource, model: type[BaseMod
     if first["type"] == "missing" and loc and written[-1:] != loc[-1:]:
         written += loc[-1:]
     message = _describe(first, written, model)
+    words = _words_also_accepted(problems, first)
+    if words:
+        # a field that is a quantity or a word (a motor's ``ignition``: a time or "program")
+        message += f"; or {' or '.join(map(repr, words))}"
+        close = difflib.get_close_matches(first["input"], words, n=1, cutoff=0.6)
+        if close:
+            message += f" (did you mean {close[0]!r}?)"
+        problems = [p for p in problems if p is first or not _same_field_literal(p, first)]
     if len(problems) > 1:
         message += f" ({len(problems) - 1} more problem{'s' if len(problems) > 2 else ''} in this file)"
     file, field = source.path, ".".join(str(part) for part in written) or None
     if isinstance(source, Edited):     # a dict scenario, or a value an override set
         file, field, message = source.place(written, message)
     return InputError(message, file=file, line=line, column=column, field=field)
+
+
+def _same_field_literal(problem: dict, first: dict) -> bool:
+    """Whether ``problem`` is the complaint of a literal branch of ``first``'s union field
+    about the same string (the two locations differ only in their branch's tag)."""
+    return (problem is not first and problem["type"] == "literal_error"
+            and tuple(problem["loc"][:-1]) == tuple(first["loc"][:-1]) and problem.get("input") == first.get("input"))
+
+
+def _words_also_accepted(problems: list[dict], first: dict) -> list[str]:
+    """The words a literal branch of ``first``'s union field accepts, when ``first`` is
+    another branch's complaint about a string (e.g. ``ignition: progam``: not a time,
+    nor ``"program"``)."""
+    if not isinstance(first.get("input"), str) or first["type"] == "literal_error":
+        return []
+    return [word for problem in problems if _same_field_literal(problem, first)
+            for word in re.findall(r"'([^']*)'", problem.get("ctx", {}).get("expected", ""))]
 
 
 def _describe(problem: dict, loc: tuple, model: type[BaseModel]) -> str:
@@ -320,7 +346,7 @@ def _describe(problem: dict, loc: tuple, model: type[BaseModel]) -> str:
         message = f"missing required field {loc[-1]!r}" if loc else "missing required field"
     else:
         given = problem.get("input")
-        if not isinstance(given, (dict, list)):
+        if not isinstance(given, (dict, list)) and f"got {given!r}" not in message:
             message += f" (got {_SHORT.repr(given)})"
     return message
 
