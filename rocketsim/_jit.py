@@ -182,9 +182,9 @@ class Entries:
     the first call and again whenever ``key`` (the argument whose type is
     costly to work out, e.g. a vehicle's arrays, replaced at staging) is a new
     object. The other arguments keep their kinds from call to call (numbers as
-    numbers, float64 arrays), except that an argument may be None in one call
-    and not in another (a type-level switch such as the step's ``nbody``): one
-    entry is bound for each pattern of None arguments. An array that is not
+    numbers, float64 arrays, a type-level switch such as the step's ``nbody``
+    None or not, as the owner's parameters say: a body keeps its n-body field
+    from start to end, a handover re-centres it). An array that is not
     C-contiguous goes through the dispatcher instead.
     """
 
@@ -195,8 +195,7 @@ class Entries:
         for a in args:
             if type(a) is np.ndarray and not a.flags.c_contiguous:
                 return kernel(*args)
-        which = (kernel, tuple(a is None for a in args))
-        bound = self._bound.get(which)
+        bound = self._bound.get(kernel)
         if bound is None or bound[0] is not key:
-            bound = self._bound[which] = (key, entry_point(kernel, *args))
+            bound = self._bound[kernel] = (key, entry_point(kernel, *args))
         return bound[1](*args)
