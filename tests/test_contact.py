@@ -21,7 +21,7 @@ from rocketsim.dynamics.rk4 import rk4_step, step
 from rocketsim.frames.geodetic import enu_basis, geodetic_to_ecef
 from rocketsim.frames.quaternion import quat_from_matrix
 from rocketsim.sim.vehicle_checks import VehicleChecks
-from rocketsim.vehicle.contact import contact_heights, tip_over_angle
+from rocketsim.vehicle.contact import contact_heights, footprint, tip_over_angle
 from rocketsim.vehicle.build import build
 from tests.aero_vehicles import corotating, earth_params, shipped
 
@@ -217,7 +217,8 @@ def test_a_booster_standing_tilted_on_its_legs_rights_itself_or_tips_over(tilt_d
     x_cm = model.mass_properties(model.state([0, 0, 0], [0, 0, 0], propellant=prop))[1]
     critical = math.degrees(math.atan(8.5 * math.cos(math.pi / 4) / (x_cm + 1.0)))
     assert (tilt_deg > critical) == tips
-    assert math.degrees(tip_over_angle(model.arrays.aero.contact, x_cm)) == pytest.approx(critical, rel=1e-12)
+    assert math.degrees(tip_over_angle(footprint(model.arrays.aero.contact), x_cm)) == pytest.approx(critical,
+                                                                                        rel=1e-12)
     enu = enu_basis(LAT, LON)
     up, north = enu[2], enu[1]
     tilt = math.radians(tilt_deg)

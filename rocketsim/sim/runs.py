@@ -60,6 +60,7 @@ from rocketsim.frames.local import where_and_how_fast
 from rocketsim.layout import P_POLAR_RADIUS, P_RADIUS, P_SPIN, Q, R, V, W
 from rocketsim.sim.vehicle_checks import step_figures
 from rocketsim.vehicle.aero import A_GROUND, A_REACH
+from rocketsim.vehicle.contact import axis_up
 from rocketsim.vehicle.engines import S_DRY
 from rocketsim.vehicle.heating import advance_shield
 from rocketsim.vehicle.limits import bending_alpha
@@ -139,18 +140,9 @@ def _checks_quiet(y, h, figures, carry, watch):
         touched = 0.0
     elif touched < 0.5 and lowest <= 0.0:
         return False, temperature, touched
-    elif _axis_up(y) < watch[W_TIP]:
+    elif axis_up(y) < watch[W_TIP]:
         return False, temperature, touched
     return True, temperature, touched
-
-
-@njit
-def _axis_up(y):
-    """Cosine of the angle between the body's x axis and the geocentric radial."""
-    w, a, b, c = y[Q], y[Q + 1], y[Q + 2], y[Q + 3]
-    x, y_, z = y[R], y[R + 1], y[R + 2]
-    return ((1.0 - 2.0 * (b * b + c * c)) * x + 2.0 * (a * b + w * c) * y_ + 2.0 * (a * c - w * b) * z) / \
-        math.sqrt(x * x + y_ * y_ + z * z)
 
 
 @njit

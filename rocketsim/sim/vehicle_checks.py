@@ -54,7 +54,7 @@ from rocketsim.flight.steering import steer_step
 from rocketsim.frames.earth_fixed import eci_to_ecef
 from rocketsim.frames.quaternion import quat_rotate
 from rocketsim.vehicle.aero import A_GROUND, A_REACH
-from rocketsim.vehicle.contact import contact_heights, contact_point_heights, tip_over_angle
+from rocketsim.vehicle.contact import axis_up, contact_heights, contact_point_heights, footprint, tip_over_angle
 from rocketsim.vehicle.heating import advance_shield, sutton_graves, sutton_graves_constant
 from rocketsim.vehicle.mass_properties import vehicle_mass_properties
 from rocketsim.vehicle.parachutes import CH_DEPLOYED
@@ -85,7 +85,7 @@ class VehicleChecks:
         self.touched_down = True     # a vehicle only touches down after being in the air
         self.landed = False         # a touchdown has been reported
         self.previous = None        # (t, y) before the last step, for the touchdown figures
-        self._arrays = self._in_flight = self._watched = None
+        self._arrays = self._in_flight = self._watched = self._feet = None
         self._kernels = Entries()   # step_figures bound to the vehicle's arrays
         self._figures = None        # (state, step_figures of it) from the last advance
 
@@ -103,6 +103,7 @@ class VehicleChecks:
             self._arrays = arrays
             self._in_flight = arrays._replace(aero=arrays.aero._replace(contact=arrays.aero.contact[:0]))
             self._watched = TOP + float(arrays.aero.ref[A_REACH])
+            self._feet = footprint(arrays.aero.contact)
 
     def advance(self, body, k0: int, h: float, n: int, steering: tuple | None = None) -> tuple[np.ndarray, int]:
         """Advance ``body`` like :func:`rocketsim.dynamics.rk4.advance` (up to ``n`` steps
@@ -216,7 +217,7 @@ class VehicleChecks:
 
     def _tip_over_angle(self, body) -> float:
         """:func:`~rocketsim.vehicle.contact.tip_over_angle` of the body now (rad)."""
-        return tip_over_angle(body.vehicle.arrays.aero.contact, body.vehicle.mass_properties(body.y)[1])
+        return tip_over_angle(self._feet, body.vehicle.mass_properties(body.y)[1])
 
     def _tip_watch(self, body) -> float:
         """Cosine of the tilt from the geocentric radial past which a landed body may be
@@ -227,9 +228,7 @@ class VehicleChecks:
 
     def _tilted(self, body) -> bool:
         """Whether the body's x axis is tilted from the geocentric radial past :meth:`_tip_watch`."""
-        r = body.y[R:R + 3]
-        axis = quat_rotate(body.y[Q:Q + 4], np.array([1.0, 0.0, 0.0]))
-        return float(axis @ r) / math.sqrt(float(r @ r)) < self._tip_watch(body)
+        return axis_up(body.y) < self._tip_watch(body)
 
     def _heat(self, world, body, rho, speed, air_temperature, h) -> None:
         s = self.shield

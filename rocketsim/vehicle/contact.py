@@ -53,23 +53,39 @@ def point_height(px, py, pz, a, b):
     return math.sqrt(r2) - a * b / math.sqrt((b * b * rho2 + a * a * z2) / r2)
 
 
-def tip_over_angle(contact: np.ndarray, x_cm: float) -> float:
-    """The tilt (rad, body x from the vertical) past which a body standing on the
-    contact points of its lowest station (its feet, else the base ring) falls over:
-    ``atan2(d, x_cm - x_feet)``, ``d`` the distance from the body axis to the nearest
-    edge of the feet's convex hull in the body's y-z plane (``r cos(pi / n)`` for
-    ``n`` feet on a ring of radius ``r``). Tilted further towards that edge, the
-    centre of mass stands outside the footprint and gravity turns the body on over
-    the edge (docs/physics.md#ground-contact). Zero when the feet are fewer than
-    three or in a line: such a body stands on no footprint."""
+def footprint(contact: np.ndarray) -> tuple[float, float]:
+    """``(d, x_feet)`` (m) of a body standing on the contact points of its lowest
+    station ``x_feet`` (its feet, else the base ring): ``d`` the distance from the body
+    axis to the nearest edge of their convex hull in the body's y-z plane (``r cos(pi /
+    n)`` for ``n`` feet on a ring of radius ``r``); 0 when the feet are fewer than
+    three or in a line (no footprint)."""
     from scipy.spatial import ConvexHull, QhullError
     feet = contact[contact[:, K_X] <= contact[:, K_X].min() + 1e-9]
     try:
         hull = ConvexHull(feet[:, K_Y:K_Z + 1])
     except (QhullError, ValueError):
-        return 0.0
+        return 0.0, float(feet[0, K_X])
     edge = float(-hull.equations[:, 2].max())       # unit normals: offset = -distance of the axis
-    return math.atan2(max(edge, 0.0), x_cm - float(feet[0, K_X]))
+    return max(edge, 0.0), float(feet[0, K_X])
+
+
+def tip_over_angle(feet: tuple[float, float], x_cm: float) -> float:
+    """The tilt (rad, body x from the vertical) past which a body on the
+    :func:`footprint` ``feet`` with its centre of mass at station ``x_cm`` (m) falls
+    over: ``atan2(d, x_cm - x_feet)``. Tilted further towards the nearest edge, the
+    centre of mass stands outside the footprint and gravity turns the body on over
+    it (docs/physics.md#ground-contact)."""
+    d, x_feet = feet
+    return math.atan2(d, x_cm - x_feet)
+
+
+@njit
+def axis_up(y):
+    """Cosine of the angle between the body x axis of state ``y`` and the geocentric radial."""
+    w, a, b, c = y[Q], y[Q + 1], y[Q + 2], y[Q + 3]
+    x, y_, z = y[R], y[R + 1], y[R + 2]
+    return ((1.0 - 2.0 * (b * b + c * c)) * x + 2.0 * (a * b + w * c) * y_ + 2.0 * (a * c - w * b) * z) / \
+        math.sqrt(x * x + y_ * y_ + z * z)
 
 
 def contact_heights(y, p, vehicle) -> np.ndarray:
