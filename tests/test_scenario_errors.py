@@ -88,8 +88,8 @@ def test_a_state_that_diverges_ends_the_flight_with_a_clear_error(scenario, cli)
     mission.write_text(mission.read_text() + "initial_rates: [3000, 100, 0]\n")
     out = path.with_name("out.mcap")
     result = cli("fly", path, "-o", out)
-    # named: the scenario's file (where the step is) and the vehicle's
-    assert_clean_error(result, f"error: {path.resolve()}: step: the state of probe (vehicle file "
+    # named: the scenario's file and the step's line in it, and the vehicle's
+    assert_clean_error(result, f"error: {path.resolve()}:4: step: the state of probe (vehicle file "
                        f"{path.with_name('vehicle.yaml').resolve()}) is no longer finite", "smaller step")
     states = [m for _, _, m in messages(out, ["/probe/state"])]
     assert states and all(None not in m["position"] for m in states)
@@ -101,6 +101,11 @@ def test_a_state_that_diverges_ends_the_flight_with_a_clear_error(scenario, cli)
         fly(path)
     assert caught.value.message.startswith("the state of probe is no longer finite at T+")
     assert caught.value.file == str(path.resolve()) and caught.value.field == "step"
+    assert caught.value.line == 4
+    # a step given over the file's names no line of it
+    path.write_text(path.read_text().replace("step: 0.1 s\n", ""))
+    result = cli("fly", path, "--step", "0.1", "-o", out)
+    assert_clean_error(result, f"error: {path.resolve()}: step: the state of probe is no longer finite")
 
 
 def test_the_error_is_an_input_error_for_library_callers(scenario):

@@ -56,6 +56,8 @@ class LoadedScenario:
     to that folder. ``written`` is that mapping as a scenario file would hold it
     (a callable program named by its file, relative to the folder), which the
     telemetry carries in place of the file; None for a scenario read from a file.
+    ``step_line``: the line of ``step`` in the scenario's file, where an error the step
+    causes in flight points (None: not written there, e.g. the default or an override).
     """
 
     scenario: Scenario
@@ -64,6 +66,7 @@ class LoadedScenario:
     callables: dict[str, Callable] = field(default_factory=dict)
     overrides: dict[str, Any] = field(default_factory=dict)
     written: dict | None = None
+    step_line: int | None = None
 
     @property
     def program_path(self) -> Path | None:
@@ -193,7 +196,9 @@ def load(scenario: str | Path | Mapping, overrides: Mapping[str, Any] | None = N
         files[scenario.weather.kind] = _resolve(weather_source.path or path, sounding,
                                                 weather_source, loc)
     written = _as_written(scenario_data, path.parent) if isinstance(scenario_data, Mapping) else None
-    return LoadedScenario(scenario, path.resolve(), files, callables, dict(overrides or {}), written)
+    step_line = (source.position(("step",)) or (None,))[0]
+    return LoadedScenario(scenario, path.resolve(), files, callables, dict(overrides or {}), written,
+                          step_line)
 
 
 def unknown_stage(stage: str, vehicle: VehicleSpec, **where) -> InputError:

@@ -57,6 +57,7 @@ def build_world(loaded: LoadedScenario, step: float | None = None,
     flown = mission.duration if duration is None else _checked(check_duration, duration, "--duration")
     world = World(epoch, h, flown, [body], atmosphere=loaded.atmosphere)
     world.scenario_file, world.vehicle_file = loaded.files.get("scenario"), loaded.files.get("vehicle")
+    world.step_line = loaded.step_line if step is None else None
     center = mission.start.orbit.body if mission.start.orbit is not None else "earth"
     if mission.gravity == "n-body" or center != "earth":
         body.p = with_field(central_params(body.p, center),

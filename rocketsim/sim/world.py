@@ -81,6 +81,7 @@ class World:
         self.pad_azimuth = math.nan
         self.scenario_file = None           # Path of the scenario's file (None: given as a mapping)
         self.vehicle_file = None            # Path of the vehicle's file (None: written inline)
+        self.step_line = None               # line of ``step`` in the scenario's file (None: not written)
 
     @property
     def atmosphere(self):
@@ -334,7 +335,7 @@ class World:
                 raise InputError(f"the state of {body.name}{vehicle} is no longer finite at T+{body.t:.2f} s: "
                                  f"the step of {self.h:g} s is too large for its dynamics (stiff contact, "
                                  "a fast spin) or its vehicle is unphysical; fly with a smaller step",
-                                 file=self.scenario_file, field="step")
+                                 file=self.scenario_file, line=self.step_line, field="step")
 
     def _sample_all(self) -> None:
         if self.telemetry is None:
