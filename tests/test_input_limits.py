@@ -380,6 +380,10 @@ HOBBY = (ROOT / "vehicles" / "hobby-rocket.yaml").read_text().replace(
     # 'height'; did you mean 'height'?"
     ("deploy: {height: 300 m}", "deploy: {height: 300 stone}",
      "hobby.yaml:46:18: stages.0.parachutes.1.deploy.height", "unknown unit 'stone' for a length"),
+    # a deployment a billion years after apogee never comes: bounded by the longest mission;
+    # the union's other branch (height:) knows no 'after': this said "unknown field 'after'"
+    ("deploy: {height: 300 m}", "deploy: {after: {event: apogee, delay: 1.0e+12 s}}",
+     "hobby.yaml:46:41: stages.0.parachutes.1.deploy.after.delay", "at most 3.15576e+09 s"),
     # four base points of 1e10 N/m on 13.9 kg: a mode of 5.4e4 /s; it touched down at 7e9 m/s
     ("body_contact_stiffness: 2.0e5", "body_contact_stiffness: 1.0e+10",
      "hobby.yaml:59:3: aero.body_contact_stiffness", "a mode of 53551.8 /s, faster than 500 /s"),

@@ -44,7 +44,7 @@ from dataclasses import dataclass
 
 from pydantic_core import core_schema
 
-from rocketsim.constants import G0, GAS_CONSTANT_USSA, USSA_M0, USSA_P0, USSA_T0
+from rocketsim.constants import G0, GAS_CONSTANT_USSA, MAX_DURATION, USSA_M0, USSA_P0, USSA_T0
 from rocketsim.limits import MAX_QUANTITY
 
 MIN_SIZE = 1e-3                 # m, the smallest positive size of a part (a millimetre)
@@ -119,6 +119,7 @@ BOUNDS = {
     "opening": "a parachute's lines pay out and its canopy fills in tenths of a second to "
                "seconds, not under a millisecond nor over an hour",
     "deploy height": "a parachute opens in the air, below 100 km above the ground",
+    "delay": "a parachute opens after its event within the longest mission, a century",
     "friction": "friction coefficients are below 2 for any pair of materials",
     "friction speed": "friction is regularised below a speed of 1 mm/s .. 100 m/s",
     "mach": "Mach numbers of a flight stay below 100 (entry from the Moon is Mach 36)",
@@ -199,6 +200,7 @@ DRAG_AREA = within(0.0, MAX_DRAG_AREA, "drag area", "m2", above=True)
 OPENING_LAG = within(0.0, MAX_RESPONSE, "opening", "s")
 INFLATION = within(MIN_RESPONSE, MAX_RESPONSE, "opening", "s")
 DEPLOY_HEIGHT = within(0.0, MAX_DEPLOY_HEIGHT, "deploy height", "m")
+DEPLOY_DELAY = within(0.0, MAX_DURATION, "delay", "s")
 
 
 def descent_speed(mass: float, drag_area: float) -> float:

@@ -286,11 +286,11 @@ def _input_error(error: ValidationError, source: YamlSource, model: type[BaseMod
     # drop the file-name branch's complaint when the inline one explains more
     problems = error.errors(include_url=False)
     problems = [p for p in problems if not {"str", "constrained-str"} & set(p["loc"])] or problems
-    # each branch of a union complains: a field one branch has and finds wrong is unknown
-    # to the others; name what the branch that has it says
+    # each branch of a union complains: a field one branch has and finds wrong (itself or
+    # a field inside it) is unknown to the others; name what the branch that has it says
     unknown = {(p["loc"][:-2], p["loc"][-1]) for p in problems if p["type"] == "extra_forbidden"}
-    problems = [p for p in problems if p["type"] != "extra_forbidden" and p["loc"]
-                and (p["loc"][:-2], p["loc"][-1]) in unknown] or problems
+    problems = [p for p in problems if p["type"] != "extra_forbidden"
+                and any(_inside_branch(tuple(p["loc"]), base, name) for base, name in unknown)] or problems
     # a misspelt field shows as an unknown one plus a missing one: name the
     # misspelling first, since it is what the user has to fix
     first = min(problems, key=lambda p: p["type"] != "extra_forbidden")
@@ -315,6 +315,13 @@ def _input_error(error: ValidationError, source: YamlSource, model: type[BaseMod
     if isinstance(source, Edited):     # a dict scenario, or a value an override set
         file, field, message = source.place(written, message)
     return InputError(message, file=file, line=line, column=column, field=field)
+
+
+def _inside_branch(loc: tuple, base: tuple, name: str) -> bool:
+    """Whether ``loc`` is at or inside the field ``name`` of a union's branch at ``base``
+    (``base + (branch tag, name, ...)``)."""
+    n = len(base)
+    return len(loc) > n + 1 and loc[:n] == base and loc[n + 1] == name
 
 
 def _same_field_literal(problem: dict, first: dict) -> bool:

@@ -38,8 +38,8 @@ from pydantic_core import InitErrorDetails, PydanticCustomError, ValidationError
 
 from rocketsim.constants import ENGINE_TAIL_OFF, G0, MAX_DURATION
 from rocketsim.scenario.bounds import (ANGLE, BODY_MASS, BOUNDS, BURN_TIME, COUNT, CURVE_THRUST,
-                                       DEPLOY_HEIGHT, DRAG_AREA, EXTENT, INFLATION, ISP, MAX_COUNT,
-                                       MAX_DENSITY, MAX_MASS, MAX_PRESSURE, MAX_SEPARATION_SPEED,
+                                       DEPLOY_DELAY, DEPLOY_HEIGHT, DRAG_AREA, EXTENT, INFLATION,
+                                       ISP, MAX_COUNT, MAX_DENSITY, MAX_MASS, MAX_PRESSURE, MAX_SEPARATION_SPEED,
                                        MAX_SIZE, MAX_THROTTLE_RATE, MIN_DENSITY, MIN_DESCENT_SPEED,
                                        MIN_IMPULSE, OPENING_LAG, PART_MASS, RESPONSE, SIZE, SLEW,
                                        THRUST, descent_speed, within)
@@ -310,7 +310,7 @@ class AfterEvent(_Strict):
     """An event of the body (by its name in the flight's events) and a delay after it."""
 
     event: str = Field(description="name of an event of this body, e.g. burnout, apogee, off_rail")
-    delay: Annotated[Duration, Field(ge=0)] = 0.0
+    delay: Annotated[Duration, DEPLOY_DELAY] = Field(0.0, description="after the event")
 
 
 class HeightTrigger(_Strict):
