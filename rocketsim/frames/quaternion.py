@@ -23,7 +23,7 @@ import numpy as np
 from rocketsim._jit import njit
 
 
-@njit
+@njit(inline="always")     # a few operations: typed in its callers, no kernel of its own
 def hamilton_product(aw, ax, ay, az, bw, bx, by, bz):
     """Hamilton product ``a (x) b`` of two quaternions given by their components, as a
     4-tuple (no array: for the hot kernels)."""
