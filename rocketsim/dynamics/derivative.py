@@ -122,7 +122,7 @@ def _aero_and_contact(t, y, p, dy, rho, sound, x_cm, aero, fx, fy, fz, mx, my, m
     return fx, fy, fz, mx, my, mz
 
 
-@njit
+@njit(inline="always")     # small: typed in its callers, no kernel of its own
 def derivative(t, y, p, dy, veh=None, nbody=None):
     """Write ``dy/dt`` of state ``y`` at mission time ``t`` (s) into ``dy``.
 

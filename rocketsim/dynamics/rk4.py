@@ -94,7 +94,7 @@ def rk4_step(y, t, h, p, veh=None, nbody=None):
     return out
 
 
-@njit
+@njit(inline="always")     # small: typed in its callers, no kernel of its own
 def near_ground(y, p, reach=0.0):
     """True when the body is within 2 m of its central body's reference ellipsoid.
 

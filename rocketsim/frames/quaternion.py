@@ -52,7 +52,7 @@ def quat_conjugate(q):
     return out
 
 
-@njit
+@njit(inline="always")     # small: typed in its callers, no kernel of its own
 def quat_normalize(q):
     """``q`` scaled to unit norm (a zero quaternion gives nan components)."""
     n = math.sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3])

@@ -312,7 +312,7 @@ def ground_motion(central: str, t: float, y) -> tuple[np.ndarray, np.ndarray]:
     return r / math.sqrt(r @ r), y[V:V + 3] - spin * np.array((-r[1], r[0], 0.0))
 
 
-@njit
+@njit(inline="always")     # small: typed in its callers, no kernel of its own
 def accelerations(t, y, p, veh, nbody=None):
     """``(ax, ay, az, sx, sy, sz)``: the inertial acceleration ``dv/dt`` and the sensed
     (specific-force) acceleration ``dv/dt - g`` (m/s^2, ECI axes) of state ``y`` at
