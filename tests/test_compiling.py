@@ -12,6 +12,13 @@ The same copy, without the flight model's step instead, shows what compiling the
 step brings in: for a body without an n-body field, not the hold of the other
 bodies (``third_bodies.hold_field`` and the ephemeris it evaluates, about a third
 of a cold coasting flight), which the step's ``nbody=None`` compiles away.
+
+A coasting flight from an empty cache, its compilations counted by numba's
+compile events, compiles no more than :data:`COLD_COAST_KERNELS` signatures
+(kernels and the numba library routines they call, about 0.1 s each): not the
+other bodies' pull (``held_perturbation``, kept out by the derivative's
+``nbody=None``), nor the array routines and error messages of ``np.cross``,
+``np.dot`` or a broadcast copy (the orbit's elements on components, a loop).
 """
 
 from __future__ import annotations
@@ -137,3 +144,50 @@ def test_a_flight_without_an_n_body_field_does_not_compile_its_hold(scenario, tm
     compiled = json.loads(done.stdout.strip().splitlines()[-1])
     assert compiled["step"] >= 1, "the flight compiled its step"
     assert compiled["hold_field"] == 0
+
+
+# signatures a cold one-second coast about Earth compiles, telemetry written (32 measured:
+# the flight's kernels and their numba routines); with np.cross, np.dot, a broadcast copy,
+# the n-body pull and the small helpers as kernels of their own, 85 with telemetry off
+COLD_COAST_KERNELS = 36
+
+_CENSUS = """
+import collections, json, sys
+from numba.core import event
+
+compiled = collections.Counter()
+
+
+class Census(event.Listener):
+    def on_start(self, ev):
+        f = ev.data["dispatcher"].py_func
+        compiled[f"{f.__module__}.{f.__qualname__}"] += 1
+
+    def on_end(self, ev):
+        pass
+
+
+event.register("numba:compile", Census())
+from rocketsim.scenario.load import load
+from rocketsim.sim.flight import fly
+fly(load(sys.argv[1]), sys.argv[2])
+print(json.dumps(compiled))
+"""
+
+
+def test_a_cold_coast_compiles_only_the_kernels_it_flies(scenario, tmp_path):
+    path = scenario(duration="1 s")           # a coasting body about Earth alone
+    env = {k: v for k, v in os.environ.items() if k != "NUMBA_CACHE_DIR"}
+    env["ROCKETSIM_CACHE_DIR"] = str(tmp_path / "empty")
+    done = subprocess.run([sys.executable, "-c", _CENSUS, str(path), str(tmp_path / "cold.mcap")],
+                          env=env, capture_output=True, text=True, timeout=600)
+    assert done.returncode == 0, done.stderr
+    compiled = json.loads(done.stdout.strip().splitlines()[-1])
+    assert compiled["rocketsim.dynamics.rk4.step"] == 1, "the flight compiled its step"
+    assert compiled["rocketsim.sim.sampling.figures"] == 1, "and its telemetry"
+    for name in compiled:
+        assert "third_bodies" not in name, f"{name}: no n-body field, no pull of other bodies"
+        assert "cross" not in name and "unicode" not in name, f"{name}: an array routine's error path"
+    twice = {k: n for k, n in compiled.items() if k.startswith("rocketsim.") and n > 1}
+    assert not twice, f"one signature per kernel of the flight: {twice}"
+    assert sum(compiled.values()) <= COLD_COAST_KERNELS, sorted(compiled)

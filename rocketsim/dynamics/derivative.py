@@ -44,7 +44,7 @@ from rocketsim.atmosphere.table import air_in
 from rocketsim.atmosphere.ussa1976 import Z_86
 from rocketsim.constants import EARTH_OMEGA
 from rocketsim.bodies.gravity import point_mass_j2
-from rocketsim.layout import (P_CLASSIC, P_IXX, P_NBODY, P_IYY, P_IZZ, P_J2, P_MU,
+from rocketsim.layout import (P_CLASSIC, P_IXX, P_IYY, P_IZZ, P_J2, P_MU,
                                       P_POLAR_RADIUS, P_RADIUS, P_SPIN, Q, R, V, W)
 from rocketsim.dynamics.third_bodies import held_perturbation
 from rocketsim.frames.quaternion import hamilton_product
@@ -122,8 +122,8 @@ def _aero_and_contact(t, y, p, dy, rho, sound, x_cm, aero, fx, fy, fz, mx, my, m
     return fx, fy, fz, mx, my, mz
 
 
-@njit
-def derivative(t, y, p, dy, veh=None):
+@njit(inline="always")     # small: typed in its callers, no kernel of its own
+def derivative(t, y, p, dy, veh=None, nbody=None):
     """Write ``dy/dt`` of state ``y`` at mission time ``t`` (s) into ``dy``.
 
     Parameters
@@ -144,16 +144,22 @@ def derivative(t, y, p, dy, veh=None):
     veh : VehicleArrays or None
         The arrays of a staged vehicle, or None for a rigid body of constant
         mass and inertia ``p``.
+    nbody : True or None
+        True when ``p`` carries an n-body field (the other bodies' pull, held in
+        ``p``, is added), None when it does not
+        (:func:`~rocketsim.dynamics.third_bodies.nbody_flag`): a switch on the
+        argument's type, like ``veh``; with None the pull is not compiled.
 
     Nothing is held: this is the model's
     derivative at ``(t, y)`` (:func:`held_derivative` with ``(t, y)`` as the hold).
     """
-    held_derivative(t, y, p, dy, veh, t, y)
+    held_derivative(t, y, p, dy, veh, t, y, nbody)
 
 
 @njit
-def held_derivative(t, y, p, dy, veh, t_held, y_held):
-    """:func:`derivative` inside an RK4 step that started at ``(t_held, y_held)``.
+def held_derivative(t, y, p, dy, veh, t_held, y_held, nbody=None):
+    """:func:`derivative` inside an RK4 step that started at ``(t_held, y_held)``
+    (``nbody`` as its).
 
     The realistic model (``p[P_CLASSIC] == 0``) ignores the hold: everything
     is evaluated at ``(t, y)``. On the classic range (``p[P_CLASSIC] == 1``,
@@ -165,7 +171,7 @@ def held_derivative(t, y, p, dy, veh, t_held, y_held):
     the aerodynamics, RCS and contact are evaluated at every stage either way.
     """
     ax, ay, az = point_mass_j2(y[R], y[R + 1], y[R + 2], p[P_MU], p[P_RADIUS], p[P_J2])
-    if p[P_NBODY] > 0.5:
+    if nbody is not None:
         # the n-body field the body carries: the other bodies held for the step
         tx, ty, tz = held_perturbation(y[R], y[R + 1], y[R + 2], p)
         ax, ay, az = ax + tx, ay + ty, az + tz

@@ -49,7 +49,7 @@ RAIL_EXIT_TOLERANCE = 1e-9  # m of travel: where the step is split as the vehicl
 
 
 @njit
-def rk4_step(y, t, h, p, veh=None):
+def rk4_step(y, t, h, p, veh=None, nbody=None):
     """One classical RK4 step of size ``h`` (s) from ``(t, y)``; returns the new state.
 
     Parameters
@@ -68,6 +68,9 @@ def rk4_step(y, t, h, p, veh=None):
     veh : VehicleArrays or None
         A staged vehicle's arrays (:class:`~rocketsim.vehicle.build.VehicleArrays`),
         None for a rigid body.
+    nbody : True or None
+        True when ``p`` carries an n-body field, None when it does not (as
+        :func:`~rocketsim.dynamics.derivative.derivative`'s).
     """
     n = y.shape[0]
     k = np.empty((4, n))
@@ -82,7 +85,7 @@ def rk4_step(y, t, h, p, veh=None):
             for i in range(n):
                 tmp[i] = y[i] + c * h * k[s - 1, i]
             at, ys = t + c * h, tmp
-        held_derivative(at, ys, p, k[s], veh, t, y)
+        held_derivative(at, ys, p, k[s], veh, t, y, nbody)
     for i in range(n):
         out[i] = y[i] + h / 6.0 * (k[0, i] + 2.0 * k[1, i] + 2.0 * k[2, i] + k[3, i])
     norm = math.sqrt(out[Q] ** 2 + out[Q + 1] ** 2 + out[Q + 2] ** 2 + out[Q + 3] ** 2)
@@ -91,7 +94,7 @@ def rk4_step(y, t, h, p, veh=None):
     return out
 
 
-@njit
+@njit(inline="always")     # small: typed in its callers, no kernel of its own
 def near_ground(y, p, reach=0.0):
     """True when the body is within 2 m of its central body's reference ellipsoid.
 
@@ -162,7 +165,7 @@ def _left(y, t, p, veh, kind, s):
 
 
 @njit
-def _cut_instant(y, t, h, p, veh, kind, s, left_at_h, tolerance):
+def _cut_instant(y, t, h, p, veh, kind, s, left_at_h, tolerance, nbody):
     """Length of the part of the step from ``(t, y)`` after which nothing is left
     (:func:`_left`): stage ``s`` is dry (``kind`` 0) or the vehicle leaves its rail
     (``kind`` 1).
@@ -180,7 +183,7 @@ def _cut_instant(y, t, h, p, veh, kind, s, left_at_h, tolerance):
         x = b - gb * (b - a) / (gb - ga)
         if not a < x < b:
             x = 0.5 * (a + b)
-        gx = _left(rk4_step(y, t, x, p, veh), t + x, p, veh, kind, s)
+        gx = _left(rk4_step(y, t, x, p, veh, nbody), t + x, p, veh, kind, s)
         if abs(gx) <= tolerance:
             return x
         if gx > 0.0:
@@ -193,7 +196,7 @@ def _cut_instant(y, t, h, p, veh, kind, s, left_at_h, tolerance):
 
 
 @njit
-def _powered_step(y, t, h, p, veh):
+def _powered_step(y, t, h, p, veh, nbody):
     """An RK4 step of a staged vehicle, split at engine kinks and where a stage runs dry.
 
     The step is cut at every instant an engine's thrust has a kink
@@ -210,19 +213,19 @@ def _powered_step(y, t, h, p, veh):
             part = min(part, next_motor_kink(t + done, rest, veh.motor, veh.curve))
         if veh.chute.shape[0] > 0:      # a parachute's inflation starting or ending
             part = min(part, next_canopy_kink(t + done, rest, veh.chute))
-        trial = rk4_step(y, t + done, part, p, veh)
+        trial = rk4_step(y, t + done, part, p, veh, nbody)
         leaves = False
         if veh.rail[RL_ON] > 0.5:
             left = _left(trial, t + done + part, p, veh, 1, 0)
             if left <= 0.0:
-                part = _cut_instant(y, t + done, part, p, veh, 1, 0, left, RAIL_EXIT_TOLERANCE)
-                trial = rk4_step(y, t + done, part, p, veh)
+                part = _cut_instant(y, t + done, part, p, veh, 1, 0, left, RAIL_EXIT_TOLERANCE, nbody)
+                trial = rk4_step(y, t + done, part, p, veh, nbody)
                 leaves = True
         s = _first_dry(trial, veh)
         if s >= 0:
             part = _cut_instant(y, t + done, part, p, veh, 0, s, stage_left(trial, veh, s),
-                                DRY_TOLERANCE * veh.stage[s, S_RESERVE] / UNUSABLE_PROPELLANT)
-            trial = rk4_step(y, t + done, part, p, veh)
+                                DRY_TOLERANCE * veh.stage[s, S_RESERVE] / UNUSABLE_PROPELLANT, nbody)
+            trial = rk4_step(y, t + done, part, p, veh, nbody)
             veh.stage[s, S_DRY] = 1.0
             veh.stage[s, S_DRY_AT] = t + done + part
             leaves = leaves and rail_travel(trial, t + done + part, p[P_SPIN], veh.rail)[0] >= \
@@ -235,13 +238,6 @@ def _powered_step(y, t, h, p, veh):
         if part == rest:
             return y
         done += part
-
-
-@njit
-def _one_step(y, t, h, p, veh):
-    if veh is None:
-        return rk4_step(y, t, h, p)
-    return _powered_step(y, t, h, p, veh)
 
 
 @njit
@@ -266,15 +262,18 @@ def step(y, t, h, p, veh=None, nbody=None):
         reach = veh.aero.ref[A_REACH] + veh.aero.ref[A_GROUND]     # from the ellipsoid
         if veh.aero.ref[A_WIND] > 0.5:
             hold_wind(y, t, p, veh)
+    n_sub, sub = 1, h
     if near_ground(y, p, reach):
         # four 5 ms sub-steps at 20 ms; a larger headless step keeps sub-steps of 5 ms
         # at most, so stiff legs stay inside RK4's stability region
         n_sub = max(GROUND_SUBSTEPS, int(math.ceil(h / GROUND_SUBSTEP_MAX - 1e-9)))
         sub = h / n_sub
-        for k in range(n_sub):
-            y = _one_step(y, t + k * sub, sub, p, veh)
-        return y
-    return _one_step(y, t, h, p, veh)
+    for k in range(n_sub):          # one step far from the ground: t + 0 * h is t
+        if veh is None:
+            y = rk4_step(y, t + k * sub, sub, p, None, nbody)
+        else:
+            y = _powered_step(y, t + k * sub, sub, p, veh, nbody)
+    return y
 
 
 @njit

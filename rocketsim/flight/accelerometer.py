@@ -21,18 +21,19 @@ import numpy as np
 from rocketsim._jit import njit
 from rocketsim.bodies.gravity import point_mass_j2
 from rocketsim.dynamics.derivative import derivative
-from rocketsim.layout import P_J2, P_MU, P_NBODY, P_RADIUS, R, V
+from rocketsim.layout import P_J2, P_MU, P_RADIUS, R, V
 from rocketsim.dynamics.third_bodies import held_perturbation
 
 
 @njit
-def sensed_acceleration(t, y, p, veh):
+def sensed_acceleration(t, y, p, veh, nbody=None):
     """``a_s`` (m/s^2, frame axes) of state ``y`` at mission time ``t`` (s); ``veh`` the
-    vehicle's arrays, None for a rigid body."""
+    vehicle's arrays, None for a rigid body; ``nbody`` True when ``p`` carries an n-body
+    field, None when it does not (as :func:`~rocketsim.dynamics.derivative.derivative`'s)."""
     dy = np.zeros(y.shape[0])
-    derivative(t, y, p, dy, veh)
+    derivative(t, y, p, dy, veh, nbody)
     gx, gy, gz = point_mass_j2(y[R], y[R + 1], y[R + 2], p[P_MU], p[P_RADIUS], p[P_J2])
-    if p[P_NBODY] > 0.5:
+    if nbody is not None:
         tx, ty, tz = held_perturbation(y[R], y[R + 1], y[R + 2], p)
         gx, gy, gz = gx + tx, gy + ty, gz + tz
     return np.array([dy[V] - gx, dy[V + 1] - gy, dy[V + 2] - gz])

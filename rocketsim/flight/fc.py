@@ -21,6 +21,7 @@ import numpy as np
 
 from rocketsim.constants import G0, MAX_DURATION
 from rocketsim.dynamics.central import planetocentric
+from rocketsim.dynamics.third_bodies import nbody_flag
 from rocketsim.ephemeris.solar_system import BODIES
 from rocketsim.flight import arguments, conditions
 from rocketsim.layout import P_RADIUS
@@ -616,7 +617,7 @@ class FlightComputer:
         def truth():
             body = self._craft
             arrays = None if body.vehicle is None else body.vehicle.arrays
-            a = sensed_acceleration(body.t, body.y, body.p, arrays)
+            a = sensed_acceleration(body.t, body.y, body.p, arrays, nbody_flag(body.p))
             return math.sqrt(a @ a) / G0
         return self._measured("acceleration", truth)
 

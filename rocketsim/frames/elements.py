@@ -36,7 +36,7 @@ SIN_I_EQUATORIAL = 1e-11  # below this sin(i) an orbit is treated as equatorial
 _TWO_PI = 2.0 * math.pi
 
 
-@njit
+@njit(inline="always")
 def _wrap(angle):
     """Angle in [0, 2 pi)."""
     w = angle % _TWO_PI
@@ -111,10 +111,15 @@ class Elements:
         return d
 
 
-@njit
-def _angle_about(u, w, axis):
-    """Angle (rad) from ``u`` to ``w``, positive right-handed about unit ``axis``."""
-    return math.atan2(np.dot(axis, np.cross(u, w)), np.dot(u, w))
+# inlined (numba IR) into elements_tuple, its one compiled caller: no kernel of its own
+@njit(inline="always")
+def _angle_about(u0, u1, u2, w0, w1, w2, a0, a1, a2):
+    """Angle (rad) from ``u`` to ``w``, positive right-handed about unit ``axis`` ``a``:
+    ``atan2(a . (u x w), u . w)``."""
+    c0 = u1 * w2 - u2 * w1
+    c1 = u2 * w0 - u0 * w2
+    c2 = u0 * w1 - u1 * w0
+    return math.atan2(a0 * c0 + a1 * c1 + a2 * c2, u0 * w0 + u1 * w1 + u2 * w2)
 
 
 @njit
@@ -124,35 +129,45 @@ def elements_tuple(r, v, mu):
     Vallado's RV2COE (algorithm 9) with every angle taken by ``atan2`` in the
     orbit plane, so it is well conditioned near 0 and pi, and the conventions
     of this module for circular and equatorial orbits. The compiled core of
-    :func:`state_to_elements`, for kernels and telemetry.
+    :func:`state_to_elements`, for kernels and telemetry. Written on components
+    (the products and sums of ``np.dot`` and ``np.cross`` on 3-vectors, in their
+    order, so the same bits): numba compiles no array routine for it.
     """
-    rn = math.sqrt(np.dot(r, r))
-    v2 = np.dot(v, v)
-    h = np.cross(r, v)
-    hn = math.sqrt(np.dot(h, h))
-    h_hat = h / hn
-    e_vec = ((v2 - mu / rn) * r - np.dot(r, v) * v) / mu
-    e = math.sqrt(np.dot(e_vec, e_vec))
+    r0, r1, r2 = r[0], r[1], r[2]
+    v0, v1, v2_ = v[0], v[1], v[2]
+    rn = math.sqrt(r0 * r0 + r1 * r1 + r2 * r2)
+    v2 = v0 * v0 + v1 * v1 + v2_ * v2_
+    h0 = r1 * v2_ - r2 * v1                   # h = r x v
+    h1 = r2 * v0 - r0 * v2_
+    h2 = r0 * v1 - r1 * v0
+    hn = math.sqrt(h0 * h0 + h1 * h1 + h2 * h2)
+    hh0, hh1, hh2 = h0 / hn, h1 / hn, h2 / hn
+    c = v2 - mu / rn
+    rv = r0 * v0 + r1 * v1 + r2 * v2_
+    e0 = (c * r0 - rv * v0) / mu              # the eccentricity vector
+    e1 = (c * r1 - rv * v1) / mu
+    e2 = (c * r2 - rv * v2_) / mu
+    e = math.sqrt(e0 * e0 + e1 * e1 + e2 * e2)
     p = hn * hn / mu
     energy = 0.5 * v2 - mu / rn
     a = -mu / (2.0 * energy) if energy != 0.0 else math.inf
-    i = math.atan2(math.hypot(h[0], h[1]), h[2])
+    i = math.atan2(math.hypot(h0, h1), h2)
 
-    node = np.array([-h[1], h[0], 0.0])          # z x h
-    node_n = math.sqrt(np.dot(node, node))
+    n0, n1, n2 = -h1, h0, 0.0                 # z x h
+    node_n = math.sqrt(n0 * n0 + n1 * n1 + n2 * n2)
     if node_n < SIN_I_EQUATORIAL * hn:
         raan = 0.0
-        node_hat = np.array([1.0, 0.0, 0.0])
+        nh0, nh1, nh2 = 1.0, 0.0, 0.0
     else:
-        node_hat = node / node_n
-        raan = math.atan2(node_hat[1], node_hat[0])
+        nh0, nh1, nh2 = n0 / node_n, n1 / node_n, n2 / node_n
+        raan = math.atan2(nh1, nh0)
     if e < CIRCULAR_ECCENTRICITY:
         argp = 0.0
-        peri_hat = node_hat
+        ph0, ph1, ph2 = nh0, nh1, nh2
     else:
-        peri_hat = e_vec / e
-        argp = _angle_about(node_hat, peri_hat, h_hat)
-    nu = _angle_about(peri_hat, r, h_hat)
+        ph0, ph1, ph2 = e0 / e, e1 / e, e2 / e
+        argp = _angle_about(nh0, nh1, nh2, ph0, ph1, ph2, hh0, hh1, hh2)
+    nu = _angle_about(ph0, ph1, ph2, r0, r1, r2, hh0, hh1, hh2)
     return a, e, i, _wrap(raan), _wrap(argp), _wrap(nu), p
 
 

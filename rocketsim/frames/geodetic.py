@@ -59,7 +59,7 @@ def geodetic_to_ecef(lat, lon, h):
     return out
 
 
-@njit
+@njit(inline="always")     # small: typed in its callers, no kernel of its own
 def ecef_to_geodetic_njit(x, y, z):
     """Geodetic ``(lat, lon, h)`` (rad, rad, m) of the Earth-fixed point ``(x, y, z)`` (m).
 
@@ -74,7 +74,7 @@ def ecef_to_geodetic_njit(x, y, z):
     return _bowring(x, y, z, _A, _B, _E2, _EP2, _ONE_MINUS_F)
 
 
-@njit
+@njit(inline="always")     # small: typed in its callers, no kernel of its own
 def geodetic_on(x, y, z, a, b):
     """Geodetic ``(lat, lon, h)`` (rad, rad, m) of the body-fixed point ``(x, y, z)`` (m) on
     the ellipsoid of revolution of equatorial radius ``a`` and polar radius ``b`` (m; a

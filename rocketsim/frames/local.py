@@ -22,7 +22,6 @@ from rocketsim.frames.geodetic import ecef_to_geodetic_njit, enu_basis, geodetic
 # sin(pitch) above which the nose counts as vertical (within 0.01 deg): heading
 # and roll are then read from body z instead
 VERTICAL = math.cos(0.01 * math.pi / 180.0)
-_CALM = np.zeros(3)             # no wind: the air velocity is then the surface velocity
 
 
 @njit
@@ -37,7 +36,7 @@ def air_velocity(r, v, wind, spin=EARTH_OMEGA):
     return out
 
 
-@njit
+@njit(inline="always")     # a few operations: typed in its callers, no kernel of its own
 def turned(x, y, angle):
     """``R3(angle) (x, y)``: components in axes turned by ``angle`` (rad) about z, in
     the order of :func:`rocketsim.frames.earth_fixed.eci_to_ecef` (the same bits)."""
@@ -75,4 +74,6 @@ def where_and_how_fast(r, v, t, spin=EARTH_OMEGA, a=EARTH_RADIUS_EQ, b=EARTH_RAD
     for k in range(3):
         enu[k, 0], enu[k, 1] = turned(basis[k, 0], basis[k, 1], -theta)
         enu[k, 2] = basis[k, 2]
-    return lat, lon, h, enu, air_velocity(r, v, _CALM, spin)
+    # no wind: the air velocity is then the surface velocity (a fresh array, not a
+    # module constant, which numba would type read-only: a second signature of air_velocity)
+    return lat, lon, h, enu, air_velocity(r, v, np.zeros(3), spin)

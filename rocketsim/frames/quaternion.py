@@ -23,7 +23,7 @@ import numpy as np
 from rocketsim._jit import njit
 
 
-@njit
+@njit(inline="always")     # a few operations: typed in its callers, no kernel of its own
 def hamilton_product(aw, ax, ay, az, bw, bx, by, bz):
     """Hamilton product ``a (x) b`` of two quaternions given by their components, as a
     4-tuple (no array: for the hot kernels)."""
@@ -52,7 +52,7 @@ def quat_conjugate(q):
     return out
 
 
-@njit
+@njit(inline="always")     # small: typed in its callers, no kernel of its own
 def quat_normalize(q):
     """``q`` scaled to unit norm (a zero quaternion gives nan components)."""
     n = math.sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3])

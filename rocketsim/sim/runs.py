@@ -234,7 +234,8 @@ def fly_run(y, k0, h, n_max, p, veh, in_flight, steer, code, fins, watch, carry,
         t = (k0 + j) * h
         # the flight loads without the contact forces: out of the contact points' reach the
         # derivative adds none, within it the arrays without them (as the checks compute them)
-        figures = step_figures(t, y, p, in_flight if near_ground(y, p, reach) else veh, veh.aero.contact)
+        figures = step_figures(t, y, p, in_flight if near_ground(y, p, reach) else veh, veh.aero.contact,
+                               nbody)
         if condition.shape[0] > 0 and holds(condition, t, y, p):
             return y, before, j, figures, CONDITION, y_peak
         if j == n_max or radial_height(y, p) < ground:

@@ -80,7 +80,7 @@ from rocketsim.dynamics.derivative import body_air_velocity, radial_height
 from rocketsim.dynamics.nbody import FIELD_JD0, FIELD_ROT
 from rocketsim.dynamics.soi import frame_rotation
 from rocketsim.layout import N_STATE, P_MASS, P_POLAR_RADIUS, P_RADIUS, P_SPIN, R, V
-from rocketsim.dynamics.third_bodies import P_BUCKET, field_of, hold_field
+from rocketsim.dynamics.third_bodies import P_BUCKET, field_of, hold_field, nbody_flag
 from rocketsim.flight.readings import air_here
 from rocketsim.frames.local import where_and_how_fast
 from rocketsim.frames.elements import elements_tuple
@@ -187,7 +187,7 @@ def _vehicle_into(out, t, y, p, p_a, veh, group, n_groups, nose_radius, k_heat):
 
 @njit
 def figures(t, y, p, mu, node, geodetic, h0, dh, density, pressure, temperature, sound, wind_east,
-            wind_north, veh, group, n_groups, nose_radius, k_heat, shield_temperature):
+            wind_north, veh, group, n_groups, nose_radius, k_heat, nbody, shield_temperature):
     """Every number of the state message of a body in state ``y`` (parameters ``p``,
     central body's ``mu`` m^3/s^2) at mission time ``t`` (s), in the flat layout of this
     module (the state's ECI axes; the geodetic position is WGS84's).
@@ -199,7 +199,9 @@ def figures(t, y, p, mu, node, geodetic, h0, dh, density, pressure, temperature,
     ``p[P_SPIN]``); ``veh``: the vehicle's
     arrays (None: a rigid body, whose figures end before ``VEHICLE``), ``group`` the
     engine group of each engine (``n_groups`` groups), ``nose_radius`` the heat shield's
-    (m, 0: none) and ``k_heat`` the Sutton-Graves constant of the central body's air.
+    (m, 0: none) and ``k_heat`` the Sutton-Graves constant of the central body's air;
+    ``nbody`` True when ``p`` carries an n-body field, else None (the derivative's switch,
+    :func:`~rocketsim.dynamics.third_bodies.nbody_flag`).
     The array ends with ``t`` and ``shield_temperature`` (K, nan: no shield): every
     number of the message, for :func:`rocketsim.telemetry.splice.records`."""
     if veh is None:
@@ -209,7 +211,8 @@ def figures(t, y, p, mu, node, geodetic, h0, dh, density, pressure, temperature,
         n_tanks = veh.tank_bottom.shape[0]
         out = np.empty(GROUPS + 2 * n_groups + n_tanks + 2)
         out[MASS] = vehicle_mass_properties(veh, y)[0]
-    out[:N_STATE] = y[:N_STATE]
+    for k in range(N_STATE):        # a loop: no broadcast (and its error message) to compile
+        out[k] = y[k]
     r, v = y[R:R + 3], y[V:V + 3]
     lat, lon, height, _, _ = where_and_how_fast(r, v, t, p[P_SPIN], p[P_RADIUS], p[P_POLAR_RADIUS])
     out[LAT] = lat / DEG
@@ -221,7 +224,7 @@ def figures(t, y, p, mu, node, geodetic, h0, dh, density, pressure, temperature,
                                             wind_east, wind_north, lat, lon,
                                             height if geodetic else radial_height(y, p), t, r, v,
                                             p[P_SPIN])
-    ax, ay, az, sx, sy, sz = accelerations(t, y, p, veh)
+    ax, ay, az, sx, sy, sz = accelerations(t, y, p, veh, nbody)
     out[MASS + 1] = math.sqrt(ax * ax + ay * ay + az * az)
     out[MASS + 2] = math.sqrt(sx * sx + sy * sy + sz * sz)
     airspeed = math.sqrt(air[0] * air[0] + air[1] * air[1] + air[2] * air[2])
@@ -282,13 +285,13 @@ def _plan(body, gmst0: float) -> tuple:
     frame = _frame_of(body, gmst0)
     head = (body.mu, gmst0 if earth else 0.0, earth, *table.arrays())
     if model is None:
-        fixed = head + (None, _NO_GROUPS, 0, 0.0, 0.0)
+        fixed = head + (None, _NO_GROUPS, 0, 0.0, 0.0, nbody_flag(body.p))
         shape, shield = _shape(frame, None, None, False), None
     else:
         group, groups, tanks = _layout(model)
         shield = body.checks.shield if body.checks is not None else None
         fixed = head + (model.arrays, group, len(groups), shield.nose_radius if shield is not None else 0.0,
-                        sutton_graves_constant(body.mu))
+                        sutton_graves_constant(body.mu), nbody_flag(body.p))
         shape = _shape(frame, groups, tanks, shield is not None)
     entry = _entry(model, (body.t, body.y, _held(body)) + fixed + (math.nan,)) \
         if body.y.flags.c_contiguous else None

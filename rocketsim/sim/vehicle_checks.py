@@ -180,7 +180,8 @@ class VehicleChecks:
             rho, air_temperature, speed, q, alpha, axial, lowest = figures[1]
         else:
             rho, air_temperature, speed, q, alpha, axial, lowest = self._kernels.call(
-                step_figures, arrays, body.t, body.y, body.p, self._in_flight, arrays.aero.contact)
+                step_figures, arrays, body.t, body.y, body.p, self._in_flight, arrays.aero.contact,
+                nbody_flag(body.p))
         figures = breakup(q, alpha, axial, *self.limits)
         if figures is not None:
             world.event(body, "breakup", figures)
@@ -249,7 +250,7 @@ class VehicleChecks:
         t0, y0 = self.previous
         up, surface = ground_motion(body.central, t0, y0)
         dy = np.zeros_like(y0)
-        derivative(t0, y0, body.p, dy, body.vehicle.arrays)
+        derivative(t0, y0, body.p, dy, body.vehicle.arrays, nbody_flag(body.p))
         return up, surface, float(dy[V:V + 3] @ up), float(contact_heights(y0, body.p, body.vehicle).min())
 
     def _reached_ground(self, body, h: float) -> bool:
@@ -311,26 +312,27 @@ def ground_motion(central: str, t: float, y) -> tuple[np.ndarray, np.ndarray]:
     return r / math.sqrt(r @ r), y[V:V + 3] - spin * np.array((-r[1], r[0], 0.0))
 
 
-@njit
-def accelerations(t, y, p, veh):
+@njit(inline="always")     # small: typed in its callers, no kernel of its own
+def accelerations(t, y, p, veh, nbody=None):
     """``(ax, ay, az, sx, sy, sz)``: the inertial acceleration ``dv/dt`` and the sensed
     (specific-force) acceleration ``dv/dt - g`` (m/s^2, ECI axes) of state ``y`` at
     mission time ``t`` (s), from the derivative the integrator uses (``veh`` the
-    vehicle's arrays, None for a rigid body); ``g`` is the central body's point
-    mass and J2 of ``p``."""
+    vehicle's arrays, None for a rigid body; ``nbody`` as the derivative's); ``g`` is
+    the central body's point mass and J2 of ``p``."""
     dy = np.zeros(y.shape[0])
-    derivative(t, y, p, dy, veh)
+    derivative(t, y, p, dy, veh, nbody)
     gx, gy, gz = point_mass_j2(y[R], y[R + 1], y[R + 2], p[P_MU], p[P_RADIUS], p[P_J2])
     return dy[V], dy[V + 1], dy[V + 2], dy[V] - gx, dy[V + 1] - gy, dy[V + 2] - gz
 
 
 @njit
-def step_figures(t, y, p, veh, contact):
+def step_figures(t, y, p, veh, contact, nbody=None):
     """What the checks read after a step, in one compiled call: ``(density kg/m^3, air
     temperature K, airspeed m/s, dynamic pressure Pa, total angle of attack rad, sensed
     acceleration along body x m/s^2 from the flight loads, height of the lowest contact
     point m)``. ``veh`` is the vehicle's arrays without their contact points (the flight
-    loads), ``contact`` its contact points (one named tuple to unbox per call, not two).
+    loads), ``contact`` its contact points (one named tuple to unbox per call, not two);
+    ``nbody`` as the derivative's.
 
     The air moves with the ground and the wind held for the step (as the derivative
     sees it); the angle of attack is measured from the nose.
@@ -340,7 +342,7 @@ def step_figures(t, y, p, veh, contact):
     u, v, w = body_air_velocity(y, veh.aero.wind)
     speed = math.sqrt(u * u + v * v + w * w)
     alpha = math.acos(max(-1.0, min(1.0, u / speed))) if speed > 0.0 else 0.0
-    _, _, _, sx, sy, sz = accelerations(t, y, p, veh)
+    _, _, _, sx, sy, sz = accelerations(t, y, p, veh, nbody)
     # body x in inertial axes: first column of the rotation of q
     qw, qx, qy, qz = y[Q], y[Q + 1], y[Q + 2], y[Q + 3]
     ax = 1.0 - 2.0 * (qy * qy + qz * qz)
@@ -375,4 +377,4 @@ def advance_checked(y, k0, h, n_steps, p, veh, steer, code, fins, nbody=None):
                    False)
     y, taken = advance(y, k0, h, n_steps, p, veh, nbody)
     near = near_ground(y, p, veh.aero.ref[A_REACH] + veh.aero.ref[A_GROUND])
-    return y, taken, near, step_figures((k0 + taken) * h, y, p, veh, veh.aero.contact)
+    return y, taken, near, step_figures((k0 + taken) * h, y, p, veh, veh.aero.contact, nbody)

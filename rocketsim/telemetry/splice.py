@@ -193,16 +193,17 @@ def _sample(numbers, first, values, stamp, sequence, text, plan, extras, extra_e
     return at, r
 
 
-@njit
+@njit(inline="always")     # a few operations: typed in its callers, no kernel of its own
 def _entry(index, r, channel, stamp, at):
     index[3 * r] = channel
     index[3 * r + 1] = stamp
     index[3 * r + 2] = at
 
 
-@njit
+@njit(inline="always")
 def _copy(out, at, source, start, end):
-    """``source[start:end]`` into ``out`` at ``at``; returns the end."""
+    """``source[start:end]`` into ``out`` at ``at``; returns the end. Inlined (numba IR):
+    its callers pass sources of three types, which would be three signatures."""
     _memcpy(out, at, source, start, end - start)
     return at + end - start
 
