@@ -10,6 +10,7 @@ it ended up with.
 from __future__ import annotations
 
 import json
+import os
 import subprocess
 import sys
 from pathlib import Path
@@ -67,3 +68,23 @@ def test_replay_of_a_summary_does_not_load_the_simulator(scenario, tmp_path):
     code, heavy = _heavy_imports("replay", run_file)
     assert code == 0
     assert heavy == []
+
+
+def test_the_command_line_runs_openblas_on_one_thread_unless_told_otherwise():
+    """OpenBLAS starts a thread per core beside the main one when numpy is imported;
+    the command line asks it for one (its BLAS threads only cost a flight's start).
+    The process's OS threads after importing the command line and numpy, read from
+    /proc (Linux): one; a user's own OPENBLAS_NUM_THREADS is kept."""
+    status = Path("/proc/self/status")
+    if not status.exists():
+        pytest.skip("threads are read from /proc")
+    count = ("import rocketsim_cli.main, numpy, os; "
+             "print([l for l in open('/proc/self/status') if l.startswith('Threads:')][0].split()[1], "
+             "os.environ['OPENBLAS_NUM_THREADS'])")
+    env = {k: v for k, v in os.environ.items() if k != "OPENBLAS_NUM_THREADS"}
+    done = subprocess.run([sys.executable, "-c", count], cwd=ROOT, capture_output=True, text=True,
+                          check=True, env=env)
+    assert done.stdout.split() == ["1", "1"]
+    done = subprocess.run([sys.executable, "-c", count], cwd=ROOT, capture_output=True, text=True,
+                          check=True, env={**env, "OPENBLAS_NUM_THREADS": "2"})
+    assert done.stdout.split() == ["2", "2"]
