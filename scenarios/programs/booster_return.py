@@ -12,7 +12,10 @@ estimate, so it flies with ``sensors: realistic`` as with the truth. Phases:
    engines' minimum over the last few kilometres). It aims OVERSHOOT beyond
    the pad: the entry burn, mostly against the velocity, shortens the fall;
 2. coast; the grid fins are handed to the autopilot;
-3. entry burn: below ENTRY_ALTITUDE, falling faster than ENTRY_SPEED, the
+3. entry burn: below ENTRY_ALTITUDE, falling faster than ENTRY_SPEED, and
+   once the nose is within ENTRY_ALIGNMENT of the airflow's reverse (the
+   stage has no thrusters: it keeps the boost-back's attitude through the
+   vacuum and the grid fins turn it tail first only as the air thickens), the
    engines burn against the air-relative velocity until the airspeed is down
    to ENTRY_END_SPEED (or only the landing burn's propellant is left), leaned
    (as in the descent, towards the pad) so that the impact point predicted from
@@ -64,6 +67,7 @@ SCALE_HEIGHT = 7200.0
 ENTRY_ALTITUDE = 60e3       # m
 ENTRY_SPEED = 900.0         # m/s
 ENTRY_END_SPEED = 650.0     # m/s
+ENTRY_ALIGNMENT = math.radians(10.0)  # the entry burn lights with the nose this close to the airflow's reverse
 UNUSABLE = 4200.0           # kg: propellant the engines cannot draw (1 % of the booster's load)
 OVERSHOOT = 6000.0          # m: boost-back aims this far beyond the pad (the entry burn shortens the fall)
 FINE_MISS = 3000.0          # m: boost-back throttled back below this miss
@@ -105,6 +109,8 @@ def main(fc):
     fc.deploy_grid_fins()
     fc.hold("surface_retrograde")
     fc.wait_until(fc.below("altitude", ENTRY_ALTITUDE) & fc.below("vertical_speed", -ENTRY_SPEED))
+    while fc_nose(fc) @ fc.air_velocity > -math.cos(ENTRY_ALIGNMENT) * fc.airspeed:
+        fc.sleep(GUIDANCE_STEP)     # the grid fins are still turning the stage tail first
     share = len(landing) / len(three)
     landing_full = entry_burn(fc, guide, three, share) * share
     descend(fc, guide, landing_full)
