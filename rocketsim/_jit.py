@@ -97,6 +97,35 @@ def _numba_njit():
     return numba.njit
 
 
+def _save_locked(save, sig, data) -> None:
+    """numba's ``save_overload`` of a kernel's cache, holding an exclusive lock on the
+    cache folder's ``.lock`` file (POSIX ``flock``; unlocked where there is none).
+
+    numba saves a compiled signature by reading the kernel's index, picking the next
+    free data file's number, writing the index, then the data: two processes saving
+    two signatures of one kernel at once (two test workers, two campaign workers, the
+    parallel ``rocketsim compile``) can both pick the same number, and the index then
+    names the other signature's machine code, which every later process loads and runs
+    (numba issues 4807, 10128; seen here as a flight's sampling kernel failing its
+    array sizes). Under the lock the index read, the number and both writes are one
+    step; numba writes each file to a temporary name and renames it, so a process
+    loading meanwhile reads an index and data that belong together."""
+    try:
+        import fcntl
+    except ImportError:                 # no flock (Windows): numba's own behaviour
+        save(sig, data)
+        return
+    import numba
+    folder = numba.config.CACHE_DIR     # this source's folder (set by _numba_njit)
+    os.makedirs(folder, exist_ok=True)
+    with open(os.path.join(folder, ".lock"), "a") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        try:
+            save(sig, data)
+        finally:
+            fcntl.flock(lock, fcntl.LOCK_UN)
+
+
 def _call_template(dispatcher, args, kws):
     """numba's ``get_call_template`` of ``dispatcher`` (how a kernel calling it types the
     call) for the arguments' plain types: a constant argument (``orbit_into(out, 17, ...)``,
@@ -136,6 +165,9 @@ class Kernel:
         if self._dispatcher is None:
             dispatcher = _numba_njit()(**self._options)(self.py_func)
             dispatcher.get_call_template = functools.partial(_call_template, dispatcher)
+            cache = getattr(dispatcher, "_cache", None)
+            if cache is not None and hasattr(cache, "save_overload"):
+                cache.save_overload = functools.partial(_save_locked, cache.save_overload)
             self._dispatcher = dispatcher
         return self._dispatcher
 

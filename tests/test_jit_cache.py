@@ -8,6 +8,8 @@ must not change when the pure-Python simulation loop changes.
 
 from pathlib import Path
 
+import pytest
+
 import rocketsim
 from rocketsim._jit import _kernel_sources
 
@@ -49,3 +51,54 @@ def test_a_submodule_named_on_a_later_line_of_a_parenthesised_import_is_followed
     names = {path.relative_to(package).as_posix() for path in _kernel_sources(package)}
     assert {"dynamics/kernel.py", "dynamics/state.py", "dynamics/gravity.py"} <= names
     assert "dynamics/unrelated.py" not in names
+
+
+_SAVES_UNDER_THE_LOCK = """
+import fcntl, json, os, sys
+import numba.core.caching as caching
+from rocketsim._jit import njit
+
+held = []
+save_index = caching.IndexDataCacheFile._save_index
+
+def checked(self, overloads):
+    # another open file description of the lock: it cannot take the lock while it is held
+    with open(os.path.join(numba.config.CACHE_DIR, ".lock"), "a") as probe:
+        try:
+            fcntl.flock(probe, fcntl.LOCK_EX | fcntl.LOCK_NB)
+            fcntl.flock(probe, fcntl.LOCK_UN)
+            held.append(False)
+        except BlockingIOError:
+            held.append(True)
+    save_index(self, overloads)
+
+import numba
+caching.IndexDataCacheFile._save_index = checked
+
+@njit
+def twice(x):
+    return 2 * x
+
+twice(1.0), twice(1)        # two signatures: two saves of the index
+print(json.dumps(held))
+"""
+
+
+def test_a_kernel_is_saved_to_the_cache_under_the_cache_folders_lock(tmp_path):
+    """numba picks a saved signature's data file from the index it read: two processes
+    saving two signatures of one kernel at once can pick the same file, and the index
+    then names the other's machine code. Each save (index and data) holds the cache
+    folder's lock: checked in a fresh process with an empty cache, from another file
+    description of the lock at every index write."""
+    pytest.importorskip("fcntl", reason="POSIX flock: elsewhere numba saves unlocked")
+    import json
+    import os
+    import subprocess
+    import sys
+    env = {k: v for k, v in os.environ.items() if k != "NUMBA_CACHE_DIR"}
+    env["ROCKETSIM_CACHE_DIR"] = str(tmp_path)
+    script = tmp_path / "saves.py"
+    script.write_text(_SAVES_UNDER_THE_LOCK)
+    done = subprocess.run([sys.executable, str(script)], capture_output=True, text=True, env=env,
+                          check=True, cwd=tmp_path)
+    assert json.loads(done.stdout.strip().splitlines()[-1]) == [True, True]
