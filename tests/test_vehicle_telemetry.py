@@ -352,3 +352,22 @@ def test_air_data_about_mars_are_mars_air_turning_with_mars(probe_about, tmp_pat
     air = v - np.cross((0.0, 0.0, omega), r)
     assert first["airspeed"] == pytest.approx(np.linalg.norm(air), rel=1e-12)
     assert first["dynamic_pressure"] == pytest.approx(0.5 * rho * (air @ air), rel=1e-3)
+
+
+def test_rigid_bodies_with_and_without_an_n_body_field_are_sampled_alike(monkeypatch):
+    """A sample's numbers come from a compiled entry of ``figures`` bound once and reused
+    (not typed at every sample); its n-body switch (True or None) is one of the entry's
+    types, so a rigid body with an n-body field and one without need entries of their
+    own. Sampled in one process in turn (without, with, without), each equals
+    ``figures`` called through numba's dispatcher, which types every call (an entry
+    bound for the first body's switch read the other's arguments as garbage)."""
+    from rocketsim.sim import sampling
+    monkeypatch.setattr(sampling, "_RIGID", type(sampling._RIGID)())   # empty: none bound yet
+    for overrides in ({}, {"mission.gravity": "n-body"}, {}):
+        world = build_world(load(ROOT / "scenarios" / "iss-coast.yaml", overrides=overrides), duration=0)
+        body = world.bodies[0]
+        assert body.vehicle is None
+        numbers, _ = sampling.values(body, world.gmst0, world.where)
+        fixed = sampling._plan(body, world.gmst0)[2]
+        expected = sampling.figures(body.t, body.y, sampling._held(body), *fixed, math.nan)
+        np.testing.assert_array_equal(numbers, expected)

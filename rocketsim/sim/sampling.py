@@ -321,22 +321,23 @@ def _held(body) -> np.ndarray:
 
 
 def _entry(model, args):
-    """The compiled entry of ``figures(*args)``, bound once per vehicle model (and once
-    for every rigid body): :meth:`rocketsim._jit.Entries.call` without its look at every
-    argument, to call with contiguous state and parameters (a view is called through
-    the dispatcher)."""
-    global _RIGID
+    """The compiled entry of ``figures(*args)``, bound once per vehicle model and n-body
+    switch (and once per switch for every rigid body): :meth:`rocketsim._jit.Entries.call`
+    without its look at every argument, to call with contiguous state and parameters (a
+    view is called through the dispatcher). The switch (``args[-2]``, True or None) is a
+    type of the entry: a body with an n-body field and one without need two."""
+    nbody = args[-2]
     if model is None:
-        if _RIGID is None:
-            _RIGID = entry_point(figures, *args)
-        return _RIGID
+        if nbody not in _RIGID:
+            _RIGID[nbody] = entry_point(figures, *args)
+        return _RIGID[nbody]
     record = _model(model)
-    if record[2] is None or record[2][0] is not model.arrays:
-        record[2] = (model.arrays, entry_point(figures, *args))
-    return record[2][1]
+    if record[2] is None or record[2][0] is not model.arrays or record[2][1] is not nbody:
+        record[2] = (model.arrays, nbody, entry_point(figures, *args))
+    return record[2][2]
 
 
-_RIGID = None
+_RIGID: dict = {}       # the n-body switch -> the rigid bodies' entry
 
 
 class Shape(NamedTuple):
