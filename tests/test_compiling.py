@@ -47,7 +47,9 @@ def _cache_without(path, tmp_path, *kernels):
     fly(load(path), tmp_path / "warm.mcap")            # every kernel of the flight cached
     warm = Path(cache_dir())
     root = tmp_path / "cache"
-    shutil.copytree(warm, root / warm.name)
+    # another test process may be saving a kernel meanwhile: numba writes a temporary
+    # file and renames it, so a copy that lists the temporary may not find it
+    shutil.copytree(warm, root / warm.name, ignore=shutil.ignore_patterns("*.tmp.*", ".lock"))
     for kernel in kernels:
         removed = list((root / warm.name).rglob(kernel))
         assert removed, f"the flight's cache holds {kernel}"
