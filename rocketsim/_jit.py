@@ -106,8 +106,7 @@ def _save_locked(save, sig, data) -> None:
     two signatures of one kernel at once (two test workers, two campaign workers, the
     parallel ``rocketsim compile``) can both pick the same number, and the index then
     names the other signature's machine code, which every later process loads and runs
-    (numba issues 4807, 10128; seen here as a flight's sampling kernel failing its
-    array sizes). Under the lock the index read, the number and both writes are one
+    (numba issues 4807, 10128). Under the lock the index read, the number and both writes are one
     step; numba writes each file to a temporary name and renames it, so a process
     loading meanwhile reads an index and data that belong together."""
     try:
