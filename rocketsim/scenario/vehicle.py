@@ -39,10 +39,10 @@ from pydantic_core import InitErrorDetails, PydanticCustomError, ValidationError
 from rocketsim.constants import ENGINE_TAIL_OFF, G0, MAX_DURATION
 from rocketsim.scenario.bounds import (ANGLE, BODY_MASS, BOUNDS, BURN_TIME, COUNT, CURVE_THRUST,
                                        DEPLOY_DELAY, DEPLOY_HEIGHT, DRAG_AREA, EXTENT, INFLATION,
-                                       ISP, MAX_COUNT, MAX_DENSITY, MAX_MASS, MAX_PRESSURE, MAX_SEPARATION_SPEED,
-                                       MAX_SIZE, MAX_THROTTLE_RATE, MIN_DENSITY, MIN_DESCENT_SPEED,
-                                       MIN_IMPULSE, OPENING_LAG, PART_MASS, RESPONSE, SIZE, SLEW,
-                                       THRUST, descent_speed, within)
+                                       ISP, MAX_COUNT, MAX_DENSITY, MAX_MASS, MAX_PRESSURE,
+                                       MAX_SEPARATION_SPEED, MAX_SIZE, MAX_THROTTLE_RATE, MIN_DENSITY,
+                                       MIN_DESCENT_SPEED, MIN_IMPULSE, OPENING_LAG, PART_MASS,
+                                       RESPONSE, SIZE, SLEW, THRUST, descent_speed, within)
 from rocketsim.scenario.motor_file import MotorFileError, read_thrust_curve
 from rocketsim.scenario.units import (STRICT, Angle, AngularRate, Area, Density, Duration, Force,
                                       Fraction, Length, Mass, MassFlow, Pressure, SpecificImpulse,
