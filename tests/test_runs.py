@@ -20,9 +20,11 @@ from rocketsim.layout import make_params
 from rocketsim.constants import EARTH_J2, EARTH_MU, EARTH_RADIUS_EQ, EARTH_RADIUS_POLAR
 from rocketsim.scenario.load import load
 from rocketsim.sim import runs, window, world as world_module
+from rocketsim.sim.build import build_world
 from rocketsim.sim.flight import fly
 from rocketsim.sim.vehicle_checks import VehicleChecks
 from rocketsim.telemetry.reader import iter_raw_messages
+from rocketsim.telemetry.writer import TelemetryWriter
 
 ROOT = Path(__file__).resolve().parents[1]
 MISSION = ROOT / "scenarios" / "falcon9-leo.yaml"
@@ -38,12 +40,12 @@ def _flight(tmp_path, name, monkeypatch, windows: bool, counts: dict):
     if windows:
         vehicle_run, part_run = VehicleChecks.fly_run, runs.fly_part
 
-        def counted(checks, body, k0, h, n, steering, events, condition):
-            y, taken, reason = vehicle_run(checks, body, k0, h, n, steering, events, condition)
+        def counted(checks, body, k0, h, n, steering, events, condition, samples):
+            y, taken, reason, filled = vehicle_run(checks, body, k0, h, n, steering, events, condition, samples)
             counts["vehicle steps"] += taken
             counts["conditions"] += reason == runs.CONDITION
             counts["waiting"] += condition.shape[0] > 0
-            return y, taken, reason
+            return y, taken, reason, filled
 
         def counted_part(*args):
             y, taken = part_run(*args)
@@ -72,6 +74,61 @@ def test_compiled_runs_fly_the_same_telemetry_as_one_step_at_a_time(tmp_path, mo
     assert counts["conditions"] >= 1 and counts["waiting"] > 10
     events = {e["name"] for b in summary["bodies"].values() for e in b["events"]}
     assert {"liftoff", "max_q", "MECO", "separation", "boost-back end", "fairing jettison"} <= events
+
+
+def _sounding(tmp_path, name, monkeypatch, how: str, duration: float = 110.0, cut: float = math.inf):
+    """The sounding rocket of tests/sounding_peer.py flown ``duration`` s: in windows whose
+    runs compute the samples (``how`` "runs"), whose runs return at every sample step
+    ("python": the world samples each), or one step at a time ("steps"); ``on_progress``
+    ends the flight at its first call at ``cut`` s or later. Returns the telemetry's
+    messages, the samples the runs computed and the world's last step."""
+    from tests.sounding_peer import scenario
+
+    computed = []
+    if how == "steps":
+        monkeypatch.setattr(world_module, "fly_window", lambda world, length: False)
+    if how == "python":
+        monkeypatch.setattr(window, "RUN_SAMPLES", 0)
+    record_rows = world_module.World.record_rows
+
+    def counted(world, body, rows, shape):
+        computed.extend(rows[:, -2].tolist())      # the samples' times
+        record_rows(world, body, rows, shape)
+
+    monkeypatch.setattr(world_module.World, "record_rows", counted)
+    world = build_world(load(scenario(duration)))
+    world.on_progress = lambda t: setattr(world, "n_steps", world.k) if t >= cut else None
+    out = tmp_path / f"{name}.mcap"
+    with TelemetryWriter(out, 0, "") as telemetry:
+        world.run(telemetry)
+    monkeypatch.undo()
+    return list(iter_raw_messages(out)), computed, world.k
+
+
+def test_a_single_body_samples_inside_its_runs_what_the_world_samples(tmp_path, monkeypatch):
+    """A flight of one body (the sounding rocket: pad, boost, coast past apogee): its
+    compiled runs go on past the sample steps, computing those samples themselves; the
+    file is the same, message for message and bit for bit, as the world sampling each
+    one (the runs returning at every sample step) and as the loop one step at a time."""
+    messages, computed, _ = _sounding(tmp_path, "runs", monkeypatch, "runs")
+    by_python, none, _ = _sounding(tmp_path, "python", monkeypatch, "python")
+    by_steps, _, _ = _sounding(tmp_path, "steps", monkeypatch, "steps")
+    assert not none and len(computed) > 900      # of the 1 101 samples: those inside the runs
+    states = [m for m in messages if m[0].endswith("/state")]
+    assert len(states) == 1101 and len({time for _, time, _ in states}) == 1101
+    assert messages == by_python == by_steps
+
+
+def test_a_flight_on_progress_ends_early_ends_there_once_sampled(tmp_path, monkeypatch):
+    """``on_progress`` ending the flight at its step (``n_steps = k``) in the middle of
+    the runs' samples: the flight ends at that step, sampled once, as a flight of that
+    duration flown one step at a time."""
+    messages, computed, k = _sounding(tmp_path, "cut", monkeypatch, "runs", cut=40.0)
+    assert computed and 2000 <= k < 2200
+    same, _, _ = _sounding(tmp_path, "short", monkeypatch, "steps", duration=k * 0.02)
+    assert messages == same
+    states = [time for topic, time, _ in messages if topic.endswith("/state")]
+    assert len(states) == len(set(states)) == k // 5 + 1
 
 
 def _earth_states(count, seed=7):

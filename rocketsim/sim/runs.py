@@ -12,6 +12,10 @@ exactly as the world's one-step path computes them, followed by the tests that
 decide whether the Python side would do anything at this step. The run returns
 after the first step where it might (or after ``n_max`` steps), and the world
 handles that step as it handles every step (:meth:`rocketsim.sim.world.World.advance`).
+The telemetry samples of the steps before it are computed in the run (the
+sampler's own :func:`rocketsim.sim.sampling.figures`, into rows the world then
+writes in order before it handles the last step), with the world's finiteness
+test at each: a run goes on past sample steps.
 
 The tests are conservative: wherever the test here is not exactly the Python
 side's (a comparison of numbers that may differ in their last bits, or a
@@ -34,7 +38,9 @@ step where
 * the body may be out of the air's reach (the world's one-step rule no longer
   applies) or near a sphere of influence's watch radius (a handover);
 * the program's compiled condition (:mod:`rocketsim.flight.conditions`) is true:
-  reason :data:`CONDITION`, the program is due at the next step.
+  reason :data:`CONDITION`, the program is due at the next step;
+* at a telemetry sample step, the state may fail the world's finiteness test, or
+  the rows for the samples are full.
 
 ``watch`` (the figures the tests compare with, slots ``W_*``) and ``carry``
 (slots ``C_*``) are float arrays made by
@@ -58,6 +64,7 @@ from rocketsim.flight.readings import air_here
 from rocketsim.flight.steering import steer_step
 from rocketsim.frames.local import where_and_how_fast
 from rocketsim.layout import P_POLAR_RADIUS, P_RADIUS, P_SPIN, Q, R, V, W
+from rocketsim.sim.sampling import figures as figures_of
 from rocketsim.sim.vehicle_checks import step_figures
 from rocketsim.vehicle.aero import A_GROUND, A_REACH
 from rocketsim.vehicle.contact import axis_up
@@ -175,6 +182,17 @@ def _orbit_and_soi_quiet(y, p, orbit_bound, mu, soi):
 
 
 @njit
+def _surely_finite(y):
+    """Whether the world's finiteness test (the sum of the state finite:
+    :meth:`rocketsim.sim.world.World._check_finite`) surely passes on ``y``: every
+    number under 1e300 in size, so no order of summing them can overflow."""
+    for x in y:
+        if not abs(x) < 1e300:
+            return False
+    return True
+
+
+@njit
 def fly_part(y, k0, h, n_max, p, fp, air, area_mass, length, floor, liftoff, orbit_bound, mu, soi,
              nbody=None):
     """Fly a tumbling part (:mod:`rocketsim.dynamics.free_body`: the field ``fp``, the air
@@ -200,7 +218,8 @@ def fly_part(y, k0, h, n_max, p, fp, air, area_mass, length, floor, liftoff, orb
 
 
 @njit
-def fly_run(y, k0, h, n_max, p, veh, in_flight, steer, code, fins, watch, carry, condition, nbody=None):
+def fly_run(y, k0, h, n_max, p, veh, in_flight, steer, code, fins, watch, carry, condition, every, rows, record,
+            sampler, nbody=None):
     """Fly the staged vehicle with aerodynamics ``veh`` (its arrays; ``in_flight`` the same
     without contact points) from state ``y`` at step ``k0`` (of ``h`` s) for up to
     ``n_max`` steps, returning after the first step where the Python side may have
@@ -211,11 +230,18 @@ def fly_run(y, k0, h, n_max, p, veh, in_flight, steer, code, fins, watch, carry,
     condition (no rows: none). ``carry`` is updated in place to its values before
     the last step's checks. ``nbody`` as :func:`rocketsim.dynamics.rk4.step`'s.
 
-    Returns ``(y, y_before, steps taken, figures, reason, y_peak)``: the state after the
-    last step and before it, the checks' figures at the last state (:func:`step_figures`,
-    the flight loads without contact forces), :data:`LIMIT`,
-    :data:`PYTHON` or :data:`CONDITION`, and the state of the new dynamic-pressure peak
-    (``carry[C_PEAK_STEP]`` steps into the run; 0: none).
+    At each telemetry sample step (a multiple of ``every``) before the last step the
+    world's finiteness test is made (:func:`_surely_finite`) and, with ``record``, the
+    sample's figures (:func:`rocketsim.sim.sampling.figures` of the state, its time,
+    the arguments ``sampler`` and the shield's temperature after the step) go to the
+    next row of ``rows``; the run returns at a sample step where the test may fail or
+    (with ``record``) the rows are full, leaving that step and its sample to the world.
+
+    Returns ``(y, y_before, steps taken, figures, reason, y_peak, rows filled)``: the
+    state after the last step and before it, the checks' figures at the last state
+    (:func:`step_figures`, the flight loads without contact forces), :data:`LIMIT`,
+    :data:`PYTHON` or :data:`CONDITION`, the state of the new dynamic-pressure peak
+    (``carry[C_PEAK_STEP]`` steps into the run; 0: none), and the samples in ``rows``.
     """
     dry = veh.stage[:, S_DRY].copy()
     on_rail = veh.rail[RL_ON]
@@ -223,6 +249,7 @@ def fly_run(y, k0, h, n_max, p, veh, in_flight, steer, code, fins, watch, carry,
     ground = veh.aero.ref[A_GROUND]
     y_peak = y
     j = 0
+    filled = 0
     while True:
         j += 1
         before = y
@@ -237,17 +264,25 @@ def fly_run(y, k0, h, n_max, p, veh, in_flight, steer, code, fins, watch, carry,
         figures = step_figures(t, y, p, in_flight if near_ground(y, p, reach) else veh, veh.aero.contact,
                                nbody)
         if condition.shape[0] > 0 and holds(condition, t, y, p):
-            return y, before, j, figures, CONDITION, y_peak
+            return y, before, j, figures, CONDITION, y_peak, filled
         if j == n_max or radial_height(y, p) < ground:
-            return y, before, j, figures, LIMIT if j == n_max else PYTHON, y_peak
+            return y, before, j, figures, LIMIT if j == n_max else PYTHON, y_peak, filled
         quiet, temperature, touched = _checks_quiet(y, h, figures, carry, watch)
         if not quiet or not _events_quiet(y, t, p, veh, watch, dry, on_rail):
-            return y, before, j, figures, PYTHON, y_peak
+            return y, before, j, figures, PYTHON, y_peak, filled
         peak = math.nan
         if watch[W_MAX_Q] > 0.5:
             quiet, peak = _max_q_quiet(y, t, p, veh.air, carry, watch)
             if not quiet:
-                return y, before, j, figures, PYTHON, y_peak
+                return y, before, j, figures, PYTHON, y_peak, filled
+        if (k0 + j) % every == 0:
+            if not _surely_finite(y):
+                return y, before, j, figures, PYTHON, y_peak, filled
+            if record:
+                if filled == rows.shape[0]:
+                    return y, before, j, figures, LIMIT, y_peak, filled
+                rows[filled, :] = figures_of(t, y, p, *sampler, temperature)
+                filled += 1
         carry[C_TEMPERATURE], carry[C_TOUCHED] = temperature, touched
         if not math.isnan(peak):
             carry[C_PEAK_Q], carry[C_PEAK_STEP] = peak, j

@@ -263,6 +263,18 @@ def values(body, gmst0: float, where) -> tuple[np.ndarray, "Shape"]:
     return v, shape
 
 
+def run_sampler(body, gmst0: float) -> tuple[tuple, "Shape", int, bool]:
+    """``(arguments, shape, length, whole)`` for a compiled run of the staged vehicle
+    ``body`` to compute its samples in (:func:`rocketsim.sim.runs.fly_run`): ``figures(t,
+    y, body.p, *arguments, shield_temperature)`` is what :func:`values` computes for
+    the body in state ``y`` at time ``t`` (s), ``shape`` its ``fields``, ``length`` the
+    number of its figures; ``whole``: they are the whole message (about Earth; elsewhere
+    :func:`values` places the body in Python)."""
+    _, _, fixed, shape, _, earth = _plan(body, gmst0)
+    n_groups = len(_layout(body.vehicle)[1])
+    return fixed, shape, GROUPS + 2 * n_groups + body.vehicle.arrays.tank_bottom.shape[0] + 2, earth
+
+
 # id(body) -> [weak reference to the body, what values() works out once for it while its
 # parameters, vehicle model and checks, the air it flies in and the epoch's sidereal
 # angle stay the same objects]

@@ -91,15 +91,17 @@ class Schedule:
 
     def window_length(self) -> int:
         """Steps before the world's loop must decide anything while it steps one step at
-        a time: to the next telemetry sample, the end, or a program's wake-up; 1 while
-        a body cruises or a program waits on a condition read in Python. Within them
-        the bodies are flown in compiled runs where nothing needs Python
-        (:mod:`rocketsim.sim.window`)."""
+        a time: to the end or a program's wake-up, and to the next telemetry sample
+        while more than one body flies; 1 while a body cruises or a program waits on a
+        condition read in Python. Within them the bodies are flown in compiled runs
+        where nothing needs Python (:mod:`rocketsim.sim.window`: with one body, its
+        runs compute the samples on the way)."""
         world = self.world
-        n = min(world.n_steps - world.k, world.sample_every - world.k % world.sample_every)
-        for body in world.bodies:
-            if not body.flying:
-                continue
+        flying = [body for body in world.bodies if body.flying]
+        n = world.n_steps - world.k
+        if len(flying) > 1:
+            n = min(n, world.sample_every - world.k % world.sample_every)
+        for body in flying:
             if self.cruising(body):
                 return 1
             runner = body.runner

@@ -122,10 +122,12 @@ class VehicleChecks:
         return y, taken
 
     def fly_run(self, body, k0: int, h: float, n: int, steering: tuple | None, events,
-                condition: np.ndarray) -> tuple[np.ndarray, int, int]:
+                condition: np.ndarray, samples: tuple) -> tuple[np.ndarray, int, int, int]:
         """Fly ``body`` up to ``n`` steps of ``h`` seconds from step ``k0`` in one compiled
         call, returning after the first step the Python side may have something to do
-        with (:func:`rocketsim.sim.runs.fly_run`); returns ``(y, steps taken, reason)``.
+        with (:func:`rocketsim.sim.runs.fly_run`); returns ``(y, steps taken, reason,
+        samples computed)``. ``samples``: ``(every, rows, record, sampler)``, the
+        telemetry samples the run computes (see :func:`~rocketsim.sim.runs.fly_run`).
         The checks' state is left as :meth:`after_step` would have left it before the
         last step (the shield's temperature, the contact flag, the state before the
         step), the figures of the last step for :meth:`after_step` to read, and the
@@ -157,9 +159,9 @@ class VehicleChecks:
             watch[runs.W_SOI] = WATCH_RADIUS[BODIES[int(fp[FIELD_CENTER])]]
         peak = events.run_watch(watch)
         carry = np.array((self.temperature, float(self.touched_down), peak, 0.0))
-        y, before, taken, figures, reason, y_peak = body.kernels.call(
+        y, before, taken, figures, reason, y_peak, filled = body.kernels.call(
             runs.fly_run, arrays, body.y, k0, h, n, body.p, arrays, self._in_flight, steer, code, fins, watch,
-            carry, condition, nbody_flag(body.p))
+            carry, condition, *samples, nbody_flag(body.p))
         self.temperature = float(carry[runs.C_TEMPERATURE])
         self.touched_down = bool(carry[runs.C_TOUCHED] > 0.5)
         if taken > 1:
@@ -167,7 +169,7 @@ class VehicleChecks:
         if carry[runs.C_PEAK_STEP] > 0.0:
             events.peak_at((k0 + int(carry[runs.C_PEAK_STEP])) * h, y_peak)
         self._figures = (y, figures)
-        return y, taken, reason
+        return y, taken, reason, filled
 
     def after_step(self, world, body, h: float) -> dict | None:
         """Run the checks on the body's new state (after a step of ``h`` seconds). Returns

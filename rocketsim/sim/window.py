@@ -4,7 +4,8 @@ While any body must be stepped one step at a time (a vehicle in the air's reach,
 an autopilot steering, a program waiting on a condition:
 :meth:`rocketsim.sim.schedule.Schedule.one_step`), the world's loop would run
 every body's Python once per step. Up to the next step where the loop itself
-has something to decide (a telemetry sample, a program's wake-up, the end:
+has something to decide (a program's wake-up, the end, and a telemetry sample
+while more than one body flies:
 :meth:`~rocketsim.sim.schedule.Schedule.window_length`) the bodies do not
 interact, so :func:`fly_window` flies each on its own:
 
@@ -28,6 +29,16 @@ true (the program runs at the next step) and once no body needs one step at a
 time (the loop batches from there). At most one program may wait on a
 condition in a window: the others' runs stop where that one's run stops, so
 none flies past a step its condition may end the window at.
+
+A window of one flying body goes on past telemetry sample steps. A vehicle's
+compiled run computes the samples of the steps it flies through (up to
+:data:`RUN_SAMPLES` of them), with the sampler's own compiled figures
+(:func:`rocketsim.sim.sampling.run_sampler`) and the world's finiteness test;
+they are written, in order, before the run's last step is handled, so the
+file's messages come in the loop's order. At a sample step the Python side
+handles (a run's end, a step flown one at a time) the world samples and reports
+progress as its loop does (:meth:`rocketsim.sim.world.World.reached`); a flight
+that ``on_progress`` shortens ends there or at its new end.
 """
 
 from __future__ import annotations
@@ -35,22 +46,26 @@ from __future__ import annotations
 import heapq
 import math
 
+import numpy as np
+
 from rocketsim.constants import G0
 from rocketsim.dynamics.derivative import radial_height
 from rocketsim.dynamics.third_bodies import field_of, nbody_flag
 from rocketsim.flight.conditions import NO_CONDITION
 from rocketsim.layout import V
-from rocketsim.sim import runs
+from rocketsim.sim import runs, sampling
 from rocketsim.sim.flight_events import LIFTOFF_HEIGHT, ORBIT_PERIAPSIS_BOUND
 from rocketsim.sim.schedule import rails_field
 
 VEHICLE, PART, BATCH = "vehicle", "part", "batch"   # how a body flies a segment (see _plan)
+RUN_SAMPLES = 128       # telemetry samples a vehicle's compiled run computes at most
 
 
 def fly_window(world, length: int) -> bool:
     """Fly the world's bodies ``length`` steps from its step ``k`` (fewer when the window
     ends early, see the module), with the loop's autopilots already run for the first;
-    leaves the world's step count at the window's end. False (nothing done) when the
+    leaves the world's step count at the window's end, its sample and progress made
+    there (:meth:`~rocketsim.sim.world.World.reached`). False (nothing done) when the
     window has less than two steps or cannot be flown this way: a program waits on a
     condition in a body that cannot fly compiled runs, or two programs wait."""
     if length < 2:
@@ -80,7 +95,8 @@ class _Window:
     def start(self, k: int, indices: list[int], plans: dict) -> None:
         """Start a segment of each body of ``indices`` at step ``k`` as ``plans[i]`` says
         (:func:`_plan`; None: one step), the waiter's first. A run's end goes on the queue:
-        ``(VEHICLE or PART, its last state[, its first step and state])``, ``(BATCH, k)``."""
+        ``(VEHICLE, its last state, the rows of its samples, their shape)``, ``(PART, its
+        last state, its first step and state)``, ``(BATCH, k)``."""
         for i in sorted(indices, key=lambda i: i != self.waiter):
             plan = plans[i]
             if plan is None:
@@ -90,24 +106,29 @@ class _Window:
             body = world.bodies[i]
             top = self.end if i == self.waiter else min(self.end, self.frontier)
             if plan[0] == VEHICLE:
-                y, taken, reason = body.checks.fly_run(body, k, world.h, top - k, plan[1], body.watch, plan[2])
+                samples, rows, shape = self._samples(body)
+                y, taken, reason, filled = body.checks.fly_run(body, k, world.h, top - k, plan[1], body.watch,
+                                                               plan[2], samples)
                 body.steering = None
                 if i == self.waiter:
                     self.frontier = k + taken
                     if reason == runs.CONDITION:
                         self.end = k + taken    # the program is due at the next step
+                heapq.heappush(self.queue, (k + taken, i, (VEHICLE, y, rows[:filled], shape)))
             elif plan[0] == PART:
                 y, taken = self._part(body, k, body.y, top - k)
                 heapq.heappush(self.queue, (k + taken, i, (PART, y, k, body.y)))
-                continue
             else:                           # BATCH: flown when its turn comes, from step k
-                y, taken = k, top - k
-            heapq.heappush(self.queue, (k + taken, i, (plan[0], y)))
+                heapq.heappush(self.queue, (top, i, (BATCH, k)))
 
     def fly(self) -> None:
-        """Handle the queue's steps in order (by step, then body) to the window's end."""
+        """Handle the queue's steps in order (by step, then body) to the window's end,
+        with the world's sample and progress (:meth:`~rocketsim.sim.world.World.reached`)
+        at each sample step the Python side handles and at the end; a flight that
+        ``on_progress`` has shortened ends there."""
         world = self.world
         last = world.k
+        reached = None                      # the step the world's sample and progress were last made at
         while self.queue:
             s = self.queue[0][0]
             due = []
@@ -118,6 +139,14 @@ class _Window:
             last = world.k = s
             if s >= self.end:
                 continue
+            if s % world.sample_every == 0:     # inside the window: one body flies (see the module)
+                world.reached()
+                reached = s
+                if world.n_steps < self.end:
+                    self.end = max(world.n_steps, s)
+                    if s >= self.end:
+                        self._close(s)
+                        continue
             if any(i == self.waiter for _, i, _ in due):
                 self.frontier = self.end    # until its next run says where it stops
             movers = [i for _, i, _ in due if world.bodies[i].flying]
@@ -133,6 +162,8 @@ class _Window:
                     world.run_autopilot(world.bodies[i])
             self.start(s, movers, plans)
         world.k = last
+        if reached != last:
+            world.reached()
 
     def _finish(self, i: int, s: int, run) -> None:
         """The step ``s`` of body ``i`` as the loop ends it (after a compiled run's last
@@ -146,6 +177,8 @@ class _Window:
             world.k = run[1]
             world.advance(body, s - run[1])
         else:
+            if run[0] == VEHICLE and len(run[2]):
+                world.record_rows(body, run[2], run[3])     # the run's samples, before its last step
             body.y = run[1]
             world.after_advance(body, s)
         if body.flying and body.watch is not None:
@@ -171,6 +204,17 @@ class _Window:
                 run = (PART, self._part(body, k0, y0, s - k0)[0])
             self._finish(i, s, run)
         self.queue = []
+
+    def _samples(self, body) -> tuple:
+        """``(samples, rows, shape)``: the telemetry samples of a vehicle's compiled run
+        (``samples`` for :meth:`~rocketsim.sim.vehicle_checks.VehicleChecks.fly_run`), the
+        rows it fills and the shape to write them with. Without telemetry the run makes
+        only the finiteness test; away from Earth it returns at its first sample step."""
+        world = self.world
+        sampler, shape, length, whole = sampling.run_sampler(body, world.gmst0)
+        record = world.telemetry is not None
+        rows = np.empty((RUN_SAMPLES if record and whole else 0, length))
+        return (world.sample_every, rows, record, sampler), rows, shape
 
     def _part(self, body, k: int, y, n: int) -> tuple:
         """A tumbling part's run from state ``y`` at step ``k``, up to ``n`` steps."""

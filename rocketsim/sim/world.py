@@ -12,7 +12,10 @@ Everything with state lives here; the physics it calls is pure. Each step of
 
 Mission time is ``k h`` for the integer step count ``k``, never an accumulated
 sum. While no program is due and no sample is due, steps are batched inside
-the compiled kernels: bit-identical to stepping one at a time. A world is
+the compiled kernels: bit-identical to stepping one at a time. Steps that must
+be taken one at a time are flown in windows (:mod:`rocketsim.sim.window`); while
+one body flies, a vehicle's compiled runs go on past sample steps and compute
+those samples themselves, written in order before the run's last step. A world is
 built from a scenario by :func:`rocketsim.sim.build.build_world`; staging is
 :mod:`rocketsim.sim.staging`, the handover :mod:`rocketsim.sim.handover`, the
 summary :mod:`rocketsim.sim.summary`.
@@ -139,6 +142,13 @@ class World:
         ``leaving``: its last in a frame it leaves at this instant (a handover)."""
         self.telemetry.sample(body.name, *sampling.values(body, self.gmst0, self.where), leaving=leaving)
 
+    def record_rows(self, body: Body, rows: np.ndarray, shape) -> None:
+        """Write ``body``'s telemetry samples computed in a compiled run, in order: each row
+        the figures :meth:`record` writes at that sample (:func:`rocketsim.sim.sampling.run_sampler`),
+        ``shape`` their fields."""
+        for row in rows:
+            self.telemetry.sample(body.name, row, shape)
+
     # --- the loop -----------------------------------------------------------
     def run(self, telemetry=None) -> dict:
         """Fly to the end of the mission (or until every body has landed or hit)."""
@@ -160,16 +170,22 @@ class World:
                         if body.flying and body.watch is not None:
                             body.watch.after_step()
                     self.k += n
-                if self.k % self.sample_every == 0 or self.k >= self.n_steps or self.schedule.cruise_batch:
-                    self._check_finite()
-                    self._sample_all()
-                if self.on_progress is not None:
-                    self.on_progress(self.t)
+                    self.reached()
         finally:
             for body in self.bodies:
                 if body.runner is not None:
                     body.runner.close()
         return summary(self)
+
+    def reached(self) -> None:
+        """The loop has flown to step ``k``: at a sample step (every ``sample_every``-th,
+        the last, after a cruise step) the finiteness check and the telemetry sample,
+        then ``on_progress``, which may end the flight earlier (``n_steps``)."""
+        if self.k % self.sample_every == 0 or self.k >= self.n_steps or self.schedule.cruise_batch:
+            self._check_finite()
+            self._sample_all()
+        if self.on_progress is not None:
+            self.on_progress(self.t)
 
     def _prepare_programs(self) -> None:
         """Compute every reading once before the first step, outside any program's
