@@ -11,7 +11,7 @@ from rocketsim.atmosphere.day import standard_table
 from rocketsim.constants import EARTH_RADIUS_EQ, G0
 from rocketsim.dynamics.derivative import derivative
 from rocketsim.dynamics.rk4 import step
-from rocketsim.layout import Q, W
+from rocketsim.layout import P_SPIN, Q, W
 from rocketsim.frames.quaternion import quat_rotate
 from rocketsim.vehicle.aero import (A_AREA, A_ETA, A_NOSE_X, FIN_X, HANDOVER, NOSE_FIRST_CA,
                                     NOSE_FIRST_MACH, TAIL_FIRST_CA, TAIL_FIRST_MACH,
@@ -335,7 +335,7 @@ def test_the_derivative_shields_the_base_with_the_engines_own_thrust():
     rho, p_a, _, sound = air_in(a.air, radial_height(y, p))[:4]
     thrust = engine_forces(0.0, y, np.zeros_like(y), a.first_tank, a.first_clock, a.eng, a.cmd, a.stage,
                              a.tank_share, p_a, x_cm)[0]
-    u, v, w = body_air_velocity(y, a.aero.wind)
+    u, v, w = body_air_velocity(y, a.aero.wind, p[P_SPIN])
     q = 0.5 * rho * (u * u + v * v + w * w)
     area = a.aero.ref[A_AREA]
     bare_axial = q * area * np.interp(abs(u) / sound, TAIL_FIRST_MACH, TAIL_FIRST_CA)

@@ -67,7 +67,7 @@ def test_about_mars_a_body_at_rest_on_the_turning_ground_sees_still_air():
     view = StateView.of_state(0.0, y, p=p)
     assert np.linalg.norm(view.surface_velocity) < 1e-12
     # with Earth's rate the same body would see a wind of (Omega_E - Omega_M) r cos(lat)
-    assert np.linalg.norm(body_air_velocity(y, np.zeros(3))) == pytest.approx(
+    assert np.linalg.norm(body_air_velocity(y, np.zeros(3), WGS84_OMEGA)) == pytest.approx(
         (WGS84_OMEGA - MARS_OMEGA) * np.linalg.norm(r[:2]), rel=1e-9)
     # the readings' gravity is Mars's (point mass + J2), not Earth's
     g = MARS_MU / (r @ r) * math.sqrt((1.0 + 1.5 * MARS_J2 * (MARS_RADIUS_EQ / np.linalg.norm(r)) ** 2

@@ -136,10 +136,10 @@ print(json.dumps({k.__name__: len(k.signatures) for k in (rk4.step, third_bodies
 
 
 def test_a_flight_without_an_n_body_field_does_not_compile_its_hold(scenario, tmp_path):
-    # a coasting body about Earth alone: its step (and advance) compiled afresh in a
-    # fresh process, the rest from the cache
+    # a coasting body about Earth alone: its step (and advance, and the coast runs that
+    # call them) compiled afresh in a fresh process, the rest from the cache
     path = scenario(duration="1 s")
-    env, _ = _cache_without(path, tmp_path, "rk4.step-*", "rk4.advance-*")
+    env, _ = _cache_without(path, tmp_path, "rk4.step-*", "rk4.advance-*", "coast_runs.coast_run-*")
     done = subprocess.run([sys.executable, "-c", _COMPILED, str(path), str(tmp_path / "cold.mcap")],
                           env=env, capture_output=True, text=True, timeout=300)
     assert done.returncode == 0, done.stderr

@@ -42,7 +42,6 @@ import math
 from rocketsim._jit import njit
 from rocketsim.atmosphere.table import air_in
 from rocketsim.atmosphere.ussa1976 import Z_86
-from rocketsim.constants import EARTH_OMEGA
 from rocketsim.bodies.gravity import point_mass_j2
 from rocketsim.layout import (P_CLASSIC, P_IXX, P_IYY, P_IZZ, P_J2, P_MU,
                                       P_POLAR_RADIUS, P_RADIUS, P_SPIN, Q, R, V, W)
@@ -79,11 +78,11 @@ def radial_height(y, p):
 
 
 @njit
-def body_air_velocity(y, wind, spin=EARTH_OMEGA):
+def body_air_velocity(y, wind, spin):
     """Air-relative velocity of the centre of mass (m/s) in body axes:
     ``q* (v - omega x r - wind) q`` (docs/physics.md#equations-of-motion), ``wind``
     inertial (m/s), the air turning with the central body at ``spin`` (rad/s about the
-    frame's z: ``p[P_SPIN]``; Earth's rate by default)."""
+    frame's z: ``p[P_SPIN]``)."""
     ax = y[V] + spin * y[R + 1] - wind[0]
     ay = y[V + 1] - spin * y[R] - wind[1]
     az = y[V + 2] - wind[2]

@@ -26,7 +26,10 @@ def fly(loaded: LoadedScenario, out: str | Path, *, step: float | None = None,
 
     ``on_progress(t, phase)``, if given, is called after every batch of steps with the
     mission time (s) and the flight's phase, its latest event as ``"<body>: <name>"``
-    (:attr:`rocketsim.sim.world.World.phase`).
+    (:attr:`rocketsim.sim.world.World.phase`); a coast's compiled run of sample intervals
+    is one batch (:data:`rocketsim.sim.coast_runs.MAX_INTERVALS` of them at most), and so
+    is a single body's compiled run through sample steps
+    (:data:`rocketsim.sim.window.RUN_SAMPLES` samples at most).
 
     Errors in the scenario or the program are raised after the telemetry
     file has been finished.

@@ -104,6 +104,7 @@ FLIGHT_KEYS = ("mass", "acceleration", "sensed_acceleration", "airspeed", "mach"
 VEHICLE = MASS + len(FLIGHT_KEYS)                 # a staged vehicle: VEHICLE_KEYS, then by group
 VEHICLE_KEYS = ("throttle", "thrust", "mass_flow", "engines_running", "propellant", "heat_flux")
 GROUPS = VEHICLE + len(VEHICLE_KEYS)              # throttle by group, thrust by group, tanks
+RIGID_WIDTH = VEHICLE + 2                         # a rigid body's figures: t and nan (no shield) end them
 
 
 @njit
@@ -205,7 +206,7 @@ def figures(t, y, p, mu, node, geodetic, h0, dh, density, pressure, temperature,
     The array ends with ``t`` and ``shield_temperature`` (K, nan: no shield): every
     number of the message, for :func:`rocketsim.telemetry.splice.records`."""
     if veh is None:
-        out = np.empty(VEHICLE + 2)
+        out = np.empty(RIGID_WIDTH)
         out[MASS] = p[P_MASS]
     else:
         n_tanks = veh.tank_bottom.shape[0]
@@ -252,15 +253,28 @@ def values(body, gmst0: float, where) -> tuple[np.ndarray, "Shape"]:
     Earth); ``where(body)``: its (latitude rad, longitude rad, height m) away from Earth."""
     _, entry, fixed, shape, shield, earth = _plan(body, gmst0)
     y, p = body.y, _held(body)
-    arguments = (body.t, y, p) + fixed + ((float(body.checks.temperature) if shield else math.nan),)
+    args = (body.t, y, p) + _with_shield(body, fixed, shield)
     if entry is None or not (y.flags.c_contiguous and p.flags.c_contiguous):
-        v = figures(*arguments)
+        v = figures(*args)
     else:
-        v = entry(*arguments)
+        v = entry(*args)
     if not earth:
         lat, lon, v[HEIGHT] = where(body)
         v[LAT], v[LON] = lat / DEG, lon / DEG
     return v, shape
+
+
+def arguments(body, gmst0: float) -> tuple[tuple, "Shape"]:
+    """``(the arguments of figures() after the state and parameters, shape)`` of
+    ``body``'s state message at its time (see :func:`values`), for a compiled caller
+    that computes figures itself (:mod:`rocketsim.sim.coast_runs`)."""
+    _, _, fixed, shape, shield, _ = _plan(body, gmst0)
+    return _with_shield(body, fixed, shield), shape
+
+
+def _with_shield(body, fixed: tuple, shield: bool) -> tuple:
+    """``fixed`` and the shield's temperature (K; nan: none), figures' last argument."""
+    return fixed + ((float(body.checks.temperature) if shield else math.nan),)
 
 
 def run_sampler(body, gmst0: float) -> tuple[tuple, "Shape", int, bool]:

@@ -14,6 +14,10 @@ Within a batch a body is advanced by one of four integrators
 * RK4 (:mod:`rocketsim.dynamics.rk4`), sub-stepped near the ground, with a
   vehicle's checks folded in (:mod:`rocketsim.sim.vehicle_checks`).
 
+A batch ends at the next telemetry sample; where every flying body coasts
+alone (:meth:`Schedule.coasts_alone`, a spacecraft in orbit) the world flies
+many batches and their samples in one compiled call (:mod:`rocketsim.sim.coast_runs`).
+
 Every choice here is bit-neutral: the same step on rails or awake flies the
 same orbit to the bit (docs/physics.md#sleep-rails).
 """
@@ -24,13 +28,14 @@ import math
 import numpy as np
 
 from rocketsim.atmosphere.table import TOP
+from rocketsim.constants import G0
 from rocketsim.dynamics.cruise import DONE, plan_step
 from rocketsim.dynamics.derivative import radial_height
 from rocketsim.dynamics.nbody import make_field
 from rocketsim.dynamics.rails import hold_offsets, rails_floor
 from rocketsim.dynamics.third_bodies import field_of
 from rocketsim.flight.steering import OMEGA_N, ZETA
-from rocketsim.layout import P_IXX, P_IYY, P_IZZ, W
+from rocketsim.layout import P_IXX, P_IYY, P_IZZ, V, W
 from rocketsim.sim.body import Body
 from rocketsim.vehicle.engines import C_ON, E_TAIL
 
@@ -113,6 +118,21 @@ class Schedule:
                 continue                    # tested in the body's compiled runs
             n = min(n, max(1, self.wake_steps(runner)))
         return n
+
+    @staticmethod
+    def coasts_alone(body: Body, seconds: float) -> bool:
+        """Whether none of the next ``seconds`` (s) of ``body``'s steps has anything for
+        Python: a rigid body with no drag, no program running, no n-body field (no
+        handover), no event to watch (none, or lifted off and in orbit), and the ground
+        out of its reach (at its speed and twice the surface gravity: no impact to
+        record out of turn)."""
+        runner, watch = body.runner, body.watch
+        if body.vehicle is not None or body.drag is not None or field_of(body.p) is not None \
+                or (runner is not None and not runner.finished) \
+                or (watch is not None and not (watch.lifted and watch.in_orbit)):
+            return False
+        v = body.y[V:V + 3]
+        return radial_height(body.y, body.p) > math.sqrt(v @ v) * seconds + G0 * seconds * seconds
 
     def on_rails(self, body: Body) -> bool:
         """Sleep rails for a body nobody flies or whose program sleeps beyond the next

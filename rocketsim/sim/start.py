@@ -41,7 +41,7 @@ def site_attitude(site: SiteSpec, elevation: float, azimuth: float | None = None
     nose = math.cos(elevation) * heading + math.sin(elevation) * up
     z_axis = math.sin(elevation) * heading - math.cos(elevation) * up
     y_axis = np.cross(z_axis, nose)
-    return quat_from_matrix(np.column_stack((nose, y_axis, z_axis)))
+    return _attitude(nose, y_axis, z_axis)
 
 
 def start_state(mission: MissionSpec, site: SiteSpec | None, gmst0: float):
@@ -74,6 +74,13 @@ def start_state(mission: MissionSpec, site: SiteSpec | None, gmst0: float):
     return r, v, prograde_attitude(r, v)
 
 
+def _attitude(x_axis, y_axis, z_axis) -> np.ndarray:
+    """Quaternion (body -> ECI) of the body axes given in ECI: :func:`quat_from_matrix`
+    run as Python (the same operations on float64, so the same bits), not compiled for
+    one call per flight (a third of a second of a cold start)."""
+    return quat_from_matrix.py_func(np.column_stack((x_axis, y_axis, z_axis)))
+
+
 def prograde_attitude(r, v) -> np.ndarray:
     """Quaternion with the nose along ``v`` and ``z`` towards the centre (``-r``)."""
     nose = np.asarray(v, dtype=float) / np.linalg.norm(v)
@@ -81,7 +88,7 @@ def prograde_attitude(r, v) -> np.ndarray:
     z_axis = down - (down @ nose) * nose
     z_axis /= np.linalg.norm(z_axis)
     y_axis = np.cross(z_axis, nose)
-    return quat_from_matrix(np.column_stack((nose, y_axis, z_axis)))
+    return _attitude(nose, y_axis, z_axis)
 
 
 def on_rail(site: SiteSpec, rail, q0, x_cm: float):

@@ -48,7 +48,7 @@ from rocketsim.dynamics.central import WATCH_RADIUS
 from rocketsim.dynamics.rk4 import advance, near_ground
 from rocketsim.dynamics.third_bodies import FIELD_CENTER, field_of, nbody_flag
 from rocketsim.ephemeris.solar_system import BODIES
-from rocketsim.layout import P_J2, P_MU, P_RADIUS, Q, R, V, W
+from rocketsim.layout import P_J2, P_MU, P_RADIUS, P_SPIN, Q, R, V, W
 from rocketsim.flight.readings import StateView
 from rocketsim.flight.steering import steer_step
 from rocketsim.frames.earth_fixed import eci_to_ecef
@@ -341,7 +341,7 @@ def step_figures(t, y, p, veh, contact, nbody=None):
     """
     x_cm = vehicle_mass_properties(veh, y)[1]
     rho, _, temperature, _, _, _ = air_in(veh.air, radial_height(y, p))
-    u, v, w = body_air_velocity(y, veh.aero.wind)
+    u, v, w = body_air_velocity(y, veh.aero.wind, p[P_SPIN])
     speed = math.sqrt(u * u + v * v + w * w)
     alpha = math.acos(max(-1.0, min(1.0, u / speed))) if speed > 0.0 else 0.0
     _, _, _, sx, sy, sz = accelerations(t, y, p, veh, nbody)

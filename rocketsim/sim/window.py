@@ -48,11 +48,9 @@ import math
 
 import numpy as np
 
-from rocketsim.constants import G0
 from rocketsim.dynamics.derivative import radial_height
 from rocketsim.dynamics.third_bodies import field_of, nbody_flag
 from rocketsim.flight.conditions import NO_CONDITION
-from rocketsim.layout import V
 from rocketsim.sim import runs, sampling
 from rocketsim.sim.flight_events import LIFTOFF_HEIGHT, ORBIT_PERIAPSIS_BOUND
 from rocketsim.sim.schedule import rails_field
@@ -242,16 +240,9 @@ def _plan(world, body, first: bool, seconds: float):
     if body.vehicle is None:
         if (body.runner is not None and not body.runner.finished) or field_of(body.p) is not None:
             return None
-        height = radial_height(body.y, body.p)
-        if body.drag is not None and height <= world.schedule.rails_floor(body):
+        if body.drag is not None and radial_height(body.y, body.p) <= world.schedule.rails_floor(body):
             return (PART,)
-        # a batch: no event to watch, nor the ground within reach before the window ends
-        # (at its speed and twice the surface gravity: no impact to record out of turn)
-        v = body.y[V:V + 3]
-        reach = math.sqrt(v @ v) * seconds + G0 * seconds * seconds
-        if body.drag is None and height > reach and (watch is None or (watch.lifted and watch.in_orbit)):
-            return (BATCH,)
-        return None
+        return (BATCH,) if world.schedule.coasts_alone(body, seconds) else None
     if watch is None or not watch.lifted or checks is None or body.vehicle.parachutes:
         return None
     if not checks.every_step(body) or world.schedule.cruising(body):

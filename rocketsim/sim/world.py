@@ -48,6 +48,7 @@ from rocketsim.sim.craft import BodyCraft
 from rocketsim.sim.handover import hand_over, watch_soi
 from rocketsim.sim.schedule import Schedule, inertia, rails_field
 from rocketsim.sim.summary import summary
+from rocketsim.sim.coast_runs import fly_coast
 from rocketsim.sim.window import fly_window
 from rocketsim.timescales import Epoch
 from rocketsim.vehicle.aero import A_GROUND
@@ -163,7 +164,7 @@ class World:
                 self._run_programs()
                 self._run_autopilots()
                 n = self.schedule.batch_length()
-                if n > 1 or not fly_window(self, self.schedule.window_length()):
+                if not self._flown_compiled(n):
                     for body in self.bodies:
                         if body.flying:
                             self.advance(body, n)
@@ -186,6 +187,17 @@ class World:
             self._sample_all()
         if self.on_progress is not None:
             self.on_progress(self.t)
+
+    def _flown_compiled(self, n: int) -> bool:
+        """Whether the bodies have been flown on from step ``k`` (``k`` moved on) in
+        compiled runs, the next batch being ``n`` steps, their last step sampled and
+        reported (:meth:`reached`): whole sample intervals of coasting rigid bodies from
+        a sample step (:mod:`rocketsim.sim.coast_runs`), or a window of bodies stepped
+        one step at a time (:mod:`rocketsim.sim.window`, which samples and reports itself)."""
+        if n == self.sample_every and self.k % n == 0 and fly_coast(self):
+            self.reached()
+            return True
+        return n == 1 and fly_window(self, self.schedule.window_length())
 
     def _prepare_programs(self) -> None:
         """Compute every reading once before the first step, outside any program's

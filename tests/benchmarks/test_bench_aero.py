@@ -18,10 +18,10 @@ import numba
 import numpy as np
 
 from rocketsim.atmosphere.table import air_in
-from rocketsim.constants import EARTH_J2, EARTH_MU, EARTH_RADIUS_EQ, EARTH_RADIUS_POLAR
+from rocketsim.constants import EARTH_J2, EARTH_MU, EARTH_OMEGA, EARTH_RADIUS_EQ, EARTH_RADIUS_POLAR
 from rocketsim.dynamics.derivative import body_air_velocity, derivative, radial_height
 from rocketsim.dynamics.rk4 import advance
-from rocketsim.layout import V, make_params
+from rocketsim.layout import P_SPIN, V, make_params
 from rocketsim.vehicle.engines import command_gimbal, engine_forces, ignite
 from rocketsim.vehicle.grid_fins import command, grid_fin_forces
 from rocketsim.vehicle.aero import body_aero
@@ -62,7 +62,7 @@ def _body(n, y, veh):
     a = veh.aero
     total = 0.0
     for i in range(n):
-        u, v, w = body_air_velocity(y, a.wind)
+        u, v, w = body_air_velocity(y, a.wind, EARTH_OMEGA)
         total += body_aero(u, v, w, y[10], y[11], y[12], 0.41, 299.5, 7e6, 20.0 + 1e-9 * i, a.ref, a.seg,
                            a.fin, a.ca_nf, a.ca_tf)[2]
     return total
@@ -73,7 +73,7 @@ def _grid(n, y, veh):
     a = veh.aero
     total = 0.0
     for i in range(n):
-        u, v, w = body_air_velocity(y, a.wind)
+        u, v, w = body_air_velocity(y, a.wind, EARTH_OMEGA)
         total += grid_fin_forces(1e-6 * i, u, v, w, y[10], y[11], y[12], 0.41, 299.5, 20.0, a.grid,
                                    a.grid_cmd)[2]
     return total
@@ -126,7 +126,7 @@ def test_first_stage_derivative_in_the_atmosphere():
     rho, _, _, sound = air_in(a.air, radial_height(y, p))[:4]
     thrust = engine_forces(0.0, y, np.zeros_like(y), a.first_tank, a.first_clock, a.eng, a.cmd, a.stage,
                              a.tank_share, air_in(a.air, radial_height(y, p))[1], x_cm)[0]
-    u, v, w = body_air_velocity(y, a.aero.wind)
+    u, v, w = body_air_velocity(y, a.aero.wind, p[P_SPIN])
     f1 = body_aero(u, v, w, y[10], y[11], y[12], rho, sound, thrust, x_cm, a.aero.ref, a.aero.seg, a.aero.fin,
                    a.aero.ca_nf, a.aero.ca_tf)
     f2 = grid_fin_forces(0.0, u, v, w, y[10], y[11], y[12], rho, sound, x_cm, a.aero.grid, a.aero.grid_cmd)

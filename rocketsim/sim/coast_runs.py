@@ -1,0 +1,93 @@
+"""Runs of whole sample intervals: rigid bodies coasting with nothing for Python, sampled in one call.
+
+A rigid body with no program, no drag, no n-body field, no event left to watch
+and out of the ground's reach (:meth:`rocketsim.sim.schedule.Schedule.coasts_alone`)
+is flown by the world's loop one telemetry interval at a time: the RK4 steps
+(:func:`rocketsim.dynamics.rk4.advance`), then the finiteness test and the
+sample, all in Python between intervals. While every flying body is such a body
+(a spacecraft coasting in orbit), :func:`fly_coast` flies up to :data:`MAX_INTERVALS`
+intervals in one compiled call per body (:func:`coast_run`): the same
+``advance`` of each interval, the same test of the state, and each interval's
+sample figures (:func:`rocketsim.sim.sampling.figures`, the arguments of the
+world's sampler) into rows the world then writes in the loop's order (by
+interval, then body). The same steps and the same figures: the same file.
+
+The run leaves the last interval's sample to the loop (its ``_check_finite`` and
+sampling at a sample step), so the loop's order after the run is its order after
+any batch. A state that is no longer finite ends the run at that interval: the
+rows before it are written and the loop's test raises its error there.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from rocketsim._jit import njit
+from rocketsim.dynamics.rk4 import advance
+from rocketsim.dynamics.third_bodies import nbody_flag
+from rocketsim.sim import sampling
+
+MAX_INTERVALS = 128     # sample intervals in one run (12.8 s at 10 Hz): the rows waiting to be written
+
+
+@njit
+def coast_run(y, k0, h, every, m, p, nbody, rows, fixed):
+    """Fly a rigid body (state ``y``, parameters ``p``, ``nbody`` as
+    :func:`~rocketsim.dynamics.rk4.advance`'s) ``m`` intervals of ``every`` steps of
+    ``h`` s from step ``k0``, each as the world flies it, filling row ``j`` of ``rows``
+    (while ``j < rows.shape[0]``) with :func:`~rocketsim.sim.sampling.figures` at the
+    end of interval ``j`` (``fixed``: its arguments after the state and parameters).
+    Returns ``(y, intervals flown)``: fewer than ``m`` after an interval whose state is
+    not finite (its row not filled)."""
+    for j in range(m):
+        k = k0 + j * every
+        y, _ = advance(y, k, h, every, p, None, nbody)
+        for x in y:
+            if not math.isfinite(x):
+                return y, j + 1
+        if j < rows.shape[0]:
+            row = sampling.figures((k + every) * h, y, p, *fixed)
+            for c in range(row.shape[0]):   # a loop: no broadcast (and its error message) to compile
+                rows[j, c] = row[c]
+    return y, m
+
+
+def fly_coast(world) -> bool:
+    """Fly the world's bodies whole sample intervals from its step ``k`` (a sample
+    step) in :func:`coast_run`\\ s, writing every interval's samples but the last, and
+    leave the world's step count at the last interval's end; False (nothing done)
+    unless every flying body coasts alone (see the module) for at least two intervals."""
+    every = world.sample_every
+    m = min(MAX_INTERVALS, (world.n_steps - world.k) // every)
+    flying = [body for body in world.bodies if body.flying]
+    if m < 2 or not all(_coasts(world, body, m * every * world.h) for body in flying):
+        return False
+    k0, h = world.k, world.h
+    runs = []
+    for body in flying:
+        fixed, shape = sampling.arguments(body, world.gmst0)
+        if world.telemetry is None:
+            shape = None                    # no samples: the same call, no rows
+        rows = np.empty((m - 1 if shape is not None else 0, sampling.RIGID_WIDTH))
+        y, flown = coast_run(body.y, k0, h, every, m, body.p, nbody_flag(body.p), rows, fixed)
+        runs.append((body, y, flown, rows, shape))
+    flown = min(run[2] for run in runs)     # a state no longer finite: nothing written from it on
+    for j in range(flown - 1):
+        for body, _, _, rows, shape in runs:
+            if shape is not None:
+                world.telemetry.sample(body.name, rows[j], shape)
+    for body, y, _, _, _ in runs:
+        body.y, body.t = y, (k0 + flown * every) * h
+    world.k = k0 + flown * every
+    return True
+
+
+def _coasts(world, body, seconds: float) -> bool:
+    """Whether ``body`` coasts alone for ``seconds`` (s) on the world's RK4 path about
+    Earth: no attitude command, not cruising, not on sleep rails."""
+    schedule = world.schedule
+    return (body.vehicle is None and body.central == "earth" and body.attitude_command is None
+            and not schedule.cruising(body) and schedule.coasts_alone(body, seconds)
+            and not schedule.on_rails(body))
