@@ -27,28 +27,25 @@ Printed with ``pytest -s``: each flight's real-time factor and rocketsim's
 over RocketPy's, against the 10x target, with the load. The distance from
 1 to 2 is the telemetry; from 2 to 3 the world around the steps: the
 compiled runs' checks and event tests at every step, and the Python of the
-world's loop between its wake-ups (every telemetry sample's step: here every
-5th step, with or without a file).
+world's loop where a run returns. The rocket flies alone, so its runs go on
+past the telemetry samples, computing them on the way: after the 43 steps on
+the pad (flown one at a time) its 5 457 steps take 11 runs with a file (its
+events and every 128th sample) and 3 without.
 
-Last figures, RocketPy at its defaults (rtol 1e-6; load 7.1, the machine
-shared): with telemetry 590 ms (real-time factor 187), without 406 ms, the
-steps alone 129 ms, RocketPy 3 232 ms (33); rocketsim / RocketPy with
-telemetry 5.7x (target 10x), without 8.3x, the steps alone 26x. With
-RocketPy at rtol 1e-8 (load 2.0-2.2, four runs): with telemetry 138-197 ms (real-time factor 560-800), without
-103-128 ms (860-1 060), the steps alone 41-45 ms (2 440-2 660), RocketPy
-616-876 ms (120-171); rocketsim / RocketPy with telemetry 3.3-4.9x (target
-10x), without 5.6-7.1x, the steps alone 15.1-20.3x.
-Where rocketsim's time goes (thread CPU at load 2.5: with telemetry 137 ms,
-without 100 ms, without and in windows of 500 steps (0.1 Hz sampling)
-74 ms, the steps alone 43 ms, RocketPy 570 ms): the RK4 steps 7.4 us each;
-the compiled runs' checks and event tests ~25 ms (the checks' figures
-3.4 us a step, 2.6 us of it a fifth derivative for the axial load; the
-max-Q test 0.5 us a step while pending); the world's Python between the
-runs ~27 us per 5-step window (~30 ms: 13 us the run's set-up, the rest the
-window's plans and the events and checks after each run); the telemetry
-~37 ms (per sample ~15 us its figures, ~13 us its writing; ~5 ms the
-file's fixed cost). The 43 steps on the pad before liftoff are flown one
-at a time (~2 ms).
+Last figures, RocketPy at its defaults (rtol 1e-6; load 3.4-3.5, the machine
+shared, two runs): with telemetry 61-71 ms (real-time factor 1 540-1 790),
+without 40 ms (2 720-2 740), the steps alone 23 ms (4 650-4 850), RocketPy
+413-417 ms (253-256); rocketsim / RocketPy with telemetry 6.1-7.0x (target
+10x), without 10.6-10.8x, the steps alone 18.4-19.0x. The world returning
+to Python at every sample step (every 5th step, the sampler's figures one
+by one), flown alternately with those in the same minutes: with telemetry
+110-119 ms (3.4-3.6x), without 77-78 ms (5.1-5.3x).
+Where rocketsim's time goes (thread CPU at load 2.5, the world then returning
+at every sample step): the RK4 steps 7.4 us each; the compiled runs' checks
+and event tests ~25 ms (the checks' figures 3.4 us a step, 2.6 us of it a
+fifth derivative for the axial load; the max-Q test 0.5 us a step while
+pending); a sample ~15 us its figures, ~13 us its writing; ~5 ms the file's
+fixed cost.
 
 Nothing here asserts a time; the checks are that the flights with and
 without telemetry end in the same state to the bit, that the telemetry's
