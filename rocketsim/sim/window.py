@@ -35,7 +35,8 @@ compiled run computes the samples of the steps it flies through (up to
 :data:`RUN_SAMPLES` of them), with the sampler's own compiled figures
 (:func:`rocketsim.sim.sampling.run_sampler`) and the world's finiteness test;
 they are written, in order, before the run's last step is handled, so the
-file's messages come in the loop's order. At a sample step the Python side
+file's messages come in the loop's order. A tumbling part's run and a batch
+end at the next sample step at most. At a sample step the Python side
 handles (a run's end, a step flown one at a time) the world samples and reports
 progress as its loop does (:meth:`rocketsim.sim.world.World.reached`); a flight
 that ``on_progress`` shortens ends there or at its new end.
@@ -103,6 +104,8 @@ class _Window:
             world = self.world
             body = world.bodies[i]
             top = self.end if i == self.waiter else min(self.end, self.frontier)
+            if plan[0] != VEHICLE:          # to the next sample at most: the world samples there
+                top = min(top, k + world.sample_every - k % world.sample_every)
             if plan[0] == VEHICLE:
                 samples, rows, shape = self._samples(body)
                 y, taken, reason, filled = body.checks.fly_run(body, k, world.h, top - k, plan[1], body.watch,
