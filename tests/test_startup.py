@@ -31,8 +31,8 @@ print(json.dumps({"code": code, "heavy": [m for m in json.loads(sys.argv[1]) if 
 """
 
 
-def _heavy_imports(*args: str) -> tuple[int, list[str]]:
-    done = subprocess.run([sys.executable, "-c", _RUN, json.dumps(HEAVY), *map(str, args)],
+def _heavy_imports(*args: str, heavy: tuple[str, ...] = HEAVY) -> tuple[int, list[str]]:
+    done = subprocess.run([sys.executable, "-c", _RUN, json.dumps(heavy), *map(str, args)],
                           cwd=ROOT, capture_output=True, text=True, check=True)
     result = json.loads(done.stdout.strip().splitlines()[-1])
     return result["code"], result["heavy"]
@@ -49,6 +49,22 @@ def _heavy_imports(*args: str) -> tuple[int, list[str]]:
 ])
 def test_light_commands_import_neither_numba_nor_scipy_nor_the_simulator(args):
     code, heavy = _heavy_imports(*args)
+    assert code in (0, None)
+    assert heavy == []
+
+
+@pytest.mark.parametrize("args", [
+    ["--help"],
+    ["schema"],
+    ["validate", "scenarios/falcon9-leo.yaml", "vehicles/cubesat-6u.yaml", "scenarios/sites/mahia-lc1.yaml"],
+    ["validate", "scenarios/electron-sso.yaml", "scenarios/measured/bella-lui.yaml"],
+])
+def test_commands_that_compute_nothing_do_not_import_numpy(args):
+    """numpy alone is a tenth of a second of start-up: validating a real site's scenario,
+    its weather and its vehicle computes nothing with arrays (a scenario that starts in
+    orbit or on the procedural classic range does: its start point and its pads are
+    computed while it is validated)."""
+    code, heavy = _heavy_imports(*args, heavy=("numpy",))
     assert code in (0, None)
     assert heavy == []
 

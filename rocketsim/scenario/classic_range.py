@@ -26,10 +26,7 @@ from __future__ import annotations
 
 import math
 
-import numpy as np
-
 from rocketsim.constants import DEG, EARTH_RADIUS_EQ
-from rocketsim.flight.sensors import stream_key
 
 CLASSIC = "classic"                          # what a scenario writes: site: classic
 LANDING_ZONE_RANGE = (10e3, 40e3)            # m downrange, uniform
@@ -38,6 +35,9 @@ DRONE_SHIP_RANGE = (400e3, 700e3)            # m downrange, uniform
 
 def _uniform(seed: int, name: str, low: float, high: float) -> float:
     """One draw, uniform in [low, high), from the stream of ``name`` under ``seed``."""
+    import numpy as np      # here, not at the top: validating a real site's scenario stays light
+
+    from rocketsim.flight.sensors import stream_key
     sequence = np.random.SeedSequence(entropy=seed, spawn_key=(stream_key(f"classic range/{name}"),))
     return float(low + (high - low) * np.random.Generator(np.random.PCG64(sequence)).random())
 

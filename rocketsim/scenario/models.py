@@ -21,14 +21,10 @@ from typing import Annotated, Literal, Optional, Union
 
 from pydantic import BaseModel, Field, field_validator, model_validator
 
-from rocketsim.bodies.sun_synchronous import (sun_synchronous_inclination,
-                                              sun_synchronous_osculating_inclination)
 from rocketsim.constants import (EARTH_J2, EARTH_MU, EARTH_RADIUS_EQ, EARTH_RADIUS_POLAR, MARS_FLATTENING,
                                  MARS_J2, MARS_MU, MARS_RADIUS_EQ, MAX_DURATION, MAX_HEADLESS_STEP,
                                  MAX_START_DISTANCE, MAX_START_SPEED, MIN_STEP, MOON_J2, MOON_MU,
                                  MOON_RADIUS, STEP)
-from rocketsim.frames.elements import Elements, elements_to_state
-from rocketsim.frames.mean_elements import mean_to_osculating
 from rocketsim.limits import MAX_SEED, check_data
 from rocketsim.scenario.bounds import (BODY_MASS, BOUNDS, EXTENT, MAX_PROGRAM_CPU, MAX_SITE_HEIGHT,
                                        MAX_SIZE, MIN_SITE_HEIGHT, MIN_SIZE, SIZE, within)
@@ -226,6 +222,8 @@ class OrbitStart(Strict):
             raise ValueError(f"the orbit starts {start:g} m from the centre of {self.body}, below its "
                              f"surface (polar radius {polar:g} m): raise the altitude or semi-major axis")
         if self.inclination == "sso":
+            from rocketsim.bodies.sun_synchronous import (sun_synchronous_inclination,
+                                                          sun_synchronous_osculating_inclination)
             if self.body != "earth":
                 raise ValueError("'inclination: sso' is sun-synchronous about Earth only")
             a = self.semi_major_axis if self.altitude is None else EARTH_RADIUS_EQ + self.altitude
@@ -243,6 +241,9 @@ class OrbitStart(Strict):
         orbit, J2's short-period terms added: tens of km lower at some anomalies) lies
         outside the body's ellipsoid; a start inside it would begin the flight with its
         contact springs compressed by kilometres."""
+        from rocketsim.frames.elements import Elements, elements_to_state   # numpy: only for
+        from rocketsim.frames.mean_elements import mean_to_osculating        # an orbit start
+
         elements = Elements(a, self.eccentricity, self.inclination, self.raan, self.arg_periapsis,
                             self.true_anomaly, mu)
         try:
@@ -376,6 +377,8 @@ class TargetOrbit(Strict):
     @model_validator(mode="after")
     def _sun_synchronous(self) -> "TargetOrbit":
         if self.inclination == "sso":
+            from rocketsim.bodies.sun_synchronous import (sun_synchronous_inclination,
+                                                          sun_synchronous_osculating_inclination)
             if self.elements == "mean":
                 i = sun_synchronous_inclination(self.altitude)
             else:

@@ -24,18 +24,17 @@ from __future__ import annotations
 import datetime as dt
 import math
 from pathlib import Path
-from typing import Annotated, Literal, Optional, Union
+from typing import TYPE_CHECKING, Annotated, Literal, Optional, Union
 
 from pydantic import BaseModel, Field, RootModel, model_validator
 
-from rocketsim.atmosphere.day import classic_profile, profile_table, standard_table
-from rocketsim.atmosphere.random_day import random_profile
-from rocketsim.atmosphere.sounding import COLUMNS, from_columns, read_sounding
-from rocketsim.atmosphere.table import AtmosphereTable
 from rocketsim.constants import USSA_P0
 from rocketsim.errors import InputError
 from rocketsim.limits import MAX_SEED
 from rocketsim.scenario.units import STRICT, Pressure, Temperature
+
+if TYPE_CHECKING:       # the atmosphere's modules (numpy) load when a table is built, so that
+    from rocketsim.atmosphere.table import AtmosphereTable    # validating a file stays light
 
 
 class _Weather(BaseModel):
@@ -61,6 +60,7 @@ class SoundingWeather(_Weather):
         if (self.file is None) == (self.columns is None):
             raise ValueError("give exactly one of 'file' and 'columns'")
         if self.columns is not None:
+            from rocketsim.atmosphere.sounding import COLUMNS, from_columns
             unknown = [name for name in self.columns if name.upper() not in COLUMNS]
             if unknown:
                 raise ValueError(f"unknown column {unknown[0]!r} (known: {', '.join(COLUMNS)})")
@@ -131,12 +131,16 @@ def load_weather(path):
 
 def build_atmosphere(weather: Weather, site_latitude: float, base_dir: str | Path,
                      standard_gravity: bool = False, site_longitude: float | None = None,
-                     epoch: dt.datetime | None = None) -> AtmosphereTable:
+                     epoch: dt.datetime | None = None) -> "AtmosphereTable":
     """The day's 50 m :class:`AtmosphereTable` for ``weather`` at geodetic ``site_latitude``
     (rad); a sounding or reanalysis ``file`` is resolved relative to ``base_dir``.
     ``standard_gravity``: the classic range's hydrostatics
     (:func:`~rocketsim.atmosphere.day.profile_table`). A reanalysis is taken at
     ``site_longitude`` (rad, east) and the UTC instant ``epoch``, both needed for it."""
+    from rocketsim.atmosphere.day import classic_profile, profile_table, standard_table
+    from rocketsim.atmosphere.random_day import random_profile
+    from rocketsim.atmosphere.sounding import from_columns, read_sounding
+
     if isinstance(weather, WeatherFile):
         weather = weather.root
     if isinstance(weather, StandardWeather):
