@@ -4,7 +4,13 @@
 cached on disk (``cache=True``) so a second ``rocketsim fly`` starts flying
 without recompiling, ``fastmath`` stays off so results are IEEE-exact and
 bit-identical run to run, and division by zero follows numpy (inf/nan) rather
-than raising inside the hot path.
+than raising inside the hot path. The compiled runs of many steps and the
+telemetry's framing are compiled ``nogil=True``: while they run, the
+telemetry's writing thread (:mod:`rocketsim.telemetry.writing_thread`) runs
+its Python beside them. The calls of one or a few steps at a time keep the
+GIL: released and taken again every step, it would hand it to the writing
+thread and back tens of times a batch of samples, each hand-over a
+thread's wake-up.
 
 numba itself (about half a second to import, more with the scipy it pulls in)
 is imported only when a kernel is first called or compiled: ``njit`` returns a

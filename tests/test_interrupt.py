@@ -79,9 +79,10 @@ def _write(path, calls, epoch_ns, tracer=None):
 def test_a_ctrl_c_at_any_moment_of_the_writer_leaves_a_whole_file(scenario, tmp_path):
     """The telemetry of a 30 s flight (300 samples over two chunks, a log line, an event,
     metadata, attachments) written again with SIGINT sent at 60 moments drawn over
-    every bytecode the telemetry package runs: each file's summary agrees with its
-    records, and its messages are those of the whole file up to where it stopped,
-    none twice, none skipped."""
+    every bytecode the telemetry package runs on the flight's thread (the only one a
+    signal interrupts: the file is written on the writer's own thread): each file's
+    summary agrees with its records, and its messages are those of the whole file up
+    to where it stopped, none twice, none skipped."""
     program = """
     def main(fc):
         fc.sleep(12.0)

@@ -32,7 +32,7 @@ from rocketsim.sim import sampling
 MAX_INTERVALS = 128     # sample intervals in one run (12.8 s at 10 Hz): the rows waiting to be written
 
 
-@njit
+@njit(nogil=True)
 def coast_run(y, k0, h, every, m, p, nbody, rows, fixed):
     """Fly a rigid body (state ``y``, parameters ``p``, ``nbody`` as
     :func:`~rocketsim.dynamics.rk4.advance`'s) ``m`` intervals of ``every`` steps of

@@ -192,7 +192,7 @@ def _surely_finite(y):
     return True
 
 
-@njit
+@njit(nogil=True)
 def fly_part(y, k0, h, n_max, p, fp, air, area_mass, length, floor, liftoff, orbit_bound, mu, soi,
              nbody=None):
     """Fly a tumbling part (:mod:`rocketsim.dynamics.free_body`: the field ``fp``, the air
@@ -217,7 +217,7 @@ def fly_part(y, k0, h, n_max, p, fp, air, area_mass, length, floor, liftoff, orb
     return y, n_max
 
 
-@njit
+@njit(nogil=True)
 def fly_run(y, k0, h, n_max, p, veh, in_flight, steer, code, fins, watch, carry, condition, every, rows, record,
             sampler, nbody=None):
     """Fly the staged vehicle with aerodynamics ``veh`` (its arrays; ``in_flight`` the same

@@ -111,7 +111,7 @@ def _put_int(out, at, x):
     return at + digits
 
 
-@njit
+@njit(nogil=True)
 def records(numbers, values, stamps, sequence, text, plan, extras, extra_ends, extra_channels,
             extra_first, extra_after, out, at, index, n_index):
     """Write the MCAP Message records of samples of one template into ``out`` from ``at``

@@ -14,10 +14,17 @@ the same run always writes the same bytes: nothing here reads the wall clock.
 The scenario and every file it references travel in the file as attachments,
 so a run can be shared as one file. :meth:`TelemetryWriter.close` writes the
 summary and index; callers use the writer as a context manager so the file is
-finished on success, on a program error and on Ctrl-C alike. Each call that
-writes is whole or not begun (Ctrl-C and SIGTERM held while it runs,
-:mod:`rocketsim.telemetry.held_signals`): no sample is written twice or lost
-half-way, and the summary indexes what is on disk.
+finished on success, on a program error and on Ctrl-C alike.
+
+The file is written on a thread of its own beside the flight's
+(:mod:`rocketsim.telemetry.writing_thread`): each public call hands its work
+over (samples in batches of :data:`PENDING`) and returns, the thread framing,
+compressing and writing it in the calls' order, so the bytes are those the
+calls made in line would write. Handing over is whole or not begun (Ctrl-C and
+SIGTERM held meanwhile, :mod:`rocketsim.telemetry.held_signals`), the thread's
+work is never interrupted (signals reach the main thread only), and
+:meth:`TelemetryWriter.close` waits for all of it: no sample is written twice
+or lost, and the summary indexes what is on disk.
 """
 
 from __future__ import annotations
@@ -39,13 +46,15 @@ from rocketsim.telemetry.held_signals import holding
 from rocketsim.telemetry.frames import MISSION_FRAME, CentralFrame, FrameTree, central_frame
 from rocketsim.telemetry.mcap_stream import McapStream
 from rocketsim.telemetry.schemas import BODY_STATE, EVENT, schema_bytes
+from rocketsim.telemetry.writing_thread import WritingThread
 
 PROFILE = ""
 # Uncompressed bytes per chunk: about 18 s of one body at 10 Hz. Memory held
 # while flying is one chunk; a file cut short loses at most the last one.
 CHUNK_SIZE = 256 * 1024
 LIBRARY = f"rocketsim {__version__}"
-# samples written together (TelemetryWriter.sample): some 10-60 kB of numbers held
+# samples handed to the writing thread together (TelemetryWriter.sample): some 10-60 kB
+# of numbers a batch
 PENDING = 128
 _NO_TEXT = np.frombuffer(b"", dtype=np.uint8)      # a template's text: read-only bytes
 
@@ -142,7 +151,11 @@ class TelemetryWriter:
     Earth) location; the central bodies' frames (:mod:`rocketsim.telemetry.frames`);
     the events; the program's log.
 
-    ``program_file`` names the program in the ``file`` field of its log lines.
+    ``program_file`` names the program in the ``file`` field of its log lines. The
+    file is created here (an error opening it is raised here) and written on the
+    writing thread (see the module): the public methods run on the caller's thread
+    and hand their work over (:meth:`_hand_over`), the rest on the writing thread
+    once it has started.
     """
 
     def __init__(self, path: str | Path, epoch_ns: int, program_file: str = ""):
@@ -162,7 +175,8 @@ class TelemetryWriter:
         self._logs = self._channel("/log", foxglove.LOG)
         self._frames = FrameTree()
         self._plans: dict[str, tuple] = {}      # body -> its messages' templates (sample)
-        self._pending: deque[tuple] = deque()   # samples waiting to be written (sample)
+        self._pending: list[tuple] = []         # samples not yet handed over (sample)
+        self._thread = WritingThread(f"telemetry {self.path.name}")
 
     def _channel(self, topic: str, schema: dict) -> int:
         channel = self._channels.get(topic)
@@ -176,6 +190,14 @@ class TelemetryWriter:
         return channel
 
     @holding
+    def _hand_over(self, call, *args) -> None:
+        """Hand the samples waiting and then ``call(*args)`` (if any) to the writing thread."""
+        if self._pending:
+            self._thread.submit(self._write_samples, self._pending)
+            self._pending = []
+        if call is not None:
+            self._thread.submit(call, *args)
+
     def add_body(self, name: str) -> None:
         """Open the channels of a body: ``/<name>/state``, ``/<name>/transform``
         (foxglove.FrameTransform), and ``/<name>/location`` (foxglove.LocationFix) once it
@@ -185,7 +207,9 @@ class TelemetryWriter:
         Every scalar of the state message is a JSON-schema'd field that
         Foxglove's Plot panel reads by path (``/<name>/state.altitude``,
         ``.orbit.eccentricity``, ``.position[0]``): no second copy is written."""
-        self._flush()
+        self._hand_over(self._add_body, name)
+
+    def _add_body(self, name: str) -> None:
         self._bodies[name] = (self._channel(f"/{name}/state", BODY_STATE),
                               self._channel(f"/{name}/transform", foxglove.FRAME_TRANSFORM))
         if self._lead is None:
@@ -199,17 +223,17 @@ class TelemetryWriter:
         self._writer.message(channel, stamp, stamp, encode(message), self._sequence)
         self._sequence += 1
 
-    @holding
     def state(self, body: str, message: dict, frame: CentralFrame | None = None) -> None:
         """A body's state message, and the Foxglove messages drawn from it; ``frame``:
         the inertial frame it is in (default: Earth's, without an ephemeris). Values
         that are None or not finite are left out (see :data:`rocketsim.telemetry.schemas.BODY_STATE`)."""
-        self._flush()
+        self._hand_over(self._state, body, _present(message), _EARTH if frame is None else frame)
+
+    def _state(self, body: str, message: dict, frame: CentralFrame) -> None:
         t = message["t"]
         stamp = self._stamp(t)
         time = foxglove.timestamp(stamp)
-        frame = _EARTH if frame is None else frame
-        (state, data), *foxglove_messages = self._messages(body, time, _present(message), frame)
+        (state, data), *foxglove_messages = self._messages(body, time, message, frame)
         self._write(state, stamp, data)
         for channel, data in self._frame_transforms(t, stamp) + self._mission_off_root(
                 body, frame, message["position"], t, time):
@@ -227,20 +251,18 @@ class TelemetryWriter:
         new frame): its state alone, the body's frame and location being those of its new
         centre from this instant on.
 
-        Samples wait, up to :data:`PENDING` of them, and are written together before
-        anything else is (a message, an attachment, metadata, a body's channels, the
-        end of the file): the file's order is the flight's, and writing them back to
-        back keeps the writer's code and data in the processor's caches."""
+        Samples wait, up to :data:`PENDING` of them, and are handed to the writing thread
+        together before anything else is (a message, an attachment, metadata, a body's
+        channels, the end of the file): the file's order is the flight's, and writing
+        them back to back keeps the writer's code and data in the processor's caches."""
         self._pending.append((body, values, fields, leaving))
         if len(self._pending) >= PENDING:
-            self._flush()
+            self._hand_over(None)
 
-    @holding
-    def _flush(self) -> None:
-        """Write the samples waiting (see :meth:`sample`): each run of samples of one
-        body, message shape and set of missing values in one compiled call, leaving the
-        queue once written."""
-        pending = self._pending
+    def _write_samples(self, samples: list[tuple]) -> None:
+        """Write ``samples`` (see :meth:`sample`): each run of samples of one body,
+        message shape and set of missing values in one compiled call."""
+        pending = deque(samples)
         while pending:
             body, values, fields, leaving = pending[0]
             shape = self._plans.get(body)
@@ -362,54 +384,58 @@ class TelemetryWriter:
         return [(self._channel(f"/{center}/transform", foxglove.FRAME_TRANSFORM), message)
                 for center, message in due] if due else due
 
-    @holding
     def event(self, t: float, body: str, name: str, figures: dict) -> None:
         """An event with its figures (SI), and its line in ``/events/log``."""
-        self._flush()
+        self._hand_over(self._event_out, t, body, name, dict(figures))
+
+    def _event_out(self, t: float, body: str, name: str, figures: dict) -> None:
         stamp = self._stamp(t)
         self._write(self._events, stamp, {"t": t, "body": body, "name": name, "figures": figures})
         text = name + "".join(f" {k}={v}" for k, v in figures.items())
         self._write(self._event_lines, stamp,
                     foxglove.log_line(stamp, foxglove.INFO, text, body, "", t, body))
 
-    @holding
     def log(self, t: float, body: str, message: str) -> None:
         """A line the program logged."""
-        self._flush()
+        self._hand_over(self._log_out, t, body, message)
+
+    def _log_out(self, t: float, body: str, message: str) -> None:
         stamp = self._stamp(t)
         self._write(self._logs, stamp, foxglove.log_line(
             stamp, foxglove.INFO, message, body, self._program_file, t, body))
 
-    @holding
     def error(self, t: float, message: str) -> None:
         """The error that ended a flight (program exception, Ctrl-C...), in ``/events/log``."""
-        self._flush()
+        self._hand_over(self._error_out, t, message)
+
+    def _error_out(self, t: float, message: str) -> None:
         stamp = self._stamp(t)
         self._write(self._event_lines, stamp, foxglove.log_line(
             stamp, foxglove.ERROR, message, "rocketsim", "", t, ""))
 
-    @holding
     def attach(self, name: str, data: bytes, media_type: str = "text/plain") -> None:
         """Attach a file (scenario, vehicle, program...) to the log."""
-        self._flush()
-        self._writer.attachment(name, media_type, data, self._epoch_ns)
+        self._hand_over(self._writer.attachment, name, media_type, bytes(data), self._epoch_ns)
 
-    @holding
     def metadata(self, name: str, values: dict[str, str]) -> None:
-        self._flush()
-        self._writer.metadata(name, {k: str(v) for k, v in values.items()})
+        """A named map of strings (each value written as its ``str``)."""
+        self._hand_over(self._writer.metadata, name, {k: str(v) for k, v in values.items()})
 
     @holding
     def close(self) -> None:
-        """Write the summary and index and close the file (idempotent)."""
+        """Write what was handed over, the summary and index, and close the file
+        (idempotent); the error of any writing, if one failed (raised by the first
+        call after it, else here)."""
         if self._closed:
             return
         self._closed = True
         try:
-            self._flush()
-            self._writer.finish()
+            self._hand_over(self._writer.finish)
         finally:
+            error = self._thread.stop()
             self._file.close()
+        if error is not None:
+            raise error
 
     def __enter__(self) -> "TelemetryWriter":
         return self

@@ -21,8 +21,9 @@ Printed (run with ``pytest -s``):
   the rails (sleeping bodies' compiled steps), the programs (their Python code
   and the readings they compute first), the autopilot (what is left of it
   outside that call), the per-step checks (limits, heating, touchdown, on those
-  figures), the flight events, telemetry (sampling, encoding, writing: per call,
-  per sample computed or batch of waiting samples written), the
+  figures), the flight events, telemetry (on the flight's thread: a sample's
+  figures, handing messages and batches of samples to the writing thread, and
+  the wait for it at the end; its encoding and writing run beside), the
   loop's decisions (batch length, rails or not, the impact test), and the
   rest of the run;
 * the physics, checks, events and loop per body-step (per awake 20 ms step of one
@@ -152,10 +153,13 @@ def _instrument(monkeypatch, clock: SectionClock) -> Counter:
         patch(world, name, clock.wrap(getattr(world, name), "rails"))
     patch(world.World, "_run_programs", clock.wrap(world.World._run_programs, "programs"))
     patch(world.World, "_run_autopilots", clock.wrap(world.World._run_autopilots, "autopilot"))
-    # every sample (the rate's, and those at impacts, handovers and new bodies) and every
-    # writing of the waiting samples, whoever asks for it (an event, a log line, the end)
+    # every sample (the rate's, and those at impacts, handovers and new bodies), every
+    # handing over to the writing thread, whoever asks for it (an event, a log line, a
+    # batch of samples full), and the wait for the thread at the file's end: the
+    # telemetry's cost on the flight's thread
     patch(world.World, "record", clock.wrap(world.World.record, "telemetry"))
-    patch(TelemetryWriter, "_flush", clock.wrap(TelemetryWriter._flush, "telemetry"))
+    for name in ("_hand_over", "close"):
+        patch(TelemetryWriter, name, clock.wrap(getattr(TelemetryWriter, name), "telemetry"))
     for cls, name, label in ((vehicle_checks.VehicleChecks, "after_step", "checks"),
                              (vehicle_checks.VehicleChecks, "every_step", "checks"),
                              (flight_events.FlightEvents, "after_step", "events")):

@@ -32,11 +32,12 @@ past the telemetry samples, computing them on the way: after the 43 steps on
 the pad (flown one at a time) its 5 457 steps take 11 runs with a file (its
 events and every 128th sample) and 3 without.
 
-Last figures, RocketPy at its defaults (rtol 1e-6; load 3.4-3.5, the machine
-shared, two runs): with telemetry 61-71 ms (real-time factor 1 540-1 790),
-without 40 ms (2 720-2 740), the steps alone 23 ms (4 650-4 850), RocketPy
-413-417 ms (253-256); rocketsim / RocketPy with telemetry 6.1-7.0x (target
-10x), without 10.6-10.8x, the steps alone 18.4-19.0x. The world returning
+Last figures, RocketPy at its defaults (rtol 1e-6; load 1.9, the file
+written on its own thread beside the flight's compiled runs): with telemetry
+51 ms (real-time factor 2 160), without 42 ms (2 620), the steps alone 23 ms
+(4 860), RocketPy 410 ms (258); rocketsim / RocketPy with telemetry 8.4x
+(target 10x), without 10.2x, the steps alone 18.8x. Written in line on the
+flight's thread, the same minutes: with telemetry 60-64 ms (6.5-6.7x). The world returning
 to Python at every sample step (every 5th step, the sampler's figures one
 by one), flown alternately with those in the same minutes: with telemetry
 110-119 ms (3.4-3.6x), without 77-78 ms (5.1-5.3x).
