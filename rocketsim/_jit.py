@@ -227,9 +227,10 @@ _ENTRIES: dict = {}     # (kernel, the arguments' kinds) -> compiled entry (entr
 def _kinds(values) -> tuple | None:
     """Everything numba's type of each of ``values`` depends on, for the values this
     library passes: an array's dtype, dimensions, layout, writeability and alignment;
-    a (named) tuple's class and its items' kinds; a number's, bytes', text's or
-    None's class (an integer's, and whether it fits int64). None where a value is of
-    another sort, to be typed by numba."""
+    a (named) tuple's class and its items' kinds; a numpy scalar's dtype (a
+    datetime's unit is in it); a number's, bytes', text's or None's class (an
+    integer's, and whether it fits int64). None where a value is of another sort,
+    to be typed by numba."""
     kinds = []
     for value in values:
         cls = type(value)
@@ -239,7 +240,9 @@ def _kinds(values) -> tuple | None:
                           flags.writeable, flags.aligned))
         elif cls is int:
             kinds.append((cls, -2**63 <= value < 2**63))
-        elif cls in (float, bool, bytes, str, type(None)) or isinstance(value, np.generic):
+        elif isinstance(value, np.generic):
+            kinds.append(value.dtype)
+        elif cls in (float, bool, bytes, str, type(None)):
             kinds.append(cls)
         elif isinstance(value, tuple):
             items = _kinds(value)

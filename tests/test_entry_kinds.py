@@ -23,7 +23,8 @@ def _values():
         np.zeros(3), np.zeros(5), np.zeros(3, dtype=np.int64), np.zeros(3, dtype=np.float32),
         base, base.T, base[:, ::2], base[0], base[:, 0], frozen, np.zeros((0, 4)),
         1, -7, 2**63, -2**63, 2**62, 1.5, -0.0, True, None, b"", b"abc", "text",
-        np.float64(1.0), np.int32(3), (), (1.0, 2.0), (1.0, 2), (np.zeros(2), 3),
+        np.float64(1.0), np.int32(3), np.datetime64("2026-12-03", "D"),
+        np.datetime64("2026-12-03", "s"), (), (1.0, 2.0), (1.0, 2), (np.zeros(2), 3),
         Pair(np.zeros(2), 1.0), Pair(np.zeros(2), 2.0), Pair(np.zeros(2, dtype=np.int64), 1.0),
         Other(np.zeros(2), 1.0), Pair(base.T, 1.0), ((1.0,), (np.zeros(1),)),
     ]
