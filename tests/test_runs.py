@@ -107,13 +107,15 @@ def _sounding(tmp_path, name, monkeypatch, how: str, duration: float = 110.0, cu
 
 def test_a_single_body_samples_inside_its_runs_what_the_world_samples(tmp_path, monkeypatch):
     """A flight of one body (the sounding rocket: pad, boost, coast past apogee): its
-    compiled runs go on past the sample steps, computing those samples themselves; the
-    file is the same, message for message and bit for bit, as the world sampling each
-    one (the runs returning at every sample step) and as the loop one step at a time."""
+    compiled runs go on past the sample steps, computing those samples themselves, from
+    the pad on (standing on its base until liftoff at 0.86 s); the file is the same,
+    message for message and bit for bit, as the world sampling each one (the runs
+    returning at every sample step) and as the loop one step at a time."""
     messages, computed, _ = _sounding(tmp_path, "runs", monkeypatch, "runs")
     by_python, none, _ = _sounding(tmp_path, "python", monkeypatch, "python")
     by_steps, _, _ = _sounding(tmp_path, "steps", monkeypatch, "steps")
     assert not none and len(computed) > 900      # of the 1 101 samples: those inside the runs
+    assert min(computed) == pytest.approx(0.1)    # the first after T+0, on the pad
     states = [m for m in messages if m[0].endswith("/state")]
     assert len(states) == 1101 and len({time for _, time, _ in states}) == 1101
     assert messages == by_python == by_steps

@@ -107,12 +107,13 @@ class FlightEvents:
     def run_watch(self, watch) -> float:
         """Fill the slots of a compiled run's ``watch`` that these events decide
         (:mod:`rocketsim.sim.runs`: max-Q pending, its definitions, the orbit test's
-        bound, the next motor burn-out); returns the dynamic-pressure peak so far
-        (Pa; nan: none). The run needs the body lifted off, its parachutes none."""
+        bound, the liftoff height, the next motor burn-out); returns the dynamic-pressure
+        peak so far (Pa; nan: none). The run needs the body's parachutes none."""
         body = self.body
         watch[runs.W_MAX_Q] = 0.0 if self.max_q_done else 1.0
         watch[runs.W_MAX_Q_MIN], watch[runs.W_MAX_Q_DROP] = MAX_Q_MIN, MAX_Q_DROP
         watch[runs.W_ORBIT] = math.inf if self.in_orbit else ORBIT_PERIAPSIS_BOUND
+        watch[runs.W_LIFTOFF] = math.inf if self.lifted else self.start_height + LIFTOFF_HEIGHT
         model = body.vehicle
         motor, curve = model.arrays.motor, model.arrays.curve
         watch[runs.W_BURNOUT] = min((_curve_end(motor, curve, i) for i, name in enumerate(model.motor_names)

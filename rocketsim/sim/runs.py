@@ -28,7 +28,10 @@ dynamic-pressure peak while max-Q is pending (the step of the peak; its state
 ``y_peak``, from which the world takes the exact figures). A run stops after a
 step where
 
-* the vehicle has touched down or gone below the ground (an impact);
+* the vehicle may have lifted off (its height near or past the liftoff height);
+* the vehicle has touched down or gone below the ground (an impact), or comes
+  within the airborne clearance of the ground before a touchdown (the Python side's
+  test of a contact inside the step);
 * a structural limit may be passed, or the heat shield's limit;
 * max-Q may be reached or the peak's comparison is too close to call;
 * a stage has run dry, the vehicle has left its launch rail, a solid motor's
@@ -90,7 +93,9 @@ W_SOI = 17                          # m: the sphere-of-influence watch radius (i
 W_CLEARANCE = 18                    # m: the lowest contact point this high is in the air
 W_TIP = 19                          # cosine of the tilt from the radial past which a landed body may
                                     # tip over (-inf: not landed)
-N_WATCH = 20
+W_LIFTOFF = 20                      # m over the ellipsoid (the readings' height): liftoff is reported
+                                    # above it (inf: lifted off)
+N_WATCH = 21
 # the slots of ``carry``
 C_TEMPERATURE, C_TOUCHED, C_PEAK_Q, C_PEAK_STEP = 0, 1, 2, 3
 N_CARRY = 4
@@ -115,6 +120,8 @@ def _max_q_quiet(y, t, p, air, carry, watch):
     speed = math.sqrt(v_air @ v_air)
     q = 0.5 * rho * (speed * speed)
     peak = carry[C_PEAK_Q]
+    if math.isnan(peak):            # no peak yet: this is the first
+        return True, q
     if q > peak * (1.0 + MARGIN):
         return True, q
     if q >= peak * (1.0 - MARGIN):
@@ -145,7 +152,7 @@ def _checks_quiet(y, h, figures, carry, watch):
             return False, temperature, touched
     if lowest > watch[W_CLEARANCE]:
         touched = 0.0
-    elif touched < 0.5 and lowest <= 0.0:
+    elif touched < 0.5:             # a contact may be due (lowest <= 0 or reached inside the step)
         return False, temperature, touched
     elif axis_up(y) < watch[W_TIP]:
         return False, temperature, touched
@@ -182,6 +189,17 @@ def _orbit_and_soi_quiet(y, p, orbit_bound, mu, soi):
 
 
 @njit
+def _below(y, t, p, liftoff):
+    """Whether state ``y`` at mission time ``t`` (s) is surely not past the liftoff height
+    ``liftoff`` (m over the ellipsoid, the readings' height; inf: lifted off), with the
+    margin of the readings' height against the one here."""
+    if liftoff == math.inf:
+        return True
+    geodetic = where_and_how_fast(y[R:R + 3], y[V:V + 3], t, p[P_SPIN], p[P_RADIUS], p[P_POLAR_RADIUS])[2]
+    return geodetic <= liftoff - MARGIN * p[P_RADIUS]
+
+
+@njit
 def _surely_finite(y):
     """Whether the world's finiteness test (the sum of the state finite:
     :meth:`rocketsim.sim.world.World._check_finite`) surely passes on ``y``: every
@@ -209,11 +227,8 @@ def fly_part(y, k0, h, n_max, p, fp, air, area_mass, length, floor, liftoff, orb
         height = radial_height(y, p)
         if not (0.0 <= height < floor * (1.0 - MARGIN)) or not _orbit_and_soi_quiet(y, p, orbit_bound, mu, soi):
             return y, j
-        if liftoff < math.inf:
-            geodetic = where_and_how_fast(y[R:R + 3], y[V:V + 3], (k0 + j) * h, p[P_SPIN], p[P_RADIUS],
-                                          p[P_POLAR_RADIUS])[2]
-            if not geodetic <= liftoff - MARGIN * p[P_RADIUS]:
-                return y, j
+        if not _below(y, (k0 + j) * h, p, liftoff):
+            return y, j
     return y, n_max
 
 
@@ -268,7 +283,8 @@ def fly_run(y, k0, h, n_max, p, veh, in_flight, steer, code, fins, watch, carry,
         if j == n_max or radial_height(y, p) < ground:
             return y, before, j, figures, LIMIT if j == n_max else PYTHON, y_peak, filled
         quiet, temperature, touched = _checks_quiet(y, h, figures, carry, watch)
-        if not quiet or not _events_quiet(y, t, p, veh, watch, dry, on_rail):
+        if not quiet or not _events_quiet(y, t, p, veh, watch, dry, on_rail) \
+                or not _below(y, t, p, watch[W_LIFTOFF]):
             return y, before, j, figures, PYTHON, y_peak, filled
         peak = math.nan
         if watch[W_MAX_Q] > 0.5:

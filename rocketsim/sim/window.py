@@ -9,7 +9,7 @@ while more than one body flies:
 :meth:`~rocketsim.sim.schedule.Schedule.window_length`) the bodies do not
 interact, so :func:`fly_window` flies each on its own:
 
-* a vehicle with aerodynamics that has lifted off, steered by the autopilot's
+* a vehicle with aerodynamics, on its pad or in flight, steered by the autopilot's
   compiled step or not at all, its program asleep or waiting on a compiled
   condition (:mod:`rocketsim.flight.conditions`), no parachutes, in compiled runs
   (:meth:`rocketsim.sim.vehicle_checks.VehicleChecks.fly_run`,
@@ -246,7 +246,7 @@ def _plan(world, body, first: bool, seconds: float):
         if body.drag is not None and radial_height(body.y, body.p) <= world.schedule.rails_floor(body):
             return (PART,)
         return (BATCH,) if world.schedule.coasts_alone(body, seconds) else None
-    if watch is None or not watch.lifted or checks is None or body.vehicle.parachutes:
+    if watch is None or checks is None or body.vehicle.parachutes:
         return None
     if not checks.every_step(body) or world.schedule.cruising(body):
         return None
@@ -260,6 +260,6 @@ def _plan(world, body, first: bool, seconds: float):
         steering = body.steering if first else body.fc.folded()
         if steering is None:
             return None
-    if not watch.max_q_done and (watch.peak is None or body.central != "earth" or not body.flies_in_days_air()):
+    if not watch.max_q_done and (body.central != "earth" or not body.flies_in_days_air()):
         return None
     return VEHICLE, steering, condition

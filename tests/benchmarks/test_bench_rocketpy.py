@@ -28,9 +28,9 @@ over RocketPy's, against the 10x target, with the load. The distance from
 1 to 2 is the telemetry; from 2 to 3 the world around the steps: the
 compiled runs' checks and event tests at every step, and the Python of the
 world's loop where a run returns. The rocket flies alone, so its runs go on
-past the telemetry samples, computing them on the way: after the 43 steps on
-the pad (flown one at a time) its 5 457 steps take 11 runs with a file (its
-events and every 128th sample) and 3 without.
+past the telemetry samples, computing them on the way, from the pad on: its
+5 500 steps take 4 runs without a file (returning at liftoff, max-Q and the
+end of the burn) and 12 with one (every 128th sample too).
 
 Last figures, RocketPy at its defaults (rtol 1e-6; load 1.9, the file
 written on its own thread beside the flight's compiled runs): with telemetry
