@@ -104,6 +104,11 @@ class FlightEvents:
         if not self.in_orbit and self.lifted and periapsis_bound(body.y, body.mu) > ORBIT_PERIAPSIS_BOUND:
             self._orbit(body.view())
 
+    def liftoff_height(self) -> float:
+        """m over the ellipsoid (the readings' height) above which liftoff is reported;
+        inf once lifted off."""
+        return math.inf if self.lifted else self.start_height + LIFTOFF_HEIGHT
+
     def run_watch(self, watch) -> float:
         """Fill the slots of a compiled run's ``watch`` that these events decide
         (:mod:`rocketsim.sim.runs`: max-Q pending, its definitions, the orbit test's
@@ -113,7 +118,7 @@ class FlightEvents:
         watch[runs.W_MAX_Q] = 0.0 if self.max_q_done else 1.0
         watch[runs.W_MAX_Q_MIN], watch[runs.W_MAX_Q_DROP] = MAX_Q_MIN, MAX_Q_DROP
         watch[runs.W_ORBIT] = math.inf if self.in_orbit else ORBIT_PERIAPSIS_BOUND
-        watch[runs.W_LIFTOFF] = math.inf if self.lifted else self.start_height + LIFTOFF_HEIGHT
+        watch[runs.W_LIFTOFF] = self.liftoff_height()
         model = body.vehicle
         motor, curve = model.arrays.motor, model.arrays.curve
         watch[runs.W_BURNOUT] = min((_curve_end(motor, curve, i) for i, name in enumerate(model.motor_names)

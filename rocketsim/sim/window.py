@@ -53,7 +53,7 @@ from rocketsim.dynamics.derivative import radial_height
 from rocketsim.dynamics.third_bodies import field_of, nbody_flag
 from rocketsim.flight.conditions import NO_CONDITION
 from rocketsim.sim import runs, sampling
-from rocketsim.sim.flight_events import LIFTOFF_HEIGHT, ORBIT_PERIAPSIS_BOUND
+from rocketsim.sim.flight_events import ORBIT_PERIAPSIS_BOUND
 from rocketsim.sim.schedule import rails_field
 
 VEHICLE, PART, BATCH = "vehicle", "part", "batch"   # how a body flies a segment (see _plan)
@@ -223,7 +223,7 @@ class _Window:
         watch = body.watch          # None: no events to watch
         return runs.fly_part(y, k, world.h, n, body.p, rails_field(body), world.air_of(body), *body.drag,
                              world.schedule.rails_floor(body),
-                             math.inf if watch is None or watch.lifted else watch.start_height + LIFTOFF_HEIGHT,
+                             math.inf if watch is None else watch.liftoff_height(),
                              math.inf if watch is None or watch.in_orbit else ORBIT_PERIAPSIS_BOUND, body.mu,
                              math.inf, nbody_flag(body.p))
 
