@@ -278,3 +278,60 @@ class Entries:
         if bound is None or bound[0] is not key:
             bound = self._bound[kernel] = (key, entry_point(kernel, *args))
         return bound[1](*args)
+
+
+# The second process of :class:`CompiledBeside`: imports a module and calls one of its functions.
+_BESIDE_MAIN = "import importlib, sys; getattr(importlib.import_module(sys.argv[1]), sys.argv[2])()"
+# How long a first call waits for the second process before compiling the kernel itself (s):
+# its compiling takes a few seconds; a machine so loaded that it takes minutes is not helped.
+BESIDE_WAIT = 120.0
+
+
+def in_cache(kernel) -> bool:
+    """Whether the cache holds a compiled signature of ``kernel`` (its index file exists)."""
+    cache = getattr(kernel.dispatcher, "_cache", None)
+    index = getattr(getattr(cache, "_cache_file", None), "_index_path", None)
+    return index is None or os.path.exists(index)
+
+
+class CompiledBeside:
+    """A kernel of fixed argument types compiled into the cache by a second Python process
+    while this one compiles others: on a cold cache the two cores compile at once (numba
+    compiles one function at a time per process, under its compiler lock).
+
+    Made with the kernel and the function that compiles it (``module``'s ``warm``, called
+    with no arguments); the process starts only if the cache lacks the kernel. Its output
+    is thrown away: a process that fails costs nothing but the wait, and the kernel then
+    compiles here as it would have. :meth:`wait` comes before the kernel's first call here.
+    The machine code is the same whichever process compiles it.
+    """
+
+    def __init__(self, kernel, module: str, warm: str):
+        import subprocess
+        import sys
+
+        self._process = None
+        if in_cache(kernel):
+            return
+        package_parent = str(Path(__file__).resolve().parents[1])
+        env = {**os.environ, "NUMBA_CACHE_DIR": cache_dir(),
+               "PYTHONPATH": os.pathsep.join(filter(None, [package_parent, os.environ.get("PYTHONPATH")]))}
+        try:
+            self._process = subprocess.Popen([sys.executable, "-c", _BESIDE_MAIN, module, warm], env=env,
+                                             stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
+                                             stderr=subprocess.DEVNULL)
+        except OSError:             # no process to spare: the kernel compiles here
+            pass
+
+    def wait(self) -> None:
+        """Wait for the second process to end (at most :data:`BESIDE_WAIT` s; then it is stopped)."""
+        import subprocess
+
+        process, self._process = self._process, None
+        if process is None:
+            return
+        try:
+            process.wait(BESIDE_WAIT)
+        except subprocess.TimeoutExpired:
+            process.kill()
+            process.wait()

@@ -102,3 +102,51 @@ def test_a_kernel_is_saved_to_the_cache_under_the_cache_folders_lock(tmp_path):
     done = subprocess.run([sys.executable, str(script)], capture_output=True, text=True, env=env,
                           check=True, cwd=tmp_path)
     assert json.loads(done.stdout.strip().splitlines()[-1]) == [True, True]
+
+
+_COMPILED_BESIDE = """
+import json
+from rocketsim._jit import CompiledBeside, in_cache, njit
+from rocketsim.telemetry import splice, writer
+
+@njit
+def twice(x):
+    return 2 * x
+
+cold = in_cache(splice.records)
+beside = CompiledBeside(splice.records, "rocketsim.telemetry.writer", "_records")
+started = beside._process is not None
+beside.wait()
+warm = in_cache(splice.records)
+writer._records()                           # bound here after the second process compiled it
+stats = splice.records.stats
+again = CompiledBeside(splice.records, "rocketsim.telemetry.writer", "_records")._process is not None
+
+failing = CompiledBeside(twice, "no_such_module", "warm")       # the second process fails
+failing_started = failing._process is not None
+failing.wait()
+print(json.dumps({"cold": cold, "started": started, "warm": warm,
+                  "hits": sum(stats.cache_hits.values()), "misses": sum(stats.cache_misses.values()),
+                  "again": again, "failing_started": failing_started,
+                  "failing_cached": in_cache(twice), "twice": twice(21)}))
+"""
+
+
+def test_a_kernel_compiled_beside_is_loaded_from_the_cache(tmp_path):
+    """On an empty cache a second process compiles the telemetry's framing kernel while this
+    one goes on; this process then loads it from the cache (a cache hit, nothing compiled
+    here). A kernel already cached starts no process; a second process that fails leaves
+    the kernel to compile here as it would have."""
+    import json
+    import os
+    import subprocess
+    import sys
+    env = {k: v for k, v in os.environ.items() if k != "NUMBA_CACHE_DIR"}
+    env["ROCKETSIM_CACHE_DIR"] = str(tmp_path)
+    script = tmp_path / "beside.py"
+    script.write_text(_COMPILED_BESIDE)
+    done = subprocess.run([sys.executable, str(script)], capture_output=True, text=True, env=env,
+                          check=True, cwd=tmp_path, timeout=300)
+    assert json.loads(done.stdout.strip().splitlines()[-1]) == {
+        "cold": False, "started": True, "warm": True, "hits": 1, "misses": 0, "again": False,
+        "failing_started": True, "failing_cached": False, "twice": 42}

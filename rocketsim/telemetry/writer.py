@@ -40,7 +40,7 @@ import numpy as np
 import orjson
 
 from rocketsim.version import __version__
-from rocketsim._jit import entry_point
+from rocketsim._jit import CompiledBeside, entry_point
 from rocketsim.telemetry import foxglove, splice
 from rocketsim.telemetry.held_signals import holding
 from rocketsim.telemetry.frames import MISSION_FRAME, CentralFrame, FrameTree, central_frame
@@ -77,9 +77,12 @@ def strict_json(value, indent: bool = False) -> str:
 def _records():
     """:func:`rocketsim.telemetry.splice.records`' compiled entry (bound on first need:
     its argument types never change, and the dispatcher's typing of fifteen arguments
-    costs about as much as the call)."""
+    costs about as much as the call). On a cold cache it is compiled beside the flight
+    (:func:`_compile_records_beside`) and loaded from the cache here."""
     global _RECORDS
     if _RECORDS is None:
+        if _BESIDE is not None:
+            _BESIDE.wait()
         ints = np.zeros(1, dtype=np.int64)
         _RECORDS = entry_point(splice.records, b"", np.zeros((1, 1)), ints, 0, _NO_TEXT, ints, b"",
                                ints, ints, ints, 0, np.zeros(1, dtype=np.uint8), 0, ints, 0)
@@ -87,6 +90,20 @@ def _records():
 
 
 _RECORDS = None
+_BESIDE = None
+# Whether a cold cache's telemetry kernel is compiled by a second process; off where every
+# core is compiling already (the pool of ``rocketsim compile``)
+COMPILE_BESIDE = True
+
+
+def _compile_records_beside() -> None:
+    """On a cold cache, compile :func:`_records`' kernel in a second process (once a
+    process): the flight's first samples come after its own kernels have compiled, some
+    seconds, in which the second core compiles the telemetry's (about 2 s of the 8-10 s
+    a cold coasting flight spends compiling)."""
+    global _BESIDE
+    if COMPILE_BESIDE and _RECORDS is None and _BESIDE is None:
+        _BESIDE = CompiledBeside(splice.records, __name__, _records.__name__)
 
 
 _EARTH = central_frame("earth", np.eye(3), float("nan"))
@@ -177,6 +194,7 @@ class TelemetryWriter:
         self._plans: dict[str, tuple] = {}      # body -> its messages' templates (sample)
         self._pending: list[tuple] = []         # samples not yet handed over (sample)
         self._thread = WritingThread(f"telemetry {self.path.name}")
+        _compile_records_beside()
 
     def _channel(self, topic: str, schema: dict) -> int:
         channel = self._channels.get(topic)
