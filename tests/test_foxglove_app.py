@@ -47,6 +47,10 @@ def hop(tmp_path_factory):
             kept.append((body, values, fields))
             super().sample(body, values, fields, leaving)
 
+        def sample_rows(self, body, rows, fields):
+            kept.extend((body, values, fields) for values in rows)
+            super().sample_rows(body, rows, fields)
+
     world = build_world(load(HOP), step=0.05)
     with Keeping(out, 0) as telemetry:
         world.run(telemetry)

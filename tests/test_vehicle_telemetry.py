@@ -270,7 +270,9 @@ def _both_encodings(world, body, folder: Path, monkeypatch, trials: int = 120) -
     messages end it); times 0.37 s apart, so the Earth's transform comes between
     samples' state and transform messages every second or so; events and log lines
     between samples, and samples still waiting at the end of the file, so that the
-    waiting samples (``TelemetryWriter.PENDING``) are written in the flight's order."""
+    waiting samples (``TelemetryWriter.PENDING``) are written in the flight's order. The
+    same samples handed over in blocks of rows (``TelemetryWriter.sample_rows``, as a
+    compiled run's samples are) write the same bytes again."""
     import orjson
     import rocketsim.telemetry.writer as writer_module
     from rocketsim.sim import sampling
@@ -292,19 +294,27 @@ def _both_encodings(world, body, folder: Path, monkeypatch, trials: int = 120) -
             v[sampling.VEHICLE + 3] = rng.integers(0, 40)   # engines running: a count
         samples.append(v)
     folder.mkdir(parents=True, exist_ok=True)
-    paths = folder / "dictionaries.mcap", folder / "templates.mcap"
+    # the same samples as dictionaries, one by one from their numbers, and in blocks of rows
+    # (as a compiled run hands them over: a block between two events)
+    paths = folder / "dictionaries.mcap", folder / "templates.mcap", folder / "rows.mcap"
     for path in paths:
         with TelemetryWriter(path, 1_795_694_400 * 10**9) as telemetry:
             telemetry.add_body(body.name)
+            block = []
             for k, v in enumerate(samples):
                 if path is paths[0]:
                     telemetry.state(body.name, fields(v.tolist(), int), fields.frame)
-                else:
+                elif path is paths[1]:
                     telemetry.sample(body.name, v, fields)
-                if k % 7 == 3:                          # written in the flight's order
+                else:
+                    block.append(v)
+                if k % 7 == 3 or k == len(samples) - 1:     # written in the flight's order
+                    if block:
+                        telemetry.sample_rows(body.name, np.array(block), fields)
+                    block = []
                     telemetry.event(v[-2], body.name, "mark", {"k": k})
                     telemetry.log(v[-2], body.name, f"line {k}")
-    assert paths[0].read_bytes() == paths[1].read_bytes()
+    assert paths[0].read_bytes() == paths[1].read_bytes() == paths[2].read_bytes()
     first = json.loads(next(m for topic, _, m in raw_messages(paths[1]) if topic.endswith("/state")))
     # the body's own numbers, less the values it has not (None in the dictionary)
     expected = orjson.loads(orjson.dumps(fields(values.tolist(), int)))

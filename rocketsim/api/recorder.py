@@ -54,6 +54,11 @@ class Recorder:
         self.run.end_ns = stamp if self.run.end_ns is None else max(self.run.end_ns, stamp)
         self._finals[body] = (values, fields)
 
+    def sample_rows(self, body: str, rows, fields) -> None:
+        """:meth:`sample` of each row of ``rows``, in order."""
+        for values in rows:
+            self.sample(body, values, fields)
+
     def event(self, t: float, body: str, name: str, figures: dict) -> None:
         self.run.events.append(_as_read({"t": t, "body": body, "name": name, "figures": figures}))
 

@@ -74,10 +74,15 @@ def fly_coast(world) -> bool:
         y, flown = coast_run(body.y, k0, h, every, m, body.p, nbody_flag(body.p), rows, fixed)
         runs.append((body, y, flown, rows, shape))
     flown = min(run[2] for run in runs)     # a state no longer finite: nothing written from it on
-    for j in range(flown - 1):
-        for body, _, _, rows, shape in runs:
-            if shape is not None:
-                world.telemetry.sample(body.name, rows[j], shape)
+    if len(runs) == 1:                      # one body's samples: one block
+        body, _, _, rows, shape = runs[0]
+        if shape is not None:
+            world.telemetry.sample_rows(body.name, rows[:flown - 1], shape)
+    else:                                   # the bodies' samples interleaved, sample by sample
+        for j in range(flown - 1):
+            for body, _, _, rows, shape in runs:
+                if shape is not None:
+                    world.telemetry.sample(body.name, rows[j], shape)
     for body, y, _, _, _ in runs:
         body.y, body.t = y, (k0 + flown * every) * h
     world.k = k0 + flown * every

@@ -147,8 +147,7 @@ class World:
         """Write ``body``'s telemetry samples computed in a compiled run, in order: each row
         the figures :meth:`record` writes at that sample (:func:`rocketsim.sim.sampling.run_sampler`),
         ``shape`` their fields."""
-        for row in rows:
-            self.telemetry.sample(body.name, row, shape)
+        self.telemetry.sample_rows(body.name, rows, shape)
 
     # --- the loop -----------------------------------------------------------
     def run(self, telemetry=None) -> dict:

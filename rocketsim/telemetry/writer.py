@@ -192,7 +192,8 @@ class TelemetryWriter:
         self._logs = self._channel("/log", foxglove.LOG)
         self._frames = FrameTree()
         self._plans: dict[str, tuple] = {}      # body -> its messages' templates (sample)
-        self._pending: list[tuple] = []         # samples not yet handed over (sample)
+        self._pending: list[tuple] = []         # blocks of samples not yet handed over (_wait)
+        self._pending_rows = 0                  # the samples in them
         self._thread = WritingThread(f"telemetry {self.path.name}")
         _compile_records_beside()
 
@@ -212,7 +213,7 @@ class TelemetryWriter:
         """Hand the samples waiting and then ``call(*args)`` (if any) to the writing thread."""
         if self._pending:
             self._thread.submit(self._write_samples, self._pending)
-            self._pending = []
+            self._pending, self._pending_rows = [], 0
         if call is not None:
             self._thread.submit(call, *args)
 
@@ -273,31 +274,42 @@ class TelemetryWriter:
         together before anything else is (a message, an attachment, metadata, a body's
         channels, the end of the file): the file's order is the flight's, and writing
         them back to back keeps the writer's code and data in the processor's caches."""
-        self._pending.append((body, values, fields, leaving))
-        if len(self._pending) >= PENDING:
+        self._wait(body, values.reshape(1, -1), fields, leaving)
+
+    def sample_rows(self, body: str, rows: np.ndarray, fields) -> None:
+        """:meth:`sample` of each row of ``rows`` (float64, one sample a row, not to be
+        changed afterwards) in order: the same bytes, handed on as one block."""
+        if len(rows):
+            self._wait(body, rows, fields, False)
+
+    def _wait(self, body: str, block: np.ndarray, fields, leaving: bool) -> None:
+        self._pending.append((body, block, fields, leaving))
+        self._pending_rows += block.shape[0]
+        if self._pending_rows >= PENDING:
             self._hand_over(None)
 
     def _write_samples(self, samples: list[tuple]) -> None:
-        """Write ``samples`` (see :meth:`sample`): each run of samples of one body,
-        message shape and set of missing values in one compiled call."""
+        """Write ``samples`` (blocks of samples, see :meth:`_wait`): each run of samples of
+        one body, message shape and set of missing values in one compiled call."""
         pending = deque(samples)
         while pending:
             body, values, fields, leaving = pending[0]
+            size = values.shape[1]
             shape = self._plans.get(body)
-            if shape is None or shape[0] is not fields or shape[1] != values.shape[0]:
-                shape = self._plans[body] = self._shape(body, values.shape[0], fields)
-            _, size, optional, plans = shape
+            if shape is None or shape[0] is not fields or shape[1] != size:
+                shape = self._plans[body] = self._shape(body, size, fields)
+            _, _, optional, plans = shape
             run = [values]
             for other, more, kind, last in islice(pending, 1, None):
-                if other != body or kind is not fields or more.shape[0] != size or last != leaving:
+                if other != body or kind is not fields or more.shape[1] != size or last != leaving:
                     break
                 run.append(more)
-            block = np.stack(run)
+            block = run[0] if len(run) == 1 else np.concatenate(run)
             missing = ~np.isfinite(block[:, optional])
             # where the set of missing values changes: a template for each stretch
             cuts = [] if (missing == missing[0]).all() else \
                 (np.flatnonzero((missing[1:] != missing[:-1]).any(axis=1)) + 1).tolist()
-            for start, end in zip([0] + cuts, cuts + [len(run)]):
+            for start, end in zip([0] + cuts, cuts + [len(block)]):
                 pattern = missing[start]
                 key = (pattern.tobytes(), leaving)
                 plan = plans.get(key)
@@ -305,8 +317,8 @@ class TelemetryWriter:
                     plan = plans[key] = self._plan(body, size, fields, set(optional[pattern].tolist()),
                                                    not leaving)
                 self._write_run(block[start:end], plan)
-                for _ in range(start, end):
-                    pending.popleft()
+            for _ in run:
+                pending.popleft()
 
     def _write_run(self, block: np.ndarray, plan: tuple) -> None:
         """The records of samples ``block`` (a row each) of one template ``plan``, with the

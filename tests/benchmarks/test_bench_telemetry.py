@@ -119,12 +119,12 @@ def _one_sample(world, path, loaded, duration, calls=1000):
         with TelemetryWriter(path, 0) as telemetry:
             telemetry.add_body(body.name)
             start = time.perf_counter()
-            for sample in kept.samples:
+            for sample in kept.kept:
                 telemetry.sample(*sample)
             return time.perf_counter() - start
 
     t_write = min(write() for _ in range(5))
-    return t_values / calls, t_write / len(kept.samples)
+    return t_values / calls, t_write / len(kept.kept)
 
 
 class _Kept:
@@ -132,13 +132,16 @@ class _Kept:
     and writes nothing."""
 
     def __init__(self):
-        self.samples = []
+        self.kept = []
 
     def add_body(self, name):
         pass
 
     def sample(self, body, values, fields, leaving=False):
-        self.samples.append((body, values, fields, leaving))
+        self.kept.append((body, values, fields, leaving))
+
+    def sample_rows(self, body, rows, fields):
+        self.kept.extend((body, values, fields, False) for values in rows)
 
     def event(self, *args):
         pass
