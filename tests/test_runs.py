@@ -12,11 +12,13 @@ import math
 from pathlib import Path
 
 import numpy as np
+import orjson
 import pytest
 
 from rocketsim.flight.conditions import ABOVE, BELOW, holds
 from rocketsim.flight.readings import StateView
-from rocketsim.layout import make_params
+from rocketsim.layout import V, make_params
+from rocketsim.errors import InputError
 from rocketsim.constants import EARTH_J2, EARTH_MU, EARTH_RADIUS_EQ, EARTH_RADIUS_POLAR
 from rocketsim.scenario.load import load
 from rocketsim.sim import runs, window, world as world_module
@@ -201,3 +203,33 @@ def test_fc_below_refuses_a_reading_it_cannot_test():
 
 def test_a_window_needs_two_steps():
     assert window.fly_window(None, 1) is False
+
+
+def test_a_state_gone_non_finite_inside_a_run_ends_the_flight_at_the_next_sample(tmp_path):
+    """The sounding rocket's velocity made enormous (1e154 times, so its square overflows)
+    where the flight first reports progress after T+30 s, between two compiled runs: the
+    next run's first step turns the state to inf and nan, and its checks hand the flight
+    back to Python, which flies to the next sample step. There the world's finiteness test
+    stops the flight with an input error naming the step. The file ends with the last
+    finite sample, taken before the change."""
+    from tests.sounding_peer import scenario
+
+    world = build_world(load(scenario(60.0)))
+    changed = []
+
+    def enormous(t):
+        if t >= 30.0 and not changed:
+            changed.append(world.k)
+            world.bodies[0].y[V:V + 3] *= 1e154
+
+    world.on_progress = enormous
+    out = tmp_path / "non-finite.mcap"
+    with pytest.raises(InputError, match="no longer finite at T") as raised:
+        with TelemetryWriter(out, 0, "") as telemetry:
+            world.run(telemetry)
+    assert raised.value.field == "step"
+    assert changed and changed[0] % world.sample_every == 0     # at a sample step
+    assert world.k == changed[0] + world.sample_every            # stopped at the next one
+    states = [orjson.loads(data) for topic, _, data in iter_raw_messages(out) if topic.endswith("/state")]
+    assert states[-1]["t"] == pytest.approx(changed[0] * world.h)
+    assert all(math.isfinite(x) for state in states for x in state["position"] + state["velocity"])
