@@ -192,7 +192,7 @@ class TelemetryWriter:
         self._logs = self._channel("/log", foxglove.LOG)
         self._frames = FrameTree()
         self._plans: dict[str, tuple] = {}      # body -> its messages' templates (sample)
-        self._pending: list[tuple] = []         # blocks of samples not yet handed over (_wait)
+        self._pending: list[tuple] = []         # blocks of samples to hand over (_add_pending)
         self._pending_rows = 0                  # the samples in them
         self._thread = WritingThread(f"telemetry {self.path.name}")
         _compile_records_beside()
@@ -274,23 +274,23 @@ class TelemetryWriter:
         together before anything else is (a message, an attachment, metadata, a body's
         channels, the end of the file): the file's order is the flight's, and writing
         them back to back keeps the writer's code and data in the processor's caches."""
-        self._wait(body, values.reshape(1, -1), fields, leaving)
+        self._add_pending(body, values.reshape(1, -1), fields, leaving)
 
     def sample_rows(self, body: str, rows: np.ndarray, fields) -> None:
         """:meth:`sample` of each row of ``rows`` (float64, one sample a row, not to be
         changed afterwards) in order: the same bytes, handed on as one block."""
         if len(rows):
-            self._wait(body, rows, fields, False)
+            self._add_pending(body, rows, fields, False)
 
-    def _wait(self, body: str, block: np.ndarray, fields, leaving: bool) -> None:
+    def _add_pending(self, body: str, block: np.ndarray, fields, leaving: bool) -> None:
         self._pending.append((body, block, fields, leaving))
         self._pending_rows += block.shape[0]
         if self._pending_rows >= PENDING:
             self._hand_over(None)
 
     def _write_samples(self, samples: list[tuple]) -> None:
-        """Write ``samples`` (blocks of samples, see :meth:`_wait`): each run of samples of
-        one body, message shape and set of missing values in one compiled call."""
+        """Write ``samples`` (blocks of samples, see :meth:`_add_pending`): each run of
+        samples of one body, message shape and set of missing values in one compiled call."""
         pending = deque(samples)
         while pending:
             body, values, fields, leaving = pending[0]
