@@ -200,6 +200,17 @@ def njit(func=None, **options):
     return Kernel(func, settings)
 
 
+@njit(inline="always")     # small: typed in its callers, no kernel of its own
+def copy_into(dst, start, src):
+    """Write the 1-D array ``src`` into ``dst[start:start + len(src)]``, element by element.
+
+    What ``dst[start:stop] = src`` does, without its compiled check of the two shapes: that
+    check formats numba's error message ("cannot assign slice of shape ..."), whose string
+    code takes 2-3 s to compile in each process that first needs it, on a cold cache."""
+    for i in range(src.shape[0]):
+        dst[start + i] = src[i]
+
+
 def entry_point(kernel, *args):
     """The compiled entry of ``kernel`` for the numba types of ``args`` (compiled, or
     loaded from the cache, on first need), to call with arguments of those same types.

@@ -29,7 +29,7 @@ import math
 
 import numpy as np
 
-from rocketsim._jit import njit
+from rocketsim._jit import copy_into, njit
 from rocketsim.atmosphere.table import air_in
 from rocketsim.dynamics.derivative import radial_height
 from rocketsim.dynamics.nbody import translational_rk4
@@ -74,7 +74,7 @@ def free_step(y, t, h, p, fp, air, area_mass, length, nbody=None):
         s = np.zeros((4, 3))
     moved = y.copy()
     translational_rk4(moved, h, p, s, fp, air, np.empty(3))
-    out[:6] = moved[:6]
+    copy_into(out, 0, moved[:6])
     return out
 
 

@@ -30,7 +30,7 @@ import math
 
 import numpy as np
 
-from rocketsim._jit import njit
+from rocketsim._jit import copy_into, njit
 from rocketsim.constants import RAILS_FLOOR
 from rocketsim.dynamics.derivative import radial_height
 from rocketsim.dynamics.nbody import FIELD_CENTER, FIELD_MU, bodies_at, hold_time, translational_rk4
@@ -172,7 +172,7 @@ def nose_target(code, r, v, enu, surface):
     kind = int(code[0])
     out = np.empty(3)
     if kind == DIRECTION:
-        out[:] = code[2:5]
+        copy_into(out, 0, code[2:5])
         return out
     if kind == PITCH_HEADING:
         sin_heading, cos_heading = math.sin(code[3]), math.cos(code[3])
@@ -223,9 +223,9 @@ def target_attitude(nose, up, roll):
     z_ref = sin_pitch * horizontal - math.sqrt(1.0 - sin_pitch * sin_pitch) * up
     z_body = math.cos(roll) * z_ref + math.sin(roll) * _cross(nose, z_ref)
     axes = np.empty((3, 3))
-    axes[:, 0] = nose
-    axes[:, 1] = _cross(z_body, nose)
-    axes[:, 2] = z_body
+    copy_into(axes[:, 0], 0, nose)
+    copy_into(axes[:, 1], 0, _cross(z_body, nose))
+    copy_into(axes[:, 2], 0, z_body)
     return True, quat_from_matrix(axes)
 
 
@@ -278,7 +278,7 @@ def settle(y, code, t, mode, p):
     """Put state ``y`` (in place) exactly on the command ``code`` at mission time ``t``
     (s) as it goes on rails: the settled residual is dropped; in mode :data:`HELD` the
     body rates are zeroed (mode :data:`TRACK` sets them at each step)."""
-    y[Q:Q + 4] = command_attitude(code, y, t, y[Q:Q + 4], p)
+    copy_into(y, Q, command_attitude(code, y, t, y[Q:Q + 4], p))
     if mode == HELD:
         y[W:W + 3] = 0.0
 
@@ -349,8 +349,8 @@ def advance_rails(y, k0, h, n_steps, p, fp, air, inertia, mode, floor=RAILS_FLOO
         translational_rk4(y, h, p, s, fp, air, pos)
         if code is not None and mode == TRACK:
             before = y[Q:Q + 4].copy()
-            y[Q:Q + 4] = command_attitude(code, y, (k0 + k + 1) * h, before, p)
-            y[W:W + 3] = turn_rate(before, y[Q:Q + 4], h)
+            copy_into(y, Q, command_attitude(code, y, (k0 + k + 1) * h, before, p))
+            copy_into(y, W, turn_rate(before, y[Q:Q + 4], h))
         elif mode == HELD:
             turn_attitude(y, inertia, h, mode)
         else:

@@ -56,7 +56,7 @@ orbit test and the handover to watch: :func:`fly_part` flies it the same way,
 
 import math
 
-from rocketsim._jit import njit
+from rocketsim._jit import copy_into, njit
 from rocketsim.atmosphere.table import TOP
 from rocketsim.constants import DEG, G0
 from rocketsim.dynamics.derivative import radial_height
@@ -297,7 +297,7 @@ def fly_run(y, k0, h, n_max, p, veh, in_flight, steer, code, fins, watch, carry,
             if record:
                 if filled == rows.shape[0]:
                     return y, before, j, figures, LIMIT, y_peak, filled
-                rows[filled, :] = figures_of(t, y, p, *sampler, temperature)
+                copy_into(rows[filled], 0, figures_of(t, y, p, *sampler, temperature))
                 filled += 1
         carry[C_TEMPERATURE], carry[C_TOUCHED] = temperature, touched
         if not math.isnan(peak):
