@@ -25,10 +25,10 @@ _counter = None          # a worker's share of the kernels-compiled count (multi
 
 def _start_worker(counter) -> None:
     global _counter
-    from rocketsim.telemetry import writer
+    from rocketsim import _jit
 
     _counter = counter
-    writer.COMPILE_BESIDE = False       # the pool's processes are the cores' compilers already
+    _jit.COMPILE_BESIDE = False         # the pool's processes are the cores' compilers already
 
 
 def _warm(path: str) -> tuple[str, int, float, str | None]:

@@ -181,6 +181,8 @@ class Kernel:
         return self.dispatcher._numba_type_
 
     def __call__(self, *args):
+        if self in BESIDE.kernels:          # queued for the second process: see CompiledBeside
+            BESIDE.wait_for(self, tuple(self.typeof_pyval(a) for a in args))
         return self.dispatcher(*args)
 
     def __getattr__(self, name):
@@ -226,7 +228,10 @@ def entry_point(kernel, *args):
     kinds = _kinds(args)
     entry = _ENTRIES.get((kernel, kinds)) if kinds is not None else None
     if entry is None:
-        entry = kernel.compile(tuple(kernel.typeof_pyval(a) for a in args))
+        signature = tuple(kernel.typeof_pyval(a) for a in args)
+        if kernel in BESIDE.kernels:
+            BESIDE.wait_for(kernel, signature)
+        entry = kernel.compile(signature)
         if kinds is not None:
             _ENTRIES[kernel, kinds] = entry
     return entry
@@ -291,58 +296,204 @@ class Entries:
         return bound[1](*args)
 
 
-# The second process of :class:`CompiledBeside`: imports a module and calls one of its functions.
-_BESIDE_MAIN = "import importlib, sys; getattr(importlib.import_module(sys.argv[1]), sys.argv[2])()"
-# How long a first call waits for the second process before compiling the kernel itself (s):
-# its compiling takes a few seconds; a machine so loaded that it takes minutes is not helped.
+# How long a first call waits for the second process to compile its kernel before compiling
+# it itself (s): its compiling takes seconds; a machine so loaded that it takes minutes is not helped.
 BESIDE_WAIT = 120.0
+BESIDE_IDLE = 2.0           # s: the second process ends after this long with nothing left to compile
+# Whether a cold cache's kernels are queued for a second process; off where every core is
+# compiling already (the pool of ``rocketsim compile``)
+COMPILE_BESIDE = True
 
 
-def in_cache(kernel) -> bool:
-    """Whether the cache holds a compiled signature of ``kernel`` (its index file exists)."""
-    cache = getattr(kernel.dispatcher, "_cache", None)
-    index = getattr(getattr(cache, "_cache_file", None), "_index_path", None)
-    return index is None or os.path.exists(index)
+def cached(kernel, signature: tuple) -> bool:
+    """Whether ``kernel`` is compiled for the numba types ``signature`` in this process or in
+    the cache (its index names the signature for this machine). True where that cannot be
+    told (a numba whose cache is laid out otherwise): nothing is then compiled beside."""
+    dispatcher = kernel.dispatcher
+    if signature in dispatcher.overloads:
+        return True
+    cache = getattr(dispatcher, "_cache", None)
+    try:
+        key = cache._index_key(signature, dispatcher.targetctx.codegen())
+        return key in cache._cache_file._load_index()
+    except Exception:       # noqa: BLE001 - numba's internals moved: do as if cached
+        return True
+
+
+def _claim(folder: str, name: str) -> bool:
+    """Take the queued item ``name`` of ``folder`` for this process (False: taken already)."""
+    try:
+        os.close(os.open(os.path.join(folder, "claim-" + name), os.O_CREAT | os.O_EXCL | os.O_WRONLY))
+    except FileExistsError:
+        return False
+    except OSError:         # the folder is gone: the queue has ended
+        return False
+    return True
+
+
+def _compile_item(folder: str, name: str) -> None:
+    """Compile the queued item ``name`` (claimed by this process) and mark it done, whatever
+    the outcome: a kernel that fails here fails again, with its message, where it is called."""
+    import importlib
+    import pickle
+
+    try:
+        with open(os.path.join(folder, name), "rb") as stream:
+            module, qualname, signature = pickle.load(stream)
+        getattr(importlib.import_module(module), qualname).compile(signature)
+    except Exception:       # noqa: BLE001 - see the docstring
+        pass
+    finally:
+        try:
+            open(os.path.join(folder, "done-" + name), "wb").close()
+        except OSError:
+            pass
+
+
+def _queued_items(folder: str) -> list[str]:
+    """The queue's items, in the order they are compiled (by priority, then as queued)."""
+    try:
+        return sorted(name for name in os.listdir(folder) if name.startswith("item-"))
+    except OSError:
+        return []
+
+
+def compile_queued(folder: str) -> None:
+    """The second process of :class:`CompiledBeside`: compile the queue's items in order, each
+    it claims before the first process does, until the queue has had nothing new for
+    :data:`BESIDE_IDLE` seconds or its folder is gone."""
+    import time
+
+    tried: set[str] = set()
+    idle_since = time.monotonic()
+    while os.path.isdir(folder):
+        for name in _queued_items(folder):
+            if name not in tried:
+                tried.add(name)
+                if _claim(folder, name):
+                    _compile_item(folder, name)
+                idle_since = time.monotonic()
+                break
+        else:
+            if time.monotonic() - idle_since > BESIDE_IDLE:
+                return
+            time.sleep(0.01)
 
 
 class CompiledBeside:
-    """A kernel of fixed argument types compiled into the cache by a second Python process
+    """Kernels of known argument types compiled into the cache by a second Python process
     while this one compiles others: on a cold cache the two cores compile at once (numba
     compiles one function at a time per process, under its compiler lock).
 
-    Made with the kernel and the function that compiles it (``module``'s ``warm``, called
-    with no arguments); the process starts only if the cache lacks the kernel. Its output
-    is thrown away: a process that fails costs nothing but the wait, and the kernel then
-    compiles here as it would have. :meth:`wait` comes before the kernel's first call here.
-    The machine code is the same whichever process compiles it.
+    :meth:`add` queues a kernel for the numba types of some arguments unless the cache
+    has it; the second process starts with the first item and takes the items in order
+    of priority (then as queued). When this process needs a queued kernel
+    (:func:`entry_point`) it compiles it itself if the second process has not taken it,
+    else waits for it there, meanwhile compiling the items not yet taken, and then loads it
+    from the cache. The queue is a temporary folder: each item a file (the kernel's module,
+    name and signature), taken by creating its ``claim-`` file (exclusive creation: one
+    process wins), a ``done-`` file when compiled. The machine code is the same whichever
+    process compiles it; a second process that fails or is slower than :data:`BESIDE_WAIT`
+    costs the wait, and the kernel then compiles here as it would have.
     """
 
-    def __init__(self, kernel, module: str, warm: str):
+    def __init__(self):
+        self._folder: str | None = None
+        self._process = None
+        self._queued: dict[tuple, str] = {}    # (kernel, signature) -> its item's name, until needed here
+        self._count = 0                         # items queued so far (their names' numbers)
+        self.kernels: set = set()               # the kernels of those items
+
+    def add(self, kernel, args, priority: int = 0) -> bool:
+        """Queue ``kernel`` for the numba types of ``args`` (lower ``priority`` first) unless
+        it is cached, compiled here or queued; whether it was queued."""
+        import pickle
+
+        signature = tuple(kernel.typeof_pyval(a) for a in args)
+        if (kernel, signature) in self._queued or cached(kernel, signature):
+            return False
+        if self._folder is None:
+            import atexit
+            import tempfile
+            self._folder = tempfile.mkdtemp(prefix="rocketsim-compiling-")
+            atexit.register(self.close)
+        name = f"item-{priority:02d}-{self._count:04d}"
+        self._count += 1
+        part = os.path.join(self._folder, "part-" + name)     # written whole, then named
+        with open(part, "wb") as stream:
+            pickle.dump((kernel.__module__, kernel.__qualname__, signature), stream)
+        os.replace(part, os.path.join(self._folder, name))
+        self._queued[kernel, signature] = name
+        self.kernels.add(kernel)
+        self._start()
+        return True
+
+    def _start(self) -> None:
+        """Start the second process unless it runs (it ends when idle)."""
         import subprocess
         import sys
 
-        self._process = None
-        if in_cache(kernel):
+        if self._process is not None and self._process.poll() is None:
             return
         package_parent = str(Path(__file__).resolve().parents[1])
         env = {**os.environ, "NUMBA_CACHE_DIR": cache_dir(),
                "PYTHONPATH": os.pathsep.join(filter(None, [package_parent, os.environ.get("PYTHONPATH")]))}
         try:
-            self._process = subprocess.Popen([sys.executable, "-c", _BESIDE_MAIN, module, warm], env=env,
-                                             stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
-                                             stderr=subprocess.DEVNULL)
-        except OSError:             # no process to spare: the kernel compiles here
-            pass
+            self._process = subprocess.Popen(
+                [sys.executable, "-c", "import sys; from rocketsim._jit import compile_queued; "
+                 "compile_queued(sys.argv[1])", self._folder], env=env,
+                stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        except OSError:             # no process to spare: the kernels compile here
+            self._process = None
 
-    def wait(self) -> None:
-        """Wait for the second process to end (at most :data:`BESIDE_WAIT` s; then it is stopped)."""
-        import subprocess
+    def _done(self, name: str) -> bool:
+        return os.path.exists(os.path.join(self._folder, "done-" + name))
 
-        process, self._process = self._process, None
-        if process is None:
+    def wait_for(self, kernel, signature: tuple) -> None:
+        """Before this process compiles ``kernel`` for ``signature``: if it is queued and the
+        second process has taken it, wait until it is compiled there (compiling the items
+        not yet taken meanwhile), at most :data:`BESIDE_WAIT` s; else take it (compiled here)."""
+        import time
+
+        name = self._queued.pop((kernel, signature), None)
+        if not any(queued is kernel for queued, _ in self._queued):
+            self.kernels.discard(kernel)
+        if name is None or self._done(name) or _claim(self._folder, name):
             return
-        try:
-            process.wait(BESIDE_WAIT)
-        except subprocess.TimeoutExpired:
-            process.kill()
-            process.wait()
+        deadline = time.monotonic() + BESIDE_WAIT
+        while not self._done(name) and time.monotonic() < deadline:
+            if self._process is None or self._process.poll() is not None:
+                return              # ended without it: compiled here
+            if not self._compile_one():
+                time.sleep(0.005)
+
+    def _compile_one(self) -> bool:
+        """Compile here the first queued item not yet taken; whether there was one."""
+        for name in _queued_items(self._folder):
+            if _claim(self._folder, name):
+                _compile_item(self._folder, name)
+                return True
+        return False
+
+    def close(self) -> None:
+        """End the queue (at this process's exit): the second process stopped, the folder removed."""
+        import shutil
+
+        if self._process is not None and self._process.poll() is None:
+            self._process.kill()
+            self._process.wait()
+        if self._folder is not None:
+            shutil.rmtree(self._folder, ignore_errors=True)
+            self._folder = None
+        self._queued.clear()
+        self.kernels.clear()
+
+
+BESIDE = CompiledBeside()
+
+
+def compile_beside(kernel, args, priority: int = 0) -> None:
+    """On a cold cache, queue ``kernel`` for the types of ``args`` for the second process
+    (:class:`CompiledBeside`; lower ``priority`` first), unless :data:`COMPILE_BESIDE` is off."""
+    if COMPILE_BESIDE:
+        BESIDE.add(kernel, args, priority)

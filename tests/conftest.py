@@ -12,6 +12,12 @@ from hypothesis import HealthCheck, settings
 
 ROOT = Path(__file__).resolve().parents[1]
 
+if os.environ.get("PYTEST_XDIST_WORKER"):
+    # one test worker per core: every core compiles already, so no worker queues kernels for
+    # a second compiling process (tests/test_jit_cache.py tests that in a process of its own)
+    from rocketsim import _jit
+    _jit.COMPILE_BESIDE = False
+
 # Hypothesis profiles of tests/fuzz: "ci" (the default) replays the same examples every
 # run (derandomize) on a fixed budget; "long", for a developer, draws 17 times as many
 # fresh ones. Choose with --hypothesis-profile=long or ROCKETSIM_FUZZ_PROFILE=long.

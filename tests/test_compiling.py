@@ -170,6 +170,8 @@ class Census(event.Listener):
 
 
 event.register("numba:compile", Census())
+from rocketsim import _jit
+_jit.COMPILE_BESIDE = False       # every kernel the flight needs compiles here, to be counted
 from rocketsim.scenario.load import load
 from rocketsim.sim.flight import fly
 fly(load(sys.argv[1]), sys.argv[2])

@@ -16,6 +16,7 @@ import rocketsim
 from rocketsim._jit import _kernel_sources
 
 PACKAGE = Path(rocketsim.__file__).resolve().parent
+ROOT = PACKAGE.parent
 
 
 def _names():
@@ -107,38 +108,59 @@ def test_a_kernel_is_saved_to_the_cache_under_the_cache_folders_lock(tmp_path):
 
 
 _COMPILED_BESIDE = """
-import json
-from rocketsim._jit import CompiledBeside, in_cache, njit
+import json, os, time
+import numpy as np
+from rocketsim import _jit
+from rocketsim._jit import BESIDE, cached, compile_beside, entry_point, njit
+from rocketsim.frames.local import where_and_how_fast
 from rocketsim.telemetry import splice, writer
+from rocketsim.vehicle.mass_properties import mass_properties
+
+def signature(kernel, args):
+    return tuple(kernel.typeof_pyval(a) for a in args)
+
+def taken(kernel, args):
+    # wait until the second process has claimed the kernel's item
+    name = BESIDE._queued[kernel, signature(kernel, args)]
+    while not os.path.exists(os.path.join(BESIDE._folder, "claim-" + name)):
+        time.sleep(0.001)
+
+records = writer._RECORDS_ARGUMENTS
+cold = cached(splice.records, signature(splice.records, records))
+compile_beside(splice.records, records)
+started = BESIDE._process is not None
+taken(splice.records, records)
+writer._records()                     # waits for the second process, then loads the kernel
+again = BESIDE.add(splice.records, records)
+
+# while waiting for a kernel the second process compiles, this one compiles the next item
+slow = (np.zeros(3), np.ones(3), 0.0, 7.29e-5, 6378137.0, 6356752.3)
+quick = (np.zeros(5), np.zeros(1), np.zeros(1), np.ones(1), np.ones(1), np.zeros((0, 6)), np.zeros(0))
+compile_beside(where_and_how_fast, slow, 0)
+compile_beside(mass_properties, quick, 1)
+taken(where_and_how_fast, slow)
+entry_point(where_and_how_fast, *slow)
+quick_claimed_here = BESIDE._process.poll() is None and sum(mass_properties.stats.cache_misses.values()) == 1
 
 @njit
-def twice(x):
+def twice(x):                         # in __main__: the second process cannot import it
     return 2 * x
 
-cold = in_cache(splice.records)
-beside = CompiledBeside(splice.records, "rocketsim.telemetry.writer", "_records")
-started = beside._process is not None
-beside.wait()
-warm = in_cache(splice.records)
-writer._records()                           # bound here after the second process compiled it
-stats = splice.records.stats
-again = CompiledBeside(splice.records, "rocketsim.telemetry.writer", "_records")._process is not None
-
-failing = CompiledBeside(twice, "no_such_module", "warm")       # the second process fails
-failing_started = failing._process is not None
-failing.wait()
-print(json.dumps({"cold": cold, "started": started, "warm": warm,
-                  "hits": sum(stats.cache_hits.values()), "misses": sum(stats.cache_misses.values()),
-                  "again": again, "failing_started": failing_started,
-                  "failing_cached": in_cache(twice), "twice": twice(21)}))
+compile_beside(twice, (21,))
+print(json.dumps({
+    "cold": cold, "started": started, "again": again,
+    "records": [sum(splice.records.stats.cache_hits.values()), sum(splice.records.stats.cache_misses.values())],
+    "slow": [sum(where_and_how_fast.stats.cache_hits.values()), sum(where_and_how_fast.stats.cache_misses.values())],
+    "quick_claimed_here": quick_claimed_here, "twice": twice(21)}))
 """
 
 
-def test_a_kernel_compiled_beside_is_loaded_from_the_cache(tmp_path):
-    """On an empty cache a second process compiles the telemetry's framing kernel while this
-    one goes on; this process then loads it from the cache (a cache hit, nothing compiled
-    here). A kernel already cached starts no process; a second process that fails leaves
-    the kernel to compile here as it would have."""
+def test_kernels_queued_beside_are_compiled_by_a_second_process(tmp_path):
+    """On an empty cache a second process compiles queued kernels while this one goes on:
+    the telemetry's framing kernel is then loaded here from the cache (a hit, no miss),
+    and queued once only. Waiting for a kernel the second process has taken, this process
+    compiles the next queued one itself. A kernel the second process cannot compile (not
+    importable there) compiles here as it would have."""
     import json
     import os
     import subprocess
@@ -150,8 +172,8 @@ def test_a_kernel_compiled_beside_is_loaded_from_the_cache(tmp_path):
     done = subprocess.run([sys.executable, str(script)], capture_output=True, text=True, env=env,
                           check=True, cwd=tmp_path, timeout=300)
     assert json.loads(done.stdout.strip().splitlines()[-1]) == {
-        "cold": False, "started": True, "warm": True, "hits": 1, "misses": 0, "again": False,
-        "failing_started": True, "failing_cached": False, "twice": 42}
+        "cold": False, "started": True, "again": False, "records": [1, 0], "slow": [1, 0],
+        "quick_claimed_here": True, "twice": 42}
 
 
 def _array_slice_assignments(tree: ast.AST) -> list[str]:
@@ -195,3 +217,66 @@ def test_copy_into_writes_the_array_from_the_slot():
 
     out = into_column(np.zeros((4, 2)), np.array((1.0, 2.0, 3.0)))
     np.testing.assert_array_equal(out, [[0.0, 0.0], [0.0, 1.0], [0.0, 2.0], [0.0, 3.0]])
+
+
+class _Offered:
+    """What a flight queues for the second process: (kernel, numba signature) pairs."""
+
+    def __init__(self):
+        self.kernels = set()
+        self.offered = []
+
+    def add(self, kernel, args, priority=0):
+        self.offered.append((kernel, tuple(kernel.typeof_pyval(a) for a in args)))
+        return True
+
+
+@pytest.mark.parametrize("scenario", ["sounding", "hobby-rocket", "iss-coast"])
+def test_a_flight_queues_the_signatures_its_runs_are_called_with(monkeypatch, tmp_path, scenario):
+    """On a cold cache a flight queues its compiled runs' kernels for a second process
+    before its first sample; the signatures it queues must be the ones it then calls (a
+    signature no call uses would be compiled beside for nothing): a vehicle's compiled
+    runs (the sounding rocket), a vehicle's one-step advance (the hobby rocket, under
+    parachutes at the end: no compiled runs queued), a coast's runs (the station)."""
+    from rocketsim import _jit
+    from rocketsim.scenario.load import load
+    from rocketsim.sim import coast_runs, runs, vehicle_checks
+    from rocketsim.sim.flight import fly
+    from rocketsim.telemetry import writer
+    from tests.sounding_peer import scenario as sounding
+
+    offered = _Offered()
+    monkeypatch.setattr(_jit, "COMPILE_BESIDE", True)
+    monkeypatch.setattr(_jit, "BESIDE", offered)
+    called = set()
+    entry_point = _jit.entry_point
+
+    def recorded(kernel, *args):
+        called.add((kernel, tuple(kernel.typeof_pyval(a) for a in args)))
+        return entry_point(kernel, *args)
+
+    monkeypatch.setattr(_jit, "entry_point", recorded)
+    monkeypatch.setattr(writer, "entry_point", recorded)
+    call = _jit.Kernel.__call__
+
+    def recorded_call(kernel, *args):
+        called.add((kernel, tuple(kernel.typeof_pyval(a) for a in args)))
+        return call(kernel, *args)
+
+    monkeypatch.setattr(_jit.Kernel, "__call__", recorded_call)
+    if scenario == "sounding":
+        fly(load(sounding(20.0)), tmp_path / "run.mcap")
+        expected = {runs.fly_run, writer.splice.records}
+    elif scenario == "hobby-rocket":
+        fly(load(ROOT / "scenarios" / "hobby-rocket.yaml"), tmp_path / "run.mcap")
+        expected = {vehicle_checks.advance_checked, writer.splice.records}
+        assert runs.fly_run not in {kernel for kernel, _ in offered.offered}
+    else:
+        fly(load(ROOT / "scenarios" / "iss-coast.yaml"), tmp_path / "run.mcap", duration=200.0)
+        expected = {coast_runs.coast_run, writer.splice.records}
+    # each is queued (records: unless this process has bound it already) and called as queued
+    queued = {kernel for kernel, _ in offered.offered}
+    assert expected - {writer.splice.records} <= queued
+    for item in offered.offered:
+        if item[0] in expected:
+            assert item in called

@@ -24,7 +24,7 @@ import math
 
 import numpy as np
 
-from rocketsim._jit import njit
+from rocketsim._jit import compile_beside, njit
 from rocketsim.dynamics.rk4 import advance
 from rocketsim.dynamics.third_bodies import nbody_flag
 from rocketsim.sim import sampling
@@ -71,7 +71,7 @@ def fly_coast(world) -> bool:
         if world.telemetry is None:
             shape = None                    # no samples: the same call, no rows
         rows = np.empty((m - 1 if shape is not None else 0, sampling.RIGID_WIDTH))
-        y, flown = coast_run(body.y, k0, h, every, m, body.p, nbody_flag(body.p), rows, fixed)
+        y, flown = coast_run(*_coast_arguments(body, k0, h, every, m, rows, fixed))
         runs.append((body, y, flown, rows, shape))
     flown = min(run[2] for run in runs)     # a state no longer finite: nothing written from it on
     if len(runs) == 1:                      # one body's samples: one block
@@ -87,6 +87,22 @@ def fly_coast(world) -> bool:
         body.y, body.t = y, (k0 + flown * every) * h
     world.k = k0 + flown * every
     return True
+
+
+def _coast_arguments(body, k0: int, h: float, every: int, m: int, rows: np.ndarray, fixed: tuple) -> tuple:
+    """The arguments of :func:`coast_run` for ``body`` (see there)."""
+    return body.y, k0, h, every, m, body.p, nbody_flag(body.p), rows, fixed
+
+
+def compile_coasts_beside(world) -> None:
+    """On a cold cache, queue :func:`coast_run`'s kernel for each rigid body coasting about
+    Earth for a second process to compile (:func:`rocketsim._jit.compile_beside`) while
+    this one compiles the first sample's."""
+    for body in world.bodies:
+        if body.vehicle is None and body.central == "earth":
+            fixed, _ = sampling.arguments(body, world.gmst0)
+            compile_beside(coast_run, _coast_arguments(body, 0, world.h, world.sample_every, 2,
+                                                       np.empty((1, sampling.RIGID_WIDTH)), fixed))
 
 
 def _coasts(world, body, seconds: float) -> bool:

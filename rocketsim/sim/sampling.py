@@ -251,12 +251,15 @@ def values(body, gmst0: float, where) -> tuple[np.ndarray, "Shape"]:
 
     ``gmst0`` (rad): the Earth's sidereal angle at the epoch (the RAAN's origin about
     Earth); ``where(body)``: its (latitude rad, longitude rad, height m) away from Earth."""
-    _, entry, fixed, shape, shield, earth = _plan(body, gmst0)
+    plan = _plan(body, gmst0)
+    _, entry, fixed, shape, shield, earth = plan
     y, p = body.y, _held(body)
     args = (body.t, y, p) + _with_shield(body, fixed, shield)
-    if entry is None or not (y.flags.c_contiguous and p.flags.c_contiguous):
+    if not (y.flags.c_contiguous and p.flags.c_contiguous):
         v = figures(*args)
     else:
+        if entry is None:
+            entry = plan[1] = _entry(body.vehicle, args)
         v = entry(*args)
     if not earth:
         lat, lon, v[HEIGHT] = where(body)
@@ -296,8 +299,9 @@ _PLANS: dict[int, list] = {}
 
 
 def _plan(body, gmst0: float) -> tuple:
-    """``(what it was worked out for, figures' entry, the arguments after the state and
-    parameters but for the shield's temperature, shape, has a shield, flies about Earth)``
+    """``[what it was worked out for, figures' entry (None until :func:`values` binds it), the
+    arguments after the state and parameters but for the shield's temperature, shape, has a
+    shield, flies about Earth]``
     of ``body``
     (see :data:`_PLANS`): the frame, the shape, the layout and the air looked up once,
     not at every sample."""
@@ -319,9 +323,7 @@ def _plan(body, gmst0: float) -> tuple:
         fixed = head + (model.arrays, group, len(groups), shield.nose_radius if shield is not None else 0.0,
                         sutton_graves_constant(body.mu), nbody_flag(body.p))
         shape = _shape(frame, groups, tanks, shield is not None)
-    entry = _entry(model, (body.t, body.y, _held(body)) + fixed + (math.nan,)) \
-        if body.y.flags.c_contiguous else None
-    plan = (key, entry, fixed, shape, shield is not None, earth)
+    plan = [key, None, fixed, shape, shield is not None, earth]     # figures' entry bound by values()
     for gone in [k for k, (ref, _) in _PLANS.items() if ref() is None]:
         del _PLANS[gone]            # bodies gone with their runs
     _PLANS[id(body)] = [weakref.ref(body), plan]

@@ -37,7 +37,7 @@ import math
 
 import numpy as np
 
-from rocketsim._jit import Entries, njit
+from rocketsim._jit import Entries, compile_beside, njit
 from rocketsim.atmosphere.table import TOP, air_in
 from rocketsim.bodies.gravity import point_mass_j2
 from rocketsim.bodies.orientation import BODIES as ORIENTED, spin_rate
@@ -49,6 +49,7 @@ from rocketsim.dynamics.rk4 import advance, near_ground
 from rocketsim.dynamics.third_bodies import FIELD_CENTER, field_of, nbody_flag
 from rocketsim.ephemeris.solar_system import BODIES
 from rocketsim.layout import P_J2, P_MU, P_RADIUS, P_SPIN, Q, R, V, W
+from rocketsim.flight.conditions import NO_CONDITION
 from rocketsim.flight.readings import StateView
 from rocketsim.flight.steering import steer_step
 from rocketsim.frames.earth_fixed import eci_to_ecef
@@ -68,6 +69,13 @@ CRASH_SPEED = 10.0
 TIP_MARGIN = 0.5 * DEG       # rad: the compiled runs hand a landed body to Python this far short of tipping
 # what advance_checked reads when the autopilot does not steer in its call (unused)
 _NO_STEERING = (np.full(6, math.nan), False)
+
+
+def _advance_arguments(body, k0: int, h: float, n: int, steering: tuple | None) -> tuple:
+    """The arguments of :func:`advance_checked` for :meth:`VehicleChecks.advance`'s call."""
+    steer = steering is not None
+    code, fins = steering if steer else _NO_STEERING
+    return body.y, k0, h, n, body.p, body.vehicle.arrays, steer, code, fins, nbody_flag(body.p)
 
 
 class VehicleChecks:
@@ -114,10 +122,8 @@ class VehicleChecks:
         step to run first in that call, ``(command code, fins)`` from
         :meth:`rocketsim.flight.fc.FlightComputer.autopilot`, or None."""
         arrays = body.vehicle.arrays
-        steer = steering is not None
-        code, fins = steering if steer else _NO_STEERING
-        y, taken, near, figures = body.kernels.call(advance_checked, arrays, body.y, k0, h, n, body.p, arrays,
-                                                    steer, code, fins, nbody_flag(body.p))
+        y, taken, near, figures = body.kernels.call(advance_checked, arrays,
+                                                    *_advance_arguments(body, k0, h, n, steering))
         self._figures = None if near else (y, figures)
         return y, taken
 
@@ -136,6 +142,35 @@ class VehicleChecks:
         before every step; ``condition``: the program's compiled condition
         (:mod:`rocketsim.flight.conditions`; no rows: none)."""
         from rocketsim.sim import runs     # here: runs' kernel reads this module's step_figures
+
+        arguments, carry = self._run_arguments(body, k0, h, n, steering, events, condition, samples)
+        y, before, taken, figures, reason, y_peak, filled = body.kernels.call(runs.fly_run, body.vehicle.arrays,
+                                                                              *arguments)
+        self.temperature = float(carry[runs.C_TEMPERATURE])
+        self.touched_down = bool(carry[runs.C_TOUCHED] > 0.5)
+        if taken > 1:
+            self.previous = ((k0 + taken - 1) * h, before.copy())
+        if carry[runs.C_PEAK_STEP] > 0.0:
+            events.peak_at((k0 + int(carry[runs.C_PEAK_STEP])) * h, y_peak)
+        self._figures = (y, figures)
+        return y, taken, reason, filled
+
+    def compile_beside(self, body, h: float, samples: tuple | None) -> None:
+        """On a cold cache, queue the kernels of this body's one-step advance (:meth:`advance`)
+        and, given ``samples`` (as :meth:`fly_run`'s), of its compiled runs for a second
+        process to compile (:func:`rocketsim._jit.compile_beside`): their types are the
+        body's from its first step to its staging."""
+        from rocketsim.sim import runs
+
+        if samples is not None:
+            compile_beside(runs.fly_run, self._run_arguments(body, 0, h, 1, None, body.watch, NO_CONDITION,
+                                                             samples)[0])
+        compile_beside(advance_checked, _advance_arguments(body, 0, h, 1, None))
+
+    def _run_arguments(self, body, k0: int, h: float, n: int, steering: tuple | None, events,
+                       condition: np.ndarray, samples: tuple) -> tuple[tuple, np.ndarray]:
+        """``(arguments of runs.fly_run, its carry)`` for :meth:`fly_run`'s call."""
+        from rocketsim.sim import runs
 
         arrays = body.vehicle.arrays
         self._bind(arrays)
@@ -159,17 +194,8 @@ class VehicleChecks:
             watch[runs.W_SOI] = WATCH_RADIUS[BODIES[int(fp[FIELD_CENTER])]]
         peak = events.run_watch(watch)
         carry = np.array((self.temperature, float(self.touched_down), peak, 0.0))
-        y, before, taken, figures, reason, y_peak, filled = body.kernels.call(
-            runs.fly_run, arrays, body.y, k0, h, n, body.p, arrays, self._in_flight, steer, code, fins, watch,
-            carry, condition, *samples, nbody_flag(body.p))
-        self.temperature = float(carry[runs.C_TEMPERATURE])
-        self.touched_down = bool(carry[runs.C_TOUCHED] > 0.5)
-        if taken > 1:
-            self.previous = ((k0 + taken - 1) * h, before.copy())
-        if carry[runs.C_PEAK_STEP] > 0.0:
-            events.peak_at((k0 + int(carry[runs.C_PEAK_STEP])) * h, y_peak)
-        self._figures = (y, figures)
-        return y, taken, reason, filled
+        return (body.y, k0, h, n, body.p, arrays, self._in_flight, steer, code, fins, watch, carry, condition,
+                *samples, nbody_flag(body.p)), carry
 
     def after_step(self, world, body, h: float) -> dict | None:
         """Run the checks on the body's new state (after a step of ``h`` seconds). Returns

@@ -107,7 +107,7 @@ class _Window:
             if plan[0] != VEHICLE:          # to the next sample at most: the world samples there
                 top = min(top, k + world.sample_every - k % world.sample_every)
             if plan[0] == VEHICLE:
-                samples, rows, shape = self._samples(body)
+                samples, rows, shape = _samples(world, body)
                 y, taken, reason, filled = body.checks.fly_run(body, k, world.h, top - k, plan[1], body.watch,
                                                                plan[2], samples)
                 body.steering = None
@@ -206,17 +206,6 @@ class _Window:
             self._finish(i, s, run)
         self.queue = []
 
-    def _samples(self, body) -> tuple:
-        """``(samples, rows, shape)``: the telemetry samples of a vehicle's compiled run
-        (``samples`` for :meth:`~rocketsim.sim.vehicle_checks.VehicleChecks.fly_run`), the
-        rows it fills and the shape to write them with. Without telemetry the run makes
-        only the finiteness test; away from Earth it returns at its first sample step."""
-        world = self.world
-        sampler, shape, length, whole = sampling.run_sampler(body, world.gmst0)
-        record = world.telemetry is not None
-        rows = np.empty((RUN_SAMPLES if record and whole else 0, length))
-        return (world.sample_every, rows, record, sampler), rows, shape
-
     def _part(self, body, k: int, y, n: int) -> tuple:
         """A tumbling part's run from state ``y`` at step ``k``, up to ``n`` steps."""
         world = self.world
@@ -226,6 +215,28 @@ class _Window:
                              math.inf if watch is None else watch.liftoff_height(),
                              math.inf if watch is None or watch.in_orbit else ORBIT_PERIAPSIS_BOUND, body.mu,
                              math.inf, nbody_flag(body.p))
+
+
+def _samples(world, body) -> tuple:
+    """``(samples, rows, shape)``: the telemetry samples of a vehicle's compiled run
+    (``samples`` for :meth:`~rocketsim.sim.vehicle_checks.VehicleChecks.fly_run`), the
+    rows it fills and the shape to write them with. Without telemetry the run makes
+    only the finiteness test; away from Earth it returns at its first sample step."""
+    sampler, shape, length, whole = sampling.run_sampler(body, world.gmst0)
+    record = world.telemetry is not None
+    rows = np.empty((RUN_SAMPLES if record and whole else 0, length))
+    return (world.sample_every, rows, record, sampler), rows, shape
+
+
+def compile_runs_beside(world) -> None:
+    """On a cold cache, queue the kernels of the world's vehicles with aerodynamics and checks
+    for a second process to compile while this one compiles the first sample's
+    (:meth:`rocketsim.sim.vehicle_checks.VehicleChecks.compile_beside`): their one-step
+    advance and, without parachutes, their compiled runs."""
+    for body in world.bodies:
+        if body.vehicle is not None and body.checks is not None and body.watch is not None:
+            body.checks.compile_beside(body, world.h,
+                                       None if body.vehicle.parachutes else _samples(world, body)[0])
 
 
 def _waiting(body) -> bool:

@@ -40,7 +40,7 @@ import numpy as np
 import orjson
 
 from rocketsim.version import __version__
-from rocketsim._jit import CompiledBeside, entry_point
+from rocketsim._jit import compile_beside, entry_point
 from rocketsim.telemetry import foxglove, splice
 from rocketsim.telemetry.held_signals import holding
 from rocketsim.telemetry.frames import MISSION_FRAME, CentralFrame, FrameTree, central_frame
@@ -78,32 +78,23 @@ def _records():
     """:func:`rocketsim.telemetry.splice.records`' compiled entry (bound on first need:
     its argument types never change, and the dispatcher's typing of fifteen arguments
     costs about as much as the call). On a cold cache it is compiled beside the flight
-    (:func:`_compile_records_beside`) and loaded from the cache here."""
+    (queued by every writer: :func:`rocketsim._jit.compile_beside`) and loaded from the
+    cache here."""
     global _RECORDS
     if _RECORDS is None:
-        if _BESIDE is not None:
-            _BESIDE.wait()
-        ints = np.zeros(1, dtype=np.int64)
-        _RECORDS = entry_point(splice.records, b"", np.zeros((1, 1)), ints, 0, _NO_TEXT, ints, b"",
-                               ints, ints, ints, 0, np.zeros(1, dtype=np.uint8), 0, ints, 0)
+        _RECORDS = entry_point(splice.records, *_RECORDS_ARGUMENTS)
     return _RECORDS
 
 
 _RECORDS = None
-_BESIDE = None
-# Whether a cold cache's telemetry kernel is compiled by a second process; off where every
-# core is compiling already (the pool of ``rocketsim compile``)
-COMPILE_BESIDE = True
-
-
-def _compile_records_beside() -> None:
-    """On a cold cache, compile :func:`_records`' kernel in a second process (once a
-    process): the flight's first samples come after its own kernels have compiled, some
-    seconds, in which the second core compiles the telemetry's (about 2 s of the 8-10 s
-    a cold coasting flight spends compiling)."""
-    global _BESIDE
-    if COMPILE_BESIDE and _RECORDS is None and _BESIDE is None:
-        _BESIDE = CompiledBeside(splice.records, __name__, _records.__name__)
+_INTS = np.zeros(1, dtype=np.int64)
+# arguments of records' one signature (see splice.records)
+_RECORDS_ARGUMENTS = (b"", np.zeros((1, 1)), _INTS, 0, _NO_TEXT, _INTS, b"", _INTS, _INTS, _INTS, 0,
+                      np.zeros(1, dtype=np.uint8), 0, _INTS, 0)
+# where the second process compiles records among the flight's kernels: after the first
+# runs' (the flight's first samples come after its own kernels have compiled, seconds in
+# which the second core compiles the telemetry's: about 2 s of a cold coast's 8-10 s)
+RECORDS_PRIORITY = 1
 
 
 _EARTH = central_frame("earth", np.eye(3), float("nan"))
@@ -195,7 +186,8 @@ class TelemetryWriter:
         self._pending: list[tuple] = []         # blocks of samples to hand over (_add_pending)
         self._pending_rows = 0                  # the samples in them
         self._thread = WritingThread(f"telemetry {self.path.name}")
-        _compile_records_beside()
+        if _RECORDS is None:
+            compile_beside(splice.records, _RECORDS_ARGUMENTS, RECORDS_PRIORITY)
 
     def _channel(self, topic: str, schema: dict) -> int:
         channel = self._channels.get(topic)
