@@ -131,6 +131,107 @@ def _save_locked(save, sig, data) -> None:
             fcntl.flock(lock, fcntl.LOCK_UN)
 
 
+def _compile_once(compile, dispatcher, sig):
+    """numba's ``compile`` of ``dispatcher`` for ``sig`` (its loading from the cache, else its
+    compiling), once among the processes that share the cache.
+
+    Before compiling a signature it has not loaded, a process creates a marker file for it
+    (below the cache folder's ``.compiling``: kernel, argument types and the machine code's
+    target; its host and process number in it) and removes it once the compiled signature is
+    saved. A process that finds the marker of another living process waits for it to go and
+    then loads the signature from the cache: two processes on a cold cache (the compiling
+    process beside a flight, the test workers, a campaign's workers, ``rocketsim compile``'s
+    pool) compile each kernel once between them, nested callees included. A marker whose
+    process has ended is taken over; a wait is at most :data:`COMPILE_WAIT` s. The markers
+    are taken under numba's compiler lock, so the threads of one process never wait for each
+    other's; the kernels call no kernel that calls them back, so no two processes wait for
+    each other's."""
+    from numba.core import sigutils
+    from numba.core.compiler_lock import global_compiler_lock
+
+    with global_compiler_lock:
+        args = tuple(sigutils.normalize_signature(sig)[0])
+        marker = None if args in dispatcher.overloads else _marker(dispatcher, args)
+        taken = marker is not None and _take(marker)
+        try:
+            return compile(sig)
+        finally:
+            if taken:
+                try:
+                    os.remove(marker)
+                except OSError:
+                    pass
+
+
+COMPILE_WAIT = 120.0        # s: the longest a process waits for another's compiling of a kernel
+
+
+def _marker(dispatcher, args: tuple) -> str | None:
+    """The marker file of ``dispatcher``'s signature ``args`` (see :func:`_compile_once`),
+    its folder made; None where it cannot be."""
+    import numba
+
+    func = dispatcher.py_func
+    what = f"{func.__module__}.{func.__qualname__}{args}{dispatcher.targetctx.codegen().magic_tuple()}"
+    folder = os.path.join(numba.config.CACHE_DIR, ".compiling")
+    try:
+        os.makedirs(folder, exist_ok=True)
+    except OSError:
+        return None
+    return os.path.join(folder, hashlib.sha256(what.encode()).hexdigest()[:32])
+
+
+def _take(marker: str) -> bool:
+    """Create ``marker`` for this process, first waiting while another living process holds
+    it; False (compile without it) when it cannot be made or the wait ran out."""
+    import socket
+    import time
+
+    me = f"{socket.gethostname()} {os.getpid()}".encode()
+    deadline = time.monotonic() + COMPILE_WAIT
+    while True:
+        try:
+            handle = os.open(marker, os.O_CREAT | os.O_EXCL | os.O_WRONLY)
+        except FileExistsError:
+            pass
+        except OSError:
+            return False
+        else:
+            os.write(handle, me)
+            os.close(handle)
+            return True
+        if time.monotonic() > deadline:
+            return False
+        if not _held(marker, me.split()[0].decode()):
+            try:
+                os.remove(marker)       # its process ended: taken over
+            except OSError:
+                pass
+            continue
+        time.sleep(0.005)
+
+
+def _held(marker: str, host: str) -> bool:
+    """Whether ``marker``'s process may still be compiling: a living process of this host,
+    one of another host (which cannot be asked), or a marker being written."""
+    try:
+        with open(marker, "rb") as stream:
+            owner = stream.read().split()
+    except FileNotFoundError:
+        return False
+    except OSError:
+        return True
+    if len(owner) != 2 or owner[0].decode(errors="replace") != host:
+        return True
+    try:
+        os.kill(int(owner[1]), 0)
+    except ProcessLookupError:
+        return False
+    except (OSError, ValueError):
+        return True
+    return True
+
+
 def _call_template(dispatcher, args, kws):
     """numba's ``get_call_template`` of ``dispatcher`` (how a kernel calling it types the
     call) for the arguments' plain types: a constant argument (``orbit_into(out, 17, ...)``,
@@ -170,6 +271,7 @@ class Kernel:
         if self._dispatcher is None:
             dispatcher = _numba_njit()(**self._options)(self.py_func)
             dispatcher.get_call_template = functools.partial(_call_template, dispatcher)
+            dispatcher.compile = functools.partial(_compile_once, dispatcher.compile, dispatcher)
             cache = getattr(dispatcher, "_cache", None)
             if cache is not None and hasattr(cache, "save_overload"):
                 cache.save_overload = functools.partial(_save_locked, cache.save_overload)
@@ -296,9 +398,6 @@ class Entries:
         return bound[1](*args)
 
 
-# How long a first call waits for the second process to compile its kernel before compiling
-# it itself (s): its compiling takes seconds; a machine so loaded that it takes minutes is not helped.
-BESIDE_WAIT = 120.0
 BESIDE_IDLE = 2.0           # s: the second process ends after this long with nothing left to compile
 # Whether a cold cache's kernels are queued for a second process; off where every core is
 # compiling already (the pool of ``rocketsim compile``)
@@ -393,7 +492,7 @@ class CompiledBeside:
     from the cache. The queue is a temporary folder: each item a file (the kernel's module,
     name and signature), taken by creating its ``claim-`` file (exclusive creation: one
     process wins), a ``done-`` file when compiled. The machine code is the same whichever
-    process compiles it; a second process that fails or is slower than :data:`BESIDE_WAIT`
+    process compiles it; a second process that fails or is slower than :data:`COMPILE_WAIT`
     costs the wait, and the kernel then compiles here as it would have.
     """
 
@@ -452,7 +551,7 @@ class CompiledBeside:
     def wait_for(self, kernel, signature: tuple) -> None:
         """Before this process compiles ``kernel`` for ``signature``: if it is queued and the
         second process has taken it, wait until it is compiled there (compiling the items
-        not yet taken meanwhile), at most :data:`BESIDE_WAIT` s; else take it (compiled here)."""
+        not yet taken meanwhile), at most :data:`COMPILE_WAIT` s; else take it (compiled here)."""
         import time
 
         name = self._queued.pop((kernel, signature), None)
@@ -460,7 +559,7 @@ class CompiledBeside:
             self.kernels.discard(kernel)
         if name is None or self._done(name) or _claim(self._folder, name):
             return
-        deadline = time.monotonic() + BESIDE_WAIT
+        deadline = time.monotonic() + COMPILE_WAIT
         while not self._done(name) and time.monotonic() < deadline:
             if self._process is None or self._process.poll() is not None:
                 return              # ended without it: compiled here

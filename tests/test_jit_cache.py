@@ -280,3 +280,57 @@ def test_a_flight_queues_the_signatures_its_runs_are_called_with(monkeypatch, tm
     for item in offered.offered:
         if item[0] in expected:
             assert item in called
+
+
+_COMPILE_ONCE = """
+import json, sys, time
+import numpy as np
+from rocketsim.frames.local import where_and_how_fast
+start = float(sys.argv[1])
+while time.time() < start:             # both processes compile at once
+    time.sleep(0.001)
+where_and_how_fast(np.zeros(3), np.ones(3), 0.0, 7.29e-5, 6378137.0, 6356752.3)
+stats = where_and_how_fast.stats
+print(json.dumps([sum(stats.cache_hits.values()), sum(stats.cache_misses.values())]))
+"""
+
+
+def test_two_processes_on_one_cold_cache_compile_a_kernel_once(tmp_path):
+    """Two processes needing the same kernel at once on an empty cache: one compiles it, the
+    other waits for its marker and loads it from the cache (one miss between them)."""
+    import json
+    import os
+    import subprocess
+    import sys
+    import time
+    env = {k: v for k, v in os.environ.items() if k != "NUMBA_CACHE_DIR"}
+    env["ROCKETSIM_CACHE_DIR"] = str(tmp_path)
+    script = tmp_path / "once.py"
+    script.write_text(_COMPILE_ONCE)
+    start = str(time.time() + 3.0)     # after both have imported numba
+    both = [subprocess.Popen([sys.executable, str(script), start], stdout=subprocess.PIPE, text=True,
+                             env=env, cwd=tmp_path) for _ in range(2)]
+    counts = [json.loads(process.communicate(timeout=300)[0].strip().splitlines()[-1]) for process in both]
+    assert sorted(counts) == [[0, 1], [1, 0]]
+    assert os.listdir(next(tmp_path.glob("numba-*")) / ".compiling") == []     # markers removed
+
+
+def test_a_compiling_marker_of_an_ended_process_is_taken_over(tmp_path):
+    import os
+    import socket
+    import subprocess
+    import sys
+    from rocketsim._jit import _held, _take
+
+    host = socket.gethostname()
+    ended = subprocess.run([sys.executable, "-c", "import os; print(os.getpid())"], capture_output=True,
+                           text=True, check=True)
+    marker = tmp_path / "marker"
+    marker.write_text(f"{host} {int(ended.stdout)}")
+    assert not _held(str(marker), host)
+    assert _take(str(marker))
+    assert marker.read_text() == f"{host} {os.getpid()}"
+    # a living process's marker, and one of another host (which cannot be asked), are held
+    assert _held(str(marker), host)
+    marker.write_text(f"elsewhere {os.getpid()}")
+    assert _held(str(marker), host)
