@@ -231,13 +231,14 @@ class _Offered:
         return True
 
 
-@pytest.mark.parametrize("scenario", ["sounding", "hobby-rocket", "iss-coast"])
+@pytest.mark.parametrize("scenario", ["sounding", "hobby-rocket", "iss-coast", "falcon9-leo"])
 def test_a_flight_queues_the_signatures_its_runs_are_called_with(monkeypatch, tmp_path, scenario):
     """On a cold cache a flight queues its compiled runs' kernels for a second process
     before its first sample; the signatures it queues must be the ones it then calls (a
     signature no call uses would be compiled beside for nothing): a vehicle's compiled
     runs (the sounding rocket), a vehicle's one-step advance (the hobby rocket, under
-    parachutes at the end: no compiled runs queued), a coast's runs (the station)."""
+    parachutes at the end: no compiled runs queued), a coast's runs (the station), the
+    runs of a fairing's halves (the Falcon 9's first 260 s: dropped above 110 km)."""
     from rocketsim import _jit
     from rocketsim.scenario.load import load
     from rocketsim.sim import coast_runs, runs, vehicle_checks
@@ -271,9 +272,12 @@ def test_a_flight_queues_the_signatures_its_runs_are_called_with(monkeypatch, tm
         fly(load(ROOT / "scenarios" / "hobby-rocket.yaml"), tmp_path / "run.mcap")
         expected = {vehicle_checks.advance_checked, writer.splice.records}
         assert runs.fly_run not in {kernel for kernel, _ in offered.offered}
-    else:
+    elif scenario == "iss-coast":
         fly(load(ROOT / "scenarios" / "iss-coast.yaml"), tmp_path / "run.mcap", duration=200.0)
         expected = {coast_runs.coast_run, writer.splice.records}
+    else:
+        fly(load(ROOT / "scenarios" / "falcon9-leo.yaml"), tmp_path / "run.mcap", duration=260.0)
+        expected = {runs.fly_run, runs.fly_part, writer.splice.records}
     # each is queued (records: unless this process has bound it already) and called as queued
     queued = {kernel for kernel, _ in offered.offered}
     assert expected - {writer.splice.records} <= queued

@@ -49,9 +49,11 @@ import math
 
 import numpy as np
 
+from rocketsim._jit import compile_beside
 from rocketsim.dynamics.derivative import radial_height
 from rocketsim.dynamics.third_bodies import field_of, nbody_flag
 from rocketsim.flight.conditions import NO_CONDITION
+from rocketsim.layout import N_STATE
 from rocketsim.sim import runs, sampling
 from rocketsim.sim.flight_events import ORBIT_PERIAPSIS_BOUND
 from rocketsim.sim.schedule import rails_field
@@ -232,11 +234,18 @@ def compile_runs_beside(world) -> None:
     """On a cold cache, queue the kernels of the world's vehicles with aerodynamics and checks
     for a second process to compile while this one compiles the first sample's
     (:meth:`rocketsim.sim.vehicle_checks.VehicleChecks.compile_beside`): their one-step
-    advance and, without parachutes, their compiled runs."""
+    advance and, without parachutes, their compiled runs; with a fairing, the runs its
+    halves will tumble in (:func:`rocketsim.sim.runs.fly_part`)."""
     for body in world.bodies:
         if body.vehicle is not None and body.checks is not None and body.watch is not None:
             body.checks.compile_beside(body, world.h,
                                        None if body.vehicle.parachutes else _samples(world, body)[0])
+            if body.vehicle.has_fairing and field_of(body.p) is None:
+                # its halves will tumble in compiled runs: a rigid part's state and parameters
+                # (float arrays as the vehicle's), the same field and air
+                compile_beside(runs.fly_part, (body.y[:N_STATE].copy(), 0, world.h, 1, body.p, rails_field(body),
+                                               world.air_of(body), 1.0, 1.0, 1.0, math.inf,
+                                               ORBIT_PERIAPSIS_BOUND, body.mu, math.inf, nbody_flag(body.p)))
 
 
 def _waiting(body) -> bool:
