@@ -501,6 +501,7 @@ class CompiledBeside:
         self._process = None
         self._queued: dict[tuple, str] = {}    # (kernel, signature) -> its item's name, until needed here
         self._count = 0                         # items queued so far (their names' numbers)
+        self._owner = None                      # the process that made the folder (not a forked child)
         self.kernels: set = set()               # the kernels of those items
 
     def add(self, kernel, args, priority: int = 0) -> bool:
@@ -515,6 +516,7 @@ class CompiledBeside:
             import atexit
             import tempfile
             self._folder = tempfile.mkdtemp(prefix="rocketsim-compiling-")
+            self._owner = os.getpid()
             atexit.register(self.close)
         name = f"item-{priority:02d}-{self._count:04d}"
         self._count += 1
@@ -575,9 +577,12 @@ class CompiledBeside:
         return False
 
     def close(self) -> None:
-        """End the queue (at this process's exit): the second process stopped, the folder removed."""
+        """End the queue (at this process's exit): the second process stopped, the folder removed
+        (by the process that made them, not by a child forked from it)."""
         import shutil
 
+        if self._owner != os.getpid():
+            return
         if self._process is not None and self._process.poll() is None:
             self._process.kill()
             self._process.wait()

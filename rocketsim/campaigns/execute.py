@@ -39,6 +39,7 @@ import time
 from pathlib import Path
 from typing import Callable, Mapping
 
+from rocketsim import _jit
 from rocketsim.campaigns.cases import Plan
 from rocketsim.campaigns.outputs import run_columns
 from rocketsim.campaigns.spec import read_campaign
@@ -121,6 +122,7 @@ def fly_case(text: str, k: int, keep: str, timeout: float | None) -> tuple[dict,
     """A worker's task: run ``k`` of the campaign ``text``; ``keep`` its telemetry
     (``all``: flown into an MCAP file; ``failed``: flown again into one if it failed;
     ``none``). Returns ``(row, MCAP bytes or None)``."""
+    _jit.COMPILE_BESIDE = False     # the workers fill the cores: each compiles what its runs need itself
     plan = plan_of(text)
     with tempfile.TemporaryDirectory(prefix="rocketsim-run-") as folder:
         path = Path(folder) / f"run-{k:06d}.mcap"
