@@ -338,3 +338,16 @@ def test_a_compiling_marker_of_an_ended_process_is_taken_over(tmp_path):
     assert _held(str(marker), host)
     marker.write_text(f"elsewhere {os.getpid()}")
     assert _held(str(marker), host)
+
+
+def test_a_forked_child_leaves_the_queue_to_the_process_that_made_it(tmp_path):
+    import os
+    from rocketsim._jit import CompiledBeside
+
+    queue = CompiledBeside()
+    queue._folder, queue._owner = str(tmp_path), os.getpid() + 1      # made by another process
+    queue.close()
+    assert tmp_path.is_dir()
+    queue._owner = os.getpid()
+    queue.close()
+    assert not tmp_path.exists() and queue._folder is None
