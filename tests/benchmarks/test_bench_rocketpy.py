@@ -32,21 +32,16 @@ past the telemetry samples, computing them on the way, from the pad on: its
 5 500 steps take 4 runs without a file (returning at liftoff, max-Q and the
 end of the burn) and 12 with one (every 128th sample too).
 
-Last figures, RocketPy at its defaults (rtol 1e-6; load 1.9, the file
-written on its own thread beside the flight's compiled runs): with telemetry
-51 ms (real-time factor 2 160), without 42 ms (2 620), the steps alone 23 ms
-(4 860), RocketPy 410 ms (258); rocketsim / RocketPy with telemetry 8.4x
-(target 10x), without 10.2x, the steps alone 18.8x. Written in line on the
-flight's thread, the same minutes: with telemetry 60-64 ms (6.5-6.7x). The world returning
-to Python at every sample step (every 5th step, the sampler's figures one
-by one), flown alternately with those in the same minutes: with telemetry
-110-119 ms (3.4-3.6x), without 77-78 ms (5.1-5.3x).
-Where rocketsim's time goes (thread CPU at load 2.5, the world then returning
-at every sample step): the RK4 steps 7.4 us each; the compiled runs' checks
-and event tests ~25 ms (the checks' figures 3.4 us a step, 2.6 us of it a
-fifth derivative for the axial load; the max-Q test 0.5 us a step while
-pending); a sample ~15 us its figures, ~13 us its writing; ~5 ms the file's
-fixed cost.
+Last figures, RocketPy at its defaults (rtol 1e-6; load 2.2): with telemetry
+45.7 ms (real-time factor 2 407), without 38.0 ms (2 892), the steps alone
+22.5 ms (4 887), RocketPy 447.7 ms (236; 381-448 ms over the last sessions);
+rocketsim / RocketPy with telemetry 10.2x (target 10x), without 12.3x, the
+steps alone 20.7x; an hour later (load 1.2-1.8, RocketPy 405 ms) 8.7x, 10.6x and
+18.2x: the target is met at best. Where rocketsim's time goes (kernels timed alone on the
+flight's states, the burn's): the RK4 step 3.9 us; the checks' figures 1.5 us
+a step (0.9 us of it a derivative for the axial load); the max-Q test 0.4 us a
+step while pending; a sample's figures 2.3 us; the file's fixed cost 2.6 ms
+(its writer, the scenario's YAML, the thread's end).
 
 Nothing here asserts a time; the checks are that the flights with and
 without telemetry end in the same state to the bit, that the telemetry's
