@@ -423,9 +423,7 @@ def _claim(folder: str, name: str) -> bool:
     """Take the queued item ``name`` of ``folder`` for this process (False: taken already)."""
     try:
         os.close(os.open(os.path.join(folder, "claim-" + name), os.O_CREAT | os.O_EXCL | os.O_WRONLY))
-    except FileExistsError:
-        return False
-    except OSError:         # the folder is gone: the queue has ended
+    except OSError:         # it exists, or the folder is gone (the queue has ended)
         return False
     return True
 
@@ -503,14 +501,22 @@ class CompiledBeside:
         self._count = 0                         # items queued so far (their names' numbers)
         self._owner = None                      # the process that made the folder (not a forked child)
         self.kernels: set = set()               # the kernels of those items
+        self._settled: set = set()              # (kernel, the arguments' kinds) found cached
 
     def add(self, kernel, args, priority: int = 0) -> bool:
         """Queue ``kernel`` for the numba types of ``args`` (lower ``priority`` first) unless
         it is cached, compiled here or queued; whether it was queued."""
         import pickle
 
+        kinds = _kinds(args)
+        if kinds is not None and (kernel, kinds) in self._settled:
+            return False            # found cached by an earlier flight of this process
         signature = tuple(kernel.typeof_pyval(a) for a in args)
-        if (kernel, signature) in self._queued or cached(kernel, signature):
+        if (kernel, signature) in self._queued:
+            return False
+        if cached(kernel, signature):
+            if kinds is not None:
+                self._settled.add((kernel, kinds))
             return False
         if self._folder is None:
             import atexit
