@@ -593,6 +593,16 @@ class CompiledBeside:
             if not self._compile_one():
                 time.sleep(0.005)
 
+    def compiling_elsewhere(self, kernel) -> bool:
+        """Whether the second process is compiling ``kernel`` now (an item of it claimed there,
+        not yet done): a caller that can fly without it meanwhile (one step at a time, the
+        same bits) does, instead of waiting."""
+        if kernel not in self.kernels:
+            return False
+        return any(queued is kernel and not self._done(name)
+                   and os.path.exists(os.path.join(self._folder, "claim-" + name))
+                   for (queued, _), name in self._queued.items())
+
     def _compile_one(self) -> bool:
         """Compile here the first queued item not yet taken; whether there was one."""
         for name in _queued_items(self._folder):
@@ -626,3 +636,8 @@ def compile_beside(kernel, args, priority: int = 0) -> None:
     (:class:`CompiledBeside`; lower ``priority`` first), unless :data:`COMPILE_BESIDE` is off."""
     if COMPILE_BESIDE:
         BESIDE.add(kernel, args, priority)
+
+
+def compiling_elsewhere(kernel) -> bool:
+    """Whether the second process is compiling ``kernel`` now (:meth:`CompiledBeside.compiling_elsewhere`)."""
+    return BESIDE.compiling_elsewhere(kernel)

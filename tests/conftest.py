@@ -10,13 +10,14 @@ import pytest
 from click.testing import CliRunner
 from hypothesis import HealthCheck, settings
 
+from rocketsim import _jit
+
 ROOT = Path(__file__).resolve().parents[1]
 
-if os.environ.get("PYTEST_XDIST_WORKER"):
-    # one test worker per core: every core compiles already, so no worker queues kernels for
-    # a second compiling process (tests/test_jit_cache.py tests that in a process of its own)
-    from rocketsim import _jit
-    _jit.COMPILE_BESIDE = False
+# no test queues kernels for a second compiling process: with one test worker per core every
+# core compiles already, and tests wrap kernels in plain functions (timing, counting) that
+# cannot be queued; tests/test_jit_cache.py tests the queue where it switches it on
+_jit.COMPILE_BESIDE = False
 
 # Hypothesis profiles of tests/fuzz: "ci" (the default) replays the same examples every
 # run (derandomize) on a fixed budget; "long", for a developer, draws 17 times as many

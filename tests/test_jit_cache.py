@@ -230,6 +230,9 @@ class _Offered:
         self.offered.append((kernel, tuple(kernel.typeof_pyval(a) for a in args)))
         return True
 
+    def compiling_elsewhere(self, kernel):
+        return False        # nothing is compiled beside here: each queued kernel is called
+
 
 @pytest.mark.parametrize("scenario", ["sounding", "hobby-rocket", "iss-coast", "falcon9-leo"])
 def test_a_flight_queues_the_signatures_its_runs_are_called_with(monkeypatch, tmp_path, scenario):
@@ -351,3 +354,20 @@ def test_a_forked_child_leaves_the_queue_to_the_process_that_made_it(tmp_path):
     queue._owner = os.getpid()
     queue.close()
     assert not tmp_path.exists() and queue._folder is None
+
+
+def test_a_kernel_compiles_elsewhere_while_the_second_process_holds_its_item(tmp_path):
+    # what a flight asks before choosing a compiled run (else it flies one step at a time)
+    from rocketsim._jit import CompiledBeside
+
+    queue = CompiledBeside()
+    queue._folder = str(tmp_path)
+    kernel, other = object(), object()
+    assert not queue.compiling_elsewhere(kernel)                  # never queued
+    queue._queued[kernel, ("signature",)] = "item-00-0000"
+    queue.kernels.add(kernel)
+    assert not queue.compiling_elsewhere(kernel)                  # queued, nobody has taken it
+    (tmp_path / "claim-item-00-0000").touch()
+    assert queue.compiling_elsewhere(kernel) and not queue.compiling_elsewhere(other)
+    (tmp_path / "done-item-00-0000").touch()
+    assert not queue.compiling_elsewhere(kernel)                  # compiled: in the cache

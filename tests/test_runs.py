@@ -123,6 +123,31 @@ def test_a_single_body_samples_inside_its_runs_what_the_world_samples(tmp_path, 
     assert messages == by_python == by_steps
 
 
+def test_a_run_still_compiling_elsewhere_is_flown_one_step_at_a_time_meanwhile(tmp_path, monkeypatch):
+    """On a cold cache the second process may still be compiling the vehicle's run when the
+    flight needs it: the world flies one step at a time meanwhile (here its first 400
+    plans, 8 s: the pad, liftoff, the start of the burn) and the runs take over from
+    there; the file is the runs' own, message for message and bit for bit."""
+    messages, _, _ = _sounding(tmp_path, "runs", monkeypatch, "runs", duration=30.0)
+    asked, first_run = [], []
+
+    def compiling_elsewhere(kernel):
+        asked.append(kernel)
+        return kernel is runs.fly_run and len(asked) <= 400
+
+    vehicle_run = VehicleChecks.fly_run
+
+    def counted(checks, body, k0, *rest):
+        first_run.append(k0)
+        return vehicle_run(checks, body, k0, *rest)
+
+    monkeypatch.setattr(window, "compiling_elsewhere", compiling_elsewhere)
+    monkeypatch.setattr(VehicleChecks, "fly_run", counted)
+    meanwhile, _, _ = _sounding(tmp_path, "meanwhile", monkeypatch, "runs", duration=30.0)
+    assert first_run and first_run[0] >= 400
+    assert meanwhile == messages
+
+
 def test_a_flight_on_progress_ends_early_ends_there_once_sampled(tmp_path, monkeypatch):
     """``on_progress`` ending the flight at its step (``n_steps = k``) in the middle of
     the runs' samples: the flight ends at that step, sampled once, as a flight of that

@@ -24,7 +24,7 @@ import math
 
 import numpy as np
 
-from rocketsim._jit import compile_beside, njit
+from rocketsim._jit import compile_beside, compiling_elsewhere, njit
 from rocketsim.dynamics.rk4 import advance
 from rocketsim.dynamics.third_bodies import nbody_flag
 from rocketsim.sim import sampling
@@ -58,11 +58,13 @@ def fly_coast(world) -> bool:
     """Fly the world's bodies whole sample intervals from its step ``k`` (a sample
     step) in :func:`coast_run`\\ s, writing every interval's samples but the last, and
     leave the world's step count at the last interval's end; False (nothing done)
-    unless every flying body coasts alone (see the module) for at least two intervals."""
+    unless every flying body coasts alone (see the module) for at least two intervals,
+    or while a second process compiles :func:`coast_run` (the loop flies the same steps)."""
     every = world.sample_every
     m = min(MAX_INTERVALS, (world.n_steps - world.k) // every)
     flying = [body for body in world.bodies if body.flying]
-    if m < 2 or not all(_coasts(world, body, m * every * world.h) for body in flying):
+    if m < 2 or compiling_elsewhere(coast_run) or not all(_coasts(world, body, m * every * world.h)
+                                                          for body in flying):
         return False
     k0, h = world.k, world.h
     runs = []

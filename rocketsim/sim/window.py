@@ -49,7 +49,7 @@ import math
 
 import numpy as np
 
-from rocketsim._jit import compile_beside
+from rocketsim._jit import compile_beside, compiling_elsewhere
 from rocketsim.dynamics.derivative import radial_height
 from rocketsim.dynamics.third_bodies import field_of, nbody_flag
 from rocketsim.flight.conditions import NO_CONDITION
@@ -257,16 +257,18 @@ def _plan(world, body, first: bool, seconds: float):
     """How ``body`` flies from the world's step (see the module): ``(VEHICLE, steering,
     condition)``, a compiled run of a vehicle with aerodynamics; ``(PART,)``, a tumbling
     part's; ``(BATCH,)``, the loop's batch of a body none of whose steps has anything for
-    Python; None: one step at a time. ``first``: the loop has run the autopilots of this
-    step (a folded one left its step in ``body.steering``); ``seconds``: to the window's end."""
+    Python; None: one step at a time (also while a second process compiles the run's
+    kernel on a cold cache: the same bits, flown meanwhile). ``first``: the loop has run the
+    autopilots of this step (a folded one left its step in ``body.steering``); ``seconds``:
+    to the window's end."""
     checks, watch = body.checks, body.watch
     if body.vehicle is None:
         if (body.runner is not None and not body.runner.finished) or field_of(body.p) is not None:
             return None
         if body.drag is not None and radial_height(body.y, body.p) <= world.schedule.rails_floor(body):
-            return (PART,)
+            return None if compiling_elsewhere(runs.fly_part) else (PART,)
         return (BATCH,) if world.schedule.coasts_alone(body, seconds) else None
-    if watch is None or checks is None or body.vehicle.parachutes:
+    if watch is None or checks is None or body.vehicle.parachutes or compiling_elsewhere(runs.fly_run):
         return None
     if not checks.every_step(body) or world.schedule.cruising(body):
         return None

@@ -68,7 +68,6 @@ import time
 from collections import Counter
 from pathlib import Path
 
-from rocketsim import _jit
 from rocketsim._jit import Entries
 from rocketsim.scenario.load import load
 from rocketsim.sim import flight_events, runs, schedule, vehicle_checks, world
@@ -112,9 +111,6 @@ def _instrument(monkeypatch, clock: SectionClock) -> Counter:
     of body-steps the integrator takes (``steps["body-steps"]``, awake 20 ms steps of
     every body: what the per-step figures divide by)."""
     patch = monkeypatch.setattr
-    # the wrapped kernels below are plain functions: none to queue for a second process
-    # (the warm-up flight has compiled them all)
-    patch(_jit, "COMPILE_BESIDE", False)
     steps = Counter()
     integrator = world.advance
     timed_advance = clock.wrap(integrator, "physics")
