@@ -15,7 +15,7 @@ thread's wake-up.
 LLVM optimises the kernels at level 1 (:data:`OPT_LEVEL`; numba's default is 3)
 unless ``NUMBA_OPT`` says otherwise: numba optimises each kernel's module again
 with every kernel it calls linked in, so the big kernels' compiling is mostly
-LLVM's, and at level 1 a cold Falcon 9 mission compiles in about 15 % less CPU
+LLVM's, and at level 1 a cold Falcon 9 mission compiles in about 8 % less CPU
 time while the flights run as fast (within the benchmarks' noise). Without
 ``fastmath`` no level may reorder or fuse floating-point operations: the
 telemetry is the same to the byte at either level.

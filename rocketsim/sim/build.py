@@ -26,10 +26,12 @@ from rocketsim.layout import P_MU, R, V, W, make_params, make_state
 from rocketsim.scenario.load import LoadedScenario
 from rocketsim.scenario.models import check_duration, check_step
 from rocketsim.sim.body import Body, Vehicle, channel_name
+from rocketsim.sim.coast_runs import compile_coasts_beside
 from rocketsim.sim.flight_events import FlightEvents
 from rocketsim.sim.handover import fly_in_air_of
 from rocketsim.sim.start import on_rail, standing_on_ground, start_state
 from rocketsim.sim.vehicle_checks import VehicleChecks
+from rocketsim.sim.window import compile_runs_beside
 from rocketsim.sim.world import World
 from rocketsim.timescales import Epoch
 from rocketsim.vehicle.aero import A_GROUND
@@ -103,6 +105,10 @@ def build_world(loaded: LoadedScenario, step: float | None = None,
     world.target = mission.target
     world.pad_azimuth = scenario.site.pad_azimuth if scenario.site else math.nan
     world.program_cpu_budget = scenario.program_cpu_budget
+    # on a cold cache a second process compiles the first runs' kernels from here on, while
+    # this one compiles the programs' and the first sample's
+    compile_runs_beside(world)
+    compile_coasts_beside(world)
     programs = loaded.programs()
     for stage, path in loaded.stage_program_paths.items():
         world.stage_programs[stage] = (programs[f"program/{stage}"][0] or load_program(path), path)

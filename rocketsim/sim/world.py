@@ -48,8 +48,8 @@ from rocketsim.sim.craft import BodyCraft
 from rocketsim.sim.handover import hand_over, watch_soi
 from rocketsim.sim.schedule import Schedule, inertia, rails_field
 from rocketsim.sim.summary import summary
-from rocketsim.sim.coast_runs import compile_coasts_beside, fly_coast
-from rocketsim.sim.window import compile_runs_beside, fly_window
+from rocketsim.sim.coast_runs import fly_coast
+from rocketsim.sim.window import fly_window
 from rocketsim.timescales import Epoch
 from rocketsim.vehicle.aero import A_GROUND
 
@@ -156,9 +156,6 @@ class World:
         for body in self.bodies:
             if telemetry is not None:
                 telemetry.add_body(body.name)
-        # on a cold cache a second process compiles the first runs' kernels meanwhile
-        compile_runs_beside(self)
-        compile_coasts_beside(self)
         self._sample_all()
         self._prepare_programs()
         try:
