@@ -510,7 +510,9 @@ class CompiledBeside:
     name and signature), taken by creating its ``claim-`` file (exclusive creation: one
     process wins), a ``done-`` file when compiled. The machine code is the same whichever
     process compiles it; a second process that fails or is slower than :data:`COMPILE_WAIT`
-    costs the wait, and the kernel then compiles here as it would have.
+    costs the wait, and the kernel then compiles here as it would have. A kernel this process
+    can fly without (a compiled run of many steps: one step at a time is the same flight) it
+    does not wait for (:meth:`compiling_elsewhere`).
     """
 
     def __init__(self):
@@ -594,14 +596,12 @@ class CompiledBeside:
                 time.sleep(0.005)
 
     def compiling_elsewhere(self, kernel) -> bool:
-        """Whether the second process is compiling ``kernel`` now (an item of it claimed there,
-        not yet done): a caller that can fly without it meanwhile (one step at a time, the
-        same bits) does, instead of waiting."""
-        if kernel not in self.kernels:
+        """Whether the second process has ``kernel`` to compile (an item of it queued, not yet
+        done, the process running): a caller that can fly without it meanwhile (one step at a
+        time, the same bits) does, instead of compiling it here or waiting for it."""
+        if kernel not in self.kernels or self._process is None or self._process.poll() is not None:
             return False
-        return any(queued is kernel and not self._done(name)
-                   and os.path.exists(os.path.join(self._folder, "claim-" + name))
-                   for (queued, _), name in self._queued.items())
+        return any(queued is kernel and not self._done(name) for (queued, _), name in self._queued.items())
 
     def _compile_one(self) -> bool:
         """Compile here the first queued item not yet taken; whether there was one."""
@@ -612,15 +612,14 @@ class CompiledBeside:
         return False
 
     def close(self) -> None:
-        """End the queue (at this process's exit): the second process stopped, the folder removed
-        (by the process that made them, not by a child forked from it)."""
+        """End the queue (at this process's exit): the folder removed (by the process that made
+        it, not by a child forked from it). The second process takes nothing more; the kernel it
+        is compiling it finishes into the cache, after this process has ended if need be (a
+        flight shorter than its runs' compiling leaves them compiled for the next), and ends."""
         import shutil
 
         if self._owner != os.getpid():
             return
-        if self._process is not None and self._process.poll() is None:
-            self._process.kill()
-            self._process.wait()
         if self._folder is not None:
             shutil.rmtree(self._folder, ignore_errors=True)
             self._folder = None

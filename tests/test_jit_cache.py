@@ -23,6 +23,25 @@ def _names():
     return {path.relative_to(PACKAGE).as_posix() for path in _kernel_sources(PACKAGE)}
 
 
+
+def _cold_env(tmp_path) -> dict:
+    """This process's environment with ``tmp_path`` as the kernel cache (empty at first)."""
+    import os
+    env = {k: v for k, v in os.environ.items() if k != "NUMBA_CACHE_DIR"}
+    env["ROCKETSIM_CACHE_DIR"] = str(tmp_path)
+    return env
+
+
+def _on_a_cold_cache(tmp_path, script: str, timeout: float = 300) -> str:
+    """The last line printed by Python running ``script`` in ``tmp_path``, its kernel cache."""
+    import subprocess
+    import sys
+    path = tmp_path / "script.py"
+    path.write_text(script)
+    done = subprocess.run([sys.executable, str(path)], capture_output=True, text=True,
+                          env=_cold_env(tmp_path), check=True, cwd=tmp_path, timeout=timeout)
+    return done.stdout.strip().splitlines()[-1]
+
 def test_every_kernel_module_and_its_imports_are_hashed():
     names = _names()
     kernel_modules = {path.relative_to(PACKAGE).as_posix() for path in PACKAGE.rglob("*.py")
@@ -95,16 +114,7 @@ def test_a_kernel_is_saved_to_the_cache_under_the_cache_folders_lock(tmp_path):
     description of the lock at every index write."""
     pytest.importorskip("fcntl", reason="POSIX flock: elsewhere numba saves unlocked")
     import json
-    import os
-    import subprocess
-    import sys
-    env = {k: v for k, v in os.environ.items() if k != "NUMBA_CACHE_DIR"}
-    env["ROCKETSIM_CACHE_DIR"] = str(tmp_path)
-    script = tmp_path / "saves.py"
-    script.write_text(_SAVES_UNDER_THE_LOCK)
-    done = subprocess.run([sys.executable, str(script)], capture_output=True, text=True, env=env,
-                          check=True, cwd=tmp_path)
-    assert json.loads(done.stdout.strip().splitlines()[-1]) == [True, True]
+    assert json.loads(_on_a_cold_cache(tmp_path, _SAVES_UNDER_THE_LOCK)) == [True, True]
 
 
 _COMPILED_BESIDE = """
@@ -162,16 +172,7 @@ def test_kernels_queued_beside_are_compiled_by_a_second_process(tmp_path):
     compiles the next queued one itself. A kernel the second process cannot compile (not
     importable there) compiles here as it would have."""
     import json
-    import os
-    import subprocess
-    import sys
-    env = {k: v for k, v in os.environ.items() if k != "NUMBA_CACHE_DIR"}
-    env["ROCKETSIM_CACHE_DIR"] = str(tmp_path)
-    script = tmp_path / "beside.py"
-    script.write_text(_COMPILED_BESIDE)
-    done = subprocess.run([sys.executable, str(script)], capture_output=True, text=True, env=env,
-                          check=True, cwd=tmp_path, timeout=300)
-    assert json.loads(done.stdout.strip().splitlines()[-1]) == {
+    assert json.loads(_on_a_cold_cache(tmp_path, _COMPILED_BESIDE)) == {
         "cold": False, "started": True, "again": False, "records": [1, 0], "slow": [1, 0],
         "quick_claimed_here": True, "twice": 42}
 
@@ -310,13 +311,11 @@ def test_two_processes_on_one_cold_cache_compile_a_kernel_once(tmp_path):
     import subprocess
     import sys
     import time
-    env = {k: v for k, v in os.environ.items() if k != "NUMBA_CACHE_DIR"}
-    env["ROCKETSIM_CACHE_DIR"] = str(tmp_path)
     script = tmp_path / "once.py"
     script.write_text(_COMPILE_ONCE)
     start = str(time.time() + 3.0)     # after both have imported numba
     both = [subprocess.Popen([sys.executable, str(script), start], stdout=subprocess.PIPE, text=True,
-                             env=env, cwd=tmp_path) for _ in range(2)]
+                             env=_cold_env(tmp_path), cwd=tmp_path) for _ in range(2)]
     counts = [json.loads(process.communicate(timeout=300)[0].strip().splitlines()[-1]) for process in both]
     assert sorted(counts) == [[0, 1], [1, 0]]
     assert os.listdir(next(tmp_path.glob("numba-*")) / ".compiling") == []     # markers removed
@@ -360,14 +359,62 @@ def test_a_kernel_compiles_elsewhere_while_the_second_process_holds_its_item(tmp
     # what a flight asks before choosing a compiled run (else it flies one step at a time)
     from rocketsim._jit import CompiledBeside
 
+    import subprocess
+    import sys
+
     queue = CompiledBeside()
     queue._folder = str(tmp_path)
     kernel, other = object(), object()
     assert not queue.compiling_elsewhere(kernel)                  # never queued
     queue._queued[kernel, ("signature",)] = "item-00-0000"
     queue.kernels.add(kernel)
-    assert not queue.compiling_elsewhere(kernel)                  # queued, nobody has taken it
-    (tmp_path / "claim-item-00-0000").touch()
-    assert queue.compiling_elsewhere(kernel) and not queue.compiling_elsewhere(other)
-    (tmp_path / "done-item-00-0000").touch()
-    assert not queue.compiling_elsewhere(kernel)                  # compiled: in the cache
+    assert not queue.compiling_elsewhere(kernel)                  # no second process
+    queue._process = subprocess.Popen([sys.executable, "-c", "import time; time.sleep(60)"])
+    try:
+        assert queue.compiling_elsewhere(kernel) and not queue.compiling_elsewhere(other)
+        (tmp_path / "claim-item-00-0000").touch()
+        assert queue.compiling_elsewhere(kernel)                  # taken there, under way
+        (tmp_path / "done-item-00-0000").touch()
+        assert not queue.compiling_elsewhere(kernel)              # compiled: in the cache
+        (tmp_path / "done-item-00-0000").unlink()
+    finally:
+        queue._process.kill()
+        queue._process.wait()
+    assert not queue.compiling_elsewhere(kernel)                  # the process ended without it
+
+
+_ENDS_WHILE_COMPILING = """
+import os, sys, time
+import numpy as np
+from rocketsim._jit import BESIDE, compile_beside
+from rocketsim.frames.local import where_and_how_fast
+
+slow = (np.zeros(3), np.ones(3), 0.0, 7.29e-5, 6378137.0, 6356752.3)
+compile_beside(where_and_how_fast, slow)
+name = next(iter(BESIDE._queued.values()))
+while not os.path.exists(os.path.join(BESIDE._folder, "claim-" + name)):
+    time.sleep(0.001)
+print(BESIDE._process.pid)            # and end, the kernel half compiled there
+"""
+
+
+def test_a_kernel_compiling_beside_when_the_flight_ends_is_finished_into_the_cache(tmp_path):
+    # a flight shorter than its runs' compiling (flown one step at a time meanwhile) leaves
+    # them compiled for the next flight: the second process finishes the kernel it has taken
+    import os
+    import time
+    second = int(_on_a_cold_cache(tmp_path, _ENDS_WHILE_COMPILING))
+    deadline = time.monotonic() + 120
+    while time.monotonic() < deadline:
+        try:
+            os.kill(second, 0)
+        except ProcessLookupError:
+            break
+        time.sleep(0.05)
+    else:
+        raise AssertionError("the second process did not end")
+    check = ("import numpy as np; from rocketsim._jit import cached; "
+             "from rocketsim.frames.local import where_and_how_fast as k; "
+             "a = (np.zeros(3), np.ones(3), 0.0, 7.29e-5, 6378137.0, 6356752.3); "
+             "print(cached(k, tuple(k.typeof_pyval(x) for x in a)))")
+    assert _on_a_cold_cache(tmp_path, check) == "True"     # the same cache, now holding it
