@@ -73,7 +73,6 @@ def test_temperatures_and_winds_recovered_at_their_heights(day):
     # (+1 mK: the smoothstep blend's curvature within the row above the top level)
     assert np.all(np.abs(t - t_ref) <= _kink_bound(z, t_ref, below=-0.0065) + 1e-3)
     speed, direction = levels[:, 7] * KNOT, np.radians(levels[:, 6])
-    east_ref, north_ref = -speed * np.sin(direction), -speed * np.cos(direction)
     # Speed is interpolated linearly, the direction along the short way round.
     got_speed = np.hypot(east, north)
     assert np.all(np.abs(got_speed - speed)[inner] <= _kink_bound(z, speed)[inner] + 1e-6)

@@ -4,14 +4,13 @@ step; the standard atmosphere shifted by the day's surface temperature with
 standard-gravity hydrostatics), a shipped program flying there, and determinism."""
 
 import math
-from pathlib import Path
 
 import numpy as np
 import pytest
 
 from rocketsim.atmosphere.ussa1976 import us_standard_1976
 from rocketsim.bodies.gravity import point_mass_j2
-from rocketsim.constants import (DEG, EARTH_J2, EARTH_MU, EARTH_OMEGA, EARTH_RADIUS_EQ,
+from rocketsim.constants import (EARTH_J2, EARTH_MU, EARTH_OMEGA, EARTH_RADIUS_EQ,
                                  EARTH_RADIUS_POLAR, G0, GAS_CONSTANT_USSA, USSA_M0, USSA_P0,
                                  USSA_R0)
 from rocketsim.dynamics.derivative import derivative, held_derivative
