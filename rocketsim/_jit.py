@@ -603,6 +603,21 @@ class CompiledBeside:
             return False
         return any(queued is kernel and not self._done(name) for (queued, _), name in self._queued.items())
 
+    def finish(self) -> None:
+        """Have every queued kernel compiled into the cache (here those the second process has
+        not taken, waiting for those it has: :meth:`wait_for`), then end the queue (:meth:`close`)."""
+        import subprocess
+
+        for kernel, signature in list(self._queued):
+            self.wait_for(kernel, signature)
+            kernel.compile(signature)
+        self.close()
+        if self._process is not None:       # idle now: it ends once the folder is gone
+            try:
+                self._process.wait(BESIDE_IDLE)
+            except subprocess.TimeoutExpired:
+                pass
+
     def _compile_one(self) -> bool:
         """Compile here the first queued item not yet taken; whether there was one."""
         for name in _queued_items(self._folder):
@@ -640,3 +655,11 @@ def compile_beside(kernel, args, priority: int = 0) -> None:
 def compiling_elsewhere(kernel) -> bool:
     """Whether the second process is compiling ``kernel`` now (:meth:`CompiledBeside.compiling_elsewhere`)."""
     return BESIDE.compiling_elsewhere(kernel)
+
+
+def finish_beside() -> None:
+    """Have every kernel queued for the second process compiled into the cache and end the
+    queue (:meth:`CompiledBeside.finish`): after a flight flown to fill the cache, which may
+    have ended before its runs were compiled beside, in a process that ends without its
+    exit handlers (a pool's worker)."""
+    BESIDE.finish()

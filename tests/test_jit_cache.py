@@ -418,3 +418,23 @@ def test_a_kernel_compiling_beside_when_the_flight_ends_is_finished_into_the_cac
              "a = (np.zeros(3), np.ones(3), 0.0, 7.29e-5, 6378137.0, 6356752.3); "
              "print(cached(k, tuple(k.typeof_pyval(x) for x in a)))")
     assert _on_a_cold_cache(tmp_path, check) == "True"     # the same cache, now holding it
+
+
+_FINISHED = """
+import json, os
+import numpy as np
+from rocketsim._jit import BESIDE, cached, compile_beside, finish_beside
+from rocketsim.frames.local import where_and_how_fast as kernel
+args = (np.zeros(3), np.ones(3), 0.0, 7.29e-5, 6378137.0, 6356752.3)
+compile_beside(kernel, args)
+folder = BESIDE._folder
+finish_beside()
+print(json.dumps([cached(kernel, tuple(kernel.typeof_pyval(a) for a in args)), os.path.exists(folder)]))
+"""
+
+
+def test_finishing_the_queue_leaves_every_queued_kernel_in_the_cache(tmp_path):
+    # rocketsim compile's workers: their flights may end before the runs compiled beside
+    # them are done, and a pool's worker ends without its exit handlers
+    import json
+    assert json.loads(_on_a_cold_cache(tmp_path, _FINISHED)) == [True, False]

@@ -19,7 +19,8 @@ machine, too long for every run of the suite):
 * a cold ``rocketsim fly scenarios/iss-coast.yaml`` (target <= 8 s) and the ratio
   cold / warm, with the kernels and signatures compiled;
 * a cold Falcon 9 mission, ``scenarios/falcon9-leo.yaml`` (target <= 20 s);
-* ``rocketsim compile`` of three scenarios on 1 and on 2 processes: the speed-up.
+* ``rocketsim compile`` of three scenarios, and of the Falcon 9 mission alone, on 1 and
+  on 2 processes: the speed-up.
 
 Run: ``ROCKETSIM_BENCH_COLD=1 python -m pytest tests/benchmarks/test_bench_startup.py -s``.
 
@@ -151,9 +152,10 @@ def test_cold_falcon9_mission(tmp_path):
 
 
 @cold
-def test_compile_on_one_and_two_processes(tmp_path):
-    scenarios = ["scenarios/iss-coast.yaml", "scenarios/spaceport-ballistic.yaml",
-                 "scenarios/falcon9-hop.yaml"]
+@pytest.mark.parametrize("scenarios", [
+    ["scenarios/iss-coast.yaml", "scenarios/spaceport-ballistic.yaml", "scenarios/falcon9-hop.yaml"],
+    ["scenarios/falcon9-leo.yaml"]])     # one scenario: on 2 cores its runs compile beside it
+def test_compile_on_one_and_two_processes(tmp_path, scenarios):
     times = {}
     for jobs in (1, 2):
         folder = tmp_path / f"cache-{jobs}"
