@@ -27,20 +27,21 @@ import click
 from rocketsim.errors import InputError
 from rocketsim_cli.errors import reports_input_errors
 
-_counter = None          # a worker's share of the kernels-compiled count (multiprocessing.Value)
-
-
-def _start_worker(counter, beside: bool) -> None:
-    global _counter
+def _start_worker(beside: bool) -> None:
     from rocketsim import _jit
 
-    _counter = counter
     _jit.COMPILE_BESIDE = beside        # off: the pool's processes are the cores' compilers already
+
+
+def _signatures(folder: str) -> int:
+    """Compiled signatures in the cache folder ``folder`` (numba's code files): what the workers
+    and the processes compiling beside them have saved."""
+    return sum(1 for _ in Path(folder).rglob("*.nbc"))
 
 
 def _warm(path: str) -> tuple[str, int, float, str | None]:
     """Fly the scenario at ``path`` to its end, telemetry discarded: (path, kernels
-    compiled, seconds, error message or None)."""
+    compiled in this process, seconds, error message or None)."""
     import tempfile
 
     from rocketsim._jit import finish_beside
@@ -48,16 +49,8 @@ def _warm(path: str) -> tuple[str, int, float, str | None]:
     from rocketsim.sim.flight import fly
     from rocketsim_cli.compiling import Compiles
 
-    done = [0]
-
-    def on_change(compiles) -> None:
-        if compiles.done > done[0]:
-            with _counter.get_lock():
-                _counter.value += compiles.done - done[0]
-            done[0] = compiles.done
-
     start = time.perf_counter()
-    compiles = Compiles(on_change)
+    compiles = Compiles()
     error = None
     with tempfile.TemporaryDirectory() as folder, compiles.listening():
         try:
@@ -118,18 +111,19 @@ def compile_kernels(scenarios: tuple[Path, ...], jobs: int | None) -> None:
     workers = min(len(paths), jobs // 2 if beside else 1)
     terminal = sys.stderr.isatty()
     context = multiprocessing.get_context("spawn")
-    counter = context.Value("i", 0)
+    folder = cache_dir()
+    before = _signatures(folder)
     start = time.perf_counter()
     failed = []
 
     def show(finished: int) -> None:
         if terminal:
             sys.stderr.write(f"\rcompiling flight kernels: {finished}/{len(paths)} scenarios flown, "
-                             f"{counter.value} kernels compiled, {time.perf_counter() - start:.0f} s"
-                             "\x1b[K")
+                             f"{_signatures(folder) - before} kernels compiled, "
+                             f"{time.perf_counter() - start:.0f} s\x1b[K")
             sys.stderr.flush()
 
-    with context.Pool(workers, initializer=_start_worker, initargs=(counter, beside)) as pool:
+    with context.Pool(workers, initializer=_start_worker, initargs=(beside,)) as pool:
         pending = [pool.apply_async(_warm, (str(path),)) for path in paths]
         finished = 0
         show(0)
@@ -145,13 +139,13 @@ def compile_kernels(scenarios: tuple[Path, ...], jobs: int | None) -> None:
                     if error:
                         sys.stderr.write(f"\r{error}\x1b[K\n")
                 else:
-                    click.echo(f"{path}: {_count(compiled, 'kernel')} compiled in {seconds:.1f} s"
+                    click.echo(f"{path}: flown in {seconds:.1f} s, {_count(compiled, 'kernel')} compiled in its process"
                                + (f" ({error})" if error else ""), err=True)
             show(finished)
     if terminal:
         sys.stderr.write("\r\x1b[K")
     how = _count(workers, "process") + (f" and {workers} more compiling beside" if beside else "")
-    click.echo(f"compiled {_count(counter.value, 'kernel')} for {_count(len(paths), 'scenario')} in "
-               f"{time.perf_counter() - start:.1f} s with {how} into {cache_dir()}")
+    click.echo(f"compiled {_count(_signatures(folder) - before, 'kernel')} for {_count(len(paths), 'scenario')} "
+               f"in {time.perf_counter() - start:.1f} s with {how} into {folder}")
     if failed:
         sys.exit(2)
