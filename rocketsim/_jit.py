@@ -447,15 +447,29 @@ def _claim(folder: str, name: str) -> bool:
     return True
 
 
-def _compile_item(folder: str, name: str) -> None:
-    """Compile the queued item ``name`` (claimed by this process) and mark it done, whatever
-    the outcome: a kernel that fails here fails again, with its message, where it is called."""
-    import importlib
+def _take_item(folder: str, name: str) -> tuple | None:
+    """The queued item ``name`` (kernel's module, name, signature), taken for this process;
+    None where another has it or it is gone. Read before it is claimed: once claimed, the
+    process that queued it may end and remove the folder, and the item is still compiled."""
     import pickle
 
+    if os.path.exists(os.path.join(folder, "claim-" + name)):
+        return None
     try:
         with open(os.path.join(folder, name), "rb") as stream:
-            module, qualname, signature = pickle.load(stream)
+            item = pickle.load(stream)
+    except Exception:       # noqa: BLE001 - gone, or not whole: not taken
+        return None
+    return item if _claim(folder, name) else None
+
+
+def _compile_item(folder: str, name: str, item: tuple) -> None:
+    """Compile the queued ``item`` (:func:`_take_item`) and mark it done, whatever the
+    outcome: a kernel that fails here fails again, with its message, where it is called."""
+    import importlib
+
+    module, qualname, signature = item
+    try:
         getattr(importlib.import_module(module), qualname).compile(signature)
     except Exception:       # noqa: BLE001 - see the docstring
         pass
@@ -486,8 +500,9 @@ def compile_queued(folder: str) -> None:
         for name in _queued_items(folder):
             if name not in tried:
                 tried.add(name)
-                if _claim(folder, name):
-                    _compile_item(folder, name)
+                item = _take_item(folder, name)
+                if item is not None:
+                    _compile_item(folder, name, item)
                 idle_since = time.monotonic()
                 break
         else:
@@ -621,8 +636,9 @@ class CompiledBeside:
     def _compile_one(self) -> bool:
         """Compile here the first queued item not yet taken; whether there was one."""
         for name in _queued_items(self._folder):
-            if _claim(self._folder, name):
-                _compile_item(self._folder, name)
+            item = _take_item(self._folder, name)
+            if item is not None:
+                _compile_item(self._folder, name, item)
                 return True
         return False
 
