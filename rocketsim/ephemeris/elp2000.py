@@ -22,8 +22,6 @@ the Earth's flattening (A3, L') are added:
 from __future__ import annotations
 
 import math
-from typing import NamedTuple
-
 import numpy as np
 
 from rocketsim._jit import njit
@@ -36,7 +34,8 @@ from rocketsim.constants import (
 )
 from rocketsim.ephemeris import _tables
 from rocketsim.ephemeris.precession import to_j2000, turn
-from rocketsim.ephemeris.sincos import expand, sincos, sum_recipe
+from rocketsim.ephemeris.layouts import ElpLayout, prepare_elp
+from rocketsim.ephemeris.sincos import expand, sincos
 
 # Meeus (1998) eqs. 47.1-47.5: degrees, coefficients of T^0..T^4.
 MEAN_LONGITUDE = (218.3164477, 481267.88123421, -0.0015786, 1.0 / 538841.0, -1.0 / 65194000.0)
@@ -54,39 +53,8 @@ MICRODEGREE = 1e-6 * DEG
 
 
 
-class Prepared(NamedTuple):
-    """An ELP2000-82B main-problem series laid out for the kernel.
-
-    The distinct argument multipliers (rows of ``i1..i4``) are evaluated once
-    each (longitude and distance share most of them); terms are sorted by
-    coordinate, ``start[c]:start[c+1]`` are the terms of coordinate ``c``.
-    """
-
-    mult: np.ndarray        # (4, U) distinct multipliers of D, l', l, F, as floats
-    start: np.ndarray       # (4,) coordinate boundaries
-    term_row: np.ndarray    # row of ``mult`` of each term
-    A: np.ndarray           # amplitude (arcsec, arcsec, km)
-    direct: np.ndarray      # rows whose sin/cos are computed ...
-    derived: np.ndarray     # ... and those built as the sum of two others
-    pair_a: np.ndarray      # (``sincos.sum_recipe``)
-    pair_b: np.ndarray
-
-
-def prepare(coord, mult, A) -> Prepared:
-    """Lay out a flat ELP series (``generate.ElpSeries`` fields)."""
-    order = np.argsort(np.asarray(coord), kind="stable")
-    rows, term_row = np.unique(np.asarray(mult)[order], axis=0, return_inverse=True)
-    start = np.searchsorted(np.asarray(coord)[order], np.arange(4))
-    # a row is the sum of two others when its key is: key = sum i_j 100^j is
-    # exact and one-to-one for |i_j| < 50; visit the rows shortest first
-    keys = rows @ (100.0 ** np.arange(4))
-    recipe = sum_recipe(keys, 0.5, np.argsort(np.abs(rows).sum(axis=1), kind="stable"))
-    return Prepared(np.ascontiguousarray(rows.T, dtype=np.float64), start.astype(np.int64),
-                    term_row.ravel().astype(np.int64),
-                    np.asarray(A, dtype=np.float64)[order], *recipe)
-
-
-TABLE = prepare(_tables.MOON_COORD, _tables.MOON_MULT, _tables.MOON_A)
+# the project's truncated series, laid out with the generator's plan (see layouts.py)
+TABLE = prepare_elp(_tables.MOON_COORD, _tables.MOON_MULT, _tables.MOON_A, _tables.MOON_RECIPE)
 
 
 @njit
@@ -145,7 +113,7 @@ def lbd_kernel(series, T, work):
     """Geocentric ``(lambda rad, beta rad, Delta km)`` and rates per century.
 
     Mean ecliptic and equinox of date; ``T`` in Julian centuries of TT.
-    ``series``: a :class:`Prepared`; ``work``: a scratch array of shape at
+    ``series``: an :class:`~rocketsim.ephemeris.layouts.ElpLayout`; ``work``: a scratch array of shape at
     least ``(7, number of distinct multiplier rows)``. Returns two 3-tuples.
 
     Each distinct argument row ``u`` is evaluated once, with the eccentricity
@@ -243,7 +211,7 @@ def state_kernel(series, T, m, dm, work):
                     DAYS_PER_JULIAN_CENTURY * SECONDS_PER_DAY)
 
 
-def scratch(series: Prepared) -> np.ndarray:
+def scratch(series: ElpLayout) -> np.ndarray:
     """Work array for :func:`lbd_kernel`."""
     return np.empty((7, series.mult.shape[1]))
 

@@ -47,6 +47,8 @@ from pathlib import Path
 
 import numpy as np
 
+from rocketsim.ephemeris.layouts import prepare_elp, prepare_vsop
+
 T_SPAN = 0.1                 # Julian millennia from J2000: 2100.0, the span's far end
 VSOP_BOUND = 4.0e-6          # bound on the dropped amplitudes: rad (L, B), au (R)
 ELP_BOUND_ARCSEC = 0.5       # bound on the dropped amplitudes, longitude and latitude
@@ -152,6 +154,12 @@ def _array(values, dtype="float") -> str:
     return f"np.array([\n    {body},\n])"
 
 
+def _recipe(layout) -> str:
+    """Source of a series' :func:`~rocketsim.ephemeris.sincos.sum_recipe` (the last four
+    fields of its ``layouts.VsopLayout``/``ElpLayout``): a tuple of four int64 arrays."""
+    return "(\n" + "".join(f"    {_array(a, 'int')},\n" for a in layout[-4:]) + ")"
+
+
 def render(vsop: dict[str, VsopSeries], elp: ElpSeries, full_counts: dict) -> str:
     """Source text of the generated tables module."""
     out = [
@@ -187,6 +195,12 @@ def render(vsop: dict[str, VsopSeries], elp: ElpSeries, full_counts: dict) -> st
     out.append(f"MOON_MULT = {_array(elp.mult.ravel(), 'int')}.reshape(-1, 4)")
     out.append(f"MOON_A = {_array(elp.A)}")
     out.append("")
+    out.append("# Each series' sum_recipe (direct, derived, pair_a, pair_b) for its layout")
+    out.append("# (rocketsim.ephemeris.layouts): worked out here, not at every import.")
+    for body, s in vsop.items():
+        out.append(f"{body.upper()}_RECIPE = {_recipe(prepare_vsop(s.coord, s.power, s.A, s.B, s.C))}")
+    out.append(f"MOON_RECIPE = {_recipe(prepare_elp(elp.coord, elp.mult, elp.A))}")
+    out.append("")
     return "\n".join(out)
 
 
@@ -201,12 +215,10 @@ def prepared_full(data: Path = DEFAULT_DATA):
     """The full series laid out for ``solar_system.heliocentric_states``:
     ``(earth, mars, moon)``. For the tests and the benchmark, which measure
     the truncation against them."""
-    from rocketsim.ephemeris import elp2000, vsop87
-
     full_vsop, full_elp = load_full(data)
-    earth, mars = (vsop87.prepare(s.coord, s.power, s.A, s.B, s.C)
+    earth, mars = (prepare_vsop(s.coord, s.power, s.A, s.B, s.C)
                    for s in (full_vsop["earth"], full_vsop["mars"]))
-    return earth, mars, elp2000.prepare(full_elp.coord, full_elp.mult, full_elp.A)
+    return earth, mars, prepare_elp(full_elp.coord, full_elp.mult, full_elp.A)
 
 
 def main(argv: list[str] | None = None) -> int:

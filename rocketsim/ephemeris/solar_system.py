@@ -35,8 +35,8 @@ _INDEX = {name: i for i, name in enumerate(BODIES)}
 def heliocentric_kernel(jd_tt, earth, mars, moon):
     """Heliocentric states of all four bodies at each of ``jd_tt`` (1-D, TT).
 
-    ``earth``, ``mars``: ``vsop87.Prepared`` series; ``moon``: an
-    ``elp2000.Prepared`` series. Returns ``(N, 4, 6)``: for each instant and
+    ``earth``, ``mars``: ``layouts.VsopLayout`` series; ``moon``: an
+    ``layouts.ElpLayout`` series. Returns ``(N, 4, 6)``: for each instant and
     body of ``BODIES`` (sun, earth, moon, mars) ``x y z`` (m) and ``vx vy vz``
     (m/s), J2000 equatorial, relative to the Sun (so the Sun's row is zero).
     """
@@ -91,7 +91,7 @@ def heliocentric_states(jd_tt, earth=None, mars=None, moon=None) -> np.ndarray:
     """``(N, 4, 6)`` heliocentric states (see :func:`heliocentric_kernel`).
 
     The series default to the project's truncated ones; the tests and the
-    benchmark pass the full series (``vsop87.prepare``, ``elp2000.prepare``)
+    benchmark pass the full series (``layouts.prepare_vsop``, ``layouts.prepare_elp``)
     here to measure the truncation.
     """
     jd = np.ascontiguousarray(np.asarray(jd_tt, dtype=np.float64).reshape(-1))

@@ -12,7 +12,8 @@ analytic derivative of the series, term by term:
     dX/dt = sum_alpha sum_k A_k [alpha t^(alpha-1) cos(.) - t^alpha C_k sin(.)]
 
 How it is evaluated: many terms share a frequency ``C`` (the Earth's 204
-terms have 123 frequencies), so :func:`prepare` writes each term as
+terms have 123 frequencies), so the layout (:func:`rocketsim.ephemeris.layouts.prepare_vsop`)
+writes each term as
 ``P cos(C t) - Q sin(C t)`` with ``P = A cos B``, ``Q = A sin B`` and the
 kernel needs one sine/cosine pair per distinct frequency; and most
 frequencies are the sum of two others (94 of the Earth's 123, 331 of Mars's
@@ -31,8 +32,6 @@ through the same code.
 from __future__ import annotations
 
 import math
-from typing import NamedTuple
-
 import numpy as np
 
 from rocketsim._jit import njit
@@ -47,55 +46,16 @@ from rocketsim.constants import (
 )
 from rocketsim.ephemeris import _tables
 from rocketsim.ephemeris.precession import to_j2000, turn
-from rocketsim.ephemeris.sincos import expand, sincos, sum_recipe
+from rocketsim.ephemeris.layouts import GROUPS, MAX_POWER, VsopLayout, prepare_vsop
+from rocketsim.ephemeris.sincos import expand, sincos
 
-MAX_POWER = 5                       # VSOP87 series run to t^5
-GROUPS = 3 * (MAX_POWER + 1)        # (coordinate, power) pairs
 MILLENNIA_PER_CENTURY = 0.1
-# Two frequencies whose sum matches a third within this (rad per millennium;
-# the files give C to 1e-10) build its sine and cosine: the phase error is
-# below 1e-9 rad over the span.
-FREQUENCY_TOLERANCE = 1e-8
 
 
-class Prepared(NamedTuple):
-    """A VSOP87D series laid out for the kernel (see module docstring).
-
-    Terms are sorted by group ``g = 6 * coord + power``; ``start[g]:start[g+1]``
-    are the terms of group ``g``; ``term_freq`` indexes ``freq``.
-    """
-
-    freq: np.ndarray        # distinct frequencies C, rad per millennium
-    start: np.ndarray       # (GROUPS + 1,) group boundaries
-    term_freq: np.ndarray   # frequency index of each term
-    P: np.ndarray           # A cos B
-    Q: np.ndarray           # A sin B
-    C: np.ndarray           # frequency of each term
-    direct: np.ndarray      # frequencies whose sin/cos are computed ...
-    derived: np.ndarray     # ... and those built as the sum of two others
-    pair_a: np.ndarray      # (``sincos.sum_recipe``)
-    pair_b: np.ndarray
-
-
-def prepare(coord, power, A, B, C) -> Prepared:
-    """Lay out a flat VSOP87D series (``generate.VsopSeries`` fields)."""
-    group = np.asarray(coord) * (MAX_POWER + 1) + np.asarray(power)
-    order = np.argsort(group, kind="stable")
-    freq, term_freq = np.unique(np.asarray(C)[order], return_inverse=True)
-    start = np.searchsorted(group[order], np.arange(GROUPS + 1))
-    a = np.asarray(A)[order]
-    b = np.asarray(B)[order]
-    return Prepared(freq, start.astype(np.int64), term_freq.astype(np.int64),
-                    a * np.cos(b), a * np.sin(b), np.asarray(C)[order].astype(np.float64),
-                    *sum_recipe(freq, FREQUENCY_TOLERANCE))
-
-
-TABLES = {
-    "earth": prepare(_tables.EARTH_COORD, _tables.EARTH_POWER, _tables.EARTH_A,
-                     _tables.EARTH_B, _tables.EARTH_C),
-    "mars": prepare(_tables.MARS_COORD, _tables.MARS_POWER, _tables.MARS_A,
-                    _tables.MARS_B, _tables.MARS_C),
-}
+# the project's truncated series, laid out with the generator's plans (see layouts.py)
+TABLES = {body: prepare_vsop(*(getattr(_tables, f"{body.upper()}_{f}") for f in ("COORD", "POWER", "A", "B", "C")),
+                             getattr(_tables, f"{body.upper()}_RECIPE"))
+          for body in ("earth", "mars")}
 
 
 @njit
@@ -127,7 +87,7 @@ def _group_sums(first, last, index, P, Q, C, sin_f, cos_f):
 def lbr_kernel(series, t, work):
     """``(L, B, R)`` and their rates per Julian millennium at ``t`` (3-tuples).
 
-    ``series``: a :class:`Prepared`; ``t``: Julian millennia of TT from J2000;
+    ``series``: a :class:`~rocketsim.ephemeris.layouts.VsopLayout`; ``t``: Julian millennia of TT from J2000;
     ``work``: a scratch array of shape at least ``(3, len(series.freq))``.
     ``L``, ``B`` in radians, ``R`` in au.
     """
@@ -213,7 +173,7 @@ def state_kernel(series, T, m, dm, work):
                     rate[2] * AU * per_second, DAYS_PER_JULIAN_CENTURY * SECONDS_PER_DAY)
 
 
-def scratch(series: Prepared) -> np.ndarray:
+def scratch(series: VsopLayout) -> np.ndarray:
     """Work array for :func:`lbr_kernel`."""
     return np.empty((3, series.freq.shape[0]))
 
