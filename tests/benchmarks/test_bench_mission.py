@@ -49,11 +49,13 @@ physics: the autopilot's step, RK4, the checks' figures and the tests of the
 checks and events inside them; their Python around them (the window's queue, the
 runs' arguments) as the loop.
 
-Last figures (the suite's first 160 s, two bodies; a 2-core machine at load 0.3,
-in-process): 0.48 s uninstrumented, 334x real time; instrumented, the physics
-46 %, the programs 23 % (1 586 wake-ups at 69.5 us), the loop 18 %, telemetry,
-checks and events 3 % each; whole flight / physics 2.18; per body-step the
-physics 23.9 us, the loop 9.6 us. A compiled run costs about 9 us a call and
+Last figures (the suite's first 160 s, two bodies; a 2-core machine at load 0.4,
+in-process): 0.38 s uninstrumented, 420x real time (398-454x over the day);
+instrumented, the physics 58 %, the programs 16 % (1 586 wake-ups at 41.8 us),
+the loop 15 %, telemetry, checks and events 2-2.4 % each; whole flight / physics
+1.73; per body-step the physics 25.2 us, the loop 6.4 us. The whole mission
+in-process takes 3.0-4.0 s (median of 6: 3.5 s), flown one step at a time (no
+windows) 3.3-4.2 s (3.8 s): its compiled runs gain it about 8 %. A compiled run costs about 9 us a call and
 12-14 us a step (the autopilot's step 1.6 us, RK4 5-11 us with its splits at
 the engines' kinks, the checks' figures 1.9 us): the program's wake-up every
 0.1 s ends a run every 5 steps.
