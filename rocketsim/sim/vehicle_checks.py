@@ -43,7 +43,7 @@ from rocketsim.bodies.gravity import point_mass_j2
 from rocketsim.bodies.orientation import BODIES as ORIENTED, spin_rate
 from rocketsim.constants import (AIR_CP, CO2_CP, DEG, G0, HEAT_SHIELD_LIMIT, MARS_MU,
                                 STRUCTURE_AXIAL_LIMIT_G, STRUCTURE_Q_ALPHA_LIMIT)
-from rocketsim.dynamics.derivative import body_air_velocity, derivative, radial_height
+from rocketsim.dynamics.derivative import body_air_velocity, derivative, held_derivative, radial_height
 from rocketsim.dynamics.central import WATCH_RADIUS
 from rocketsim.dynamics.rk4 import advance, near_ground
 from rocketsim.dynamics.third_bodies import FIELD_CENTER, field_of, nbody_flag
@@ -278,7 +278,9 @@ class VehicleChecks:
         t0, y0 = self.previous
         up, surface = ground_motion(body.central, t0, y0)
         dy = np.zeros_like(y0)
-        derivative(t0, y0, body.p, dy, body.vehicle.arrays, nbody_flag(body.p))
+        # derivative() itself: it is typed inline in its callers, so a call from Python would
+        # compile a kernel of its own; the held derivative it calls is compiled for the steps
+        held_derivative(t0, y0, body.p, dy, body.vehicle.arrays, t0, y0, nbody_flag(body.p))
         return up, surface, float(dy[V:V + 3] @ up), float(contact_heights(y0, body.p, body.vehicle).min())
 
     def _reached_ground(self, body, h: float) -> bool:
