@@ -73,7 +73,8 @@ def test_compiled_runs_fly_the_same_telemetry_as_one_step_at_a_time(tmp_path, mo
     assert messages == messages_before
     # the runs did fly: most vehicle and part steps, and the kick's condition ended one
     assert counts["vehicle steps"] > 10_000 and counts["part steps"] > 500
-    assert counts["conditions"] >= 1 and counts["waiting"] > 10
+    # the kick's height and the booster's cut-off at its reserve of propellant
+    assert counts["conditions"] >= 2 and counts["waiting"] > 10
     events = {e["name"] for b in summary["bodies"].values() for e in b["events"]}
     assert {"liftoff", "max_q", "MECO", "separation", "boost-back end", "fairing jettison"} <= events
 
@@ -195,6 +196,31 @@ def test_a_compiled_condition_reads_what_the_readings_read():
     assert checked == 400 * 2 * 4 * 2
 
 
+def test_a_compiled_propellant_condition_reads_the_stage_s_tanks_as_python_sums_them():
+    """The Falcon 9's second stage (its tanks after the booster's): its condition reads the
+    sum of its own tanks' slots in the order of ``fc.propellant``, to the bit, at the sum
+    itself (ties) and a hair either side, over random loads."""
+    from rocketsim.flight import conditions
+    from rocketsim.vehicle.build import build
+
+    vehicle = build(load(MISSION).scenario.vehicle)
+    rng = np.random.default_rng(11)
+    p = make_params(1.0, (1.0, 1.0, 1.0), EARTH_MU, EARTH_RADIUS_EQ, EARTH_J2, EARTH_RADIUS_POLAR)
+    fc = _Readings()
+    for t, body in _earth_states(50):
+        y = vehicle.state(body[:3], body[3:6])
+        y[vehicle.tanks] = rng.uniform(0.0, 1e5, vehicle.n_tanks) * rng.choice((1e-3, 1.0), vehicle.n_tanks)
+        fc.propellant = dict(zip(vehicle.tank_names, y[vehicle.tanks].tolist()))
+        total = sum(fc.propellant[name] for name in vehicle.tank_names if name.startswith("second stage/"))
+        for threshold in (total, np.nextafter(total, math.inf), np.nextafter(total, -math.inf)):
+            for op in (BELOW, ABOVE):
+                condition = conditions.compare_propellant(fc, vehicle, 1, threshold, op)
+                assert holds(condition.code, t, y, p) == condition() == (
+                    total < threshold if op == BELOW else total > threshold)
+    mine = [i for i, name in enumerate(vehicle.tank_names) if name.startswith("second stage/")]
+    assert mine[0] > 0 and condition.code[0, 3:].tolist() == [vehicle.tanks.start + mine[0], len(mine)]
+
+
 class _Readings:
     """What fc.below/above read, as the flight computer's readings (a stand-in)."""
 
@@ -209,7 +235,7 @@ def test_conditions_are_called_as_the_lambdas_they_stand_for():
     falling = conditions.compare(fc, "vertical_speed", -60.0, BELOW)
     assert low() is True and falling() is False
     assert (low & falling)() is False and (low | falling)() is True
-    assert (low & falling).code.shape == (3, 3) and (low & falling).code[2, 0] == conditions.AND
+    assert (low & falling).code.shape == (3, 5) and (low & falling).code[2, 0] == conditions.AND
     fc.vertical_speed = -70.0
     assert (low & falling)() is True
     with pytest.raises(TypeError, match="combines"):
@@ -220,10 +246,12 @@ def test_fc_below_refuses_a_reading_it_cannot_test():
     from rocketsim.flight.fc import FlightComputer
 
     fc = FlightComputer.__new__(FlightComputer)
-    with pytest.raises(ValueError, match=r"fc.below\(\): reading must be one of altitude, vertical_speed"):
+    with pytest.raises(ValueError, match=r"fc.below\(\): reading must be one of altitude, vertical_speed, propellant"):
         fc.below("speed", 10.0)
     with pytest.raises(ValueError, match=r"fc.above\(\): value must be a finite number"):
         fc.above("altitude", math.nan)
+    with pytest.raises(ValueError, match=r"fc.below\(\): stage goes with the reading propellant only"):
+        fc.below("altitude", 10.0, stage="booster")
 
 
 def test_a_window_needs_two_steps():

@@ -77,21 +77,37 @@ def radial_height(y, p):
     return math.sqrt(r2) - a * b / math.sqrt((b * b * rho2 + a * a * z2) / r2)
 
 
+@njit(inline="always")     # small: typed in its callers, no kernel of its own
+def air_velocity_inertial(y, wind, spin):
+    """Air-relative velocity of the centre of mass (m/s, frame axes): ``v - omega x r -
+    wind``, ``wind`` inertial (m/s), the air turning with the central body at ``spin``
+    (rad/s about the frame's z: ``p[P_SPIN]``)."""
+    return y[V] + spin * y[R + 1] - wind[0], y[V + 1] - spin * y[R] - wind[1], y[V + 2] - wind[2]
+
+
 @njit
 def body_air_velocity(y, wind, spin):
     """Air-relative velocity of the centre of mass (m/s) in body axes:
     ``q* (v - omega x r - wind) q`` (docs/physics.md#equations-of-motion), ``wind``
     inertial (m/s), the air turning with the central body at ``spin`` (rad/s about the
     frame's z: ``p[P_SPIN]``)."""
-    ax = y[V] + spin * y[R + 1] - wind[0]
-    ay = y[V + 1] - spin * y[R] - wind[1]
-    az = y[V + 2] - wind[2]
+    ax, ay, az = air_velocity_inertial(y, wind, spin)
     qw, ux, uy, uz = y[Q], -y[Q + 1], -y[Q + 2], -y[Q + 3]
     tx = 2.0 * (uy * az - uz * ay)
     ty = 2.0 * (uz * ax - ux * az)
     tz = 2.0 * (ux * ay - uy * ax)
     return (ax + qw * tx + (uy * tz - uz * ty), ay + qw * ty + (uz * tx - ux * tz),
             az + qw * tz + (ux * ty - uy * tx))
+
+
+@njit
+def flight_dynamic_pressure(y, p, veh):
+    """Dynamic pressure (Pa) the aerodynamics of the staged vehicle ``veh`` meet at
+    state ``y``: the density of its air at the radial height, as the derivative reads
+    it, and the speed of the air past it with the wind held for the step."""
+    rho = air_in(veh.air, radial_height(y, p))[0]
+    ax, ay, az = air_velocity_inertial(y, veh.aero.wind, p[P_SPIN])
+    return 0.5 * rho * (ax * ax + ay * ay + az * az)
 
 
 @njit

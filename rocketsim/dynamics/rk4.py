@@ -34,12 +34,13 @@ from rocketsim._jit import njit
 from rocketsim.atmosphere.table import air_in, wind_earth_fixed
 from rocketsim.constants import (GROUND_SUBSTEP_HEIGHT, GROUND_SUBSTEP_MAX, GROUND_SUBSTEPS,
                                 UNUSABLE_PROPELLANT)
-from rocketsim.dynamics.derivative import held_derivative, radial_height
+from rocketsim.dynamics.derivative import flight_dynamic_pressure, held_derivative, radial_height
 from rocketsim.layout import P_RADIUS, P_SPIN, Q, R
 from rocketsim.dynamics.third_bodies import hold_field
 from rocketsim.frames.geodetic import ecef_to_geodetic_njit
 from rocketsim.vehicle.aero import A_GROUND, A_REACH, A_WIND
-from rocketsim.vehicle.engines import S_DRY, S_DRY_AT, S_RESERVE, S_TANK0, S_TANKS, next_kink
+from rocketsim.vehicle.engines import (S_DRY, S_DRY_AT, S_RESERVE, S_TANK0, S_TANKS, hold_q_law, next_kink,
+                                       q_law_on)
 from rocketsim.vehicle.motors import next_motor_kink
 from rocketsim.vehicle.parachutes import next_canopy_kink
 from rocketsim.vehicle.rail import RL_OFF_AT, RL_OFF_SPEED, RL_ON, RL_TRAVEL, rail_travel
@@ -247,7 +248,10 @@ def step(y, t, h, p, veh=None, nbody=None):
     ``y`` (state), ``t`` (s), ``p`` and ``veh`` as :func:`rk4_step`'s; returns the
     new state.
 
-    A vehicle with wind in its day's air samples it here, once per step; a body
+    A vehicle with wind in its day's air samples it here, once per step, and an
+    engine with a dynamic-pressure throttle law is commanded here, once per step
+    (:func:`~rocketsim.vehicle.engines.hold_q_law`, on the dynamic pressure at the
+    step's start: :func:`~rocketsim.dynamics.derivative.flight_dynamic_pressure`); a body
     in the n-body field holds the other bodies' positions here (per 5 s bucket
     of the step's start time, :func:`~rocketsim.dynamics.third_bodies.hold_field`).
     ``nbody`` says which: True when ``p`` carries an n-body field, None when it
@@ -262,6 +266,8 @@ def step(y, t, h, p, veh=None, nbody=None):
         reach = veh.aero.ref[A_REACH] + veh.aero.ref[A_GROUND]     # from the ellipsoid
         if veh.aero.ref[A_WIND] > 0.5:
             hold_wind(y, t, p, veh)
+        if q_law_on(veh.cmd):
+            hold_q_law(veh.eng, veh.cmd, t, flight_dynamic_pressure(y, p, veh))
     n_sub, sub = 1, h
     if near_ground(y, p, reach):
         # four 5 ms sub-steps at 20 ms; a larger headless step keeps sub-steps of 5 ms

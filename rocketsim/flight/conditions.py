@@ -11,17 +11,22 @@ a vehicle waiting on one is flown many steps per call instead of one (see
 :mod:`rocketsim.sim.runs`); the test gives the same boolean at the same step as
 the reading's, from the same operations on the same numbers.
 
-Readings (:data:`READINGS`), both of the true state about Earth (a program
+Readings (:data:`READINGS`), of the true state about Earth (a program
 with sensor errors, or one flying about another body, has its condition read
 in Python every step, as a lambda's):
 
 * ``altitude``: height above the WGS84 ellipsoid, m (:attr:`FlightComputer.altitude`);
 * ``vertical_speed``: rate of climb relative to the ground, m/s
-  (:attr:`FlightComputer.vertical_speed`).
+  (:attr:`FlightComputer.vertical_speed`);
+* ``propellant``: the liquid propellant left in one stage's tanks, kg (the sum of
+  their entries of :attr:`FlightComputer.propellant`, in the vehicle's order).
 
-The compiled form is a postfix program of rows ``(op, reading, value)``:
-``BELOW``/``ABOVE`` push ``reading < value`` / ``reading > value``, ``AND``/``OR``
-combine the two topmost.
+The compiled form is a postfix program of rows ``(op, reading, value, first,
+count)``: ``BELOW``/``ABOVE`` push ``reading < value`` / ``reading > value``
+(``first`` and ``count``: the state slots of the stage's tanks, for
+``propellant``), ``AND``/``OR`` combine the two topmost. A condition on a stage's
+propellant belongs to the vehicle it was made for (``vehicle``): wait on it before
+the stack changes.
 """
 
 from __future__ import annotations
@@ -34,34 +39,42 @@ from rocketsim._jit import njit
 from rocketsim.frames.local import where_and_how_fast
 from rocketsim.layout import P_POLAR_RADIUS, P_RADIUS, P_SPIN, R, V
 
-READINGS = ("altitude", "vertical_speed")
+READINGS = ("altitude", "vertical_speed", "propellant")
 BELOW, ABOVE, AND, OR = 1.0, 2.0, 3.0, 4.0
-NO_CONDITION = np.zeros((0, 3))     # what the compiled run reads for a program not waiting on one
+N_CODE = 5                          # columns of a row: op, reading, value, first slot, slots
+NO_CONDITION = np.zeros((0, N_CODE))    # what the compiled run reads for a program not waiting on one
 
 
 class Condition:
     """A condition on the readings (see the module): call it for its truth now;
     ``code`` is its compiled form."""
 
-    __slots__ = ("_fc", "code", "_test")
+    __slots__ = ("_fc", "code", "_test", "vehicle")
 
-    def __init__(self, fc, code: np.ndarray, test):
+    def __init__(self, fc, code: np.ndarray, test, vehicle=None):
         self._fc = fc
         self.code = code
         self._test = test
+        self.vehicle = vehicle      # the vehicle model whose state slots the code reads (None: none)
 
     def __call__(self) -> bool:
         return self._test()
 
     def __and__(self, other: "Condition") -> "Condition":
         first, second = self._test, _condition(other, "&")._test
-        return Condition(self._fc, np.vstack((self.code, other.code, ((AND, 0.0, 0.0),))),
-                         lambda: first() and second())
+        return self._joined(other, AND, lambda: first() and second())
 
     def __or__(self, other: "Condition") -> "Condition":
         first, second = self._test, _condition(other, "|")._test
-        return Condition(self._fc, np.vstack((self.code, other.code, ((OR, 0.0, 0.0),))),
-                         lambda: first() or second())
+        return self._joined(other, OR, lambda: first() or second())
+
+    def _joined(self, other: "Condition", op: float, test) -> "Condition":
+        if self.vehicle is not None and other.vehicle is not None and self.vehicle is not other.vehicle:
+            raise ValueError("conditions on the propellant of two different stacks cannot be combined")
+        row = np.zeros((1, N_CODE))
+        row[0, 0] = op
+        return Condition(self._fc, np.vstack((self.code, other.code, row)), test,
+                         self.vehicle if self.vehicle is not None else other.vehicle)
 
     def __repr__(self) -> str:
         return f"<condition of {len(self.code)} terms>"
@@ -75,22 +88,36 @@ def _condition(other, operator: str) -> Condition:
 
 
 def compare(fc, reading: str, value: float, op: float) -> Condition:
-    """The condition ``reading < value`` (``op`` BELOW) or ``reading > value`` (ABOVE)."""
-    index = READINGS.index(reading)
-    if op == BELOW:
-        test = lambda: getattr(fc, reading) < value      # noqa: E731
-    else:
-        test = lambda: getattr(fc, reading) > value      # noqa: E731
-    return Condition(fc, np.array(((op, float(index), value),)), test)
+    """The condition ``reading < value`` (``op`` BELOW) or ``reading > value`` (ABOVE) on
+    ``altitude`` or ``vertical_speed``."""
+    read = lambda: getattr(fc, reading)       # noqa: E731
+    return _compared(fc, read, (op, float(READINGS.index(reading)), value, 0.0, 0.0), None)
+
+
+def compare_propellant(fc, vehicle, stage: int, value: float, op: float) -> Condition:
+    """The condition on the liquid propellant (kg) of stage ``stage`` (an index) of the
+    vehicle model ``vehicle``, read as the sum of its tanks' entries of ``fc.propellant``."""
+    names = [name for name, s in zip(vehicle.tank_names, vehicle.tank_stage) if s == stage]
+    first = vehicle.tanks.start + vehicle.tank_names.index(names[0]) if names else 0
+    read = lambda: sum(fc.propellant[name] for name in names)        # noqa: E731
+    return _compared(fc, read, (op, float(READINGS.index("propellant")), value, float(first), float(len(names))),
+                     vehicle)
+
+
+def _compared(fc, read, row: tuple, vehicle) -> Condition:
+    value = row[2]
+    test = (lambda: read() < value) if row[0] == BELOW else (lambda: read() > value)
+    return Condition(fc, np.array((row,)), test, vehicle)
 
 
 @njit
 def holds(code, t, y, p):
-    """The truth of the compiled condition ``code`` (rows ``(op, reading, value)``, see
-    the module) on the state ``y`` at mission time ``t`` (s) of a body with parameters
-    ``p``: the readings as :class:`~rocketsim.flight.readings.StateView` computes them
-    (:func:`~rocketsim.frames.local.where_and_how_fast`; the vertical speed the dot
-    product of the surface velocity with the local up)."""
+    """The truth of the compiled condition ``code`` (rows ``(op, reading, value, first,
+    count)``, see the module) on the state ``y`` at mission time ``t`` (s) of a body with
+    parameters ``p``: the readings as :class:`~rocketsim.flight.readings.StateView`
+    computes them (:func:`~rocketsim.frames.local.where_and_how_fast`; the vertical
+    speed the dot product of the surface velocity with the local up), a stage's
+    propellant as the sum of its tanks' slots."""
     _, _, height, enu, surface = where_and_how_fast(y[R:R + 3], y[V:V + 3], t, p[P_SPIN], p[P_RADIUS],
                                                     p[P_POLAR_RADIUS])
     climb = math.nan
@@ -104,6 +131,10 @@ def holds(code, t, y, p):
             continue
         if code[row, 1] == 0.0:
             reading = height
+        elif code[row, 1] == 2.0:
+            reading = 0.0           # the order of Python's sum over the tanks
+            for k in range(int(code[row, 3]), int(code[row, 3]) + int(code[row, 4])):
+                reading += y[k]
         else:
             if math.isnan(climb):
                 climb = surface @ enu[2]

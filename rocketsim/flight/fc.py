@@ -83,24 +83,37 @@ class FlightComputer:
         so the vehicle flies many steps per call meanwhile:
         ``fc.wait_until(fc.below("altitude", 10_000))``."""
         predicate = arguments.condition("fc.wait_until", predicate)
+        made_for = predicate.vehicle if isinstance(predicate, Condition) else None
+        if made_for is not None and made_for is not self._craft.vehicle:
+            raise ValueError("fc.wait_until(): the condition reads a stage's propellant of the stack "
+                             "before it changed (staging, a fairing); make it again")
         self._craft.hand_back(self._craft.time + self._craft.step_length, predicate)
 
-    def below(self, reading: str, value: float) -> Condition:
+    def below(self, reading: str, value: float, stage: str | None = None) -> Condition:
         """The condition ``reading < value`` for :meth:`wait_until`: ``reading`` is
         ``"altitude"`` (m) or ``"vertical_speed"`` (m/s), read as :attr:`altitude` and
-        :attr:`vertical_speed`; combine with ``&`` (and) and ``|`` (or). Example:
+        :attr:`vertical_speed`, or ``"propellant"`` (kg) with a ``stage`` name, the sum
+        of that stage's tanks in :attr:`propellant`; combine with ``&`` (and) and ``|``
+        (or). Example:
         ``fc.wait_until(fc.below("altitude", 70e3) & fc.below("vertical_speed", -900))``
         (:mod:`rocketsim.flight.conditions`)."""
-        return self._compare("fc.below", reading, value, conditions.BELOW)
+        return self._compare("fc.below", reading, value, stage, conditions.BELOW)
 
-    def above(self, reading: str, value: float) -> Condition:
+    def above(self, reading: str, value: float, stage: str | None = None) -> Condition:
         """The condition ``reading > value`` for :meth:`wait_until` (as :meth:`below`).
         Example: ``fc.wait_until(fc.above("altitude", pad + 300))``."""
-        return self._compare("fc.above", reading, value, conditions.ABOVE)
+        return self._compare("fc.above", reading, value, stage, conditions.ABOVE)
 
-    def _compare(self, call: str, reading: str, value: float, op: float) -> Condition:
+    def _compare(self, call: str, reading: str, value: float, stage, op: float) -> Condition:
         reading = arguments.choice(call, "reading", reading, conditions.READINGS)
-        return conditions.compare(self, reading, arguments.number(call, "value", value), op)
+        value = arguments.number(call, "value", value)
+        if reading != "propellant":
+            if stage is not None:
+                raise ValueError(f"{call}(): stage goes with the reading propellant only")
+            return conditions.compare(self, reading, value, op)
+        vehicle = self._propulsion().model
+        stage = arguments.choice(call, "stage", stage, vehicle.stage_names)
+        return conditions.compare_propellant(self, vehicle, vehicle.stage_names.index(stage), value, op)
 
     # --- output -------------------------------------------------------------
     def log(self, *parts) -> None:
@@ -557,6 +570,27 @@ class FlightComputer:
         reached at its slew rate)."""
         value, which = arguments.number("fc.throttle", "value", value), arguments.engines("fc.throttle", which)
         self._propulsion().throttle(self._craft.time, value, which)
+
+    def limit_q(self, start: float | None, end: float | None = None, which=None) -> None:
+        """Throttle back through max-Q in compiled code: from the next step on, at every
+        step's start, each engine is commanded the throttle last given with
+        :meth:`throttle` times ``(end - q) / (end - start)`` clipped to 0..1 (full below
+        ``start`` Pa of dynamic pressure, zero at ``end``), then clipped to its range and
+        slewed to, without waking the program. ``fc.limit_q(None)`` removes the law and
+        commands the last throttle again. Example: ``fc.limit_q(33e3, 49.5e3)``."""
+        which = arguments.engines("fc.limit_q", which)
+        if start is None:
+            if end is not None:
+                raise ValueError("fc.limit_q(None) takes no end; it removes the law")
+            start = end = math.nan
+        else:
+            start = arguments.number("fc.limit_q", "start", start, 0.0)
+            if end is None:
+                raise ValueError("fc.limit_q() needs an end (Pa), the dynamic pressure of zero throttle")
+            end = arguments.number("fc.limit_q", "end", end, 0.0)
+            if not end > start:
+                raise ValueError(f"fc.limit_q(): end must be above start, got {start!r} .. {end!r}")
+        self._propulsion().limit_q(self._craft.time, start, end, which)
 
     @property
     def engines(self) -> list[dict]:

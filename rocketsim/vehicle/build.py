@@ -24,7 +24,7 @@ import numpy as np
 
 from rocketsim.constants import G0, UNUSABLE_PROPELLANT
 from rocketsim.layout import N_STATE, make_state
-from rocketsim.vehicle.engines import (C_TAU, C_TAU0, E_AREA, E_DEAD, E_GIMBAL_RANGE,
+from rocketsim.vehicle.engines import (C_BASE, C_Q_END, C_Q_START, C_TAU, C_TAU0, E_AREA, E_DEAD, E_GIMBAL_RANGE,
                                        E_GIMBAL_RATE, E_IGNITIONS, E_MDOT, E_PEXIT, E_SPOOL,
                                        E_STAGE, E_TAIL, E_TAU_MAX, E_TAU_MIN, E_TAU_RATE, E_THRUST,
                                        E_X, E_Y, E_Z, N_CMD, N_ENG, N_STAGE)
@@ -228,6 +228,8 @@ def build(spec, first: int = 0, last: int | None = None, air=None, fairing: bool
     cmd = np.zeros((len(eng_rows), N_CMD))
     cmd[:, C_TAU0] = eng[:, E_TAU_MAX]          # throttle rests at the top of its range
     cmd[:, C_TAU] = eng[:, E_TAU_MAX]
+    cmd[:, C_BASE] = eng[:, E_TAU_MAX]
+    cmd[:, C_Q_START] = cmd[:, C_Q_END] = np.nan    # no dynamic-pressure throttle law
     air_table = _standard_air() if air is None else air.arrays()
     we, wn = air_table[6], air_table[7]
     windy = bool(np.any(we != 0.0) or np.any(wn != 0.0))

@@ -108,6 +108,12 @@ class Propulsion:
         engines.command_throttles(self.a.eng, self.a.cmd, np.array(self.select(which), dtype=np.int64),
                             float(t), float(value))
 
+    def limit_q(self, t: float, start: float, end: float, which=None) -> None:
+        """Give the engines a dynamic-pressure throttle law from ``start`` to ``end`` (Pa;
+        :func:`~rocketsim.vehicle.engines.hold_q_law`), or (``start`` nan) remove it and
+        command their last throttle again at mission time ``t`` (s)."""
+        engines.set_q_law(self.a.eng, self.a.cmd, self.select(which), float(t), float(start), float(end))
+
     def gimbal(self, t: float, gy: float, gz: float, which=None) -> None:
         """Command a gimbal deflection (rad; towards body +y and +z), clipped to each cone."""
         gy, gz = float(gy), float(gz)

@@ -85,7 +85,10 @@ C_T_GIMBAL = 5      # s, time of the last gimbal command
 C_G0 = 6            # gimbal (y, z) at that time, rad (2 columns)
 C_G = 8             # gimbal (y, z) commanded, rad (2 columns)
 C_IGNITED = 10      # ignitions used
-N_CMD = 11
+C_Q_START = 11      # Pa: the dynamic pressure where the throttle law starts to back off (nan: no law)
+C_Q_END = 12        # Pa: the dynamic pressure where it reaches zero
+C_BASE = 13         # the throttle the program last commanded, which the law scales
+N_CMD = 14
 
 # stage columns
 S_RESERVE = 0       # kg, unusable propellant (1 % of the load)
@@ -284,12 +287,56 @@ def throttle_at(eng, cmd, e: int, t: float) -> float:
 def command_throttles(eng, cmd, engines, t, tau):
     """Command each engine of ``engines`` (an int64 array of indices) to throttle ``tau``
     at time ``t`` (s), clipped to its range: its throttle slews on from where it is now.
-    One compiled call for a whole stage (a program throttles every step)."""
+    One compiled call for a whole stage (a program throttles every step). ``tau`` is
+    also the base its dynamic-pressure law scales (:func:`hold_q_law`)."""
     for e in engines:
-        now = slew(cmd[e, C_TAU0], cmd[e, C_TAU], eng[e, E_TAU_RATE], t - cmd[e, C_T_THROTTLE])
-        cmd[e, C_TAU0] = now
-        cmd[e, C_T_THROTTLE] = t
-        cmd[e, C_TAU] = min(max(tau, eng[e, E_TAU_MIN]), eng[e, E_TAU_MAX])
+        cmd[e, C_BASE] = tau
+        _command_throttle(eng, cmd, e, t, tau)
+
+
+@njit(inline="always")     # small: typed in its callers, no kernel of its own
+def _command_throttle(eng, cmd, e, t, tau):
+    """Command engine ``e`` to throttle ``tau`` at ``t`` (s), clipped to its range."""
+    now = slew(cmd[e, C_TAU0], cmd[e, C_TAU], eng[e, E_TAU_RATE], t - cmd[e, C_T_THROTTLE])
+    cmd[e, C_TAU0] = now
+    cmd[e, C_T_THROTTLE] = t
+    cmd[e, C_TAU] = min(max(tau, eng[e, E_TAU_MIN]), eng[e, E_TAU_MAX])
+
+
+@njit(inline="always")
+def q_law_on(cmd) -> bool:
+    """Whether any engine of ``cmd`` has a dynamic-pressure throttle law."""
+    for e in range(cmd.shape[0]):
+        if not math.isnan(cmd[e, C_Q_START]):
+            return True
+    return False
+
+
+@njit
+def hold_q_law(eng, cmd, t, q):
+    """The dynamic-pressure throttle law of each burning engine that has one, at time
+    ``t`` (s) and dynamic pressure ``q`` (Pa): the engine is commanded the throttle its
+    program last commanded (``C_BASE``) times ``(q_end - q) / (q_end - q_start)``
+    clipped to 0..1 (full below ``q_start``, zero at ``q_end``), then clipped to its
+    range and slewed to as every command is (docs/physics.md#propulsion)."""
+    for e in range(cmd.shape[0]):
+        start = cmd[e, C_Q_START]
+        if math.isnan(start) or cmd[e, C_ON] < 0.5:
+            continue
+        end = cmd[e, C_Q_END]
+        share = min(1.0, max(0.0, (end - q) / (end - start)))
+        _command_throttle(eng, cmd, e, t, cmd[e, C_BASE] * share)
+
+
+def set_q_law(eng, cmd, engines, t: float, start: float, end: float) -> None:
+    """Give each engine of ``engines`` (indices) the throttle law of :func:`hold_q_law`
+    from ``start`` to ``end`` (Pa); ``start`` nan removes it, and the engine is
+    commanded its base throttle again at time ``t`` (s)."""
+    for e in engines:
+        had = not math.isnan(cmd[e, C_Q_START])
+        cmd[e, C_Q_START], cmd[e, C_Q_END] = start, end
+        if had and math.isnan(start):
+            command_throttles(eng, cmd, np.array([e], dtype=np.int64), float(t), float(cmd[e, C_BASE]))
 
 
 def command_throttle(eng, cmd, e: int, t: float, tau: float) -> None:

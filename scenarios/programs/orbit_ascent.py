@@ -12,8 +12,9 @@ program flies any two-stage vehicle from any site:
    Electron at about 1.85, whose sprightlier climb would otherwise stay too
    steep (an empirical rule tuned on the two);
 3. a gravity turn (holding surface prograde) to first-stage burn-out,
-   throttling back through max-Q (the throttle updated every GUIDANCE_STEP);
-   when the mission names a landing pad
+   throttling back linearly through max-Q above Q_LIMIT (``fc.limit_q``: the
+   bending load q * alpha stays inside the structure's limit; the engines clip
+   the throttle to their range); when the mission names a landing pad
    (``target.pad``) the first stage is cut off with RETURN_RESERVE of its
    propellant left for its return (its own program flies it back);
 4. staging, then direct insertion (dropping the fairing above 110 km):
@@ -23,12 +24,16 @@ program flies any two-stage vehicle from any site:
    the inclination, until the periapsis clears the target less 5 %;
 5. DEPLOY_DELAY later the payload is deployed (a body of its own).
 
-Guidance rate: like a real flight computer, the program updates its commands
-(throttle, steering direction) every GUIDANCE_STEP (0.1 s) and sleeps in
-between, while the autopilot holds the last command every 20 ms step; it goes
-to every step when a cut-off is near (:class:`Approach`: the first stage's
-reserve, the insertion's periapsis), so engines are cut in the step the limit
-is crossed. A program that wants the per-step loop calls ``fc.step()`` instead.
+Guidance rate: the first stage's climb needs no program at all: the autopilot
+holds surface prograde, the engines' throttle law backs off through max-Q at
+every step and the program waits on its stage's propellant (compiled
+conditions: ``fc.below("propellant", ...)``), so it wakes in the step the
+reserve is reached. The upper stage's program, like a real flight computer,
+updates its steering every GUIDANCE_STEP (0.1 s) and sleeps in between,
+while the autopilot holds the last command every 20 ms step; it goes to every
+step when the cut-off is near (:class:`Approach`: the insertion's periapsis),
+so the engine is cut in the step the limit is crossed. A program that wants
+the per-step loop calls ``fc.step()`` instead.
 
 The return of the lower stage (boost-back, entry and landing burns) is flown
 by its own program (``programs:`` in the scenario, e.g. booster_return.py).
@@ -42,7 +47,8 @@ from rocketsim.flight.guidance import solve_linear_tangent, warm_up
 KICK_PER_TW = math.radians(12.66)  # kick per unit of thrust-to-weight above 1
 KICK_HEIGHT = 300.0            # m above the pad
 KICK_TIME = 10.0               # s held before the gravity turn
-Q_LIMIT = 33e3                 # Pa: throttle back above this dynamic pressure
+Q_LIMIT = 33e3                 # Pa: throttle back above this dynamic pressure (zero at 1.5 times it)
+BURN_OUT_WATCH = 0.02          # share of the first stage's load left when burn-out is watched every step
 FAIRING_ALTITUDE = 110e3       # m: above this the air is thin enough to drop the fairing
 GUIDANCE_PERIOD = 1.0          # s between insertion guidance solutions
 GUIDANCE_STEP = 0.1            # s between steering updates (the autopilot holds them every step)
@@ -89,14 +95,17 @@ def ascend(fc):
     fc.point(math.pi / 2 - KICK_PER_TW * (thrust_to_weight - 1.0), azimuth)
     fc.sleep(KICK_TIME)
     fc.hold("surface_prograde")
-    reserve = RETURN_RESERVE * stage_propellant(fc, first) if fc.target.pad is not None else 0.0
-    left = Approach(reserve)
-    while fc.thrust > 0.0 and left.ahead(stage_propellant(fc, first), fc.time):   # to burn-out or the reserve
-        fc.throttle(max_q_throttle(fc.dynamic_pressure))
-        fc.sleep(left.next_update())
-    if reserve > 0.0:           # main engine cut-off by command, the reserve left
+    fc.limit_q(Q_LIMIT, 1.5 * Q_LIMIT)      # every step, in compiled code: no wake-ups
+    load = stage_propellant(fc, first)
+    if fc.target.pad is not None:   # main engine cut-off by command, the reserve left
+        fc.wait_until(fc.below("propellant", RETURN_RESERVE * load, stage=first))
+        fc.limit_q(None)
         fc.shutdown(first)
         fc.event("MECO", stage=first, propellant_left_kg=stage_propellant(fc, first))
+    else:                           # to burn-out
+        fc.wait_until(fc.below("propellant", BURN_OUT_WATCH * load, stage=first))
+        fc.wait_until(lambda: fc.thrust <= 0.0)
+        fc.limit_q(None)
     fc.release()
     fc.sleep(3.0)
     fc.stage()
@@ -137,12 +146,6 @@ def launch_azimuth(latitude, inclination, altitude, pad_azimuth):
 def stage_propellant(fc, stage):
     """Propellant (kg) left in the tanks of ``stage``."""
     return sum(mass for name, mass in fc.propellant.items() if name.startswith(stage + "/"))
-
-
-def max_q_throttle(q):
-    """Full throttle, backed off linearly above Q_LIMIT (the engines clip it to
-    their range): the bending load q * alpha stays inside the structure's limit."""
-    return 1.0 - 2.0 * max(0.0, q - Q_LIMIT) / Q_LIMIT
 
 
 class Insertion:
