@@ -257,7 +257,7 @@ def test_parquet_export_keeps_the_rows_and_types_a_column_never_set_as_float(bur
     assert centre.type == pyarrow.float64() and written.column(centre.name).null_count == missing > 0
 
 
-def _both_encodings(world, body, folder: Path, monkeypatch, trials: int = 120) -> None:
+def _both_encodings(bodies, folder: Path, monkeypatch, trials: int = 120) -> None:
     """The template path (``TelemetryWriter.sample``: the numbers spliced into byte
     templates of the three messages, :mod:`rocketsim.telemetry.splice`) writes the same
     file, byte for byte, as the straightforward one (``TelemetryWriter.state``:
@@ -272,50 +272,60 @@ def _both_encodings(world, body, folder: Path, monkeypatch, trials: int = 120) -
     between samples, and samples still waiting at the end of the file, so that the
     waiting samples (``TelemetryWriter.PENDING``) are written in the flight's order. The
     same samples handed over in blocks of rows (``TelemetryWriter.sample_rows``, as a
-    compiled run's samples are) write the same bytes again."""
+    compiled run's samples are) write the same bytes again. ``bodies``: ``(world,
+    body)`` pairs; several bodies' samples are interleaved, sample by sample, as the
+    world's loop writes them (blocks of one row each), so templates of several bodies
+    and shapes alternate within one batch."""
     import orjson
     import rocketsim.telemetry.writer as writer_module
     from rocketsim.sim import sampling
     from rocketsim.telemetry.writer import TelemetryWriter
     monkeypatch.setattr(writer_module, "CHUNK_SIZE", 3_000)
-    values, fields = sampling.values(body, world.gmst0, world.where)
     rng = np.random.default_rng(10)
     special = np.array([math.nan, math.inf, -math.inf, -0.0, 0.0, 5e-324, 1.7976931348623157e308,
                         1e16, 1e-7, 0.1, 123456789.0, 2.0 ** 53])
-    samples = [values]
-    for k in range(1, trials):
-        v = values.copy()
-        odd = rng.random(v.size) < 0.3
-        v[odd] = rng.normal(size=odd.sum()) * 10.0 ** rng.integers(-300, 300, odd.sum())
-        chosen = rng.random(v.size) < 0.2
-        v[chosen] = rng.choice(special, chosen.sum())
-        v[-2] = values[-2] + 0.37 * k                  # the time: finite, increasing
-        if body.vehicle is not None:
-            v[sampling.VEHICLE + 3] = rng.integers(0, 40)   # engines running: a count
-        samples.append(v)
+    samples = []        # (body's name, its numbers, fields), in the flight's order
+    for k in range(trials):
+        for world, body in bodies:
+            values, fields = sampling.values(body, world.gmst0, world.where)
+            v = values.copy()
+            if k:
+                odd = rng.random(v.size) < 0.3
+                v[odd] = rng.normal(size=odd.sum()) * 10.0 ** rng.integers(-300, 300, odd.sum())
+                chosen = rng.random(v.size) < 0.2
+                v[chosen] = rng.choice(special, chosen.sum())
+                v[-2] = values[-2] + 0.37 * k                  # the time: finite, increasing
+                if body.vehicle is not None:
+                    v[sampling.VEHICLE + 3] = rng.integers(0, 40)   # engines running: a count
+            samples.append((body.name, v, fields))
     folder.mkdir(parents=True, exist_ok=True)
     # the same samples as dictionaries, one by one from their numbers, and in blocks of rows
     # (as a compiled run hands them over: a block between two events)
     paths = folder / "dictionaries.mcap", folder / "templates.mcap", folder / "rows.mcap"
+    alone = len(bodies) == 1
     for path in paths:
         with TelemetryWriter(path, 1_795_694_400 * 10**9) as telemetry:
-            telemetry.add_body(body.name)
+            for _, body in bodies:
+                telemetry.add_body(body.name)
             block = []
-            for k, v in enumerate(samples):
+            for k, (name, v, fields) in enumerate(samples):
                 if path is paths[0]:
-                    telemetry.state(body.name, fields(v.tolist(), int), fields.frame)
+                    telemetry.state(name, fields(v.tolist(), int), fields.frame)
                 elif path is paths[1]:
-                    telemetry.sample(body.name, v, fields)
-                else:
+                    telemetry.sample(name, v, fields)
+                elif alone:
                     block.append(v)
+                else:
+                    telemetry.sample_rows(name, v.reshape(1, -1), fields)
                 if k % 7 == 3 or k == len(samples) - 1:     # written in the flight's order
                     if block:
-                        telemetry.sample_rows(body.name, np.array(block), fields)
+                        telemetry.sample_rows(name, np.array(block), fields)
                     block = []
-                    telemetry.event(v[-2], body.name, "mark", {"k": k})
-                    telemetry.log(v[-2], body.name, f"line {k}")
+                    telemetry.event(v[-2], name, "mark", {"k": k})
+                    telemetry.log(v[-2], name, f"line {k}")
     assert paths[0].read_bytes() == paths[1].read_bytes() == paths[2].read_bytes()
-    first = json.loads(next(m for topic, _, m in raw_messages(paths[1]) if topic.endswith("/state")))
+    name, values, fields = samples[0]
+    first = json.loads(next(m for topic, _, m in raw_messages(paths[1]) if topic == f"/{name}/state"))
     # the body's own numbers, less the values it has not (None in the dictionary)
     expected = orjson.loads(orjson.dumps(fields(values.tolist(), int)))
     assert first == {k: {g: x for g, x in v.items() if x is not None} if isinstance(v, dict) else v
@@ -326,58 +336,25 @@ def test_templates_write_what_dictionaries_write_for_a_staged_vehicle(burn, entr
     # the booster with engine groups and tanks (after the burn: no throttles), then the
     # capsule with its heat shield (heat flux, shield temperature)
     for k, (_, quiet) in enumerate((burn, entry)):
-        _both_encodings(quiet, quiet.bodies[0], tmp_path / str(k), monkeypatch)
+        _both_encodings([(quiet, quiet.bodies[0])], tmp_path / str(k), monkeypatch)
 
 
 def test_templates_write_what_dictionaries_write_for_a_rigid_body_and_about_mars(scenario, tmp_path,
                                                                                 monkeypatch):
     coast = build_world(load(scenario(duration="1 s")))
     coast.run(None)
-    _both_encodings(coast, coast.bodies[0], tmp_path / "coast", monkeypatch)
+    _both_encodings([(coast, coast.bodies[0])], tmp_path / "coast", monkeypatch)
     mars = build_world(load(ROOT / "scenarios" / "mars-entry.yaml"), duration=0.2)
     mars.run(None)
     assert mars.bodies[0].central == "mars"
-    _both_encodings(mars, mars.bodies[0], tmp_path / "mars", monkeypatch)
+    _both_encodings([(mars, mars.bodies[0])], tmp_path / "mars", monkeypatch)
 
 
-def test_air_data_about_mars_are_mars_air_turning_with_mars(probe_about, tmp_path):
-    """The state message of a body about Mars reads Mars's air, at the height over Mars's
-    ellipsoid, turning with Mars (it read no air at a WGS84 height, turning with Earth).
-    A probe starts in an equatorial orbit 30 km over Mars's equatorial radius (3396.19 km,
-    IAU 2015). References typed here: the NASA Glenn Mars model above 7 km
-    (T = -23.4 - 0.00222 h deg C, p = 0.699 exp(-0.00009 h) kPa, rho = p / (0.1921 (T + 273.1)),
-    h in m; Glenn Research Center, "Mars Atmosphere Model - Metric Units") and the air
-    turning at Mars's IAU 2015 rate W-dot = 350.891982443297 deg/day: q = rho |v - Omega x r|^2 / 2."""
-    from rocketsim.telemetry.reader import messages
-    path = probe_about("mars", "altitude: 30 km, inclination: 0 deg, elements: osculating")
-    fly(load(path), tmp_path / "run.mcap")
-    first = next(m for _, _, m in messages(tmp_path / "run.mcap", ["/probe/state"]))
-    assert first["central_body"] == "mars"
-    r, v = np.array(first["position"]), np.array(first["velocity"])
-    h = np.linalg.norm(r) - 3396.19e3
-    assert h == pytest.approx(30e3, abs=1.0)
-    temperature = -23.4 - 0.00222 * h + 273.1
-    rho = 0.699 * math.exp(-0.00009 * h) / (0.1921 * temperature)
-    omega = math.radians(350.891982443297) / 86400.0
-    air = v - np.cross((0.0, 0.0, omega), r)
-    assert first["airspeed"] == pytest.approx(np.linalg.norm(air), rel=1e-12)
-    assert first["dynamic_pressure"] == pytest.approx(0.5 * rho * (air @ air), rel=1e-3)
-
-
-def test_rigid_bodies_with_and_without_an_n_body_field_are_sampled_alike(monkeypatch):
-    """A sample's numbers come from a compiled entry of ``figures`` bound once and reused
-    (not typed at every sample); its n-body switch (True or None) is one of the entry's
-    types, so a rigid body with an n-body field and one without need entries of their
-    own. Sampled in one process in turn (without, with, without), each equals
-    ``figures`` called through numba's dispatcher, which types every call (an entry
-    bound for the first body's switch read the other's arguments as garbage)."""
-    from rocketsim.sim import sampling
-    monkeypatch.setattr(sampling, "_RIGID", type(sampling._RIGID)())   # empty: none bound yet
-    for overrides in ({}, {"mission.gravity": "n-body"}, {}):
-        world = build_world(load(ROOT / "scenarios" / "iss-coast.yaml", overrides=overrides), duration=0)
-        body = world.bodies[0]
-        assert body.vehicle is None
-        numbers, _ = sampling.values(body, world.gmst0, world.where)
-        fixed = sampling._plan(body, world.gmst0)[2]
-        expected = sampling.figures(body.t, body.y, sampling._held(body), *fixed, math.nan)
-        np.testing.assert_array_equal(numbers, expected)
+def test_templates_write_what_dictionaries_write_for_bodies_interleaved(tmp_path, monkeypatch):
+    # the Falcon 9 mission at 230 s: the upper stage, the booster and the fairing's halves
+    # (two staged vehicles and two tumbling parts) sampled in turn, as the world's loop
+    # samples several bodies: each batch of samples mixes their templates
+    mission = build_world(load(ROOT / "scenarios" / "falcon9-leo.yaml"), duration=230.0)
+    mission.run(None)
+    assert len(mission.bodies) == 4
+    _both_encodings([(mission, body) for body in mission.bodies], tmp_path / "mission", monkeypatch, trials=60)

@@ -112,43 +112,41 @@ def _put_int(out, at, x):
 
 
 @njit(nogil=True)
-def records(numbers, values, stamps, sequence, text, plan, extras, extra_ends, extra_channels,
-            extra_first, extra_after, out, at, index, n_index):
-    """Write the MCAP Message records of samples of one template into ``out`` from ``at``
-    and each record's (channel, log time, start) into ``index`` from entry ``n_index``
-    (three numbers per entry); returns where the records and the index entries end.
+def records(numbers, values, row_first, stamps, sequence, texts, text_first, plans, plan_first, template,
+            extras, extra_ends, extra_channels, extra_first, extra_after, out, at, index, n_index):
+    """Write the MCAP Message records of samples into ``out`` from ``at`` and each
+    record's (channel, log time, start) into ``index`` from entry ``n_index`` (three
+    numbers per entry); returns where the records and the index entries end.
 
-    ``values``: the samples' float64 numbers, a row each; ``numbers``:
-    ``orjson.dumps(values)`` (``[[a,b,...],[c,...]]``); ``stamps``: each sample's log
-    and publish time (ns), whose seconds and nanoseconds fill the time slots;
-    ``sequence`` the first record's sequence number (one more for each next record);
-    ``text``, ``plan`` the messages' template (:func:`template`). ``extras``: the data
-    of more records, written after the template's message ``extra_after``: record ``e``'s
-    is ``extras[extra_ends[e]:extra_ends[e + 1]]`` on channel ``extra_channels[e]``, and
+    ``values``: the samples' float64 numbers one after the other, sample ``k``'s
+    ``values[row_first[k]:row_first[k + 1]]``; ``numbers``: ``orjson.dumps(values)``
+    (``[a,b,...]``); ``stamps``: each sample's log and publish time (ns), whose seconds
+    and nanoseconds fill the time slots; ``sequence`` the first record's sequence number
+    (one more for each next record). Sample ``k``'s messages are those of template
+    ``template[k]`` (:func:`template`): its text ``texts[text_first[i]:text_first[i + 1]]``
+    and plan ``plans[plan_first[i]:plan_first[i + 1]]`` for template ``i``, so samples of
+    several bodies and shapes, in any order, take one call. ``extras``: the data of more
+    records, written after a sample's message ``extra_after``: record ``e``'s is
+    ``extras[extra_ends[e]:extra_ends[e + 1]]`` on channel ``extra_channels[e]``, and
     sample ``k``'s are the records ``extra_first[k]`` to ``extra_first[k + 1] - 1``.
     ``out`` must have room for :func:`most` bytes a sample and the extra records with
     their headers (``HEADER`` bytes each)."""
-    n_samples, n = values.shape
-    # where each number's bytes begin (after "[" or ","), then one past the row's "]"
-    first = np.empty(n_samples * (n + 1), dtype=np.int64)
-    row, k = -1, 0
+    # where each number's bytes begin (after "[" or ","), then one past the closing "]"
+    first = np.empty(values.shape[0] + 1, dtype=np.int64)
+    first[0] = 1
+    k = 1
     for i in range(1, len(numbers) - 1):
-        c = numbers[i]
-        if c == 91:                             # "[": a row begins
-            row += 1
-            k = row * (n + 1)
+        if numbers[i] == 44:                    # ","
             first[k] = i + 1
-        elif c == 93:                           # "]": it ends
-            first[row * (n + 1) + n] = i + 1
-        elif c == 44 and k < row * (n + 1) + n - 1 and numbers[i - 1] != 93:   # "," in a row
             k += 1
-            first[k] = i + 1
+    first[values.shape[0]] = len(numbers)
     r = n_index
-    for sample in range(n_samples):
-        at, r = _sample(numbers, first[sample * (n + 1):(sample + 1) * (n + 1)], values[sample],
-                        stamps[sample], sequence + r - n_index, text, plan, extras, extra_ends,
-                        extra_channels, extra_first[sample], extra_first[sample + 1], extra_after,
-                        out, at, index, r)
+    for sample in range(template.shape[0]):
+        a, b, t = row_first[sample], row_first[sample + 1], template[sample]
+        at, r = _sample(numbers, first[a:b + 1], values[a:b], stamps[sample], sequence + r - n_index,
+                        texts[text_first[t]:text_first[t + 1]], plans[plan_first[t]:plan_first[t + 1]],
+                        extras, extra_ends, extra_channels, extra_first[sample], extra_first[sample + 1],
+                        extra_after, out, at, index, r)
     return at, r
 
 

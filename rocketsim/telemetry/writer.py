@@ -56,7 +56,6 @@ LIBRARY = f"rocketsim {__version__}"
 # samples handed to the writing thread together (TelemetryWriter.sample): some 10-60 kB
 # of numbers a batch
 PENDING = 128
-_NO_TEXT = np.frombuffer(b"", dtype=np.uint8)      # a template's text: read-only bytes
 
 
 def encode(message: dict) -> bytes:
@@ -89,8 +88,9 @@ def _records():
 _RECORDS = None
 _INTS = np.zeros(1, dtype=np.int64)
 # arguments of records' one signature (see splice.records)
-_RECORDS_ARGUMENTS = (b"", np.zeros((1, 1)), _INTS, 0, _NO_TEXT, _INTS, b"", _INTS, _INTS, _INTS, 0,
-                      np.zeros(1, dtype=np.uint8), 0, _INTS, 0)
+_BYTES = np.zeros(1, dtype=np.uint8)
+_RECORDS_ARGUMENTS = (b"", np.zeros(1), _INTS, _INTS, 0, _BYTES, _INTS, _INTS, _INTS, _INTS, b"", _INTS,
+                      _INTS, _INTS, 0, _BYTES, 0, _INTS, 0)
 # where the second process compiles records among the flight's kernels: after the first
 # runs' (the flight's first samples come after its own kernels have compiled, seconds in
 # which the second core compiles the telemetry's: about 2 s of a cold coast's 8-10 s)
@@ -118,6 +118,13 @@ def _without(message: dict, missing: set) -> dict:
     return {key: _without(value, missing) if isinstance(value, dict) else value
             for key, value in message.items()
             if not (isinstance(value, splice.Slot) and value.kind == "f" and value.index in missing)}
+
+
+def _joined(arrays: list[np.ndarray], dtype) -> tuple[np.ndarray, np.ndarray]:
+    """``(arrays one after the other, where each begins and the last ends)``."""
+    first = np.zeros(len(arrays) + 1, dtype=np.int64)
+    np.cumsum([len(a) for a in arrays], out=first[1:])
+    return np.concatenate(arrays).astype(dtype, copy=False), first
 
 
 def _present(message: dict, required=_REQUIRED) -> dict:
@@ -281,72 +288,87 @@ class TelemetryWriter:
             self._hand_over(None)
 
     def _write_samples(self, samples: list[tuple]) -> None:
-        """Write ``samples`` (blocks of samples, see :meth:`_add_pending`): each run of
-        samples of one body, message shape and set of missing values in one compiled call."""
-        pending = deque(samples)
-        while pending:
-            body, values, fields, leaving = pending[0]
+        """Write ``samples`` (blocks of samples, see :meth:`_add_pending`) in order, each with
+        the template of its body, message shape and set of missing values (:meth:`_plan`),
+        in one compiled call (:meth:`_write_segment`) but where a template is made anew:
+        making one may add a frame, so the samples before it are written first."""
+        segment: list[tuple] = []           # (block of samples, their templates)
+        for body, values, fields, leaving in samples:
             size = values.shape[1]
             shape = self._plans.get(body)
             if shape is None or shape[0] is not fields or shape[1] != size:
                 shape = self._plans[body] = self._shape(body, size, fields)
             _, _, optional, plans = shape
-            run = [values]
-            for other, more, kind, last in islice(pending, 1, None):
-                if other != body or kind is not fields or more.shape[1] != size or last != leaving:
-                    break
-                run.append(more)
-            block = run[0] if len(run) == 1 else np.concatenate(run)
-            missing = ~np.isfinite(block[:, optional])
+            missing = ~np.isfinite(values[:, optional])
             # where the set of missing values changes: a template for each stretch
-            cuts = [] if (missing == missing[0]).all() else \
+            cuts = [] if len(missing) == 1 or (missing == missing[0]).all() else \
                 (np.flatnonzero((missing[1:] != missing[:-1]).any(axis=1)) + 1).tolist()
-            for start, end in zip([0] + cuts, cuts + [len(block)]):
+            for start, end in zip([0] + cuts, cuts + [len(values)]):
                 pattern = missing[start]
                 key = (pattern.tobytes(), leaving)
                 plan = plans.get(key)
                 if plan is None:
+                    if segment:
+                        self._write_segment(segment)
+                        segment = []
                     plan = plans[key] = self._plan(body, size, fields, set(optional[pattern].tolist()),
                                                    not leaving)
-                self._write_run(block[start:end], plan)
-            for _ in run:
-                pending.popleft()
+                segment.append((values[start:end], plan))
+        if segment:
+            self._write_segment(segment)
 
-    def _write_run(self, block: np.ndarray, plan: tuple) -> None:
-        """The records of samples ``block`` (a row each) of one template ``plan``, with the
-        central bodies' transforms due after them (:meth:`_frame_transforms`: asked at the
-        first sample and where the second of mission time changes, the only samples where
-        any can be due, frames being added only between runs) and, for the lead body off
-        the root's centre, the mission frame's transform after each."""
-        text, cuts, t_index, most, body, frame, position = plan
-        times = block[:, t_index]
+    def _write_segment(self, segment: list[tuple]) -> None:
+        """The records of the samples of ``segment`` (``(block of samples, a row each, their
+        template)`` pairs, in order), with the central bodies' transforms due after them
+        (:meth:`_frame_transforms`: asked at the first sample and where the second of
+        mission time changes, the only samples where any can be due, frames being added
+        only between segments) and, for the lead body off the root's centre, the mission
+        frame's transform after each of its samples."""
+        templates: dict[int, int] = {}      # id of a template -> its index in this call
+        chosen, kinds = [], []
+        for block, plan in segment:
+            kind = templates.get(id(plan))
+            if kind is None:
+                kind = templates[id(plan)] = len(chosen)
+                chosen.append(plan)
+            kinds.append(kind)
+        sizes = np.array([block.shape[1] for block, _ in segment], dtype=np.int64)
+        counts = np.array([block.shape[0] for block, _ in segment], dtype=np.int64)
+        kind = np.repeat(np.array(kinds, dtype=np.int64), counts)
+        row_first = np.zeros(len(kind) + 1, dtype=np.int64)
+        np.cumsum(np.repeat(sizes, counts), out=row_first[1:])
+        values = np.concatenate([block.ravel() for block, _ in segment])
+        times = np.concatenate([block[:, plan[2]] for block, plan in segment])
         stamps = self._epoch_ns + np.rint(times * 1e9).astype(np.int64)     # as _stamp
-        off_root = body == self._lead and not self._frames.is_root(frame)
-        if off_root:
-            asked = range(len(block))
-        else:
-            seconds = np.floor(times)
-            asked = np.flatnonzero(np.concatenate(([True], seconds[1:] != seconds[:-1]))).tolist()
+        seconds = np.floor(times)
+        asked = np.concatenate(([True], seconds[1:] != seconds[:-1]))
+        off_root = np.array([plan[4] == self._lead and not self._frames.is_root(plan[5]) for plan in chosen])
+        asked |= off_root[kind]
         extras, ends, channels = [], [0], []
-        counts = np.zeros(len(block) + 1, dtype=np.int64)     # extra records after each sample
-        for k in asked:
+        added = np.zeros(len(kind) + 1, dtype=np.int64)        # extra records after each sample
+        for k in np.flatnonzero(asked).tolist():
             t, stamp = times.item(k), stamps.item(k)
             more = self._frame_transforms(t, stamp)
-            if off_root:
-                more += self._mission_off_root(body, frame, block[k, position], t, foxglove.timestamp(stamp))
+            _, _, _, _, body, frame, position = chosen[kind.item(k)]
+            if off_root[kind.item(k)]:
+                place = values[row_first.item(k):row_first.item(k + 1)][position]
+                more += self._mission_off_root(body, frame, place, t, foxglove.timestamp(stamp))
             for channel, data in more:
                 extras.append(encode(data))
                 ends.append(ends[-1] + len(extras[-1]))
                 channels.append(channel)
-            counts[k + 1] = len(more)
+            added[k + 1] = len(more)
         extra = b"".join(extras)
-        chunk, at, index, n = self._writer.reserve(
-            most * len(block) + len(extra) + splice.HEADER * len(channels),
-            int(cuts[0]) * len(block) + len(channels))
-        at, records = _records()(orjson.dumps(block, option=orjson.OPT_SERIALIZE_NUMPY), block,
-                                 stamps, self._sequence, text, cuts, extra,
+        texts, text_first = _joined([plan[0] for plan in chosen], np.uint8)
+        cuts, cut_first = _joined([plan[1] for plan in chosen], np.int64)
+        most = np.array([plan[3] for plan in chosen], dtype=np.int64)[kind].sum()
+        messages = np.array([plan[1][0] for plan in chosen], dtype=np.int64)[kind].sum()
+        chunk, at, index, n = self._writer.reserve(int(most) + len(extra) + splice.HEADER * len(channels),
+                                                   int(messages) + len(channels))
+        at, records = _records()(orjson.dumps(values, option=orjson.OPT_SERIALIZE_NUMPY), values, row_first,
+                                 stamps, self._sequence, texts, text_first, cuts, cut_first, kind, extra,
                                  np.array(ends, dtype=np.int64), np.array(channels, dtype=np.int64),
-                                 np.cumsum(counts), 0, chunk, at, index, n)
+                                 np.cumsum(added), 0, chunk, at, index, n)
         self._writer.added(at, records)
         self._sequence += records - n
 

@@ -3,10 +3,13 @@
 Printed (run with ``pytest -s``):
 1. a flight's wall time with 10 Hz telemetry over the same flight without
    any (``World.run(None)``: no samples, no file) -- target at most 1.10.
-   Three flights: the shipped spaceport-ballistic mission (its program runs
+   Four flights: the shipped spaceport-ballistic mission (its program runs
    every 20 ms step), the first 40 s of the shipped Falcon 9-class mission
    (a staged vehicle: program, autopilot and checks every step, as in the
-   whole mission) and a program-less orbital coast (whole sample intervals
+   whole mission), its first 230 s (the upper stage, the booster and the
+   fairing's halves: several bodies' samples in turn, each batch handed to
+   the writer mixing their templates, as for most of the whole mission)
+   and a program-less orbital coast (whole sample intervals
    flown and their figures computed in compiled runs, :mod:`rocketsim.sim.coast_runs`,
    so the writing is nearly all the work). For each, what
    one sample costs on its own: its numbers (``sampling.values``: one compiled
@@ -117,7 +120,8 @@ def _one_sample(world, path, loaded, duration, calls=1000):
 
     def write():
         with TelemetryWriter(path, 0) as telemetry:
-            telemetry.add_body(body.name)
+            for name in dict.fromkeys(sample[0] for sample in kept.kept):     # in the flight's order
+                telemetry.add_body(name)
             start = time.perf_counter()
             for sample in kept.kept:
                 telemetry.sample(*sample)
@@ -175,6 +179,10 @@ def test_telemetry_on_versus_off(tmp_path, scenario):
     times, _, t_file, one = _on_off(falcon, 40.0, tmp_path / "falcon9.mcap", pairs=5)
     _report("falcon9-leo, first 40 s (staged vehicle: program, autopilot, checks every step)",
             40.0, times, t_file, one)
+
+    times, _, t_file, one = _on_off(falcon, 230.0, tmp_path / "falcon9-bodies.mcap", pairs=3)
+    _report("falcon9-leo, first 230 s (from 134 s two, from 200 s four bodies, sampled in turn)",
+            230.0, times, t_file, one)
 
     coast = load(scenario(duration="150 s"))
     times, _, t_file, one = _on_off(coast, 150.0, tmp_path / "coast.mcap")
