@@ -44,7 +44,7 @@ HELD = 1      # attitude held fixed in an inertial command frame
 TRACK = 2     # attitude held in a command frame that turns, set on it at every step
 
 # what a command's nose follows (the first entry of its code, :func:`command_code`)
-DIRECTION, PITCH_HEADING, PROGRADE, SURFACE_PROGRADE, NORMAL, RADIAL = 0, 1, 2, 3, 4, 5
+DIRECTION, PITCH_HEADING, PROGRADE, SURFACE_PROGRADE, NORMAL, RADIAL, LINEAR_TANGENT = 0, 1, 2, 3, 4, 5, 6
 _MODE_CODES = {"prograde": (PROGRADE, 1.0), "retrograde": (PROGRADE, -1.0),
                "surface_prograde": (SURFACE_PROGRADE, 1.0),
                "surface_retrograde": (SURFACE_PROGRADE, -1.0),
@@ -56,12 +56,17 @@ def command_code(command) -> np.ndarray:
     """The numbers the rails read of an attitude command
     (:class:`rocketsim.flight.autopilot.AttitudeCommand`): ``(kind, sign, a, b, c, roll)``,
     ``kind`` :data:`DIRECTION` with the ECI unit vector ``(a, b, c)``,
-    :data:`PITCH_HEADING` with pitch ``a`` and heading ``b`` (rad), or a mode
-    (:data:`PROGRADE` ... :data:`RADIAL`) with ``sign`` -1 for its opposite;
-    ``roll`` rad, nan for none."""
+    :data:`PITCH_HEADING` with pitch ``a`` and heading ``b`` (rad), a mode
+    (:data:`PROGRADE` ... :data:`RADIAL`) with ``sign`` -1 for its opposite, or
+    :data:`LINEAR_TANGENT` with the law's start time (s) in place of ``sign``, its
+    ``tan`` of the pitch at that time ``a``, its rate ``b`` (1/s) and the cross-track
+    share ``c`` (see :func:`nose_target`); ``roll`` rad, nan for none."""
     roll = math.nan if command.roll is None else float(command.roll)
     if command.direction is not None:
         code = (DIRECTION, 1.0, *command.direction, roll)
+    elif command.law is not None:
+        start, a, b, cross = command.law
+        code = (LINEAR_TANGENT, start, a, b, cross, roll)
     elif command.mode is not None:
         code = (*_MODE_CODES[command.mode], 0.0, 0.0, 0.0, roll)
     else:
@@ -163,16 +168,32 @@ def _unit(x, y, z):
 
 
 @njit
-def nose_target(code, r, v, enu, surface):
+def nose_target(code, r, v, enu, surface, t):
     """The commanded nose direction (unit, ECI) of ``code`` (:func:`command_code`) for a
-    body at ``r`` (m) moving at ``v`` (m/s), as the autopilot reads it
-    (:meth:`rocketsim.flight.autopilot.AttitudeCommand.target`): ``enu`` the rows east,
-    north, up and ``surface`` the velocity relative to the ground (m/s, ECI axes) of
-    :func:`rocketsim.frames.local.where_and_how_fast`."""
+    body at ``r`` (m) moving at ``v`` (m/s) at mission time ``t`` (s), as the autopilot
+    reads it: ``enu`` the rows east, north, up and ``surface`` the velocity relative to
+    the ground (m/s, ECI axes) of :func:`rocketsim.frames.local.where_and_how_fast`.
+
+    :data:`LINEAR_TANGENT` is linear-tangent steering (docs/physics.md#autopilot): the
+    pitch above the plane normal to the radius ``theta = atan(a + b (t - t0))``, in the
+    plane of ``r`` and ``v`` ahead along the velocity, tilted by ``c`` along the orbit
+    normal ``r x v``: the unit vector along ``cos(theta) h + sin(theta) u + c n``
+    (``u``, ``h``, ``n`` the units along ``r``, the velocity's part normal to it and
+    ``r x v``)."""
     kind = int(code[0])
     out = np.empty(3)
     if kind == DIRECTION:
         copy_into(out, 0, code[2:5])
+        return out
+    if kind == LINEAR_TANGENT:
+        ux, uy, uz = _unit(r[0], r[1], r[2])
+        climb = v[0] * ux + v[1] * uy + v[2] * uz
+        hx, hy, hz = _unit(v[0] - climb * ux, v[1] - climb * uy, v[2] - climb * uz)
+        nx, ny, nz = _unit(r[1] * v[2] - r[2] * v[1], r[2] * v[0] - r[0] * v[2], r[0] * v[1] - r[1] * v[0])
+        theta = math.atan(code[2] + code[3] * (t - code[1]))
+        c, s, cross = math.cos(theta), math.sin(theta), code[4]
+        out[0], out[1], out[2] = _unit(c * hx + s * ux + cross * nx, c * hy + s * uy + cross * ny,
+                                       c * hz + s * uz + cross * nz)
         return out
     if kind == PITCH_HEADING:
         sin_heading, cos_heading = math.sin(code[3]), math.cos(code[3])
@@ -244,7 +265,7 @@ def command_attitude(code, y, t, q, p):
         _, _, _, enu, surface = where_and_how_fast(r, v, t, p[P_SPIN], p[P_RADIUS], p[P_POLAR_RADIUS])
     else:
         enu, surface = np.empty((3, 3)), np.empty(3)
-    nose = nose_target(code, r, v, enu, surface)
+    nose = nose_target(code, r, v, enu, surface, t)
     if not math.isnan(roll):
         found, target = target_attitude(nose, enu[2], roll)
         if found:

@@ -85,12 +85,14 @@ MODES = ("prograde", "retrograde", "surface_prograde", "surface_retrograde", "no
 
 @dataclass(frozen=True)
 class AttitudeCommand:
-    """Where the nose should point: a fixed ECI direction, pitch/heading, or a mode."""
+    """Where the nose should point: a fixed ECI direction, pitch/heading, a mode, or a
+    linear-tangent law."""
 
     direction: np.ndarray | None = None     # unit vector, ECI
     pitch: float | None = None              # rad above the local horizon
     heading: float | None = None            # rad from north towards east
     mode: str | None = None
+    law: tuple | None = None                # linear-tangent steering: (t0 s, a, b 1/s, cross), see rails.nose_target
     roll: float | None = None               # rad about the nose (StateView.euler's); None: free, damped
     code: np.ndarray = field(init=False, repr=False, compare=False)   # the numbers steer_step reads
 

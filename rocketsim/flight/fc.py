@@ -356,6 +356,19 @@ class FlightComputer:
         mode, roll = arguments.choice("fc.hold", "mode", mode, MODES), arguments.roll("fc.hold", roll)
         self._steer(AttitudeCommand(mode=mode, roll=roll))
 
+    def steer_linear_tangent(self, a: float, b: float, cross: float = 0.0, roll: float | None = None) -> None:
+        """Linear-tangent steering, followed by the autopilot at every step in compiled code
+        without waking the program: the nose ``atan(a + b tau)`` rad above the plane normal
+        to the radius (``tau`` s from now), ahead along the velocity in the plane of
+        :attr:`radial` and :attr:`velocity`, tilted by ``cross`` along :attr:`normal` (the
+        direction of ``cos(pitch) h + sin(pitch) radial + cross normal``, ``h`` the unit
+        horizontal velocity); ``roll`` (rad) as in :meth:`point`. Example:
+        ``fc.steer_linear_tangent(0.6, -0.004)``: 31 deg now, 0 deg in 150 s."""
+        call = "fc.steer_linear_tangent"
+        a, b = arguments.number(call, "a", a), arguments.number(call, "b", b)
+        cross, roll = arguments.number(call, "cross", cross), arguments.roll(call, roll)
+        self._steer(AttitudeCommand(law=(self._craft.time, a, b, cross), roll=roll))
+
     def release(self) -> None:
         """Stop steering (the gimbals stay where they are, the RCS thrusters stop)."""
         self._steer(None)

@@ -203,7 +203,7 @@ def steer_step(veh, y, p, t, t_nav, r, v, q, w, ambient_pressure, air_table, cod
     if not math.isnan(ambient_pressure):
         p_a = ambient_pressure
     axes = quat_to_matrix(q)
-    nose = nose_target(code, r, v, enu, surface_velocity)
+    nose = nose_target(code, r, v, enu, surface_velocity, t_nav)
     roll = code[5]
     found = False
     if not math.isnan(roll):

@@ -28,11 +28,12 @@ Guidance rate: the first stage's climb needs no program at all: the autopilot
 holds surface prograde, the engines' throttle law backs off through max-Q at
 every step and the program waits on its stage's propellant (compiled
 conditions: ``fc.below("propellant", ...)``), so it wakes in the step the
-reserve is reached. The upper stage's program, like a real flight computer,
-updates its steering every GUIDANCE_STEP (0.1 s) and sleeps in between,
-while the autopilot holds the last command every 20 ms step; it goes to every
-step when the cut-off is near (:class:`Approach`: the insertion's periapsis),
-so the engine is cut in the step the limit is crossed. A program that wants
+reserve is reached. The upper stage's
+program, like a real flight computer's guidance, solves its steering law every
+GUIDANCE_PERIOD (1 s) and sleeps in between, while the autopilot follows the
+law every 20 ms step (``fc.steer_linear_tangent``); it wakes more often as the
+cut-off nears (:class:`Approach`: the insertion's periapsis), every step at the
+end, so the engine is cut in the step the limit is crossed. A program that wants
 the per-step loop calls ``fc.step()`` instead.
 
 The return of the lower stage (boost-back, entry and landing burns) is flown
@@ -51,7 +52,7 @@ Q_LIMIT = 33e3                 # Pa: throttle back above this dynamic pressure (
 BURN_OUT_WATCH = 0.02          # share of the first stage's load left when burn-out is watched every step
 FAIRING_ALTITUDE = 110e3       # m: above this the air is thin enough to drop the fairing
 GUIDANCE_PERIOD = 1.0          # s between insertion guidance solutions
-GUIDANCE_STEP = 0.1            # s between steering updates (the autopilot holds them every step)
+GUIDANCE_STEP = 0.1            # s between guidance updates nearing a cut-off
 NEWTON_PASSES = 2              # Newton passes per solution (warm-started)
 PREDICTION_STEP = 2.0          # s, step of the guidance's burn prediction
 DEPLOY_DELAY = 10.0            # s from insertion to payload deploy
@@ -113,7 +114,7 @@ def ascend(fc):
     fc.ignite(upper)
     fc.throttle(1.0)
     fairing_on = True
-    guidance = Insertion(EARTH_RADIUS + target.altitude)
+    guidance = Insertion(EARTH_RADIUS + target.altitude, target.inclination)
     periapsis = Approach(0.95 * target.altitude, rising=True)
     while periapsis.ahead(fc.periapsis, fc.time):
         if fairing_on and fc.altitude > FAIRING_ALTITUDE:
@@ -122,8 +123,7 @@ def ascend(fc):
                 fc.jettison_fairing()
             except ValueError:          # a vehicle without one
                 pass
-        steer(fc, guidance.pitch(fc), target.inclination)
-        fc.sleep(periapsis.next_update())
+        fc.sleep(min(guidance.steer(fc), periapsis.next_update()))
     fc.shutdown()
     fc.release()
     fc.log(f"insertion: {fc.periapsis / 1e3:.1f} x {fc.apoapsis / 1e3:.1f} km, "
@@ -152,7 +152,8 @@ class Insertion:
     """Closed-loop insertion guidance of the upper stage (step 4 of the module).
 
     The pitch above the local horizontal follows a linear-tangent law
-    ``tan(pitch) = A + B tau`` (tau s since the last solution). Every
+    ``tan(pitch) = A + B tau`` (tau s since the last solution), which the
+    autopilot follows at every step (``fc.steer_linear_tangent``). Every
     GUIDANCE_PERIOD seconds ``A, B`` are solved again by Newton's method on a
     planar point-mass prediction of the rest of the burn (inverse-square
     gravity, the thrust and mass flow read now, PREDICTION_STEP midpoint steps;
@@ -160,20 +161,28 @@ class Insertion:
     so that the burn ends, at circular speed or when the propellant runs out,
     at the target radius with no radial speed. Recomputed from the state each
     time, it absorbs what the prediction leaves out (J2, the steering's
-    cross-track share, the engines' spool).
+    cross-track share, the engines' spool). The cross-track share, along the
+    orbit normal, trims the inclination: thrust along the normal turns it by
+    cos(u) of it (u the argument of latitude: the Gauss equation
+    di/dt = r cos(u) a_n / h).
     """
 
-    def __init__(self, radius):
+    def __init__(self, radius, inclination):
         self.radius = radius            # m from the Earth's centre
+        self.inclination = inclination  # rad
         self.a, self.b = 0.5, 0.0
         self.solved_at = None
 
-    def pitch(self, fc):
-        """Pitch (rad) above the local horizontal now."""
-        if self.solved_at is None or fc.time - self.solved_at >= GUIDANCE_PERIOD:
-            self.solve(fc)
-        tau = 0.0 if self.solved_at is None else fc.time - self.solved_at
-        return math.atan(self.a + self.b * tau)
+    def steer(self, fc):
+        """Solve again and hand the law to the autopilot when GUIDANCE_PERIOD has passed
+        since the last solution (while none has been found, every GUIDANCE_STEP);
+        returns the seconds to the next solution."""
+        if self.solved_at is not None and fc.time - self.solved_at < GUIDANCE_PERIOD - 1e-6:
+            return self.solved_at + GUIDANCE_PERIOD - fc.time
+        self.solve(fc)
+        error = (fc.inclination - self.inclination) * math.cos(fc.orbit.arglat)
+        fc.steer_linear_tangent(self.a, self.b, -max(-0.3, min(0.3, 8.0 * error)))
+        return GUIDANCE_STEP if self.solved_at is None else GUIDANCE_PERIOD
 
     def solve(self, fc):
         flow = sum(e["mass_flow_kg_s"] for e in fc.engines)
@@ -192,10 +201,10 @@ class Insertion:
 
 class Approach:
     """A reading on its way to a limit, setting the guidance's update rate: an update
-    every GUIDANCE_STEP while the limit is more than two updates away at the rate the
-    reading last changed, every step (20 ms) nearer, so that the crossing is caught
-    in the step it happens. ``rising``: the reading climbs to the limit (else it
-    falls to it)."""
+    every GUIDANCE_PERIOD while the limit is more than two of them away at the rate the
+    reading last changed, every GUIDANCE_STEP while it is more than two of those away,
+    every step (20 ms) nearer, so that the crossing is caught in the step it happens.
+    ``rising``: the reading climbs to the limit (else it falls to it)."""
 
     def __init__(self, limit, rising=False):
         self.limit = limit
@@ -214,18 +223,7 @@ class Approach:
 
     def next_update(self):
         """Seconds until the next update (0: the next step)."""
-        return GUIDANCE_STEP if self.gap > 2.0 * GUIDANCE_STEP * self.rate else 0.0
-
-
-def steer(fc, pitch, inclination):
-    """Point ``pitch`` above the local horizontal in the direction of motion, with a
-    cross-track term along the orbit normal that trims the inclination."""
-    v = fc.velocity
-    up = fc.radial
-    horizontal = v - (v @ up) * up
-    horizontal /= math.sqrt(horizontal @ horizontal)
-    # thrust along the orbit normal turns the inclination by cos(u) of it (u the
-    # argument of latitude: the Gauss equation di/dt = r cos(u) a_n / h)
-    error = (fc.inclination - inclination) * math.cos(fc.orbit.arglat)
-    cross = -max(-0.3, min(0.3, 8.0 * error)) * fc.normal
-    fc.point_at(math.cos(pitch) * horizontal + math.sin(pitch) * up + cross)
+        for wait in (GUIDANCE_PERIOD, GUIDANCE_STEP):
+            if self.gap > 2.0 * wait * self.rate:
+                return wait
+        return 0.0
