@@ -50,14 +50,13 @@ def main(fc):
 """
 
 
-def test_the_nose_settles_on_a_new_direction_during_a_burn(write, tmp_path):
-    """Reference: the commanded direction itself. A 20 deg turn with the damped
-    response (omega_n = 1 rad/s, zeta = 0.9) settles within a few seconds; after
-    25 s the nose is within 0.1 deg of the target and the body rates are small."""
+def _burn(write, tmp_path, program: str):
+    """``(telemetry path, summary)`` of the kick stage flying ``program`` for 26 s from a
+    400 km orbit."""
     write("vehicle.yaml", VEHICLE)
-    write("program.py", PROGRAM)
+    write("program.py", program)
     path = write("scenario.yaml", """\
-        name: turn
+        name: burn
         vehicle: vehicle.yaml
         program: program.py
         mission:
@@ -66,7 +65,14 @@ def test_the_nose_settles_on_a_new_direction_during_a_burn(write, tmp_path):
           duration: 26 s
         """)
     out = tmp_path / "run.mcap"
-    summary = fly(load(path), out)
+    return out, fly(load(path), out)
+
+
+def test_the_nose_settles_on_a_new_direction_during_a_burn(write, tmp_path):
+    """Reference: the commanded direction itself. A 20 deg turn with the damped
+    response (omega_n = 1 rad/s, zeta = 0.9) settles within a few seconds; after
+    25 s the nose is within 0.1 deg of the target and the body rates are small."""
+    out, summary = _burn(write, tmp_path, PROGRAM)
     settled = {e["name"]: e for e in summary["bodies"]["kick_stage"]["events"]}["settled"]
     from rocketsim.telemetry.reader import messages
     from rocketsim.frames.quaternion import quat_to_matrix
@@ -198,19 +204,7 @@ def test_a_burn_follows_linear_tangent_steering(write, tmp_path):
     about 0.12 deg/s (the law's 0.05 deg/s and the local horizontal's turn with the
     orbit, 0.065 deg/s), measured here from the samples at T+24 and T+25 s; at T+25 s
     the nose trails the law's direction by that error, within 0.05 deg."""
-    write("vehicle.yaml", VEHICLE)
-    write("program.py", LAW_PROGRAM)
-    path = write("scenario.yaml", """\
-        name: law
-        vehicle: vehicle.yaml
-        program: program.py
-        mission:
-          epoch: 2026-11-26T12:00:00Z
-          start: {orbit: {altitude: 400 km, inclination: 28.5 deg}}
-          duration: 26 s
-        """)
-    out = tmp_path / "run.mcap"
-    fly(load(path), out)
+    out, _ = _burn(write, tmp_path, LAW_PROGRAM)
     from rocketsim.telemetry.reader import messages
     from rocketsim.frames.quaternion import quat_to_matrix
 
