@@ -54,8 +54,16 @@ def _flight(tmp_path, name, monkeypatch, windows: bool, counts: dict):
             counts["part steps"] += taken
             return y, taken
 
+        record_rows = world_module.World.record_rows
+
+        def rows_counted(world, body, rows, shape):
+            if sum(b.flying for b in world.bodies) > 1:
+                counts["samples in runs beside others"] += len(rows)
+            record_rows(world, body, rows, shape)
+
         monkeypatch.setattr(VehicleChecks, "fly_run", counted)
         monkeypatch.setattr(runs, "fly_part", counted_part)
+        monkeypatch.setattr(world_module.World, "record_rows", rows_counted)
     else:
         monkeypatch.setattr(world_module, "fly_window", lambda world, length: False)
     out = tmp_path / f"{name}.mcap"
@@ -65,7 +73,7 @@ def _flight(tmp_path, name, monkeypatch, windows: bool, counts: dict):
 
 
 def test_compiled_runs_fly_the_same_telemetry_as_one_step_at_a_time(tmp_path, monkeypatch):
-    counts = {"vehicle steps": 0, "part steps": 0, "conditions": 0, "waiting": 0}
+    counts = {"vehicle steps": 0, "part steps": 0, "conditions": 0, "waiting": 0, "samples in runs beside others": 0}
     summary, messages = _flight(tmp_path, "runs", monkeypatch, True, counts)
     summary_before, messages_before = _flight(tmp_path, "steps", monkeypatch, False, counts)
     assert summary == summary_before
@@ -75,6 +83,9 @@ def test_compiled_runs_fly_the_same_telemetry_as_one_step_at_a_time(tmp_path, mo
     assert counts["vehicle steps"] > 10_000 and counts["part steps"] > 500
     # the kick's height and the booster's cut-off at its reserve of propellant
     assert counts["conditions"] >= 2 and counts["waiting"] > 10
+    # with the booster and the fairing's halves flying beside, the vehicles' runs went on
+    # past sample steps (their samples written among the others' in the loop's order)
+    assert counts["samples in runs beside others"] > 300
     events = {e["name"] for b in summary["bodies"].values() for e in b["events"]}
     assert {"liftoff", "max_q", "MECO", "separation", "boost-back end", "fairing jettison"} <= events
 

@@ -12,7 +12,7 @@ sample figures (:func:`rocketsim.sim.sampling.figures`, the arguments of the
 world's sampler) into rows the world then writes in the loop's order (by
 interval, then body). The same steps and the same figures: the same file.
 
-The run leaves the last interval's sample to the loop (its ``_check_finite`` and
+The run leaves the last interval's sample to the loop (its ``check_finite`` and
 sampling at a sample step), so the loop's order after the run is its order after
 any batch. A state that is no longer finite ends the run at that interval: the
 rows before it are written and the loop's test raises its error there.

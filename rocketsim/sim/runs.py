@@ -202,7 +202,7 @@ def _below(y, t, p, liftoff):
 @njit
 def _surely_finite(y):
     """Whether the world's finiteness test (the sum of the state finite:
-    :meth:`rocketsim.sim.world.World._check_finite`) surely passes on ``y``: every
+    :meth:`rocketsim.sim.world.World.check_finite`) surely passes on ``y``: every
     number under 1e300 in size, so no order of summing them can overflow."""
     for x in y:
         if not abs(x) < 1e300:

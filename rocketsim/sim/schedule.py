@@ -45,6 +45,9 @@ RAILS_FIELD = make_field("earth", 0.0, bodies=())
 # a held attitude goes on sleep rails once the autopilot has settled on it:
 HOLD_SETTLED_ERROR = math.radians(0.01)    # rad, attitude off the command (less the law's lag)
 HOLD_SETTLED_RATE = 1e-4                   # rad/s, every body rate off the frame's turn rate
+# telemetry samples a window of several bodies spans at most: the world reports its progress
+# at its end (1 s at 10 Hz), the bodies' compiled runs computing the samples between
+WINDOW_SAMPLES = 10
 
 
 class Schedule:
@@ -96,16 +99,18 @@ class Schedule:
 
     def window_length(self) -> int:
         """Steps before the world's loop must decide anything while it steps one step at
-        a time: to the end or a program's wake-up, and to the next telemetry sample
-        while more than one body flies; 1 while a body cruises or a program waits on a
-        condition read in Python. Within them the bodies are flown in compiled runs
-        where nothing needs Python (:mod:`rocketsim.sim.window`: with one body, its
-        runs compute the samples on the way)."""
+        a time: to the end or a program's wake-up, and while more than one body flies
+        to the next multiple of :data:`WINDOW_SAMPLES` telemetry samples (where the
+        world reports its progress with every body at the same step); 1 while a body
+        cruises or a program waits on a condition read in Python. Within them the
+        bodies are flown in compiled runs where nothing needs Python
+        (:mod:`rocketsim.sim.window`: a vehicle's runs compute its samples on the way)."""
         world = self.world
         flying = [body for body in world.bodies if body.flying]
         n = world.n_steps - world.k
         if len(flying) > 1:
-            n = min(n, world.sample_every - world.k % world.sample_every)
+            span = WINDOW_SAMPLES * world.sample_every
+            n = min(n, span - world.k % span)
         for body in flying:
             if self.cruising(body):
                 return 1

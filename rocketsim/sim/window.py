@@ -4,8 +4,8 @@ While any body must be stepped one step at a time (a vehicle in the air's reach,
 an autopilot steering, a program waiting on a condition:
 :meth:`rocketsim.sim.schedule.Schedule.one_step`), the world's loop would run
 every body's Python once per step. Up to the next step where the loop itself
-has something to decide (a program's wake-up, the end, and a telemetry sample
-while more than one body flies:
+has something to decide (a program's wake-up, the end, and while more than one
+body flies a progress report every few samples:
 :meth:`~rocketsim.sim.schedule.Schedule.window_length`) the bodies do not
 interact, so :func:`fly_window` flies each on its own:
 
@@ -30,16 +30,19 @@ time (the loop batches from there). At most one program may wait on a
 condition in a window: the others' runs stop where that one's run stops, so
 none flies past a step its condition may end the window at.
 
-A window of one flying body goes on past telemetry sample steps. A vehicle's
-compiled run computes the samples of the steps it flies through (up to
-:data:`RUN_SAMPLES` of them), with the sampler's own compiled figures
-(:func:`rocketsim.sim.sampling.run_sampler`) and the world's finiteness test;
-they are written, in order, before the run's last step is handled, so the
-file's messages come in the loop's order. A tumbling part's run and a batch
-end at the next sample step at most. At a sample step the Python side
-handles (a run's end, a step flown one at a time) the world samples and reports
-progress as its loop does (:meth:`rocketsim.sim.world.World.reached`); a flight
-that ``on_progress`` shortens ends there or at its new end.
+A vehicle's compiled runs go on past telemetry sample steps, computing the
+samples of the steps they fly through (up to :data:`RUN_SAMPLES` of them),
+with the sampler's own compiled figures (:func:`rocketsim.sim.sampling.run_sampler`)
+and the world's finiteness test. A tumbling part's run and a batch end at the
+next sample step at most. The samples are written in the loop's order: those
+the runs computed before a step the Python side handles are written before it,
+by step and then body; at a sample step it handles, every flying body is
+sampled in order, a body whose run goes on past the step from its run's rows,
+the others from their state (:meth:`_Window._sample_with_runs`). Where every
+body is at a sample step the Python side handles (always so with one body) the
+world samples and reports progress as its loop does
+(:meth:`rocketsim.sim.world.World.reached`); a flight that ``on_progress``
+shortens ends there or at its new end.
 """
 
 from __future__ import annotations
@@ -92,12 +95,13 @@ class _Window:
         self.waiter = waiter                # the body whose program waits on a compiled condition
         self.frontier = end                 # where the waiter's run stops: no other run goes beyond
         self.queue: list[tuple] = []        # (step, body index, run: see start; None: one step to fly)
+        self.samples: list[tuple] = []      # (step, body index, its sample's row, shape) computed in runs
 
     def start(self, k: int, indices: list[int], plans: dict) -> None:
         """Start a segment of each body of ``indices`` at step ``k`` as ``plans[i]`` says
         (:func:`_plan`; None: one step), the waiter's first. A run's end goes on the queue:
-        ``(VEHICLE, its last state, the rows of its samples, their shape)``, ``(PART, its
-        last state, its first step and state)``, ``(BATCH, k)``."""
+        ``(VEHICLE, its last state)``, ``(PART, its last state, its first step and state)``,
+        ``(BATCH, k)``; a vehicle's samples computed in its run go on :attr:`samples`."""
         for i in sorted(indices, key=lambda i: i != self.waiter):
             plan = plans[i]
             if plan is None:
@@ -117,7 +121,10 @@ class _Window:
                     self.frontier = k + taken
                     if reason == runs.CONDITION:
                         self.end = k + taken    # the program is due at the next step
-                heapq.heappush(self.queue, (k + taken, i, (VEHICLE, y, rows[:filled], shape)))
+                first = k + world.sample_every - k % world.sample_every
+                for j in range(filled):
+                    heapq.heappush(self.samples, (first + j * world.sample_every, i, rows[j:j + 1], shape))
+                heapq.heappush(self.queue, (k + taken, i, (VEHICLE, y)))
             elif plan[0] == PART:
                 y, taken = self._part(body, k, body.y, top - k)
                 heapq.heappush(self.queue, (k + taken, i, (PART, y, k, body.y)))
@@ -127,8 +134,9 @@ class _Window:
     def fly(self) -> None:
         """Handle the queue's steps in order (by step, then body) to the window's end,
         with the world's sample and progress (:meth:`~rocketsim.sim.world.World.reached`)
-        at each sample step the Python side handles and at the end; a flight that
-        ``on_progress`` has shortened ends there."""
+        at each sample step the Python side handles for every body and at the end (a
+        flight that ``on_progress`` has shortened ends there), and the samples alone
+        (:meth:`_sample_with_runs`) at one where some bodies' runs go on past it."""
         world = self.world
         last = world.k
         reached = None                      # the step the world's sample and progress were last made at
@@ -137,12 +145,15 @@ class _Window:
             due = []
             while self.queue and self.queue[0][0] == s:
                 due.append(heapq.heappop(self.queue))
+            self._write_samples(s)
             for _, i, run in due:
                 self._finish(i, s, run)
             last = world.k = s
             if s >= self.end:
                 continue
-            if s % world.sample_every == 0:     # inside the window: one body flies (see the module)
+            if s % world.sample_every == 0 and self.queue:
+                self._sample_with_runs(s)   # some bodies' runs go on past this step
+            elif s % world.sample_every == 0:     # every body is at this step
                 world.reached()
                 reached = s
                 if world.n_steps < self.end:
@@ -180,12 +191,33 @@ class _Window:
             world.k = run[1]
             world.advance(body, s - run[1])
         else:
-            if run[0] == VEHICLE and len(run[2]):
-                world.record_rows(body, run[2], run[3])     # the run's samples, before its last step
             body.y = run[1]
             world.after_advance(body, s)
         if body.flying and body.watch is not None:
             body.watch.after_step()
+
+    def _write_samples(self, s: int) -> None:
+        """Write the samples the runs computed before step ``s``, in the loop's order (by
+        step, then body: as the world samples every body at a sample step)."""
+        world = self.world
+        while self.samples and self.samples[0][0] < s:
+            _, i, row, shape = heapq.heappop(self.samples)
+            world.record_rows(world.bodies[i], row, shape)
+
+    def _sample_with_runs(self, s: int) -> None:
+        """The world's sample at step ``s`` (its finiteness test, then every flying body's
+        sample in order) while some bodies' runs go on past it: theirs computed in the run,
+        the others' from their state at ``s``."""
+        world = self.world
+        world.check_finite()
+        running = {i for _, i, _ in self.queue}
+        for i, body in enumerate(world.bodies):
+            if body.flying and world.telemetry is not None:
+                if i in running:
+                    _, _, row, shape = heapq.heappop(self.samples)      # (s, i): the next in order
+                    world.record_rows(body, row, shape)
+                else:
+                    world.record(body)
 
     def _one_step(self, movers: list[int]) -> bool:
         """Whether the loop would step the next step one step at a time: a vehicle's

@@ -182,7 +182,7 @@ class World:
         the last, after a cruise step) the finiteness check and the telemetry sample,
         then ``on_progress``, which may end the flight earlier (``n_steps``)."""
         if self.k % self.sample_every == 0 or self.k >= self.n_steps or self.schedule.cruise_batch:
-            self._check_finite()
+            self.check_finite()
             self._sample_all()
         if self.on_progress is not None:
             self.on_progress(self.t)
@@ -350,7 +350,7 @@ class World:
             if self.telemetry is not None:
                 self.record(body)
 
-    def _check_finite(self) -> None:
+    def check_finite(self) -> None:
         """Stop the flight with an input error when a body's state is no longer finite
         (a step too large for its dynamics, or an unphysical vehicle), naming the
         scenario's file and the vehicle's (every body of the world is part of that
