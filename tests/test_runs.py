@@ -50,9 +50,9 @@ def _flight(tmp_path, name, monkeypatch, windows: bool, counts: dict):
             return y, taken, reason, filled
 
         def counted_part(*args):
-            y, taken = part_run(*args)
+            y, taken, filled = part_run(*args)
             counts["part steps"] += taken
-            return y, taken
+            return y, taken, filled
 
         record_rows = world_module.World.record_rows
 

@@ -51,7 +51,8 @@ step where
 
 A tumbling part below its rails floor (a fairing half in the air) has only the
 orbit test and the handover to watch: :func:`fly_part` flies it the same way,
-:func:`~rocketsim.dynamics.free_body.free_step` by step.
+:func:`~rocketsim.dynamics.free_body.free_step` by step, its samples computed on the
+way as a vehicle's.
 """
 
 import math
@@ -211,25 +212,38 @@ def _surely_finite(y):
 
 
 @njit(nogil=True)
-def fly_part(y, k0, h, n_max, p, fp, air, area_mass, length, floor, liftoff, orbit_bound, mu, soi,
-             nbody=None):
+def fly_part(y, k0, h, n_max, p, fp, air, area_mass, length, floor, liftoff, orbit_bound, mu, soi, every, rows,
+             record, sampler, nbody=None):
     """Fly a tumbling part (:mod:`rocketsim.dynamics.free_body`: the field ``fp``, the air
     table ``air``, its area over mass and length) from state ``y`` at step ``k0`` for up
     to ``n_max`` steps of ``h`` s, as :func:`~rocketsim.dynamics.free_body.advance_free`
-    flies it (``nbody`` as its), returning ``(y, steps taken)`` after the first step that ends below the
-    ground, above ``floor`` (m: its rails floor, sleep rails from the next step), near
-    or above the liftoff height ``liftoff`` (m over the ellipsoid, the readings'
-    height; inf: lifted off), past the orbit test's bound or the watch radius (see
-    :func:`_orbit_and_soi_quiet`)."""
+    flies it (``nbody`` as its), returning ``(y, steps taken, rows filled)`` after the
+    first step that ends below the ground, above ``floor`` (m: its rails floor, sleep
+    rails from the next step), near or above the liftoff height ``liftoff`` (m over the
+    ellipsoid, the readings' height; inf: lifted off), past the orbit test's bound or
+    the watch radius (see :func:`_orbit_and_soi_quiet`).
+
+    At each telemetry sample step (a multiple of ``every``) before the last step, as
+    :func:`fly_run` does: the world's finiteness test and, with ``record``, the sample's
+    figures (:func:`rocketsim.sim.sampling.figures` with the arguments ``sampler``) in
+    the next row of ``rows``, returning at that step where the test may fail or the
+    rows are full."""
     fp = fp.copy()
+    filled = 0
     for j in range(1, n_max + 1):
         y = free_step(y, (k0 + j - 1) * h, h, p, fp, air, area_mass, length, nbody)
         height = radial_height(y, p)
         if not (0.0 <= height < floor * (1.0 - MARGIN)) or not _orbit_and_soi_quiet(y, p, orbit_bound, mu, soi):
-            return y, j
+            return y, j, filled
         if not _below(y, (k0 + j) * h, p, liftoff):
-            return y, j
-    return y, n_max
+            return y, j, filled
+        if j < n_max and (k0 + j) % every == 0:
+            if not _surely_finite(y) or (record and filled == rows.shape[0]):
+                return y, j, filled
+            if record:
+                copy_into(rows[filled], 0, figures_of((k0 + j) * h, y, p, *sampler))
+                filled += 1
+    return y, n_max, filled
 
 
 @njit(nogil=True)

@@ -313,9 +313,9 @@ def _plan(body, gmst0: float) -> tuple:
     if found is not None and found[0]() is body and all(a is b for a, b in zip(found[1][0], key)):
         return found[1]
     frame = _frame_of(body, gmst0)
-    head = (body.mu, gmst0 if earth else 0.0, earth, *table.arrays())
+    head = _head(body, gmst0, table)
     if model is None:
-        fixed = head + (None, _NO_GROUPS, 0, 0.0, 0.0, nbody_flag(body.p))
+        fixed = _rigid(head, body.p)
         shape, shield = _shape(frame, None, None, False), None
     else:
         group, groups, tanks = _layout(model)
@@ -328,6 +328,26 @@ def _plan(body, gmst0: float) -> tuple:
         del _PLANS[gone]            # bodies gone with their runs
     _PLANS[id(body)] = [weakref.ref(body), plan]
     return plan
+
+
+def _head(body, gmst0: float, table) -> tuple:
+    """figures' arguments after the state and parameters that every body has: its
+    central body's gravity, the sidereal angle (about Earth), the air ``table``."""
+    earth = body.central == "earth"
+    return (body.mu, gmst0 if earth else 0.0, earth, *table.arrays())
+
+
+def _rigid(head: tuple, p: np.ndarray) -> tuple:
+    """A rigid body's arguments of figures after ``head`` (:func:`_head`), but for the
+    shield's temperature."""
+    return head + (None, _NO_GROUPS, 0, 0.0, 0.0, nbody_flag(p))
+
+
+def part_arguments(body, gmst0: float) -> tuple:
+    """The arguments of figures (as :func:`arguments`) of a rigid body that separates
+    from the vehicle ``body`` about Earth (a fairing's half: the same central body,
+    air and epoch), for a compiled caller to be typed before the body exists."""
+    return _rigid(_head(body, gmst0, air_about(body.central, body.atmosphere())), body.p) + (math.nan,)
 
 
 def message(body, gmst0: float, where) -> dict:

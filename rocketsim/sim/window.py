@@ -33,8 +33,8 @@ none flies past a step its condition may end the window at.
 A vehicle's compiled runs go on past telemetry sample steps, computing the
 samples of the steps they fly through (up to :data:`RUN_SAMPLES` of them),
 with the sampler's own compiled figures (:func:`rocketsim.sim.sampling.run_sampler`)
-and the world's finiteness test. A tumbling part's run and a batch end at the
-next sample step at most. The samples are written in the loop's order: those
+and the world's finiteness test, and so do a tumbling part's; a batch ends
+at the next sample step at most. The samples are written in the loop's order: those
 the runs computed before a step the Python side handles are written before it,
 by step and then body; at a sample step it handles, every flying body is
 sampled in order, a body whose run goes on past the step from its run's rows,
@@ -101,7 +101,7 @@ class _Window:
         """Start a segment of each body of ``indices`` at step ``k`` as ``plans[i]`` says
         (:func:`_plan`; None: one step), the waiter's first. A run's end goes on the queue:
         ``(VEHICLE, its last state)``, ``(PART, its last state, its first step and state)``,
-        ``(BATCH, k)``; a vehicle's samples computed in its run go on :attr:`samples`."""
+        ``(BATCH, k)``; the samples computed in a run go on :attr:`samples`."""
         for i in sorted(indices, key=lambda i: i != self.waiter):
             plan = plans[i]
             if plan is None:
@@ -110,8 +110,6 @@ class _Window:
             world = self.world
             body = world.bodies[i]
             top = self.end if i == self.waiter else min(self.end, self.frontier)
-            if plan[0] != VEHICLE:          # to the next sample at most: the world samples there
-                top = min(top, k + world.sample_every - k % world.sample_every)
             if plan[0] == VEHICLE:
                 samples, rows, shape = _samples(world, body)
                 y, taken, reason, filled = body.checks.fly_run(body, k, world.h, top - k, plan[1], body.watch,
@@ -121,15 +119,24 @@ class _Window:
                     self.frontier = k + taken
                     if reason == runs.CONDITION:
                         self.end = k + taken    # the program is due at the next step
-                first = k + world.sample_every - k % world.sample_every
-                for j in range(filled):
-                    heapq.heappush(self.samples, (first + j * world.sample_every, i, rows[j:j + 1], shape))
+                self._computed(k, i, rows[:filled], shape)
                 heapq.heappush(self.queue, (k + taken, i, (VEHICLE, y)))
             elif plan[0] == PART:
-                y, taken = self._part(body, k, body.y, top - k)
+                samples, rows, shape = _part_samples(world, body)
+                y, taken, filled = self._part(body, k, body.y, top - k, samples)
+                self._computed(k, i, rows[:filled], shape)
                 heapq.heappush(self.queue, (k + taken, i, (PART, y, k, body.y)))
-            else:                           # BATCH: flown when its turn comes, from step k
+            else:                           # BATCH: to the next sample at most, where the world samples
+                top = min(top, k + world.sample_every - k % world.sample_every)
                 heapq.heappush(self.queue, (top, i, (BATCH, k)))
+
+    def _computed(self, k: int, i: int, rows: np.ndarray, shape) -> None:
+        """The samples of body ``i`` a run from step ``k`` computed, one row per sample step
+        from the first after ``k``, onto :attr:`samples`."""
+        every = self.world.sample_every
+        first = k + every - k % every
+        for j in range(len(rows)):
+            heapq.heappush(self.samples, (first + j * every, i, rows[j:j + 1], shape))
 
     def fly(self) -> None:
         """Handle the queue's steps in order (by step, then body) to the window's end,
@@ -151,6 +158,10 @@ class _Window:
             last = world.k = s
             if s >= self.end:
                 continue
+            movers = [i for _, i, _ in due if world.bodies[i].flying]
+            if not self._one_step(movers):
+                self._close(s)              # nobody needs one step at a time: the loop batches from here
+                continue
             if s % world.sample_every == 0 and self.queue:
                 self._sample_with_runs(s)   # some bodies' runs go on past this step
             elif s % world.sample_every == 0:     # every body is at this step
@@ -163,10 +174,6 @@ class _Window:
                         continue
             if any(i == self.waiter for _, i, _ in due):
                 self.frontier = self.end    # until its next run says where it stops
-            movers = [i for _, i, _ in due if world.bodies[i].flying]
-            if not self._one_step(movers):
-                self._close(s)              # nobody needs one step at a time: the loop batches from here
-                continue
             plans = {i: _plan(world, world.bodies[i], False, (self.end - s) * world.h) for i in movers}
             if any(plans[i] is None and _waiting(world.bodies[i]) for i in movers):
                 self.end = s                # its condition is read in Python from the next step
@@ -229,26 +236,30 @@ class _Window:
     def _close(self, s: int) -> None:
         """End the window at step ``s``: the tumbling parts and batches under way are
         brought to it (their steps to ``s`` have nothing for Python, and a part's run
-        is flown again to ``s`` from where it started: the same steps, the same bits)."""
+        is flown again to ``s`` from where it started: the same steps, the same bits;
+        its samples from ``s`` on are dropped)."""
         self.end = s
         world = self.world
         for _, i, run in sorted(self.queue):
             body = world.bodies[i]
             if run[0] == PART:
                 k0, y0 = run[2], run[3]
-                run = (PART, self._part(body, k0, y0, s - k0)[0])
+                self.samples = [item for item in self.samples if item[1] != i or item[0] < s]
+                heapq.heapify(self.samples)
+                run = (PART, self._part(body, k0, y0, s - k0, _part_samples(world, body, False)[0])[0])
             self._finish(i, s, run)
         self.queue = []
 
-    def _part(self, body, k: int, y, n: int) -> tuple:
-        """A tumbling part's run from state ``y`` at step ``k``, up to ``n`` steps."""
+    def _part(self, body, k: int, y, n: int, samples: tuple) -> tuple:
+        """A tumbling part's run from state ``y`` at step ``k``, up to ``n`` steps, computing
+        ``samples`` (:func:`_part_samples`)."""
         world = self.world
         watch = body.watch          # None: no events to watch
         return runs.fly_part(y, k, world.h, n, body.p, rails_field(body), world.air_of(body), *body.drag,
                              world.schedule.rails_floor(body),
                              math.inf if watch is None else watch.liftoff_height(),
                              math.inf if watch is None or watch.in_orbit else ORBIT_PERIAPSIS_BOUND, body.mu,
-                             math.inf, nbody_flag(body.p))
+                             math.inf, *samples, nbody_flag(body.p))
 
 
 def _samples(world, body) -> tuple:
@@ -259,6 +270,16 @@ def _samples(world, body) -> tuple:
     sampler, shape, length, whole = sampling.run_sampler(body, world.gmst0)
     record = world.telemetry is not None
     rows = np.empty((RUN_SAMPLES if record and whole else 0, length))
+    return (world.sample_every, rows, record, sampler), rows, shape
+
+
+def _part_samples(world, body, record: bool = True) -> tuple:
+    """``(samples, rows, shape)`` of a tumbling part's run (as :func:`_samples`' of a
+    vehicle's: ``samples`` for :func:`rocketsim.sim.runs.fly_part`), ``record`` with
+    telemetry."""
+    sampler, shape = sampling.arguments(body, world.gmst0)
+    record = record and world.telemetry is not None
+    rows = np.empty((RUN_SAMPLES if record and body.central == "earth" else 0, sampling.RIGID_WIDTH))
     return (world.sample_every, rows, record, sampler), rows, shape
 
 
@@ -277,7 +298,9 @@ def compile_runs_beside(world) -> None:
                 # (float arrays as the vehicle's), the same field and air
                 compile_beside(runs.fly_part, (body.y[:N_STATE].copy(), 0, world.h, 1, body.p, rails_field(body),
                                                world.air_of(body), 1.0, 1.0, 1.0, math.inf,
-                                               ORBIT_PERIAPSIS_BOUND, body.mu, math.inf, nbody_flag(body.p)))
+                                               ORBIT_PERIAPSIS_BOUND, body.mu, math.inf, world.sample_every,
+                                               np.empty((0, sampling.RIGID_WIDTH)), True,
+                                               sampling.part_arguments(body, world.gmst0), nbody_flag(body.p)))
 
 
 def _waiting(body) -> bool:

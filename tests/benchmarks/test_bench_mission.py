@@ -132,9 +132,9 @@ def _instrument(monkeypatch, clock: SectionClock) -> Counter:
     timed_part = clock.wrap(runs.fly_part, "physics")
 
     def timed_part_run(*args):                                 # a tumbling part's compiled run
-        y, taken = timed_part(*args)
+        y, taken, filled = timed_part(*args)
         steps["body-steps"] += taken
-        return y, taken
+        return y, taken, filled
 
     patch(runs, "fly_part", timed_part_run)
     bound_call = Entries.call                                  # a staged vehicle's steps
