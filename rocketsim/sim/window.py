@@ -95,7 +95,7 @@ class _Window:
         self.waiter = waiter                # the body whose program waits on a compiled condition
         self.frontier = end                 # where the waiter's run stops: no other run goes beyond
         self.queue: list[tuple] = []        # (step, body index, run: see start; None: one step to fly)
-        self.samples: list[tuple] = []      # (step, body index, its sample's row, shape) computed in runs
+        self.samples: list[tuple] = []      # (step, body index, row j of rows, rows, shape) computed in runs
 
     def start(self, k: int, indices: list[int], plans: dict) -> None:
         """Start a segment of each body of ``indices`` at step ``k`` as ``plans[i]`` says
@@ -136,7 +136,7 @@ class _Window:
         every = self.world.sample_every
         first = k + every - k % every
         for j in range(len(rows)):
-            heapq.heappush(self.samples, (first + j * every, i, rows[j:j + 1], shape))
+            heapq.heappush(self.samples, (first + j * every, i, j, rows, shape))
 
     def fly(self) -> None:
         """Handle the queue's steps in order (by step, then body) to the window's end,
@@ -205,11 +205,17 @@ class _Window:
 
     def _write_samples(self, s: int) -> None:
         """Write the samples the runs computed before step ``s``, in the loop's order (by
-        step, then body: as the world samples every body at a sample step)."""
+        step, then body: as the world samples every body at a sample step), a body's
+        consecutive ones as one block."""
         world = self.world
         while self.samples and self.samples[0][0] < s:
-            _, i, row, shape = heapq.heappop(self.samples)
-            world.record_rows(world.bodies[i], row, shape)
+            _, i, j, rows, shape = heapq.heappop(self.samples)
+            end = j + 1
+            while self.samples and self.samples[0][0] < s and self.samples[0][1] == i \
+                    and self.samples[0][3] is rows:
+                heapq.heappop(self.samples)
+                end += 1
+            world.record_rows(world.bodies[i], rows[j:end], shape)
 
     def _sample_with_runs(self, s: int) -> None:
         """The world's sample at step ``s`` (its finiteness test, then every flying body's
@@ -221,8 +227,8 @@ class _Window:
         for i, body in enumerate(world.bodies):
             if body.flying and world.telemetry is not None:
                 if i in running:
-                    _, _, row, shape = heapq.heappop(self.samples)      # (s, i): the next in order
-                    world.record_rows(body, row, shape)
+                    _, _, j, rows, shape = heapq.heappop(self.samples)      # (s, i): the next in order
+                    world.record_rows(body, rows[j:j + 1], shape)
                 else:
                     world.record(body)
 
