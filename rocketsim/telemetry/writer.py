@@ -291,10 +291,19 @@ class TelemetryWriter:
         """Write ``samples`` (blocks of samples, see :meth:`_add_pending`) in order, each with
         the template of its body, message shape and set of missing values (:meth:`_plan`),
         in one compiled call (:meth:`_write_segment`) but where a template is made anew:
-        making one may add a frame, so the samples before it are written first."""
+        making one may add a frame, so the samples before it are written first. A body's
+        blocks that follow one another are looked at as one."""
         segment: list[tuple] = []           # (block of samples, their templates)
-        for body, values, fields, leaving in samples:
+        pending = deque(samples)
+        while pending:
+            body, values, fields, leaving = pending.popleft()
             size = values.shape[1]
+            run = [values]                  # the blocks of one body and shape that follow it: one block
+            while pending and pending[0][0] == body and pending[0][2] is fields \
+                    and pending[0][1].shape[1] == size and pending[0][3] == leaving:
+                run.append(pending.popleft()[1])
+            if len(run) > 1:
+                values = np.concatenate(run)
             shape = self._plans.get(body)
             if shape is None or shape[0] is not fields or shape[1] != size:
                 shape = self._plans[body] = self._shape(body, size, fields)
