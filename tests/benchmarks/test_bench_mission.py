@@ -32,12 +32,13 @@ Printed (run with ``pytest -s``):
 * the ratio of the whole flight to its physics alone, both measured in this
   run (1.0 would be a loop that costs nothing beyond the integrator).
 
-The shipped programs run their guidance at 10 Hz (``GUIDANCE_STEP`` = 0.1 s:
-``orbit_ascent.py`` and ``booster_return.py`` sleep between updates while the
-autopilot holds the last command every 20 ms step; every step near a cut-off,
-the boost-back's end and the landing-burn ignition, and through the entry and
-landing burns): 7 701 program resumes in the whole mission instead of 33 106
-at one per step.
+The shipped programs hand what they can to compiled code: ``orbit_ascent.py``
+climbs from the pitch kick to MECO without waking (surface prograde held, the
+engines' q throttle law, a compiled wait on the stage's propellant) and flies
+its insertion on a linear-tangent law the autopilot follows, solved every
+second; ``booster_return.py`` updates its commands at 10 Hz (``GUIDANCE_STEP``),
+every step near a cut-off and through the entry and landing burns: 3 608
+program resumes in the whole mission (33 106 at one per step).
 
 The shares come from timing wrappers put around those parts for this run
 only (about a microsecond per wrapped call, included in the figures).
@@ -49,16 +50,18 @@ physics: the autopilot's step, RK4, the checks' figures and the tests of the
 checks and events inside them; their Python around them (the window's queue, the
 runs' arguments) as the loop.
 
-Last figures (the suite's first 160 s, two bodies; a 2-core machine at load 0.4,
-in-process): 0.38 s uninstrumented, 420x real time (398-454x over the day);
-instrumented, the physics 58 %, the programs 16 % (1 586 wake-ups at 41.8 us),
-the loop 15 %, telemetry, checks and events 2-2.4 % each; whole flight / physics
-1.73; per body-step the physics 25.2 us, the loop 6.4 us. The whole mission
-in-process takes 3.0-4.0 s (median of 6: 3.5 s), flown one step at a time (no
-windows) 3.3-4.2 s (3.8 s): its compiled runs gain it about 8 %. A compiled run costs about 9 us a call and
-12-14 us a step (the autopilot's step 1.6 us, RK4 5-11 us with its splits at
-the engines' kinks, the checks' figures 1.9 us): the program's wake-up every
-0.1 s ends a run every 5 steps.
+Last figures (a 2-core machine at load 0.8-1.2, in-process): the suite's first
+160 s, two bodies, 0.22-0.25 s uninstrumented, 635-714x real time; instrumented,
+the physics 69 %, the programs 10 % (277 wake-ups), the loop 10 %, telemetry 4 %;
+whole flight / physics 1.45 (uninstrumented whole over instrumented physics
+1.38); per body-step the physics 17.4 us, the loop 2.5 us. The whole mission:
+2.13 s instrumented run (281x; physics 51 %, programs 26 %, loop 14 %; whole /
+physics 1.96); uninstrumented, 4 runs, 1.88-2.03 s (median 1.90 s, 316x), and
+flown one step at a time (no windows) 3.21-3.54 s (median 3.32 s): its compiled
+runs gain it 43 %. Several bodies' runs go on past the sample steps (their
+samples computed in the runs), so a run ends at a program's wake-up, a check
+or event that may act, or every 10 samples (1 s), where the world reports its
+progress.
 Nothing asserts a time; the checks are that the mission reaches orbit and
 that the parts add up to no more than the whole.
 """

@@ -39,7 +39,8 @@ rocketsim / RocketPy with telemetry 10.2x (target 10x), without 12.3x, the
 steps alone 20.7x; an hour later (load 1.2-1.8, RocketPy 405 ms) 8.7x, 10.6x and
 18.2x: the target is met at best. On a later, slower machine (load 0.5): 62.6 ms
 with telemetry, 54.8 ms without, the steps alone 32.7 ms, RocketPy 487.6 ms: 8.1x,
-9.3x and 15.5x. Where rocketsim's time goes (kernels timed alone on the
+9.3x and 15.5x; later again (load 0.8): 44.4 ms, 36.3 ms, 22.0 ms, RocketPy 379.5 ms: 8.9x,
+10.9x and 18.0x. Where rocketsim's time goes (kernels timed alone on the
 flight's states, the burn's): the RK4 step 3.9 us; the checks' figures 1.5 us
 a step (0.9 us of it a derivative for the axial load); the max-Q test 0.4 us a
 step while pending; a sample's figures 2.3 us; the file's fixed cost 2.6 ms
