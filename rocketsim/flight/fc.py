@@ -37,6 +37,9 @@ from rocketsim.vehicle.contact import contact_heights
 from rocketsim.vehicle.control import Propulsion
 from rocketsim.vehicle.heating import sutton_graves, sutton_graves_constant
 
+MAX_CROSS = 1e3     # fc.steer_linear_tangent's cross-track share at most (its square stays finite)
+
+
 class FlightComputer:
     """The program's handle on one body of the world."""
 
@@ -362,11 +365,12 @@ class FlightComputer:
         to the radius (``tau`` s from now), ahead along the velocity in the plane of
         :attr:`radial` and :attr:`velocity`, tilted by ``cross`` along :attr:`normal` (the
         direction of ``cos(pitch) h + sin(pitch) radial + cross normal``, ``h`` the unit
-        horizontal velocity); ``roll`` (rad) as in :meth:`point`. Example:
+        horizontal velocity; ``|cross|`` at most :data:`MAX_CROSS`, a tilt of 89.94 deg
+        out of the plane); ``roll`` (rad) as in :meth:`point`. Example:
         ``fc.steer_linear_tangent(0.6, -0.004)``: 31 deg now, 0 deg in 150 s."""
         call = "fc.steer_linear_tangent"
         a, b = arguments.number(call, "a", a), arguments.number(call, "b", b)
-        cross, roll = arguments.number(call, "cross", cross), arguments.roll(call, roll)
+        cross, roll = arguments.number(call, "cross", cross, -MAX_CROSS, MAX_CROSS), arguments.roll(call, roll)
         self._steer(AttitudeCommand(law=(self._craft.time, a, b, cross), roll=roll))
 
     def release(self) -> None:

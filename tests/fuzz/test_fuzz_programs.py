@@ -94,6 +94,13 @@ PLAUSIBLE = {
     "name": st.sampled_from(["'sun'", "'earth'", "'moon'", "'mars'", "'marker'", "''"]),
     "at": st.one_of(_FLOAT, st.sampled_from(["None", "fc.time", "-3155760000.0"])),
     "parts": st.sampled_from(["'altitude'", "fc.altitude", "fc.engines", "fc.orbit"]),
+    "reading": st.sampled_from(["'altitude'", "'vertical_speed'", "'propellant'"]),
+    "stage": st.sampled_from(["None", "'booster'", "'second stage'", "'payload'"]),
+    "start": st.sampled_from(["None", "0.0", "33e3", "1e308"]),
+    "end": st.sampled_from(["None", "49.5e3", "33e3", "1e308"]),
+    "a": st.one_of(_SMALL, st.sampled_from(["1e308", "-1e308"])),
+    "b": st.one_of(_SMALL, st.sampled_from(["1e308", "-1e-3"])),
+    "cross": st.one_of(_SMALL, st.sampled_from(["1000.0", "-1000.0"])),
 }
 
 
