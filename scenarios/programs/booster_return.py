@@ -244,7 +244,9 @@ def boost_back(fc, guide, engines):
         fc.point_at(wanted)
         aligned = fc_nose(fc) @ wanted > math.cos(math.radians(20.0))
         fc.throttle(1.0 if size > FINE_MISS and aligned else 0.0)
-        fc.sleep(0.0 if size < 30e3 else GUIDANCE_STEP)     # every step near the cut-off
+        # every step near the cut-off; far from it, at the guidance rate while the stage turns
+        # onto the aim and once a second (when the miss is predicted again) on it
+        fc.sleep(0.0 if size < 30e3 else GUIDANCE_STEP if not aligned else checked + 1.0 - fc.time)
     fc.shutdown(engines)
     fc.event("boost-back end", miss_m=size)
     fc.sleep(1.0)                   # hold the attitude through the tail-off: no spin-up
