@@ -229,7 +229,40 @@ def test_a_compiled_propellant_condition_reads_the_stage_s_tanks_as_python_sums_
                 assert holds(condition.code, t, y, p) == condition() == (
                     total < threshold if op == BELOW else total > threshold)
     mine = [i for i, name in enumerate(vehicle.tank_names) if name.startswith("second stage/")]
-    assert mine[0] > 0 and condition.code[0, 3:].tolist() == [vehicle.tanks.start + mine[0], len(mine)]
+    assert mine[0] > 0 and condition.code[0, 3:5].tolist() == [vehicle.tanks.start + mine[0], len(mine)]
+
+
+def test_compiled_time_and_nose_conditions_read_as_python_reads_them():
+    """The mission time and the nose's angle to a direction (compared by its cosine:
+    conditions.nose_dot) at random states and directions, at the thresholds themselves
+    and one ulp either side: the compiled test and the Python one agree; 1e-4 rad away
+    from the angle (the nose from the attitude matrix, quat_to_matrix's first column)
+    the test is the angle's."""
+    from rocketsim.flight import conditions
+    from rocketsim.frames.quaternion import quat_to_matrix
+    from rocketsim.layout import Q
+
+    p = make_params(1.0, (1.0, 1.0, 1.0), EARTH_MU, EARTH_RADIUS_EQ, EARTH_J2, EARTH_RADIUS_POLAR)
+    rng = np.random.default_rng(5)
+    fc = _Readings()
+    checked = 0
+    for t, y in _earth_states(200):
+        fc.attitude, fc.time = y[Q:Q + 4].copy(), t
+        towards = rng.normal(size=3)
+        towards /= np.linalg.norm(towards)
+        angle = math.acos(max(-1.0, min(1.0, float(quat_to_matrix(y[Q:Q + 4])[:, 0] @ towards))))
+        for op in (BELOW, ABOVE):
+            for a in (angle, np.nextafter(angle, 0.0), np.nextafter(angle, 4.0)):
+                condition = conditions.compare_nose(fc, towards, a, op)
+                assert holds(condition.code, t, y, p) == condition()
+                checked += 1
+            for value in (t, np.nextafter(t, 0.0), np.nextafter(t, 1e9)):
+                condition = conditions.compare(fc, "time", value, op)
+                assert holds(condition.code, t, y, p) == condition() == (t < value if op == BELOW else t > value)
+        if 1e-3 < angle < math.pi - 1e-3:
+            for a in (angle - 1e-4, angle + 1e-4):
+                assert conditions.compare_nose(fc, towards, a, BELOW)() == (angle < a)
+    assert checked == 200 * 2 * 3
 
 
 class _Readings:
@@ -246,7 +279,7 @@ def test_conditions_are_called_as_the_lambdas_they_stand_for():
     falling = conditions.compare(fc, "vertical_speed", -60.0, BELOW)
     assert low() is True and falling() is False
     assert (low & falling)() is False and (low | falling)() is True
-    assert (low & falling).code.shape == (3, 5) and (low & falling).code[2, 0] == conditions.AND
+    assert (low & falling).code.shape == (3, 6) and (low & falling).code[2, 0] == conditions.AND
     fc.vertical_speed = -70.0
     assert (low & falling)() is True
     with pytest.raises(TypeError, match="combines"):
@@ -257,7 +290,7 @@ def test_fc_below_refuses_a_reading_it_cannot_test():
     from rocketsim.flight.fc import FlightComputer
 
     fc = FlightComputer.__new__(FlightComputer)
-    with pytest.raises(ValueError, match=r"fc.below\(\): reading must be one of altitude, vertical_speed, propellant"):
+    with pytest.raises(ValueError, match=r"fc.below\(\): reading must be one of altitude, vertical_speed, propellant, time, nose_angle"):
         fc.below("speed", 10.0)
     with pytest.raises(ValueError, match=r"fc.above\(\): value must be a finite number"):
         fc.above("altitude", math.nan)

@@ -19,14 +19,20 @@ in Python every step, as a lambda's):
 * ``vertical_speed``: rate of climb relative to the ground, m/s
   (:attr:`FlightComputer.vertical_speed`);
 * ``propellant``: the liquid propellant left in one stage's tanks, kg (the sum of
-  their entries of :attr:`FlightComputer.propellant`, in the vehicle's order).
+  their entries of :attr:`FlightComputer.propellant`, in the vehicle's order);
+* ``time``: mission time, s (:attr:`FlightComputer.time`), a timeout beside another
+  condition;
+* ``nose_angle``: the angle between the nose (body x, from :attr:`FlightComputer.attitude`)
+  and a unit direction ``towards`` (ECI), rad, compared by its cosine: below ``a``
+  is ``nose . towards > cos(a)`` (:func:`nose_dot`).
 
-The compiled form is a postfix program of rows ``(op, reading, value, first,
-count)``: ``BELOW``/``ABOVE`` push ``reading < value`` / ``reading > value``
-(``first`` and ``count``: the state slots of the stage's tanks, for
-``propellant``), ``AND``/``OR`` combine the two topmost. A condition on a stage's
-propellant belongs to the vehicle it was made for (``vehicle``): wait on it before
-the stack changes.
+The compiled form is a postfix program of rows ``(op, reading, value, a, b, c)``:
+``BELOW``/``ABOVE`` push ``reading < value`` / ``reading > value`` (``a`` and ``b``:
+the first state slot and the number of the stage's tanks, for ``propellant``;
+``(a, b, c)`` the direction, for ``nose_angle``, whose reading is ``-nose . towards``
+against ``-cos(value)``), ``AND``/``OR`` combine the two topmost. A condition on a
+stage's propellant belongs to the vehicle it was made for (``vehicle``): wait on it
+before the stack changes.
 """
 
 from __future__ import annotations
@@ -37,11 +43,11 @@ import numpy as np
 
 from rocketsim._jit import njit
 from rocketsim.frames.local import where_and_how_fast
-from rocketsim.layout import P_POLAR_RADIUS, P_RADIUS, P_SPIN, R, V
+from rocketsim.layout import P_POLAR_RADIUS, P_RADIUS, P_SPIN, Q, R, V
 
-READINGS = ("altitude", "vertical_speed", "propellant")
+READINGS = ("altitude", "vertical_speed", "propellant", "time", "nose_angle")
 BELOW, ABOVE, AND, OR = 1.0, 2.0, 3.0, 4.0
-N_CODE = 5                          # columns of a row: op, reading, value, first slot, slots
+N_CODE = 6                          # columns of a row: op, reading, value and three for the reading
 NO_CONDITION = np.zeros((0, N_CODE))    # what the compiled run reads for a program not waiting on one
 
 
@@ -89,9 +95,25 @@ def _condition(other, operator: str) -> Condition:
 
 def compare(fc, reading: str, value: float, op: float) -> Condition:
     """The condition ``reading < value`` (``op`` BELOW) or ``reading > value`` (ABOVE) on
-    ``altitude`` or ``vertical_speed``."""
+    ``altitude``, ``vertical_speed`` or ``time``."""
     read = lambda: getattr(fc, reading)       # noqa: E731
-    return _compared(fc, read, (op, float(READINGS.index(reading)), value, 0.0, 0.0), None)
+    return _compared(fc, read, (op, float(READINGS.index(reading)), value, 0.0, 0.0, 0.0), None)
+
+
+def compare_nose(fc, towards, angle: float, op: float) -> Condition:
+    """The condition on the angle (rad, 0..pi) between the nose and the unit vector
+    ``towards`` (ECI): ``BELOW`` is ``nose . towards > cos(angle)``, read as the negated
+    dot product against ``-cos(angle)`` (see the module)."""
+    a, b, c = (float(x) for x in towards)
+    read = lambda: -nose_dot(fc.attitude, a, b, c)       # noqa: E731
+    return _compared(fc, read, (op, float(READINGS.index("nose_angle")), -math.cos(angle), a, b, c), None)
+
+
+def nose_dot(q, a: float, b: float, c: float) -> float:
+    """``nose . (a, b, c)``: the nose (body x in ECI) of the attitude quaternion ``q``
+    (w, x, y, z, body -> ECI) dotted with a direction, the operations :func:`holds` makes."""
+    w, x, y, z = float(q[0]), float(q[1]), float(q[2]), float(q[3])
+    return (1.0 - 2.0 * (y * y + z * z)) * a + 2.0 * (x * y + w * z) * b + 2.0 * (x * z - w * y) * c
 
 
 def compare_propellant(fc, vehicle, stage: int, value: float, op: float) -> Condition:
@@ -100,8 +122,8 @@ def compare_propellant(fc, vehicle, stage: int, value: float, op: float) -> Cond
     names = [name for name, s in zip(vehicle.tank_names, vehicle.tank_stage) if s == stage]
     first = vehicle.tanks.start + vehicle.tank_names.index(names[0]) if names else 0
     read = lambda: sum(fc.propellant[name] for name in names)        # noqa: E731
-    return _compared(fc, read, (op, float(READINGS.index("propellant")), value, float(first), float(len(names))),
-                     vehicle)
+    return _compared(fc, read, (op, float(READINGS.index("propellant")), value, float(first), float(len(names)),
+                                0.0), vehicle)
 
 
 def _compared(fc, read, row: tuple, vehicle) -> Condition:
@@ -112,12 +134,13 @@ def _compared(fc, read, row: tuple, vehicle) -> Condition:
 
 @njit
 def holds(code, t, y, p):
-    """The truth of the compiled condition ``code`` (rows ``(op, reading, value, first,
-    count)``, see the module) on the state ``y`` at mission time ``t`` (s) of a body with
+    """The truth of the compiled condition ``code`` (rows ``(op, reading, value, a, b,
+    c)``, see the module) on the state ``y`` at mission time ``t`` (s) of a body with
     parameters ``p``: the readings as :class:`~rocketsim.flight.readings.StateView`
     computes them (:func:`~rocketsim.frames.local.where_and_how_fast`; the vertical
     speed the dot product of the surface velocity with the local up), a stage's
-    propellant as the sum of its tanks' slots."""
+    propellant as the sum of its tanks' slots, the time ``t``, the nose's dot product
+    as :func:`nose_dot` makes it."""
     _, _, height, enu, surface = where_and_how_fast(y[R:R + 3], y[V:V + 3], t, p[P_SPIN], p[P_RADIUS],
                                                     p[P_POLAR_RADIUS])
     climb = math.nan
@@ -135,6 +158,12 @@ def holds(code, t, y, p):
             reading = 0.0           # the order of Python's sum over the tanks
             for k in range(int(code[row, 3]), int(code[row, 3]) + int(code[row, 4])):
                 reading += y[k]
+        elif code[row, 1] == 3.0:
+            reading = t
+        elif code[row, 1] == 4.0:
+            w, x, y_, z = y[Q], y[Q + 1], y[Q + 2], y[Q + 3]
+            reading = -((1.0 - 2.0 * (y_ * y_ + z * z)) * code[row, 3] + 2.0 * (x * y_ + w * z) * code[row, 4]
+                        + 2.0 * (x * z - w * y_) * code[row, 5])
         else:
             if math.isnan(climb):
                 climb = surface @ enu[2]

@@ -92,31 +92,42 @@ class FlightComputer:
                              "before it changed (staging, a fairing); make it again")
         self._craft.hand_back(self._craft.time + self._craft.step_length, predicate)
 
-    def below(self, reading: str, value: float, stage: str | None = None) -> Condition:
+    def below(self, reading: str, value: float, stage: str | None = None, towards=None) -> Condition:
         """The condition ``reading < value`` for :meth:`wait_until`: ``reading`` is
-        ``"altitude"`` (m) or ``"vertical_speed"`` (m/s), read as :attr:`altitude` and
-        :attr:`vertical_speed`, or ``"propellant"`` (kg) with a ``stage`` name, the sum
-        of that stage's tanks in :attr:`propellant`; combine with ``&`` (and) and ``|``
-        (or). Example:
+        ``"altitude"`` (m), ``"vertical_speed"`` (m/s) or ``"time"`` (s), read as
+        :attr:`altitude`, :attr:`vertical_speed` and :attr:`time`; ``"propellant"`` (kg)
+        with a ``stage`` name, the sum of that stage's tanks in :attr:`propellant`; or
+        ``"nose_angle"`` (rad, 0..pi) with a direction ``towards`` (ECI), the angle
+        between the nose and it (compared by its cosine). Combine with ``&`` (and) and
+        ``|`` (or). Example:
         ``fc.wait_until(fc.below("altitude", 70e3) & fc.below("vertical_speed", -900))``
         (:mod:`rocketsim.flight.conditions`)."""
-        return self._compare("fc.below", reading, value, stage, conditions.BELOW)
+        return self._compare("fc.below", reading, value, stage, towards, conditions.BELOW)
 
-    def above(self, reading: str, value: float, stage: str | None = None) -> Condition:
+    def above(self, reading: str, value: float, stage: str | None = None, towards=None) -> Condition:
         """The condition ``reading > value`` for :meth:`wait_until` (as :meth:`below`).
         Example: ``fc.wait_until(fc.above("altitude", pad + 300))``."""
-        return self._compare("fc.above", reading, value, stage, conditions.ABOVE)
+        return self._compare("fc.above", reading, value, stage, towards, conditions.ABOVE)
 
-    def _compare(self, call: str, reading: str, value: float, stage, op: float) -> Condition:
+    def _compare(self, call: str, reading: str, value: float, stage, towards, op: float) -> Condition:
         reading = arguments.choice(call, "reading", reading, conditions.READINGS)
         value = arguments.number(call, "value", value)
-        if reading != "propellant":
-            if stage is not None:
-                raise ValueError(f"{call}(): stage goes with the reading propellant only")
-            return conditions.compare(self, reading, value, op)
-        vehicle = self._propulsion().model
-        stage = arguments.choice(call, "stage", stage, vehicle.stage_names)
-        return conditions.compare_propellant(self, vehicle, vehicle.stage_names.index(stage), value, op)
+        if stage is not None and reading != "propellant":
+            raise ValueError(f"{call}(): stage goes with the reading propellant only")
+        if towards is not None and reading != "nose_angle":
+            raise ValueError(f"{call}(): towards goes with the reading nose_angle only")
+        if reading == "propellant":
+            vehicle = self._propulsion().model
+            stage = arguments.choice(call, "stage", stage, vehicle.stage_names)
+            return conditions.compare_propellant(self, vehicle, vehicle.stage_names.index(stage), value, op)
+        if reading == "nose_angle":
+            value = arguments.number(call, "value", value, 0.0, math.pi)
+            v = arguments.vector(call, "towards", towards)
+            norm = math.hypot(*v.tolist())
+            if not 0.0 < norm < math.inf:
+                raise ValueError(f"{call}(): towards must be a non-zero vector")
+            return conditions.compare_nose(self, v / norm, value, op)
+        return conditions.compare(self, reading, value, op)
 
     # --- output -------------------------------------------------------------
     def log(self, *parts) -> None:
