@@ -45,11 +45,14 @@ the stage near its velocity's line. A guidance model, not the physics: its
 errors are what the later phases correct. It is compiled
 (:func:`rocketsim.flight.guidance.descent_point`): about 20 us a prediction.
 
-Guidance rate: the boost-back and the descent update their commands every
-GUIDANCE_STEP (0.1 s; the autopilot holds the last one every 20 ms step) and
-every step where a decision is near: the boost-back's last 30 km of miss,
-the descent once the landing burn's rule is within NEAR_LANDING_BURN of
-lighting it. The entry and landing burns run every step.
+Guidance rate: the boost-back predicts its miss once a second and sleeps
+between predictions, waiting on compiled conditions while the stage turns
+onto its aim (the nose within AIMED of it, or the next prediction's time); the
+descent updates its commands every GUIDANCE_STEP (0.1 s; the autopilot holds
+the last one every 20 ms step); both go to every step where a decision is
+near: the boost-back's last 30 km of miss, the descent once the landing burn's
+rule is within NEAR_LANDING_BURN of lighting it. The entry and landing burns
+run every step.
 """
 
 import math
@@ -71,6 +74,7 @@ ENTRY_ALIGNMENT = math.radians(10.0)  # the entry burn lights with the nose this
 UNUSABLE = 4200.0           # kg: propellant the engines cannot draw (1 % of the booster's load)
 OVERSHOOT = 6000.0          # m: boost-back aims this far beyond the pad (the entry burn shortens the fall)
 FINE_MISS = 3000.0          # m: boost-back throttled back below this miss
+AIMED = math.radians(20.0)  # rad: the boost-back burns with the nose this near its aim
 LANDING_ALTITUDE = 8e3     # m: the landing burn starts below this (drag brakes the stage above)
 LANDING_MARGIN = 0.5        # share of the available deceleration the landing burn plans on
 TOUCH_SPEED = 0.5           # m/s: descent rate the landing burn aims for at contact
@@ -242,11 +246,14 @@ def boost_back(fc, guide, engines):
         if size < 30e3 and along <= 0.5 * max(previous - along, 0.0):     # on the aim within half a step
             break
         fc.point_at(wanted)
-        aligned = fc_nose(fc) @ wanted > math.cos(math.radians(20.0))
+        aligned = fc_nose(fc) @ wanted > math.cos(AIMED)
         fc.throttle(1.0 if size > FINE_MISS and aligned else 0.0)
-        # every step near the cut-off; far from it, at the guidance rate while the stage turns
-        # onto the aim and once a second (when the miss is predicted again) on it
-        fc.sleep(0.0 if size < 30e3 else GUIDANCE_STEP if not aligned else checked + 1.0 - fc.time)
+        if size < 30e3:
+            fc.step()               # every step near the cut-off
+        elif aligned:
+            fc.sleep(checked + 1.0 - fc.time)       # on the aim: to the next prediction
+        else:                       # turning onto it: until it is reached, or the next prediction
+            fc.wait_until(fc.below("nose_angle", AIMED, towards=wanted) | fc.above("time", checked + 0.99))
     fc.shutdown(engines)
     fc.event("boost-back end", miss_m=size)
     fc.sleep(1.0)                   # hold the attitude through the tail-off: no spin-up
