@@ -36,9 +36,11 @@ The shipped programs hand what they can to compiled code: ``orbit_ascent.py``
 climbs from the pitch kick to MECO without waking (surface prograde held, the
 engines' q throttle law, a compiled wait on the stage's propellant) and flies
 its insertion on a linear-tangent law the autopilot follows, solved every
-second; ``booster_return.py`` updates its commands at 10 Hz (``GUIDANCE_STEP``),
-every step near a cut-off and through the entry and landing burns: 3 608
-program resumes in the whole mission (33 106 at one per step).
+second; ``booster_return.py`` predicts its boost-back's miss once a second
+(waiting on the nose's angle to its aim while it turns), updates its descent at
+10 Hz (``GUIDANCE_STEP``), every step near a cut-off and through the entry and
+landing burns: about 3 400 program resumes in the whole mission (33 106 at one
+per step).
 
 The shares come from timing wrappers put around those parts for this run
 only (about a microsecond per wrapped call, included in the figures).
@@ -50,11 +52,10 @@ physics: the autopilot's step, RK4, the checks' figures and the tests of the
 checks and events inside them; their Python around them (the window's queue, the
 runs' arguments) as the loop.
 
-Last figures (a 2-core machine at load 0.8-1.2, in-process): the suite's first
-160 s, two bodies, 0.22-0.25 s uninstrumented, 635-714x real time; instrumented,
-the physics 69 %, the programs 10 % (277 wake-ups), the loop 10 %, telemetry 4 %;
-whole flight / physics 1.45 (uninstrumented whole over instrumented physics
-1.38); per body-step the physics 17.4 us, the loop 2.5 us. The whole mission:
+Last figures (a 2-core machine at load 0.6-1.2, in-process): the suite's first
+160 s, two bodies, 0.19 s uninstrumented, 841x real time; instrumented, the
+programs 7 % (84 wake-ups), the loop 5 %; whole flight / physics 1.25
+(uninstrumented whole over instrumented physics 1.24). The whole mission:
 2.13 s instrumented run (281x; physics 51 %, programs 26 %, loop 14 %; whole /
 physics 1.96); uninstrumented, 4 runs, 1.88-2.03 s (median 1.90 s, 316x), and
 flown one step at a time (no windows) 3.21-3.54 s (median 3.32 s): its compiled
