@@ -39,7 +39,7 @@ its insertion on a linear-tangent law the autopilot follows, solved every
 second; ``booster_return.py`` predicts its boost-back's miss once a second
 (waiting on the nose's angle to its aim while it turns), updates its descent at
 10 Hz (``GUIDANCE_STEP``), every step near a cut-off and through the entry and
-landing burns: about 3 400 program resumes in the whole mission (33 106 at one
+landing burns: 3 022 program resumes in the whole mission (33 106 at one
 per step).
 
 The shares come from timing wrappers put around those parts for this run
