@@ -33,7 +33,6 @@ import math
 import os
 import stat
 from collections import deque
-from itertools import islice
 from pathlib import Path
 
 import numpy as np
