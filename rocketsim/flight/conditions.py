@@ -109,10 +109,12 @@ def compare_nose(fc, towards, angle: float, op: float) -> Condition:
     return _compared(fc, read, (op, float(READINGS.index("nose_angle")), -math.cos(angle), a, b, c), None)
 
 
-def nose_dot(q, a: float, b: float, c: float) -> float:
+@njit
+def nose_dot(q, a, b, c):
     """``nose . (a, b, c)``: the nose (body x in ECI) of the attitude quaternion ``q``
-    (w, x, y, z, body -> ECI) dotted with a direction, the operations :func:`holds` makes."""
-    w, x, y, z = float(q[0]), float(q[1]), float(q[2]), float(q[3])
+    (w, x, y, z, body -> ECI) dotted with a direction; :func:`holds` and the condition's
+    Python test both call it, so the two agree to the bit."""
+    w, x, y, z = q[0], q[1], q[2], q[3]
     return (1.0 - 2.0 * (y * y + z * z)) * a + 2.0 * (x * y + w * z) * b + 2.0 * (x * z - w * y) * c
 
 
@@ -140,7 +142,7 @@ def holds(code, t, y, p):
     computes them (:func:`~rocketsim.frames.local.where_and_how_fast`; the vertical
     speed the dot product of the surface velocity with the local up), a stage's
     propellant as the sum of its tanks' slots, the time ``t``, the nose's dot product
-    as :func:`nose_dot` makes it."""
+    (:func:`nose_dot`)."""
     _, _, height, enu, surface = where_and_how_fast(y[R:R + 3], y[V:V + 3], t, p[P_SPIN], p[P_RADIUS],
                                                     p[P_POLAR_RADIUS])
     climb = math.nan
@@ -161,9 +163,7 @@ def holds(code, t, y, p):
         elif code[row, 1] == 3.0:
             reading = t
         elif code[row, 1] == 4.0:
-            w, x, y_, z = y[Q], y[Q + 1], y[Q + 2], y[Q + 3]
-            reading = -((1.0 - 2.0 * (y_ * y_ + z * z)) * code[row, 3] + 2.0 * (x * y_ + w * z) * code[row, 4]
-                        + 2.0 * (x * z - w * y_) * code[row, 5])
+            reading = -nose_dot(y[Q:Q + 4], code[row, 3], code[row, 4], code[row, 5])
         else:
             if math.isnan(climb):
                 climb = surface @ enu[2]

@@ -336,7 +336,7 @@ def set_q_law(eng, cmd, engines, t: float, start: float, end: float) -> None:
         had = not math.isnan(cmd[e, C_Q_START])
         cmd[e, C_Q_START], cmd[e, C_Q_END] = start, end
         if had and math.isnan(start):
-            command_throttles(eng, cmd, np.array([e], dtype=np.int64), float(t), float(cmd[e, C_BASE]))
+            command_throttle(eng, cmd, e, t, cmd[e, C_BASE])
 
 
 def command_throttle(eng, cmd, e: int, t: float, tau: float) -> None:
