@@ -47,12 +47,14 @@ errors are what the later phases correct. It is compiled
 
 Guidance rate: the boost-back predicts its miss once a second and sleeps
 between predictions, waiting on compiled conditions while the stage turns
-onto its aim (the nose within AIMED of it, or the next prediction's time); the
-descent updates its commands every GUIDANCE_STEP (0.1 s; the autopilot holds
-the last one every 20 ms step); both go to every step where a decision is
-near: the boost-back's last 30 km of miss, the descent once the landing burn's
-rule is within NEAR_LANDING_BURN of lighting it. The entry and landing burns
-run every step.
+onto its aim (the nose within AIMED of it, or the next prediction's time),
+and looks every step over its last 30 km of miss. The descent updates its
+lean every DESCENT_PERIOD (0.5 s), the entry and landing burns their
+direction and throttle every GUIDANCE_STEP (0.1 s); the autopilot holds the
+last command every 20 ms step. Each goes to every step as the limit it acts
+at nears (:class:`~rocketsim.flight.guidance_rate.Approach`: the entry burn's
+end speed and propellant reserve, the landing burn's altitude and rule, the
+cut-off's clearance), so it acts in the step the limit is crossed.
 """
 
 import math
@@ -63,6 +65,7 @@ from rocketsim.constants import EARTH_J2, EARTH_MU, EARTH_OMEGA
 from rocketsim.frames.earth_fixed import eci_to_ecef, eci_to_ecef_velocity
 from rocketsim.frames.geodetic import enu_basis, geodetic_to_ecef
 from rocketsim.flight.guidance import descent_point, warm_up
+from rocketsim.flight.guidance_rate import Approach
 
 BALLISTIC = 1800.0          # kg/m^2: the empty stage tail first with its grid fins (estimate)
 SEA_LEVEL_DENSITY = 1.225   # kg/m^3, and scale height (m): the predictor's air
@@ -96,8 +99,8 @@ EXHAUST_SPEED = 2800.0      # m/s, effective exhaust speed of the engines low in
 # autopilot's lag through the wind's shears overshoots a command by up to ~100 kPa deg
 Q_ALPHA = 100e3
 ENTRY_PREDICTION_STEP = 0.2  # s, steps of the entry burn's prediction
-GUIDANCE_STEP = 0.1         # s between steering updates away from the decisions (see the module)
-NEAR_LANDING_BURN = 0.9     # share of the landing burn's trigger from which the descent checks every step
+DESCENT_PERIOD = 0.5        # s between the descent's lean updates (see the module)
+GUIDANCE_STEP = 0.1         # s between the burns' steering and throttle updates
 
 warm_up()       # the predictor's compiled kernels, loaded with the program, not inside a step
 
@@ -269,17 +272,21 @@ def entry_burn(fc, guide, engines, landing_share):
     """Slow down against the air, keeping what the landing burn needs, the thrust leaned
     so that the impact point predicted from the burn's end (:meth:`Guide.burn_end_miss`)
     is on the pad; returns the engines' full-throttle thrust (N) measured.
-    ``landing_share``: the landing burn's engines' share of that thrust."""
+    ``landing_share``: the landing burn's engines' share of that thrust. Updated every
+    GUIDANCE_STEP, every step as the airspeed or the propellant nears its end."""
     fc.ignite(engines)
     fc.throttle(1.0)
     gauge = FullThrust(0.0)
-    while fc.airspeed > ENTRY_END_SPEED and guide.usable() > landing_propellant(fc.mass):
+    airspeed = Approach(ENTRY_END_SPEED, periods=(GUIDANCE_STEP,))
+    reserve = Approach(0.0, periods=(GUIDANCE_STEP,))
+    while airspeed.ahead(fc.airspeed, fc.time) & reserve.ahead(guide.usable() - landing_propellant(fc.mass),
+                                                                fc.time):
         full = gauge.read(fc)
         if full > 0.0:      # spooled up: the burn's own prediction
             lean_onto(fc, guide.recent_burn_end_miss(0.5, full, landing_share), thrusting=True)
         else:
             fc.point_at(-fc.air_velocity)
-        fc.step()
+        fc.sleep(min(airspeed.next_update(), reserve.next_update()))
     fc.shutdown(engines)
     fc.event("entry burn end", airspeed_m_s=fc.airspeed, altitude_m=fc.altitude,
              usable_propellant_kg=guide.usable())
@@ -325,24 +332,28 @@ def within_air_limit(fc, direction):
 
 
 def descend(fc, guide, full):
-    """Fall tail first on the grid fins until the landing burn must start."""
+    """Fall tail first on the grid fins until the landing burn must start: below
+    LANDING_ALTITUDE, once stopping needs LANDING_MARGIN of the deceleration available.
+    Updated every DESCENT_PERIOD, every GUIDANCE_STEP and then every step as either nears."""
+    floor = Approach(LANDING_ALTITUDE, periods=(DESCENT_PERIOD, GUIDANCE_STEP))
+    rule = Approach(0.0, rising=True, periods=(DESCENT_PERIOD, GUIDANCE_STEP))
     while True:
-        lean_onto(fc, guide.recent_miss(0.5, full / fc.mass), thrusting=False)
+        lean_onto(fc, guide.recent_miss(DESCENT_PERIOD, full / fc.mass), thrusting=False)
         fall = -fc.vertical_speed
         h = fc.clearance
         available = full / fc.mass - fc.gravity + fc.dynamic_pressure / BALLISTIC   # thrust, drag
         need = fall * fall / (2.0 * h) if fall > 0 and h > 0 else 0.0
-        low = fc.altitude < LANDING_ALTITUDE
-        if low and need > LANDING_MARGIN * available:
+        high = floor.ahead(fc.altitude, fc.time)
+        short = rule.ahead(need - LANDING_MARGIN * available, fc.time)
+        if not high and not short:
             return
-        # every step once the burn's rule is near (lit in the step it holds), else at the guidance rate
-        near = fc.altitude < LANDING_ALTITUDE + 2.0 * GUIDANCE_STEP * max(fall, 0.0) \
-            and need > NEAR_LANDING_BURN * LANDING_MARGIN * available
-        fc.sleep(0.0 if near else GUIDANCE_STEP)
+        # the burn lights at the later of the two crossings: look every step as either nears
+        fc.sleep(min(floor.next_update() if high else math.inf, rule.next_update() if short else math.inf))
 
 
 def land(fc, guide, engines, full):
-    """The landing burn, down to the engines' cut-off just above the ground.
+    """The landing burn, down to the engines' cut-off just above the ground, updated every
+    GUIDANCE_STEP and every step as the cut-off's clearance nears.
 
     The descent rate follows a reference: the constant deceleration planned at
     ignition down to FINAL_HEIGHT, then a gentler FINAL_DECELERATION (more than the
@@ -357,10 +368,11 @@ def land(fc, guide, engines, full):
     plan = max((fall * fall - final_speed ** 2) / (2.0 * max(h - FINAL_HEIGHT, 1.0)), 1.0)
     gate_speed = math.sqrt(TOUCH_SPEED ** 2 + 2.0 * FINAL_DECELERATION * TERMINAL_HEIGHT)
     gauge = FullThrust(full)
+    cutoff = Approach(CUTOFF_CLEARANCE, periods=(GUIDANCE_STEP,))
     while True:
         h = fc.clearance
         fall = -fc.vertical_speed
-        if h < CUTOFF_CLEARANCE or (fall < 0.0 and h < 3.0):
+        if not cutoff.ahead(h, fc.time) or (fall < 0.0 and h < 3.0):
             break
         if h > FINAL_HEIGHT:
             reference = math.sqrt(final_speed ** 2 + 2.0 * plan * (h - FINAL_HEIGHT))
@@ -387,7 +399,7 @@ def land(fc, guide, engines, full):
         fc.point_at(within_air_limit(fc, wanted / total))
         fc.throttle(fc.mass * total / gauge.full)
         gauge.read(fc)
-        fc.step()
+        fc.sleep(cutoff.next_update())
     fc.shutdown(engines)
     fc.release()
     fc.event("landing burn end", clearance_m=fc.clearance, vertical_speed_m_s=fc.vertical_speed)

@@ -32,9 +32,9 @@ reserve is reached. The upper stage's
 program, like a real flight computer's guidance, solves its steering law every
 GUIDANCE_PERIOD (1 s) and sleeps in between, while the autopilot follows the
 law every 20 ms step (``fc.steer_linear_tangent``); it wakes more often as the
-cut-off nears (:class:`Approach`: the insertion's periapsis), every step at the
-end, so the engine is cut in the step the limit is crossed. A program that wants
-the per-step loop calls ``fc.step()`` instead.
+cut-off nears (:class:`~rocketsim.flight.guidance_rate.Approach`: the insertion's
+periapsis), every step at the end, so the engine is cut in the step the limit is
+crossed. A program that wants the per-step loop calls ``fc.step()`` instead.
 
 The return of the lower stage (boost-back, entry and landing burns) is flown
 by its own program (``programs:`` in the scenario, e.g. booster_return.py).
@@ -44,6 +44,7 @@ import math
 
 from rocketsim.constants import EARTH_MU, EARTH_OMEGA, EARTH_RADIUS_EQ as EARTH_RADIUS
 from rocketsim.flight.guidance import solve_linear_tangent, warm_up
+from rocketsim.flight.guidance_rate import Approach
 
 KICK_PER_TW = math.radians(12.66)  # kick per unit of thrust-to-weight above 1
 KICK_HEIGHT = 300.0            # m above the pad
@@ -115,7 +116,7 @@ def ascend(fc):
     fc.throttle(1.0)
     fairing_on = True
     guidance = Insertion(EARTH_RADIUS + target.altitude, target.inclination)
-    periapsis = Approach(0.95 * target.altitude, rising=True)
+    periapsis = Approach(0.95 * target.altitude, rising=True, periods=(GUIDANCE_PERIOD, GUIDANCE_STEP))
     while periapsis.ahead(fc.periapsis, fc.time):
         if fairing_on and fc.altitude > FAIRING_ALTITUDE:
             fairing_on = False
@@ -198,32 +199,3 @@ class Insertion:
                                               self.a, self.b, EARTH_MU, PREDICTION_STEP, NEWTON_PASSES)
         self.solved_at = fc.time
 
-
-class Approach:
-    """A reading on its way to a limit, setting the guidance's update rate: an update
-    every GUIDANCE_PERIOD while the limit is more than two of them away at the rate the
-    reading last changed, every GUIDANCE_STEP while it is more than two of those away,
-    every step (20 ms) nearer, so that the crossing is caught in the step it happens.
-    ``rising``: the reading climbs to the limit (else it falls to it)."""
-
-    def __init__(self, limit, rising=False):
-        self.limit = limit
-        self.sign = 1.0 if rising else -1.0
-        self.last = None            # (reading, mission time) at the last update
-        self.gap = self.rate = math.inf
-
-    def ahead(self, value, time):
-        """Record the reading ``value`` at mission ``time`` (s); whether the limit is
-        still ahead of it."""
-        self.gap = self.sign * (self.limit - value)
-        if self.last is not None:
-            self.rate = self.sign * (value - self.last[0]) / (time - self.last[1])
-        self.last = (value, time)
-        return self.gap > 0.0
-
-    def next_update(self):
-        """Seconds until the next update (0: the next step)."""
-        for wait in (GUIDANCE_PERIOD, GUIDANCE_STEP):
-            if self.gap > 2.0 * wait * self.rate:
-                return wait
-        return 0.0

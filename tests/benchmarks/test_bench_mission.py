@@ -37,10 +37,10 @@ climbs from the pitch kick to MECO without waking (surface prograde held, the
 engines' q throttle law, a compiled wait on the stage's propellant) and flies
 its insertion on a linear-tangent law the autopilot follows, solved every
 second; ``booster_return.py`` predicts its boost-back's miss once a second
-(waiting on the nose's angle to its aim while it turns), updates its descent at
-10 Hz (``GUIDANCE_STEP``), every step near a cut-off and through the entry and
-landing burns: 3 022 program resumes in the whole mission (33 106 at one
-per step).
+(waiting on the nose's angle to its aim while it turns), updates its descent
+every 0.5 s and its entry and landing burns every 0.1 s, every step only as a
+cut-off or the landing burn's ignition nears (``Approach``): 1 505 program
+resumes in the whole mission (33 106 at one per step).
 
 The shares come from timing wrappers put around those parts for this run
 only (about a microsecond per wrapped call, included in the figures).
