@@ -47,14 +47,14 @@ errors are what the later phases correct. It is compiled
 
 Guidance rate: the boost-back predicts its miss once a second and sleeps
 between predictions, waiting on compiled conditions while the stage turns
-onto its aim (the nose within AIMED of it, or the next prediction's time),
-and looks every step over its last 30 km of miss. The descent updates its
-lean every DESCENT_PERIOD (0.5 s), the entry and landing burns their
-direction and throttle every GUIDANCE_STEP (0.1 s); the autopilot holds the
-last command every 20 ms step. Each goes to every step as the limit it acts
-at nears (:class:`~rocketsim.flight.guidance_rate.Approach`: the entry burn's
-end speed and propellant reserve, the landing burn's altitude and rule, the
-cut-off's clearance), so it acts in the step the limit is crossed.
+onto its aim (the nose within AIMED of it, or the next prediction's time).
+The descent updates its lean every DESCENT_PERIOD (0.5 s), the entry and
+landing burns their direction and throttle every GUIDANCE_STEP (0.1 s); the
+autopilot holds the last command every 20 ms step. Each goes to every step
+as the limit it acts at nears (:class:`~rocketsim.flight.guidance_rate.Approach`:
+the boost-back's miss, the entry burn's end speed and propellant reserve, the
+landing burn's altitude and rule, the cut-off's clearance), so it acts in the
+step the limit is crossed.
 """
 
 import math
@@ -229,7 +229,9 @@ def horizontal(fc, east, north):
 def boost_back(fc, guide, engines):
     """Burn until the predicted impact point is on the pad: at the engines' minimum
     while the gimbals flip the stage, then at full thrust, and at the minimum again
-    over the last FINE_MISS metres (the prediction is then refreshed every step)."""
+    over the last FINE_MISS metres. The miss is predicted once a second, then every
+    GUIDANCE_STEP and every step as its part along the first miss nears zero; the
+    burn ends where the next step would take it past (within half a step's change)."""
     miss = guide.miss()
     first = miss / np.linalg.norm(miss)
     size = float(np.linalg.norm(miss))
@@ -237,25 +239,25 @@ def boost_back(fc, guide, engines):
     fc.ignite(engines)
     fc.throttle(0.0)
     fc.event("boost-back start", miss_m=float(np.linalg.norm(miss)))
-    checked = -math.inf
+    remaining = Approach(0.0, periods=(1.0, GUIDANCE_STEP))     # the miss along the first one
+    along, wait, checked = miss @ first, 1.0, -math.inf
     while True:
-        if fc.time - checked >= 1.0 or size < 30e3:
-            previous = miss @ first
+        if fc.time - checked >= wait - 1e-9:
+            previous = along
             miss, checked = guide.miss() + OVERSHOOT * first, fc.time
             size = float(np.linalg.norm(miss))
             if size > FINE_MISS:                    # hold still over the last part: no spin
                 wanted = horizontal(fc, -miss[0], -miss[1])     # is left when the engines stop
-        along = miss @ first
-        if size < 30e3 and along <= 0.5 * max(previous - along, 0.0):     # on the aim within half a step
-            break
+            along = miss @ first
+            if not remaining.ahead(along, fc.time) or (wait == 0.0 and along <= 0.5 * (previous - along)):
+                break                               # on the aim within half a step
+            wait = remaining.next_update()
         fc.point_at(wanted)
         aligned = fc_nose(fc) @ wanted > math.cos(AIMED)
         fc.throttle(1.0 if size > FINE_MISS and aligned else 0.0)
-        if size < 30e3:
-            fc.step()               # every step near the cut-off
-        elif aligned:
-            fc.sleep(checked + 1.0 - fc.time)       # on the aim: to the next prediction
-        else:                       # turning onto it: until it is reached, or the next prediction
+        if aligned or wait < 1.0:                   # to the next prediction
+            fc.sleep(max(checked + wait - fc.time, 0.0))
+        else:                       # turning onto the aim: until it is reached, or the next prediction
             fc.wait_until(fc.below("nose_angle", AIMED, towards=wanted) | fc.above("time", checked + 0.99))
     fc.shutdown(engines)
     fc.event("boost-back end", miss_m=size)
