@@ -2,6 +2,8 @@
 
 import json
 import re
+import subprocess
+import sys
 
 import pytest
 
@@ -131,6 +133,35 @@ def test_a_program_that_never_hands_back_is_stopped_by_its_cpu_budget(scenario, 
     states = list(messages(out, ["/probe/state"]))
     assert states[-1][2]["t"] == pytest.approx(0.2)          # telemetry intact up to the stop
     assert metadata(out)["outcome"]["status"] == "error"
+
+
+def test_the_integrator_is_imported_at_the_first_prediction_outside_the_budget(scenario, write, tmp_path):
+    # scipy's integrator (fc.predict's) takes ~0.15 s of CPU to import: a flight that
+    # predicts nothing must not import it, and a program whose first step predicts
+    # under a 0.05 s budget must not be stopped for the import. In a fresh interpreter,
+    # where nothing has imported it yet.
+    sleeper = scenario("def main(fc):\n    fc.sleep(0.5)\n", duration="1 s")
+    write("predicts.py", """\
+        def main(fc):
+            t, r, v = fc.predict(60.0)
+            fc.event("predicted", t=t, radius_m=float((r @ r) ** 0.5))
+        """)
+    predictor = write("predicting.yaml", "name: predicting\nvehicle: vehicle.yaml\nmission: mission.yaml\n"
+                                          "program: predicts.py\nprogram_cpu_budget: 0.05 s\n")
+    script = """
+import sys
+from rocketsim.scenario.load import load
+from rocketsim.sim.flight import fly
+fly(load(sys.argv[1]), sys.argv[3])
+print("imported after a flight without predictions:", "scipy.integrate" in sys.modules)
+summary = fly(load(sys.argv[2]), sys.argv[4])
+print("events:", [(e["name"], round(e["time_s"], 3)) for e in summary["bodies"]["probe"]["events"]])
+"""
+    result = subprocess.run([sys.executable, "-c", script, str(sleeper), str(predictor), str(tmp_path / "a.mcap"),
+                             str(tmp_path / "b.mcap")], capture_output=True, text=True, timeout=120)
+    assert result.returncode == 0, result.stderr
+    assert "imported after a flight without predictions: False" in result.stdout
+    assert "events: [('predicted', 0.0)]" in result.stdout
 
 
 def test_compiling_a_kernel_does_not_count_against_the_cpu_budget(scenario, cli, tmp_path):

@@ -754,6 +754,9 @@ class FlightComputer:
         seconds = arguments.duration("fc.predict", seconds)
         delta_v = None if delta_v is None else arguments.vector("fc.predict", "delta_v", delta_v)
         periapsis = arguments.flag("fc.predict", "periapsis", periapsis)
+        from rocketsim.flight.program import not_counted
+        with not_counted():     # the integrator's first import, ~0.15 s, is not the program's time
+            import scipy.integrate  # noqa: F401
         return self._craft.predict(seconds, delta_v, periapsis)
 
     @property

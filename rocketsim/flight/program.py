@@ -17,7 +17,8 @@ The scheduling contract (decided here because it shapes the step loop):
 * A program that keeps control for more than its CPU budget in one step
   (default 1 s, ``program_cpu_budget`` in the scenario) is stopped the same
   way: an endless loop cannot hang the simulator. Time numba spends
-  compiling or loading kernels (a cold cache) does not count.
+  compiling or loading kernels (a cold cache) does not count, nor does the
+  simulator's own first import of a library a call needs (:func:`not_counted`).
 
 The program runs in a greenlet in the simulator's own thread, so switching
 is cheap (about a microsecond) and strictly alternating: the run is
@@ -106,7 +107,8 @@ def _expire(signum, frame):
 
 
 class _CompileTime(ev.Listener):
-    """Keeps numba's compiling out of a program's CPU budget.
+    """Keeps numba's compiling, and what :func:`not_counted` wraps, out of a program's
+    CPU budget.
 
     On a cold cache a program's first call of a reading compiles (or loads)
     a kernel, which can take longer than a budget. numba holds its compiler
@@ -127,9 +129,25 @@ class _CompileTime(ev.Listener):
         if self.depth == 0 and self.active is not None:
             signal.setitimer(signal.ITIMER_VIRTUAL, self.active.seconds)
 
+    def __enter__(self):
+        self.on_start(None)
+        return self
+
+    def __exit__(self, *exc) -> bool:
+        self.on_end(None)
+        return False
+
 
 _COMPILING = _CompileTime()
 ev.register("numba:compiler_lock", _COMPILING)
+
+
+def not_counted() -> _CompileTime:
+    """Context manager: the CPU time spent inside it is not the running program's (the
+    simulator's first import of a library a call of ``fc`` needs, e.g. scipy's
+    integrator for ``fc.predict``, a few tenths of a second); the step gets its whole
+    budget again after it."""
+    return _COMPILING
 
 
 def load_program(path: Path, entry: str = "main") -> Callable:
@@ -138,10 +156,6 @@ def load_program(path: Path, entry: str = "main") -> Callable:
     main = getattr(load_program_module(path), entry, None)
     if not callable(main):
         raise ProgramError(f"the program defines no {entry}(fc) function", file=Path(path))
-    # A program may predict its coast (rocketsim.dynamics.prediction, scipy's integrator,
-    # imported there on first use): imported now, so that its import (a few tenths of a
-    # second of CPU) never counts against the program's budget for one step.
-    import scipy.integrate  # noqa: F401
     return main
 
 

@@ -111,7 +111,7 @@ class VehicleChecks:
             self._arrays = arrays
             self._in_flight = arrays._replace(aero=arrays.aero._replace(contact=arrays.aero.contact[:0]))
             self._watched = TOP + float(arrays.aero.ref[A_REACH])
-            self._feet = footprint(arrays.aero.contact)
+            self._feet = None       # its footprint, found at the first touchdown (scipy's hull)
 
     def advance(self, body, k0: int, h: float, n: int, steering: tuple | None = None) -> tuple[np.ndarray, int]:
         """Advance ``body`` like :func:`rocketsim.dynamics.rk4.advance` (up to ``n`` steps
@@ -246,6 +246,9 @@ class VehicleChecks:
 
     def _tip_over_angle(self, body) -> float:
         """:func:`~rocketsim.vehicle.contact.tip_over_angle` of the body now (rad)."""
+        self._bind(body.vehicle.arrays)
+        if self._feet is None:
+            self._feet = footprint(self._arrays.aero.contact)
         return tip_over_angle(self._feet, body.vehicle.mass_properties(body.y)[1])
 
     def _tip_watch(self, body) -> float:
