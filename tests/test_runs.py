@@ -16,6 +16,7 @@ import orjson
 import pytest
 
 from rocketsim.flight.conditions import ABOVE, BELOW, holds
+from rocketsim.flight.program import ProgramRunner
 from rocketsim.flight.readings import StateView
 from rocketsim.layout import V, make_params
 from rocketsim.errors import InputError
@@ -55,6 +56,20 @@ def _flight(tmp_path, name, monkeypatch, windows: bool, counts: dict):
             return y, taken, filled
 
         record_rows = world_module.World.record_rows
+        resume, run_programs = ProgramRunner.resume, window._Window._run_programs
+
+        def resume_counted(runner, fc):
+            counts["resumes"] += 1
+            resume(runner, fc)
+
+        def programs_counted(self, movers):
+            before = counts["resumes"]
+            made = run_programs(self, movers)
+            if counts["resumes"] > before:
+                counts["programs woken in windows"] += 1
+                counts["... while other bodies' runs go on"] += bool(self.queue)
+            counts["bodies made in windows"] += len(made)
+            return made
 
         def rows_counted(world, body, rows, shape):
             if sum(b.flying for b in world.bodies) > 1:
@@ -64,6 +79,8 @@ def _flight(tmp_path, name, monkeypatch, windows: bool, counts: dict):
         monkeypatch.setattr(VehicleChecks, "fly_run", counted)
         monkeypatch.setattr(runs, "fly_part", counted_part)
         monkeypatch.setattr(world_module.World, "record_rows", rows_counted)
+        monkeypatch.setattr(ProgramRunner, "resume", resume_counted)
+        monkeypatch.setattr(window._Window, "_run_programs", programs_counted)
     else:
         monkeypatch.setattr(world_module, "fly_window", lambda world, length: False)
     out = tmp_path / f"{name}.mcap"
@@ -73,7 +90,9 @@ def _flight(tmp_path, name, monkeypatch, windows: bool, counts: dict):
 
 
 def test_compiled_runs_fly_the_same_telemetry_as_one_step_at_a_time(tmp_path, monkeypatch):
-    counts = {"vehicle steps": 0, "part steps": 0, "conditions": 0, "waiting": 0, "samples in runs beside others": 0}
+    counts = {"vehicle steps": 0, "part steps": 0, "conditions": 0, "waiting": 0, "samples in runs beside others": 0,
+              "resumes": 0, "programs woken in windows": 0, "... while other bodies' runs go on": 0,
+              "bodies made in windows": 0}
     summary, messages = _flight(tmp_path, "runs", monkeypatch, True, counts)
     summary_before, messages_before = _flight(tmp_path, "steps", monkeypatch, False, counts)
     assert summary == summary_before
@@ -86,6 +105,11 @@ def test_compiled_runs_fly_the_same_telemetry_as_one_step_at_a_time(tmp_path, mo
     # with the booster and the fairing's halves flying beside, the vehicles' runs went on
     # past sample steps (their samples written among the others' in the loop's order)
     assert counts["samples in runs beside others"] > 300
+    # the programs woke inside the windows (180 of 185 resumes), most while other bodies'
+    # runs went on past their step, and the separation and the fairing's jettison made
+    # their bodies there: the booster and the two halves, flown on from that step
+    assert counts["programs woken in windows"] > 100 and counts["... while other bodies' runs go on"] > 100
+    assert counts["bodies made in windows"] == 3
     events = {e["name"] for b in summary["bodies"].values() for e in b["events"]}
     assert {"liftoff", "max_q", "MECO", "separation", "boost-back end", "fairing jettison"} <= events
 

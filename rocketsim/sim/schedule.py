@@ -99,11 +99,11 @@ class Schedule:
 
     def window_length(self) -> int:
         """Steps before the world's loop must decide anything while it steps one step at
-        a time: to the end or a program's wake-up, and while more than one body flies
-        to the next multiple of :data:`WINDOW_SAMPLES` telemetry samples (where the
-        world reports its progress with every body at the same step); 1 while a body
-        cruises or a program waits on a condition read in Python. Within them the
-        bodies are flown in compiled runs where nothing needs Python
+        a time: to the end, and while more than one body flies to the next multiple of
+        :data:`WINDOW_SAMPLES` telemetry samples (where the world reports its progress
+        with every body at the same step); 1 while a body cruises or a program waits on a
+        condition read in Python. Within them the bodies are flown in compiled runs where
+        nothing needs Python, and the programs run at their wake-ups
         (:mod:`rocketsim.sim.window`: a vehicle's runs compute its samples on the way)."""
         world = self.world
         flying = [body for body in world.bodies if body.flying]
@@ -115,13 +115,9 @@ class Schedule:
             if self.cruising(body):
                 return 1
             runner = body.runner
-            if runner is None or runner.finished:
-                continue
-            if runner.waiting_on_predicate:
-                if runner.condition is None:
-                    return 1
-                continue                    # tested in the body's compiled runs
-            n = min(n, max(1, self.wake_steps(runner)))
+            if runner is not None and not runner.finished and runner.waiting_on_predicate \
+                    and runner.condition is None:
+                return 1
         return n
 
     @staticmethod

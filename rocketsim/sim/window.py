@@ -4,17 +4,19 @@ While any body must be stepped one step at a time (a vehicle in the air's reach,
 an autopilot steering, a program waiting on a condition:
 :meth:`rocketsim.sim.schedule.Schedule.one_step`), the world's loop would run
 every body's Python once per step. Up to the next step where the loop itself
-has something to decide (a program's wake-up, the end, and while more than one
-body flies a progress report every few samples:
+has something to decide (the end, and while more than one body flies a
+progress report every few samples:
 :meth:`~rocketsim.sim.schedule.Schedule.window_length`) the bodies do not
-interact, so :func:`fly_window` flies each on its own:
+interact but through what their programs do, so :func:`fly_window` flies each
+on its own:
 
 * a vehicle with aerodynamics, on its pad or in flight, steered by the autopilot's
   compiled step or not at all, its program asleep or waiting on a compiled
   condition (:mod:`rocketsim.flight.conditions`), no parachutes, in compiled runs
   (:meth:`rocketsim.sim.vehicle_checks.VehicleChecks.fly_run`,
   :mod:`rocketsim.sim.runs`), each returning at a step where its checks or
-  events may act, and that step handled as the loop handles every step;
+  events may act, its program wakes or its condition is true, and that step
+  handled as the loop handles every step;
 * a tumbling part below its rails floor (a fairing half) in compiled runs of its
   free steps (:func:`rocketsim.sim.runs.fly_part`), returning where its liftoff,
   orbit or impact may be; a rigid body with no event to watch and out of the
@@ -22,13 +24,17 @@ interact, so :func:`fly_window` flies each on its own:
 * every other body one step at a time, exactly as the loop steps it (its
   autopilot, :meth:`~rocketsim.sim.world.World.advance`, its events).
 
-Everything the Python side does that others can see (events, telemetry) happens
-in the loop's order: by step, and within a step in the order of the bodies. The
-window ends early at the step after which a program's compiled condition is
-true (the program runs at the next step) and once no body needs one step at a
-time (the loop batches from there). At most one program may wait on a
-condition in a window: the others' runs stop where that one's run stops, so
-none flies past a step its condition may end the window at.
+At a step the Python side handles for some bodies, their programs that are due
+run there (:meth:`_Window._run_programs`), after that step's events and samples
+and in the bodies' order, as the loop runs them; the other bodies' runs go on
+past it. A program acts on its own body only, or makes new ones (a separated
+stage, a fairing's halves, a payload), which fly on from that step; a body
+whose program then waits on a condition read in Python, or cruises, is flown
+one step at a time, its condition read at every step as the loop reads it.
+Everything the Python side does that others can see (events, logs, telemetry)
+happens in the loop's order: by step, and within a step in the order of the
+bodies. The window ends early once no body needs one step at a time (the loop
+batches from there).
 
 A vehicle's compiled runs go on past telemetry sample steps, computing the
 samples of the steps they fly through (up to :data:`RUN_SAMPLES` of them),
@@ -67,20 +73,16 @@ RUN_SAMPLES = 128       # telemetry samples a vehicle's compiled run computes at
 
 def fly_window(world, length: int) -> bool:
     """Fly the world's bodies ``length`` steps from its step ``k`` (fewer when the window
-    ends early, see the module), with the loop's autopilots already run for the first;
-    leaves the world's step count at the window's end, its sample and progress made
-    there (:meth:`~rocketsim.sim.world.World.reached`). False (nothing done) when the
-    window has less than two steps or cannot be flown this way: a program waits on a
-    condition in a body that cannot fly compiled runs, or two programs wait."""
+    ends early, see the module), with the loop's programs and autopilots already run for
+    the first; leaves the world's step count at the window's end, its sample and progress
+    made there (:meth:`~rocketsim.sim.world.World.reached`). False (nothing done) when the
+    window has less than two steps."""
     if length < 2:
         return False
     k = world.k
     flying = [(i, body) for i, body in enumerate(world.bodies) if body.flying]
-    waiters = [i for i, body in flying if _waiting(body)]
     plans = {i: _plan(world, body, True, length * world.h) for i, body in flying}
-    if len(waiters) > 1 or any(plans[i] is None for i in waiters):
-        return False
-    window = _Window(world, k + length, waiters[0] if waiters else None)
+    window = _Window(world, k + length)
     window.start(k, [i for i, _ in flying], plans)
     window.fly()
     return True
@@ -89,36 +91,31 @@ def fly_window(world, length: int) -> bool:
 class _Window:
     """The bodies' queue of steps where the Python side acts (see the module)."""
 
-    def __init__(self, world, end: int, waiter: int | None):
+    def __init__(self, world, end: int):
         self.world = world
         self.end = end
-        self.waiter = waiter                # the body whose program waits on a compiled condition
-        self.frontier = end                 # where the waiter's run stops: no other run goes beyond
         self.queue: list[tuple] = []        # (step, body index, run: see start; None: one step to fly)
         self.samples: list[tuple] = []      # (step, body index, row j of rows, rows, shape) computed in runs
 
     def start(self, k: int, indices: list[int], plans: dict) -> None:
         """Start a segment of each body of ``indices`` at step ``k`` as ``plans[i]`` says
-        (:func:`_plan`; None: one step), the waiter's first. A run's end goes on the queue:
-        ``(VEHICLE, its last state)``, ``(PART, its last state, its first step and state)``,
-        ``(BATCH, k)``; the samples computed in a run go on :attr:`samples`."""
-        for i in sorted(indices, key=lambda i: i != self.waiter):
+        (:func:`_plan`; None: one step), none past the step its program wakes at. A run's
+        end goes on the queue: ``(VEHICLE, its last state)``, ``(PART, its last state, its
+        first step and state)``, ``(BATCH, k)``; the samples computed in a run go on
+        :attr:`samples`."""
+        world = self.world
+        for i in indices:
             plan = plans[i]
             if plan is None:
                 heapq.heappush(self.queue, (k + 1, i, None))
                 continue
-            world = self.world
             body = world.bodies[i]
-            top = self.end if i == self.waiter else min(self.end, self.frontier)
+            top = min(self.end, _wake_step(world, body))
             if plan[0] == VEHICLE:
                 samples, rows, shape = _samples(world, body)
-                y, taken, reason, filled = body.checks.fly_run(body, k, world.h, top - k, plan[1], body.watch,
-                                                               plan[2], samples)
+                y, taken, _, filled = body.checks.fly_run(body, k, world.h, top - k, plan[1], body.watch,
+                                                          plan[2], samples)
                 body.steering = None
-                if i == self.waiter:
-                    self.frontier = k + taken
-                    if reason == runs.CONDITION:
-                        self.end = k + taken    # the program is due at the next step
                 self._computed(k, i, rows[:filled], shape)
                 heapq.heappush(self.queue, (k + taken, i, (VEHICLE, y)))
             elif plan[0] == PART:
@@ -143,7 +140,9 @@ class _Window:
         with the world's sample and progress (:meth:`~rocketsim.sim.world.World.reached`)
         at each sample step the Python side handles for every body and at the end (a
         flight that ``on_progress`` has shortened ends there), and the samples alone
-        (:meth:`_sample_with_runs`) at one where some bodies' runs go on past it."""
+        (:meth:`_sample_with_runs`) at one where some bodies' runs go on past it; then
+        the programs due there (:meth:`_run_programs`) and the next segments of the
+        bodies at that step."""
         world = self.world
         last = world.k
         reached = None                      # the step the world's sample and progress were last made at
@@ -172,12 +171,8 @@ class _Window:
                     if s >= self.end:
                         self._close(s)
                         continue
-            if any(i == self.waiter for _, i, _ in due):
-                self.frontier = self.end    # until its next run says where it stops
+            movers += self._run_programs(movers)
             plans = {i: _plan(world, world.bodies[i], False, (self.end - s) * world.h) for i in movers}
-            if any(plans[i] is None and _waiting(world.bodies[i]) for i in movers):
-                self.end = s                # its condition is read in Python from the next step
-                continue
             for i in movers:
                 if plans[i] is None:
                     world.run_autopilot(world.bodies[i])
@@ -185,6 +180,24 @@ class _Window:
         world.k = last
         if reached != last:
             world.reached()
+
+    def _run_programs(self, movers: list[int]) -> list[int]:
+        """Run the programs due at the world's step of the bodies ``movers`` (at that step:
+        those of the bodies whose runs go on past it are not due), in the bodies' order as
+        the loop runs them, then those of the bodies they made (staging, a fairing, a
+        payload: a stage's program starts in the step it separates); returns the indices
+        of the bodies made, which fly on from this step."""
+        world = self.world
+        first = known = len(world.bodies)
+        order = sorted(movers)
+        t = world.t
+        for i in order:                     # visits the bodies appended on the way too
+            body = world.bodies[i]
+            if body.flying and body.runner is not None and body.runner.due(t):
+                body.runner.resume(body.fc)
+            order.extend(range(known, len(world.bodies)))
+            known = len(world.bodies)
+        return list(range(first, known))
 
     def _finish(self, i: int, s: int, run) -> None:
         """The step ``s`` of body ``i`` as the loop ends it (after a compiled run's last
@@ -312,6 +325,15 @@ def compile_runs_beside(world) -> None:
 def _waiting(body) -> bool:
     runner = body.runner
     return runner is not None and not runner.finished and runner.waiting_on_predicate
+
+
+def _wake_step(world, body) -> float:
+    """The step at which ``body``'s program wakes from its sleep (inf: it has none, has
+    finished, or waits on a condition, which its compiled run tests)."""
+    runner = body.runner
+    if runner is None or runner.finished or runner.waiting_on_predicate:
+        return math.inf
+    return world.k + max(1, world.schedule.wake_steps(runner))
 
 
 def _plan(world, body, first: bool, seconds: float):

@@ -13,9 +13,10 @@ Everything with state lives here; the physics it calls is pure. Each step of
 Mission time is ``k h`` for the integer step count ``k``, never an accumulated
 sum. While no program is due and no sample is due, steps are batched inside
 the compiled kernels: bit-identical to stepping one at a time. Steps that must
-be taken one at a time are flown in windows (:mod:`rocketsim.sim.window`); while
-one body flies, a vehicle's compiled runs go on past sample steps and compute
-those samples themselves, written in order before the run's last step. A world is
+be taken one at a time are flown in windows (:mod:`rocketsim.sim.window`): each
+body in compiled runs where it can, going on past sample steps (computing those
+samples themselves, written in order) and past other bodies' steps that Python
+handles, their programs' wake-ups included (the programs run there). A world is
 built from a scenario by :func:`rocketsim.sim.build.build_world`; staging is
 :mod:`rocketsim.sim.staging`, the handover :mod:`rocketsim.sim.handover`, the
 summary :mod:`rocketsim.sim.summary`.
