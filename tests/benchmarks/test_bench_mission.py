@@ -39,8 +39,9 @@ its insertion on a linear-tangent law the autopilot follows, solved every
 second; ``booster_return.py`` predicts its boost-back's miss once a second
 (waiting on the nose's angle to its aim while it turns), updates its descent
 every 0.5 s and its entry and landing burns every 0.1 s, every step only as a
-cut-off or the landing burn's ignition nears (``Approach``): 1 505 program
-resumes in the whole mission (33 106 at one per step).
+cut-off or the landing burn's ignition nears (``Approach``): 971 program
+resumes in the whole mission. The "programs" share counts the calls that run
+the programs due at a step (the loop's and the windows'), not the resumes.
 
 The shares come from timing wrappers put around those parts for this run
 only (about a microsecond per wrapped call, included in the figures).
@@ -52,17 +53,17 @@ physics: the autopilot's step, RK4, the checks' figures and the tests of the
 checks and events inside them; their Python around them (the window's queue, the
 runs' arguments) as the loop.
 
-Last figures (a 2-core machine at load 0.6-1.2, in-process): the suite's first
-160 s, two bodies, 0.19 s uninstrumented, 841x real time; instrumented, the
-programs 7 % (84 wake-ups), the loop 5 %; whole flight / physics 1.25
-(uninstrumented whole over instrumented physics 1.24). The whole mission:
-2.13 s instrumented run (281x; physics 51 %, programs 26 %, loop 14 %; whole /
-physics 1.96); uninstrumented, 4 runs, 1.88-2.03 s (median 1.90 s, 316x), and
-flown one step at a time (no windows) 3.21-3.54 s (median 3.32 s): its compiled
-runs gain it 43 %. Several bodies' runs go on past the sample steps (their
-samples computed in the runs), so a run ends at a program's wake-up, a check
-or event that may act, or every 10 samples (1 s), where the world reports its
-progress.
+Last figures (a 2-core machine at load 0.3-0.9, in-process): the suite's first
+160 s, two bodies, 0.19 s uninstrumented, 847x real time; whole flight / physics
+1.24 (uninstrumented whole over instrumented physics 1.21). The whole mission:
+1.22 s uninstrumented (491x), instrumented physics 74 %, programs 15 % (971
+resumes, ~190 us each, most of it their own Python), the loop 7 %; whole /
+physics 1.35; 4 runs 1.18-1.37 s (median 1.22 s, 490x), and flown one step at a
+time (no windows) 2.92-3.07 s (median 3.00 s): its compiled runs gain it 59 %. Each
+body's run goes on past the sample steps (their samples computed in the runs)
+and past the other bodies' program wake-ups (the programs run inside the
+window), ending at its own program's wake-up, a check or event that may act,
+or every 10 samples (1 s), where the world reports its progress.
 Nothing asserts a time; the checks are that the mission reaches orbit and
 that the parts add up to no more than the whole.
 """
