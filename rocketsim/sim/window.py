@@ -119,7 +119,7 @@ class _Window:
                 self._computed(k, i, rows[:filled], shape)
                 heapq.heappush(self.queue, (k + taken, i, (VEHICLE, y)))
             elif plan[0] == PART:
-                samples, rows, shape = _part_samples(world, body)
+                samples, rows, shape = _samples(world, body)
                 y, taken, filled = self._part(body, k, body.y, top - k, samples)
                 self._computed(k, i, rows[:filled], shape)
                 heapq.heappush(self.queue, (k + taken, i, (PART, y, k, body.y)))
@@ -265,13 +265,13 @@ class _Window:
                 k0, y0 = run[2], run[3]
                 self.samples = [item for item in self.samples if item[1] != i or item[0] < s]
                 heapq.heapify(self.samples)
-                run = (PART, self._part(body, k0, y0, s - k0, _part_samples(world, body, False)[0])[0])
+                run = (PART, self._part(body, k0, y0, s - k0, _samples(world, body, False)[0])[0])
             self._finish(i, s, run)
         self.queue = []
 
     def _part(self, body, k: int, y, n: int, samples: tuple) -> tuple:
         """A tumbling part's run from state ``y`` at step ``k``, up to ``n`` steps, computing
-        ``samples`` (:func:`_part_samples`)."""
+        ``samples`` (:func:`_samples`)."""
         world = self.world
         watch = body.watch          # None: no events to watch
         return runs.fly_part(y, k, world.h, n, body.p, rails_field(body), world.air_of(body), *body.drag,
@@ -281,24 +281,20 @@ class _Window:
                              math.inf, *samples, nbody_flag(body.p))
 
 
-def _samples(world, body) -> tuple:
-    """``(samples, rows, shape)``: the telemetry samples of a vehicle's compiled run
-    (``samples`` for :meth:`~rocketsim.sim.vehicle_checks.VehicleChecks.fly_run`), the
-    rows it fills and the shape to write them with. Without telemetry the run makes
-    only the finiteness test; away from Earth it returns at its first sample step."""
-    sampler, shape, length, whole = sampling.run_sampler(body, world.gmst0)
-    record = world.telemetry is not None
-    rows = np.empty((RUN_SAMPLES if record and whole else 0, length))
-    return (world.sample_every, rows, record, sampler), rows, shape
-
-
-def _part_samples(world, body, record: bool = True) -> tuple:
-    """``(samples, rows, shape)`` of a tumbling part's run (as :func:`_samples`' of a
-    vehicle's: ``samples`` for :func:`rocketsim.sim.runs.fly_part`), ``record`` with
-    telemetry."""
-    sampler, shape = sampling.arguments(body, world.gmst0)
+def _samples(world, body, record: bool = True) -> tuple:
+    """``(samples, rows, shape)``: the telemetry samples of a compiled run of ``body`` (a
+    vehicle's, ``samples`` for :meth:`~rocketsim.sim.vehicle_checks.VehicleChecks.fly_run`;
+    a tumbling part's, for :func:`rocketsim.sim.runs.fly_part`), the rows it fills and
+    the shape to write them with; ``record`` with telemetry. Without telemetry the run
+    makes only the finiteness test; away from Earth it returns at its first sample step
+    (the world places the body in Python)."""
+    if body.vehicle is None:
+        sampler, shape = sampling.arguments(body, world.gmst0)
+        length, whole = sampling.RIGID_WIDTH, body.central == "earth"
+    else:
+        sampler, shape, length, whole = sampling.run_sampler(body, world.gmst0)
     record = record and world.telemetry is not None
-    rows = np.empty((RUN_SAMPLES if record and body.central == "earth" else 0, sampling.RIGID_WIDTH))
+    rows = np.empty((RUN_SAMPLES if record and whole else 0, length))
     return (world.sample_every, rows, record, sampler), rows, shape
 
 
