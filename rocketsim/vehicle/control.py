@@ -124,12 +124,10 @@ class Propulsion:
         """Each engine at time ``t`` and ambient pressure ``p_a`` (Pa): on, spool fraction,
         throttle flown, gimbal (rad), thrust (N), mass flow (kg/s), ignitions left, separated."""
         a, out = self.a, []
-        separated = engines.separated(a.eng, a.cmd, t, p_a)
+        rows = engines.engine_states(t, y, a.first_clock, a.eng, a.cmd, a.stage, p_a).tolist()
         thrust = self.thrusts(y, t, p_a)
         for e, name in enumerate(self.model.engine_names):
-            f, tau, gy, gz = engines.engine_state(t, e, y[a.first_clock + e], a.eng, a.cmd, p_a)
-            if a.stage[int(a.eng[e, engines.E_STAGE]), engines.S_DRY] > 0.5:
-                f = 0.0
+            f, tau, gy, gz, separated = rows[e]
             out.append({
                 "name": name,
                 "on": bool(a.cmd[e, engines.C_ON] > 0.5),
@@ -139,7 +137,7 @@ class Propulsion:
                 "thrust_N": float(thrust[e]),
                 "mass_flow_kg_s": f * tau * a.eng[e, engines.E_MDOT],
                 "ignitions_left": int(a.eng[e, engines.E_IGNITIONS] - a.cmd[e, engines.C_IGNITED]),
-                "separated": bool(separated[e]),
+                "separated": separated > 0.5,
             })
         return out
 

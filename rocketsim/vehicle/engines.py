@@ -221,10 +221,29 @@ def thrusts(t, y, first_clock, eng, cmd, stage, p_a):
     return out
 
 
-def separated(eng: np.ndarray, cmd: np.ndarray, t: float, p_a: float) -> np.ndarray:
+@njit
+def engine_states(t, y, first_clock, eng, cmd, stage, p_a):
+    """Every engine at time ``t`` (s) and ambient pressure ``p_a`` (Pa), one row each:
+    spool fraction (0 while its stage is dry), throttle flown, gimbal deflections
+    (rad) as :func:`engine_state` gives them, and 1.0 where its nozzle flow is
+    separated (:func:`separated`), else 0.0: what the readings show of the engines,
+    in one call."""
+    out = np.empty((eng.shape[0], 5))
+    flow_separated = separated(eng, cmd, t, p_a)
+    for e in range(eng.shape[0]):
+        f, tau, gy, gz = engine_state(t, e, y[first_clock + e], eng, cmd, p_a)
+        if stage[int(eng[e, E_STAGE]), S_DRY] > 0.5:
+            f = 0.0
+        out[e, 0], out[e, 1], out[e, 2], out[e, 3] = f, tau, gy, gz
+        out[e, 4] = 1.0 if flow_separated[e] else 0.0
+    return out
+
+
+@njit
+def separated(eng, cmd, t, p_a):
     """Which engines run with separated nozzle flow at ambient pressure ``p_a`` (Pa):
     the exit pressure at the throttle flown is below the Summerfield limit."""
-    out = np.zeros(eng.shape[0], dtype=bool)
+    out = np.zeros(eng.shape[0], dtype=np.bool_)
     for e in range(eng.shape[0]):
         if eng[e, E_PEXIT] <= 0.0:
             continue
