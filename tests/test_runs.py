@@ -16,7 +16,7 @@ import orjson
 import pytest
 
 from rocketsim.flight.conditions import ABOVE, BELOW, holds
-from rocketsim.flight.program import ProgramRunner
+from rocketsim.flight.program import ProgramError, ProgramRunner
 from rocketsim.flight.readings import StateView
 from rocketsim.layout import V, make_params
 from rocketsim.errors import InputError
@@ -141,6 +141,81 @@ def _sounding(tmp_path, name, monkeypatch, how: str, duration: float = 110.0, cu
         world.run(telemetry)
     monkeypatch.undo()
     return list(iter_raw_messages(out)), computed, world.k
+
+
+# booster programs that wake inside a window while the upper stage's runs go on past their
+# steps: one that then waits on a condition read in Python (flown one step at a time inside
+# the window, read at every step), one that raises there (the flight ends at that step)
+BOOSTER_PROGRAMS = {
+    "waits on a lambda": """
+def main(fc):
+    fc.sleep(2.13)
+    fc.point_at(fc.radial)
+    top = fc.altitude + 2000.0
+    fc.wait_until(lambda: fc.altitude > top)
+    fc.event("climbed", altitude_m=fc.altitude)
+    fc.sleep(0.37)
+    fc.wait_until(fc.below("vertical_speed", fc.vertical_speed - 30.0))
+    fc.event("slower", speed_m_s=fc.vertical_speed)
+""",
+    "raises": """
+def main(fc):
+    fc.sleep(3.07)
+    fc.log("about to fail")
+    raise RuntimeError("booster program failed")
+""",
+}
+
+
+@pytest.mark.parametrize("kind", sorted(BOOSTER_PROGRAMS))
+def test_a_program_woken_inside_a_window_flies_as_one_step_at_a_time(tmp_path, monkeypatch, kind):
+    (tmp_path / "booster.py").write_text(BOOSTER_PROGRAMS[kind])
+    text = MISSION.read_text().replace("programs/booster_return.py", str(tmp_path / "booster.py"))
+    for key in ("vehicle: ", "site: ", "program: ", "mission: "):     # the shipped files, from here
+        start = text.index(key) + len(key)
+        end = text.index("\n", start)
+        text = text[:start] + str((MISSION.parent / text[start:end]).resolve()) + text[end:]
+    scenario = tmp_path / "mission.yaml"
+    scenario.write_text(text)
+
+    resumes, beside = [0], []   # resumes; the window's steps where a program ran beside another body's run
+    resume, run_programs = ProgramRunner.resume, window._Window._run_programs
+
+    def resume_counted(runner, fc):
+        resumes[0] += 1
+        resume(runner, fc)
+
+    def programs_counted(self, movers):
+        before = resumes[0]
+        made = run_programs(self, movers)
+        if resumes[0] > before and self.queue:
+            beside.append(self.world.k)
+        return made
+
+    def flown(name, windows):
+        if windows:
+            monkeypatch.setattr(ProgramRunner, "resume", resume_counted)
+            monkeypatch.setattr(window._Window, "_run_programs", programs_counted)
+        else:
+            monkeypatch.setattr(world_module, "fly_window", lambda world, length: False)
+        out = tmp_path / f"{name}.mcap"
+        try:
+            result = fly(load(scenario), out, duration=150.0)
+        except ProgramError as error:
+            result = str(error)
+        monkeypatch.undo()
+        return result, list(iter_raw_messages(out))
+
+    result, messages = flown("runs", True)
+    result_before, messages_before = flown("steps", False)
+    assert result == result_before
+    assert messages == messages_before and len(messages) > 5_000
+    assert len(beside) >= 3         # the booster's program ran inside windows beside the upper stage's runs
+    if kind == "raises":
+        assert "booster program failed" in result
+    else:
+        names = [e["name"] for e in result["bodies"]["booster"]["events"]]
+        assert "climbed" in names and "slower" in names
 
 
 def test_a_single_body_samples_inside_its_runs_what_the_world_samples(tmp_path, monkeypatch):
