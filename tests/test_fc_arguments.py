@@ -31,7 +31,8 @@ CASES = [
     ("fc.wait_until(lambda: None)", "fc.wait_until(): the condition must return True or False, got None"),
     ("fc.wait_until(5)", "fc.wait_until() needs a function"),
     ("fc.point_at([1.0, float('nan'), 0.0])", "fc.point_at(): vector[1] must be a finite number"),
-    ("fc.point_at([1e308, 1e308, 0.0])", "fc.point_at() needs a non-zero vector"),
+    ("fc.point_at([1e308, 1e308, 0.0])", "fc.point_at(): vector[0] must be within -1e+150 .. 1e+150, got 1e+308"),
+    ("fc.point_at([0.0, 0.0, 0.0])", "fc.point_at() needs a non-zero vector"),
     ("fc.point_at('abc')", "fc.point_at(): vector must be 3 numbers"),
     ("fc.point_at([1, 0, 0], frame='ecef')", "fc.point_at(): frame must be one of eci, local"),
     ("fc.hold(['prograde'])", "fc.hold(): mode must be one of prograde"),
@@ -45,6 +46,10 @@ CASES = [
     ("fc.body_state('pluto')", "fc.body_state(): name must be one of sun, earth, moon, mars"),
     ("fc.predict(float('nan'))", "fc.predict(): seconds must be a finite number"),
     ("fc.predict(60.0, delta_v=[1.0, 2.0])", "fc.predict(): delta_v must be 3 numbers, got 2"),
+    ("fc.predict(60.0, delta_v=[3e8, 1.0, 0.0])", "fc.predict(): delta_v must be slower than light (299792458 m/s), "
+                                                  "got 3e+08 m/s"),
+    ("fc.predict(60.0, delta_v=[1e160, 0.0, 0.0])", "fc.predict(): delta_v[0] must be within -1e+150 .. 1e+150"),
+    ("fc.below('nose_angle', 0.1, towards=[0.0, 0.0, 0.0])", "fc.below(): towards must be a non-zero vector"),
     ("import sys; sys.exit(3)", "the program called sys.exit(3)"),
     ("raise GeneratorExit", "the program raised GeneratorExit"),
 ]

@@ -22,7 +22,7 @@ from typing import Any, Callable
 
 import numpy as np
 
-from rocketsim.constants import MAX_DURATION
+from rocketsim.constants import MAX_DURATION, SPEED_OF_LIGHT
 from rocketsim.limits import MAX_TEXT_LENGTH
 
 # a heading or roll may be given in any turn, not one of thousands of turns
@@ -31,6 +31,9 @@ MAX_TURN = 4.0 * math.pi
 # a pitch is an elevation above the horizon; a hair beyond a right angle is
 # what math.radians(90.0) and pi/2 sums give
 MAX_PITCH = math.pi / 2 + 1e-9
+# a vector's components: their squares, and the sum of them, stay finite floats
+# (a direction's length, a velocity's speed: 1e200 would overflow to inf)
+MAX_COMPONENT = 1e150
 
 
 def number(call: str, name: str, value: Any, low: float = -math.inf, high: float = math.inf) -> float:
@@ -64,12 +67,22 @@ def roll(call: str, value: Any) -> float | None:
 
 
 def vector(call: str, name: str, value: Any) -> np.ndarray:
-    """Three finite numbers as a float array."""
+    """Three finite numbers, each within :data:`MAX_COMPONENT` either way, as a float array."""
     if isinstance(value, (str, bytes, dict)) or not hasattr(value, "__len__"):
         raise TypeError(f"{call}(): {name} must be 3 numbers (a list or array), got {_shown(value)}")
     if len(value) != 3:
         raise ValueError(f"{call}(): {name} must be 3 numbers, got {len(value)}")
-    return np.array([number(call, f"{name}[{i}]", v) for i, v in enumerate(value)])
+    return np.array([number(call, f"{name}[{i}]", v, -MAX_COMPONENT, MAX_COMPONENT) for i, v in enumerate(value)])
+
+
+def velocity(call: str, name: str, value: Any) -> np.ndarray:
+    """A velocity (m/s) as :func:`vector`, slower than light."""
+    v = vector(call, name, value)
+    speed = math.sqrt(float(v @ v))
+    if not speed < SPEED_OF_LIGHT:
+        raise ValueError(f"{call}(): {name} must be slower than light ({SPEED_OF_LIGHT:.0f} m/s), "
+                         f"got {speed:g} m/s")
+    return v
 
 
 def flag(call: str, name: str, value: Any) -> bool:

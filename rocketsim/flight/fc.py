@@ -752,7 +752,7 @@ class FlightComputer:
         truth, not the navigation estimate. Example:
         ``t, r, v = fc.predict(86400, periapsis=True)``."""
         seconds = arguments.duration("fc.predict", seconds)
-        delta_v = None if delta_v is None else arguments.vector("fc.predict", "delta_v", delta_v)
+        delta_v = None if delta_v is None else arguments.velocity("fc.predict", "delta_v", delta_v)
         periapsis = arguments.flag("fc.predict", "periapsis", periapsis)
         from rocketsim.flight.program import not_counted
         with not_counted():     # the integrator's first import, ~0.15 s, is not the program's time
