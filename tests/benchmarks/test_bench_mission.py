@@ -58,8 +58,8 @@ Last figures (a 2-core machine at load 0.3-0.9, in-process): the suite's first
 1.24 (uninstrumented whole over instrumented physics 1.21). The whole mission:
 1.22 s uninstrumented (491x), instrumented physics 74 %, programs 15 % (971
 resumes, ~190 us each, most of it their own Python), the loop 7 %; whole /
-physics 1.35; 4 runs 1.18-1.37 s (median 1.22 s, 490x), and flown one step at a
-time (no windows) 2.92-3.07 s (median 3.00 s): its compiled runs gain it 59 %. Each
+physics 1.35; 4 runs 1.15-1.24 s (median 1.165 s, 515x), and flown one step at a
+time (no windows) 2.92-3.07 s (median 3.00 s): its compiled runs gain it 61 %. Each
 body's run goes on past the sample steps (their samples computed in the runs)
 and past the other bodies' program wake-ups (the programs run inside the
 window), ending at its own program's wake-up, a check or event that may act,
