@@ -37,6 +37,12 @@ MISSION = ROOT / "scenarios" / "falcon9-leo.yaml"
 ARC = 230.0
 
 
+def _runs_go_on(world) -> bool:
+    """Whether another body's compiled run goes on past the world's step: its state is
+    still that of its run's start (the window sets it at the run's end)."""
+    return any(body.flying and body.t < world.t for body in world.bodies)
+
+
 def _flight(tmp_path, name, monkeypatch, windows: bool, counts: dict):
     """The mission's first ARC seconds with the windows (counting their runs' steps) or
     one step at a time; returns the summary and the telemetry's messages."""
@@ -56,19 +62,28 @@ def _flight(tmp_path, name, monkeypatch, windows: bool, counts: dict):
             return y, taken, filled
 
         record_rows = world_module.World.record_rows
-        resume, run_programs = ProgramRunner.resume, window._Window._run_programs
+        resume, run_programs = ProgramRunner.resume, world_module.World.run_programs
+        fly_window, in_window = world_module.fly_window, [False]
 
         def resume_counted(runner, fc):
             counts["resumes"] += 1
             resume(runner, fc)
 
-        def programs_counted(self, movers):
+        def window_marked(world, length):
+            in_window[0] = True
+            try:
+                return fly_window(world, length)
+            finally:
+                in_window[0] = False
+
+        def programs_counted(world, indices):
             before = counts["resumes"]
-            made = run_programs(self, movers)
-            if counts["resumes"] > before:
-                counts["programs woken in windows"] += 1
-                counts["... while other bodies' runs go on"] += bool(self.queue)
-            counts["bodies made in windows"] += len(made)
+            made = run_programs(world, indices)
+            if in_window[0]:
+                if counts["resumes"] > before:
+                    counts["programs woken in windows"] += 1
+                    counts["... while other bodies' runs go on"] += _runs_go_on(world)
+                counts["bodies made in windows"] += len(made)
             return made
 
         def rows_counted(world, body, rows, shape):
@@ -80,7 +95,8 @@ def _flight(tmp_path, name, monkeypatch, windows: bool, counts: dict):
         monkeypatch.setattr(runs, "fly_part", counted_part)
         monkeypatch.setattr(world_module.World, "record_rows", rows_counted)
         monkeypatch.setattr(ProgramRunner, "resume", resume_counted)
-        monkeypatch.setattr(window._Window, "_run_programs", programs_counted)
+        monkeypatch.setattr(world_module.World, "run_programs", programs_counted)
+        monkeypatch.setattr(world_module, "fly_window", window_marked)
     else:
         monkeypatch.setattr(world_module, "fly_window", lambda world, length: False)
     out = tmp_path / f"{name}.mcap"
@@ -178,24 +194,24 @@ def test_a_program_woken_inside_a_window_flies_as_one_step_at_a_time(tmp_path, m
     scenario = tmp_path / "mission.yaml"
     scenario.write_text(text)
 
-    resumes, beside = [0], []   # resumes; the window's steps where a program ran beside another body's run
-    resume, run_programs = ProgramRunner.resume, window._Window._run_programs
+    resumes, beside = [0], []   # resumes; the steps where a program ran beside another body's run
+    resume, run_programs = ProgramRunner.resume, world_module.World.run_programs
 
     def resume_counted(runner, fc):
         resumes[0] += 1
         resume(runner, fc)
 
-    def programs_counted(self, movers):
+    def programs_counted(world, indices):
         before = resumes[0]
-        made = run_programs(self, movers)
-        if resumes[0] > before and self.queue:
-            beside.append(self.world.k)
+        made = run_programs(world, indices)
+        if resumes[0] > before and _runs_go_on(world):
+            beside.append(world.k)
         return made
 
     def flown(name, windows):
         if windows:
             monkeypatch.setattr(ProgramRunner, "resume", resume_counted)
-            monkeypatch.setattr(window._Window, "_run_programs", programs_counted)
+            monkeypatch.setattr(world_module.World, "run_programs", programs_counted)
         else:
             monkeypatch.setattr(world_module, "fly_window", lambda world, length: False)
         out = tmp_path / f"{name}.mcap"

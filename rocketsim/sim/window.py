@@ -25,9 +25,9 @@ on its own:
   autopilot, :meth:`~rocketsim.sim.world.World.advance`, its events).
 
 At a step the Python side handles for some bodies, their programs that are due
-run there (:meth:`_Window._run_programs`), after that step's events and samples
-and in the bodies' order, as the loop runs them; the other bodies' runs go on
-past it. A program acts on its own body only, or makes new ones (a separated
+run there (:meth:`~rocketsim.sim.world.World.run_programs`, as the loop runs
+them), after that step's events and samples; the other bodies' runs go on past
+it. A program acts on its own body only, or makes new ones (a separated
 stage, a fairing's halves, a payload), which fly on from that step; a body
 whose program then waits on a condition read in Python, or cruises, is flown
 one step at a time, its condition read at every step as the loop reads it.
@@ -141,8 +141,8 @@ class _Window:
         at each sample step the Python side handles for every body and at the end (a
         flight that ``on_progress`` has shortened ends there), and the samples alone
         (:meth:`_sample_with_runs`) at one where some bodies' runs go on past it; then
-        the programs due there (:meth:`_run_programs`) and the next segments of the
-        bodies at that step."""
+        the programs due there (:meth:`~rocketsim.sim.world.World.run_programs`) and the
+        next segments of the bodies at that step."""
         world = self.world
         last = world.k
         reached = None                      # the step the world's sample and progress were last made at
@@ -171,7 +171,7 @@ class _Window:
                     if s >= self.end:
                         self._close(s)
                         continue
-            movers += self._run_programs(movers)
+            movers += world.run_programs(movers)
             plans = {i: _plan(world, world.bodies[i], False, (self.end - s) * world.h) for i in movers}
             for i in movers:
                 if plans[i] is None:
@@ -180,24 +180,6 @@ class _Window:
         world.k = last
         if reached != last:
             world.reached()
-
-    def _run_programs(self, movers: list[int]) -> list[int]:
-        """Run the programs due at the world's step of the bodies ``movers`` (at that step:
-        those of the bodies whose runs go on past it are not due), in the bodies' order as
-        the loop runs them, then those of the bodies they made (staging, a fairing, a
-        payload: a stage's program starts in the step it separates); returns the indices
-        of the bodies made, which fly on from this step."""
-        world = self.world
-        first = known = len(world.bodies)
-        order = sorted(movers)
-        t = world.t
-        for i in order:                     # visits the bodies appended on the way too
-            body = world.bodies[i]
-            if body.flying and body.runner is not None and body.runner.due(t):
-                body.runner.resume(body.fc)
-            order.extend(range(known, len(world.bodies)))
-            known = len(world.bodies)
-        return list(range(first, known))
 
     def _finish(self, i: int, s: int, run) -> None:
         """The step ``s`` of body ``i`` as the loop ends it (after a compiled run's last

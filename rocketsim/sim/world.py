@@ -161,7 +161,7 @@ class World:
         self._prepare_programs()
         try:
             while self.k < self.n_steps and any(b.flying for b in self.bodies):
-                self._run_programs()
+                self.run_programs(range(len(self.bodies)))
                 self._run_autopilots()
                 n = self.schedule.batch_length()
                 if not self._flown_compiled(n):
@@ -208,11 +208,21 @@ class World:
             if body.runner is not None:
                 body.fc.warm_up()
 
-    def _run_programs(self) -> None:
+    def run_programs(self, indices) -> list[int]:
+        """Run the programs due at step ``k`` of the bodies ``indices``, in the bodies'
+        order, then those of the bodies they make (a separated stage, a fairing's halves,
+        a payload: a stage's program starts in the step it separates); returns the
+        indices of the bodies made."""
+        first = known = len(self.bodies)
+        order = sorted(indices)
         t = self.t
-        for body in self.bodies:
+        for i in order:                     # visits the bodies appended on the way too
+            body = self.bodies[i]
             if body.flying and body.runner is not None and body.runner.due(t):
                 body.runner.resume(body.fc)
+            order.extend(range(known, len(self.bodies)))
+            known = len(self.bodies)
+        return list(range(first, known))
 
     def _run_autopilots(self) -> None:
         for body in self.bodies:

@@ -77,7 +77,7 @@ from pathlib import Path
 
 from rocketsim._jit import Entries
 from rocketsim.scenario.load import load
-from rocketsim.sim import flight_events, runs, schedule, vehicle_checks, window, world
+from rocketsim.sim import flight_events, runs, schedule, vehicle_checks, world
 from rocketsim.sim.vehicle_checks import advance_checked
 from rocketsim.sim.flight import fly
 from rocketsim.telemetry.writer import TelemetryWriter
@@ -158,8 +158,7 @@ def _instrument(monkeypatch, clock: SectionClock) -> Counter:
     patch(Entries, "call", call)
     for name in ("advance_rails", "advance_cruise"):                # asleep bodies' steps
         patch(world, name, clock.wrap(getattr(world, name), "rails"))
-    patch(world.World, "_run_programs", clock.wrap(world.World._run_programs, "programs"))
-    patch(window._Window, "_run_programs", clock.wrap(window._Window._run_programs, "programs"))
+    patch(world.World, "run_programs", clock.wrap(world.World.run_programs, "programs"))
     patch(world.World, "_run_autopilots", clock.wrap(world.World._run_autopilots, "autopilot"))
     patch(world.World, "run_autopilot", clock.wrap(world.World.run_autopilot, "autopilot"))
     # every sample (the rate's, and those at impacts, handovers and new bodies), every
