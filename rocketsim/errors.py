@@ -36,3 +36,21 @@ class InputError(Exception):
             where += ": "
         field = f"{self.field}: " if self.field else ""
         return f"{where}{field}{self.message}"
+
+
+def signal_behind(error: BaseException) -> BaseException:
+    """The Ctrl-C, or other exception that is not an :class:`Exception` (a signal
+    handler's, a program's CPU budget running out), behind ``error``, else ``error``.
+
+    A signal handler that raises while a compiled kernel is being called
+    surfaces as ``SystemError: ... returned a result with an exception set``
+    whose cause is the signal's exception, or another such SystemError (a
+    kernel that calls back into Python, e.g. numba's unpickling of a constant,
+    when the signal lands there): the caller must see the signal.
+    """
+    cause = error
+    while isinstance(cause, SystemError) and cause.__cause__ is not None:
+        cause = cause.__cause__
+        if not isinstance(cause, Exception):
+            return cause
+    return error

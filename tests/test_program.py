@@ -7,7 +7,9 @@ import sys
 
 import pytest
 
-from rocketsim.flight.program import ProgramError
+from rocketsim.errors import signal_behind
+from rocketsim.flight.program import (ProgramError, ProgramOverBudget, _program_error,
+                                      _raised_by_program)
 from rocketsim.scenario.load import load
 from rocketsim.sim.flight import fly
 from rocketsim.telemetry.reader import messages, metadata
@@ -162,6 +164,34 @@ print("events:", [(e["name"], round(e["time_s"], 3)) for e in summary["bodies"][
     assert result.returncode == 0, result.stderr
     assert "imported after a flight without predictions: False" in result.stdout
     assert "events: [('predicted', 0.0)]" in result.stdout
+
+
+def test_a_program_predicting_in_an_endless_loop_is_stopped_by_its_cpu_budget(scenario, tmp_path):
+    # the integrator's first import is kept out of the budget, which then starts afresh:
+    # only the first time, or a loop of predictions would never be stopped. In a fresh
+    # interpreter (the import not yet made), with a timeout in case it is not stopped.
+    path = scenario("def main(fc):\n    while True:\n        fc.predict(1.0)\n", duration="1 s",
+                    extra="program_cpu_budget: 0.5 s\n")
+    result = subprocess.run([sys.executable, "-m", "rocketsim_cli.main", "fly", str(path), "-o",
+                             str(tmp_path / "run.mcap")], capture_output=True, text=True, timeout=120)
+    assert result.returncode == 2, result.stderr
+    assert re.search(r"program\.py:[23]: the program ran 0\.5 s of CPU time", result.stderr + result.stdout)
+
+
+def test_a_signal_inside_a_compiled_kernel_is_read_as_the_signal(tmp_path):
+    # a budget's timer or Ctrl-C landing while a compiled kernel runs surfaces as numba's
+    # SystemError with the signal's exception as its cause: the program's error must
+    # read as the budget, and Ctrl-C must stop the simulator, not end the program
+    path = tmp_path / "program.py"
+    over = SystemError("CPUDispatcher(<function bodies_at>) returned a result with an exception set")
+    over.__cause__ = ProgramOverBudget()
+    assert _raised_by_program(over, path)
+    assert "the program ran 0.5 s of CPU time in one step" in str(_program_error(over, path, 0.5))
+    interrupted = SystemError("returned a result with an exception set")
+    interrupted.__cause__ = KeyboardInterrupt()
+    assert not _raised_by_program(interrupted, path)
+    assert isinstance(signal_behind(interrupted), KeyboardInterrupt)
+    assert signal_behind(ValueError("x")).args == ("x",)
 
 
 def test_compiling_a_kernel_does_not_count_against_the_cpu_budget(scenario, cli, tmp_path):

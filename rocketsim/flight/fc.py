@@ -15,6 +15,7 @@ runs on the truth.
 from __future__ import annotations
 
 import math
+import sys
 from typing import Callable
 
 import numpy as np
@@ -753,9 +754,10 @@ class FlightComputer:
         seconds = arguments.duration("fc.predict", seconds)
         delta_v = None if delta_v is None else arguments.velocity("fc.predict", "delta_v", delta_v)
         periapsis = arguments.flag("fc.predict", "periapsis", periapsis)
-        from rocketsim.flight.program import not_counted
-        with not_counted():     # the integrator's first import, ~0.15 s, is not the program's time
-            import scipy.integrate  # noqa: F401
+        if "scipy.integrate" not in sys.modules:    # its first import, ~0.15 s, is not the program's time
+            from rocketsim.flight.program import not_counted
+            with not_counted():     # (which gives the step its whole budget again: only then)
+                import scipy.integrate  # noqa: F401
         return self._craft.predict(seconds, delta_v, periapsis)
 
     @property

@@ -37,7 +37,7 @@ from typing import Callable
 import greenlet
 import numba.core.event as ev
 
-from rocketsim.errors import InputError
+from rocketsim.errors import InputError, signal_behind
 from rocketsim.flight.arguments import truth
 from rocketsim.flight.conditions import Condition
 from rocketsim.limits import MAX_TEXT_BYTES, read_bounded
@@ -191,10 +191,13 @@ def _raised_by_program(error: BaseException, path: Path) -> bool:
     raises (GeneratorExit, its own classes); not Ctrl-C, nor what a signal handler
     raises while the program runs (SIGTERM's: they stop the flight as they would
     without a program)."""
-    if isinstance(error, (Exception, SystemExit, ProgramOverBudget)):
+    behind = signal_behind(error)       # raised inside a compiled kernel: a SystemError's cause
+    if isinstance(behind, KeyboardInterrupt):
+        return False
+    if isinstance(behind, (Exception, SystemExit, ProgramOverBudget)):
         return True
     frames = traceback.extract_tb(error.__traceback__)
-    return not isinstance(error, KeyboardInterrupt) and bool(frames) and Path(frames[-1].filename) == path
+    return bool(frames) and Path(frames[-1].filename) == path
 
 
 def _deepest_line(frames, path: Path, line: int | None = None) -> int | None:
@@ -210,7 +213,7 @@ def _program_error(error: BaseException, path: Path, budget: float = 0.0,
     """A :class:`ProgramError` pointing at the deepest line of ``path`` in the traceback
     (else at ``line``)."""
     line = _deepest_line(traceback.extract_tb(error.__traceback__), path, line)
-    if isinstance(error, ProgramOverBudget):
+    if isinstance(signal_behind(error), ProgramOverBudget):    # also when it ran out inside a kernel
         return ProgramError(f"the program ran {budget:g} s of CPU time in one step without handing "
                             "back control (fc.step(), fc.sleep() or fc.wait_until()); is it in an "
                             "endless loop? (raise the limit with 'program_cpu_budget')",

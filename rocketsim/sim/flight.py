@@ -11,6 +11,7 @@ import json
 import os
 from pathlib import Path
 
+from rocketsim.errors import signal_behind
 from rocketsim.version import __version__
 from rocketsim.scenario.load import LoadedScenario
 from rocketsim.sim.build import build_world
@@ -79,7 +80,7 @@ def fly_into(loaded: LoadedScenario, open_telemetry, *, step: float | None = Non
         try:
             summary = world.run(telemetry)
         except BaseException as caught:
-            error = _signal_behind(caught)
+            error = signal_behind(caught)
             try:
                 telemetry.error(world.t, f"{type(error).__name__}: {error}" if str(error) else type(error).__name__)
                 telemetry.metadata("outcome", {"status": "error", "error": str(error) or type(error).__name__})
@@ -106,20 +107,3 @@ def _scenario_text(loaded: LoadedScenario) -> bytes | None:
         return yaml.dump(loaded.written, Dumper=dumper, sort_keys=False, allow_unicode=True).encode()
     except yaml.YAMLError:
         return None
-
-
-def _signal_behind(error: BaseException) -> BaseException:
-    """The Ctrl-C (or other non-Exception signal) behind ``error``, else ``error``.
-
-    A signal handler that raises while a compiled kernel is being called
-    surfaces as ``SystemError: ... returned a result with an exception set``
-    whose cause is the signal's exception, or another such SystemError (a
-    kernel that calls back into Python, e.g. numba's unpickling of a constant,
-    when the signal lands there): the caller must see the signal.
-    """
-    cause = error
-    while isinstance(cause, SystemError) and cause.__cause__ is not None:
-        cause = cause.__cause__
-        if not isinstance(cause, Exception):
-            return cause
-    return error
