@@ -124,8 +124,8 @@ class FlightComputer:
         if reading == "nose_angle":
             value = arguments.number(call, "value", value, 0.0, math.pi)
             v = arguments.vector(call, "towards", towards)
-            norm = math.hypot(*v.tolist())
-            if not 0.0 < norm < math.inf:
+            norm = math.hypot(*v.tolist())      # finite: the components are within 1e150
+            if not norm > 0.0:
                 raise ValueError(f"{call}(): towards must be a non-zero vector")
             return conditions.compare_nose(self, v / norm, value, op)
         return conditions.compare(self, reading, value, op)
