@@ -12,6 +12,20 @@ GIL: released and taken again every step, it would hand it to the writing
 thread and back tens of times a batch of samples, each hand-over a
 thread's wake-up.
 
+A kernel that makes no array and returns none (the derivative and the forces
+it sums: they read their arguments and return numbers) is compiled
+``njit(borrows=True)``: without numba's reference counting (NRT), so it borrows
+its caller's arrays. numba otherwise counts a reference to every array of every
+argument a kernel binds, with an atomic increment and decrement each: a staged
+vehicle's arrays are a named tuple of some 35, passed down through the
+derivative's calls four times a step, and those counts were a third of an RK4
+step's time (3.3 us -> 2.2 us for the sounding rocket of the peer benchmark).
+numba refuses to compile such a kernel if it makes an array; one that returned
+an array (a view, or its argument) would hand its caller a reference it never
+counted, so a test checks every borrowing kernel's compiled return types. Every
+other kernel counts its references (``_nrt`` set, not inherited from a borrowing
+caller), so which callees count does not depend on the order of compiling.
+
 LLVM optimises the kernels at level 1 (:data:`OPT_LEVEL`; numba's default is 3)
 unless ``NUMBA_OPT`` says otherwise: numba optimises each kernel's module again
 with every kernel it calls linked in, so the big kernels' compiling is mostly
@@ -50,7 +64,7 @@ from pathlib import Path
 
 import numpy as np
 
-_OPTIONS = {"cache": True, "fastmath": False, "error_model": "numpy"}
+_OPTIONS = {"cache": True, "fastmath": False, "error_model": "numpy", "_nrt": True}
 OPT_LEVEL = 1       # LLVM's optimisation level of the kernels, unless NUMBA_OPT is set (see the module)
 
 
@@ -316,8 +330,11 @@ class Kernel:
 
 
 def njit(func=None, **options):
-    """Compile ``func`` on first need (use as ``@njit`` or ``@njit(inline="always")``)."""
+    """Compile ``func`` on first need (use as ``@njit`` or ``@njit(inline="always")``);
+    ``borrows=True``: without reference counting (see the module)."""
     settings = {**_OPTIONS, **options}
+    if settings.pop("borrows", False):
+        settings["_nrt"] = False
     if func is None:
         return functools.partial(Kernel, options=settings)
     return Kernel(func, settings)

@@ -133,7 +133,7 @@ def air_at(h0, dh, density, pressure, temperature, speed_of_sound, wind_east, wi
             g * wind_east[i] + f * wind_east[i + 1], g * wind_north[i] + f * wind_north[i + 1])
 
 
-@njit
+@njit(borrows=True)
 def air_in(air, h):
     """:func:`air_at` of the table ``air``: the tuple of
     :meth:`AtmosphereTable.arrays` (what a vehicle carries as its ``air``)."""

@@ -46,7 +46,7 @@ from rocketsim.bodies.gravity import point_mass_j2
 from rocketsim.layout import (P_CLASSIC, P_IXX, P_IYY, P_IZZ, P_J2, P_MU,
                                       P_POLAR_RADIUS, P_RADIUS, P_SPIN, Q, R, V, W)
 from rocketsim.dynamics.third_bodies import held_perturbation
-from rocketsim.frames.quaternion import hamilton_product
+from rocketsim.frames.quaternion import hamilton_product, rotate_components
 from rocketsim.vehicle.aero import A_GROUND, A_ON, A_REACH, body_aero
 from rocketsim.vehicle.contact import contact_forces
 from rocketsim.vehicle.engines import engine_forces
@@ -58,7 +58,7 @@ from rocketsim.vehicle.parachutes import CANOPY_RATE_TIME, canopy_drag
 from rocketsim.vehicle.rail import RL_ON, constrain_to_rail
 
 
-@njit
+@njit(borrows=True)
 def radial_height(y, p):
     """Height (m) above the central body's ellipsoid, measured along the radius.
 
@@ -85,19 +85,14 @@ def air_velocity_inertial(y, wind, spin):
     return y[V] + spin * y[R + 1] - wind[0], y[V + 1] - spin * y[R] - wind[1], y[V + 2] - wind[2]
 
 
-@njit
+@njit(borrows=True)
 def body_air_velocity(y, wind, spin):
     """Air-relative velocity of the centre of mass (m/s) in body axes:
     ``q* (v - omega x r - wind) q`` (docs/physics.md#equations-of-motion), ``wind``
     inertial (m/s), the air turning with the central body at ``spin`` (rad/s about the
     frame's z: ``p[P_SPIN]``)."""
     ax, ay, az = air_velocity_inertial(y, wind, spin)
-    qw, ux, uy, uz = y[Q], -y[Q + 1], -y[Q + 2], -y[Q + 3]
-    tx = 2.0 * (uy * az - uz * ay)
-    ty = 2.0 * (uz * ax - ux * az)
-    tz = 2.0 * (ux * ay - uy * ax)
-    return (ax + qw * tx + (uy * tz - uz * ty), ay + qw * ty + (uz * tx - ux * tz),
-            az + qw * tz + (ux * ty - uy * tx))
+    return rotate_components(y[Q], -y[Q + 1], -y[Q + 2], -y[Q + 3], ax, ay, az)
 
 
 @njit
@@ -110,7 +105,7 @@ def flight_dynamic_pressure(y, p, veh):
     return 0.5 * rho * (ax * ax + ay * ay + az * az)
 
 
-@njit
+@njit(borrows=True)
 def _aero_and_contact(t, y, p, dy, rho, sound, x_cm, aero, fx, fy, fz, mx, my, mz, contact=True):
     """Add the body's aerodynamics, grid fins, RCS and ground contact (body axes, about
     the centre of mass) to the engines' force and moment ``(fx..mz)``; no contact
@@ -171,7 +166,7 @@ def derivative(t, y, p, dy, veh=None, nbody=None):
     held_derivative(t, y, p, dy, veh, t, y, nbody)
 
 
-@njit
+@njit(borrows=True)
 def held_derivative(t, y, p, dy, veh, t_held, y_held, nbody=None):
     """:func:`derivative` inside an RK4 step that started at ``(t_held, y_held)``
     (``nbody`` as its).
@@ -228,14 +223,11 @@ def held_derivative(t, y, p, dy, veh, t_held, y_held, nbody=None):
         elif aero.rcs.shape[0] > 0:     # a vacuum spacecraft (aero: {aerodynamics: false}): RCS only
             a = rcs_forces(y, dy, x_cm, aero.rcs, aero.rcs_cmd)
             fx, fy, fz, mx, my, mz = fx + a[0], fy + a[1], fz + a[2], mx + a[3], my + a[4], mz + a[5]
-        # body force -> inertial: v + 2w (u x v) + 2 u x (u x v), q = (w, u)
-        qw, ux, uy, uz = y[Q], y[Q + 1], y[Q + 2], y[Q + 3]
-        tx = 2.0 * (uy * fz - uz * fy)
-        ty = 2.0 * (uz * fx - ux * fz)
-        tz = 2.0 * (ux * fy - uy * fx)
-        dy[V] += (fx + qw * tx + (uy * tz - uz * ty)) / mass
-        dy[V + 1] += (fy + qw * ty + (uz * tx - ux * tz)) / mass
-        dy[V + 2] += (fz + qw * tz + (ux * ty - uy * tx)) / mass
+        # body force -> inertial
+        gx, gy, gz = rotate_components(y[Q], y[Q + 1], y[Q + 2], y[Q + 3], fx, fy, fz)
+        dy[V] += gx / mass
+        dy[V + 1] += gy / mass
+        dy[V + 2] += gz / mass
         if veh.chute.shape[0] > 0 and rho > 0.0:    # parachutes, at their cords' attachments
             cx, cy, cz, cmy, cmz, canopy = canopy_drag(t, y, rho, aero.wind, p[P_SPIN], veh.chute, x_cm)
             dy[V] += cx / mass

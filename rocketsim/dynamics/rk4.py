@@ -74,9 +74,16 @@ def rk4_step(y, t, h, p, veh=None, nbody=None):
         :func:`~rocketsim.dynamics.derivative.derivative`'s).
     """
     n = y.shape[0]
-    k = np.empty((4, n))
-    tmp = np.empty(n)
     out = np.empty(n)
+    _rk4_into(out, np.empty((4, n)), np.empty(n), y, t, h, p, veh, nbody)
+    return out
+
+
+@njit(borrows=True)
+def _rk4_into(out, k, tmp, y, t, h, p, veh, nbody):
+    """:func:`rk4_step` written into ``out`` (n,), its four stages' rates in ``k`` (4, n)
+    and each stage's state in ``tmp`` (n,)."""
+    n = y.shape[0]
     # the four stages: k_s at t + c_s h from y + c_s h k_(s-1), c = (0, 1/2, 1/2, 1); the
     # step's start is the hold of the classic range's model (ignored by the realistic one)
     for s in range(4):
@@ -92,7 +99,6 @@ def rk4_step(y, t, h, p, veh=None, nbody=None):
     norm = math.sqrt(out[Q] ** 2 + out[Q + 1] ** 2 + out[Q + 2] ** 2 + out[Q + 3] ** 2)
     for i in range(4):
         out[Q + i] /= norm
-    return out
 
 
 @njit(inline="always")     # small: typed in its callers, no kernel of its own

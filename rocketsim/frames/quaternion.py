@@ -33,6 +33,18 @@ def hamilton_product(aw, ax, ay, az, bw, bx, by, bz):
             aw * bz + ax * by - ay * bx + az * bw)
 
 
+@njit(inline="always")     # a few operations: typed in its callers, no kernel of its own
+def rotate_components(w, ux, uy, uz, vx, vy, vz):
+    """The vector ``(vx, vy, vz)`` turned by the unit quaternion ``(w, ux, uy, uz)``, as a
+    3-tuple (no array: for the hot kernels): ``v + 2w (u × v) + 2 u × (u × v)``, the
+    vector part of ``q ⊗ (0, v) ⊗ q*``."""
+    tx = 2.0 * (uy * vz - uz * vy)
+    ty = 2.0 * (uz * vx - ux * vz)
+    tz = 2.0 * (ux * vy - uy * vx)
+    return (vx + w * tx + (uy * tz - uz * ty), vy + w * ty + (uz * tx - ux * tz),
+            vz + w * tz + (ux * ty - uy * tx))
+
+
 @njit
 def quat_multiply(a, b):
     """Hamilton product ``a (x) b`` of two quaternions (4,) -> (4,)."""
@@ -66,19 +78,11 @@ def quat_normalize(q):
 def quat_rotate(q, v):
     """Frame components of the body-axes vector ``v`` (3,), ``q`` body -> frame.
 
-    Equal to the vector part of ``q ⊗ (0, v) ⊗ q*`` for a unit ``q``, computed
-    as ``v + 2w (u × v) + 2 u × (u × v)`` with ``u`` the vector part.
+    Equal to the vector part of ``q ⊗ (0, v) ⊗ q*`` for a unit ``q``
+    (:func:`rotate_components`).
     """
-    w, ux, uy, uz = q[0], q[1], q[2], q[3]
-    vx, vy, vz = v[0], v[1], v[2]
-    # t = 2 u × v
-    tx = 2.0 * (uy * vz - uz * vy)
-    ty = 2.0 * (uz * vx - ux * vz)
-    tz = 2.0 * (ux * vy - uy * vx)
     out = np.empty(3)
-    out[0] = vx + w * tx + (uy * tz - uz * ty)
-    out[1] = vy + w * ty + (uz * tx - ux * tz)
-    out[2] = vz + w * tz + (ux * ty - uy * tx)
+    out[0], out[1], out[2] = rotate_components(q[0], q[1], q[2], q[3], v[0], v[1], v[2])
     return out
 
 

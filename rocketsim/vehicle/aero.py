@@ -100,7 +100,7 @@ def centre_of_pressure(ref, fin) -> float:
     return (2.0 * ref[A_NOSE_AREA] * ref[A_NOSE_X] + float(np.sum(fin[:, FIN_CNA_S] * fin[:, FIN_X]))) / slope
 
 
-@njit
+@njit(borrows=True)
 def interp(xs, ys, x):
     """Linear interpolation in a table with increasing ``xs``, clamped at both ends."""
     n = xs.shape[0]
@@ -151,7 +151,7 @@ def plume_shielding(c_t):
     return math.exp(-c_t)
 
 
-@njit
+@njit(borrows=True)
 def axial_coefficient(mach, cos_alpha, c_t, ca_nose_first, ca_tail_first):
     """``C_A`` for Mach ``mach``, ``cos(alpha)`` and thrust coefficient ``c_t``
     (against the flow; 0 without thrust). Tables are (n, 2) arrays of (Mach, C_A)."""
@@ -191,7 +191,7 @@ def _lift(d, k, v, w, wy, wz):
     return gy, gz, -d * gz, d * gy
 
 
-@njit
+@njit(borrows=True)
 def body_aero(u, v, w, wx, wy, wz, rho, sound, thrust, x_cm, ref, seg, fin, ca_nf, ca_tf):
     """Axial, crossflow, nose-lift and fin force and moment of the body.
 

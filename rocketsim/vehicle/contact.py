@@ -35,7 +35,7 @@ import math
 import numpy as np
 
 from rocketsim._jit import njit
-from rocketsim.frames.quaternion import quat_rotate
+from rocketsim.frames.quaternion import quat_rotate, rotate_components
 from rocketsim.layout import P_POLAR_RADIUS, P_RADIUS, Q, R
 from rocketsim.vehicle.aero import A_GROUND, moment_about_cm
 
@@ -110,7 +110,7 @@ def contact_point_heights(y, p, contact, x_cm, ground=0.0):
     return out
 
 
-@njit
+@njit(borrows=True)
 def contact_forces(y, x_cm, a, b, spin, contact, ground=0.0):
     """Force (N, body axes) and moment (N m about the centre of mass) of the ground.
 
@@ -127,12 +127,7 @@ def contact_forces(y, x_cm, a, b, spin, contact, ground=0.0):
         by = contact[i, K_Y]
         bz = contact[i, K_Z]
         # the point in inertial axes: r + q b
-        tx = 2.0 * (uy * bz - uz * by)
-        ty = 2.0 * (uz * bx - ux * bz)
-        tz = 2.0 * (ux * by - uy * bx)
-        ox = bx + qw * tx + (uy * tz - uz * ty)
-        oy = by + qw * ty + (uz * tx - ux * tz)
-        oz = bz + qw * tz + (ux * ty - uy * tx)
+        ox, oy, oz = rotate_components(qw, ux, uy, uz, bx, by, bz)
         px = y[0] + ox
         py = y[1] + oy
         pz = y[2] + oz

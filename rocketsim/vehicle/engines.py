@@ -156,7 +156,7 @@ def engine_state(t, e, clock, eng, cmd, p_a):
     return f, tau, gy, gz
 
 
-@njit
+@njit(borrows=True)
 def engine_forces(t, y, dy, first_tank, first_clock, eng, cmd, stage, tank_share, p_a, x_cm):
     """Thrust force and torque of every engine at time ``t`` (s), and the mass flows.
 

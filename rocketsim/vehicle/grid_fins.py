@@ -67,7 +67,7 @@ def deflection(t, row, cmd_row):
     return d0 + math.copysign(reach, gap)
 
 
-@njit
+@njit(borrows=True)
 def grid_fin_forces(t, u, v, w, wx, wy, wz, rho, sound, x_cm, grid, grid_cmd):
     """Force (N, body axes) and moment (N m about the centre of mass) of all grid fins.
 

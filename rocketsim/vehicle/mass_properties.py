@@ -42,7 +42,7 @@ F_IZZ0 = 4      # kg m^2, about the z axis through the origin
 N_FIXED = 5
 
 
-@njit
+@njit(borrows=True)
 def vehicle_mass_properties(veh, y):
     """:func:`mass_properties` of state ``y`` of a staged vehicle with arrays ``veh``
     (:class:`~rocketsim.vehicle.build.VehicleArrays`): its tanks and its motors."""

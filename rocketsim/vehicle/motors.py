@@ -86,7 +86,7 @@ def motor_thrust(t, motor, curve, i):
     return curve_thrust(curve, int(motor[i, M_CURVE0]), int(motor[i, M_POINTS]), t - lit)
 
 
-@njit
+@njit(borrows=True)
 def motor_forces(t, dy, first_motor, motor, curve):
     """Thrust (N, along body +x) of every motor at mission time ``t`` (s); writes the
     propellant rates ``dy[first_motor + i] = -m0 T / I_total`` (kg/s)."""

@@ -43,10 +43,8 @@ from __future__ import annotations
 
 import math
 
-import numpy as np
-
 from rocketsim._jit import njit
-from rocketsim.frames.quaternion import quat_conjugate, quat_rotate
+from rocketsim.frames.quaternion import rotate_components
 from rocketsim.layout import Q, R, V
 from rocketsim.vehicle.motors import sooner, within_step
 
@@ -71,7 +69,7 @@ def cut_away(t, chute, i):
     return t > chute[j, CH_DEPLOYED] + chute[j, CH_LAG]
 
 
-@njit
+@njit(borrows=True)
 def inflated(t, chute, i):
     """Inflated fraction (0..1) of parachute ``i`` at mission time ``t`` (s); 0 once cut away."""
     deployed = chute[i, CH_DEPLOYED]
@@ -85,7 +83,7 @@ def inflated(t, chute, i):
     return since / chute[i, CH_INFLATION]
 
 
-@njit
+@njit(borrows=True)
 def canopy_drag(t, y, rho, wind, spin, chute, x_cm):
     """``(fx, fy, fz, my, mz, f)``: the parachutes' drag (N, inertial axes) at mission time
     ``t`` (s) in air of density ``rho`` (kg/m^3) moving with the ground (``spin`` rad/s
@@ -102,14 +100,12 @@ def canopy_drag(t, y, rho, wind, spin, chute, x_cm):
         largest = max(largest, f)
     if area == 0.0:
         return 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
-    air = np.empty(3)
-    air[0] = y[V] + spin * y[R + 1] - wind[0]
-    air[1] = y[V + 1] - spin * y[R] - wind[1]
-    air[2] = y[V + 2] - wind[2]
-    k = -0.5 * rho * math.sqrt(air[0] * air[0] + air[1] * air[1] + air[2] * air[2])
-    body = quat_rotate(quat_conjugate(y[Q:Q + 4]), air)     # the airflow in body axes
+    ax, ay, az = y[V] + spin * y[R + 1] - wind[0], y[V + 1] - spin * y[R] - wind[1], y[V + 2] - wind[2]
+    k = -0.5 * rho * math.sqrt(ax * ax + ay * ay + az * az)
+    # the airflow in body axes
+    body = rotate_components(y[Q], -y[Q + 1], -y[Q + 2], -y[Q + 3], ax, ay, az)
     # (x_a - x_cm) e_x x F, F = k C_D S v_air (body axes), summed over the canopies
-    return (k * area * air[0], k * area * air[1], k * area * air[2], -k * arm * body[2],
+    return (k * area * ax, k * area * ay, k * area * az, -k * arm * body[2],
             k * arm * body[1], largest)
 
 

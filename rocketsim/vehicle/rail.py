@@ -59,18 +59,17 @@ def no_rail() -> np.ndarray:
     return rail
 
 
-@njit
+@njit(borrows=True)
 def rail_axes(t, spin, rail):
     """``(x0, u)``: the rail's start and unit axis in the inertial frame at mission time ``t``."""
     c = math.cos(spin * t)
     s = math.sin(spin * t)
-    x0 = np.array((c * rail[RL_X0] - s * rail[RL_X0 + 1], s * rail[RL_X0] + c * rail[RL_X0 + 1],
-                   rail[RL_X0 + 2]))
-    u = np.array((c * rail[RL_U] - s * rail[RL_U + 1], s * rail[RL_U] + c * rail[RL_U + 1], rail[RL_U + 2]))
+    x0 = (c * rail[RL_X0] - s * rail[RL_X0 + 1], s * rail[RL_X0] + c * rail[RL_X0 + 1], rail[RL_X0 + 2])
+    u = (c * rail[RL_U] - s * rail[RL_U + 1], s * rail[RL_U] + c * rail[RL_U + 1], rail[RL_U + 2])
     return x0, u
 
 
-@njit
+@njit(borrows=True)
 def rail_travel(y, t, spin, rail):
     """``(s, s')``: travel (m) along the rail and its rate (m/s, relative to the ground)."""
     x0, u = rail_axes(t, spin, rail)
@@ -79,7 +78,7 @@ def rail_travel(y, t, spin, rail):
     return s, rate
 
 
-@njit
+@njit(borrows=True)
 def constrain_to_rail(t, y, dy, spin, rail):
     """Replace the free acceleration ``dy[V:V+3]`` (m/s^2, inertial) by the motion along the
     rail (module docstring) and hold the body rates (``dy[W]`` is the caller's)."""

@@ -21,7 +21,7 @@ R_X, R_Y, R_Z, R_DX, R_DY, R_DZ, R_THRUST, R_MDOT, R_TANK = 0, 1, 2, 3, 4, 5, 6,
 N_RCS = 9
 
 
-@njit
+@njit(borrows=True)
 def rcs_forces(y, dy, x_cm, rcs, rcs_cmd):
     """Force (N, body) and moment (N m about the centre of mass) of the firing
     thrusters; subtracts their propellant flow from ``dy`` (kg/s)."""
