@@ -39,6 +39,7 @@ from rocketsim.scenario.models import VehicleSpec
 from rocketsim.sim.flight_events import FlightEvents
 from rocketsim.sim.vehicle_checks import VehicleChecks
 from rocketsim.vehicle.build import VehicleModel
+from rocketsim.vehicle.mass_properties import vehicle_mass_properties
 
 
 @dataclass
@@ -127,8 +128,10 @@ class Vehicle(Body):
 
     @property
     def mass(self) -> float:
-        """kg, from the propellant the vehicle carries."""
-        return float(self.vehicle.mass_properties(self.y)[0])
+        """kg, from the propellant the vehicle carries (its compiled entry bound, as the
+        runs': a program reads it at most wake-ups)."""
+        arrays = self.vehicle.arrays
+        return self.kernels.call(vehicle_mass_properties, arrays, arrays, self.y)[0]
 
 
 def channel_name(name: str) -> str:

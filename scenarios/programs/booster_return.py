@@ -174,7 +174,7 @@ class Guide:
         50 km) in ENTRY_PREDICTION_STEP steps, its mass flow ``full / EXHAUST_SPEED``."""
         r, v = self.state()
         mass, usable = self.fc.mass, self.usable()
-        spin = np.array((0.0, 0.0, EARTH_OMEGA))
+        w = EARTH_OMEGA
         dt = ENTRY_PREDICTION_STEP
         flow = full / EXHAUST_SPEED * dt
         while True:
@@ -182,7 +182,10 @@ class Guide:
             if speed <= ENTRY_END_SPEED or usable <= landing_propellant(mass):
                 break
             gravity = -EARTH_MU / (r @ r) ** 1.5 * r
-            a = -full / mass / speed * v + gravity - 2.0 * np.cross(spin, v) - np.cross(spin, np.cross(spin, r))
+            # the Coriolis and centrifugal terms, 2 w x v and w x (w x r), w along +z
+            coriolis = np.array((-(w * v[1]), w * v[0], 0.0))
+            centrifugal = np.array((-(w * (w * r[0])), -(w * (w * r[1])), 0.0))
+            a = -full / mass / speed * v + gravity - 2.0 * coriolis - centrifugal
             v = v + a * dt
             r = r + v * dt
             mass, usable = mass - flow, usable - flow
