@@ -133,7 +133,7 @@ from rocketsim.dynamics import rk4, third_bodies
 from rocketsim.scenario.load import load
 from rocketsim.sim.flight import fly
 fly(load(sys.argv[1]), sys.argv[2])
-print(json.dumps({k.__name__: len(k.signatures) for k in (rk4.step, third_bodies.hold_field)}))
+print(json.dumps({k.__name__: len(k.signatures) for k in (rk4.step_into, third_bodies.hold_field)}))
 """
 
 
@@ -141,12 +141,12 @@ def test_a_flight_without_an_n_body_field_does_not_compile_its_hold(scenario, tm
     # a coasting body about Earth alone: its step (and advance, and the coast runs that
     # call them) compiled afresh in a fresh process, the rest from the cache
     path = scenario(duration="1 s")
-    env, _ = _cache_without(path, tmp_path, "rk4.step-*", "rk4.advance-*", "coast_runs.coast_run-*")
+    env, _ = _cache_without(path, tmp_path, "rk4.step_into-*", "rk4.advance-*", "coast_runs.coast_run-*")
     done = subprocess.run([sys.executable, "-c", _COMPILED, str(path), str(tmp_path / "cold.mcap")],
                           env=env, capture_output=True, text=True, timeout=300)
     assert done.returncode == 0, done.stderr
     compiled = json.loads(done.stdout.strip().splitlines()[-1])
-    assert compiled["step"] >= 1, "the flight compiled its step"
+    assert compiled["step_into"] >= 1, "the flight compiled its step"
     assert compiled["hold_field"] == 0
 
 
@@ -189,7 +189,7 @@ def test_a_cold_coast_compiles_only_the_kernels_it_flies(scenario, tmp_path):
                           env=env, capture_output=True, text=True, timeout=600)
     assert done.returncode == 0, done.stderr
     compiled = json.loads(done.stdout.strip().splitlines()[-1])
-    assert compiled["rocketsim.dynamics.rk4.step"] == 1, "the flight compiled its step"
+    assert compiled["rocketsim.dynamics.rk4.step_into"] == 1, "the flight compiled its step"
     assert compiled["rocketsim.sim.sampling.figures"] == 1, "and its telemetry"
     for name in compiled:
         assert "third_bodies" not in name, f"{name}: no n-body field, no pull of other bodies"

@@ -95,7 +95,7 @@ def body_air_velocity(y, wind, spin):
     return rotate_components(y[Q], -y[Q + 1], -y[Q + 2], -y[Q + 3], ax, ay, az)
 
 
-@njit
+@njit(borrows=True)
 def flight_dynamic_pressure(y, p, veh):
     """Dynamic pressure (Pa) the aerodynamics of the staged vehicle ``veh`` meet at
     state ``y``: the density of its air at the radial height, as the derivative reads

@@ -47,6 +47,10 @@ from rocketsim.vehicle.rail import RL_OFF_AT, RL_OFF_SPEED, RL_ON, RL_TRAVEL, ra
 
 DRY_TOLERANCE = 1e-13      # relative to the stage's load: where the split of a step is placed
 RAIL_EXIT_TOLERANCE = 1e-9  # m of travel: where the step is split as the vehicle leaves its rail
+# the rows of step_into's ``work``: an RK4 stage's state, a part's end, the state between
+# parts, a trial of the cut instant's search, a sub-step's start
+WK_TMP, WK_TRIAL, WK_STATE, WK_SCRATCH, WK_START = 0, 1, 2, 3, 4
+N_WORK = 5
 
 
 @njit
@@ -143,7 +147,7 @@ def wind_at(y, t, p, air):
     return c * wind[0] - s * wind[1], s * wind[0] + c * wind[1], wind[2]
 
 
-@njit
+@njit(borrows=True)
 def stage_left(y, veh, s):
     """Propellant (kg) above the unusable reserve in stage ``s`` of state ``y``."""
     k0 = veh.first_tank + int(veh.stage[s, S_TANK0])
@@ -153,7 +157,7 @@ def stage_left(y, veh, s):
     return left
 
 
-@njit
+@njit(borrows=True)
 def _first_dry(y, veh):
     """Index of a stage not yet marked dry whose usable propellant is gone in ``y``, or -1."""
     for s in range(veh.stage.shape[0]):
@@ -162,7 +166,7 @@ def _first_dry(y, veh):
     return -1
 
 
-@njit
+@njit(borrows=True)
 def _left(y, t, p, veh, kind, s):
     """What is left before a cut of the step: the usable propellant (kg) of stage ``s``
     (``kind`` 0), or the travel (m) to the end of the launch rail (``kind`` 1)."""
@@ -171,15 +175,16 @@ def _left(y, t, p, veh, kind, s):
     return veh.rail[RL_TRAVEL] - rail_travel(y, t, p[P_SPIN], veh.rail)[0]
 
 
-@njit
-def _cut_instant(y, t, h, p, veh, kind, s, left_at_h, tolerance, nbody):
+@njit(borrows=True)
+def _cut_instant(y, t, h, p, veh, kind, s, left_at_h, tolerance, nbody, k, work):
     """Length of the part of the step from ``(t, y)`` after which nothing is left
     (:func:`_left`): stage ``s`` is dry (``kind`` 0) or the vehicle leaves its rail
     (``kind`` 1).
 
     Safeguarded secant (Illinois) on ``g(x) = _left(rk4_step(y, t, x))``,
     ``g(0) > 0 >= g(h) = left_at_h``, to ``tolerance`` (kg: :data:`DRY_TOLERANCE` of
-    the stage's load; m: :data:`RAIL_EXIT_TOLERANCE`).
+    the stage's load; m: :data:`RAIL_EXIT_TOLERANCE`); each trial step computed in
+    ``k`` and ``work`` (:func:`step_into`'s).
     """
     a, ga = 0.0, _left(y, t, p, veh, kind, s)
     if ga <= 0.0:
@@ -190,7 +195,9 @@ def _cut_instant(y, t, h, p, veh, kind, s, left_at_h, tolerance, nbody):
         x = b - gb * (b - a) / (gb - ga)
         if not a < x < b:
             x = 0.5 * (a + b)
-        gx = _left(rk4_step(y, t, x, p, veh, nbody), t + x, p, veh, kind, s)
+        trial = work[WK_SCRATCH]
+        _rk4_into(trial, k, work[WK_TMP], y, t, x, p, veh, nbody)
+        gx = _left(trial, t + x, p, veh, kind, s)
         if abs(gx) <= tolerance:
             return x
         if gx > 0.0:
@@ -202,37 +209,43 @@ def _cut_instant(y, t, h, p, veh, kind, s, left_at_h, tolerance, nbody):
     return x
 
 
-@njit
-def _powered_step(y, t, h, p, veh, nbody):
-    """An RK4 step of a staged vehicle, split at engine kinks and where a stage runs dry.
+@njit(borrows=True)
+def _powered_into(out, k, work, y, t, h, p, veh, nbody):
+    """An RK4 step of a staged vehicle, split at engine kinks and where a stage runs dry,
+    written into ``out`` (``k`` and ``work`` as :func:`step_into`'s).
 
     The step is cut at every instant an engine's thrust has a kink
     (:func:`~rocketsim.vehicle.engines.next_kink`) or a solid motor's curve has a
     point (:func:`~rocketsim.vehicle.motors.next_motor_kink`), at the instant a
     stage's usable propellant is gone and at the instant the vehicle leaves its
     launch rail (:func:`_cut_instant`); each part is one RK4 step over a smooth stretch.
+    ``y`` is read before ``out`` is written: they may be the same array.
     """
+    n = y.shape[0]
+    now, trial, tmp = work[WK_STATE], work[WK_TRIAL], work[WK_TMP]
+    for i in range(n):
+        now[i] = y[i]
     done = 0.0
     while True:
         rest = h - done
-        part = next_kink(t + done, rest, y, veh.first_clock, veh.eng, veh.cmd, veh.stage)
+        part = next_kink(t + done, rest, now, veh.first_clock, veh.eng, veh.cmd, veh.stage)
         if veh.motor.shape[0] > 0:      # the points of a solid motor's thrust curve
             part = min(part, next_motor_kink(t + done, rest, veh.motor, veh.curve))
         if veh.chute.shape[0] > 0:      # a parachute's inflation starting or ending
             part = min(part, next_canopy_kink(t + done, rest, veh.chute))
-        trial = rk4_step(y, t + done, part, p, veh, nbody)
+        _rk4_into(trial, k, tmp, now, t + done, part, p, veh, nbody)
         leaves = False
         if veh.rail[RL_ON] > 0.5:
             left = _left(trial, t + done + part, p, veh, 1, 0)
             if left <= 0.0:
-                part = _cut_instant(y, t + done, part, p, veh, 1, 0, left, RAIL_EXIT_TOLERANCE, nbody)
-                trial = rk4_step(y, t + done, part, p, veh, nbody)
+                part = _cut_instant(now, t + done, part, p, veh, 1, 0, left, RAIL_EXIT_TOLERANCE, nbody, k, work)
+                _rk4_into(trial, k, tmp, now, t + done, part, p, veh, nbody)
                 leaves = True
         s = _first_dry(trial, veh)
         if s >= 0:
-            part = _cut_instant(y, t + done, part, p, veh, 0, s, stage_left(trial, veh, s),
-                                DRY_TOLERANCE * veh.stage[s, S_RESERVE] / UNUSABLE_PROPELLANT, nbody)
-            trial = rk4_step(y, t + done, part, p, veh, nbody)
+            part = _cut_instant(now, t + done, part, p, veh, 0, s, stage_left(trial, veh, s),
+                                DRY_TOLERANCE * veh.stage[s, S_RESERVE] / UNUSABLE_PROPELLANT, nbody, k, work)
+            _rk4_into(trial, k, tmp, now, t + done, part, p, veh, nbody)
             veh.stage[s, S_DRY] = 1.0
             veh.stage[s, S_DRY_AT] = t + done + part
             leaves = leaves and rail_travel(trial, t + done + part, p[P_SPIN], veh.rail)[0] >= \
@@ -241,9 +254,12 @@ def _powered_step(y, t, h, p, veh, nbody):
             veh.rail[RL_ON] = 0.0
             veh.rail[RL_OFF_AT] = t + done + part
             veh.rail[RL_OFF_SPEED] = rail_travel(trial, t + done + part, p[P_SPIN], veh.rail)[1]
-        y = trial
+        for i in range(n):
+            now[i] = trial[i]
         if part == rest:
-            return y
+            for i in range(n):
+                out[i] = now[i]
+            return
         done += part
 
 
@@ -252,7 +268,20 @@ def step(y, t, h, p, veh=None, nbody=None):
     """Advance one flight-model step of ``h`` seconds (sub-stepped near the ground).
 
     ``y`` (state), ``t`` (s), ``p`` and ``veh`` as :func:`rk4_step`'s; returns the
-    new state.
+    new state: :func:`step_into` a new array.
+    """
+    n = y.shape[0]
+    out = np.empty(n)
+    step_into(out, np.empty((4, n)), np.empty((N_WORK, n)), y, t, h, p, veh, nbody)
+    return out
+
+
+@njit(borrows=True)
+def step_into(out, k, work, y, t, h, p, veh=None, nbody=None):
+    """Advance one flight-model step of ``h`` seconds (sub-stepped near the ground) from
+    state ``y`` at ``t`` (s), writing the new state into ``out`` (not ``y``); ``k`` (4, n)
+    and ``work`` (:data:`N_WORK`, n) hold the stages and the parts of the step. ``p`` and
+    ``veh`` as :func:`rk4_step`'s. A caller flying many steps makes the arrays once.
 
     A vehicle with wind in its day's air samples it here, once per step, and an
     engine with a dynamic-pressure throttle law is commanded here, once per step
@@ -280,12 +309,15 @@ def step(y, t, h, p, veh=None, nbody=None):
         # at most, so stiff legs stay inside RK4's stability region
         n_sub = max(GROUND_SUBSTEPS, int(math.ceil(h / GROUND_SUBSTEP_MAX - 1e-9)))
         sub = h / n_sub
-    for k in range(n_sub):          # one step far from the ground: t + 0 * h is t
+    for j in range(n_sub):          # one step far from the ground: t + 0 * h is t
         if veh is None:
-            y = rk4_step(y, t + k * sub, sub, p, None, nbody)
+            _rk4_into(out, k, work[WK_TMP], y, t + j * sub, sub, p, None, nbody)
         else:
-            y = _powered_step(y, t + k * sub, sub, p, veh, nbody)
-    return y
+            _powered_into(out, k, work, y, t + j * sub, sub, p, veh, nbody)
+        if j + 1 < n_sub:           # the next sub-step starts where this one ended
+            y = work[WK_START]
+            for i in range(out.shape[0]):
+                y[i] = out[i]
 
 
 @njit
@@ -302,8 +334,12 @@ def advance(y, k0, h, n_steps, p, veh=None, nbody=None):
     ground = 0.0
     if veh is not None:
         ground = veh.aero.ref[A_GROUND]
-    for k in range(n_steps):
-        y = step(y, (k0 + k) * h, h, p, veh, nbody)
+    n = y.shape[0]
+    k, work = np.empty((4, n)), np.empty((N_WORK, n))
+    for j in range(n_steps):
+        out = np.empty(n)
+        step_into(out, k, work, y, (k0 + j) * h, h, p, veh, nbody)
+        y = out
         if radial_height(y, p) < ground:
-            return y, k + 1
+            return y, j + 1
     return y, n_steps

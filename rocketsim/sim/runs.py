@@ -57,19 +57,21 @@ way as a vehicle's.
 
 import math
 
+import numpy as np
+
 from rocketsim._jit import copy_into, njit
 from rocketsim.atmosphere.table import TOP
 from rocketsim.constants import DEG, G0
 from rocketsim.dynamics.derivative import radial_height
 from rocketsim.dynamics.free_body import free_step
-from rocketsim.dynamics.rk4 import near_ground, step
+from rocketsim.dynamics.rk4 import N_WORK, near_ground, step_into
 from rocketsim.flight.conditions import holds
 from rocketsim.flight.readings import air_here
 from rocketsim.flight.steering import steer_step
 from rocketsim.frames.local import where_and_how_fast
 from rocketsim.layout import P_POLAR_RADIUS, P_RADIUS, P_SPIN, Q, R, V, W
 from rocketsim.sim.sampling import figures as figures_of
-from rocketsim.sim.vehicle_checks import step_figures
+from rocketsim.sim.vehicle_checks import step_figures_into
 from rocketsim.vehicle.aero import A_GROUND, A_REACH
 from rocketsim.vehicle.contact import axis_up
 from rocketsim.vehicle.engines import S_DRY
@@ -279,6 +281,9 @@ def fly_run(y, k0, h, n_max, p, veh, in_flight, steer, code, fins, watch, carry,
     y_peak = y
     j = 0
     filled = 0
+    n = y.shape[0]
+    k, work = np.empty((4, n)), np.empty((N_WORK, n))     # the steps' stages and parts
+    dy = np.empty(n)                                        # the checks' derivative
     while True:
         j += 1
         before = y
@@ -286,12 +291,13 @@ def fly_run(y, k0, h, n_max, p, veh, in_flight, steer, code, fins, watch, carry,
         if steer:
             steer_step(veh, y, p, t0, t0, y[R:R + 3], y[V:V + 3], y[Q:Q + 4], y[W:W + 3], math.nan, veh.air,
                        code, fins, False)
-        y = step(y, t0, h, p, veh, nbody)
+        y = np.empty(n)
+        step_into(y, k, work, before, t0, h, p, veh, nbody)
         t = (k0 + j) * h
         # the flight loads without the contact forces: out of the contact points' reach the
         # derivative adds none, within it the arrays without them (as the checks compute them)
-        figures = step_figures(t, y, p, in_flight if near_ground(y, p, reach) else veh, veh.aero.contact,
-                               nbody)
+        figures = step_figures_into(dy, t, y, p, in_flight if near_ground(y, p, reach) else veh,
+                                    veh.aero.contact, nbody)
         if condition.shape[0] > 0 and holds(condition, t, y, p):
             return y, before, j, figures, CONDITION, y_peak, filled
         if j == n_max or radial_height(y, p) < ground:

@@ -55,7 +55,8 @@ from rocketsim.flight.steering import steer_step
 from rocketsim.frames.earth_fixed import eci_to_ecef
 from rocketsim.frames.quaternion import quat_rotate
 from rocketsim.vehicle.aero import A_GROUND, A_REACH
-from rocketsim.vehicle.contact import axis_up, contact_heights, contact_point_heights, footprint, tip_over_angle
+from rocketsim.vehicle.contact import (axis_up, contact_heights, footprint, lowest_contact_height,
+                                       tip_over_angle)
 from rocketsim.vehicle.heating import advance_shield, sutton_graves, sutton_graves_constant
 from rocketsim.vehicle.mass_properties import vehicle_mass_properties
 from rocketsim.vehicle.parachutes import CH_DEPLOYED
@@ -352,7 +353,12 @@ def accelerations(t, y, p, veh, nbody=None):
     mission time ``t`` (s), from the derivative the integrator uses (``veh`` the
     vehicle's arrays, None for a rigid body; ``nbody`` as the derivative's); ``g`` is
     the central body's point mass and J2 of ``p``."""
-    dy = np.zeros(y.shape[0])
+    return accelerations_into(np.empty(y.shape[0]), t, y, p, veh, nbody)
+
+
+@njit(inline="always")     # small: typed in its callers, no kernel of its own
+def accelerations_into(dy, t, y, p, veh, nbody=None):
+    """:func:`accelerations`, the derivative written into ``dy`` (every slot)."""
     derivative(t, y, p, dy, veh, nbody)
     gx, gy, gz = point_mass_j2(y[R], y[R + 1], y[R + 2], p[P_MU], p[P_RADIUS], p[P_J2])
     return dy[V], dy[V + 1], dy[V + 2], dy[V] - gx, dy[V + 1] - gy, dy[V + 2] - gz
@@ -360,12 +366,18 @@ def accelerations(t, y, p, veh, nbody=None):
 
 @njit
 def step_figures(t, y, p, veh, contact, nbody=None):
+    """:func:`step_figures_into` with an array of its own."""
+    return step_figures_into(np.empty(y.shape[0]), t, y, p, veh, contact, nbody)
+
+
+@njit(borrows=True)
+def step_figures_into(dy, t, y, p, veh, contact, nbody=None):
     """What the checks read after a step, in one compiled call: ``(density kg/m^3, air
     temperature K, airspeed m/s, dynamic pressure Pa, total angle of attack rad, sensed
     acceleration along body x m/s^2 from the flight loads, height of the lowest contact
     point m)``. ``veh`` is the vehicle's arrays without their contact points (the flight
     loads), ``contact`` its contact points (one named tuple to unbox per call, not two);
-    ``nbody`` as the derivative's.
+    ``nbody`` as the derivative's; the derivative at ``y`` is written into ``dy``.
 
     The air moves with the ground and the wind held for the step (as the derivative
     sees it); the angle of attack is measured from the nose.
@@ -375,15 +387,13 @@ def step_figures(t, y, p, veh, contact, nbody=None):
     u, v, w = body_air_velocity(y, veh.aero.wind, p[P_SPIN])
     speed = math.sqrt(u * u + v * v + w * w)
     alpha = math.acos(max(-1.0, min(1.0, u / speed))) if speed > 0.0 else 0.0
-    _, _, _, sx, sy, sz = accelerations(t, y, p, veh, nbody)
+    _, _, _, sx, sy, sz = accelerations_into(dy, t, y, p, veh, nbody)
     # body x in inertial axes: first column of the rotation of q
     qw, qx, qy, qz = y[Q], y[Q + 1], y[Q + 2], y[Q + 3]
     ax = 1.0 - 2.0 * (qy * qy + qz * qz)
     ay = 2.0 * (qx * qy + qw * qz)
     az = 2.0 * (qx * qz - qw * qy)
-    lowest = math.inf
-    for height in contact_point_heights(y, p, contact, x_cm, veh.aero.ref[A_GROUND]):
-        lowest = min(lowest, height)
+    lowest = lowest_contact_height(y, p, contact, x_cm, veh.aero.ref[A_GROUND])
     return rho, temperature, speed, 0.5 * rho * speed * speed, alpha, sx * ax + sy * ay + sz * az, lowest
 
 

@@ -35,7 +35,7 @@ import math
 import numpy as np
 
 from rocketsim._jit import njit
-from rocketsim.frames.quaternion import quat_rotate, rotate_components
+from rocketsim.frames.quaternion import rotate_components
 from rocketsim.layout import P_POLAR_RADIUS, P_RADIUS, Q, R
 from rocketsim.vehicle.aero import A_GROUND, moment_about_cm
 
@@ -101,13 +101,26 @@ def contact_point_heights(y, p, contact, x_cm, ground=0.0):
     base, m) above the ground ``ground`` m over the ellipsoid of ``p``, along the radius,
     for state ``y`` whose centre of mass sits at station ``x_cm`` (m)."""
     out = np.empty(contact.shape[0])
-    offset = np.empty(3)
     for i in range(contact.shape[0]):
-        offset[0], offset[1], offset[2] = contact[i, K_X] - x_cm, contact[i, K_Y], contact[i, K_Z]
-        o = quat_rotate(y[Q:Q + 4], offset)
-        out[i] = point_height(y[R] + o[0], y[R + 1] + o[1], y[R + 2] + o[2], p[P_RADIUS],
-                              p[P_POLAR_RADIUS]) - ground
+        out[i] = _contact_point_height(y, p, contact, i, x_cm, ground)
     return out
+
+
+@njit(borrows=True)
+def lowest_contact_height(y, p, contact, x_cm, ground=0.0):
+    """The least of :func:`contact_point_heights` (m; inf without contact points)."""
+    lowest = math.inf
+    for i in range(contact.shape[0]):
+        lowest = min(lowest, _contact_point_height(y, p, contact, i, x_cm, ground))
+    return lowest
+
+
+@njit(inline="always")     # small: typed in its callers, no kernel of its own
+def _contact_point_height(y, p, contact, i, x_cm, ground):
+    """Height (m) of contact point ``i`` above the ground (see :func:`contact_point_heights`)."""
+    o = rotate_components(y[Q], y[Q + 1], y[Q + 2], y[Q + 3], contact[i, K_X] - x_cm, contact[i, K_Y],
+                          contact[i, K_Z])
+    return point_height(y[R] + o[0], y[R + 1] + o[1], y[R + 2] + o[2], p[P_RADIUS], p[P_POLAR_RADIUS]) - ground
 
 
 @njit(borrows=True)

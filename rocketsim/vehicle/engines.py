@@ -253,7 +253,7 @@ def separated(eng, cmd, t, p_a):
     return out
 
 
-@njit
+@njit(borrows=True)
 def next_kink(t, h, y, first_clock, eng, cmd, stage):
     """Time (s) from ``t`` to the first instant inside the step ``(t, t + h)`` at which an
     engine's thrust or flow has a kink (end of the dead time, of the spool-up, of

@@ -116,7 +116,7 @@ def within_step(first, h, floor):
     return first
 
 
-@njit
+@njit(borrows=True)
 def next_motor_kink(t, h, motor, curve):
     """Time (s) from ``t`` to the first point of a lit motor's curve inside the step
     ``(t, t + h)`` (the thrust's kinks), or ``h``; the same floor as the engines' kinks

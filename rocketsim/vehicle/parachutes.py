@@ -109,7 +109,7 @@ def canopy_drag(t, y, rho, wind, spin, chute, x_cm):
             k * arm * body[1], largest)
 
 
-@njit
+@njit(borrows=True)
 def next_canopy_kink(t, h, chute):
     """Time (s) from ``t`` to the first start or end of a deployed parachute's inflation
     inside the step ``(t, t + h)``, or ``h``."""
