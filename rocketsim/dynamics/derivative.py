@@ -95,7 +95,7 @@ def body_air_velocity(y, wind, spin):
     return rotate_components(y[Q], -y[Q + 1], -y[Q + 2], -y[Q + 3], ax, ay, az)
 
 
-@njit(borrows=True)
+@njit(borrows=True, inline="always")
 def flight_dynamic_pressure(y, p, veh):
     """Dynamic pressure (Pa) the aerodynamics of the staged vehicle ``veh`` meet at
     state ``y``: the density of its air at the radial height, as the derivative reads
@@ -105,7 +105,7 @@ def flight_dynamic_pressure(y, p, veh):
     return 0.5 * rho * (ax * ax + ay * ay + az * az)
 
 
-@njit(borrows=True)
+@njit(borrows=True, inline="always")
 def _aero_and_contact(t, y, p, dy, rho, sound, x_cm, aero, fx, fy, fz, mx, my, mz, contact=True):
     """Add the body's aerodynamics, grid fins, RCS and ground contact (body axes, about
     the centre of mass) to the engines' force and moment ``(fx..mz)``; no contact

@@ -39,7 +39,7 @@ from rocketsim.dynamics.third_bodies import FIELD_DRAG, FIELD_WIND, P_HELD
 from rocketsim.vehicle.tumbling import tumbling_cd
 
 
-@njit
+@njit(inline="always")
 def drag_factor(y, p, air, wind, area_mass, length):
     """``C_D A/m`` (m^2/kg) of a tumbling body of mean area over mass ``area_mass``
     (m^2/kg) and ``length`` (m) in state ``y`` (0 where there is no air), from the

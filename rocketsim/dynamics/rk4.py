@@ -122,7 +122,7 @@ def near_ground(y, p, reach=0.0):
     return radial_height(y, p) < GROUND_SUBSTEP_HEIGHT + reach
 
 
-@njit
+@njit(inline="always")
 def hold_wind(y, t, p, veh):
     """Sample the day's wind at the vehicle's position at time ``t`` (s) and hold it
     (inertial, m/s) in ``veh.aero.wind`` for the step (docs/physics.md#wind):
@@ -157,7 +157,7 @@ def stage_left(y, veh, s):
     return left
 
 
-@njit(borrows=True)
+@njit(borrows=True, inline="always")
 def _first_dry(y, veh):
     """Index of a stage not yet marked dry whose usable propellant is gone in ``y``, or -1."""
     for s in range(veh.stage.shape[0]):

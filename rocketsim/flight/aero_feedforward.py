@@ -32,7 +32,7 @@ from rocketsim._jit import njit
 from rocketsim.vehicle.aero import A_ON, body_aero
 
 
-@njit
+@njit(inline="always")
 def destabilising_moment(aero, u, v, w, wx, wy, wz, rho, sound, thrust, x_cm):
     """``(M_y, M_z)`` (N m, body axes, about the centre of mass) of the aerodynamic
     moment's part that turns the nose away from the air-relative velocity.

@@ -61,7 +61,7 @@ def _cross(a, b):
     return out
 
 
-@njit
+@njit(inline="always")
 def attitude_error(axes, target):
     """Rotation vector (rad, body axes) that turns the nose (body x) onto ``target`` (ECI).
 
@@ -80,7 +80,7 @@ def attitude_error(axes, target):
     return out
 
 
-@njit
+@njit(inline="always")
 def target_axes(nose, enu, roll):
     """``(found, matrix)``: the body -> ECI matrix of the attitude with the nose along
     ``nose`` (unit, ECI) turned ``roll`` rad about it from the belly-to-the-ground
@@ -112,7 +112,7 @@ def target_axes(nose, enu, roll):
     return True, out
 
 
-@njit
+@njit(inline="always")
 def rotation_error(axes, target):
     """Rotation vector (rad, body axes) that turns the body axes ``axes`` onto the
     target axes ``target`` (both body -> ECI matrices), all three components."""
@@ -133,7 +133,7 @@ def rotation_error(axes, target):
     return out
 
 
-@njit
+@njit(inline="always")
 def angular_acceleration(error, rates):
     """Commanded angular acceleration (rad/s^2, body axes) for the rate-limited damped
     response of :mod:`rocketsim.flight.autopilot`; ``error`` (rad) and ``rates``
@@ -161,7 +161,7 @@ def fin_moments(aero, u, v, w, rho, sound, x_cm, pitch, yaw, roll):
     return forces[3], forces[4], forces[5]
 
 
-@njit
+@njit(inline="always")
 def fin_gains(aero, u, v, w, rho, sound, x_cm):
     """Moment per radian (N m/rad) of the pitch, yaw and roll deflections about body
     y, z, x, measured on the fin model with a ``FIN_PROBE`` deflection (arguments as

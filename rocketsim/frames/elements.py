@@ -122,7 +122,7 @@ def _angle_about(u0, u1, u2, w0, w1, w2, a0, a1, a2):
     return math.atan2(a0 * c0 + a1 * c1 + a2 * c2, u0 * w0 + u1 * w1 + u2 * w2)
 
 
-@njit
+@njit(inline="always")
 def elements_tuple(r, v, mu):
     """``(a, e, i, raan, argp, nu, p)`` of the state ``r`` (m), ``v`` (m/s), compiled.
 

@@ -106,7 +106,7 @@ N_CARRY = 4
 LIMIT, PYTHON, CONDITION = 0, 1, 2
 
 
-@njit
+@njit(inline="always")
 def _max_q_quiet(y, t, p, air, carry, watch):
     """``(quiet, q)``: whether the max-Q watch of the Python side surely does nothing at
     this state but carry a new peak (``q`` > the peak: the new peak's dynamic pressure,
@@ -137,7 +137,7 @@ def _max_q_quiet(y, t, p, air, carry, watch):
     return q >= watch[W_MAX_Q_DROP] * peak * (1.0 + MARGIN), math.nan
 
 
-@njit
+@njit(inline="always")
 def _checks_quiet(y, h, figures, carry, watch):
     """``(quiet, temperature, touched)``: whether the checks of the Python side
     (:meth:`~rocketsim.sim.vehicle_checks.VehicleChecks.after_step`) surely do
@@ -162,7 +162,7 @@ def _checks_quiet(y, h, figures, carry, watch):
     return True, temperature, touched
 
 
-@njit
+@njit(inline="always")
 def _events_quiet(y, t, p, veh, watch, dry, on_rail):
     """Whether the flight events other than max-Q surely do nothing at this state, nor
     the world's one-step rule and handover change: no stage newly dry (``dry``: the

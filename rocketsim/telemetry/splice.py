@@ -93,7 +93,7 @@ def _put_u64(out, at, x):
         out[at + b] = (x >> (8 * b)) & 0xFF
 
 
-@njit
+@njit(inline="always")
 def _put_int(out, at, x):
     """Decimal digits of the integer ``x`` at ``out[at:]``; returns the end."""
     if x < 0:
@@ -220,7 +220,7 @@ def _memcpy(typingctx, out, at, source, start, n):
     return types.void(out, at, source, start, n), codegen
 
 
-@njit
+@njit(inline="always")
 def _header(out, at, length, channel, sequence, stamp):
     """An MCAP Message record's header at ``out[at:]``: ``length`` bytes of content follow
     its first 9 bytes (opcode and length)."""

@@ -151,7 +151,7 @@ def plume_shielding(c_t):
     return math.exp(-c_t)
 
 
-@njit(borrows=True)
+@njit(borrows=True, inline="always")
 def axial_coefficient(mach, cos_alpha, c_t, ca_nose_first, ca_tail_first):
     """``C_A`` for Mach ``mach``, ``cos(alpha)`` and thrust coefficient ``c_t``
     (against the flow; 0 without thrust). Tables are (n, 2) arrays of (Mach, C_A)."""

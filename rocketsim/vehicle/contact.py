@@ -106,7 +106,7 @@ def contact_point_heights(y, p, contact, x_cm, ground=0.0):
     return out
 
 
-@njit(borrows=True)
+@njit(borrows=True, inline="always")
 def lowest_contact_height(y, p, contact, x_cm, ground=0.0):
     """The least of :func:`contact_point_heights` (m; inf without contact points)."""
     lowest = math.inf
@@ -123,7 +123,7 @@ def _contact_point_height(y, p, contact, i, x_cm, ground):
     return point_height(y[R] + o[0], y[R + 1] + o[1], y[R + 2] + o[2], p[P_RADIUS], p[P_POLAR_RADIUS]) - ground
 
 
-@njit(borrows=True)
+@njit(borrows=True, inline="always")
 def contact_forces(y, x_cm, a, b, spin, contact, ground=0.0):
     """Force (N, body axes) and moment (N m about the centre of mass) of the ground.
 

@@ -253,7 +253,7 @@ def separated(eng, cmd, t, p_a):
     return out
 
 
-@njit(borrows=True)
+@njit(borrows=True, inline="always")
 def next_kink(t, h, y, first_clock, eng, cmd, stage):
     """Time (s) from ``t`` to the first instant inside the step ``(t, t + h)`` at which an
     engine's thrust or flow has a kink (end of the dead time, of the spool-up, of
@@ -331,7 +331,7 @@ def q_law_on(cmd) -> bool:
     return False
 
 
-@njit
+@njit(inline="always")
 def hold_q_law(eng, cmd, t, q):
     """The dynamic-pressure throttle law of each burning engine that has one, at time
     ``t`` (s) and dynamic pressure ``q`` (Pa): the engine is commanded the throttle its
@@ -363,7 +363,7 @@ def command_throttle(eng, cmd, e: int, t: float, tau: float) -> None:
     command_throttles(eng, cmd, np.array([e], dtype=np.int64), float(t), float(tau))
 
 
-@njit
+@njit(inline="always")
 def command_gimbals(eng, cmd, engines, t, gy, gz, size):
     """Command the gimbal of each engine of ``engines`` (an int64 array of indices) to
     ``(gy, gz)`` rad at ``t`` (s), clipped to its cone; ``size`` is ``math.hypot(gy, gz)``

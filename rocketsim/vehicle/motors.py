@@ -86,7 +86,7 @@ def motor_thrust(t, motor, curve, i):
     return curve_thrust(curve, int(motor[i, M_CURVE0]), int(motor[i, M_POINTS]), t - lit)
 
 
-@njit(borrows=True)
+@njit(borrows=True, inline="always")
 def motor_forces(t, dy, first_motor, motor, curve):
     """Thrust (N, along body +x) of every motor at mission time ``t`` (s); writes the
     propellant rates ``dy[first_motor + i] = -m0 T / I_total`` (kg/s)."""
@@ -116,7 +116,7 @@ def within_step(first, h, floor):
     return first
 
 
-@njit(borrows=True)
+@njit(borrows=True, inline="always")
 def next_motor_kink(t, h, motor, curve):
     """Time (s) from ``t`` to the first point of a lit motor's curve inside the step
     ``(t, t + h)`` (the thrust's kinks), or ``h``; the same floor as the engines' kinks

@@ -69,7 +69,7 @@ def cut_away(t, chute, i):
     return t > chute[j, CH_DEPLOYED] + chute[j, CH_LAG]
 
 
-@njit(borrows=True)
+@njit(borrows=True, inline="always")
 def inflated(t, chute, i):
     """Inflated fraction (0..1) of parachute ``i`` at mission time ``t`` (s); 0 once cut away."""
     deployed = chute[i, CH_DEPLOYED]
@@ -83,7 +83,7 @@ def inflated(t, chute, i):
     return since / chute[i, CH_INFLATION]
 
 
-@njit(borrows=True)
+@njit(borrows=True, inline="always")
 def canopy_drag(t, y, rho, wind, spin, chute, x_cm):
     """``(fx, fy, fz, my, mz, f)``: the parachutes' drag (N, inertial axes) at mission time
     ``t`` (s) in air of density ``rho`` (kg/m^3) moving with the ground (``spin`` rad/s
@@ -109,7 +109,7 @@ def canopy_drag(t, y, rho, wind, spin, chute, x_cm):
             k * arm * body[1], largest)
 
 
-@njit(borrows=True)
+@njit(borrows=True, inline="always")
 def next_canopy_kink(t, h, chute):
     """Time (s) from ``t`` to the first start or end of a deployed parachute's inflation
     inside the step ``(t, t + h)``, or ``h``."""

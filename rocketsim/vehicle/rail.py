@@ -78,7 +78,7 @@ def rail_travel(y, t, spin, rail):
     return s, rate
 
 
-@njit(borrows=True)
+@njit(borrows=True, inline="always")
 def constrain_to_rail(t, y, dy, spin, rail):
     """Replace the free acceleration ``dy[V:V+3]`` (m/s^2, inertial) by the motion along the
     rail (module docstring) and hold the body rates (``dy[W]`` is the caller's)."""
