@@ -111,9 +111,10 @@ def no_air():
     return (0.0, 1.0, zero, zero, zero, zero, zero, zero)
 
 
-# inlined (numba IR) here and above and below: a call per RK4 stage that passes the air
-# table's tuple of arrays cost rails four times their arithmetic (measured by
-# tests/benchmarks/test_bench_rails.py)
+# inlined (numba IR) in translational_rk4, a borrowing kernel (rocketsim._jit): a call per
+# RK4 stage that passes the air table's tuple of arrays cost rails four times their
+# arithmetic, and inlined in a kernel that counts references its arguments' counts were
+# half of a rails step (measured by tests/benchmarks/test_bench_rails.py)
 @njit(inline="always")
 def translational_acceleration(x, y, z, vx, vy, vz, p, s, fp, air, pos):
     """The field at ``(x, y, z)`` (m) and, with ``fp[FIELD_DRAG]`` set, point-mass drag
@@ -149,7 +150,7 @@ def translational_derivative(y, p, s, fp, air, dy):
         y[R], y[R + 1], y[R + 2], y[V], y[V + 1], y[V + 2], p, s, fp, air, np.empty(3))
 
 
-@njit(inline="always")
+@njit(borrows=True)
 def translational_rk4(y, h, p, s, fp, air, pos):
     """One RK4 step of ``h`` s of position and velocity, in place on ``y[0:6]``.
 

@@ -37,7 +37,7 @@ from rocketsim.dynamics.nbody import FIELD_CENTER, FIELD_MU, bodies_at, hold_tim
 from rocketsim.layout import P_MU, P_POLAR_RADIUS, P_RADIUS, P_SPIN, Q, R, V, W
 from rocketsim.frames.local import VERTICAL, where_and_how_fast
 from rocketsim.frames.quaternion import (quat_conjugate, quat_from_axis_angle, quat_from_matrix,
-                                         quat_multiply, quat_normalize, quat_rotate)
+                                         quat_multiply, quat_normalize, quat_rotate, rotate_components)
 
 FREE = 0      # torque-free rotation
 HELD = 1      # attitude held fixed in an inertial command frame
@@ -98,12 +98,12 @@ def spin_constants(w_x, inertia, dt):
     return b, math.cos(spin * dt), -math.sin(spin * dt)
 
 
-@njit
+@njit(borrows=True, inline="always")
 def precession_constant(y, inertia, dt):
     """The inertial part of :func:`turn_constants`: the quaternion ``q_H(Omega dt)``
     (a tuple) about the angular momentum of state ``y``, identity when it is zero."""
     i1, it = inertia[0], inertia[1]
-    hx, hy, hz = quat_rotate(y[Q:Q + 4], np.array((i1 * y[W], it * y[W + 1], it * y[W + 2])))
+    hx, hy, hz = rotate_components(y[Q], y[Q + 1], y[Q + 2], y[Q + 3], i1 * y[W], it * y[W + 1], it * y[W + 2])
     h = math.sqrt(hx * hx + hy * hy + hz * hz)
     if h == 0.0:
         return (1.0, 0.0, 0.0, 0.0)
@@ -133,7 +133,7 @@ def turn_constants(y, inertia, dt):
     return precession_constant(y, inertia, dt), b, c, s
 
 
-@njit
+@njit(borrows=True, inline="always")
 def apply_turn(y, a, b, c, s):
     """Turn the attitude and rates of ``y`` in place by :func:`turn_constants`."""
     p0, p1, p2, p3 = _product(a[0], a[1], a[2], a[3], y[Q], y[Q + 1], y[Q + 2], y[Q + 3])

@@ -87,7 +87,7 @@ def held_bodies(fp, t):
     return bodies_at(fp, hold_time(t))[0]
 
 
-@njit
+@njit(borrows=True)
 def perturbation(x, y, z, s, fp):
     """Acceleration (m/s^2, frame axes) at ``(x, y, z)`` from every body but the
     centre (direct minus indirect term) plus radiation pressure when on."""

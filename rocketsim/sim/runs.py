@@ -137,7 +137,7 @@ def _max_q_quiet(y, t, p, air, carry, watch):
     return q >= watch[W_MAX_Q_DROP] * peak * (1.0 + MARGIN), math.nan
 
 
-@njit(inline="always")
+@njit(borrows=True)
 def _checks_quiet(y, h, figures, carry, watch):
     """``(quiet, temperature, touched)``: whether the checks of the Python side
     (:meth:`~rocketsim.sim.vehicle_checks.VehicleChecks.after_step`) surely do
@@ -162,7 +162,7 @@ def _checks_quiet(y, h, figures, carry, watch):
     return True, temperature, touched
 
 
-@njit(inline="always")
+@njit(borrows=True)
 def _events_quiet(y, t, p, veh, watch, dry, on_rail):
     """Whether the flight events other than max-Q surely do nothing at this state, nor
     the world's one-step rule and handover change: no stage newly dry (``dry``: the
@@ -180,7 +180,7 @@ def _events_quiet(y, t, p, veh, watch, dry, on_rail):
     return math.sqrt(x * x + y_ * y_ + z * z) - p[P_RADIUS] < watch[W_WATCHED] - MARGIN * p[P_RADIUS]
 
 
-@njit
+@njit(borrows=True)
 def _orbit_and_soi_quiet(y, p, orbit_bound, mu, soi):
     """Whether the orbit test's periapsis bound (:func:`~rocketsim.sim.flight_events.periapsis_bound`,
     the same operations) stays below ``orbit_bound`` (m; inf: not watched) and the
@@ -202,7 +202,7 @@ def _below(y, t, p, liftoff):
     return geodetic <= liftoff - MARGIN * p[P_RADIUS]
 
 
-@njit
+@njit(borrows=True)
 def _surely_finite(y):
     """Whether the world's finiteness test (the sum of the state finite:
     :meth:`rocketsim.sim.world.World.check_finite`) surely passes on ``y``: every
