@@ -53,13 +53,14 @@ physics: the autopilot's step, RK4, the checks' figures and the tests of the
 checks and events inside them; their Python around them (the window's queue, the
 runs' arguments) as the loop.
 
-Last figures (a 2-core machine at load 0.3-0.9, in-process): the suite's first
-160 s, two bodies, 0.19 s uninstrumented, 847x real time; whole flight / physics
-1.24 (uninstrumented whole over instrumented physics 1.21). The whole mission:
-1.22 s uninstrumented (491x), instrumented physics 74 %, programs 15 % (971
-resumes, ~190 us each, most of it their own Python), the loop 7 %; whole /
-physics 1.35; 4 runs 1.15-1.24 s (median 1.165 s, 515x), and flown one step at a
-time (no windows) 2.92-3.07 s (median 3.00 s): its compiled runs gain it 61 %. Each
+Last figures (a 2-core machine at load 0.8-1.3, in-process): the suite's first
+160 s, two bodies, 0.16 s uninstrumented, 1 019x real time; whole flight /
+physics 1.25. The whole mission: 0.92 s uninstrumented (654x), instrumented
+physics 0.64 s (70 %), programs 0.16 s (17 %; 971 resumes), the loop 0.09 s
+(9 %); whole / physics 1.44: 0.28 s beyond the physics, about a quarter of a
+millisecond per program resume and window iteration. The landed booster standing
+on its legs for its last ~140 s (ground sub-steps) is ~0.14 s of the compiled
+runs. Each
 body's run goes on past the sample steps (their samples computed in the runs)
 and past the other bodies' program wake-ups (the programs run inside the
 window), ending at its own program's wake-up, a check or event that may act,

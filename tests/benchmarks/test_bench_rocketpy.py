@@ -32,19 +32,17 @@ past the telemetry samples, computing them on the way, from the pad on: its
 5 500 steps take 4 runs without a file (returning at liftoff, max-Q and the
 end of the burn) and 12 with one (every 128th sample too).
 
-Last figures, RocketPy at its defaults (rtol 1e-6; load 2.2): with telemetry
-45.7 ms (real-time factor 2 407), without 38.0 ms (2 892), the steps alone
-22.5 ms (4 887), RocketPy 447.7 ms (236; 381-448 ms over the last sessions);
-rocketsim / RocketPy with telemetry 10.2x (target 10x), without 12.3x, the
-steps alone 20.7x; an hour later (load 1.2-1.8, RocketPy 405 ms) 8.7x, 10.6x and
-18.2x: the target is met at best. On a later, slower machine (load 0.5): 62.6 ms
-with telemetry, 54.8 ms without, the steps alone 32.7 ms, RocketPy 487.6 ms: 8.1x,
-9.3x and 15.5x; later again (load 0.8): 44.4 ms, 36.3 ms, 22.0 ms, RocketPy 379.5 ms: 8.9x,
-10.9x and 18.0x. Where rocketsim's time goes (kernels timed alone on the
-flight's states, the burn's): the RK4 step 3.9 us; the checks' figures 1.5 us
-a step (0.9 us of it a derivative for the axial load); the max-Q test 0.4 us a
-step while pending; a sample's figures 2.3 us; the file's fixed cost 2.6 ms
-(its writer, the scenario's YAML, the thread's end).
+Last figures, RocketPy at its defaults (rtol 1e-6; RocketPy 376-385 ms over
+the runs, 379-487 ms over earlier sessions). Load 1.2: with telemetry 31.8 ms
+(real-time factor 3 462), without 21.7 ms (5 074), the steps alone 11.3 ms
+(9 693); rocketsim / RocketPy 12.6x with telemetry (target 10x), 18.5x without,
+35.4x the steps alone. The order in which this process loads its kernels moves
+these figures by a third: with the flights' compiled runs loaded after the
+telemetry sample's kernel (:func:`rocketsim._jit.compile_beside` loads them as
+the world is built) 34.5, 26.5 and 17.0 ms, 11.4x. Where rocketsim's time goes (kernels
+timed alone on the flight's state at T+20 s): the derivative 0.38 us, the RK4
+step 1.9 us, the flight-model step 2.05 us; the checks' figures ~0.9 us a step;
+a sample's figures ~2.5 us; the file's fixed cost ~2 ms.
 
 Nothing here asserts a time; the checks are that the flights with and
 without telemetry end in the same state to the bit, that the telemetry's
