@@ -126,14 +126,37 @@ def _opt_level() -> str:
 
 @functools.cache
 def _numba_njit():
-    """numba's ``njit``, numba imported, pointed at :func:`cache_dir` and set to
-    :func:`_opt_level` (once)."""
+    """numba's ``njit``, numba imported, pointed at :func:`cache_dir`, set to
+    :func:`_opt_level` and keeping each kernel's callees its own (:func:`_own_callees`)
+    (once)."""
     import numba
-    from numba.core import config
+    from numba.core import codegen, config
     numba.config.CACHE_DIR = cache_dir()
     if not os.environ.get("NUMBA_OPT"):
         config.OPT = type(config.OPT)(OPT_LEVEL)
+    library = codegen.CPUCodeLibrary
+    library._optimize_final_module = functools.partialmethod(_own_callees, library._optimize_final_module)
     return numba.njit
+
+
+def _own_callees(library, optimize) -> None:
+    """numba's optimising of a kernel's machine code (``optimize``), after the functions its
+    module holds for the kernels it calls are made internal to it.
+
+    numba links a copy of every callee into each kernel's module as a weak definition
+    (``linkonce_odr``), and the JIT's linker binds a weak symbol to the first definition
+    it loaded: a kernel loaded after another that holds the same callees (the telemetry
+    sample's kernel carries the derivative, as the compiled runs do) called them in that
+    other kernel's code, through a stub each call, and ran 15-35 % slower than loaded
+    first (the F9 mission's runs 831 against 688 ms). Internal, each kernel's calls stay
+    in its own code, whatever the order of loading; the machine code is otherwise the
+    same, the results the same bits."""
+    from llvmlite import binding
+
+    for function in library._final_module.functions:
+        if not function.is_declaration and function.linkage == binding.Linkage.linkonce_odr:
+            function.linkage = "internal"
+    optimize(library)
 
 
 def _save_locked(save, sig, data) -> None:
@@ -680,23 +703,9 @@ BESIDE = CompiledBeside()
 
 def compile_beside(kernel, args, priority: int = 0) -> None:
     """On a cold cache, queue ``kernel`` for the types of ``args`` for the second process
-    (:class:`CompiledBeside`; lower ``priority`` first), unless :data:`COMPILE_BESIDE` is off;
-    where it is cached, load it now (whether or not :data:`COMPILE_BESIDE` is on).
-
-    A flight queues its compiled runs here as it is built, before its first telemetry
-    sample's kernel is loaded. The order in which a process loads its kernels changes how
-    fast they run, the same machine code giving the same bits: the compiled runs of the
-    F9 mission took 831 ms loaded after the sample's kernel (which carries the derivative
-    and the forces as they do) against 688-699 ms loaded first, the sounding rocket's
-    26.2 ms against 19.2 ms; a whole ``rocketsim fly`` of the F9 mission 2.25 s -> 2.14 s.
-    Why (where numba's loader binds the calls of a kernel into functions another kernel
-    loaded earlier also holds, or where it places the code) was not measured."""
-    if not isinstance(kernel, Kernel):     # a stand-in (a benchmark's timed wrapper)
-        return
-    if COMPILE_BESIDE and BESIDE.add(kernel, args, priority):
-        return
-    if cached(kernel, tuple(kernel.typeof_pyval(a) for a in args)):
-        entry_point(kernel, *args)
+    (:class:`CompiledBeside`; lower ``priority`` first), unless :data:`COMPILE_BESIDE` is off."""
+    if COMPILE_BESIDE:
+        BESIDE.add(kernel, args, priority)
 
 
 def compiling_elsewhere(kernel) -> bool:
