@@ -26,6 +26,11 @@ counted, so a test checks every borrowing kernel's compiled return types. Every
 other kernel counts its references (``_nrt`` set, not inherited from a borrowing
 caller), so which callees count does not depend on the order of compiling.
 
+Each kernel's machine code holds its own copies of the kernels it calls,
+internal to it (:func:`_own_callees`): numba links them in as weak symbols,
+which the JIT's linker would bind to the first copy loaded, in another kernel's
+code, through a stub per call.
+
 LLVM optimises the kernels at level 1 (:data:`OPT_LEVEL`; numba's default is 3)
 unless ``NUMBA_OPT`` says otherwise: numba optimises each kernel's module again
 with every kernel it calls linked in, so the big kernels' compiling is mostly
@@ -150,7 +155,9 @@ def _own_callees(library, optimize) -> None:
     other kernel's code, through a stub each call, and ran 15-35 % slower than loaded
     first (the F9 mission's runs 831 against 688 ms). Internal, each kernel's calls stay
     in its own code, whatever the order of loading; the machine code is otherwise the
-    same, the results the same bits."""
+    same, the results the same bits. It applies to every function numba compiles in the
+    process once rocketsim has loaded numba (a notebook's own ``numba.njit`` functions
+    included), with the same effect on them."""
     from llvmlite import binding
 
     for function in library._final_module.functions:
