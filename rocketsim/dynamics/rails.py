@@ -98,7 +98,7 @@ def spin_constants(w_x, inertia, dt):
     return b, math.cos(spin * dt), -math.sin(spin * dt)
 
 
-@njit(borrows=True, inline="always")
+@njit(borrows=True)
 def precession_constant(y, inertia, dt):
     """The inertial part of :func:`turn_constants`: the quaternion ``q_H(Omega dt)``
     (a tuple) about the angular momentum of state ``y``, identity when it is zero."""
@@ -133,7 +133,7 @@ def turn_constants(y, inertia, dt):
     return precession_constant(y, inertia, dt), b, c, s
 
 
-@njit(borrows=True, inline="always")
+@njit(borrows=True)
 def apply_turn(y, a, b, c, s):
     """Turn the attitude and rates of ``y`` in place by :func:`turn_constants`."""
     p0, p1, p2, p3 = _product(a[0], a[1], a[2], a[3], y[Q], y[Q + 1], y[Q + 2], y[Q + 3])
@@ -376,6 +376,8 @@ def advance_rails(y, k0, h, n_steps, p, fp, air, inertia, mode, floor=RAILS_FLOO
             turn_attitude(y, inertia, h, mode)
         else:
             apply_turn(y, precession_constant(y, inertia, h), spin, c, sn)
-        if radial_height(y, p) < floor:
+        # |r| - a bounds the height over the ellipsoid from below: the exact height only near the floor
+        if math.sqrt(y[R] * y[R] + y[R + 1] * y[R + 1] + y[R + 2] * y[R + 2]) - p[P_RADIUS] < floor \
+                and radial_height(y, p) < floor:
             return y, k + 1
     return y, n_steps

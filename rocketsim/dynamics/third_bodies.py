@@ -87,7 +87,7 @@ def held_bodies(fp, t):
     return bodies_at(fp, hold_time(t))[0]
 
 
-@njit(borrows=True)
+@njit(borrows=True, inline="always")
 def perturbation(x, y, z, s, fp):
     """Acceleration (m/s^2, frame axes) at ``(x, y, z)`` from every body but the
     centre (direct minus indirect term) plus radiation pressure when on."""
