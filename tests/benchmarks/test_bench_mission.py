@@ -53,14 +53,14 @@ physics: the autopilot's step, RK4, the checks' figures and the tests of the
 checks and events inside them; their Python around them (the window's queue, the
 runs' arguments) as the loop.
 
-Last figures (a 2-core machine at load 0.8-1.3, in-process): the suite's first
-160 s, two bodies, 0.16 s uninstrumented, 1 019x real time; whole flight /
-physics 1.25. The whole mission: 0.92 s uninstrumented (654x), instrumented
-physics 0.64 s (70 %), programs 0.16 s (17 %; 971 resumes), the loop 0.09 s
-(9 %); whole / physics 1.44: 0.28 s beyond the physics, about a quarter of a
-millisecond per program resume and window iteration. The landed booster standing
-on its legs for its last ~140 s (ground sub-steps) is ~0.14 s of the compiled
-runs. Each
+Last figures (a 2-core machine at load 0.9-1.2, in-process): the suite's first
+160 s, two bodies, 0.11 s uninstrumented, 1 470x real time; whole flight /
+physics 1.40-1.42. The whole mission: 0.78 s uninstrumented (770x),
+instrumented physics 0.51 s (64 %), programs 0.16 s (20 %; 971 resumes), the
+loop 0.09 s (11 %); whole / physics 1.52-1.56: 0.27-0.29 s beyond the physics,
+about a quarter of a millisecond per program resume and window iteration. The
+landed booster standing on its legs for its last ~140 s (ground sub-steps) is
+0.11 s of the 0.37 s of compiled runs (14.5 us a step). Each
 body's run goes on past the sample steps (their samples computed in the runs)
 and past the other bodies' program wake-ups (the programs run inside the
 window), ending at its own program's wake-up, a check or event that may act,

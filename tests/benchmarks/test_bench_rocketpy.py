@@ -33,16 +33,12 @@ past the telemetry samples, computing them on the way, from the pad on: its
 end of the burn) and 12 with one (every 128th sample too).
 
 Last figures, RocketPy at its defaults (rtol 1e-6; RocketPy 376-385 ms over
-the runs, 379-487 ms over earlier sessions). Load 1.2: with telemetry 31.8 ms
-(real-time factor 3 462), without 21.7 ms (5 074), the steps alone 11.3 ms
-(9 693); rocketsim / RocketPy 12.6x with telemetry (target 10x), 18.5x without,
-35.4x the steps alone. The order in which this process loads its kernels moves
-these figures by a third: with the flights' compiled runs loaded after the
-telemetry sample's kernel (:func:`rocketsim._jit.compile_beside` loads them as
-the world is built) 34.5, 26.5 and 17.0 ms, 11.4x. Where rocketsim's time goes (kernels
-timed alone on the flight's state at T+20 s): the derivative 0.38 us, the RK4
-step 1.9 us, the flight-model step 2.05 us; the checks' figures ~0.9 us a step;
-a sample's figures ~2.5 us; the file's fixed cost ~2 ms.
+the runs, 379-487 ms over earlier sessions). Load 0.9: with telemetry 19.9 ms
+(real-time factor 5 514), without 12.8 ms (8 608), the steps alone 7.6 ms
+(14 394); rocketsim / RocketPy 20.0x with telemetry (target 10x), 31.1x
+without, 52.1x the steps alone. Where rocketsim's time goes (kernels timed
+alone on the flight's state at T+20 s): the derivative 0.27 us, the RK4 step
+1.26 us, the flight-model step 1.36 us; the file's fixed cost ~2 ms.
 
 Nothing here asserts a time; the checks are that the flights with and
 without telemetry end in the same state to the bit, that the telemetry's
