@@ -376,8 +376,9 @@ def advance_rails(y, k0, h, n_steps, p, fp, air, inertia, mode, floor=RAILS_FLOO
             turn_attitude(y, inertia, h, mode)
         else:
             apply_turn(y, precession_constant(y, inertia, h), spin, c, sn)
-        # |r| - a bounds the height over the ellipsoid from below: the exact height only near the floor
-        if math.sqrt(y[R] * y[R] + y[R + 1] * y[R + 1] + y[R + 2] * y[R + 2]) - p[P_RADIUS] < floor \
+        # |r| - a bounds the height over the ellipsoid from below: the exact height only within
+        # a metre of the floor by that bound (a margin far above either's rounding)
+        if math.sqrt(y[R] * y[R] + y[R + 1] * y[R + 1] + y[R + 2] * y[R + 2]) - p[P_RADIUS] < floor + 1.0 \
                 and radial_height(y, p) < floor:
             return y, k + 1
     return y, n_steps
