@@ -125,16 +125,15 @@ class Propulsion:
         throttle flown, gimbal (rad), thrust (N), mass flow (kg/s), ignitions left, separated."""
         a, out = self.a, []
         rows = engines.engine_states(t, y, a.first_clock, a.eng, a.cmd, a.stage, p_a).tolist()
-        thrust = self.thrusts(y, t, p_a)
         for e, name in enumerate(self.model.engine_names):
-            f, tau, gy, gz, separated = rows[e]
+            f, tau, gy, gz, separated, thrust = rows[e]
             out.append({
                 "name": name,
                 "on": bool(a.cmd[e, engines.C_ON] > 0.5),
                 "spool": f,
                 "throttle": tau,
                 "gimbal_rad": (gy, gz),
-                "thrust_N": float(thrust[e]),
+                "thrust_N": thrust,
                 "mass_flow_kg_s": f * tau * a.eng[e, engines.E_MDOT],
                 "ignitions_left": int(a.eng[e, engines.E_IGNITIONS] - a.cmd[e, engines.C_IGNITED]),
                 "separated": separated > 0.5,

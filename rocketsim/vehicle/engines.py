@@ -156,6 +156,15 @@ def engine_state(t, e, clock, eng, cmd, p_a):
     return f, tau, gy, gz
 
 
+@njit(inline="always")     # a few operations: typed in its callers, no kernel of its own
+def net_thrust(f, tau, thrust_vacuum, exit_area, p_a):
+    """Thrust (N) of an engine at spool fraction ``f`` and throttle ``tau`` with vacuum
+    thrust ``thrust_vacuum`` (N) and nozzle exit area ``exit_area`` (m^2) at ambient
+    pressure ``p_a`` (Pa): ``f (tau T_vac - p_a A_e)``, negative where the air's pressure
+    wins (the callers take none then)."""
+    return f * (tau * thrust_vacuum - p_a * exit_area)
+
+
 @njit(borrows=True)
 def engine_forces(t, y, dy, first_tank, first_clock, eng, cmd, stage, tank_share, p_a, x_cm):
     """Thrust force and torque of every engine at time ``t`` (s), and the mass flows.
@@ -184,7 +193,7 @@ def engine_forces(t, y, dy, first_tank, first_clock, eng, cmd, stage, tank_share
         k0 = first_tank + int(stage[s, S_TANK0])
         for k in range(int(stage[s, S_TANKS])):
             dy[k0 + k] -= mdot * tank_share[k0 - first_tank + k]
-        thrust = f * (tau * eng[e, E_THRUST] - p_a * eng[e, E_AREA])
+        thrust = net_thrust(f, tau, eng[e, E_THRUST], eng[e, E_AREA], p_a)
         if thrust <= 0.0:
             continue
         if gy != last_gy or gz != last_gz:
@@ -217,7 +226,7 @@ def thrusts(t, y, first_clock, eng, cmd, stage, p_a):
         if stage[int(eng[e, E_STAGE]), S_DRY] > 0.5:
             continue
         f, tau, gy, gz = engine_state(t, e, y[first_clock + e], eng, cmd, p_a)
-        out[e] = max(0.0, f * (tau * eng[e, E_THRUST] - p_a * eng[e, E_AREA]))
+        out[e] = max(0.0, net_thrust(f, tau, eng[e, E_THRUST], eng[e, E_AREA], p_a))
     return out
 
 
@@ -225,15 +234,17 @@ def thrusts(t, y, first_clock, eng, cmd, stage, p_a):
 def engine_states(t, y, first_clock, eng, cmd, stage, p_a):
     """Every engine at time ``t`` (s) and ambient pressure ``p_a`` (Pa), one row each:
     spool fraction (0 while its stage is dry), throttle flown, gimbal deflections
-    (rad) as :func:`engine_state` gives them, and 1.0 where its nozzle flow is
-    separated (:func:`separated`), else 0.0: what the readings show of the engines,
-    in one call."""
-    out = np.empty((eng.shape[0], 5))
+    (rad) as :func:`engine_state` gives them, 1.0 where its nozzle flow is separated
+    (:func:`separated`), else 0.0, and its thrust (N) as :func:`thrusts` gives it: what
+    the readings show of the engines, in one call."""
+    out = np.empty((eng.shape[0], 6))
     flow_separated = separated(eng, cmd, t, p_a)
     for e in range(eng.shape[0]):
         f, tau, gy, gz = engine_state(t, e, y[first_clock + e], eng, cmd, p_a)
+        out[e, 5] = max(0.0, net_thrust(f, tau, eng[e, E_THRUST], eng[e, E_AREA], p_a))
         if stage[int(eng[e, E_STAGE]), S_DRY] > 0.5:
             f = 0.0
+            out[e, 5] = 0.0
         out[e, 0], out[e, 1], out[e, 2], out[e, 3] = f, tau, gy, gz
         out[e, 4] = 1.0 if flow_separated[e] else 0.0
     return out
