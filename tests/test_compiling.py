@@ -48,8 +48,10 @@ def _cache_without(path, tmp_path, *kernels):
     warm = Path(cache_dir())
     root = tmp_path / "cache"
     # another test process may be saving a kernel meanwhile: numba writes a temporary
-    # file and renames it, so a copy that lists the temporary may not find it
-    shutil.copytree(warm, root / warm.name, ignore=shutil.ignore_patterns("*.tmp.*", ".lock"))
+    # file and renames it, and a compiling process removes its marker below .compiling
+    # once saved, so a copy that lists either may not find it
+    shutil.copytree(warm, root / warm.name,
+                    ignore=shutil.ignore_patterns("*.tmp.*", ".lock", ".compiling"))
     for kernel in kernels:
         removed = list((root / warm.name).rglob(kernel))
         assert removed, f"the flight's cache holds {kernel}"
