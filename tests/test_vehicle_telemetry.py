@@ -298,16 +298,24 @@ def _both_encodings(bodies, folder: Path, monkeypatch, trials: int = 120) -> Non
                 if body.vehicle is not None:
                     v[sampling.VEHICLE + 3] = rng.integers(0, 40)   # engines running: a count
             samples.append((body.name, v, fields))
+    alone = len(bodies) == 1
+    if not alone:       # and again later: every template made, so interleaved blocks are spliced at once
+        again = [(name, v.copy(), fields) for name, v, fields in samples]
+        for _, v, _ in again:
+            v[-2] += 0.37 * trials
+        samples += again
     folder.mkdir(parents=True, exist_ok=True)
     # the same samples as dictionaries, one by one from their numbers, and in blocks of rows
-    # (as a compiled run hands them over: a block between two events)
-    paths = folder / "dictionaries.mcap", folder / "templates.mcap", folder / "rows.mcap"
-    alone = len(bodies) == 1
-    for path in paths:
+    # (as a compiled run hands them over: a block between two events); several bodies' also
+    # as interleaved blocks, each body's rows between two events in one block, handed over
+    # together (as a window hands over its runs' samples: step k of body i at rank i)
+    paths = folder / "dictionaries.mcap", folder / "templates.mcap", folder / "rows.mcap", \
+        folder / "interleaved.mcap"
+    for path in paths[:3] if alone else paths:
         with TelemetryWriter(path, 1_795_694_400 * 10**9) as telemetry:
             for _, body in bodies:
                 telemetry.add_body(body.name)
-            block = []
+            block, blocks = [], {}
             for k, (name, v, fields) in enumerate(samples):
                 if path is paths[0]:
                     telemetry.state(name, fields(v.tolist(), int), fields.frame)
@@ -315,15 +323,23 @@ def _both_encodings(bodies, folder: Path, monkeypatch, trials: int = 120) -> Non
                     telemetry.sample(name, v, fields)
                 elif alone:
                     block.append(v)
-                else:
+                elif path is paths[2]:
                     telemetry.sample_rows(name, v.reshape(1, -1), fields)
+                else:
+                    rank = k % len(bodies)
+                    blocks.setdefault(rank, (name, [], fields, k // len(bodies), 1, rank))[1].append(v)
                 if k % 7 == 3 or k == len(samples) - 1:     # written in the flight's order
                     if block:
                         telemetry.sample_rows(name, np.array(block), fields)
-                    block = []
+                    if blocks:
+                        telemetry.sample_interleaved([(name, np.array(rows), *rest)
+                                                      for name, rows, *rest in blocks.values()])
+                    block, blocks = [], {}
                     telemetry.event(v[-2], name, "mark", {"k": k})
                     telemetry.log(v[-2], name, f"line {k}")
     assert paths[0].read_bytes() == paths[1].read_bytes() == paths[2].read_bytes()
+    if not alone:
+        assert paths[3].read_bytes() == paths[0].read_bytes()
     name, values, fields = samples[0]
     first = json.loads(next(m for topic, _, m in raw_messages(paths[1]) if topic == f"/{name}/state"))
     # the body's own numbers, less the values it has not (None in the dictionary)

@@ -21,7 +21,7 @@ import orjson
 from rocketsim.api.samples import Samples
 from rocketsim.telemetry import foxglove
 from rocketsim.telemetry.reader import RunFile
-from rocketsim.telemetry.writer import encode
+from rocketsim.telemetry.writer import encode, interleaved_samples
 
 MEMORY = Path("<memory>")       # the path of a run that has no file
 
@@ -57,6 +57,11 @@ class Recorder:
     def sample_rows(self, body: str, rows, fields) -> None:
         """:meth:`sample` of each row of ``rows``, in order."""
         for values in rows:
+            self.sample(body, values, fields)
+
+    def sample_interleaved(self, blocks: list[tuple]) -> None:
+        """:meth:`sample` of each sample of interleaved blocks, in order (see the writer's)."""
+        for body, values, fields in interleaved_samples(blocks):
             self.sample(body, values, fields)
 
     def event(self, t: float, body: str, name: str, figures: dict) -> None:

@@ -95,7 +95,9 @@ class _Window:
         self.world = world
         self.end = end
         self.queue: list[tuple] = []        # (step, body index, run: see start; None: one step to fly)
-        self.samples: list[tuple] = []      # (step, body index, row j of rows, rows, shape) computed in runs
+        # the samples computed in runs, not yet written: [first step, body index, rows, shape,
+        # rows written] for each run, a row per sample step from the first
+        self.samples: list[list] = []
 
     def start(self, k: int, indices: list[int], plans: dict) -> None:
         """Start a segment of each body of ``indices`` at step ``k`` as ``plans[i]`` says
@@ -130,10 +132,9 @@ class _Window:
     def _computed(self, k: int, i: int, rows: np.ndarray, shape) -> None:
         """The samples of body ``i`` a run from step ``k`` computed, one row per sample step
         from the first after ``k``, onto :attr:`samples`."""
-        every = self.world.sample_every
-        first = k + every - k % every
-        for j in range(len(rows)):
-            heapq.heappush(self.samples, (first + j * every, i, j, rows, shape))
+        if len(rows):
+            every = self.world.sample_every
+            self.samples.append([k + every - k % every, i, rows, shape, 0])
 
     def fly(self) -> None:
         """Handle the queue's steps in order (by step, then body) to the window's end,
@@ -200,32 +201,38 @@ class _Window:
 
     def _write_samples(self, s: int) -> None:
         """Write the samples the runs computed before step ``s``, in the loop's order (by
-        step, then body: as the world samples every body at a sample step), a body's
-        consecutive ones as one block."""
-        world = self.world
-        while self.samples and self.samples[0][0] < s:
-            _, i, j, rows, shape = heapq.heappop(self.samples)
-            end = j + 1
-            while self.samples and self.samples[0][0] < s and self.samples[0][1] == i \
-                    and self.samples[0][3] is rows:
-                heapq.heappop(self.samples)
-                end += 1
-            world.record_rows(world.bodies[i], rows[j:end], shape)
+        step, then body: as the world samples every body at a sample step), handed on
+        together (:meth:`~rocketsim.sim.world.World.record_interleaved`)."""
+        every = self.world.sample_every
+        blocks = []
+        for run in self.samples:
+            first, i, rows, shape, done = run
+            end = min(len(rows), max(done, -(-(s - first) // every)))     # the rows before step s
+            if end > done:
+                blocks.append((self.world.bodies[i], rows[done:end], shape, first + done * every, every, i))
+                run[4] = end
+        if len(blocks) > 1:
+            self.world.record_interleaved(blocks)
+        elif blocks:
+            self.world.record_rows(*blocks[0][:3])
+        self.samples = [run for run in self.samples if run[4] < len(run[2])]
 
     def _sample_with_runs(self, s: int) -> None:
         """The world's sample at step ``s`` (its finiteness test, then every flying body's
         sample in order) while some bodies' runs go on past it: theirs computed in the run,
-        the others' from their state at ``s``."""
+        the others' from their state at ``s``; the samples before ``s`` written already."""
         world = self.world
         world.check_finite()
         running = {i for _, i, _ in self.queue}
         for i, body in enumerate(world.bodies):
             if body.flying and world.telemetry is not None:
                 if i in running:
-                    _, _, j, rows, shape = heapq.heappop(self.samples)      # (s, i): the next in order
-                    world.record_rows(body, rows[j:j + 1], shape)
+                    run = next(run for run in self.samples if run[1] == i)     # its row at s is its next
+                    world.record_rows(body, run[2][run[4]:run[4] + 1], run[3])
+                    run[4] += 1
                 else:
                     world.record(body)
+        self.samples = [run for run in self.samples if run[4] < len(run[2])]
 
     def _one_step(self, movers: list[int]) -> bool:
         """Whether the loop would step the next step one step at a time: a vehicle's
@@ -245,8 +252,10 @@ class _Window:
             body = world.bodies[i]
             if run[0] == PART:
                 k0, y0 = run[2], run[3]
-                self.samples = [item for item in self.samples if item[1] != i or item[0] < s]
-                heapq.heapify(self.samples)
+                for sampled in self.samples:
+                    if sampled[1] == i:     # its rows before s only
+                        sampled[2] = sampled[2][:max(0, -(-(s - sampled[0]) // world.sample_every))]
+                self.samples = [run for run in self.samples if run[4] < len(run[2])]
                 run = (PART, self._part(body, k0, y0, s - k0, _samples(world, body, False)[0])[0])
             self._finish(i, s, run)
         self.queue = []

@@ -150,6 +150,12 @@ class World:
         ``shape`` their fields."""
         self.telemetry.sample_rows(body.name, rows, shape)
 
+    def record_interleaved(self, blocks: list[tuple]) -> None:
+        """:meth:`record_rows` of several blocks at once, ``(body, rows, shape, first, every,
+        rank)`` each: row ``j`` the sample at step ``first + j every``, the samples written by
+        step and then rank."""
+        self.telemetry.sample_interleaved([(body.name, *rest) for body, *rest in blocks])
+
     # --- the loop -----------------------------------------------------------
     def run(self, telemetry=None) -> dict:
         """Fly to the end of the mission (or until every body has landed or hit)."""

@@ -139,6 +139,37 @@ def _mission(time: dict, root: str, position) -> dict:
     return foxglove.frame_transform(time, root, MISSION_FRAME, position, (1.0, 0.0, 0.0, 0.0))
 
 
+def _chosen(plans) -> tuple[list, np.ndarray]:
+    """``(templates, kinds)``: the distinct templates among ``plans`` (by identity, in the
+    order first met) and the index among them of each plan."""
+    templates: dict[int, int] = {}      # id of a template -> its index
+    chosen, kinds = [], []
+    for plan in plans:
+        kind = templates.get(id(plan))
+        if kind is None:
+            kind = templates[id(plan)] = len(chosen)
+            chosen.append(plan)
+        kinds.append(kind)
+    return chosen, np.array(kinds, dtype=np.int64)
+
+
+def _interleaving(blocks: list[tuple]) -> tuple[np.ndarray, np.ndarray]:
+    """``(block, row)`` of each sample of interleaved ``blocks`` in the order they are
+    written (see :meth:`TelemetryWriter.sample_interleaved`): by step, then rank."""
+    counts = np.array([len(rows) for _, rows, *_ in blocks], dtype=np.int64)
+    block = np.repeat(np.arange(len(blocks)), counts)
+    row = np.arange(len(block)) - np.repeat(np.cumsum(counts) - counts, counts)
+    first, every, rank = (np.array(column, dtype=np.int64)[block] for column in zip(*(b[3:] for b in blocks)))
+    order = np.lexsort((rank, first + every * row))
+    return block[order], row[order]
+
+
+def interleaved_samples(blocks: list[tuple]) -> list[tuple]:
+    """The samples ``(body, numbers, fields)`` of interleaved ``blocks`` in the order they are
+    written (see :meth:`TelemetryWriter.sample_interleaved`)."""
+    return [(blocks[b][0], blocks[b][1][r], blocks[b][2]) for b, r in zip(*(a.tolist() for a in _interleaving(blocks)))]
+
+
 def _plain(value):
     if hasattr(value, "item"):          # numpy scalars orjson does not take natively
         return value.item()
@@ -272,17 +303,27 @@ class TelemetryWriter:
         together before anything else is (a message, an attachment, metadata, a body's
         channels, the end of the file): the file's order is the flight's, and writing
         them back to back keeps the writer's code and data in the processor's caches."""
-        self._add_pending(body, values.reshape(1, -1), fields, leaving)
+        self._add_pending((body, values.reshape(1, -1), fields, leaving), 1)
 
     def sample_rows(self, body: str, rows: np.ndarray, fields) -> None:
         """:meth:`sample` of each row of ``rows`` (float64, one sample a row, not to be
         changed afterwards) in order: the same bytes, handed on as one block."""
         if len(rows):
-            self._add_pending(body, rows, fields, False)
+            self._add_pending((body, rows, fields, False), len(rows))
 
-    def _add_pending(self, body: str, block: np.ndarray, fields, leaving: bool) -> None:
-        self._pending.append((body, block, fields, leaving))
-        self._pending_rows += block.shape[0]
+    def sample_interleaved(self, blocks: list[tuple]) -> None:
+        """:meth:`sample_rows` of several blocks at once, ``(body, rows, fields, first, every,
+        rank)`` each (float64 rows, not to be changed afterwards): row ``j`` of a block is
+        the sample at step ``first + j every``, and the samples are written by step and
+        then rank (several bodies' samples from compiled runs, by step and then body):
+        the same bytes, handed on as one."""
+        self._add_pending((None, blocks, None, False), sum(len(block[1]) for block in blocks))
+
+    def _add_pending(self, samples: tuple, rows: int) -> None:
+        """Queue ``samples`` (``(body, block, fields, leaving)``; interleaved blocks: ``(None,
+        blocks, order, False)``), ``rows`` samples, handing the queue over once it is full."""
+        self._pending.append(samples)
+        self._pending_rows += rows
         if self._pending_rows >= PENDING:
             self._hand_over(None)
 
@@ -291,11 +332,27 @@ class TelemetryWriter:
         the template of its body, message shape and set of missing values (:meth:`_plan`),
         in one compiled call (:meth:`_write_segment`) but where a template is made anew:
         making one may add a frame, so the samples before it are written first. A body's
-        blocks that follow one another are looked at as one."""
+        blocks that follow one another are looked at as one. Interleaved blocks
+        (:meth:`sample_interleaved`) are written in one compiled call of their own where
+        each of their samples has its template already, else one sample at a time."""
         segment: list[tuple] = []           # (block of samples, their templates)
         pending = deque(samples)
         while pending:
             body, values, fields, leaving = pending.popleft()
+            if body is None:                # interleaved blocks, with those that follow (later steps)
+                blocks = list(values)
+                while pending and pending[0][0] is None:
+                    blocks += pending.popleft()[1]
+                rows = self._interleaved(blocks)
+                if rows is None:
+                    pending.extendleft(reversed([(name, numbers.reshape(1, -1), shape, False)
+                                                 for name, numbers, shape in interleaved_samples(blocks)]))
+                    continue
+                if segment:
+                    self._write_segment(segment)
+                    segment = []
+                self._write_rows(*rows)
+                continue
             size = values.shape[1]
             run = [values]                  # the blocks of one body and shape that follow it: one block
             while pending and pending[0][0] == body and pending[0][2] is fields \
@@ -327,26 +384,62 @@ class TelemetryWriter:
 
     def _write_segment(self, segment: list[tuple]) -> None:
         """The records of the samples of ``segment`` (``(block of samples, a row each, their
-        template)`` pairs, in order), with the central bodies' transforms due after them
-        (:meth:`_frame_transforms`: asked at the first sample and where the second of
-        mission time changes, the only samples where any can be due, frames being added
-        only between segments) and, for the lead body off the root's centre, the mission
-        frame's transform after each of its samples."""
-        templates: dict[int, int] = {}      # id of a template -> its index in this call
-        chosen, kinds = [], []
-        for block, plan in segment:
-            kind = templates.get(id(plan))
-            if kind is None:
-                kind = templates[id(plan)] = len(chosen)
-                chosen.append(plan)
-            kinds.append(kind)
+        template)`` pairs, in order): :meth:`_write_rows`."""
+        chosen, kinds = _chosen(plan for _, plan in segment)
         sizes = np.array([block.shape[1] for block, _ in segment], dtype=np.int64)
         counts = np.array([block.shape[0] for block, _ in segment], dtype=np.int64)
-        kind = np.repeat(np.array(kinds, dtype=np.int64), counts)
+        kind = np.repeat(kinds, counts)
         row_first = np.zeros(len(kind) + 1, dtype=np.int64)
         np.cumsum(np.repeat(sizes, counts), out=row_first[1:])
-        values = np.concatenate([block.ravel() for block, _ in segment])
-        times = np.concatenate([block[:, plan[2]] for block, plan in segment])
+        self._write_rows(np.concatenate([block.ravel() for block, _ in segment]), row_first, kind, chosen)
+
+    def _interleaved(self, blocks: list[tuple]) -> tuple | None:
+        """The arguments of :meth:`_write_rows` for the samples of interleaved ``blocks`` (see
+        :meth:`sample_interleaved`); None where a sample needs a template not yet made, or
+        a body's blocks differ in shape (see :meth:`_write_samples`)."""
+        block, row = _interleaving(blocks)
+        counts = np.array([len(rows) for _, rows, *_ in blocks], dtype=np.int64)
+        widths = np.array([rows.shape[1] for _, rows, *_ in blocks], dtype=np.int64)
+        width = widths[block]
+        row_first = np.zeros(len(block) + 1, dtype=np.int64)
+        np.cumsum(width, out=row_first[1:])
+        begin = (np.cumsum(counts * widths) - counts * widths)[block] + row * width
+        values = np.concatenate([rows.ravel() for _, rows, *_ in blocks])
+        values = values[np.repeat(begin - row_first[:-1], width) + np.arange(row_first[-1])]
+        kind = np.empty(len(block), dtype=np.int64)
+        chosen: list = []
+        names = [name for name, *_ in blocks]
+        for body in dict.fromkeys(names):
+            members = [b for b, name in enumerate(names) if name == body]
+            fields, size = blocks[members[0]][2], widths[members[0]]
+            if any(blocks[b][2] is not fields or widths[b] != size for b in members):
+                return None
+            shape = self._plans.get(body)
+            if shape is None or shape[0] is not fields or shape[1] != size:
+                shape = self._plans[body] = self._shape(body, int(size), fields)
+            _, _, optional, plans = shape
+            mine = np.zeros(len(blocks), dtype=bool)
+            mine[members] = True
+            at = np.flatnonzero(mine[block])                    # the body's samples, in order
+            missing = ~np.isfinite(values[row_first[at][:, None] + optional])
+            starts = [0] + (np.flatnonzero((missing[1:] != missing[:-1]).any(axis=1)) + 1).tolist()
+            stretch = [plans.get((missing[start].tobytes(), False)) for start in starts]
+            if None in stretch:
+                return None
+            kind[at] = np.repeat(np.arange(len(chosen), len(chosen) + len(stretch)),
+                                 np.diff(starts + [len(at)]))
+            chosen += stretch
+        return values, row_first, kind, chosen
+
+    def _write_rows(self, values: np.ndarray, row_first: np.ndarray, kind: np.ndarray, chosen: list) -> None:
+        """The records of samples whose numbers are ``values`` (float64, the samples' one
+        after another, sample ``k``'s from ``row_first[k]``), each written with the template
+        ``chosen[kind[k]]`` (:meth:`_plan`), with the central bodies' transforms due after
+        them (:meth:`_frame_transforms`: asked at the first sample and where the second of
+        mission time changes, the only samples where any can be due, frames being added
+        only between such calls) and, for the lead body off the root's centre, the mission
+        frame's transform after each of its samples, in one compiled call."""
+        times = values[row_first[:-1] + np.array([plan[2] for plan in chosen], dtype=np.int64)[kind]]
         stamps = self._epoch_ns + np.rint(times * 1e9).astype(np.int64)     # as _stamp
         seconds = np.floor(times)
         asked = np.concatenate(([True], seconds[1:] != seconds[:-1]))
