@@ -157,9 +157,10 @@ class McapStream:
         first = self._n
         self._size, self._n = size, records
         while self._size >= self._chunk_limit:
-            ends = self._index[3 * first + 2:3 * self._n:3].tolist()[1:] + [self._size]
-            k = next(k for k, end in enumerate(ends) if end >= self._chunk_limit)
-            self._write_chunk(ends[k], first + k + 1)
+            # where each record from the first added ends: where the next starts
+            ends = np.append(self._index[3 * first + 5:3 * self._n:3], self._size)
+            k = int(np.searchsorted(ends, self._chunk_limit))
+            self._write_chunk(int(ends[k]), first + k + 1)
             first = 0
 
     @holding
@@ -192,11 +193,13 @@ class McapStream:
         chunk_start = self._emit(chunk)
         index_offsets = {}
         index_start = self._offset
-        for channel in np.unique(channels).tolist():
-            pairs = entries[channels == channel, 1:].astype("<u8").tobytes()
-            self._counts[channel] += len(pairs) // 16
+        by_channel = np.argsort(channels, kind="stable")       # each channel's records in order
+        pairs = entries[by_channel, 1:].astype("<u8")
+        present, starts, counts = np.unique(channels[by_channel], return_index=True, return_counts=True)
+        for channel, start, count in zip(present.tolist(), starts.tolist(), counts.tolist()):
+            self._counts[channel] += count
             index_offsets[channel] = self._emit(_record(
-                MESSAGE_INDEX, struct.pack("<HI", channel, len(pairs)) + pairs))
+                MESSAGE_INDEX, struct.pack("<HI", channel, 16 * count) + pairs[start:start + count].tobytes()))
         offsets = b"".join(struct.pack("<HQ", c, o) for c, o in index_offsets.items())
         self._chunk_indexes.append(_record(CHUNK_INDEX, struct.pack(
             "<QQQQI", first, last, chunk_start, len(chunk), len(offsets)) + offsets
