@@ -52,10 +52,12 @@ PROFILE = ""
 # while flying is one chunk; a file cut short loses at most the last one.
 CHUNK_SIZE = 256 * 1024
 LIBRARY = f"rocketsim {__version__}"
-# samples handed to the writing thread together (TelemetryWriter.sample): some 40-250 kB
-# of numbers a batch; the thread's Python holds the GIL the flight's Python needs, and it
-# costs per batch (whole F9 mission, telemetry on / off: 1.22 with 128, 1.20 with 512)
-PENDING = 512
+# samples handed to the writing thread together (TelemetryWriter.sample): some 10-60 kB
+# of numbers a batch. The thread's Python holds the GIL the flight's Python needs, and some
+# of it is per batch, but the last batch is written after the flight, not beside it
+# (telemetry on / off, F9 mission: whole 1.22 with 128, 1.18-1.20 with 512; its first 40 s
+# 1.14-1.16 with 128, 1.24 with 256, 1.29 with 512)
+PENDING = 128
 
 
 def encode(message: dict) -> bytes:
