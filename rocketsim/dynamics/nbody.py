@@ -111,11 +111,12 @@ def no_air():
     return (0.0, 1.0, zero, zero, zero, zero, zero, zero)
 
 
-# inlined (numba IR) in translational_rk4, a borrowing kernel (rocketsim._jit): a call per
-# RK4 stage that passes the air table's tuple of arrays cost rails four times their
-# arithmetic, and inlined in a kernel that counts references its arguments' counts were
-# half of a rails step (measured by tests/benchmarks/test_bench_rails.py)
-@njit(inline="always")
+# inlined by LLVM (forceinline) into translational_rk4, a borrowing kernel (rocketsim._jit):
+# typed and lowered once, not once per RK4 stage as numba's own inlining did (3.4 s of a cold
+# Falcon 9's compiling, now 1.3 s); a call per stage left to LLVM's choice is not inlined and
+# costs rails 5 %; in a kernel that counts references its tuple of arrays' counts were half
+# of a rails step (measured by tests/benchmarks/test_bench_rails.py)
+@njit(borrows=True, forceinline=True)
 def translational_acceleration(x, y, z, vx, vy, vz, p, s, fp, air, pos):
     """The field at ``(x, y, z)`` (m) and, with ``fp[FIELD_DRAG]`` set, point-mass drag
     ``-1/2 rho |v_air| v_air C_D A/m`` (``v_air = v - omega x r - wind``, ``omega`` the
