@@ -53,12 +53,12 @@ physics: the autopilot's step, RK4, the checks' figures and the tests of the
 checks and events inside them; their Python around them (the window's queue, the
 runs' arguments) as the loop.
 
-Last figures (a 2-core machine at load 0.9-1.2, in-process): the suite's first
-160 s, two bodies, 0.11 s uninstrumented, 1 470x real time; whole flight /
-physics 1.40-1.42. The whole mission: 0.78 s uninstrumented (770x),
-instrumented physics 0.51 s (64 %), programs 0.16 s (20 %; 971 resumes), the
-loop 0.09 s (11 %); whole / physics 1.52-1.56: 0.27-0.29 s beyond the physics,
-about a quarter of a millisecond per program resume and window iteration. The
+Last figures (a 2-core machine at load 0.7-1.3, in-process): the suite's first
+160 s, two bodies, 0.10-0.11 s uninstrumented, 1 470-1 550x real time; whole
+flight / physics 1.39-1.44. The whole mission: 0.68-0.71 s uninstrumented
+(845-887x), instrumented physics 0.48-0.50 s (67 %), programs 0.14 s (20 %;
+1 105 calls, 130 us each), the loop 0.06 s (8 %); whole / physics 1.47-1.50:
+0.22-0.24 s beyond the physics, most of it the programs' Python. The
 landed booster standing on its legs for its last ~140 s (ground sub-steps) is
 0.11 s of the 0.37 s of compiled runs (14.5 us a step). Each
 body's run goes on past the sample steps (their samples computed in the runs)

@@ -24,15 +24,15 @@ machine, too long for every run of the suite):
 
 Run: ``ROCKETSIM_BENCH_COLD=1 python -m pytest tests/benchmarks/test_bench_startup.py -s``.
 
-Last figures (2-core machine, load 0.7-1.1): ``--help`` 0.118 s, ``validate``
-0.242 s (falcon9-leo; 0.310 s for iss-coast, whose orbit start imports numpy and
-the elements' modules), ``schema`` 0.240 s; warm ``fly --duration 0`` 0.92 s
-against a floor of 0.59 s (numba's first cached kernel is mostly its registries
-and the ``scipy.linalg`` its BLAS check imports; a flight imports scipy's
-integrator at its first ``fc.predict`` and its hull at its first touchdown, not
-at start-up); cold iss-coast 5.8 s (warm 1.9 s: 3.0x); cold Falcon 9
-26.9 s, 123 kernels, 128 signatures; ``rocketsim compile`` 1.12x on 2 processes
-(an earlier session).
+Last figures (2-core machine, load 0.7-1.3): ``--help`` 0.107 s, ``validate``
+0.217 s (falcon9-leo; 0.266 s for iss-coast, whose orbit start imports numpy and
+the elements' modules), ``schema`` 0.237 s; warm ``fly --duration 0`` 0.78 s
+against a floor of 0.58 s (numba's first cached kernel is mostly its registries
+and the ``scipy.linalg`` its BLAS check imports, some 0.08 s; a flight imports
+scipy's integrator at its first ``fc.predict`` and its hull at its first
+touchdown, not at start-up); cold iss-coast 6.1 s (warm 1.9 s: 3.3x); cold
+Falcon 9 25.8 s, 102 kernels, 107 signatures; ``rocketsim compile`` 1.12x on 2
+processes (an earlier session).
 """
 
 from __future__ import annotations

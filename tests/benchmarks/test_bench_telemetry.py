@@ -25,13 +25,15 @@ Printed (run with ``pytest -s``):
    For the coast, the floor of the encoding: the sample's numbers as JSON and
    its bytes compressed and checksummed, against the 10 % budget (a tenth of
    the flight's time per sample).
-   Last figures (load 0.9-1.2): ballistic 1.29, falcon9 40 s 1.14, falcon9
-   230 s 1.22 (14-15 us per sample, some 8 of them on the flight's thread: a
-   writer that does nothing left 1.09 of the 230 s flight's 1.15 at 1.5 times
-   today's flight time), coast 5.5; the file's fixed cost 1.3-2.8 ms, which
-   alone is 8 % of the 22 ms ballistic flight. The telemetry's cost per sample
-   is what it was when falcon9's ratio was 1.10-1.12; the flights without it
-   have become faster.
+   Last figures (load 0.7-1.1): ballistic 1.26-1.28, falcon9 40 s 1.12-1.16,
+   falcon9 230 s 1.16-1.20 (11-13 us per sample), coast 5.0-5.4; the whole
+   mission (measured apart, best of 7) 1.21-1.24, of which a writer that does
+   nothing leaves 1.11-1.12: half the cost is on the flight's thread (the runs'
+   samples' figures, some 2.5 us a sample, and handing them over), half the
+   writing thread's Python holding the GIL the flight's Python needs (its zstd,
+   CRC and compiled framing release it). A sample's writing on its own (one by
+   one, to the end of the writing thread's work) 8-12 us. The file's fixed cost
+   1.2-2.1 ms is 8 % of the 22 ms ballistic flight and of the 26 ms 40 s one.
    Earlier figures (2-core machine shared with other jobs, load 5.9-6.1, flown
    alternately with the writer before the present one, in brackets): median
    ratio of the pairs ballistic 1.29-1.33 (1.31-1.42), falcon9 1.07-1.29
