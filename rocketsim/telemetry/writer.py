@@ -324,7 +324,7 @@ class TelemetryWriter:
 
     def _add_pending(self, samples: tuple, rows: int) -> None:
         """Queue ``samples`` (``(body, block, fields, leaving)``; interleaved blocks: ``(None,
-        blocks, order, False)``), ``rows`` samples, handing the queue over once it is full."""
+        blocks, None, False)``), ``rows`` samples, handing the queue over once it is full."""
         self._pending.append(samples)
         self._pending_rows += rows
         if self._pending_rows >= PENDING:
@@ -409,8 +409,8 @@ class TelemetryWriter:
         begin = (np.cumsum(counts * widths) - counts * widths)[block] + row * width
         values = np.concatenate([rows.ravel() for _, rows, *_ in blocks])
         values = values[np.repeat(begin - row_first[:-1], width) + np.arange(row_first[-1])]
-        kind = np.empty(len(block), dtype=np.int64)
-        chosen: list = []
+        stretch_of = np.empty(len(block), dtype=np.int64)     # each sample's stretch of one template
+        stretches: list = []                                    # their templates, in order
         names = [name for name, *_ in blocks]
         for body in dict.fromkeys(names):
             members = [b for b, name in enumerate(names) if name == body]
@@ -429,10 +429,11 @@ class TelemetryWriter:
             stretch = [plans.get((missing[start].tobytes(), False)) for start in starts]
             if None in stretch:
                 return None
-            kind[at] = np.repeat(np.arange(len(chosen), len(chosen) + len(stretch)),
-                                 np.diff(starts + [len(at)]))
-            chosen += stretch
-        return values, row_first, kind, chosen
+            stretch_of[at] = np.repeat(np.arange(len(stretches), len(stretches) + len(stretch)),
+                                       np.diff(starts + [len(at)]))
+            stretches += stretch
+        chosen, kinds = _chosen(stretches)
+        return values, row_first, kinds[stretch_of], chosen
 
     def _write_rows(self, values: np.ndarray, row_first: np.ndarray, kind: np.ndarray, chosen: list) -> None:
         """The records of samples whose numbers are ``values`` (float64, the samples' one
