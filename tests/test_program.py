@@ -9,7 +9,7 @@ import pytest
 
 from rocketsim.errors import signal_behind
 from rocketsim.flight.program import (ProgramError, ProgramOverBudget, _program_error,
-                                      _raised_by_program)
+                                      _raised_by_program, load_program_module)
 from rocketsim.scenario.load import load
 from rocketsim.sim.flight import fly
 from rocketsim.telemetry.reader import messages, metadata
@@ -73,6 +73,23 @@ def test_a_program_with_a_syntax_error_is_refused_before_flight(scenario, tmp_pa
     with pytest.raises(ProgramError) as caught:
         fly(load(path), tmp_path / "run.mcap")
     assert caught.value.file.endswith("program.py") and caught.value.line is not None
+
+
+def test_a_program_loaded_again_runs_anew_and_an_edit_is_seen(tmp_path):
+    # programs are compiled once per text (each flight of a campaign loads them again): a
+    # second load runs the file's top level again in a namespace of its own, and the
+    # file changed on disk is the new text, its syntax error reported at every load
+    path = tmp_path / "program.py"
+    path.write_text("runs = []\nruns.append(1)\nVALUE = 1\ndef main(fc):\n    pass\n")
+    first, second = load_program_module(path), load_program_module(path)
+    assert first.runs == [1] and second.runs == [1] and first.runs is not second.runs
+    path.write_text("VALUE = 2\ndef main(fc):\n    pass\n")
+    assert load_program_module(path).VALUE == 2
+    path.write_text("def main(fc):\n    fc.step(\n")
+    for _ in range(2):
+        with pytest.raises(ProgramError, match="syntax error") as caught:
+            load_program_module(path)
+        assert caught.value.line is not None
 
 
 def test_a_program_without_main_is_refused(scenario, tmp_path):

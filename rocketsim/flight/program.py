@@ -27,6 +27,7 @@ deterministic.
 
 from __future__ import annotations
 
+import functools
 import signal
 from types import SimpleNamespace
 import threading
@@ -170,7 +171,7 @@ def load_program_module(path: Path) -> SimpleNamespace:
     except UnicodeDecodeError as error:
         raise InputError(f"cannot read the program ({error})", file=path) from None
     try:
-        code = compile(source, str(path), "exec")
+        code = _compiled(source, str(path))
     except SyntaxError as error:
         raise ProgramError(f"syntax error: {error.msg}", file=path, line=error.lineno,
                            column=error.offset) from None
@@ -183,6 +184,15 @@ def load_program_module(path: Path) -> SimpleNamespace:
         raise _program_error(error, path) from None
     namespace.setdefault("main", None)
     return SimpleNamespace(**{k: v for k, v in namespace.items() if k != "__builtins__"})
+
+
+@functools.lru_cache(maxsize=64)
+def _compiled(source: str, filename: str):
+    """The code object of a program's text (kept by text and file name: each flight of a
+    campaign or a notebook loads its programs again, and compiling the F9 mission's two
+    took 3.9 of its world's 5.2 ms to build; a code object is immutable, and each load
+    runs it in a namespace of its own). A syntax error is raised again at every load."""
+    return compile(source, filename, "exec")
 
 
 def _raised_by_program(error: BaseException, path: Path) -> bool:
