@@ -46,6 +46,7 @@ from rocketsim.bodies.gravity import point_mass_j2
 from rocketsim.layout import (P_CLASSIC, P_IXX, P_IYY, P_IZZ, P_J2, P_MU,
                                       P_POLAR_RADIUS, P_RADIUS, P_SPIN, Q, R, V, W)
 from rocketsim.dynamics.third_bodies import held_perturbation
+from rocketsim.frames.local import air_velocity_inertial, body_air_velocity
 from rocketsim.frames.quaternion import hamilton_product, rotate_components
 from rocketsim.vehicle.aero import A_GROUND, A_ON, A_REACH, body_aero
 from rocketsim.vehicle.contact import contact_forces
@@ -75,24 +76,6 @@ def radial_height(y, p):
     a = p[P_RADIUS]
     b = p[P_POLAR_RADIUS]
     return math.sqrt(r2) - a * b / math.sqrt((b * b * rho2 + a * a * z2) / r2)
-
-
-@njit(inline="always")     # small: typed in its callers, no kernel of its own
-def air_velocity_inertial(y, wind, spin):
-    """Air-relative velocity of the centre of mass (m/s, frame axes): ``v - omega x r -
-    wind``, ``wind`` inertial (m/s), the air turning with the central body at ``spin``
-    (rad/s about the frame's z: ``p[P_SPIN]``)."""
-    return y[V] + spin * y[R + 1] - wind[0], y[V + 1] - spin * y[R] - wind[1], y[V + 2] - wind[2]
-
-
-@njit(borrows=True)
-def body_air_velocity(y, wind, spin):
-    """Air-relative velocity of the centre of mass (m/s) in body axes:
-    ``q* (v - omega x r - wind) q`` (docs/physics.md#equations-of-motion), ``wind``
-    inertial (m/s), the air turning with the central body at ``spin`` (rad/s about the
-    frame's z: ``p[P_SPIN]``)."""
-    ax, ay, az = air_velocity_inertial(y, wind, spin)
-    return rotate_components(y[Q], -y[Q + 1], -y[Q + 2], -y[Q + 3], ax, ay, az)
 
 
 @njit(borrows=True, inline="always")

@@ -17,11 +17,19 @@ import numpy as np
 
 from rocketsim._jit import njit
 from rocketsim.constants import EARTH_OMEGA, EARTH_RADIUS_EQ, EARTH_RADIUS_POLAR
+from rocketsim.frames.quaternion import rotate_components
+from rocketsim.layout import Q, R, V
 from rocketsim.frames.geodetic import ecef_to_geodetic_njit, enu_basis, geodetic_on
 
 # sin(pitch) above which the nose counts as vertical (within 0.01 deg): heading
 # and roll are then read from body z instead
 VERTICAL = math.cos(0.01 * math.pi / 180.0)
+
+
+@njit(inline="always")     # a few operations: typed in its callers, no kernel of its own
+def _air_velocity(rx, ry, vx, vy, vz, wind, spin):
+    """``v - omega x r - wind`` as a 3-tuple (see :func:`air_velocity`)."""
+    return vx + spin * ry - wind[0], vy - spin * rx - wind[1], vz - wind[2]
 
 
 @njit
@@ -30,10 +38,25 @@ def air_velocity(r, v, wind, spin=EARTH_OMEGA):
     ``v`` (m/s), ``omega = (0, 0, spin)`` the central body's rotation (rad/s; Earth's
     by default)."""
     out = np.empty(3)
-    out[0] = v[0] + spin * r[1] - wind[0]
-    out[1] = v[1] - spin * r[0] - wind[1]
-    out[2] = v[2] - wind[2]
+    out[0], out[1], out[2] = _air_velocity(r[0], r[1], v[0], v[1], v[2], wind, spin)
     return out
+
+
+@njit(inline="always")     # small: typed in its callers, no kernel of its own
+def air_velocity_inertial(y, wind, spin):
+    """Air-relative velocity of the centre of mass of state ``y`` (:mod:`rocketsim.layout`;
+    m/s, frame axes, a 3-tuple): ``v - omega x r - wind``, ``wind`` inertial (m/s), the air
+    turning with the central body at ``spin`` (rad/s about the frame's z: ``p[P_SPIN]``)."""
+    return _air_velocity(y[R], y[R + 1], y[V], y[V + 1], y[V + 2], wind, spin)
+
+
+@njit(borrows=True)
+def body_air_velocity(y, wind, spin):
+    """Air-relative velocity of the centre of mass (m/s) in body axes:
+    ``q* (v - omega x r - wind) q`` (docs/physics.md#equations-of-motion), arguments as
+    :func:`air_velocity_inertial`'s."""
+    ax, ay, az = air_velocity_inertial(y, wind, spin)
+    return rotate_components(y[Q], -y[Q + 1], -y[Q + 2], -y[Q + 3], ax, ay, az)
 
 
 @njit(inline="always")     # a few operations: typed in its callers, no kernel of its own

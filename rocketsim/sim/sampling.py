@@ -76,7 +76,8 @@ import numpy as np
 from rocketsim._jit import entry_point, njit
 from rocketsim.atmosphere.table import air_in
 from rocketsim.constants import DEG
-from rocketsim.dynamics.derivative import body_air_velocity, radial_height
+from rocketsim.dynamics.derivative import radial_height
+from rocketsim.frames.local import body_air_velocity
 from rocketsim.dynamics.nbody import FIELD_JD0, FIELD_ROT
 from rocketsim.dynamics.soi import frame_rotation
 from rocketsim.layout import N_STATE, P_MASS, P_POLAR_RADIUS, P_RADIUS, P_SPIN, R, V

@@ -43,7 +43,8 @@ from rocketsim.bodies.gravity import point_mass_j2
 from rocketsim.bodies.orientation import BODIES as ORIENTED, spin_rate
 from rocketsim.constants import (AIR_CP, CO2_CP, DEG, G0, HEAT_SHIELD_LIMIT, MARS_MU,
                                 STRUCTURE_AXIAL_LIMIT_G, STRUCTURE_Q_ALPHA_LIMIT)
-from rocketsim.dynamics.derivative import body_air_velocity, derivative, held_derivative, radial_height
+from rocketsim.dynamics.derivative import derivative, held_derivative, radial_height
+from rocketsim.frames.local import body_air_velocity
 from rocketsim.dynamics.central import WATCH_RADIUS
 from rocketsim.dynamics.rk4 import advance, near_ground
 from rocketsim.dynamics.third_bodies import FIELD_CENTER, field_of, nbody_flag

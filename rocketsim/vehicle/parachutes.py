@@ -44,8 +44,7 @@ from __future__ import annotations
 import math
 
 from rocketsim._jit import njit
-from rocketsim.frames.quaternion import rotate_components
-from rocketsim.layout import Q, R, V
+from rocketsim.frames.local import air_velocity_inertial, body_air_velocity
 from rocketsim.vehicle.motors import sooner, within_step
 
 CH_STAGE = 0        # index of the stage that carries it
@@ -100,10 +99,9 @@ def canopy_drag(t, y, rho, wind, spin, chute, x_cm):
         largest = max(largest, f)
     if area == 0.0:
         return 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
-    ax, ay, az = y[V] + spin * y[R + 1] - wind[0], y[V + 1] - spin * y[R] - wind[1], y[V + 2] - wind[2]
+    ax, ay, az = air_velocity_inertial(y, wind, spin)
     k = -0.5 * rho * math.sqrt(ax * ax + ay * ay + az * az)
-    # the airflow in body axes
-    body = rotate_components(y[Q], -y[Q + 1], -y[Q + 2], -y[Q + 3], ax, ay, az)
+    body = body_air_velocity(y, wind, spin)     # the airflow in body axes
     # (x_a - x_cm) e_x x F, F = k C_D S v_air (body axes), summed over the canopies
     return (k * area * ax, k * area * ay, k * area * az, -k * arm * body[2],
             k * arm * body[1], largest)
