@@ -207,7 +207,7 @@ class _Window:
         blocks = []
         for run in self.samples:
             first, i, rows, shape, done = run
-            end = min(len(rows), max(done, -(-(s - first) // every)))     # the rows before step s
+            end = max(done, _rows_before(run, s, every))
             if end > done:
                 blocks.append((self.world.bodies[i], rows[done:end], shape, first + done * every, every, i))
                 run[4] = end
@@ -215,7 +215,7 @@ class _Window:
             self.world.record_interleaved(blocks)
         elif blocks:
             self.world.record_rows(*blocks[0][:3])
-        self.samples = [run for run in self.samples if run[4] < len(run[2])]
+        self._drop_written()
 
     def _sample_with_runs(self, s: int) -> None:
         """The world's sample at step ``s`` (its finiteness test, then every flying body's
@@ -232,6 +232,10 @@ class _Window:
                     run[4] += 1
                 else:
                     world.record(body)
+        self._drop_written()
+
+    def _drop_written(self) -> None:
+        """Forget the runs whose samples are all written."""
         self.samples = [run for run in self.samples if run[4] < len(run[2])]
 
     def _one_step(self, movers: list[int]) -> bool:
@@ -254,8 +258,8 @@ class _Window:
                 k0, y0 = run[2], run[3]
                 for sampled in self.samples:
                     if sampled[1] == i:     # its rows before s only
-                        sampled[2] = sampled[2][:max(0, -(-(s - sampled[0]) // world.sample_every))]
-                self.samples = [run for run in self.samples if run[4] < len(run[2])]
+                        sampled[2] = sampled[2][:_rows_before(sampled, s, world.sample_every)]
+                self._drop_written()
                 run = (PART, self._part(body, k0, y0, s - k0, _samples(world, body, False)[0])[0])
             self._finish(i, s, run)
         self.queue = []
@@ -270,6 +274,12 @@ class _Window:
                              math.inf if watch is None else watch.liftoff_height(),
                              math.inf if watch is None or watch.in_orbit else ORBIT_PERIAPSIS_BOUND, body.mu,
                              math.inf, *samples, nbody_flag(body.p))
+
+
+def _rows_before(run: list, s: int, every: int) -> int:
+    """How many of a run's computed samples (an item of :attr:`_Window.samples`, a row per
+    sample step from its first) are at steps before ``s``."""
+    return min(len(run[2]), max(0, -(-(s - run[0]) // every)))
 
 
 def _samples(world, body, record: bool = True) -> tuple:
