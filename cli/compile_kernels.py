@@ -46,7 +46,7 @@ def _warm(path: str) -> tuple[str, int, float, str | None]:
 
     from rocketsim._jit import finish_beside
     from rocketsim.scenario.load import load
-    from rocketsim.sim.flight import fly
+    from rocketsim.api.telemetry_flight import fly_to_file as fly
     from rocketsim_cli.compiling import Compiles
 
     start = time.perf_counter()

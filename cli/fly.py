@@ -67,7 +67,7 @@ def fly(scenario: Path, output: Path | None, step: float | None, duration: float
         rocketsim fly scenarios/falcon9-hop.yaml --duration 30s --set seed=3
     """
     from rocketsim.scenario.load import load
-    from rocketsim.sim.flight import fly as fly_scenario
+    from rocketsim.api.telemetry_flight import fly_to_file as fly_scenario
     from rocketsim.telemetry.writer import strict_json
     from rocketsim_cli.compiling import compile_message
 

@@ -28,7 +28,7 @@ from mcap.reader import make_reader
 from rocketsim.atmosphere.ussa1976 import us_standard_1976
 from rocketsim.constants import AIR_CP, EARTH_OMEGA, G0, STEFAN_BOLTZMANN
 from rocketsim.scenario.load import load
-from rocketsim.sim.flight import fly
+from rocketsim.api.telemetry_flight import fly_to_file as fly
 from rocketsim.sim.build import build_world
 from rocketsim.telemetry.reader import raw_messages
 from rocketsim.telemetry.tables import export, table

@@ -57,7 +57,7 @@ def fly(scenario: str | Path | Mapping | LoadedScenario, telemetry: str | Path |
     on_progress = _progress_line() if progress is True else progress or None
     # the flight's modules (numba's kernels) load with the first flight, not with rocketsim
     from rocketsim.api.recorder import Recorder
-    from rocketsim.sim.flight import fly as fly_to_file, fly_into
+    from rocketsim.api.telemetry_flight import fly_into, fly_to_file
     recorders = []
     if telemetry is None:
 
