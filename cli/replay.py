@@ -74,7 +74,7 @@ def replay(run_file: Path, export_to, plot: Path | None, check: bool, trust: boo
 
 
 def _verify(run_file: Path, run: RunFile, trust: bool) -> int:
-    from rocketsim.api.verify import UntrustedProgram, verify
+    from rocketsim.api.reflight import UntrustedProgram, verify
 
     if run.program and trust:
         click.echo(f"--trust: executing the program {run.program} carried by {run_file}", err=True)
