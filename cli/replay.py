@@ -61,7 +61,7 @@ def replay(run_file: Path, export_to, plot: Path | None, check: bool, trust: boo
             raise InputError(str(error), field="--export") from None
         click.echo("exported: " + ", ".join(str(p) for p in written))
     if plot is not None:
-        from rocketsim.telemetry.plot import plot_run
+        from rocketsim.plots import run as plot_run
         click.echo(f"plot: {plot_run(run_file, plot)}")
     status = 0
     if check:

@@ -215,7 +215,7 @@ def _blue_in_centre_panel(png: Path) -> int:
 
 
 def test_the_plot_draws_throttle_and_propellant(burn, tmp_path):
-    from rocketsim.telemetry.plot import plot_run
+    from rocketsim.plots import run as plot_run
     path, _ = burn
     drawn = plot_run(path, tmp_path / "burn.png")
     # a rigid body's run (no throttle, no propellant) leaves that panel empty: the same
