@@ -54,6 +54,8 @@ _HOMES = {
     "parse_quantity": "rocketsim.scenario.units", "UnitError": "rocketsim.scenario.units",
     "UNITS": "rocketsim.scenario.units",
     "classic_site": "rocketsim.scenario.classic_range",
+    "validate_file": "rocketsim.api.scenario_files", "schema": "rocketsim.api.scenario_files",
+    "schema_kinds": "rocketsim.api.scenario_files",
     "campaign": "rocketsim.campaigns.execute",
     "run_campaign": ("rocketsim.campaigns.execute", "run"),
     "rerun_campaign": ("rocketsim.campaigns.execute", "rerun"),
