@@ -28,6 +28,11 @@ Files, quantities and the things a scenario names:
 * :func:`parse_quantity` -> SI from ``"20 km2/s2"`` (:data:`UNITS`, :class:`UnitError`);
 * :func:`classic_site` -> the site ``site: classic`` flies from with a seed.
 
+What a scenario's parts are on paper and in the sky:
+
+* :func:`vehicle_report` -> a staged vehicle's :class:`VehicleReport`: masses, Delta-v,
+  thrust-to-weight, centre of mass and inertia (drawn by :func:`rocketsim.plots.vehicle`).
+
 Monte Carlo campaigns (:mod:`rocketsim.campaigns`): :func:`campaign` (a notebook's
 DataFrame), :func:`run_campaign`, :func:`rerun_campaign` with :func:`same_row`,
 :func:`campaign_report`; Ctrl-C raises :class:`CampaignInterrupted`.
@@ -56,6 +61,7 @@ _HOMES = {
     "classic_site": "rocketsim.scenario.classic_range",
     "validate_file": "rocketsim.api.scenario_files", "schema": "rocketsim.api.scenario_files",
     "schema_kinds": "rocketsim.api.scenario_files",
+    "vehicle_report": "rocketsim.api.vehicle_figures", "VehicleReport": "rocketsim.api.vehicle_figures",
     "campaign": "rocketsim.campaigns.execute",
     "run_campaign": ("rocketsim.campaigns.execute", "run"),
     "rerun_campaign": ("rocketsim.campaigns.execute", "rerun"),

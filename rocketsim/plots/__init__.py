@@ -24,6 +24,7 @@ from rocketsim.exports import lazy
 _HOMES = {
     "run": "rocketsim.plots.flight_panels",
     "campaign": "rocketsim.plots.campaign_figures",
+    "vehicle": "rocketsim.plots.vehicle_stack",
     "Picture": "rocketsim.plots.canvas",
 }
 __all__ = list(_HOMES)
