@@ -31,7 +31,9 @@ Files, quantities and the things a scenario names:
 What a scenario's parts are on paper and in the sky:
 
 * :func:`vehicle_report` -> a staged vehicle's :class:`VehicleReport`: masses, Delta-v,
-  thrust-to-weight, centre of mass and inertia (drawn by :func:`rocketsim.plots.vehicle`).
+  thrust-to-weight, centre of mass and inertia (drawn by :func:`rocketsim.plots.vehicle`);
+* :func:`atmosphere` -> an :class:`AirProfile`: the air of a day or of Mars against height
+  (drawn by :func:`rocketsim.plots.atmosphere`).
 
 Monte Carlo campaigns (:mod:`rocketsim.campaigns`): :func:`campaign` (a notebook's
 DataFrame), :func:`run_campaign`, :func:`rerun_campaign` with :func:`same_row`,
@@ -62,6 +64,7 @@ _HOMES = {
     "validate_file": "rocketsim.api.scenario_files", "schema": "rocketsim.api.scenario_files",
     "schema_kinds": "rocketsim.api.scenario_files",
     "vehicle_report": "rocketsim.api.vehicle_figures", "VehicleReport": "rocketsim.api.vehicle_figures",
+    "atmosphere": "rocketsim.api.air_profile", "AirProfile": "rocketsim.api.air_profile",
     "campaign": "rocketsim.campaigns.execute",
     "run_campaign": ("rocketsim.campaigns.execute", "run"),
     "rerun_campaign": ("rocketsim.campaigns.execute", "rerun"),

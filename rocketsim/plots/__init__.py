@@ -25,6 +25,7 @@ _HOMES = {
     "run": "rocketsim.plots.flight_panels",
     "campaign": "rocketsim.plots.campaign_figures",
     "vehicle": "rocketsim.plots.vehicle_stack",
+    "atmosphere": "rocketsim.plots.air_panels",
     "Picture": "rocketsim.plots.canvas",
 }
 __all__ = list(_HOMES)
