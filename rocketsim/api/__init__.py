@@ -33,7 +33,9 @@ What a scenario's parts are on paper and in the sky:
 * :func:`vehicle_report` -> a staged vehicle's :class:`VehicleReport`: masses, Delta-v,
   thrust-to-weight, centre of mass and inertia (drawn by :func:`rocketsim.plots.vehicle`);
 * :func:`atmosphere` -> an :class:`AirProfile`: the air of a day or of Mars against height
-  (drawn by :func:`rocketsim.plots.atmosphere`).
+  (drawn by :func:`rocketsim.plots.atmosphere`);
+* :func:`ephemeris` -> the :class:`BodyPositions` of the Sun, Earth, Moon or Mars
+  (:data:`EPHEMERIS_BODIES`) at UTC instants.
 
 Monte Carlo campaigns (:mod:`rocketsim.campaigns`): :func:`campaign` (a notebook's
 DataFrame), :func:`run_campaign`, :func:`rerun_campaign` with :func:`same_row`,
@@ -65,6 +67,8 @@ _HOMES = {
     "schema_kinds": "rocketsim.api.scenario_files",
     "vehicle_report": "rocketsim.api.vehicle_figures", "VehicleReport": "rocketsim.api.vehicle_figures",
     "atmosphere": "rocketsim.api.air_profile", "AirProfile": "rocketsim.api.air_profile",
+    "ephemeris": "rocketsim.api.body_positions", "BodyPositions": "rocketsim.api.body_positions",
+    "EPHEMERIS_BODIES": ("rocketsim.ephemeris.solar_system", "BODIES"),
     "campaign": "rocketsim.campaigns.execute",
     "run_campaign": ("rocketsim.campaigns.execute", "run"),
     "rerun_campaign": ("rocketsim.campaigns.execute", "rerun"),
