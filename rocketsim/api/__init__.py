@@ -35,7 +35,10 @@ What a scenario's parts are on paper and in the sky:
 * :func:`atmosphere` -> an :class:`AirProfile`: the air of a day or of Mars against height
   (drawn by :func:`rocketsim.plots.atmosphere`);
 * :func:`ephemeris` -> the :class:`BodyPositions` of the Sun, Earth, Moon or Mars
-  (:data:`EPHEMERIS_BODIES`) at UTC instants.
+  (:data:`EPHEMERIS_BODIES`) at UTC instants;
+* :func:`window_grid` and :func:`launch_windows` -> the :class:`LaunchWindows` to Mars or
+  the Moon (:func:`window_targets`) over UTC dates: rows, a mission-file fragment, the
+  porkchop plot (:func:`rocketsim.plots.porkchop`); :func:`days` reads a time of flight.
 
 Monte Carlo campaigns (:mod:`rocketsim.campaigns`): :func:`campaign` (a notebook's
 DataFrame), :func:`run_campaign`, :func:`rerun_campaign` with :func:`same_row`,
@@ -69,6 +72,9 @@ _HOMES = {
     "atmosphere": "rocketsim.api.air_profile", "AirProfile": "rocketsim.api.air_profile",
     "ephemeris": "rocketsim.api.body_positions", "BodyPositions": "rocketsim.api.body_positions",
     "EPHEMERIS_BODIES": ("rocketsim.ephemeris.solar_system", "BODIES"),
+    "window_grid": "rocketsim.api.window_search", "launch_windows": "rocketsim.api.window_search",
+    "window_targets": "rocketsim.api.window_search", "days": "rocketsim.api.window_search",
+    "LaunchWindows": "rocketsim.api.window_search", "WindowGrid": "rocketsim.api.window_search",
     "campaign": "rocketsim.campaigns.execute",
     "run_campaign": ("rocketsim.campaigns.execute", "run"),
     "rerun_campaign": ("rocketsim.campaigns.execute", "rerun"),

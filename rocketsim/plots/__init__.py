@@ -26,6 +26,7 @@ _HOMES = {
     "campaign": "rocketsim.plots.campaign_figures",
     "vehicle": "rocketsim.plots.vehicle_stack",
     "atmosphere": "rocketsim.plots.air_panels",
+    "porkchop": "rocketsim.plots.porkchop_contours",
     "Picture": "rocketsim.plots.canvas",
 }
 __all__ = list(_HOMES)
