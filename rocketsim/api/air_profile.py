@@ -42,22 +42,25 @@ def atmosphere(heights, *, weather: str | Path | None = None, body: str = "earth
     on Earth the day of the ``weather`` file (None: US Standard 1976) at the site's
     geodetic ``latitude`` and east ``longitude`` (rad; gravity, a random day, a
     reanalysis) and, for a reanalysis, the UTC instant ``epoch``."""
-    from rocketsim.atmosphere.mars import mars_table
-    from rocketsim.scenario.weather import StandardWeather, build_atmosphere, load_weather
-
-    if body == "mars":
-        if weather is not None:
-            raise ValueError("a weather file is for Earth; Mars has one mean atmosphere")
-        table, name = mars_table(), "Mars"
-    elif body != "earth":
-        raise ValueError(f"no atmosphere for {body!r}: 'earth' or 'mars'")
-    elif weather is None:
-        table, name = build_atmosphere(StandardWeather(kind="standard"), latitude, "."), "US Standard 1976"
-    else:
-        table = build_atmosphere(load_weather(weather), latitude, Path(weather).resolve().parent,
-                                 site_longitude=longitude, epoch=epoch)
-        name = str(weather)
+    table, name = _air(body, weather, latitude, longitude, epoch)
     heights = np.asarray(heights, dtype=float)
     rho, p, t, a, we, wn = table.at(heights)
     values = [heights, t, p, rho, a] + ([we, wn] if table.has_wind else [])
     return AirProfile(name, dict(zip(COLUMNS + (WIND if table.has_wind else ()), values)))
+
+
+def _air(body: str, weather, latitude: float, longitude: float, epoch):
+    """The air table of ``body`` (on Earth, of the ``weather`` file's day) and its name."""
+    if body == "mars":
+        if weather is not None:
+            raise ValueError("a weather file is for Earth; Mars has one mean atmosphere")
+        from rocketsim.atmosphere.mars import mars_table
+        return mars_table(), "Mars"
+    if body != "earth":
+        raise ValueError(f"no atmosphere for {body!r}: 'earth' or 'mars'")
+    from rocketsim.scenario.weather import StandardWeather, build_atmosphere, load_weather
+    if weather is None:
+        return build_atmosphere(StandardWeather(kind="standard"), latitude, "."), "US Standard 1976"
+    table = build_atmosphere(load_weather(weather), latitude, Path(weather).resolve().parent,
+                             site_longitude=longitude, epoch=epoch)
+    return table, str(weather)
