@@ -82,7 +82,7 @@ def separate(world, body: Vehicle) -> Vehicle:
     if body.watch is not None:
         new.watch = FlightEvents(world, new, on_ground=False, stage_names=body.watch.stage_names)
         new.watch.inherit(body.watch)
-    figures = {"stage": stage, "mass_kg": new.mass, "upper_mass_kg": body.mass}
+    figures = {"stage": stage, "stage_mass_kg": new.mass, "upper_mass_kg": body.mass}
     world.event(body, "separation", {**figures, "separated_body": new.name})
     world.event(new, "separation", {**figures, "from_body": body.name})
     if stage in world.stage_programs:

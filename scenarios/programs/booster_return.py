@@ -367,7 +367,7 @@ def land(fc, guide, engines, full):
     SPEED_GAIN times the speed error."""
     fc.deploy_legs()
     fc.ignite(engines)
-    fc.event("landing burn start", altitude_m=fc.altitude, speed_m_s=fc.airspeed)
+    fc.event("landing burn start", altitude_m=fc.altitude, airspeed_m_s=fc.airspeed)
     h, fall = fc.clearance, -fc.vertical_speed
     final_speed = math.sqrt(TOUCH_SPEED ** 2 + 2.0 * FINAL_DECELERATION * FINAL_HEIGHT)
     plan = max((fall * fall - final_speed ** 2) / (2.0 * max(h - FINAL_HEIGHT, 1.0)), 1.0)
