@@ -47,6 +47,7 @@ from rocketsim.sim import sampling, staging
 from rocketsim.sim.body import Body
 from rocketsim.sim.craft import BodyCraft
 from rocketsim.sim.ground_crossing import back_to_ground
+from rocketsim.sim.sample_watch import SampleWatch
 from rocketsim.sim.handover import hand_over, watch_soi
 from rocketsim.sim.schedule import Schedule, inertia, rails_field
 from rocketsim.sim.summary import summary
@@ -73,6 +74,7 @@ class World:
         self.k = 0
         self.telemetry = None
         self.sample_every = 1
+        self.coast_every = None             # steps between a coasting body's samples (None: every)
         self.on_progress: Callable[[float], None] | None = None
         self.phase = ""                     # the latest event, "<body>: <name>" (progress bars)
         self.schedule = Schedule(self)
@@ -159,7 +161,11 @@ class World:
 
     # --- the loop -----------------------------------------------------------
     def run(self, telemetry=None) -> dict:
-        """Fly to the end of the mission (or until every body has landed or hit)."""
+        """Fly to the end of the mission (or until every body has landed or hit), writing
+        ``telemetry`` through a :class:`~rocketsim.sim.sample_watch.SampleWatch` (the flight
+        figures of the summary, the coasts thinned)."""
+        if telemetry is not None:
+            telemetry = SampleWatch(telemetry, self.h, self.sample_every, self.coast_every)
         self.telemetry = telemetry
         for body in self.bodies:
             if telemetry is not None:
@@ -179,6 +185,8 @@ class World:
                             body.watch.after_step()
                     self.k += n
                     self.reached()
+            if telemetry is not None:
+                telemetry.finish()
         finally:
             for body in self.bodies:
                 if body.runner is not None:
