@@ -19,7 +19,8 @@ Flying and reading runs:
 * :func:`export_tables` -> one CSV or Parquet table per body, and the events;
 * :func:`verify` -> a :class:`Verdict`: the run flown again from its attachments and
   compared message by message (:class:`UntrustedProgram` without ``trust``);
-* :func:`strict_json` -> JSON text with NaN and infinities as null (the summary's file).
+* :func:`strict_json` -> JSON text with NaN and infinities as null (the summary's file);
+* :func:`telemetry_size` -> the :class:`SizeEstimate` of a flight's MCAP file, before it flies.
 
 Files, quantities and the things a scenario names:
 
@@ -63,6 +64,8 @@ _HOMES = {
     "verify": "rocketsim.api.reflight", "Verdict": "rocketsim.api.reflight",
     "UntrustedProgram": "rocketsim.api.reflight",
     "strict_json": "rocketsim.telemetry.writer",
+    "telemetry_size": ("rocketsim.api.file_size", "estimate"),
+    "SizeEstimate": "rocketsim.api.file_size",
     "parse_quantity": "rocketsim.scenario.units", "UnitError": "rocketsim.scenario.units",
     "UNITS": "rocketsim.scenario.units",
     "classic_site": "rocketsim.scenario.classic_range",
