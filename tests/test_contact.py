@@ -254,7 +254,7 @@ def test_a_compiled_run_hands_a_landed_body_to_python_short_of_tipping_over():
     """The compiled runs' checks are quiet for a landed body standing upright and not
     for one tilted past the watch (the cosine of the tip-over angle less the margin),
     so the Python side sees the step where it starts to fall."""
-    from rocketsim.sim import runs
+    from rocketsim.stepping import runs
     watch = np.full(runs.N_WATCH, math.inf)
     watch[runs.W_SHIELD], watch[runs.W_CLEARANCE] = 0.0, 1.0
     watch[runs.W_TIP] = math.cos(math.radians(20.0))

@@ -1,4 +1,4 @@
-"""Compiled runs of steps (rocketsim.sim.window, rocketsim.sim.runs) and the compiled
+"""Compiled runs of steps (rocketsim.sim.window, rocketsim.stepping.runs) and the compiled
 conditions of fc.wait_until (rocketsim.flight.conditions).
 
 A pure speed change: the reference is the world's one-step loop, which these tests
@@ -22,10 +22,11 @@ from rocketsim.layout import V, make_params
 from rocketsim.errors import InputError
 from rocketsim.constants import EARTH_J2, EARTH_MU, EARTH_RADIUS_EQ, EARTH_RADIUS_POLAR
 from rocketsim.scenario.load import load
-from rocketsim.sim import runs, window, world as world_module
+from rocketsim.sim import window, world as world_module
 from rocketsim.sim.build import build_world
 from rocketsim.sim.flight import fly
 from rocketsim.sim.vehicle_checks import VehicleChecks
+from rocketsim.stepping import runs
 from rocketsim.telemetry.reader import iter_raw_messages
 from rocketsim.telemetry.writer import TelemetryWriter
 

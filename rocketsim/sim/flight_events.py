@@ -52,8 +52,8 @@ from rocketsim.vehicle.motors import M_CURVE0, M_IGNITION, M_IMPULSE, M_POINTS
 from rocketsim.vehicle.parachutes import CH_CUT_BY, CH_DEPLOYED, CH_INFLATION, CH_LAG, cut_away, deploy
 from rocketsim.vehicle.rail import RL_OFF_AT, RL_OFF_SPEED, RL_ON
 from rocketsim.scenario.vehicle import AfterTrigger, HeightTrigger
-from rocketsim.sim import runs
 from rocketsim.sim.vehicle_checks import ground_motion
+from rocketsim.stepping import runs
 
 LIFTOFF_HEIGHT = 1.0          # m above the starting height
 MAX_Q_MIN = 1000.0            # Pa, a peak smaller than this is not "max-Q"
@@ -111,7 +111,7 @@ class FlightEvents:
 
     def run_watch(self, watch) -> float:
         """Fill the slots of a compiled run's ``watch`` that these events decide
-        (:mod:`rocketsim.sim.runs`: max-Q pending, its definitions, the orbit test's
+        (:mod:`rocketsim.stepping.runs`: max-Q pending, its definitions, the orbit test's
         bound, the liftoff height, the next motor burn-out); returns the dynamic-pressure
         peak so far (Pa; nan: none). The run needs the body's parachutes none."""
         body = self.body

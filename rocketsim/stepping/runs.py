@@ -1,19 +1,19 @@
 """Compiled runs of steps: a vehicle with aerodynamics flown many steps in one call.
 
 In the air's reach the world steps a vehicle with aerodynamics one step at a
-time, because after every step the checks (:mod:`rocketsim.sim.vehicle_checks`)
+time, because after every step the checks (:class:`rocketsim.sim.vehicle_checks.VehicleChecks`)
 and the flight events (:mod:`rocketsim.sim.flight_events`) look at its state, its
 autopilot steers before every step, and a program waiting on a condition reads
 it. :func:`fly_run` does all of that in one compiled call for as long as nothing
 needs Python: each step is the autopilot's step (``steer_step``, when it steers
 with the command it holds), the RK4 step (:func:`rocketsim.dynamics.rk4.step`)
-and the checks' figures (:func:`~rocketsim.sim.vehicle_checks.step_figures`),
+and the checks' figures (:func:`~rocketsim.stepping.checked_step.step_figures`),
 exactly as the world's one-step path computes them, followed by the tests that
 decide whether the Python side would do anything at this step. The run returns
 after the first step where it might (or after ``n_max`` steps), and the world
 handles that step as it handles every step (:meth:`rocketsim.sim.world.World.advance`).
 The telemetry samples of the steps before it are computed in the run (the
-sampler's own :func:`rocketsim.sim.sampling.figures`, into rows the world then
+sampler's own :func:`rocketsim.stepping.sample_figures.figures`, into rows the world then
 writes in order before it handles the last step), with the world's finiteness
 test at each: a run goes on past sample steps.
 
@@ -53,6 +53,10 @@ A tumbling part below its rails floor (a fairing half in the air) has only the
 orbit test and the handover to watch: :func:`fly_part` flies it the same way,
 :func:`~rocketsim.dynamics.free_body.free_step` by step, its samples computed on the
 way as a vehicle's.
+
+A rigid body coasting with nothing for Python (a spacecraft in orbit,
+:mod:`rocketsim.sim.coast_runs`) is flown whole telemetry intervals at a time by
+:func:`coast_run`, each interval's sample figures computed on the way.
 """
 
 import math
@@ -64,14 +68,14 @@ from rocketsim.atmosphere.table import TOP
 from rocketsim.constants import DEG, G0
 from rocketsim.dynamics.derivative import radial_height
 from rocketsim.dynamics.free_body import free_step
-from rocketsim.dynamics.rk4 import N_WORK, near_ground, step_into
+from rocketsim.dynamics.rk4 import N_WORK, advance, near_ground, step_into
 from rocketsim.flight.conditions import holds
 from rocketsim.flight.readings import air_here
 from rocketsim.flight.steering import steer_step
 from rocketsim.frames.local import where_and_how_fast
 from rocketsim.layout import P_POLAR_RADIUS, P_RADIUS, P_SPIN, Q, R, V, W
-from rocketsim.sim.sampling import figures as figures_of
-from rocketsim.sim.vehicle_checks import step_figures_into
+from rocketsim.stepping.checked_step import step_figures_into
+from rocketsim.stepping.sample_figures import figures as figures_of
 from rocketsim.vehicle.aero import A_GROUND, A_REACH
 from rocketsim.vehicle.contact import axis_up
 from rocketsim.vehicle.engines import S_DRY
@@ -227,7 +231,7 @@ def fly_part(y, k0, h, n_max, p, fp, air, area_mass, length, floor, liftoff, orb
 
     At each telemetry sample step (a multiple of ``every``) before the last step, as
     :func:`fly_run` does: the world's finiteness test and, with ``record``, the sample's
-    figures (:func:`rocketsim.sim.sampling.figures` with the arguments ``sampler``) in
+    figures (:func:`rocketsim.stepping.sample_figures.figures` with the arguments ``sampler``) in
     the next row of ``rows``, returning at that step where the test may fail or the
     rows are full."""
     fp = fp.copy()
@@ -256,14 +260,14 @@ def fly_run(y, k0, h, n_max, p, veh, in_flight, steer, code, fins, watch, carry,
     ``n_max`` steps, returning after the first step where the Python side may have
     something to do (see the module). With ``steer``
     the autopilot's step runs before each step, as
-    :func:`~rocketsim.sim.vehicle_checks.advance_checked` runs it (the command
+    :func:`~rocketsim.stepping.checked_step.advance_checked` runs it (the command
     ``code``, the grid fins when ``fins``); ``condition`` is the program's compiled
     condition (no rows: none). ``carry`` is updated in place to its values before
     the last step's checks. ``nbody`` as :func:`rocketsim.dynamics.rk4.step`'s.
 
     At each telemetry sample step (a multiple of ``every``) before the last step the
     world's finiteness test is made (:func:`_surely_finite`) and, with ``record``, the
-    sample's figures (:func:`rocketsim.sim.sampling.figures` of the state, its time,
+    sample's figures (:func:`rocketsim.stepping.sample_figures.figures` of the state, its time,
     the arguments ``sampler`` and the shield's temperature after the step) go to the
     next row of ``rows``; the run returns at a sample step where the test may fail or
     (with ``record``) the rows are full, leaving that step and its sample to the world.
@@ -324,3 +328,24 @@ def fly_run(y, k0, h, n_max, p, veh, in_flight, steer, code, fins, watch, carry,
             carry[C_PEAK_Q], carry[C_PEAK_STEP] = peak, j
             y_peak = y
 
+
+@njit(nogil=True)
+def coast_run(y, k0, h, every, m, p, nbody, rows, fixed):
+    """Fly a rigid body (state ``y``, parameters ``p``, ``nbody`` as
+    :func:`~rocketsim.dynamics.rk4.advance`'s) ``m`` intervals of ``every`` steps of
+    ``h`` s from step ``k0``, each as the world flies it, filling row ``j`` of ``rows``
+    (while ``j < rows.shape[0]``) with :func:`~rocketsim.stepping.sample_figures.figures` at the
+    end of interval ``j`` (``fixed``: its arguments after the state and parameters).
+    Returns ``(y, intervals flown)``: fewer than ``m`` after an interval whose state is
+    not finite (its row not filled)."""
+    for j in range(m):
+        k = k0 + j * every
+        y, _ = advance(y, k, h, every, p, None, nbody)
+        for x in y:
+            if not math.isfinite(x):
+                return y, j + 1
+        if j < rows.shape[0]:
+            row = figures_of((k + every) * h, y, p, *fixed)
+            for c in range(row.shape[0]):   # a loop: no broadcast (and its error message) to compile
+                rows[j, c] = row[c]
+    return y, m
