@@ -51,7 +51,7 @@ from rocketsim.flight.conditions import NO_CONDITION
 from rocketsim.flight.readings import StateView
 from rocketsim.frames.earth_fixed import eci_to_ecef
 from rocketsim.frames.quaternion import quat_rotate
-from rocketsim.stepping import runs
+from rocketsim.stepping import quiet, runs
 from rocketsim.stepping.checked_step import advance_checked, step_figures
 from rocketsim.vehicle.aero import A_REACH
 from rocketsim.vehicle.contact import axis_up, contact_heights, footprint, tip_over_angle
@@ -143,12 +143,12 @@ class VehicleChecks:
         arguments, carry = self._run_arguments(body, k0, h, n, steering, events, condition, samples)
         y, before, taken, figures, reason, y_peak, filled = body.kernels.call(runs.fly_run, body.vehicle.arrays,
                                                                               *arguments)
-        self.temperature = float(carry[runs.C_TEMPERATURE])
-        self.touched_down = bool(carry[runs.C_TOUCHED] > 0.5)
+        self.temperature = float(carry[quiet.CARRY_TEMPERATURE])
+        self.touched_down = bool(carry[quiet.CARRY_TOUCHED] > 0.5)
         if taken > 1:
             self.previous = ((k0 + taken - 1) * h, before.copy())
-        if carry[runs.C_PEAK_STEP] > 0.0:
-            events.peak_at((k0 + int(carry[runs.C_PEAK_STEP])) * h, y_peak)
+        if carry[quiet.CARRY_PEAK_STEP] > 0.0:
+            events.peak_at((k0 + int(carry[quiet.CARRY_PEAK_STEP])) * h, y_peak)
         self._figures = (y, figures)
         return y, taken, reason, filled
 
@@ -169,22 +169,22 @@ class VehicleChecks:
         self._bind(arrays)
         steer = steering is not None
         code, fins = steering if steer else _NO_STEERING
-        watch = np.full(runs.N_WATCH, math.inf)
-        watch[runs.W_Q_ALPHA], watch[runs.W_AXIAL] = self.limits
-        watch[runs.W_SHIELD] = 0.0
+        watch = np.full(quiet.N_WATCH, math.inf)
+        watch[quiet.WATCH_Q_ALPHA], watch[quiet.WATCH_AXIAL] = self.limits
+        watch[quiet.WATCH_SHIELD] = 0.0
         if self.shield is not None:
             s = self.shield
-            watch[runs.W_SHIELD:runs.W_HEAT_CAPACITY + 1] = (
+            watch[quiet.WATCH_SHIELD:quiet.WATCH_HEAT_CAPACITY + 1] = (
                 1.0, s.nose_radius, sutton_graves_constant(body.mu), _heat_capacity_of_air(body.mu),
                 s.emissivity, s.area, s.mass * s.specific_heat)
-        watch[runs.W_HEAT_LIMIT] = HEAT_SHIELD_LIMIT
-        watch[runs.W_WATCHED] = self._watched
-        watch[runs.W_CLEARANCE] = AIRBORNE_CLEARANCE
-        watch[runs.W_TIP] = self._tip_watch(body)
-        watch[runs.W_MU] = body.mu
+        watch[quiet.WATCH_HEAT_LIMIT] = HEAT_SHIELD_LIMIT
+        watch[quiet.WATCH_REACH] = self._watched
+        watch[quiet.WATCH_CLEARANCE] = AIRBORNE_CLEARANCE
+        watch[quiet.WATCH_TIP] = self._tip_watch(body)
+        watch[quiet.WATCH_MU] = body.mu
         fp = field_of(body.p)
         if fp is not None:
-            watch[runs.W_SOI] = WATCH_RADIUS[BODIES[int(fp[FIELD_CENTER])]]
+            watch[quiet.WATCH_SOI] = WATCH_RADIUS[BODIES[int(fp[FIELD_CENTER])]]
         peak = events.run_watch(watch)
         carry = np.array((self.temperature, float(self.touched_down), peak, 0.0))
         return (body.y, k0, h, n, body.p, arrays, self._in_flight, steer, code, fins, watch, carry, condition,
