@@ -26,7 +26,7 @@ from rocketsim._jit import compile_beside, compiling_elsewhere
 from rocketsim.dynamics.third_bodies import nbody_flag
 from rocketsim.sim import sampling
 from rocketsim.stepping.runs import coast_run
-from rocketsim.stepping.sample_figures import RIGID_WIDTH
+from rocketsim.stepping.sample_figures import N_SAMPLE_RIGID
 
 MAX_INTERVALS = 128     # sample intervals in one run (12.8 s at 10 Hz): the rows waiting to be written
 
@@ -49,7 +49,7 @@ def fly_coast(world) -> bool:
         fixed, shape = sampling.arguments(body, world.gmst0)
         if world.telemetry is None:
             shape = None                    # no samples: the same call, no rows
-        rows = np.empty((m - 1 if shape is not None else 0, RIGID_WIDTH))
+        rows = np.empty((m - 1 if shape is not None else 0, N_SAMPLE_RIGID))
         y, flown = coast_run(*_coast_arguments(body, k0, h, every, m, rows, fixed))
         runs.append((body, y, flown, rows, shape))
     flown = min(run[2] for run in runs)     # a state no longer finite: nothing written from it on
@@ -81,7 +81,7 @@ def compile_coasts_beside(world) -> None:
         if body.vehicle is None and body.central == "earth":
             fixed, _ = sampling.arguments(body, world.gmst0)
             compile_beside(coast_run, _coast_arguments(body, 0, world.h, world.sample_every, 2,
-                                                       np.empty((1, RIGID_WIDTH)), fixed))
+                                                       np.empty((1, N_SAMPLE_RIGID)), fixed))
 
 
 def _coasts(world, body, seconds: float) -> bool:

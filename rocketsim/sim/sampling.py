@@ -39,8 +39,9 @@ from rocketsim.dynamics.nbody import FIELD_JD0, FIELD_ROT
 from rocketsim.dynamics.soi import frame_rotation
 from rocketsim.dynamics.third_bodies import P_BUCKET, field_of, hold_field, nbody_flag
 from rocketsim.layout import P_RADIUS
-from rocketsim.stepping.sample_figures import (FLIGHT_KEYS, GROUPS, HEIGHT, LAT, LON, MASS, ORBIT,
-                                               ORBIT_KEYS, SPEED, VEHICLE, figures, orbit_figures)
+from rocketsim.stepping.sample_figures import (FLIGHT_KEYS, ORBIT_KEYS, SAMPLE_GROUPS, SAMPLE_HEIGHT, SAMPLE_LAT,
+                                               SAMPLE_LON, SAMPLE_MASS, SAMPLE_ORBIT, SAMPLE_SPEED, SAMPLE_VEHICLE,
+                                               figures, orbit_figures)
 from rocketsim.telemetry.frames import CentralFrame, central_frame
 from rocketsim.vehicle.heating import sutton_graves_constant
 
@@ -67,8 +68,8 @@ def values(body, gmst0: float, where) -> tuple[np.ndarray, "Shape"]:
             entry = plan[1] = _entry(body.vehicle, args)
         v = entry(*args)
     if not earth:
-        lat, lon, v[HEIGHT] = where(body)
-        v[LAT], v[LON] = lat / DEG, lon / DEG
+        lat, lon, v[SAMPLE_HEIGHT] = where(body)
+        v[SAMPLE_LAT], v[SAMPLE_LON] = lat / DEG, lon / DEG
     return v, shape
 
 
@@ -94,7 +95,7 @@ def run_sampler(body, gmst0: float) -> tuple[tuple, "Shape", int, bool]:
     :func:`values` places the body in Python)."""
     _, _, fixed, shape, _, earth = _plan(body, gmst0)
     n_groups = len(_layout(body.vehicle)[1])
-    return fixed, shape, GROUPS + 2 * n_groups + body.vehicle.arrays.tank_bottom.shape[0] + 2, earth
+    return fixed, shape, SAMPLE_GROUPS + 2 * n_groups + body.vehicle.arrays.tank_bottom.shape[0] + 2, earth
 
 
 # id(body) -> [weak reference to the body, what values() works out once for it while its
@@ -230,23 +231,24 @@ def _fields(v, integer, central: str, groups, tanks, shield: bool) -> dict:
     """The state message (keys in the order of :data:`rocketsim.telemetry.schemas.BODY_STATE`)
     from the numbers ``v`` of :func:`figures` (a list, or slots standing for them)."""
     out = {"t": v[-2], "position": v[0:3], "velocity": v[3:6], "attitude": v[6:10],
-           "body_rates": v[10:13], "latitude_deg": v[LAT], "longitude_deg": v[LON],
-           "altitude": v[HEIGHT], "speed": v[SPEED], "orbit": _orbit(v[ORBIT:MASS]),
+           "body_rates": v[10:13], "latitude_deg": v[SAMPLE_LAT], "longitude_deg": v[SAMPLE_LON],
+           "altitude": v[SAMPLE_HEIGHT], "speed": v[SAMPLE_SPEED], "orbit": _orbit(v[SAMPLE_ORBIT:SAMPLE_MASS]),
            "central_body": central}
-    out.update(zip(FLIGHT_KEYS, v[MASS:VEHICLE]))
+    out.update(zip(FLIGHT_KEYS, v[SAMPLE_MASS:SAMPLE_VEHICLE]))
     if groups is not None:
         n = len(groups)
-        throttle = v[VEHICLE]
+        throttle = v[SAMPLE_VEHICLE]
         out["throttle"] = throttle if throttle == throttle else None
-        out["group_throttle"] = {g: x if x == x else None for g, x in zip(groups, v[GROUPS:GROUPS + n])}
-        out["thrust"] = v[VEHICLE + 1]
-        out["group_thrust"] = dict(zip(groups, v[GROUPS + n:GROUPS + 2 * n]))
-        out["mass_flow"] = v[VEHICLE + 2]
-        out["engines_running"] = integer(v[VEHICLE + 3])
-        out["propellant"] = v[VEHICLE + 4]
-        out["propellant_tanks"] = dict(zip(tanks, v[GROUPS + 2 * n:-2]))
+        out["group_throttle"] = {g: x if x == x else None
+                                 for g, x in zip(groups, v[SAMPLE_GROUPS:SAMPLE_GROUPS + n])}
+        out["thrust"] = v[SAMPLE_VEHICLE + 1]
+        out["group_thrust"] = dict(zip(groups, v[SAMPLE_GROUPS + n:SAMPLE_GROUPS + 2 * n]))
+        out["mass_flow"] = v[SAMPLE_VEHICLE + 2]
+        out["engines_running"] = integer(v[SAMPLE_VEHICLE + 3])
+        out["propellant"] = v[SAMPLE_VEHICLE + 4]
+        out["propellant_tanks"] = dict(zip(tanks, v[SAMPLE_GROUPS + 2 * n:-2]))
         if shield:
-            out["heat_flux"] = v[VEHICLE + 5]
+            out["heat_flux"] = v[SAMPLE_VEHICLE + 5]
             out["shield_temperature"] = v[-1]
     return out
 

@@ -67,7 +67,7 @@ from rocketsim.sim import sampling
 from rocketsim.sim.flight_events import ORBIT_PERIAPSIS_BOUND
 from rocketsim.sim.schedule import rails_field
 from rocketsim.stepping import runs
-from rocketsim.stepping.sample_figures import RIGID_WIDTH
+from rocketsim.stepping.sample_figures import N_SAMPLE_RIGID
 
 VEHICLE, PART, BATCH = "vehicle", "part", "batch"   # how a body flies a segment (see _plan)
 RUN_SAMPLES = 128       # telemetry samples a vehicle's compiled run computes at most
@@ -293,7 +293,7 @@ def _samples(world, body, record: bool = True) -> tuple:
     (the world places the body in Python)."""
     if body.vehicle is None:
         sampler, shape = sampling.arguments(body, world.gmst0)
-        length, whole = RIGID_WIDTH, body.central == "earth"
+        length, whole = N_SAMPLE_RIGID, body.central == "earth"
     else:
         sampler, shape, length, whole = sampling.run_sampler(body, world.gmst0)
     record = record and world.telemetry is not None
@@ -317,7 +317,7 @@ def compile_runs_beside(world) -> None:
                 compile_beside(runs.fly_part, (body.y[:N_STATE].copy(), 0, world.h, 1, body.p, rails_field(body),
                                                world.air_of(body), 1.0, 1.0, 1.0, math.inf,
                                                ORBIT_PERIAPSIS_BOUND, body.mu, math.inf, world.sample_every,
-                                               np.empty((0, RIGID_WIDTH)), True,
+                                               np.empty((0, N_SAMPLE_RIGID)), True,
                                                sampling.part_arguments(body, world.gmst0), nbody_flag(body.p)))
 
 

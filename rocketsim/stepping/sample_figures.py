@@ -75,16 +75,16 @@ from rocketsim.vehicle.motors import M_IMPULSE, M_PROPELLANT, motor_thrust
 _TWO_PI = 2.0 * math.pi
 
 # the flat array of figures(): the state (position, velocity, attitude, rates), then
-LAT, LON, HEIGHT, SPEED = range(N_STATE, N_STATE + 4)   # deg, deg, m, m/s
-ORBIT = SPEED + 1                                 # ORBIT_KEYS, in order
+SAMPLE_LAT, SAMPLE_LON, SAMPLE_HEIGHT, SAMPLE_SPEED = range(N_STATE, N_STATE + 4)   # deg, deg, m, m/s
+SAMPLE_ORBIT = SAMPLE_SPEED + 1                         # ORBIT_KEYS, in order
 ORBIT_KEYS = ("semi_major_axis", "eccentricity", "inclination_deg", "raan_deg", "arg_periapsis_deg",
               "true_anomaly_deg", "periapsis_altitude", "apoapsis_altitude", "period")
-MASS = ORBIT + len(ORBIT_KEYS)                    # kg, then FLIGHT_KEYS in order
+SAMPLE_MASS = SAMPLE_ORBIT + len(ORBIT_KEYS)            # kg, then FLIGHT_KEYS in order
 FLIGHT_KEYS = ("mass", "acceleration", "sensed_acceleration", "airspeed", "mach", "dynamic_pressure")
-VEHICLE = MASS + len(FLIGHT_KEYS)                 # a staged vehicle: VEHICLE_KEYS, then by group
+SAMPLE_VEHICLE = SAMPLE_MASS + len(FLIGHT_KEYS)         # a staged vehicle: VEHICLE_KEYS, then by group
 VEHICLE_KEYS = ("throttle", "thrust", "mass_flow", "engines_running", "propellant", "heat_flux")
-GROUPS = VEHICLE + len(VEHICLE_KEYS)              # throttle by group, thrust by group, tanks
-RIGID_WIDTH = VEHICLE + 2                         # a rigid body's figures: t and nan (no shield) end them
+SAMPLE_GROUPS = SAMPLE_VEHICLE + len(VEHICLE_KEYS)      # throttle by group, thrust by group, tanks
+N_SAMPLE_RIGID = SAMPLE_VEHICLE + 2                     # a rigid body's figures: t and nan (no shield) end them
 
 
 @njit
@@ -117,11 +117,11 @@ def orbit_figures(r, v, mu, radius, node):
 
 @njit
 def _vehicle_into(out, t, y, p, p_a, veh, group, n_groups, nose_radius, k_heat):
-    """The engine, propellant and heating figures of a staged vehicle into ``out[VEHICLE:]``
+    """The engine, propellant and heating figures of a staged vehicle into ``out[SAMPLE_VEHICLE:]``
     (see the module): nan for a throttle with no engine running and for the heat flux
     without a heat shield (``nose_radius`` 0)."""
     eng, cmd, stage = veh.eng, veh.cmd, veh.stage
-    g_tau, g_thrust, tanks = GROUPS, GROUPS + n_groups, GROUPS + 2 * n_groups
+    g_tau, g_thrust, tanks = SAMPLE_GROUPS, SAMPLE_GROUPS + n_groups, SAMPLE_GROUPS + 2 * n_groups
     thrust = thrusts(t, y, veh.first_clock, eng, cmd, stage, p_a)
     counts = np.zeros(n_groups)
     out[g_tau:tanks] = 0.0
@@ -154,16 +154,16 @@ def _vehicle_into(out, t, y, p, p_a, veh, group, n_groups, nose_radius, k_heat):
             flow += veh.motor[i, M_PROPELLANT] * motor / veh.motor[i, M_IMPULSE]
             burning += 1
         propellant += y[veh.first_motor + i]
-    out[VEHICLE] = total_tau / running if running > 0 else math.nan
-    out[VEHICLE + 1] = total
-    out[VEHICLE + 2] = flow
-    out[VEHICLE + 3] = running + burning
-    out[VEHICLE + 4] = propellant
-    out[VEHICLE + 5] = math.nan
+    out[SAMPLE_VEHICLE] = total_tau / running if running > 0 else math.nan
+    out[SAMPLE_VEHICLE + 1] = total
+    out[SAMPLE_VEHICLE + 2] = flow
+    out[SAMPLE_VEHICLE + 3] = running + burning
+    out[SAMPLE_VEHICLE + 4] = propellant
+    out[SAMPLE_VEHICLE + 5] = math.nan
     if nose_radius > 0.0:
         rho = air_in(veh.air, radial_height(y, p))[0]
         u, v, w = body_air_velocity(y, veh.aero.wind, p[P_SPIN])
-        out[VEHICLE + 5] = sutton_graves(rho, math.sqrt(u * u + v * v + w * w), nose_radius, k_heat)
+        out[SAMPLE_VEHICLE + 5] = sutton_graves(rho, math.sqrt(u * u + v * v + w * w), nose_radius, k_heat)
 
 
 @njit
@@ -178,7 +178,7 @@ def figures(t, y, p, mu, node, geodetic, h0, dh, density, pressure, temperature,
     the radius, as the derivative reads it); ``h0`` ... ``wind_north``: the central body's
     air table (:meth:`~rocketsim.atmosphere.table.AtmosphereTable.arrays`, turning at
     ``p[P_SPIN]``); ``veh``: the vehicle's
-    arrays (None: a rigid body, whose figures end before ``VEHICLE``), ``group`` the
+    arrays (None: a rigid body, whose figures end before ``SAMPLE_VEHICLE``), ``group`` the
     engine group of each engine (``n_groups`` groups), ``nose_radius`` the heat shield's
     (m, 0: none) and ``k_heat`` the Sutton-Graves constant of the central body's air;
     ``nbody`` True when ``p`` carries an n-body field, else None (the derivative's switch,
@@ -186,32 +186,32 @@ def figures(t, y, p, mu, node, geodetic, h0, dh, density, pressure, temperature,
     The array ends with ``t`` and ``shield_temperature`` (K, nan: no shield): every
     number of the message, for :func:`rocketsim.telemetry.splice.records`."""
     if veh is None:
-        out = np.empty(RIGID_WIDTH)
-        out[MASS] = p[P_MASS]
+        out = np.empty(N_SAMPLE_RIGID)
+        out[SAMPLE_MASS] = p[P_MASS]
     else:
         n_tanks = veh.tank_bottom.shape[0]
-        out = np.empty(GROUPS + 2 * n_groups + n_tanks + 2)
-        out[MASS] = vehicle_mass_properties(veh, y)[0]
+        out = np.empty(SAMPLE_GROUPS + 2 * n_groups + n_tanks + 2)
+        out[SAMPLE_MASS] = vehicle_mass_properties(veh, y)[0]
     for k in range(N_STATE):        # a loop: no broadcast (and its error message) to compile
         out[k] = y[k]
     r, v = y[R:R + 3], y[V:V + 3]
     lat, lon, height, _, _ = where_and_how_fast(r, v, t, p[P_SPIN], p[P_RADIUS], p[P_POLAR_RADIUS])
-    out[LAT] = lat / DEG
-    out[LON] = lon / DEG
-    out[HEIGHT] = height
-    out[SPEED] = math.sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2])
-    orbit_into(out, ORBIT, r, v, mu, p[P_RADIUS], node)
+    out[SAMPLE_LAT] = lat / DEG
+    out[SAMPLE_LON] = lon / DEG
+    out[SAMPLE_HEIGHT] = height
+    out[SAMPLE_SPEED] = math.sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2])
+    orbit_into(out, SAMPLE_ORBIT, r, v, mu, p[P_RADIUS], node)
     rho, p_a, _, a_sound, _, air = air_here(h0, dh, density, pressure, temperature, sound,
                                             wind_east, wind_north, lat, lon,
                                             height if geodetic else radial_height(y, p), t, r, v,
                                             p[P_SPIN])
     ax, ay, az, sx, sy, sz = accelerations(t, y, p, veh, nbody)
-    out[MASS + 1] = math.sqrt(ax * ax + ay * ay + az * az)
-    out[MASS + 2] = math.sqrt(sx * sx + sy * sy + sz * sz)
+    out[SAMPLE_MASS + 1] = math.sqrt(ax * ax + ay * ay + az * az)
+    out[SAMPLE_MASS + 2] = math.sqrt(sx * sx + sy * sy + sz * sz)
     airspeed = math.sqrt(air[0] * air[0] + air[1] * air[1] + air[2] * air[2])
-    out[MASS + 3] = airspeed
-    out[MASS + 4] = airspeed / a_sound
-    out[MASS + 5] = 0.5 * rho * airspeed * airspeed
+    out[SAMPLE_MASS + 3] = airspeed
+    out[SAMPLE_MASS + 4] = airspeed / a_sound
+    out[SAMPLE_MASS + 5] = 0.5 * rho * airspeed * airspeed
     if veh is not None:
         _vehicle_into(out, t, y, p, p_a, veh, group, n_groups, nose_radius, k_heat)
     out[-2] = t
