@@ -8,7 +8,7 @@ Because the simulator knows what such a condition reads, it tests it in the
 same compiled call that advances the vehicle (:func:`holds`, once per step on
 the state at the step's end, the state the program's readings would see), so
 a vehicle waiting on one is flown many steps per call instead of one (see
-:mod:`rocketsim.sim.runs`); the test gives the same boolean at the same step as
+:mod:`rocketsim.stepping.runs`); the test gives the same boolean at the same step as
 the reading's, from the same operations on the same numbers.
 
 Readings (:data:`READINGS`), of the true state about Earth (a program
