@@ -55,6 +55,7 @@ from rocketsim.atmosphere.sounding import (Sounding, mixing_ratio_from_vapour,
                                            saturation_vapour_pressure)
 from rocketsim.constants import CELSIUS_ZERO, G0
 from rocketsim.errors import InputError
+from rocketsim.extras import needs
 
 TIME = ("time", "valid_time")
 LEVEL = ("level", "pressure_level", "isobaric", "lev")
@@ -158,6 +159,7 @@ def read_reanalysis(path: str | Path, latitude: float, longitude: float,
     path = Path(path)
     if not path.is_file():
         raise InputError("no such reanalysis file", file=path)
+    needs("weather", "a reanalysis weather file", "xarray", "netCDF4")
     import xarray as xr
     try:
         data = xr.open_dataset(path, engine="netcdf4")
