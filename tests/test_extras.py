@@ -150,3 +150,15 @@ def test_reanalysis_weather_without_its_extra_says_so(tmp_path):
     assert ran.stderr.strip().splitlines() == [
         "error: a reanalysis weather file needs xarray, which is not installed here: "
         "pip install 'rocketsim[weather]'"]
+
+
+def test_a_plain_install_flies_and_replays(tmp_path):
+    # what `pip install -e .` gives: none of the extras' modules; a short coast (10 s) and
+    # its CSV export run as with everything installed
+    hidden = ["distributed", "dask", "pyarrow", "xarray", "netCDF4"]
+    flown = _without(hidden, "fly", str(ROOT / "scenarios" / "iss-coast.yaml"), "--duration", "10s",
+                     "-o", "coast.mcap", cwd=tmp_path)
+    assert flown.returncode == 0, flown.stderr
+    replayed = _without(hidden, "replay", "coast.mcap", "--export", "csv", "tables", cwd=tmp_path)
+    assert replayed.returncode == 0, replayed.stderr
+    assert (tmp_path / "tables" / "events.csv").is_file()
