@@ -11,7 +11,7 @@ import pytest
 from rocketsim.errors import InputError
 from rocketsim.scenario.load import load
 from rocketsim.sim import coast_runs, world as world_module
-from rocketsim.sim.flight import fly
+from rocketsim.api.telemetry_flight import fly_to_file as fly
 from rocketsim.telemetry.reader import messages
 
 

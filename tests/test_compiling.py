@@ -35,7 +35,7 @@ import pytest
 
 from rocketsim._jit import cache_dir
 from rocketsim.scenario.load import load
-from rocketsim.sim.flight import fly
+from rocketsim.api.telemetry_flight import fly_to_file as fly
 from rocketsim_cli.compiling import FIRST_RUN
 
 KERNEL = "sampling.orbit_figures-*"
@@ -133,7 +133,7 @@ _COMPILED = """
 import json, sys
 from rocketsim.dynamics import rk4, third_bodies
 from rocketsim.scenario.load import load
-from rocketsim.sim.flight import fly
+from rocketsim.api.telemetry_flight import fly_to_file as fly
 fly(load(sys.argv[1]), sys.argv[2])
 print(json.dumps({k.__name__: len(k.signatures) for k in (rk4.step_into, third_bodies.hold_field)}))
 """
@@ -177,7 +177,7 @@ event.register("numba:compile", Census())
 from rocketsim import _jit
 _jit.COMPILE_BESIDE = False       # every kernel the flight needs compiles here, to be counted
 from rocketsim.scenario.load import load
-from rocketsim.sim.flight import fly
+from rocketsim.api.telemetry_flight import fly_to_file as fly
 fly(load(sys.argv[1]), sys.argv[2])
 print(json.dumps(compiled))
 """

@@ -246,7 +246,7 @@ def test_a_flight_queues_the_signatures_its_runs_are_called_with(monkeypatch, tm
     from rocketsim import _jit
     from rocketsim.scenario.load import load
     from rocketsim.sim import coast_runs, runs, vehicle_checks
-    from rocketsim.sim.flight import fly
+    from rocketsim.api.telemetry_flight import fly_to_file as fly
     from rocketsim.telemetry import writer
     from tests.sounding_peer import scenario as sounding
 

@@ -24,7 +24,7 @@ from rocketsim.constants import EARTH_J2, EARTH_MU, EARTH_RADIUS_EQ, EARTH_RADIU
 from rocketsim.scenario.load import load
 from rocketsim.sim import runs, window, world as world_module
 from rocketsim.sim.build import build_world
-from rocketsim.sim.flight import fly
+from rocketsim.api.telemetry_flight import fly_to_file as fly
 from rocketsim.sim.vehicle_checks import VehicleChecks
 from rocketsim.telemetry.reader import iter_raw_messages
 from rocketsim.telemetry.writer import TelemetryWriter

@@ -1,7 +1,7 @@
 """What a flight writes its telemetry through: :class:`TelemetrySink`.
 
 The world (:class:`rocketsim.sim.world.World` and the modules it drives) and the
-flight around it (:func:`rocketsim.sim.flight.fly_into`) write a run through
+flight around it (:func:`rocketsim.api.telemetry_flight.fly_into`) write a run through
 these calls alone, so a run can go to an MCAP file
 (:class:`rocketsim.telemetry.writer.TelemetryWriter`) or stay in memory
 (:class:`rocketsim.api.recorder.Recorder`) with the same flight. Both declare the

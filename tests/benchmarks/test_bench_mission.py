@@ -4,7 +4,7 @@ Target: at least 100x real time on one core (the whole mission, about nine
 minutes of flight, in under about 6 s), telemetry at 10 Hz included.
 
 The benchmark flies ``scenarios/falcon9-leo.yaml`` as shipped (its programs,
-the booster's return included) through :func:`rocketsim.sim.flight.fly` with
+the booster's return included) through :func:`rocketsim.api.telemetry_flight.fly_to_file` with
 the file's 10 Hz telemetry. In the suite it flies the first ARC seconds (the
 ascent, staging and the start of the boost-back, two vehicles awake after
 separation: the suite's budget is ~15 s per benchmark); with
@@ -80,7 +80,7 @@ from rocketsim._jit import Entries
 from rocketsim.scenario.load import load
 from rocketsim.sim import flight_events, runs, schedule, vehicle_checks, world
 from rocketsim.sim.vehicle_checks import advance_checked
-from rocketsim.sim.flight import fly
+from rocketsim.api.telemetry_flight import fly_to_file as fly
 from rocketsim.telemetry.writer import TelemetryWriter
 from tests.benchmarks.timing import best_of, load_text
 
