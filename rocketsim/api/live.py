@@ -2,9 +2,11 @@
 
 :func:`fly_live` flies a scenario to its MCAP file while a Foxglove WebSocket
 server (:class:`rocketsim.live.server.LiveServer`) plays that file as it is
-written, at ``warp`` x real time; the flight waits for the view
-(:class:`rocketsim.live.paced.PacedTelemetry`) and never changes a step, so the
-file is byte for byte the one the same flight writes headless. :func:`replay_live`
+written, at ``warp`` x real time. The flight's telemetry goes to its writer as
+it does headless; after each batch of steps (the flight's progress) the flight
+waits while it leads the view too far (:meth:`~rocketsim.live.server.LiveServer.keep_pace`),
+and never changes a step: the file is byte for byte the one the same flight
+writes headless, at every warp, with or without a viewer. :func:`replay_live`
 plays a file already written. Both return once the view has played the run to
 its end (at ``max``, once the flight has flown) and the server has stopped.
 
@@ -95,31 +97,33 @@ def fly_live(loaded, out: str | Path | None, live: Live, *, step: float | None =
     finished however the flight ends; the server is stopped however the view ends
     (Ctrl-C included)."""
     available()
-    from rocketsim.live.paced import PacedTelemetry
+    from rocketsim.live.tee import Tee
     from rocketsim.sim.flight import fly_into
     from rocketsim.telemetry.writer import TelemetryWriter
 
     with tempfile.TemporaryDirectory(prefix="rocketsim-live-") as folder:
         path = Path(out) if out is not None else Path(folder) / f"{loaded.path.stem}.mcap"
         flown = loaded.scenario.mission.duration if duration is None else duration
-        servers = []
+        servers, epochs = [], []
 
-        def open_telemetry(epoch_ns: int, program_file: str) -> PacedTelemetry:
+        def open_telemetry(epoch_ns: int, program_file: str):
+            # the server first: a port it cannot have leaves no file behind
+            servers.append(_serve(path, live, f"rocketsim {loaded.scenario.name}",
+                                  (epoch_ns, epoch_ns + round(flown * 1e9))))
+            epochs.append(epoch_ns)
             writer = TelemetryWriter(path, epoch_ns, program_file)
-            sinks = [writer] + ([also(epoch_ns, program_file)] if also is not None else [])
-            try:
-                servers.append(_serve(path, live, f"rocketsim {loaded.scenario.name}",
-                                      (epoch_ns, epoch_ns + round(flown * 1e9))))
-            except BaseException:
-                writer.close()
-                raise
-            return PacedTelemetry(sinks, servers[0])
+            servers[0].play()
+            return writer if also is None else Tee([writer, also(epoch_ns, program_file)])
+
+        def paced(t: float, phase: str) -> None:
+            servers[0].keep_pace(epochs[0] + round(t * 1e9))    # the log time of mission time t
+            if on_progress is not None:
+                on_progress(t, phase)
 
         try:
-            summary = fly_into(loaded, open_telemetry, step=step, duration=duration, on_progress=on_progress)
-            if servers:
-                servers[0].finish()
-                servers[0].wait()
+            summary = fly_into(loaded, open_telemetry, step=step, duration=duration, on_progress=paced)
+            servers[0].finish()
+            servers[0].wait()
         finally:
             if servers:
                 servers[0].stop()
@@ -136,9 +140,12 @@ def replay_live(path: str | Path, live: Live) -> None:
     if not path.is_file():
         raise InputError(f"no such file: {path}", file=path)
     run = read_run(path)
-    time_range = (run.start_ns, run.end_ns) if run.start_ns is not None else None
+    if run.start_ns is None:
+        raise InputError(f"nothing in it can be played{f': {run.problem}' if run.problem else ''}", file=path)
+    time_range = (run.start_ns, run.end_ns)
     server = _serve(path, live, f"rocketsim {path.name}", time_range)
     try:
+        server.play()
         server.finish()
         server.wait()
     finally:

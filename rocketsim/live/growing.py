@@ -30,6 +30,7 @@ from mcap.stream_reader import get_chunk_data_stream
 MAGIC = b"\x89MCAP0\r\n"
 _RECORD = struct.Struct("<BQ")                      # opcode, content length
 _MESSAGE = struct.Struct("<HIQQ")                   # a message's channel, sequence, log and publish time
+_TIMES = struct.Struct("<QQ")                       # a chunk's first and last message log times
 
 
 class DamagedFile(ValueError):
@@ -52,23 +53,26 @@ _READERS = {Opcode.SCHEMA: Schema.read, Opcode.CHANNEL: Channel.read, Opcode.CHU
 
 
 class GrowingMcap:
-    """The data section of the MCAP file ``path``, record by record, as it is written."""
+    """The data section of the MCAP file ``path``, record by record, as it is written
+    (the file is opened once it exists)."""
 
     def __init__(self, path: str | Path):
         self.path = Path(path)
-        self._file = open(self.path, "rb")
+        self._file = None
         self._at = 0                    # where the next record starts (after the magic: 8)
         self.ended = False              # the Data End record was read
-
-    def _size(self) -> int:
-        return os.fstat(self._file.fileno()).st_size
 
     def next_record(self) -> Record | None:
         """The next whole record on disk (None: not yet written, or the data section
         has ended, :attr:`ended`); :class:`DamagedFile` if the file is not MCAP."""
         if self.ended:
             return None
-        size = self._size()
+        if self._file is None:
+            try:
+                self._file = open(self.path, "rb")
+            except FileNotFoundError:
+                return None
+        size = os.fstat(self._file.fileno()).st_size
         if self._at == 0:
             if size < len(MAGIC):
                 return None
@@ -95,7 +99,8 @@ class GrowingMcap:
         return data
 
     def close(self) -> None:
-        self._file.close()
+        if self._file is not None:
+            self._file.close()
 
 
 def chunk_messages(chunk: Chunk) -> tuple[list[tuple[int, int, bytes]], list[Record]]:
@@ -122,6 +127,11 @@ def chunk_messages(chunk: Chunk) -> tuple[list[tuple[int, int, bytes]], list[Rec
     if at > end:
         raise DamagedFile("a record runs past the end of its chunk")
     return messages, records
+
+
+def chunk_times(record: Record) -> tuple[int, int]:
+    """``(first, last)`` log times (ns) of the messages of a chunk record, unread."""
+    return _TIMES.unpack_from(record.content)
 
 
 def message_of(record: Record) -> tuple[int, int, bytes]:
