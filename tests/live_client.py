@@ -179,3 +179,20 @@ class FoxgloveClient:
         self._stack.close()
         if self._reader is not None:
             self._reader.join(self.timeout)
+
+
+def watch_servers(url: str, stop, reports, timeout: float = 60.0) -> None:
+    """Watch the servers that come and go at ``url`` (run in a process of its own, as a
+    Foxglove app is): connect as soon as one listens, subscribe to everything, read until
+    it closes, and put ``(messages, [(arrival (time.monotonic s), log time (ns)), ...])``
+    on ``reports`` (every tenth message's); again, until ``stop`` is set."""
+    while not stop.is_set():
+        try:
+            client = FoxgloveClient(url, timeout=timeout)
+        except Exception:           # no server there yet, or one stopping as it was reached
+            time.sleep(0.005)
+            continue
+        client.wait_until(lambda c: c.closed, timeout=3600)
+        client.close()
+        if client.messages:
+            reports.put((len(client.messages), [(wall, t) for _, t, _, wall in client.messages[::10]]))

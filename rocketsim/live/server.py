@@ -57,7 +57,7 @@ WAIT = 0.1
 POLL = 0.02
 # how often the viewers are told the time shown (s of wall time)
 TIME_EVERY = 0.05
-# at max warp, the share of a core the player may spend serving chunks
+# at max warp, the share of a core the player may spend serving chunks (its thread's CPU time)
 MAX_SHARE = 0.05
 # s the server stays up after the end for the last messages to reach the viewers (the SDK
 # sends them on threads of its own, and stopping drops what they have not sent)
@@ -107,7 +107,7 @@ class LiveServer:
         self.first_played: tuple[float, int] | None = None     # (wall s, log time ns), served or not
         self.last_played: tuple[float, int] | None = None
         self._shown_at = 0.0
-        self._busy = 0.0                                # player's work on the chunk being played (s)
+        self._busy = 0.0                                # player's CPU on the chunk being played (s)
         self._server = foxglove.start_server(
             name=name, host=host, port=port, context=self._context,
             capabilities=[Capability.Parameters, Capability.Time],
@@ -271,13 +271,13 @@ class LiveServer:
                     self._room.notify_all()     # a flight waiting goes on, to write what is to play
             if at == len(messages):
                 if self._ahead and not paused and not (at_max and time.perf_counter() < rest_until):
-                    began = time.perf_counter()
+                    began = time.thread_time()
                     chunk, messages, at = *self._take(at_max), 0
                     if waited and last is not None:
                         self.clock.show(last)       # take up where the view stopped
                         self.stalls += 1
                     waited = False
-                    self._busy = time.perf_counter() - began
+                    self._busy = time.thread_time() - began
                     continue
                 if complete and not self._ahead:
                     break
@@ -289,7 +289,7 @@ class LiveServer:
                 continue
             if not self.clock.started:
                 self.clock.show(messages[at][1])
-            began = time.perf_counter()
+            began = time.thread_time()
             until = self.clock.until()
             while at < len(messages) and messages[at][1] <= until:
                 channel, log_time, data = messages[at]
@@ -298,7 +298,7 @@ class LiveServer:
                     self.served += 1
                 last = log_time
                 at += 1
-            self._busy += time.perf_counter() - began
+            self._busy += time.thread_time() - began
             if last is not None:
                 self.last_played = (time.monotonic(), last)
                 self.first_played = self.first_played or self.last_played
