@@ -69,9 +69,11 @@ def available() -> None:
 
 
 def _announce(server) -> None:
-    print(f"live view: {server.url} at {warp_text(server.clock.warp)} (Foxglove: open a connection, "
-          f"Foxglove WebSocket, this address; controls: the parameters 'warp' and 'paused')",
-          file=sys.stderr, flush=True)
+    exposed = "" if server.host in (LOOPBACK, "localhost", "::1") else \
+        "; other machines can watch and control it"
+    print(f"live view: {server.url} at {warp_text(server.clock.warp)}{' paused' if server.clock.paused else ''} "
+          f"(Foxglove: open a connection, Foxglove WebSocket, this address; controls: play/pause, speed, "
+          f"or the parameters 'warp' and 'paused'{exposed})", file=sys.stderr, flush=True)
 
 
 def _serve(path: Path, live: Live, name: str, time_range: tuple[int, int] | None):
