@@ -33,7 +33,7 @@ from pathlib import Path
 
 import pytest
 
-from rocketsim._jit import cache_dir
+from rocketsim.jit import cache_dir
 from rocketsim.scenario.load import load
 from rocketsim.api.telemetry_flight import fly_to_file as fly
 from rocketsim_cli.compiling import FIRST_RUN

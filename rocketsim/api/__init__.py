@@ -85,8 +85,8 @@ _HOMES = {
     "same_row": "rocketsim.campaigns.execute",
     "CampaignInterrupted": ("rocketsim.campaigns.execute", "Interrupted"),
     "campaign_report": ("rocketsim.campaigns.report", "report"),
-    "kernel_cache_dir": ("rocketsim._jit", "cache_dir"),
-    "finish_compiling_beside": ("rocketsim._jit", "finish_beside"),
+    "kernel_cache_dir": ("rocketsim.jit", "cache_dir"),
+    "finish_compiling_beside": ("rocketsim.jit", "finish_beside"),
     "set_compiling_beside": "rocketsim.api.kernels",
     "InputError": "rocketsim.errors",
 }
