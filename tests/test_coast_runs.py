@@ -1,4 +1,5 @@
-"""Compiled runs of whole sample intervals (rocketsim.sim.coast_runs) against the loop's own path.
+"""Compiled runs of whole sample intervals (rocketsim.sim.coast_runs, rocketsim.stepping.runs.coast_run)
+against the loop's own path.
 
 The reference is the world's loop flying the same bodies one sample interval at
 a time in Python (the runs switched off): the runs must write the same file, byte

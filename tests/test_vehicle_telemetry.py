@@ -279,6 +279,7 @@ def _both_encodings(bodies, folder: Path, monkeypatch, trials: int = 120) -> Non
     import orjson
     import rocketsim.telemetry.writer as writer_module
     from rocketsim.sim import sampling
+    from rocketsim.stepping.sample_figures import SAMPLE_VEHICLE
     from rocketsim.telemetry.writer import TelemetryWriter
     monkeypatch.setattr(writer_module, "CHUNK_SIZE", 3_000)
     rng = np.random.default_rng(10)
@@ -296,7 +297,7 @@ def _both_encodings(bodies, folder: Path, monkeypatch, trials: int = 120) -> Non
                 v[chosen] = rng.choice(special, chosen.sum())
                 v[-2] = values[-2] + 0.37 * k                  # the time: finite, increasing
                 if body.vehicle is not None:
-                    v[sampling.VEHICLE + 3] = rng.integers(0, 40)   # engines running: a count
+                    v[SAMPLE_VEHICLE + 3] = rng.integers(0, 40)   # engines running: a count
             samples.append((body.name, v, fields))
     alone = len(bodies) == 1
     if not alone:       # and again later: every template made, so interleaved blocks are spliced at once

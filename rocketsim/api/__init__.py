@@ -21,6 +21,8 @@ Flying and reading runs:
   compared message by message (:class:`UntrustedProgram` without ``trust``);
 * :func:`strict_json` -> JSON text with NaN and infinities as null (the summary's file);
 * :func:`telemetry_size` -> the :class:`SizeEstimate` of a flight's MCAP file, before it flies.
+* :func:`fly_live` / :func:`replay_live`: a flight, or a run's file, served to Foxglove as it
+  plays at a warp (a :class:`Live` server's settings; :func:`parse_warp` reads a warp).
 
 Files, quantities and the things a scenario names:
 
@@ -63,6 +65,8 @@ _HOMES = {
     "export_tables": ("rocketsim.telemetry.tables", "export"),
     "verify": "rocketsim.api.reflight", "Verdict": "rocketsim.api.reflight",
     "UntrustedProgram": "rocketsim.api.reflight",
+    "fly_live": "rocketsim.api.live", "replay_live": "rocketsim.api.live", "Live": "rocketsim.api.live",
+    "parse_warp": "rocketsim.api.live", "LOOPBACK": "rocketsim.api.live", "PORT": "rocketsim.api.live",
     "strict_json": "rocketsim.telemetry.writer",
     "telemetry_size": ("rocketsim.api.file_size", "estimate"),
     "SizeEstimate": "rocketsim.api.file_size",
@@ -84,8 +88,8 @@ _HOMES = {
     "same_row": "rocketsim.campaigns.execute",
     "CampaignInterrupted": ("rocketsim.campaigns.execute", "Interrupted"),
     "campaign_report": ("rocketsim.campaigns.report", "report"),
-    "kernel_cache_dir": ("rocketsim._jit", "cache_dir"),
-    "finish_compiling_beside": ("rocketsim._jit", "finish_beside"),
+    "kernel_cache_dir": ("rocketsim.jit", "cache_dir"),
+    "finish_compiling_beside": ("rocketsim.jit", "finish_beside"),
     "set_compiling_beside": "rocketsim.api.kernels",
     "InputError": "rocketsim.errors",
 }

@@ -1,11 +1,12 @@
 """What the world reads of its own telemetry samples on their way out: each body's flight
 figures, and the thinning of long coasts.
 
-:class:`SampleWatch` stands between the world and its telemetry (an MCAP writer, or
-the samples kept in memory): every sample passes through it, as one sample, a block
-of one body's samples or interleaved blocks (the numbers of
-:func:`rocketsim.sim.sampling.figures`), and it forwards all of them, and everything
-else, to the telemetry.
+:class:`SampleWatch` stands between the world and its telemetry (a
+:class:`~rocketsim.telemetry.sink.TelemetrySink`: an MCAP writer, or the samples kept
+in memory), a sink itself: every sample passes through it, as one sample, a block of
+one body's samples or interleaved blocks (the numbers of
+:func:`rocketsim.stepping.sample_figures.figures`), and it hands them on, and every
+other call unchanged, to the telemetry.
 
 **Flight figures** (:meth:`SampleWatch.figures`), over a body's samples in flight:
 from its first sample to its first ``touchdown`` or ``impact`` (the landing's own
@@ -32,7 +33,10 @@ import math
 import numpy as np
 
 from rocketsim.constants import G0
-from rocketsim.sim import sampling
+from rocketsim.stepping.sample_figures import (N_SAMPLE_RIGID, SAMPLE_DYNAMIC_PRESSURE, SAMPLE_ENGINES_RUNNING,
+                                               SAMPLE_HEIGHT, SAMPLE_HEIGHT_AGL, SAMPLE_LAT, SAMPLE_LON, SAMPLE_MACH,
+                                               SAMPLE_SENSED, SAMPLE_SURFACE_SPEED)
+from rocketsim.telemetry.sink import TelemetrySink
 from rocketsim.telemetry.writer import interleaved_samples
 
 COAST_Q = 1.0            # Pa: below it a body without engines running coasts
@@ -43,8 +47,8 @@ class _Figures:
     """One body's flight figures so far (see the module)."""
 
     def __init__(self, row: np.ndarray):
-        self.start = (float(row[sampling.LAT]), float(row[sampling.LON]), float(row[sampling.HEIGHT]))
-        self.ground = float(row[sampling.HEIGHT] - row[sampling.HEIGHT_AGL])
+        self.start = (float(row[SAMPLE_LAT]), float(row[SAMPLE_LON]), float(row[SAMPLE_HEIGHT]))
+        self.ground = float(row[SAMPLE_HEIGHT] - row[SAMPLE_HEIGHT_AGL])
         self.apogee = (-math.inf, math.nan)          # (height above the ground m, t s)
         self.peaks = np.full(4, -math.inf)            # surface speed, Mach, q, sensed acceleration
         self.landed = math.inf                        # s: the first landing's time
@@ -53,12 +57,12 @@ class _Figures:
         rows = rows[rows[:, -2] < self.landed]
         if not len(rows):
             return
-        heights = rows[:, sampling.HEIGHT_AGL]
+        heights = rows[:, SAMPLE_HEIGHT_AGL]
         top = int(np.argmax(heights))
         if heights[top] > self.apogee[0]:
             self.apogee = (float(heights[top]), float(rows[top, -2]))
-        figures = rows[:, [sampling.SURFACE_SPEED, sampling.MACH, sampling.DYNAMIC_PRESSURE, sampling.SENSED]]
-        figures[~(rows[:, sampling.DYNAMIC_PRESSURE] > 0.0), 1] = np.nan       # Mach only in air
+        figures = rows[:, [SAMPLE_SURFACE_SPEED, SAMPLE_MACH, SAMPLE_DYNAMIC_PRESSURE, SAMPLE_SENSED]]
+        figures[~(rows[:, SAMPLE_DYNAMIC_PRESSURE] > 0.0), 1] = np.nan       # Mach only in air
         np.fmax(self.peaks, np.nanmax(figures, axis=0, initial=-math.inf), out=self.peaks)
 
     def summary(self) -> dict:
@@ -70,7 +74,7 @@ class _Figures:
                 "start_latitude_deg": self.start[0], "start_longitude_deg": self.start[1]}
 
 
-class SampleWatch:
+class SampleWatch(TelemetrySink):
     """The world's telemetry ``telemetry``, its samples watched (see the module).
 
     ``h``: the step (s); ``every``: steps between samples; ``coast_every``: steps between
@@ -81,9 +85,6 @@ class SampleWatch:
         self.h, self.every, self.coast_every = h, every, coast_every
         self._figures: dict[str, _Figures] = {}
         self._held: dict[str, tuple] = {}       # body -> its last sample not written (thinned)
-
-    def __getattr__(self, name):                # add_body, log, metadata, attach, error...
-        return getattr(self.telemetry, name)
 
     def figures(self, body: str) -> dict | None:
         """The flight figures of ``body`` (see the module; None: no sample of it)."""
@@ -100,9 +101,9 @@ class SampleWatch:
     def _kept(self, rows: np.ndarray) -> np.ndarray:
         """Which of one body's samples ``rows`` the coast rule writes (see the module)."""
         steps = np.rint(rows[:, -2] / self.h).astype(np.int64)
-        coasting = rows[:, sampling.DYNAMIC_PRESSURE] < COAST_Q
-        if rows.shape[1] > sampling.RIGID_WIDTH:
-            coasting &= rows[:, sampling.ENGINES_RUNNING] == 0.0
+        coasting = rows[:, SAMPLE_DYNAMIC_PRESSURE] < COAST_Q
+        if rows.shape[1] > N_SAMPLE_RIGID:
+            coasting &= rows[:, SAMPLE_ENGINES_RUNNING] == 0.0
         return ~coasting | (steps % self.every != 0) | (steps % self.coast_every == 0)
 
     def sample(self, body: str, values: np.ndarray, fields, leaving: bool = False) -> None:
@@ -148,6 +149,31 @@ class SampleWatch:
         if name in LANDINGS and found is not None:
             found.landed = min(found.landed, t)
         self.telemetry.event(t, body, name, figures)
+
+    # --- the other calls, handed on -----------------------------------------------------
+    def add_body(self, name: str) -> None:
+        self.telemetry.add_body(name)
+
+    def log(self, t: float, body: str, message: str) -> None:
+        self.telemetry.log(t, body, message)
+
+    def error(self, t: float, message: str) -> None:
+        self.telemetry.error(t, message)
+
+    def attach(self, name: str, data: bytes, media_type: str = "text/plain") -> None:
+        self.telemetry.attach(name, data, media_type)
+
+    def metadata(self, name: str, values: dict[str, str]) -> None:
+        self.telemetry.metadata(name, values)
+
+    def close(self) -> None:
+        self.telemetry.close()
+
+    def __enter__(self) -> "SampleWatch":
+        return self
+
+    def __exit__(self, exc_type, exc, traceback) -> None:
+        self.telemetry.__exit__(exc_type, exc, traceback)
 
     def finish(self) -> None:
         """Write each body's last sample if the coast rule held it back."""

@@ -61,7 +61,7 @@ def summary(world) -> dict:
             record["orbit"] = {**{_ORBIT_UNITS.get(k, k): v for k, v in orbit.items()},
                                "central_body": body.central}
         else:
-            figures = world.telemetry.figures(body.name) if world.telemetry is not None else None
+            figures = world.sample_watch.figures(body.name) if world.sample_watch is not None else None
             record["flight"] = flight(body.events, figures)
         landed = [e for e in body.events if e["name"] == "touchdown"]
         if landed:      # the first contact's figures (speeds m/s, tilt deg, distance m)

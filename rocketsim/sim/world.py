@@ -29,7 +29,7 @@ from typing import Callable
 
 import numpy as np
 
-from rocketsim.constants import DEG
+from rocketsim.constants import DEG, SECONDS_PER_DAY
 from rocketsim.dynamics.central import air_about, nbody_field, next_center, planetocentric
 from rocketsim.dynamics.cruise import SOI, advance_cruise
 from rocketsim.dynamics.derivative import radial_height
@@ -75,6 +75,7 @@ class World:
         self.telemetry = None
         self.sample_every = 1
         self.coast_every = None             # steps between a coasting body's samples (None: every)
+        self.sample_watch = None            # the telemetry's SampleWatch while it flies with one
         self.on_progress: Callable[[float], None] | None = None
         self.phase = ""                     # the latest event, "<body>: <name>" (progress bars)
         self.schedule = Schedule(self)
@@ -165,7 +166,7 @@ class World:
         ``telemetry`` through a :class:`~rocketsim.sim.sample_watch.SampleWatch` (the flight
         figures of the summary, the coasts thinned)."""
         if telemetry is not None:
-            telemetry = SampleWatch(telemetry, self.h, self.sample_every, self.coast_every)
+            telemetry = self.sample_watch = SampleWatch(telemetry, self.h, self.sample_every, self.coast_every)
         self.telemetry = telemetry
         for body in self.bodies:
             if telemetry is not None:
@@ -185,8 +186,8 @@ class World:
                             body.watch.after_step()
                     self.k += n
                     self.reached()
-            if telemetry is not None:
-                telemetry.finish()
+            if self.sample_watch is not None:
+                self.sample_watch.finish()
         finally:
             for body in self.bodies:
                 if body.runner is not None:
@@ -284,7 +285,7 @@ class World:
         (:func:`rocketsim.dynamics.central.planetocentric`)."""
         if body.central == "earth":
             return body.view().geodetic
-        return planetocentric(body.position, body.central, self.epoch.jd_tt() + body.t / 86400.0)
+        return planetocentric(body.position, body.central, self.epoch.jd_tt() + body.t / SECONDS_PER_DAY)
 
     def _cruise(self, body: Body, n: int) -> int:
         """Cruise ``body`` up to ``n`` steps; returns the steps taken (the rest fly awake)."""

@@ -16,6 +16,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from rocketsim.extras import needs
 from rocketsim.telemetry.names import FORMER_FIELDS, column_name, mission_time
 from rocketsim.telemetry.reader import read_run, states
 
@@ -89,11 +90,9 @@ def export(path: str | Path, out_dir: str | Path, kind: str = "csv") -> list[Pat
     into ``out_dir``; return the files written (see the module)."""
     out_dir = Path(out_dir)
     if kind == "parquet":
-        try:
-            import pyarrow
-            import pyarrow.parquet
-        except ImportError:
-            raise ImportError("parquet export needs pyarrow: pip install 'rocketsim[parquet]'") from None
+        needs("parquet", "the Parquet export", "pyarrow")
+        import pyarrow
+        import pyarrow.parquet
     out_dir.mkdir(parents=True, exist_ok=True)
     run = read_run(path)
     written = []
