@@ -43,11 +43,11 @@ def overlapping_labels(figure, slack: float = 0.5) -> list[tuple[str, str]]:
     return pairs
 
 
-def assert_the_plot_reads(run, name: str) -> None:
+def assert_the_plot_reads(run, name: str) -> list[str]:
     """The replay plot of ``run`` (a :class:`rocketsim.api.run.Run` or an MCAP file) drawn
     without a warning, with no two labels overlapping and every event listed by its number
     and name; with ``ROCKETSIM_TEST_PLOTS`` set, written there as ``<name>.png`` to be
-    looked at."""
+    looked at. Returns the titles of its panels."""
     import os
     import warnings
     from pathlib import Path
@@ -62,6 +62,7 @@ def assert_the_plot_reads(run, name: str) -> None:
         figure = flight_panels.figure(run)
         try:
             overlaps = overlapping_labels(figure)
+            titles = [ax.get_title() for ax in figure.axes if ax.get_title()]
             texts = "\n".join(text for text, _ in text_boxes(figure))
             folder = os.environ.get("ROCKETSIM_TEST_PLOTS")
             if folder:
@@ -72,3 +73,4 @@ def assert_the_plot_reads(run, name: str) -> None:
     assert not caught, [str(w.message) for w in caught]
     for k, event in enumerate(events, 1):
         assert f"{k:>3}  T+" in texts and f"{event['body']}: {event['name']}"[:40] in texts, (k, event["name"])
+    return titles

@@ -24,12 +24,26 @@ from tests.plot_checks import assert_the_plot_reads, overlapping_labels
 SCENARIOS = ROOT / "scenarios"
 
 
+# panels a flight must have and must not: a coast in orbit feels no load, meets no air and
+# burns nothing; a payload's free arc has no engine and feels no load; a booster coming back
+# burns and feels its burns
+PANELS = {"iss-coast": ({"height", "speed", "orbit, while above the ground"},
+                        {"load", "air: q and Mach", "propulsion: throttle and propellant"}),
+          "spaceport-ballistic": ({"height", "speed", "ground track (^ start, x end)"},
+                                  {"load", "propulsion: thrust and propellant",
+                                   "propulsion: throttle and propellant"}),
+          "classic-booster-landing": ({"height", "speed", "air: q and Mach", "load",
+                                       "propulsion: throttle and propellant", "attitude of the nose"}, set())}
+
+
 @pytest.mark.parametrize("name, options", [("iss-coast", {}), ("spaceport-ballistic", {}),
                                            ("classic-booster-landing", {"step": 0.1})])
 def test_a_shipped_scenarios_plot_reads(name, options, tmp_path):
     out = tmp_path / f"{name}.mcap"
     rocketsim.fly(SCENARIOS / f"{name}.yaml", out, **options)
-    assert_the_plot_reads(out, name)
+    titles = set(assert_the_plot_reads(out, name))
+    has, lacks = PANELS[name]
+    assert has <= titles and not lacks & titles, titles
     from rocketsim_cli.main import main
     result = CliRunner().invoke(main, ["replay", str(out), "--plot", str(tmp_path / "p.png")])
     assert result.exit_code == 0, result.output

@@ -28,6 +28,8 @@ from typing import Any
 from rocketsim.scenario.paths import parse
 
 LANDINGS = ("touchdown", "impact")
+SUMMARY_SECTIONS = ("final", "orbit", "flight", "touchdown")   # the summary's parts of a body, as columns
+BODY_SECTIONS = (*SUMMARY_SECTIONS, "landing")                  # <body>.<section>.<key>: a body's figures
 
 
 def _scalar(value) -> Any:
@@ -53,7 +55,7 @@ def summary_columns(summary: dict | None, events: list[dict]) -> dict[str, Any]:
     (dicts with ``t``, ``body``, ``name``, ``figures``, as a run's file holds them)."""
     row: dict[str, Any] = {}
     for body, part in ((summary or {}).get("bodies") or {}).items():
-        for section in ("final", "orbit", "flight", "touchdown"):
+        for section in SUMMARY_SECTIONS:
             _flat(f"{body}.{section}", part.get(section), row)
     landed: set[str] = set()
     for event in events:

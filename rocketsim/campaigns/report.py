@@ -43,6 +43,7 @@ from pathlib import Path
 import numpy as np
 
 from rocketsim.campaigns import landing, statistics
+from rocketsim.campaigns.outputs import BODY_SECTIONS
 from rocketsim.errors import InputError
 from rocketsim.extras import needs
 
@@ -51,7 +52,6 @@ MAIN_OUTPUTS = 16                     # histograms and sensitivities drawn and p
 OUTCOMES_PRINTED = 8                  # the most frequent outcome strings the text lists
 TOP_INPUTS = 3                        # inputs the text names per output
 _NOT_OUTPUTS = ("run", "wall_time_s")
-_SECTIONS = ("final", "orbit", "flight", "touchdown", "landing")
 _EVENT_LABELS = {"touchdown": "landed (touchdown)", "impact": "crashed (impact)",
                  "orbit": "reached orbit", "breakup": "broke up", "tip-over": "tipped over after landing",
                  "landing": "came down (touchdown or impact)"}
@@ -145,7 +145,7 @@ def _bodies(columns, extra) -> list[str]:
         if column in extra:
             continue
         parts = column.split(".")
-        if len(parts) >= 3 and parts[1] in _SECTIONS:
+        if len(parts) >= 3 and parts[1] in BODY_SECTIONS:
             found.setdefault(parts[0], None)
     return list(found)
 

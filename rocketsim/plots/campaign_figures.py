@@ -25,6 +25,7 @@ from pathlib import Path
 import numpy as np
 
 from rocketsim.campaigns.landing import geodetic_of
+from rocketsim.campaigns.outputs import BODY_SECTIONS
 from rocketsim.plots.canvas import pyplot, save
 from rocketsim.telemetry.land import land_fraction
 
@@ -65,11 +66,12 @@ def _finish(figure, axes, used: int, out: Path, title: str, spacing: dict | None
     for ``tight_layout``), write the PNG ``out`` and close the figure."""
     for ax in list(axes.flat)[used:]:
         ax.axis("off")
-    figure.suptitle(title)
+    height = figure.get_size_inches()[1]
+    figure.suptitle(title, y=1.0 - 0.12 / height, va="top")
     if spacing is None:
-        figure.tight_layout()
-    else:
-        figure.subplots_adjust(**{"right": 0.98, "bottom": 0.06, **spacing})
+        figure.tight_layout(rect=(0.0, 0.0, 1.0, 1.0 - 0.4 / height))
+    else:       # the title's line, then the panels' titles (two lines at most) under it
+        figure.subplots_adjust(**{"right": 0.98, "bottom": 0.06, "top": 1.0 - 0.75 / height, **spacing})
     return save(figure, out, dpi=80, format="png")
 
 
@@ -158,7 +160,6 @@ _WHAT = {"landing.offset_m": "miss distance from the target", "impact.surface_sp
          "flight.max_sensed_acceleration_g": "largest sensed acceleration",
          "orbit.periapsis_altitude_m": "periapsis altitude", "orbit.apoapsis_altitude_m": "apoapsis altitude",
          "orbit.inclination_deg": "inclination", "orbit.eccentricity": "eccentricity"}
-_SUMMARY_PATHS = ("bodies.", "mission_time_s", "step_s")     # a campaign's outputs by path begin so
 _UNITS = (("_m_s2", "m/s²"), ("_m_s", "m/s"), ("_deg", "deg"), ("_m", "m"), ("_g", "g"), ("_s", "s"),
           ("_kg", "kg"), ("_Pa", "Pa"))
 
@@ -168,17 +169,25 @@ def histogram_columns(report) -> list[str]:
     campaign's own outputs, then per body that came down in some run (a landing
     column) the figures of its coming down and its flight (:data:`_CAME_DOWN`), per
     body that never came down its orbit (a body on the ground has no orbit worth
-    drawing); at most :data:`HISTOGRAMS`."""
+    drawing); a column equal in every run to one before it is left out; at most
+    :data:`HISTOGRAMS`."""
     flown = report.flown
     varied = {c for c in flown.columns if flown[c].dtype.kind == "f" and flown[c].std() > 0}   # NaN: < 2 runs
-    own = [c for c in report.main if c.startswith(_SUMMARY_PATHS)]    # the campaign's outputs:
-    bodies = list(dict.fromkeys(c.split(".")[0] for c in flown.columns   # paths into the summary
-                                if c.count(".") >= 2 and not c.startswith(_SUMMARY_PATHS)))
+    def of_a_body(column: str) -> bool:         # <body>.<section>.<key>: the summary's parts
+        parts = column.split(".")
+        return len(parts) >= 3 and parts[1] in BODY_SECTIONS
+    own = [c for c in report.main if not of_a_body(c)]          # the campaign's own outputs
+    bodies = list(dict.fromkeys(c.split(".")[0] for c in flown.columns if of_a_body(c)))
     names = [c for c in own if c in varied]
     for body in bodies:
         down = f"{body}.landing.t_s" in flown and flown[f"{body}.landing.t_s"].notna().any()
         names += [f"{body}.{c}" for c in (_CAME_DOWN if down else _IN_ORBIT) if f"{body}.{c}" in varied]
-    return list(dict.fromkeys(names))[:HISTOGRAMS]
+    drawn: list[str] = []
+    for name in dict.fromkeys(names):       # a figure the campaign also asked by its path: once
+        values = flown[name].to_numpy(float)
+        if not any(np.array_equal(values, flown[d].to_numpy(float), equal_nan=True) for d in drawn):
+            drawn.append(name)
+    return drawn[:HISTOGRAMS]
 
 
 def _label(column: str) -> str:
@@ -208,7 +217,7 @@ def histograms(flown, columns: list[str], out: Path, title: str) -> Path:
         ax.grid(True, lw=0.4)
     axes.flat[0].legend(fontsize=7)
     return _finish(figure, axes, len(columns), out, f"{title}: outputs of the ok runs",
-                   {"left": 0.05, "top": 0.9 if nrows == 1 else 0.93, "wspace": 0.25, "hspace": 0.45})
+                   {"left": 0.05, "wspace": 0.25, "hspace": 0.45})
 
 
 def tornado(table, columns: list[str], out: Path, title: str) -> Path:
@@ -234,4 +243,4 @@ def tornado(table, columns: list[str], out: Path, title: str) -> Path:
         ax.grid(True, axis="x", lw=0.4)
     axes.flat[0].legend(fontsize=7, loc="lower right")
     return _finish(figure, axes, len(shown), out, f"{title}: which dispersed input drives each output",
-                   {"left": 0.1, "top": 0.88 if nrows == 1 else 0.92, "wspace": 0.55, "hspace": 0.6})
+                   {"left": 0.1, "wspace": 0.55, "hspace": 0.6})

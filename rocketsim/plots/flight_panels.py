@@ -6,16 +6,20 @@ a line per body (one colour per body throughout, named in the figure's legend):
 * height: above the ground in m for a flight that stays under 10 km, else the
   altitude above the ellipsoid in km (log-scaled, about each central body in turn,
   for a flight that leaves Earth);
-* speed: over the ground (solid), through the air (dashed), inertial (dotted: a
-  body that reaches orbit or leaves Earth), in m/s, or km/s above 3 km/s;
+* speed: over the ground (solid; below 2 000 km of altitude), through the air
+  (dashed), inertial (dotted: a body that reaches orbit or leaves Earth), in m/s,
+  or km/s above 3 km/s;
 * dynamic pressure q (Pa or kPa) and Mach: only where the flight meets the air;
-* sensed acceleration in g (standard gravities) in flight: from a body's landing on
+* sensed acceleration in g (standard gravities) in flight (a coast under 0.05 g has
+  none to show): from a body's landing on
   (a touchdown's contact spike, a landed body's weight) it is not drawn, its largest
   value named where it is beyond the flight's scale;
 * propulsion: the throttle flown with the propellant on board (kg, or t above 10 t),
   or for solid motors the thrust (N or kN) with the propellant;
 * attitude: the nose's pitch above the horizon and the angle of attack (deg; left),
-  its heading from north (deg, dotted; right);
+  its heading from north (deg, dotted; right), of the bodies with engines or motors
+  where there are some (a fairing's tumbling halves would hide them); the angle of
+  attack and the heading up to the body's landing;
 * orbit: periapsis and apoapsis altitudes (km) of the bodies while in orbit;
 * the ground track: east and north of the start (m or km) for a flight within
   500 km of it, else latitude and longitude over the coastlines
@@ -46,6 +50,10 @@ from rocketsim.telemetry.tables import table
 SMALL_HEIGHT = 10e3          # m: a flight below this has its height above the ground in m
 LOCAL_TRACK = 500e3          # m: a track within this of its start is drawn east/north of it
 LANDINGS = ("touchdown", "impact", "tip-over")
+LOAD = 0.05                  # g: a flight whose sensed acceleration stays under it has no load panel
+# m: low Earth orbit's upper bound (IADC Space Debris Mitigation Guidelines, 2007): above it the
+# speed over the turning ground is mostly the ground's turn (28 km/s at the Moon's distance)
+GROUND_SPEED_CEILING = 2000e3
 LIST_CHARACTERS = 210        # characters of the events' list (7.5 pt monospace) across the page
 _STYLE = {"surface": "-", "air": "--", "inertial": ":"}
 
@@ -185,19 +193,29 @@ def _height(ax, bodies, clock, landed, colours=None):
     return True
 
 
+def _over_the_ground(columns) -> np.ndarray:
+    """``surface_speed`` where the body is below :data:`GROUND_SPEED_CEILING`, else nan."""
+    low = columns["altitude"] < GROUND_SPEED_CEILING if _has(columns, "altitude") else True
+    return np.where(low, columns["surface_speed"], np.nan)
+
+
 def _speed(ax, bodies, clock, landed, colours=None):
     if ax is None:
         return any(_has(c, "inertial_speed") for c in bodies.values())
-    top = max(np.nanmax(c[k]) for c in bodies.values() for k in ("surface_speed", "airspeed", "inertial_speed")
-              if _has(c, k))
+    speeds = {name: {"surface": _over_the_ground(c) if _has(c, "surface_speed") else None,
+                     "air": c["airspeed"] if _has(c, "airspeed") and _in_air(c) else None,
+                     "inertial": c["inertial_speed"] if _has(c, "inertial_speed") else None}
+              for name, c in bodies.items()}
+    top = max((np.nanmax(v) for kinds in speeds.values() for v in kinds.values()
+               if v is not None and np.isfinite(v).any()), default=0.0)
     fast = top > 3000.0
     scale, unit = (1e-3, "km/s") if fast else (1.0, "m/s")
     inertial = fast or any(_has(c, "altitude") and np.nanmax(c["altitude"]) > 100e3 for c in bodies.values())
     drawn = set()
     for name, c in bodies.items():
-        for key, kind in (("surface_speed", "surface"), ("airspeed", "air"), ("inertial_speed", "inertial")):
-            if _has(c, key) and (kind != "inertial" or inertial) and not (kind == "air" and not _in_air(c)):
-                _line(ax, clock, c, key, colours[name], scale, ls=_STYLE[kind])
+        for kind, values in speeds[name].items():
+            if values is not None and (kind != "inertial" or inertial) and np.isfinite(values).any():
+                ax.plot(clock(c["t"]), values * scale, color=colours[name], lw=1.1, ls=_STYLE[kind])
                 drawn.add(kind)
     ax.set_ylabel(f"speed, {unit}")
     ax.set_title("speed", fontsize=9)
@@ -232,8 +250,9 @@ def _air(ax, bodies, clock, landed, colours=None):
 
 
 def _acceleration(ax, bodies, clock, landed, colours=None):
-    if ax is None:
-        return any(_has(c, "sensed_acceleration") for c in bodies.values())
+    if ax is None:      # a coast feels no load worth a panel
+        return any(_has(c, "sensed_acceleration") and np.nanmax(c["sensed_acceleration"]) > LOAD * G0
+                   for c in bodies.values())
     flight_top, landings = 0.0, []
     for name, c in bodies.items():
         if not _has(c, "sensed_acceleration"):
@@ -291,13 +310,17 @@ def _attitude(ax, bodies, clock, landed, colours=None):
     if ax is None:
         return any(_has(c, "pitch_deg") for c in bodies.values())
     heading = ax.twinx()
-    for name, c in bodies.items():
-        if not _has(c, "pitch_deg"):
+    powered = {n for n, c in bodies.items() if _has(c, "thrust")}       # the vehicles, if any: not
+    for name, c in bodies.items():                                      # their parts' tumbling
+        if not _has(c, "pitch_deg") or (powered and name not in powered):
             continue
         _line(ax, clock, c, "pitch_deg", colours[name])
+        # landed: the angle to the breeze and the heading of an upright nose are noise
+        flying = c["t"] <= landed.get(name, math.inf)
         if _in_air(c) and _has(c, "angle_of_attack_deg"):
-            _line(ax, clock, c, "angle_of_attack_deg", colours[name], ls="--", lw=0.9)
-        wrapped = c["heading_deg"].copy()
+            ax.plot(clock(c["t"]), np.where(flying, c["angle_of_attack_deg"], np.nan),
+                    color=colours[name], ls="--", lw=0.9)
+        wrapped = np.where(flying, c["heading_deg"], np.nan)
         wrapped[1:][np.abs(np.diff(wrapped)) > 180.0] = np.nan      # no line across north
         heading.plot(clock(c["t"]), wrapped, color=colours[name], ls=":", lw=0.9)
     ax.set_ylim(-95.0, 185.0)
@@ -322,6 +345,9 @@ def _orbit(ax, bodies, clock, landed, colours=None):
             ax.plot(t, np.where(up, c["orbit_periapsis_altitude"], np.nan) / 1e3, color=colours[name], lw=1.1)
             ax.plot(t, np.where(up, c["orbit_apoapsis_altitude"], np.nan) / 1e3, color=colours[name], lw=1.1,
                     ls="--")
+    low, high = ax.dataLim.y0, ax.dataLim.y1
+    if low > 0.0 and high > 1e3 * low:          # from a parking orbit to the Sun's: decades apart
+        ax.set_yscale("log")
     ax.set_ylabel("periapsis (solid), apoapsis (dashed), km")
     ax.set_title("orbit, while above the ground", fontsize=9)
     return True
@@ -412,7 +438,7 @@ def _event_labels(figure, ax, events, clock) -> None:
         x = clock(event["t"])
         if groups:
             label, right = placed[-1]
-            start = ax.transData.transform((x, 0.0))[0]
+            start = ax.get_xaxis_transform().transform((x, 1.0))[0]    # any y scale (log: no 0)
             if start - right < 4.0:          # touches the label before: join its group
                 groups[-1].append(k)
                 label.set_text(_range(groups[-1]))
