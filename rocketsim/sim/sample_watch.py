@@ -13,9 +13,13 @@ from its first sample to its first ``touchdown`` or ``impact`` (the landing's ow
 sample and those after it left out: a touchdown's contact spike is not a load of the
 flight): the highest ``height_agl`` and its time, the largest ``surface_speed``, Mach
 (in air: where the dynamic pressure is above nought), dynamic pressure and sensed
-acceleration (in standard gravities), and where the body was at its first sample. They are the samples' figures, at the telemetry rate: a
-peak between two samples is missed by at most what the quantity changes in half a
-sample interval (the apogee, where the climb rate is nought, by millimetres).
+acceleration (in standard gravities), and where the body was at its first sample. They
+are the samples' figures, at the telemetry rate: a peak between two samples is missed by
+at most what the quantity changes in half a sample interval (the apogee, where the climb
+rate is nought, by millimetres). A body split from another (a stage, a fairing half, the
+payload) starts with its parent's figures (:meth:`SampleWatch.inherit`): it flew the
+ascent with it, so a booster's largest q and load are those of the ascent it flew, and
+its drift is from the pad.
 
 **Coasts thinned** (the scenario's ``telemetry.coast_rate``): while a body coasts --
 no engine running (a rigid body has none) and a dynamic pressure under
@@ -28,6 +32,7 @@ number alone: the same inputs write the same samples, bit for bit.
 
 from __future__ import annotations
 
+import copy
 import math
 
 import numpy as np
@@ -90,6 +95,13 @@ class SampleWatch(TelemetrySink):
         """The flight figures of ``body`` (see the module; None: no sample of it)."""
         found = self._figures.get(body)
         return None if found is None else found.summary()
+
+    def inherit(self, body: str, parent: str) -> None:
+        """``body``, split from ``parent`` now (before its first sample), starts with the
+        flight figures ``parent`` has so far."""
+        found = self._figures.get(parent)
+        if found is not None:
+            self._figures[body] = copy.deepcopy(found)
 
     # --- the samples --------------------------------------------------------------
     def _watch(self, body: str, rows: np.ndarray) -> None:

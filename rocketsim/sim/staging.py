@@ -126,6 +126,8 @@ def add_body(world, name: str, y: np.ndarray, p: np.ndarray, parent: Body,
     if vehicle is not None and parent.central != "earth":
         fly_in_air_of(world, new)
     world.bodies.append(new)
+    if world.sample_watch is not None:      # it flew with its parent so far
+        world.sample_watch.inherit(new.name, parent.name)
     if world.telemetry is not None:
         world.telemetry.add_body(new.name)
         world.record(new)

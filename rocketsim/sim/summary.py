@@ -13,7 +13,8 @@ Figures in SI units (m, s, m/s), angles in degrees, each name with one meaning
   state (:func:`rocketsim.sim.sampling.orbit`) with units in their names and the
   ``central_body`` (``earth``, ``moon``, ``mars``, ``sun``) they are about;
 * ``flight``, for a body that is not: what a suborbital flight is read by, from its
-  telemetry samples in flight (:mod:`rocketsim.sim.sample_watch`): the apogee above
+  telemetry samples in flight (:mod:`rocketsim.sim.sample_watch`; a separated stage's
+  from its stack's, from the pad): the apogee above
   the ground and its time, the ground's height, the largest speed over the ground,
   Mach, dynamic pressure and sensed acceleration (in g), where it started; the rail
   exit (``off_rail``: time, speed, static margin) when it left a rail; and where and
