@@ -38,15 +38,16 @@ ground) and its mass ``m``::
     ``landing[LANDING_CEILING]`` (m), and the drag alone would not stop it (its
     deceleration less gravity short of ``v^2 / 2h``: the rule of
     :func:`rocketsim.guidance.powered_descent.ignition_due`), then braking
-    against the ground velocity with the thrust that stops the fall at the ground
-    (at most full), the mass falling at the throttle's share of
+    along the airflow's reverse (no angle of attack: no normal force) with the
+    thrust whose vertical part stops the fall at the ground (at most full), the mass falling at the throttle's share of
     ``landing[LANDING_FLOW]``, until the fall has slowed to ``landing[LANDING_TOUCH]``
     (m/s: the point returned) or the mass is down to ``landing[LANDING_EMPTY]``
     (the engines stop: the stage falls on).
 
   Under thrust the model has no drag: flying tail first into its own plume a
   stage loses nearly all of it (docs/physics.md#plume-shielding: a few percent
-  left at ``T / (q S)`` of 3, what a landing burn has; far less for an entry burn).
+  left at ``T / (q S)`` of 3, what a landing burn has; far less for an entry burn),
+  and no normal force: its thrust stays along the airflow.
 
 Integrated by the midpoint (second-order Runge-Kutta) rule in steps of
 ``STEP_SHARE`` of the time to fall to the ground at the present rate, between
@@ -63,6 +64,7 @@ After MAX_STEPS steps the point reached is returned. Units SI.
 from __future__ import annotations
 
 import math
+from typing import NamedTuple
 
 import numpy as np
 
@@ -137,6 +139,13 @@ def _frame(y, h0, dh, density, pressure, temperature, sound, wind_e, wind_n):
 
 
 @njit
+def _dynamic_pressure(y, h0, dh, density, pressure, temperature, sound, wind_e, wind_n):
+    """``rho |v_a|^2 / 2`` (Pa) at the state ``y``."""
+    _, _, _, rho, _, _, _, _, airspeed = _frame(y, h0, dh, density, pressure, temperature, sound, wind_e, wind_n)
+    return 0.5 * rho * airspeed * airspeed
+
+
+@njit
 def _landing_throttle(h, fall, g, mass, landing):
     """The throttle (0 to 1) of the landing burn's thrust that stops ``fall`` at the ground
     ``h`` below at a constant deceleration (1 when it cannot)."""
@@ -165,10 +174,18 @@ def _rates(y, phase, h0, dh, density, pressure, temperature, sound, wind_e, wind
         out[3:6] += entry[ENTRY_THRUST] / mass / math.sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) * d
         out[6] = -entry[ENTRY_FLOW]
     elif phase == LANDING:
-        throttle = _landing_throttle(h, fall, g, mass, landing)
-        speed = math.sqrt(y[3] * y[3] + y[4] * y[4] + y[5] * y[5])
-        out[3:6] -= throttle * landing[LANDING_THRUST] / mass / max(speed, 1e-9) * y[3:6]
-        out[6] = -throttle * landing[LANDING_FLOW]
+        # the vertical part the profile needs, along the airflow's reverse (no angle of attack)
+        full = landing[LANDING_THRUST] / mass
+        up = _landing_throttle(h, fall, g, mass, landing) * full
+        r = math.sqrt(y[0] * y[0] + y[1] * y[1] + y[2] * y[2])
+        fall_air = -(air[0] * y[0] + air[1] * y[1] + air[2] * y[2]) / r
+        push = -up / max(fall_air, 1e-3) * air
+        size = math.sqrt(push[0] * push[0] + push[1] * push[1] + push[2] * push[2])
+        if size > full:
+            push *= full / size
+            size = full
+        out[3:6] += push
+        out[6] = -size / full * landing[LANDING_FLOW]
     else:
         drag = _drag(rho, c, airspeed, mass, aero)
         if drag > 0.0:
@@ -239,19 +256,25 @@ def fall(x, y, z, vx, vy, vz, mass, h0, dh, density, pressure, temperature, soun
     rad); ``entry`` (N_ENTRY floats) and ``landing`` (N_LANDING floats) the burns (thrust
     0: none).
 
-    Returns ``(x, y, z, t, mass)``: the Earth-fixed point (m), the time (s) from now and the
-    mass (kg) there."""
+    Returns ``(x, y, z, t, mass, lit, peak_q)``: the Earth-fixed point (m), the time (s)
+    from now and the mass (kg) there, the mass when the landing burn was lit (nan if it
+    was not) and the highest dynamic pressure (Pa) met off the engines."""
     state = np.array((x, y, z, vx, vy, vz, mass))
     entering = entry[ENTRY_THRUST] > 0.0
     phase = COAST
     if entering and entry[ENTRY_ALTITUDE] == np.inf:
         phase = ENTRY
     t = 0.0
+    lit = np.nan
+    peak = 0.0
     for _ in range(MAX_STEPS):
+        if phase == COAST or phase == DOWN:
+            peak = max(peak, _dynamic_pressure(state, h0, dh, density, pressure, temperature, sound, wind_e,
+                                               wind_n))
         events = _events(state, phase, entering, h0, dh, density, pressure, temperature, sound, wind_e,
                          wind_n, aero, entry, landing)
         if phase == COAST and events[2] <= 0.0:
-            phase = LANDING                 # lit at the start (the margin already used up)
+            phase, lit = LANDING, state[6]  # lit at the start (the margin already used up)
             continue
         h, fall_speed = events[0], -(state[3] * state[0] + state[4] * state[1] + state[5] * state[2]) \
             / math.sqrt(state[0] * state[0] + state[1] * state[1] + state[2] * state[2])
@@ -278,21 +301,34 @@ def fall(x, y, z, vx, vy, vz, mass, h0, dh, density, pressure, temperature, soun
             continue
         if first == 0:                      # the ground, within the step: interpolated
             point = state + share * (after - state)
-            return point[0], point[1], point[2], t + share * dt, point[6]
+            return point[0], point[1], point[2], t + share * dt, point[6], lit, peak
         state = _step(state, share * dt, phase, h0, dh, density, pressure, temperature, sound, wind_e,
                       wind_n, aero, lean, entry, landing)
         t += share * dt
         if phase == COAST and first == 1:
             phase = ENTRY
         elif phase == COAST:
-            phase = LANDING
+            phase, lit = LANDING, state[6]
         elif phase == ENTRY:
             phase, entering = COAST, False
         elif first == 2:                    # slowed to the touch speed: there
-            return state[0], state[1], state[2], t, state[6]
+            return state[0], state[1], state[2], t, state[6], lit, peak
         else:                               # the landing burn's engines empty: the stage falls
             phase = DOWN
-    return state[0], state[1], state[2], t, state[6]
+    return state[0], state[1], state[2], t, state[6], lit, peak
+
+
+class Prediction(NamedTuple):
+    """Where and how a stage comes down (:func:`fall`): the Earth-fixed ``point`` (m), the
+    ``time`` (s) from now and the ``mass`` (kg) there, the mass when the landing burn was
+    lit (``ignition_mass``, nan if it was not) and the highest dynamic pressure met off
+    the engines (``peak_q``, Pa)."""
+
+    point: np.ndarray
+    time: float
+    mass: float
+    ignition_mass: float
+    peak_q: float
 
 
 class LandingPoint:
@@ -315,15 +351,14 @@ class LandingPoint:
         self.scale = float(scale)
         self.aero[:, AERO_AREA] = self.area * self.scale
 
-    def __call__(self, r, v, mass: float, lean=(0.0, 0.0), entry=NO_ENTRY, landing=NO_LANDING):
-        """``(point, t, mass)``: the Earth-fixed point (m, array) where the stage at Earth-fixed
-        ``r`` (m) moving at ``v`` (m/s) comes down, the time (s) from now and the mass (kg)
-        there, the descent's ``lean`` (east, north shares) held (see :func:`fall`)."""
+    def __call__(self, r, v, mass: float, lean=(0.0, 0.0), entry=NO_ENTRY, landing=NO_LANDING) -> Prediction:
+        """The :class:`Prediction` for the stage at Earth-fixed ``r`` (m) moving at ``v`` (m/s)
+        with ``mass`` (kg), the descent's ``lean`` (east, north shares) held (see :func:`fall`)."""
         x, y, z = r
         vx, vy, vz = v
         h0, dh, density, pressure, temperature, sound, wind_e, wind_n = self.air
         shares = np.array((lean[0], lean[1], self.q_alpha, self.max_alpha), dtype=float)
-        px, py, pz, t, m = fall(float(x), float(y), float(z), float(vx), float(vy), float(vz), float(mass),
-                                h0, dh, density, pressure, temperature, sound, wind_e, wind_n,
-                                self.aero, shares, entry, landing)
-        return np.array((px, py, pz)), t, m
+        px, py, pz, t, m, lit, peak = fall(float(x), float(y), float(z), float(vx), float(vy), float(vz),
+                                           float(mass), h0, dh, density, pressure, temperature, sound, wind_e,
+                                           wind_n, self.aero, shares, entry, landing)
+        return Prediction(np.array((px, py, pz)), t, m, lit, peak)

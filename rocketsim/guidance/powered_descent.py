@@ -4,21 +4,20 @@ Re-solved from the navigation state at every guidance cycle, in the pad's
 local frame (east, north, up; :class:`rocketsim.guidance.pad.Pad`), the height
 being the clearance of the feet (``fc.clearance``: the radar's).
 
-**Vertical channel: constant decelerations to a gate, then to the ground.** The
-thrust's vertical acceleration that brings the fall ``v`` (m/s, down) to a speed
-``v_1`` exactly ``h - h_1`` lower at a constant deceleration is (the kinematics
-of uniform deceleration, ``v^2 - v_1^2 = 2 a (h - h_1)``)::
+**Vertical channel: a constant deceleration to the ground.** The thrust's
+vertical acceleration that brings the fall ``v`` (m/s, down) to the contact
+speed ``v_td`` exactly at the ground from the clearance ``h`` at a constant
+deceleration is (the kinematics of uniform deceleration, ``v^2 - v_td^2 = 2 a h``)::
 
-    a_up = (v^2 - v_1^2) / (2 (h - h_1)) + g
+    a_up = (v^2 - v_td^2) / (2 h) + g
 
-Above the gate (``h_1 = gate_height``) ``v_1`` is the speed from which the gentle
-``terminal_deceleration`` reaches ``touch_speed`` at the ground; below it ``h_1 = 0``
-and ``v_1 = touch_speed``. Flown exactly each stays constant; re-solved every
-cycle it absorbs the errors of thrust, mass and drag as they show. A stage whose
-least thrust outweighs it cannot hover, so the profile aims at the ground
-itself, never above it, and slows gently over the last metres (the terminal
-deceleration, above what the least thrust gives the empty stage) so that the
-contact speed does not hang on the last tenth of a second.
+Flown exactly it stays constant; re-solved every cycle it absorbs the errors of
+thrust, mass and drag as they show. A stage whose least thrust outweighs it
+cannot hover, and once it has stopped above the ground it cannot come down
+softly: so the profile aims at the ground itself, and its deceleration stays the
+one planned at ignition down to the contact (a gentler last segment would ask the
+engine, slewing its throttle at a finite rate, for a step it cannot follow, and
+leave the stage stopped metres up).
 
 **Ignition from the throttle margin.** The burn is lit when the throttle that
 profile needs (``m a_up / T``, ``T`` the full thrust), reckoned from where the
@@ -30,12 +29,16 @@ thin upper air slows by itself: :func:`ignition_due`). ``1 - plan`` is the margi
 kept for what the prediction missed: the burn can push that much harder, and
 down to the engine's least throttle softer.
 
-**Horizontal channel, in thick air: braking against the velocity.** While the
-dynamic pressure is above ``divert_pressure`` the thrust leans against the
-ground velocity (its vertical part the profile's), as the descent's prediction
-flew it (:mod:`rocketsim.guidance.landing_point`): there, leaning the thrust
-buys little, the body's normal force at the angle of attack pushing the other
-way (measured on the shipped booster: docs/guidance.md).
+**Horizontal channel, in thick air: braking along the airflow.** While the
+dynamic pressure is above ``divert_pressure`` the thrust points along the
+air-relative velocity's reverse (its vertical part the profile's), as the
+descent's prediction flew it (:mod:`rocketsim.guidance.landing_point`): there,
+leaning the thrust buys little or nothing, the body's normal force at the angle
+of attack (and the gimbal's push that holds it there) pushing the other way,
+about ``normal_area q`` per radian against the thrust's ``T`` (fitted on the
+shipped booster's landing burns: docs/guidance.md). Below it the lean that gives
+a sideways acceleration ``a`` is taken as ``a / (T/m - normal_area q / m)``, the
+divisor at least ``least_authority`` of ``T/m``.
 
 **Horizontal channel, below it: Apollo's quadratic guidance to a gate above the pad.**
 An acceleration command quadratic in time that meets a target position,
@@ -46,16 +49,16 @@ E-guidance with the terminal acceleration targeted) is, at its start::
     a = a_T + 12 (r_T - r) / T^2 - 6 (v_T + v) / T
 
 With the pad as ``r_T`` and ``v_T = a_T = 0`` horizontally it brings the stage
-over the pad with no drift and no lean ``settle_time`` before the *gate*,
-``gate_height`` above the ground; ``T`` is the time the vertical profile takes
-to get there less ``settle_time`` (at least ``min_time_to_go``). From then on
-(and through Apollo's P66, the vertical descent below the gate) the horizontal
-channel only kills the drift and what is left of the offset, critically damped
-with time constant ``terminal_time`` (slower than the autopilot's turn, so the
-lean it asks for is flown), leaning at most ``settle_tilt``; below the gate it
-only kills the drift (``-v / terminal_time``), leaning at most ``terminal_tilt``:
-the stage touches down upright and still, a metre or two off rather than
-sliding.
+over the pad with no drift and no lean at the *gate*, ``gate_height`` above the
+ground; ``T`` is the time the vertical profile takes to get there, at least
+``min_time_to_go``: there the law's gains (``12 / T^2``, ``6 / T``, a damped loop
+of about ``sqrt(12) / T`` rad/s) stop growing, so that the loop stays several
+times slower than the autopilot that turns the thrust (1 rad/s), whose lag
+(``lag`` s) the law also leads: it is re-solved from the state predicted that far
+on at the sideways push the engines give now. Below the gate (Apollo's P66, the
+vertical descent) the horizontal channel only kills the drift
+(``-v / terminal_time``), leaning at most ``terminal_tilt``: the stage touches
+down upright and still, a metre or two off rather than sliding.
 
 The thrust direction is the sum of both channels, its lean from the vertical
 held within the phase's limit by shortening the horizontal part; the throttle is the mass times that acceleration over the full
@@ -78,33 +81,30 @@ class Plan:
 
     plan: float = 0.8                   # the throttle the burn is lit at (margin 1 - plan)
     touch_speed: float = 1.0            # m/s down at the contact
-    gate_height: float = 25.0           # m of clearance: the vertical descent below it
-    settle_time: float = 3.0            # s: the divert ends this long before the gate
-    min_time_to_go: float = 2.0         # s: the quadratic guidance's shortest time to go
+    gate_height: float = 30.0           # m of clearance: the vertical descent below it
+    min_time_to_go: float = 10.0        # s: the quadratic guidance's shortest time to go
+    lag: float = 1.0                    # s: the autopilot's lag, the state is predicted this far on
     max_tilt: float = math.radians(15.0)        # the divert's lean at most
-    settle_tilt: float = math.radians(6.0)      # from the divert's end to the gate
-    terminal_tilt: float = math.radians(3.0)    # below the gate
-    terminal_time: float = 2.5          # s: the drift's time constant after the divert
-    terminal_deceleration: float = 3.0  # m/s^2 below the gate
+    terminal_tilt: float = math.radians(5.0)    # below the gate
+    terminal_time: float = 2.5          # s: the drift's time constant below the gate
     cutoff_height: float = 0.2          # m of clearance
     ceiling: float = 8e3                # m: the burn is lit below this height only
-    divert_pressure: float = 15e3       # Pa: the burn brakes against the velocity above this
-
-
-def gate_speed(plan: Plan) -> float:
-    """The fall (m/s) at the gate: what the terminal deceleration slows to ``touch_speed``
-    over ``gate_height``."""
-    return math.sqrt(plan.touch_speed ** 2 + 2.0 * plan.terminal_deceleration * plan.gate_height)
+    divert_pressure: float = 4e3        # Pa: the burn brakes along the airflow above this
+    normal_area: float = 65.0           # m^2 per rad: the body's normal force under thrust over q
+    least_authority: float = 0.3        # share of the thrust's sideways push counted on at least
 
 
 def profile_acceleration(height: float, fall: float, gravity: float, plan: Plan) -> float:
-    """The thrust's vertical acceleration (m/s^2) of the profile: above the gate, the
-    constant deceleration that brings a ``fall`` (m/s, down) to :func:`gate_speed` at the
-    gate; below it, the one that brings it to ``touch_speed`` at the ground; against
-    ``gravity`` (m/s^2), ``height`` m above the ground."""
-    if height > plan.gate_height:
-        return (fall * fall - gate_speed(plan) ** 2) / (2.0 * (height - plan.gate_height)) + gravity
+    """The thrust's vertical acceleration (m/s^2) that brings a ``fall`` (m/s, down) to
+    ``plan.touch_speed`` at the ground ``height`` m below at a constant deceleration, against
+    ``gravity`` (m/s^2)."""
     return (fall * fall - plan.touch_speed ** 2) / (2.0 * max(height, 1e-3)) + gravity
+
+
+def gate_speed(height: float, fall: float, plan: Plan) -> float:
+    """The fall (m/s) at the gate on the profile flown from ``height``, ``fall``."""
+    slowing = (fall * fall - plan.touch_speed ** 2) / (2.0 * max(height, 1e-3))
+    return math.sqrt(plan.touch_speed ** 2 + 2.0 * max(slowing, 0.0) * plan.gate_height)
 
 
 def ignition_throttle(height: float, fall: float, mass: float, thrust: float, gravity: float,
@@ -139,46 +139,55 @@ def quadratic_acceleration(offset, velocity, time_to_go: float, target_accelerat
 
 
 def command(offset, velocity, height: float, mass: float, thrust: float, gravity: float,
-            dynamic_pressure: float, plan: Plan = Plan()) -> tuple[np.ndarray, float]:
+            dynamic_pressure: float, air_velocity, plan: Plan = Plan(), pushing=(0.0, 0.0)
+            ) -> tuple[np.ndarray, float]:
     """``(direction, throttle)``: the thrust's direction (unit, east, north, up) and the
     throttle of ``thrust`` (N, full) for a stage at ``offset`` (m, east, north of the pad),
-    moving at ``velocity`` (m/s, east, north, up over the ground) ``height`` m above the
-    ground, of ``mass`` (kg) against ``gravity`` (m/s^2), meeting ``dynamic_pressure`` (Pa)."""
+    moving at ``velocity`` (m/s, east, north, up over the ground) and ``air_velocity``
+    (m/s, the same axes, relative to the air) ``height`` m above the ground, of ``mass``
+    (kg) against ``gravity`` (m/s^2), meeting ``dynamic_pressure`` (Pa), its engines
+    ``pushing`` it sideways now (m/s^2, east, north: the thrust over the mass along the
+    nose's lean)."""
     fall = -float(velocity[2])
-    horizontal = np.asarray(offset[:2], dtype=float)
-    drift = np.asarray(velocity[:2], dtype=float)
     up = max(profile_acceleration(height, fall, gravity, plan), 0.0)
-    if dynamic_pressure > plan.divert_pressure and fall > 0.0:
-        # braking against the velocity, as the descent's prediction flew it
+    air = np.asarray(air_velocity, dtype=float)
+    if dynamic_pressure > plan.divert_pressure and -air[2] > 0.0:
+        # braking along the airflow's reverse, as the descent's prediction flew it
         cap = math.tan(plan.max_tilt)
-        side = drift / fall
+        side = air[:2] / -air[2]
         size = float(np.linalg.norm(side))
         side = -up * (side if size <= cap else side * (cap / size))
     else:
-        time_to_go = 0.0                    # to the gate, on the vertical profile
-        slowing = up - gravity
-        if height > plan.gate_height and fall > 0.0:
-            time_to_go = (fall - gate_speed(plan)) / slowing if slowing > 0.0 else \
-                (height - plan.gate_height) / fall
-        if time_to_go - plan.settle_time > plan.min_time_to_go:
-            side = quadratic_acceleration(horizontal, drift, time_to_go - plan.settle_time)
+        # where the stage will be when the lean asked now is flown: the autopilot's lag
+        push = np.asarray(pushing, dtype=float)
+        drift = np.asarray(velocity[:2], dtype=float) + push * plan.lag
+        horizontal = np.asarray(offset[:2], dtype=float) + (np.asarray(velocity[:2], dtype=float)
+                                                            + 0.5 * push * plan.lag) * plan.lag
+        if height > plan.gate_height:
+            time_to_go = (height - plan.gate_height) / max(fall, 1e-3)
+            slowing = up - gravity
+            if fall > 0.0 and slowing > 0.0:
+                time_to_go = (fall - gate_speed(height, fall, plan)) / slowing
+            wanted = quadratic_acceleration(horizontal, drift, max(time_to_go, plan.min_time_to_go))
             tilt = plan.max_tilt
-        elif height > plan.gate_height:
-            tau = plan.terminal_time
-            side = -2.0 * drift / tau - horizontal / tau ** 2
-            tilt = plan.settle_tilt
         else:
-            side = -drift / plan.terminal_time
+            wanted = -drift / plan.terminal_time
             tilt = plan.terminal_tilt
+        # the lean that gives it: the thrust's share less the body's normal force at the
+        # angle of attack, which pushes the other way (normal_area q per radian)
+        thrust_share = up
+        aero = plan.normal_area * dynamic_pressure / mass
+        gain = max(thrust_share - aero, plan.least_authority * thrust_share)
+        side = up * (wanted / gain)
         size = float(np.linalg.norm(side))
         cap = up * math.tan(tilt)
         if size > cap:
             side = side * (cap / size)
-    wanted = np.array((side[0], side[1], up))
-    total = float(np.linalg.norm(wanted))
+    vector = np.array((side[0], side[1], up))
+    total = float(np.linalg.norm(vector))
     if total == 0.0:
         return np.array((0.0, 0.0, 1.0)), 0.0
-    return wanted / total, mass * total / thrust
+    return vector / total, mass * total / thrust
 
 
 def cutoff_due(height: float, fall: float, plan: Plan = Plan()) -> bool:

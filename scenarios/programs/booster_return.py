@@ -28,7 +28,7 @@ import math
 
 import numpy as np
 
-from rocketsim.constants import G0
+from rocketsim.constants import EARTH_MU, G0
 from rocketsim.guidance import boostback, descent, powered_descent
 from rocketsim.guidance.drag import DragArea
 from rocketsim.guidance.landing_point import LandingPoint, entry_burn, landing_burn
@@ -52,15 +52,17 @@ ENTRY_SPEED = 650.0         # m/s of airspeed at the entry burn's end
 ENTRY_ALIGNMENT = math.radians(10.0)   # the nose this near the airflow's reverse before lighting it,
 ENTRY_FLOOR = 40e3          # m: or lit anyway this low
 CAPTURED = math.radians(3.0)   # rad/s: the entry burn leans once the engines have stopped the swing
-LANDING_RESERVE = 6500.0    # kg of usable propellant the entry burn leaves to the landing burn
+LANDING_NEED = 5500.0       # kg: the landing burn's propellant until predicted
+LANDING_MARGIN = 800.0      # kg of usable propellant the entry burn leaves beyond the landing burn's
 MAX_ENTRY_LEAN = 0.2        # horizontal share of the entry burn's thrust at most
-Q_ALPHA = math.radians(100e3)          # Pa rad: the bending load commanded at most (the limit is 250 kPa deg)
-MAX_ALPHA = math.radians(15.0)
+Q_ALPHA = math.radians(80e3)           # Pa rad: the bending load commanded at most (the limit is 250 kPa deg)
+MAX_ALPHA = math.radians(2.5)    # what the grid fins hold against the body's stability (measured)
 LANDING = powered_descent.Plan(plan=0.8, touch_speed=1.0, ceiling=8e3)
 LEAD = 0.3 + 0.75           # s: the engine's dead time and half its spool-up
+TAIL_OFF = 0.25             # s: an engine's thrust falls to nothing this long after its shutdown
 AIMED = math.radians(20.0)  # the boost-back burns at full thrust with the nose this near its aim
 FINE_GAIN = 30.0            # m/s: the boost-back ends at its engines' least throttle below this,
-STEADY_GAIN = 150.0         # m/s: and holds its attitude below this
+STEADY = 1.5                # s: and holds its attitude over its last this long
 CYCLE = 0.5                 # s between guidance updates in the air
 BURN_CYCLE = 0.1            # s between the burns' updates
 
@@ -93,7 +95,7 @@ class Return:
         self.drag = DragArea(mach, area)
         self.ground_pressure = float(fc.forecast.at(0.0)[1][0])
         self.engine_thrust, self.engine_flow = 914e3, 300.0      # N, kg/s: until measured
-        self.lean = np.zeros(2)
+        self.landing_need = LANDING_NEED           # kg, until predicted
 
     # --- the readings --------------------------------------------------------
     def nose(self):
@@ -120,12 +122,16 @@ class Return:
             self.engine_thrust = float(np.mean([e["thrust_N"] for e in full])) + pressure * EXIT_AREA
             self.engine_flow = float(np.mean([e["mass_flow_kg_s"] for e in full]))
 
+    def floor(self):
+        """The mass (kg) at which the entry burn must end: the dry stage, what its engines
+        cannot draw, what the landing burn was last predicted to need and LANDING_MARGIN."""
+        return self.dry + UNUSABLE + self.landing_need + LANDING_MARGIN
+
     def burns(self, lit_entry=False, lean=(0.0, 0.0)):
         """The entry burn (three engines, lit now when ``lit_entry``) and the landing burn (one
         engine at the ground's pressure) as the predictor models them."""
-        floor = self.dry + UNUSABLE + LANDING_RESERVE
         entry = entry_burn(math.inf if lit_entry else ENTRY_ALTITUDE, ENTRY_SPEED, 3.0 * self.engine_thrust,
-                           3.0 * self.engine_flow, floor, lean)
+                           3.0 * self.engine_flow, self.floor(), lean)
         landing = landing_burn(self.engine_thrust - self.ground_pressure * EXIT_AREA, self.engine_flow,
                                LANDING.plan, LANDING.touch_speed, self.dry + UNUSABLE, LANDING.ceiling)
         return entry, landing
@@ -133,36 +139,43 @@ class Return:
     # --- 1. boost-back ----------------------------------------------------------
     def boost_back(self, centre, three):
         """Flip on the centre engine at its least throttle, then burn on three along the
-        velocity to gain; the landing point is predicted with the mass the rest of the
-        burn leaves (the rocket equation at the engines' exhaust speed)."""
+        velocity to gain; the landing point is predicted from the burn's end
+        (:func:`~rocketsim.guidance.boostback.after_burn`), with the mass the burn leaves
+        (the rocket equation at the engines' exhaust speed)."""
         fc, pad = self.fc, self.pad
         now = [*pad.state(fc), fc.mass]             # the state the misses are predicted from
         entry, landing = self.burns()
 
         def miss(trial):
-            spent = now[2] * math.exp(-float(np.linalg.norm(trial - now[1])) * self.engine_flow / self.engine_thrust)
-            return pad.offset(self.predict(now[0], trial, spent, entry=entry, landing=landing)[0]) - aim
+            dv = trial - now[1]
+            left = now[2] * math.exp(-float(np.linalg.norm(dv)) * self.engine_flow / self.engine_thrust)
+            r, v, _ = boostback.after_burn(now[0], now[1], dv, 6.0 * self.engine_thrust / (now[2] + left), EARTH_MU)
+            down = self.predict(r, v, left, entry=entry, landing=landing)
+            if down.ignition_mass == down.ignition_mass:
+                self.landing_need = down.ignition_mass - down.mass
+            return pad.offset(down.point) - aim
 
         aim = np.zeros(2)
         first = miss(now[1])
         aim = AIM_OFF * first / np.linalg.norm(first)
-        to_gain = boostback.velocity_to_gain(miss, now[1], self.horizontal(now[0]), passes=3)
+        to_gain = boostback.velocity_to_gain(miss, now[1], self.horizontal(now[0]), passes=4)
         fc.point_at(pad.to_eci(to_gain, fc.time))
         fc.ignite(centre)
         fc.throttle(0.0)
         fc.event("boost-back start", miss_m=float(np.linalg.norm(first)), to_gain_m_s=float(np.linalg.norm(to_gain)))
-        gate = Approach(0.0, periods=(1.0, BURN_CYCLE))
         lit = False
+        checked = fc.time
         while True:
             now = [*pad.state(fc), fc.mass]
-            to_gain = boostback.velocity_to_gain(miss, now[1], self.horizontal(now[0]), guess=to_gain, passes=1)
+            to_gain = boostback.velocity_to_gain(miss, now[1], self.horizontal(now[0]), guess=to_gain, passes=2)
             size = float(np.linalg.norm(to_gain))
             acceleration = fc.thrust / fc.mass
             fc.log("bb", round(fc.time, 2), np.round(to_gain, 1), round(size, 1), np.round(miss(now[1] + to_gain), 1), round(acceleration, 2))
+            step, checked = fc.time - checked, fc.time       # the update period now
             if lit and boostback.cutoff_due(to_gain, pad.from_eci(self.nose(), fc.time), acceleration,
-                                            BURN_CYCLE, 0.25):
+                                            step, TAIL_OFF):
                 break
-            if size > STEADY_GAIN or not lit:   # then hold still: the engines stop with the stage not turning
+            if size > STEADY * max(acceleration, 1.0) or not lit:   # then hold still: no spin at cut-off
                 aim_eci = pad.to_eci(to_gain / size, fc.time)
                 fc.point_at(aim_eci)
             if not lit and self.nose() @ aim_eci > math.cos(AIMED):
@@ -172,8 +185,9 @@ class Return:
             if lit and size > FINE_GAIN:
                 self.measure_engines()
                 entry, landing = self.burns()
-            gate.ahead(size - acceleration * 0.5 * (BURN_CYCLE + 0.25), fc.time)
-            fc.sleep(gate.next_update() if lit else min(gate.next_update(), BURN_CYCLE))
+            # the time to the cut-off at full thrust: a second's sleep far from it, a cycle's, a step's
+            left = (size - acceleration * 0.5 * (step + TAIL_OFF)) / max(acceleration, 1.0)
+            fc.sleep(1.0 if lit and left > 3.0 else BURN_CYCLE if left > 2.0 * BURN_CYCLE else 0.0)
         fc.shutdown(three)
         fc.event("boost-back end", to_gain_m_s=size, usable_propellant_kg=self.usable())
         fc.sleep(1.0)                       # hold the attitude through the tail-off
@@ -202,26 +216,29 @@ class Return:
 
     def entry(self, engines):
         fc, pad = self.fc, self.pad
-        floor = self.dry + UNUSABLE + LANDING_RESERVE
         fc.ignite(engines)
-        fc.throttle(1.0)
+        fc.throttle(0.0)                        # the least thrust until the gimbals have caught the swing
         fc.event("entry burn start", altitude_m=fc.altitude, airspeed_m_s=fc.airspeed)
         airspeed = Approach(ENTRY_SPEED, periods=(BURN_CYCLE,))
-        reserve = Approach(floor, periods=(BURN_CYCLE,))
+        reserve = Approach(0.0, periods=(BURN_CYCLE,))
         lean = np.zeros(2)
         captured = False
-        while airspeed.ahead(fc.airspeed, fc.time) & reserve.ahead(self.dry + UNUSABLE + self.usable(), fc.time):
+        while airspeed.ahead(fc.airspeed, fc.time) & reserve.ahead(fc.mass - self.floor(), fc.time):
             r, v = pad.state(fc)
             mass = fc.mass
 
             def miss(trial):
                 entry, landing = self.burns(lit_entry=True, lean=trial)
-                return pad.offset(self.predict(r, v, mass, entry=entry, landing=landing)[0])
+                return pad.offset(self.predict(r, v, mass, entry=entry, landing=landing).point)
 
-            captured = captured or float(np.linalg.norm(fc.body_rates)) < CAPTURED
+            if not captured and fc.thrust > 0.0 and float(np.linalg.norm(fc.body_rates)) < CAPTURED:
+                captured = True
+                fc.throttle(1.0)
             lean, off = descent.solve_lean(miss, lean, MAX_ENTRY_LEAN if captured else 0.0)
             entry_, landing_ = self.burns(lit_entry=True, lean=lean)
-            _, tf, mf = self.predict(r, v, mass, entry=entry_, landing=landing_)
+            _, tf, mf, lit_mass, _ = self.predict(r, v, mass, entry=entry_, landing=landing_)
+            if lit_mass == lit_mass:
+                self.landing_need = lit_mass - mf
             fc.log("entry", round(fc.time, 2), np.round(off, 1), np.round(lean, 3), round(fc.airspeed, 1), round(self.usable()), round(tf, 1), round(mf), round(fc.mass), round(self.engine_thrust), round(self.engine_flow, 1))
             back = -fc.air_velocity / fc.airspeed
             fc.point_at(descent.thrust_direction(back, pad.local_to_eci((lean[0], lean[1], 0.0), fc.time)))
@@ -245,13 +262,15 @@ class Return:
             r, v = pad.state(fc)
 
             def miss(trial):
-                return pad.offset(self.predict(r, v, mass, lean=trial, landing=landing)[0])
+                return pad.offset(self.predict(r, v, mass, lean=trial, landing=landing).point)
 
             lean, off = descent.solve_lean(miss, lean, 1.0)
             fc.log("desc", round(fc.time, 2), np.round(off, 1), np.round(lean, 3), round(fc.altitude), round(q), round(self.drag.scale, 3))
             back = -fc.air_velocity / fc.airspeed
             alpha = float(np.linalg.norm(lean)) * min(MAX_ALPHA, Q_ALPHA / max(q, 1.0))
             fc.point_at(descent.lean_attitude(back, pad.local_to_eci((lean[0], lean[1], 0.0), fc.time), alpha))
+            nose_air = pad.axes @ pad.from_eci(self.nose() - back, fc.time)
+            fc.log("alpha", round(fc.time, 2), round(math.degrees(alpha), 2), round(math.degrees(self.tail_angle()), 2), np.round(nose_air[:2], 4), np.round(lean, 3))
             due = powered_descent.ignition_due(fc.clearance, -fc.vertical_speed, mass, full, fc.gravity, drag,
                                                LEAD, LANDING)
             if not rule.ahead(due, fc.time):
@@ -275,8 +294,11 @@ class Return:
             height, fall = fc.clearance, -fc.vertical_speed
             if powered_descent.cutoff_due(height, fall, LANDING) or not cutoff.ahead(height, fc.time):
                 break
-            direction, throttle = powered_descent.command(offset, velocity, height, fc.mass, full,
-                                                          fc.gravity, fc.dynamic_pressure, LANDING)
+            nose = pad.axes @ pad.from_eci(self.nose(), fc.time)
+            pushing = fc.thrust / fc.mass * nose[:2]
+            air = pad.axes @ pad.from_eci(fc.air_velocity, fc.time)
+            direction, throttle = powered_descent.command(offset, velocity, height, fc.mass, full, fc.gravity,
+                                                          fc.dynamic_pressure, air, LANDING, pushing)
             fc.point_at(pad.local_to_eci(direction, fc.time))
             fc.throttle(throttle)
             fc.log("land", round(fc.time, 2), np.round(offset, 1), np.round(velocity, 2), round(height, 1), np.round(direction, 3), round(throttle, 3))
