@@ -40,6 +40,7 @@ landing point).
 
 from __future__ import annotations
 
+import math
 from typing import Callable
 
 import numpy as np
@@ -76,6 +77,21 @@ def velocity_to_gain(miss: Callable[[np.ndarray], np.ndarray], v, axes, guess=No
             break                       # no step along the Newton direction helps: stay
         trial, m0 = trial + correction, m1
     return trial - v
+
+
+def burn_plane(r, along, dip: float) -> np.ndarray:
+    """The plane (2 x 3, orthonormal rows) a boost-back's ``v_go`` is sought in at the position
+    ``r`` (m): the local horizontal across ``along`` (any vector with a horizontal part: the
+    burn's direction over the ground), and ``along``'s horizontal direction tilted ``dip``
+    (rad) below the horizontal. A dip trades the burn's horizontal work for a lower apex:
+    a shorter, slower fall into the air, which the entry and landing burns pay less to
+    stop."""
+    r = np.asarray(r, dtype=float)
+    up = r / float(np.linalg.norm(r))
+    h = np.asarray(along, dtype=float)
+    h = h - (h @ up) * up
+    h /= float(np.linalg.norm(h))
+    return np.array((np.cross(up, h), math.cos(dip) * h - math.sin(dip) * up))
 
 
 def after_burn(r, v, dv, acceleration: float, mu: float):

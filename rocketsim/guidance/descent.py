@@ -81,3 +81,33 @@ def lean_attitude(back, push, alpha: float) -> np.ndarray:
     if size == 0.0 or alpha <= 0.0:
         return back
     return math.cos(alpha) * back - math.sin(alpha) * across / size
+
+
+class LeanTrim:
+    """An integral trim of a commanded lean: the autopilot turns the nose by a torque in
+    proportion to its error (docs/physics.md#autopilot: no integral action), and a body
+    falling tail first pushes back on a lean with its own aerodynamic stability, so it
+    holds only part of the lean asked (measured on the shipped booster: about 25 kPa deg
+    of ``q alpha`` subsonic whatever was asked). The trim adds to the lean wanted the
+    integral of what the nose falls short of it, ``b += (wanted - flown) dt / time_constant``,
+    ``b`` at most ``limit`` (rad) long, and commands ``wanted + b``. Leans are sideways
+    vectors of the nose from the airflow's reverse (rad, any two horizontal axes)."""
+
+    def __init__(self, time_constant: float, limit: float):
+        self.time_constant = time_constant
+        self.limit = limit
+        self.bias = np.zeros(2)
+        self._last = None
+
+    def command(self, wanted, flown, time: float) -> np.ndarray:
+        """The lean to command at mission ``time`` (s) for the lean ``wanted`` when the nose
+        holds ``flown`` now."""
+        wanted = np.asarray(wanted, dtype=float)
+        if self._last is not None:
+            dt = max(time - self._last, 0.0)
+            self.bias = self.bias + (wanted - np.asarray(flown, dtype=float)) * dt / self.time_constant
+            size = float(np.linalg.norm(self.bias))
+            if size > self.limit:
+                self.bias *= self.limit / size
+        self._last = time
+        return wanted + self.bias

@@ -29,18 +29,20 @@ thin upper air slows by itself: :func:`ignition_due`). ``1 - plan`` is the margi
 kept for what the prediction missed: the burn can push that much harder, and
 down to the engine's least throttle softer.
 
-**Horizontal channel, in thick air: braking along the airflow.** While the
-dynamic pressure is above ``divert_pressure`` the thrust points along the
-air-relative velocity's reverse (its vertical part the profile's), as the
-descent's prediction flew it (:mod:`rocketsim.guidance.landing_point`): there,
-leaning the thrust buys little or nothing, the body's normal force at the angle
-of attack (and the gimbal's push that holds it there) pushing the other way,
-about ``normal_area q`` per radian against the thrust's ``T`` (fitted on the
-shipped booster's landing burns: docs/guidance.md). Below it the lean that gives
-a sideways acceleration ``a`` is taken as ``a / (T/m - normal_area q / m)``, the
-divisor at least ``least_authority`` of ``T/m``.
+**From a sideways acceleration to a lean.** Thrust along the nose and the air
+on the body: with the nose ``delta`` (rad, sideways) from the airflow's reverse
+``b``, the stage's sideways acceleration is ``a_up (b + delta) - K q delta / m``,
+the thrust's (``a_up`` its vertical part over the mass) less the body's normal
+force at that angle of attack, about ``K q`` per radian (``normal_area``; with the
+gimbals' push that holds the angle, fitted on the shipped booster's landing
+burns: docs/guidance.md). So the lean that gives ``a`` is
+``delta = (a - a_up b) / (a_up - K q / m)``: in thick air (``K q / m > a_up``, about
+9 kPa here) the nose leans away from where the stage must go, as in the
+descent, and thinner, towards it; the divisor is kept at least
+``least_authority a_up`` in size where the two nearly cancel, and ``delta`` within
+``max_alpha`` and the bending load ``q_alpha / q``.
 
-**Horizontal channel, below it: Apollo's quadratic guidance to a gate above the pad.**
+**Horizontal channel: Apollo's quadratic guidance to a gate above the pad.**
 An acceleration command quadratic in time that meets a target position,
 velocity and acceleration at the time to go ``T`` (A. R. Klumpp, "Apollo lunar
 descent guidance", Automatica 10, 1974, eq. 7 and its derivation; Cherry's
@@ -89,9 +91,10 @@ class Plan:
     terminal_time: float = 2.5          # s: the drift's time constant below the gate
     cutoff_height: float = 0.2          # m of clearance
     ceiling: float = 8e3                # m: the burn is lit below this height only
-    divert_pressure: float = 4e3        # Pa: the burn brakes along the airflow above this
     normal_area: float = 65.0           # m^2 per rad: the body's normal force under thrust over q
-    least_authority: float = 0.3        # share of the thrust's sideways push counted on at least
+    least_authority: float = 0.3        # share of the thrust's push per radian counted on at least
+    max_alpha: float = math.radians(8.0)        # the nose's lean from the airflow at most,
+    q_alpha: float = math.radians(80e3)         # and its bending load (Pa rad)
 
 
 def profile_acceleration(height: float, fall: float, gravity: float, plan: Plan) -> float:
@@ -150,39 +153,40 @@ def command(offset, velocity, height: float, mass: float, thrust: float, gravity
     nose's lean)."""
     fall = -float(velocity[2])
     up = max(profile_acceleration(height, fall, gravity, plan), 0.0)
-    air = np.asarray(air_velocity, dtype=float)
-    if dynamic_pressure > plan.divert_pressure and -air[2] > 0.0:
-        # braking along the airflow's reverse, as the descent's prediction flew it
-        cap = math.tan(plan.max_tilt)
-        side = air[:2] / -air[2]
-        size = float(np.linalg.norm(side))
-        side = -up * (side if size <= cap else side * (cap / size))
+    # where the stage will be when the lean asked now is flown: the autopilot's lag
+    push = np.asarray(pushing, dtype=float)
+    drift = np.asarray(velocity[:2], dtype=float) + push * plan.lag
+    horizontal = np.asarray(offset[:2], dtype=float) + (np.asarray(velocity[:2], dtype=float)
+                                                        + 0.5 * push * plan.lag) * plan.lag
+    if height > plan.gate_height:
+        time_to_go = (height - plan.gate_height) / max(fall, 1e-3)
+        slowing = up - gravity
+        if fall > 0.0 and slowing > 0.0:
+            time_to_go = (fall - gate_speed(height, fall, plan)) / slowing
+        wanted = quadratic_acceleration(horizontal, drift, max(time_to_go, plan.min_time_to_go))
+        tilt = plan.max_tilt
     else:
-        # where the stage will be when the lean asked now is flown: the autopilot's lag
-        push = np.asarray(pushing, dtype=float)
-        drift = np.asarray(velocity[:2], dtype=float) + push * plan.lag
-        horizontal = np.asarray(offset[:2], dtype=float) + (np.asarray(velocity[:2], dtype=float)
-                                                            + 0.5 * push * plan.lag) * plan.lag
-        if height > plan.gate_height:
-            time_to_go = (height - plan.gate_height) / max(fall, 1e-3)
-            slowing = up - gravity
-            if fall > 0.0 and slowing > 0.0:
-                time_to_go = (fall - gate_speed(height, fall, plan)) / slowing
-            wanted = quadratic_acceleration(horizontal, drift, max(time_to_go, plan.min_time_to_go))
-            tilt = plan.max_tilt
-        else:
-            wanted = -drift / plan.terminal_time
-            tilt = plan.terminal_tilt
-        # the lean that gives it: the thrust's share less the body's normal force at the
-        # angle of attack, which pushes the other way (normal_area q per radian)
-        thrust_share = up
-        aero = plan.normal_area * dynamic_pressure / mass
-        gain = max(thrust_share - aero, plan.least_authority * thrust_share)
-        side = up * (wanted / gain)
-        size = float(np.linalg.norm(side))
-        cap = up * math.tan(tilt)
-        if size > cap:
-            side = side * (cap / size)
+        wanted = -drift / plan.terminal_time
+        tilt = plan.terminal_tilt
+    # the nose's lean from the airflow's reverse ``b`` that gives it: the thrust along the nose
+    # less the body's normal force at that angle of attack, which pushes the other way
+    air = np.asarray(air_velocity, dtype=float)
+    airspeed = float(np.linalg.norm(air))
+    back = -air[:2] / max(airspeed, 1e-3) if airspeed > 1.0 else np.zeros(2)
+    gain = up - plan.normal_area * dynamic_pressure / mass
+    floor = plan.least_authority * up
+    if abs(gain) < floor:
+        gain = math.copysign(floor, gain)
+    lean = (np.asarray(wanted, dtype=float) - up * back) / gain
+    largest = min(plan.max_alpha, plan.q_alpha / max(dynamic_pressure, 1.0))
+    size = float(np.linalg.norm(lean))
+    if size > largest:
+        lean *= largest / size
+    side = up * (back + lean)
+    size = float(np.linalg.norm(side))
+    cap = up * math.tan(tilt)
+    if size > cap:
+        side = side * (cap / size)
     vector = np.array((side[0], side[1], up))
     total = float(np.linalg.norm(vector))
     if total == 0.0:

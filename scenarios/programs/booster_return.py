@@ -47,16 +47,23 @@ LANDING_ENGINE = "centre"
 
 # the plan
 AIM_OFF = 0.0               # m: the boost-back aims this far short of the pad (sea side)
-ENTRY_ALTITUDE = 60e3       # m: the entry burn starts below this, falling
+DIPS = tuple(math.radians(d) for d in (0.0, 3.0, 6.0, 9.0, 12.0))   # the boost-back's dips tried
+ENTRY_ALTITUDE = 60e3       # m: the entry burn starts here, falling (as planned and predicted),
+ENTRY_WINDOW = 3e3          # m: or up to this much higher, as the air swings the nose through
 ENTRY_SPEED = 650.0         # m/s of airspeed at the entry burn's end
 ENTRY_ALIGNMENT = math.radians(10.0)   # the nose this near the airflow's reverse before lighting it,
-ENTRY_FLOOR = 40e3          # m: or lit anyway this low
-CAPTURED = math.radians(3.0)   # rad/s: the entry burn leans once the engines have stopped the swing
+ENTRY_LOWEST = 40e3         # m: or lit anyway this low
+CAPTURED = math.radians(3.0)   # rad/s: the entry burn goes to full thrust and leans once the engines
+                                # have stopped the swing within ENTRY_ALIGNMENT,
+CAPTURE_TIME = 4.0          # s: or this long after their ignition
 LANDING_NEED = 5500.0       # kg: the landing burn's propellant until predicted
 LANDING_MARGIN = 800.0      # kg of usable propellant the entry burn leaves beyond the landing burn's
-MAX_ENTRY_LEAN = 0.2        # horizontal share of the entry burn's thrust at most
-Q_ALPHA = math.radians(80e3)           # Pa rad: the bending load commanded at most (the limit is 250 kPa deg)
-MAX_ALPHA = math.radians(2.5)    # what the grid fins hold against the body's stability (measured)
+MAX_ENTRY_LEAN = 0.35       # horizontal share of the entry burn's thrust at most (19 deg),
+UNTILT = 1.5                # s: none over the burn's last this long
+Q_ALPHA = math.radians(60e3)           # Pa rad: the bending load commanded at most (the limit is 250 kPa deg)
+MAX_ALPHA = math.radians(5.0)    # and the angle of attack commanded at most,
+TRIM_TIME = 2.0             # s: the lean's integral trim (the autopilot holds only part of a lean)
+TRIM_LIMIT = math.radians(8.0)
 LANDING = powered_descent.Plan(plan=0.8, touch_speed=1.0, ceiling=8e3)
 LEAD = 0.3 + 0.75           # s: the engine's dead time and half its spool-up
 TAIL_OFF = 0.25             # s: an engine's thrust falls to nothing this long after its shutdown
@@ -78,7 +85,7 @@ def main(fc):
     return_.boost_back(centre, three)
     fc.deploy_grid_fins()
     fc.hold("surface_retrograde")
-    fc.wait_until(fc.below("altitude", ENTRY_ALTITUDE) & fc.below("vertical_speed", 0.0))
+    fc.wait_until(fc.below("altitude", ENTRY_ALTITUDE + ENTRY_WINDOW) & fc.below("vertical_speed", 0.0))
     return_.await_entry()
     return_.entry(three)
     return_.descend()
@@ -102,12 +109,28 @@ class Return:
         w, x, y, z = self.fc.attitude
         return np.array((1.0 - 2.0 * (y * y + z * z), 2.0 * (x * y + w * z), 2.0 * (x * z - w * y)))
 
-    @staticmethod
-    def horizontal(r):
-        """Local east and north (unit rows, Earth-fixed) at the Earth-fixed position ``r``."""
-        up = r / np.linalg.norm(r)
-        east = np.array((-up[1], up[0], 0.0)) / math.hypot(up[0], up[1])
-        return np.array((east, np.cross(up, east)))
+    def best_dip(self, back, aim):
+        """``(dip, v_go)``: of the boost-back's dips DIPS (rad), the one whose burn, entry
+        burn (to ENTRY_SPEED whatever it costs) and landing burn leave the most mass at
+        touchdown, and its velocity to gain (Earth-fixed, m/s)."""
+        fc, pad = self.fc, self.pad
+        r, v = pad.state(fc)
+        mass = fc.mass
+        entry, landing = self.burns(unbounded=True)
+        best = None
+        for dip in DIPS:
+            def end(trial):
+                dv = trial - v
+                left = mass * math.exp(-float(np.linalg.norm(dv)) * self.engine_flow / self.engine_thrust)
+                rb, vb, _ = boostback.after_burn(r, v, dv, 6.0 * self.engine_thrust / (mass + left), EARTH_MU)
+                return self.predict(rb, vb, left, entry=entry, landing=landing)
+
+            to_gain = boostback.velocity_to_gain(lambda trial: pad.offset(end(trial).point) - aim, v,
+                                                 boostback.burn_plane(r, back, dip), passes=6)
+            kept = end(v + to_gain).mass
+            if best is None or kept > best[0]:
+                best = (kept, dip, to_gain)
+        return best[1], best[2]
 
     def usable(self):
         """Propellant (kg) the engines can still draw."""
@@ -127,13 +150,15 @@ class Return:
         cannot draw, what the landing burn was last predicted to need and LANDING_MARGIN."""
         return self.dry + UNUSABLE + self.landing_need + LANDING_MARGIN
 
-    def burns(self, lit_entry=False, lean=(0.0, 0.0)):
+    def burns(self, lit_entry=False, lean=(0.0, 0.0), unbounded=False):
         """The entry burn (three engines, lit now when ``lit_entry``) and the landing burn (one
-        engine at the ground's pressure) as the predictor models them."""
+        engine at the ground's pressure) as the predictor models them; ``unbounded``, as if
+        the tanks held whatever they need (to compare plans by what they leave)."""
         entry = entry_burn(math.inf if lit_entry else ENTRY_ALTITUDE, ENTRY_SPEED, 3.0 * self.engine_thrust,
-                           3.0 * self.engine_flow, self.floor(), lean)
+                           3.0 * self.engine_flow, 0.0 if unbounded else self.floor(), lean)
         landing = landing_burn(self.engine_thrust - self.ground_pressure * EXIT_AREA, self.engine_flow,
-                               LANDING.plan, LANDING.touch_speed, self.dry + UNUSABLE, LANDING.ceiling)
+                               LANDING.plan, LANDING.touch_speed, 0.0 if unbounded else self.dry + UNUSABLE,
+                               LANDING.ceiling)
         return entry, landing
 
     # --- 1. boost-back ----------------------------------------------------------
@@ -158,16 +183,19 @@ class Return:
         aim = np.zeros(2)
         first = miss(now[1])
         aim = AIM_OFF * first / np.linalg.norm(first)
-        to_gain = boostback.velocity_to_gain(miss, now[1], self.horizontal(now[0]), passes=4)
+        back = -pad.horizontal(*first)                      # over the ground, back towards the pad
+        dip, to_gain = self.best_dip(back, aim)
         fc.point_at(pad.to_eci(to_gain, fc.time))
         fc.ignite(centre)
         fc.throttle(0.0)
-        fc.event("boost-back start", miss_m=float(np.linalg.norm(first)), to_gain_m_s=float(np.linalg.norm(to_gain)))
+        fc.event("boost-back start", miss_m=float(np.linalg.norm(first)), to_gain_m_s=float(np.linalg.norm(to_gain)),
+                 dip_deg=math.degrees(dip))
         lit = False
         checked = fc.time
         while True:
             now = [*pad.state(fc), fc.mass]
-            to_gain = boostback.velocity_to_gain(miss, now[1], self.horizontal(now[0]), guess=to_gain, passes=2)
+            plane = boostback.burn_plane(now[0], to_gain, dip)
+            to_gain = boostback.velocity_to_gain(miss, now[1], plane, guess=to_gain, passes=2)
             size = float(np.linalg.norm(to_gain))
             acceleration = fc.thrust / fc.mass
             fc.log("bb", round(fc.time, 2), np.round(to_gain, 1), round(size, 1), np.round(miss(now[1] + to_gain), 1), round(acceleration, 2))
@@ -200,17 +228,18 @@ class Return:
 
     def await_entry(self):
         """Until the entry burn must be lit: the air swings the stage tail first (it has no
-        thrusters), and the engines are lit as the nose will pass within ENTRY_ALIGNMENT of
-        the airflow's reverse once they have come up (LEAD on at the angle's present rate),
-        so that their gimbals catch the swing; or at ENTRY_FLOOR."""
+        thrusters), and the engines are lit below ENTRY_ALTITUDE + ENTRY_WINDOW as the nose
+        will pass within ENTRY_ALIGNMENT of the airflow's reverse once they have come up
+        (LEAD on at the angle's present rate), so that their gimbals catch the swing; or at
+        ENTRY_LOWEST."""
         fc = self.fc
         before = None
-        while fc.altitude > ENTRY_FLOOR:
+        while fc.altitude > ENTRY_LOWEST:
             fc.point_at(-fc.air_velocity)                  # the grid fins turn it tail first
             angle = self.tail_angle()
             rate = 0.0 if before is None else (angle - before[0]) / max(fc.time - before[1], 1e-9)
             before = (angle, fc.time)
-            if fc.altitude < ENTRY_ALTITUDE and angle + min(rate, 0.0) * LEAD < ENTRY_ALIGNMENT:
+            if fc.altitude < ENTRY_ALTITUDE + ENTRY_WINDOW and angle + min(rate, 0.0) * LEAD < ENTRY_ALIGNMENT:
                 return
             fc.sleep(BURN_CYCLE if angle > 4.0 * ENTRY_ALIGNMENT else 0.0)
 
@@ -222,7 +251,7 @@ class Return:
         airspeed = Approach(ENTRY_SPEED, periods=(BURN_CYCLE,))
         reserve = Approach(0.0, periods=(BURN_CYCLE,))
         lean = np.zeros(2)
-        captured = False
+        captured, lit = False, fc.time
         while airspeed.ahead(fc.airspeed, fc.time) & reserve.ahead(fc.mass - self.floor(), fc.time):
             r, v = pad.state(fc)
             mass = fc.mass
@@ -231,17 +260,23 @@ class Return:
                 entry, landing = self.burns(lit_entry=True, lean=trial)
                 return pad.offset(self.predict(r, v, mass, entry=entry, landing=landing).point)
 
-            if not captured and fc.thrust > 0.0 and float(np.linalg.norm(fc.body_rates)) < CAPTURED:
+            if not captured and fc.thrust > 0.0 and (fc.time > lit + CAPTURE_TIME or (
+                    float(np.linalg.norm(fc.body_rates)) < CAPTURED and self.tail_angle() < ENTRY_ALIGNMENT)):
                 captured = True
                 fc.throttle(1.0)
-            lean, off = descent.solve_lean(miss, lean, MAX_ENTRY_LEAN if captured else 0.0)
+            # the lean flown until UNTILT before the end, as the prediction's lean held to the end
+            left = min((fc.airspeed - ENTRY_SPEED) * mass / max(fc.thrust, 1.0),
+                       (mass - self.floor()) / (3.0 * self.engine_flow))
+            share = max(left - UNTILT, 0.0) / max(left, 1e-3)
+            lean, off = descent.solve_lean(miss, lean, MAX_ENTRY_LEAN * share if captured else 0.0)
             entry_, landing_ = self.burns(lit_entry=True, lean=lean)
             _, tf, mf, lit_mass, _ = self.predict(r, v, mass, entry=entry_, landing=landing_)
             if lit_mass == lit_mass:
                 self.landing_need = lit_mass - mf
             fc.log("entry", round(fc.time, 2), np.round(off, 1), np.round(lean, 3), round(fc.airspeed, 1), round(self.usable()), round(tf, 1), round(mf), round(fc.mass), round(self.engine_thrust), round(self.engine_flow, 1))
             back = -fc.air_velocity / fc.airspeed
-            fc.point_at(descent.thrust_direction(back, pad.local_to_eci((lean[0], lean[1], 0.0), fc.time)))
+            flown = lean / share if share > 0.0 else np.zeros(2)    # upright into the coast: no swing after
+            fc.point_at(descent.thrust_direction(back, pad.local_to_eci((flown[0], flown[1], 0.0), fc.time)))
             self.measure_engines()
             fc.sleep(min(airspeed.next_update(), reserve.next_update()))
         fc.shutdown(engines)
@@ -255,6 +290,7 @@ class Return:
         full = landing[0]
         rule = Approach(0.0, rising=True, periods=(CYCLE, BURN_CYCLE))
         lean = np.zeros(2)
+        trim = descent.LeanTrim(TRIM_TIME, TRIM_LIMIT)
         while True:
             mass, q, mach = fc.mass, fc.dynamic_pressure, fc.mach
             drag = fc.acceleration * G0
@@ -268,9 +304,12 @@ class Return:
             fc.log("desc", round(fc.time, 2), np.round(off, 1), np.round(lean, 3), round(fc.altitude), round(q), round(self.drag.scale, 3))
             back = -fc.air_velocity / fc.airspeed
             alpha = float(np.linalg.norm(lean)) * min(MAX_ALPHA, Q_ALPHA / max(q, 1.0))
-            fc.point_at(descent.lean_attitude(back, pad.local_to_eci((lean[0], lean[1], 0.0), fc.time), alpha))
-            nose_air = pad.axes @ pad.from_eci(self.nose() - back, fc.time)
-            fc.log("alpha", round(fc.time, 2), round(math.degrees(alpha), 2), round(math.degrees(self.tail_angle()), 2), np.round(nose_air[:2], 4), np.round(lean, 3))
+            wanted = -alpha * lean / max(float(np.linalg.norm(lean)), 1e-9)    # the nose leans away
+            flown = (pad.axes @ pad.from_eci(self.nose() - back, fc.time))[:2]
+            asked = trim.command(wanted, flown, fc.time)
+            fc.point_at(descent.lean_attitude(back, pad.local_to_eci((-asked[0], -asked[1], 0.0), fc.time),
+                                              float(np.linalg.norm(asked))))
+            fc.log("alpha", round(fc.time, 2), round(math.degrees(alpha), 2), round(math.degrees(self.tail_angle()), 2), np.round(flown, 4), np.round(asked, 4))
             due = powered_descent.ignition_due(fc.clearance, -fc.vertical_speed, mass, full, fc.gravity, drag,
                                                LEAD, LANDING)
             if not rule.ahead(due, fc.time):
