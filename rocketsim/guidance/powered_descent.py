@@ -38,9 +38,10 @@ gimbals' push that holds the angle, fitted on the shipped booster's landing
 burns: docs/guidance.md). So the lean that gives ``a`` is
 ``delta = (a - a_up b) / (a_up - K q / m)``: in thick air (``K q / m > a_up``, about
 9 kPa here) the nose leans away from where the stage must go, as in the
-descent, and thinner, towards it; the divisor is kept at least
-``least_authority a_up`` in size where the two nearly cancel, and ``delta`` within
-``max_alpha`` and the bending load ``q_alpha / q``.
+descent, and thinner, towards it (in still thin air ``a / a_up``, the thrust's lean
+alone); the divisor is kept at least ``least_authority a_up`` in size where the two
+nearly cancel, ``delta`` within the bending load ``q_alpha / q`` and the lean from
+the vertical within the phase's limit.
 
 **Horizontal channel: Apollo's quadratic guidance to a gate above the pad.**
 An acceleration command quadratic in time that meets a target position,
@@ -93,8 +94,7 @@ class Plan:
     ceiling: float = 8e3                # m: the burn is lit below this height only
     normal_area: float = 65.0           # m^2 per rad: the body's normal force under thrust over q
     least_authority: float = 0.3        # share of the thrust's push per radian counted on at least
-    max_alpha: float = math.radians(8.0)        # the nose's lean from the airflow at most,
-    q_alpha: float = math.radians(80e3)         # and its bending load (Pa rad)
+    q_alpha: float = math.radians(80e3)         # the bending load (Pa rad) at most
 
 
 def profile_acceleration(height: float, fall: float, gravity: float, plan: Plan) -> float:
@@ -168,21 +168,24 @@ def command(offset, velocity, height: float, mass: float, thrust: float, gravity
     else:
         wanted = -drift / plan.terminal_time
         tilt = plan.terminal_tilt
-    # the nose's lean from the airflow's reverse ``b`` that gives it: the thrust along the nose
-    # less the body's normal force at that angle of attack, which pushes the other way
+    # the nose's sideways part ``n`` that gives it: the thrust along the nose less the body's
+    # normal force at its angle of attack ``n - b`` (``b`` the airflow's reverse), which pushes
+    # the other way: ``up n - k (n - b) = wanted``, ``k = normal_area q / m``
     air = np.asarray(air_velocity, dtype=float)
     airspeed = float(np.linalg.norm(air))
-    back = -air[:2] / max(airspeed, 1e-3) if airspeed > 1.0 else np.zeros(2)
-    gain = up - plan.normal_area * dynamic_pressure / mass
+    back = -air[:2] / airspeed if airspeed > 1.0 else np.zeros(2)
+    k = plan.normal_area * dynamic_pressure / mass
+    gain = up - k
     floor = plan.least_authority * up
     if abs(gain) < floor:
         gain = math.copysign(floor, gain)
-    lean = (np.asarray(wanted, dtype=float) - up * back) / gain
-    largest = min(plan.max_alpha, plan.q_alpha / max(dynamic_pressure, 1.0))
-    size = float(np.linalg.norm(lean))
+    side = up * (np.asarray(wanted, dtype=float) - k * back) / gain
+    # the angle of attack within the bending load, the lean within the phase's
+    alpha = side / max(up, 1e-9) - back
+    largest = plan.q_alpha / max(dynamic_pressure, 1.0)
+    size = float(np.linalg.norm(alpha))
     if size > largest:
-        lean *= largest / size
-    side = up * (back + lean)
+        side = up * (back + alpha * (largest / size))
     size = float(np.linalg.norm(side))
     cap = up * math.tan(tilt)
     if size > cap:
