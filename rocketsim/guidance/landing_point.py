@@ -68,7 +68,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from rocketsim._jit import njit
+from rocketsim.jit import njit
 from rocketsim.atmosphere.table import air_at
 from rocketsim.bodies.gravity import point_mass_j2
 from rocketsim.constants import (EARTH_J2, EARTH_MU, EARTH_OMEGA, EARTH_RADIUS_EQ,
