@@ -231,3 +231,13 @@ def test_a_leaning_body_points_its_nose_away_from_the_push():
     back, push = np.array((0.0, 0.0, 1.0)), np.array((1.0, 0.0, 0.0))
     nose = descent.lean_attitude(back, push, 0.1)
     assert np.allclose(nose, (-math.sin(0.1), 0.0, math.cos(0.1)))
+
+
+def test_the_throttle_gives_the_force_asked_of_an_engine_in_the_air():
+    """An engine's thrust in the air is ``u T_vac - p A_e`` (docs/physics.md#propulsion):
+    the throttle for a force, the pressure's loss counted, gives that force exactly."""
+    vacuum, loss = 914e3, 101325.0 * 0.68
+    for force in (400e3, 505e3, 800e3):
+        u = powered_descent.throttle_for(force, vacuum - loss, loss)
+        assert math.isclose(u * vacuum - loss, force, rel_tol=1e-12)
+    assert math.isclose(powered_descent.throttle_for(vacuum - loss, vacuum - loss, loss), 1.0)

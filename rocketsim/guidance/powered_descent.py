@@ -20,7 +20,7 @@ engine, slewing its throttle at a finite rate, for a step it cannot follow, and
 leave the stage stopped metres up).
 
 **Ignition from the throttle margin.** The burn is lit when the throttle that
-profile needs (``m a_up / T``, ``T`` the full thrust), reckoned from where the
+profile needs (``m a_up`` of the full thrust ``T``: :func:`throttle_for`), reckoned from where the
 stage will be when the engine has come up (``lead`` s on at the present rate of
 fall: the ignition's dead time and half the spool-up), reaches ``plan``
 (:func:`ignition_throttle`), below ``ceiling`` and once the drag no longer brakes
@@ -64,8 +64,15 @@ vertical descent) the horizontal channel only kills the drift
 down upright and still, a metre or two off rather than sliding.
 
 The thrust direction is the sum of both channels, its lean from the vertical
-held within the phase's limit by shortening the horizontal part; the throttle is the mass times that acceleration over the full
-thrust. :func:`command` gives both; :func:`cutoff_due` says when to cut the
+held within the phase's limit by shortening the horizontal part.
+
+**The throttle.** A rocket engine's thrust in the air is its vacuum thrust, which
+the throttle scales, less the ambient pressure on its nozzle's exit, which it does
+not: ``T(u) = u T_vac - p A_e`` (docs/physics.md#propulsion). So the throttle that
+gives the force ``F`` is ``u = (F + L) / (T + L)`` with ``T`` the full thrust here and
+``L = p A_e`` the pressure's loss (:func:`throttle_for`): ``F / T`` alone asks a
+throttled engine for less than it needs (5 % at sea level at 60 % throttle on a
+Merlin), a shortfall the vertical profile then makes up late, near the ground. :func:`command` gives both; :func:`cutoff_due` says when to cut the
 engine (at ``cutoff_height`` of clearance: its tail-off finishes the job, or once
 the stage has stopped falling near the ground).
 """
@@ -110,24 +117,31 @@ def gate_speed(height: float, fall: float, plan: Plan) -> float:
     return math.sqrt(plan.touch_speed ** 2 + 2.0 * max(slowing, 0.0) * plan.gate_height)
 
 
+def throttle_for(force: float, thrust: float, loss: float = 0.0) -> float:
+    """The throttle that gives ``force`` (N) from an engine of full ``thrust`` (N) here, the
+    ambient pressure taking ``loss`` (N, ``p A_e``) off at any throttle (see the module)."""
+    return (force + loss) / (thrust + loss)
+
+
 def ignition_throttle(height: float, fall: float, mass: float, thrust: float, gravity: float,
-                      lead: float, plan: Plan) -> float:
-    """The throttle of ``thrust`` (N, full) the profile needs if lit ``lead`` s from now,
-    falling on at ``fall`` (m/s) meanwhile, for ``mass`` (kg) at ``height`` (m)."""
+                      lead: float, plan: Plan, loss: float = 0.0) -> float:
+    """The throttle of ``thrust`` (N, full; ``loss`` N of it the ambient pressure's) the
+    profile needs if lit ``lead`` s from now, falling on at ``fall`` (m/s) meanwhile, for
+    ``mass`` (kg) at ``height`` (m)."""
     later = height - fall * lead
     if later <= 0.0:
         return math.inf
-    return mass * profile_acceleration(later, fall, gravity, plan) / thrust
+    return throttle_for(mass * profile_acceleration(later, fall, gravity, plan), thrust, loss)
 
 
 def ignition_due(height: float, fall: float, mass: float, thrust: float, gravity: float, drag: float,
-                 lead: float, plan: Plan) -> float:
+                 lead: float, plan: Plan, loss: float = 0.0) -> float:
     """How far the landing burn is from its ignition (lit when this reaches 0 or above):
     the least of ``ignition_throttle - plan.plan`` and, while the ``drag`` (m/s^2, its
     deceleration now) less gravity still brakes the fall harder than the profile would,
     ``(v^2 / 2h) - (drag - g)`` over ``g``, and ``(ceiling - h) / ceiling`` (the rule of
     :func:`rocketsim.guidance.landing_point.fall`)."""
-    due = ignition_throttle(height, fall, mass, thrust, gravity, lead, plan) - plan.plan
+    due = ignition_throttle(height, fall, mass, thrust, gravity, lead, plan, loss) - plan.plan
     braking = (fall * fall / (2.0 * max(height, 1e-3)) - (drag - gravity)) / gravity
     return min(due, braking, (plan.ceiling - height) / plan.ceiling)
 
@@ -142,15 +156,15 @@ def quadratic_acceleration(offset, velocity, time_to_go: float, target_accelerat
 
 
 def command(offset, velocity, height: float, mass: float, thrust: float, gravity: float,
-            dynamic_pressure: float, air_velocity, plan: Plan = Plan(), pushing=(0.0, 0.0)
-            ) -> tuple[np.ndarray, float]:
+            dynamic_pressure: float, air_velocity, plan: Plan = Plan(), pushing=(0.0, 0.0),
+            loss: float = 0.0) -> tuple[np.ndarray, float]:
     """``(direction, throttle)``: the thrust's direction (unit, east, north, up) and the
     throttle of ``thrust`` (N, full) for a stage at ``offset`` (m, east, north of the pad),
     moving at ``velocity`` (m/s, east, north, up over the ground) and ``air_velocity``
     (m/s, the same axes, relative to the air) ``height`` m above the ground, of ``mass``
     (kg) against ``gravity`` (m/s^2), meeting ``dynamic_pressure`` (Pa), its engines
     ``pushing`` it sideways now (m/s^2, east, north: the thrust over the mass along the
-    nose's lean)."""
+    nose's lean), ``loss`` (N) of their full thrust the ambient pressure's."""
     fall = -float(velocity[2])
     up = max(profile_acceleration(height, fall, gravity, plan), 0.0)
     # where the stage will be when the lean asked now is flown: the autopilot's lag
@@ -194,7 +208,7 @@ def command(offset, velocity, height: float, mass: float, thrust: float, gravity
     total = float(np.linalg.norm(vector))
     if total == 0.0:
         return np.array((0.0, 0.0, 1.0)), 0.0
-    return vector / total, mass * total / thrust
+    return vector / total, throttle_for(mass * total, thrust, loss)
 
 
 def cutoff_due(height: float, fall: float, plan: Plan = Plan()) -> bool:

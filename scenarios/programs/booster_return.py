@@ -109,6 +109,13 @@ class Return:
         w, x, y, z = self.fc.attitude
         return np.array((1.0 - 2.0 * (y * y + z * z), 2.0 * (x * y + w * z), 2.0 * (x * z - w * y)))
 
+    def after_boost_back(self, r, v, mass, dv, entry, landing):
+        """The prediction after a boost-back that changes the velocity ``v`` at ``r`` by ``dv``
+        (Earth-fixed), the mass left by the rocket equation at the engines' exhaust speed."""
+        left = mass * math.exp(-float(np.linalg.norm(dv)) * self.engine_flow / self.engine_thrust)
+        rb, vb, _ = boostback.after_burn(r, v, dv, 6.0 * self.engine_thrust / (mass + left), EARTH_MU)
+        return self.predict(rb, vb, left, entry=entry, landing=landing)
+
     def best_dip(self, back, aim):
         """``(dip, v_go)``: of the boost-back's dips DIPS (rad), the one whose burn, entry
         burn (to ENTRY_SPEED whatever it costs) and landing burn leave the most mass at
@@ -119,15 +126,11 @@ class Return:
         entry, landing = self.burns(unbounded=True)
         best = None
         for dip in DIPS:
-            def end(trial):
-                dv = trial - v
-                left = mass * math.exp(-float(np.linalg.norm(dv)) * self.engine_flow / self.engine_thrust)
-                rb, vb, _ = boostback.after_burn(r, v, dv, 6.0 * self.engine_thrust / (mass + left), EARTH_MU)
-                return self.predict(rb, vb, left, entry=entry, landing=landing)
+            def miss(trial):
+                return pad.offset(self.after_boost_back(r, v, mass, trial - v, entry, landing).point) - aim
 
-            to_gain = boostback.velocity_to_gain(lambda trial: pad.offset(end(trial).point) - aim, v,
-                                                 boostback.burn_plane(r, back, dip), passes=6)
-            kept = end(v + to_gain).mass
+            to_gain = boostback.velocity_to_gain(miss, v, boostback.burn_plane(r, back, dip), passes=6)
+            kept = self.after_boost_back(r, v, mass, to_gain, entry, landing).mass
             if best is None or kept > best[0]:
                 best = (kept, dip, to_gain)
         return best[1], best[2]
@@ -144,6 +147,12 @@ class Return:
             pressure = self.fc.air_pressure
             self.engine_thrust = float(np.mean([e["thrust_N"] for e in full])) + pressure * EXIT_AREA
             self.engine_flow = float(np.mean([e["mass_flow_kg_s"] for e in full]))
+
+    def learn_landing_need(self, lit_mass, touchdown_mass):
+        """The propellant (kg) the landing burn needs, from the last prediction that lit it
+        (the mass when it is lit and at touchdown, kg)."""
+        if lit_mass == lit_mass:
+            self.landing_need = lit_mass - touchdown_mass
 
     def floor(self):
         """The mass (kg) at which the entry burn must end: the dry stage, what its engines
@@ -172,13 +181,7 @@ class Return:
         entry, landing = self.burns()
 
         def miss(trial):
-            dv = trial - now[1]
-            left = now[2] * math.exp(-float(np.linalg.norm(dv)) * self.engine_flow / self.engine_thrust)
-            r, v, _ = boostback.after_burn(now[0], now[1], dv, 6.0 * self.engine_thrust / (now[2] + left), EARTH_MU)
-            down = self.predict(r, v, left, entry=entry, landing=landing)
-            if down.ignition_mass == down.ignition_mass:
-                self.landing_need = down.ignition_mass - down.mass
-            return pad.offset(down.point) - aim
+            return pad.offset(self.after_boost_back(*now, trial - now[1], entry, landing).point) - aim
 
         aim = np.zeros(2)
         first = miss(now[1])
@@ -196,9 +199,10 @@ class Return:
             now = [*pad.state(fc), fc.mass]
             plane = boostback.burn_plane(now[0], to_gain, dip)
             to_gain = boostback.velocity_to_gain(miss, now[1], plane, guess=to_gain, passes=2)
+            down = self.after_boost_back(*now, to_gain, entry, landing)
+            self.learn_landing_need(down.ignition_mass, down.mass)
             size = float(np.linalg.norm(to_gain))
             acceleration = fc.thrust / fc.mass
-            fc.log("bb", round(fc.time, 2), np.round(to_gain, 1), round(size, 1), np.round(miss(now[1] + to_gain), 1), round(acceleration, 2))
             step, checked = fc.time - checked, fc.time       # the update period now
             if lit and boostback.cutoff_due(to_gain, pad.from_eci(self.nose(), fc.time), acceleration,
                                             step, TAIL_OFF):
@@ -270,10 +274,8 @@ class Return:
             share = max(left - UNTILT, 0.0) / max(left, 1e-3)
             lean, off = descent.solve_lean(miss, lean, MAX_ENTRY_LEAN * share if captured else 0.0)
             entry_, landing_ = self.burns(lit_entry=True, lean=lean)
-            _, tf, mf, lit_mass, _ = self.predict(r, v, mass, entry=entry_, landing=landing_)
-            if lit_mass == lit_mass:
-                self.landing_need = lit_mass - mf
-            fc.log("entry", round(fc.time, 2), np.round(off, 1), np.round(lean, 3), round(fc.airspeed, 1), round(self.usable()), round(tf, 1), round(mf), round(fc.mass), round(self.engine_thrust), round(self.engine_flow, 1))
+            _, _, mf, lit_mass, _ = self.predict(r, v, mass, entry=entry_, landing=landing_)
+            self.learn_landing_need(lit_mass, mf)
             back = -fc.air_velocity / fc.airspeed
             flown = lean / share if share > 0.0 else np.zeros(2)    # upright into the coast: no swing after
             fc.point_at(descent.thrust_direction(back, pad.local_to_eci((flown[0], flown[1], 0.0), fc.time)))
@@ -301,7 +303,6 @@ class Return:
                 return pad.offset(self.predict(r, v, mass, lean=trial, landing=landing).point)
 
             lean, off = descent.solve_lean(miss, lean, 1.0)
-            fc.log("desc", round(fc.time, 2), np.round(off, 1), np.round(lean, 3), round(fc.altitude), round(q), round(self.drag.scale, 3))
             back = -fc.air_velocity / fc.airspeed
             alpha = float(np.linalg.norm(lean)) * min(MAX_ALPHA, Q_ALPHA / max(q, 1.0))
             wanted = -alpha * lean / max(float(np.linalg.norm(lean)), 1e-9)    # the nose leans away
@@ -309,9 +310,8 @@ class Return:
             asked = trim.command(wanted, flown, fc.time)
             fc.point_at(descent.lean_attitude(back, pad.local_to_eci((-asked[0], -asked[1], 0.0), fc.time),
                                               float(np.linalg.norm(asked))))
-            fc.log("alpha", round(fc.time, 2), round(math.degrees(alpha), 2), round(math.degrees(self.tail_angle()), 2), np.round(flown, 4), np.round(asked, 4))
             due = powered_descent.ignition_due(fc.clearance, -fc.vertical_speed, mass, full, fc.gravity, drag,
-                                               LEAD, LANDING)
+                                               LEAD, LANDING, self.ground_pressure * EXIT_AREA)
             if not rule.ahead(due, fc.time):
                 break
             fc.sleep(rule.next_update())
@@ -323,8 +323,6 @@ class Return:
         fc, pad = self.fc, self.pad
         fc.deploy_legs()
         fc.ignite(engines)
-        _, landing = self.burns()
-        full = landing[0]
         fc.event("landing burn start", altitude_m=fc.altitude, speed_m_s=fc.airspeed,
                  usable_propellant_kg=self.usable())
         cutoff = Approach(LANDING.cutoff_height, periods=(BURN_CYCLE,))
@@ -336,11 +334,11 @@ class Return:
             nose = pad.axes @ pad.from_eci(self.nose(), fc.time)
             pushing = fc.thrust / fc.mass * nose[:2]
             air = pad.axes @ pad.from_eci(fc.air_velocity, fc.time)
-            direction, throttle = powered_descent.command(offset, velocity, height, fc.mass, full, fc.gravity,
-                                                          fc.dynamic_pressure, air, LANDING, pushing)
+            loss = fc.air_pressure * EXIT_AREA             # the air's push on the nozzle's exit
+            direction, throttle = powered_descent.command(offset, velocity, height, fc.mass, self.engine_thrust - loss,
+                                                          fc.gravity, fc.dynamic_pressure, air, LANDING, pushing, loss)
             fc.point_at(pad.local_to_eci(direction, fc.time))
             fc.throttle(throttle)
-            fc.log("land", round(fc.time, 2), np.round(offset, 1), np.round(velocity, 2), round(height, 1), np.round(direction, 3), round(throttle, 3))
             fc.sleep(cutoff.next_update())
         fc.shutdown(engines)
         fc.release()
