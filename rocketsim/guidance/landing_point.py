@@ -1,7 +1,7 @@
 """Where a falling stage comes down: the landing-point prediction of a return's guidance.
 
-A guidance model, compiled, cheap enough for every guidance cycle (about a
-hundred microseconds from the entry burn down). It integrates a point mass in
+A guidance model, compiled, cheap enough to call several times every guidance
+cycle. It integrates a point mass in
 the Earth-fixed frame (ECEF: position ``r`` and velocity ``v`` over the rotating
 ground) and its mass ``m``::
 
