@@ -7,7 +7,10 @@ Figures in SI units (m, s, m/s), angles in degrees, each name with one meaning
 * ``final``: its last state: ``time_s``, ``position_m`` and ``velocity_m_s`` (the
   central body's inertial frame), ``latitude_deg``, ``longitude_deg``, ``altitude_m``
   (above the ellipsoid), ``inertial_speed_m_s`` and ``surface_speed_m_s`` (over the
-  central body's turning ground);
+  central body's turning ground); a staged body's adds the liquid propellant left in
+  its tanks (``propellant_kg``) and the part of it above each stage's unusable reserve
+  (``usable_propellant_kg``: what its engines could still burn, the margin a landing
+  kept);
 * ``orbit``, for a body in orbit at the end only (its osculating periapsis above the
   central body's equatorial radius: it does not come down): the elements of its last
   state (:func:`rocketsim.sim.sampling.orbit`) with units in their names and the
@@ -34,6 +37,7 @@ import numpy as np
 from rocketsim.constants import DEG
 from rocketsim.frames.geodetic import geodetic_to_ecef
 from rocketsim.sim import sampling
+from rocketsim.vehicle.engines import S_RESERVE
 
 _ORBIT_UNITS = {"semi_major_axis": "semi_major_axis_m", "periapsis_altitude": "periapsis_altitude_m",
                 "apoapsis_altitude": "apoapsis_altitude_m", "period": "period_s"}
@@ -64,6 +68,12 @@ def summary(world) -> dict:
         else:
             figures = world.sample_watch.figures(body.name) if world.sample_watch is not None else None
             record["flight"] = flight(body.events, figures)
+        vehicle = body.vehicle
+        if vehicle is not None and vehicle.n_tanks:
+            left = vehicle.stage_propellant(body.y)
+            record["final"].update(
+                propellant_kg=float(left.sum()),
+                usable_propellant_kg=float(np.maximum(left - vehicle.arrays.stage[:, S_RESERVE], 0.0).sum()))
         landed = [e for e in body.events if e["name"] == "touchdown"]
         if landed:      # the first contact's figures (speeds m/s, tilt deg, distance m)
             record["touchdown"] = {k: v for k, v in landed[0].items() if k != "name"}
