@@ -244,6 +244,7 @@ STAGED = GOOD + """\
         count: 1
         spool_up: 1 s
         gimbal_range: 5 deg
+        gimbal_rate: 10 deg/s
 aero:
   nose: {length: 2 m, shape: ogive}
   legs: [{stage: S1, position: -1 m, radius: 2 m, stiffness: 1.0e+7, damping: 1.0e+5}]
@@ -266,16 +267,16 @@ aero:
     ("exit_area: 0.5 m2", "exit_area: 5.0e+11 m2", "v.yaml:18:", "at most 1e+06 m2"),
     ("spool_up: 1 s", "spool_up: 1.0e-6 s", "v.yaml:21:", "at least 0.001 s"),
     ("gimbal_range: 5 deg", "gimbal_range: 500 deg", "v.yaml:22:", "at most 1.5708 rad"),
-    ("stiffness: 1.0e+7", "stiffness: 1.0e+20", "v.yaml:25:", "at most 1e+12 N/m"),
+    ("stiffness: 1.0e+7", "stiffness: 1.0e+20", "v.yaml:26:", "at most 1e+12 N/m"),
     # within 1e12 N/m, but four legs of 1e10 N/m on the 1 t stage are a mode of 6 325 /s
     # (sqrt(4e10 / 1000)), far beyond RK4 at 5 ms; dampers of 1e7 N s/m one of 4e4 /s (c / m)
-    ("stiffness: 1.0e+7", "stiffness: 1.0e+10", "v.yaml:25:", "aero.legs.0.stiffness: 4 legs "
+    ("stiffness: 1.0e+7", "stiffness: 1.0e+10", "v.yaml:26:", "aero.legs.0.stiffness: 4 legs "
      "(stiffness 4e+10 N/m together) on 1000 kg (the dry mass they hold up) are a mode of 6324.56 /s"),
-    ("damping: 1.0e+5", "damping: 1.0e+7", "v.yaml:25:", "aero.legs.0.damping: 4 legs (damping "
+    ("damping: 1.0e+5", "damping: 1.0e+7", "v.yaml:26:", "aero.legs.0.damping: 4 legs (damping "
      "4e+07 N s/m together) on 1000 kg (the dry mass they hold up) are a mode of 39999 /s"),
-    ("direction: [0, 1, 0]", "direction: [1.0e+300, 1.0e+300, 0]", "v.yaml:26:", "within 1e30"),
-    ("isp: 70 s", "isp: 7.0e+9 s", "v.yaml:26:", "at most 100000 s"),
-    ("length: 2 m, shape", "length: 200 m, shape", "v.yaml:24:", "longer than the stack"),
+    ("direction: [0, 1, 0]", "direction: [1.0e+300, 1.0e+300, 0]", "v.yaml:27:", "within 1e30"),
+    ("isp: 70 s", "isp: 7.0e+9 s", "v.yaml:27:", "at most 100000 s"),
+    ("length: 2 m, shape", "length: 200 m, shape", "v.yaml:25:", "longer than the stack"),
     ("count: 1", "count: 3\n        layout_radius: 5 m", "v.yaml:21:", "wider than stage"),
 ])
 def test_a_vehicle_figure_beyond_its_physical_bound_is_refused_at_its_line(write, cli, written, changed,

@@ -62,14 +62,20 @@ class _Strict(BaseModel):
     model_config = STRICT
 
 
-def field_error(loc: tuple, message: str, value) -> ValidationError:
+# the error type of a field this file needs although the schema has a default for others
+REQUIRED = "required"
+
+
+def field_error(loc: tuple, message: str, value, kind: str = "vehicle") -> ValidationError:
     """A validation error at ``loc`` (relative to the model raising it).
 
     Raised from a model validator, pydantic prefixes the model's own location,
-    so the loader names the exact field (and its line) of the problem.
+    so the loader names the exact field (and its line) of the problem. ``kind``
+    :data:`REQUIRED`: the field is needed here and not written (the loader then
+    names it, as it does a missing field, at its parent's line).
     """
     return ValidationError.from_exception_data("vehicle", [InitErrorDetails(
-        type=PydanticCustomError("vehicle", message), loc=loc, input=value)])
+        type=PydanticCustomError(kind, message), loc=loc, input=value)])
 
 
 class TankSpec(_Strict):
@@ -109,6 +115,11 @@ class TankSpec(_Strict):
         return self
 
 
+# why an engine with a gimbal cone must say how fast it slews (no default is honest)
+GIMBAL_RATE_WHY = ("an engine that cannot slew stays centred and cannot steer (an unfinned launcher "
+                   "left so turns over in the air), and no rate is true of every actuator")
+
+
 class EngineSpec(_Strict):
     """``count`` identical engines, evenly spaced on a ring (one on the axis if the radius is 0).
 
@@ -135,8 +146,12 @@ class EngineSpec(_Strict):
     throttle: tuple[Fraction, Fraction] = Field((1.0, 1.0), description="throttle range [min, max], fractions")
     throttle_rate: Annotated[float, within(0.0, MAX_THROTTLE_RATE, "throttle rate", "/s", above=True)] = Field(
         1.0, description="throttle slew limit, fraction of full thrust per second")
-    gimbal_range: Annotated[Angle, ANGLE] = Field(0.0, description="half-angle of the gimbal cone")
-    gimbal_rate: Annotated[AngularRate, SLEW] = Field(0.0, description="gimbal slew limit")
+    gimbal_range: Annotated[Angle, ANGLE] = Field(
+        0.0, description="half-angle of the gimbal cone, e.g. '5 deg'; default 0: the engine is "
+        "fixed (it cannot steer)")
+    gimbal_rate: Optional[Annotated[AngularRate, SLEW]] = Field(
+        None, description="gimbal slew limit, e.g. '10 deg/s' (launcher actuators slew at about "
+        f"5-20 deg/s); required with a gimbal_range: {GIMBAL_RATE_WHY}")
     ignition_delay: Annotated[Duration, Field(ge=0.2, le=0.5)] = Field(
         0.3, description="dead time from the ignition command to first thrust (0.2-0.5 s)")
     spool_up: Annotated[Duration, RESPONSE] = Field(1.0, description="time from first thrust to full thrust")
@@ -159,6 +174,15 @@ class EngineSpec(_Strict):
     def _one_flow(self) -> "EngineSpec":
         if (self.isp_vacuum is None) == (self.mass_flow is None):
             raise ValueError(f"engine {self.name!r}: give exactly one of 'isp_vacuum' or 'mass_flow'")
+        if self.gimbal_range > 0.0 and not self.gimbal_rate:
+            raise field_error(("gimbal_rate",), f"engine {self.name!r} gimbals "
+                              f"{math.degrees(self.gimbal_range):g} deg but "
+                              + ("its gimbal_rate is 0" if self.gimbal_rate == 0.0 else
+                                 "gives no gimbal_rate")
+                              + f": {GIMBAL_RATE_WHY}; give one, e.g. gimbal_rate: 10 deg/s "
+                              "(launcher actuators slew at about 5-20 deg/s), or gimbal_range: "
+                              "0 deg for a fixed engine", self.gimbal_rate,
+                              REQUIRED if self.gimbal_rate is None else "vehicle")
         if self.mass_flow is not None:
             try:
                 ISP.check(self.isp)
