@@ -5,9 +5,18 @@ anything flies, with an error naming the file, line and field, why, and a typica
 value, or flies as designed:
 
 - an engine with a gimbal cone and no slew rate (0 rad/s would hold it centred: a
-  launcher so turns over in the air) is refused.
+  launcher so turns over in the air) is refused;
+- a site with a height and no ground_height has its ground at the pad's height: the
+  vehicle stands on its legs, compressed by their static deflection ``m g / (n k)``
+  (on the ellipsoid's ground it would start in the air and fall); a ground given
+  explicitly below a pad the vehicle stands on is refused.
 """
 
+import pytest
+
+import rocketsim
+from rocketsim.constants import G0
+from tests.conftest import ROOT
 from tests.test_scenario_errors import assert_clean_error
 
 LAUNCHER = """\
@@ -52,3 +61,32 @@ def test_a_gimbal_without_a_slew_rate_is_refused_at_its_line(write, cli):
     fixed = write("fixed.yaml", LAUNCHER.replace("gimbal_range: 5 deg\n", "gimbal_range: 5 deg\n"
                                                  "        gimbal_rate: 10 deg/s\n", 1))
     assert cli("validate", fixed).exit_code == 0
+
+
+def _standing(site: dict, duration: str = "2 s") -> dict:
+    return {"name": "standing", "vehicle": str(ROOT / "vehicles" / "lander.yaml"), "site": site,
+            "mission": {"epoch": "2026-11-26T12:00:00Z", "start": {"site": {}}, "duration": duration}}
+
+
+def test_the_ground_is_at_the_pads_height_unless_the_site_says_otherwise():
+    """The lander on its four legs (8.5e7 N/m each) on a pad 40 m above the ellipsoid, no
+    ground_height: after 2 s its centre of mass has sunk by the legs' static deflection
+    ``m g / (4 k)`` = 0.436 mm (15.1 t), measured 0.463 mm (the pad's height is geodetic,
+    the flat ground's radial: 26 um apart at 10 deg of latitude), not fallen 40 m to the
+    ellipsoid."""
+    run = rocketsim.fly(_standing({"name": "pad", "latitude": "10 deg", "longitude": "20 deg",
+                                   "height": "40 m"}))
+    table = run.bodies["lander"].table()
+    sunk = table["altitude_m"].iloc[0] - table["altitude_m"].iloc[-1]
+    mass = table["mass_kg"].iloc[0]
+    deflection = mass * G0 / (4 * 8.5e7)
+    print(f"\n[ground] sunk {sunk * 1e3:.4f} mm on the legs, static deflection {deflection * 1e3:.4f} mm")
+    assert sunk == pytest.approx(deflection, abs=0.05e-3)
+    assert run.events.empty or "impact" not in set(run.events["name"])
+
+
+def test_a_ground_below_a_pad_the_vehicle_stands_on_is_refused():
+    with pytest.raises(rocketsim.InputError, match="starts at rest on the pad, 40 m above the "
+                       "ground .* it would fall at T\\+0"):
+        rocketsim.load(_standing({"name": "pad", "latitude": "10 deg", "longitude": "20 deg",
+                                  "height": "40 m", "ground_height": "0 m"}))

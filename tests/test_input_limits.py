@@ -171,9 +171,10 @@ def test_a_telemetry_rate_under_a_microhertz_is_refused_at_its_line(scenario, cl
 
 
 def test_a_pad_below_the_ground_is_refused_at_its_line(write, cli):
-    # found by tests/fuzz (long profile): a pad 120 m below the ellipsoid started the vehicle
-    # inside the ground, and its contact springs made the state non-finite at T+0.1 s
-    write("site.yaml", "name: low\nlatitude: 28 deg\nlongitude: -80 deg\nheight: -120 m\n")
+    # found by tests/fuzz (long profile): a pad 120 m below the ground started the vehicle
+    # inside it, and its contact springs made the state non-finite at T+0.1 s
+    write("site.yaml", "name: low\nlatitude: 28 deg\nlongitude: -80 deg\nheight: -120 m\n"
+          "ground_height: 0 m\n")
     write("vehicle.yaml", VEHICLE)
     write("mission.yaml", "epoch: 2026-11-26T12:00:00Z\nstart: {site: {}}\nduration: 1 s\n")
     path = write("scenario.yaml", "name: x\nvehicle: vehicle.yaml\nsite: site.yaml\nmission: mission.yaml\n")

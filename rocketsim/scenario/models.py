@@ -118,12 +118,16 @@ class SiteSpec(Strict):
     name: str
     latitude: Angle = Field(description="geodetic latitude")
     longitude: Angle = Field(description="longitude, east positive")
-    height: SiteHeight = Field(0.0, description="height of the pad above the WGS84 ellipsoid")
-    pad_azimuth: Angle = Field(1.5707963267948966, description="launch azimuth from north, default due east")
+    height: SiteHeight = Field(
+        0.0, description="height of the pad above the WGS84 ellipsoid, e.g. '1380 m' (the height "
+        "above sea level plus the geoid's undulation there)")
+    pad_azimuth: Angle = Field(1.5707963267948966, description="launch azimuth from north, e.g. "
+                               "'90 deg'; default due east")
     ground_height: Optional[SiteHeight] = Field(
         None, description="height above the WGS84 ellipsoid of a flat ground around the site that "
-        "a vehicle launched from here lands on (its contact points, touchdown, impact, parachute "
-        "heights); default none: the ground is the ellipsoid itself. Usually the pad's height")
+        "a vehicle launched from here stands and lands on (its contact points, touchdown, impact, "
+        "parachute heights), e.g. '0 m' for the ellipsoid; default the pad's height (a vehicle "
+        "standing on the pad stands on the ground)")
     source: str = ""
     model: Literal["realistic", "classic"] = Field(
         "realistic", description="the physics model flown from this site: 'classic' is the classic "
@@ -140,14 +144,18 @@ class SiteSpec(Strict):
             raise ValueError("latitude must be within -90 deg .. 90 deg")
         return value
 
+    @property
+    def ground(self) -> float:
+        """m, height above the WGS84 ellipsoid of the flat ground around the site:
+        ``ground_height``, else the pad's ``height``."""
+        return self.height if self.ground_height is None else self.ground_height
+
     @model_validator(mode="after")
     def _pad_on_or_above_the_ground(self) -> "SiteSpec":
-        ground = 0.0 if self.ground_height is None else self.ground_height
-        if self.height < ground:
-            raise ValueError(f"the pad's height {self.height:g} m is below the ground ({ground:g} m: "
-                             + ("ground_height" if self.ground_height is not None else
-                                "the ellipsoid, as no ground_height is given") + "): a vehicle "
-                             "would start inside the ground")
+        if self.height < self.ground:
+            raise ValueError(f"the pad's height {self.height:g} m is below the ground "
+                             f"(ground_height {self.ground:g} m): a vehicle would start inside "
+                             "the ground")
         return self
 
 
@@ -527,6 +535,7 @@ class Scenario(Strict):
             object.__setattr__(self, "vehicle", reload_tanks(self.vehicle, self.propellant))
         if self.mission.start.site is not None and self.site is None:
             raise ValueError("mission starts on a site: give 'site'")
+        self._stands_on_the_ground()
         if self.mission.start.site is not None and self.mission.start.site.rail is not None \
                 and self.vehicle.stages is None:
             raise ValueError("a launch rail (mission.start.site.rail) goes with a staged vehicle, "
@@ -546,6 +555,21 @@ class Scenario(Strict):
                              "'standard' or 'classic' (the standard shifted by the day's "
                              f"surface temperature), not {self.weather.kind!r}")
         return self
+
+
+    def _stands_on_the_ground(self) -> None:
+        """A vehicle with ground contact starting at rest on the pad stands on the ground:
+        a pad above an explicit ``ground_height`` would start it in the air, to fall at
+        T+0 (a rail holds it; a pad on a tower is not modelled)."""
+        start, site, aero = self.mission.start.site, self.site, self.vehicle.aero
+        if start is None or start.rail is not None or any(start.velocity) or aero is None \
+                or not aero.aerodynamics or site.height <= site.ground:
+            return
+        raise field_error(("site", "ground_height"), f"the vehicle starts at rest on the pad, "
+                          f"{site.height - site.ground:g} m above the ground (ground_height "
+                          f"{site.ground:g} m, the pad's height {site.height:g} m): it would fall "
+                          "at T+0. Leave ground_height out (the ground is then the pad's height) "
+                          "or start on a rail (mission.start.site.rail)", site.ground_height)
 
 
 def check_step(value: float) -> float:
