@@ -9,7 +9,9 @@ value, or flies as designed:
 - a site with a height and no ground_height has its ground at the pad's height: the
   vehicle stands on its legs, compressed by their static deflection ``m g / (n k)``
   (on the ellipsoid's ground it would start in the air and fall); a ground given
-  explicitly below a pad the vehicle stands on is refused.
+  explicitly below a pad the vehicle stands on is refused;
+- ``fc.ignite()`` lights the lowest stage's engines, never an upper stage's stacked above
+  it (which would burn inside its interstage).
 """
 
 import pytest
@@ -90,3 +92,23 @@ def test_a_ground_below_a_pad_the_vehicle_stands_on_is_refused():
                        "ground .* it would fall at T\\+0"):
         rocketsim.load(_standing({"name": "pad", "latitude": "10 deg", "longitude": "20 deg",
                                   "height": "40 m", "ground_height": "0 m"}))
+
+
+IGNITE = """
+def main(fc):
+    fc.event("lit", engines=",".join(fc.ignite()))
+    fc.shutdown()
+"""
+
+
+def test_ignite_with_no_argument_lights_the_lowest_stage_only(write):
+    """In orbit, the whole two-stage stack: ``fc.ignite()`` lights the booster's four
+    engines and not the upper stage's."""
+    vehicle = write("launcher.yaml", LAUNCHER.replace("gimbal_range: 5 deg\n", "gimbal_range: 5 deg\n"
+                                                      "        gimbal_rate: 10 deg/s\n", 1))
+    program = write("ignite.py", IGNITE)
+    run = rocketsim.fly({"name": "ignite", "vehicle": str(vehicle), "program": str(program),
+                         "mission": {"epoch": "2026-11-26T12:00:00Z", "duration": "1 s",
+                                     "start": {"orbit": {"altitude": "400 km", "inclination": "51.6 deg"}}}})
+    lit = run.events.set_index("name").loc["lit", "engines"]
+    assert lit == ",".join(f"booster/main/{k}" for k in range(1, 5))
