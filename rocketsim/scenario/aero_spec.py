@@ -49,6 +49,19 @@ class NoseSpec(_Strict):
     shape: Literal["cone", "ogive", "blunt"] = "ogive"
 
 
+class BoattailSpec(_Strict):
+    """A conical boattail: the bottom ``length`` of the vehicle's lowest stage narrows from
+    the stage's diameter to ``diameter`` at its base (part of the stage's length, as the
+    nose is part of the part it caps). Its slender-body lift acts against the nose's
+    (Barrowman's conical transition: it moves the centre of pressure forward)."""
+
+    stage: str = Field(description="name of the vehicle's lowest stage (the boattail leaves "
+                       "with it at a separation)")
+    length: PositiveLength = Field(description="length of the cone frustum, e.g. '0.127 m'")
+    diameter: PositiveLength = Field(description="diameter at the base, narrower than the "
+                                     "stage's, e.g. '155 mm'")
+
+
 class FinSetSpec(_Strict):
     """A set of 3 or 4 flat trapezoidal fins (Barrowman's normal-force slope and centre of pressure)."""
 
@@ -151,6 +164,8 @@ class AeroSpec(_Strict):
         None, description="(Mach, C_A) pairs, increasing Mach; default the physics model's table")
     axial_tail_first: Optional[list[AxialRow]] = Field(
         None, description="(Mach, C_A) pairs, increasing Mach; default the physics model's table")
+    boattail: Optional[BoattailSpec] = Field(None, description="a conical boattail at the "
+                                             "base of the lowest stage")
     fins: list[FinSetSpec] = []
     grid_fins: list[GridFinSpec] = []
     legs: list[LegSpec] = []
@@ -202,6 +217,7 @@ def check_aero(aero: AeroSpec | None, stages, payload=None) -> None:
                           f"than the stack it tops ({stack:g} m: the stages and the payload)",
                           aero.nose.length)
     by_name = {st.name: st for st in stages}
+    _check_boattail(aero, stages, stack)
     for label in ("fins", "grid_fins", "legs", "rcs"):
         for i, part in enumerate(getattr(aero, label)):
             if part.stage not in by_name:
@@ -224,6 +240,28 @@ def check_aero(aero: AeroSpec | None, stages, payload=None) -> None:
         k, c = aero.body_springs(lightest)
         _check_contact(("aero",), "the body's 4 base points", lightest, 4 * k, 4 * c,
                        "body_contact_stiffness", "body_contact_damping")
+
+
+def _check_boattail(aero: AeroSpec, stages, stack: float) -> None:
+    """A boattail narrows the base of the lowest stage, within that stage and below the
+    nose of the ``stack`` (m, the stages and the payload; a located ValidationError
+    otherwise)."""
+    from rocketsim.scenario.vehicle import field_error
+    tail = aero.boattail
+    if tail is None:
+        return
+    lowest = stages[0]
+    if tail.stage != lowest.name:
+        raise field_error(("aero", "boattail", "stage"), f"a boattail narrows the base of the "
+                          f"vehicle's lowest stage, {lowest.name!r}, not {tail.stage!r}", tail.stage)
+    if tail.diameter >= lowest.diameter:
+        raise field_error(("aero", "boattail", "diameter"), f"the boattail's base "
+                          f"({tail.diameter:g} m) must be narrower than stage {lowest.name!r} "
+                          f"({lowest.diameter:g} m)", tail.diameter)
+    if tail.length > lowest.length * (1 + 1e-12) or tail.length + aero.nose.length > stack * (1 + 1e-12):
+        raise field_error(("aero", "boattail", "length"), f"the boattail ({tail.length:g} m) "
+                          f"reaches above stage {lowest.name!r} ({lowest.length:g} m) or into the "
+                          "nose", tail.length)
 
 
 def _check_contact(loc: tuple, what: str, mass: float, stiffness: float, damping: float,

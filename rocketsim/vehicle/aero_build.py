@@ -11,8 +11,9 @@ section's RCS thrusters.
 
 The body's outline is the stack of stage cylinders, then the fairing (or the
 payload) on top; the top ``nose.length`` of it tapers to the tip as a cone or
-a tangent ogive. The crossflow segments divide the whole length equally, each
-with the diameter at its middle.
+a tangent ogive, and a ``boattail`` narrows the bottom of the lowest stage to
+its base as a cone frustum. The crossflow segments divide the whole length
+equally, each with the diameter at its middle.
 """
 
 from __future__ import annotations
@@ -26,9 +27,9 @@ from rocketsim.constants import FRICTION_REGULARISATION, G0
 from rocketsim.layout import N_STATE
 from rocketsim.errors import InputError
 from rocketsim.vehicle.aero import (A_AREA, A_BASE_AREA, A_ETA, A_NOSE_AREA, A_NOSE_X, A_ON,
-                                    A_REACH, A_WIND, EFFICIENCY_FINENESS, EFFICIENCY_SUBSONIC,
-                                    NOSE_FIRST_CA, NOSE_FIRST_MACH, N_REF, TAIL_FIRST_CA,
-                                    TAIL_FIRST_MACH)
+                                    A_REACH, A_TAIL_AREA, A_TAIL_X, A_WIND, EFFICIENCY_FINENESS,
+                                    EFFICIENCY_SUBSONIC, NOSE_FIRST_CA, NOSE_FIRST_MACH, N_REF,
+                                    TAIL_FIRST_CA, TAIL_FIRST_MACH)
 from rocketsim.vehicle.contact import N_CONTACT
 from rocketsim.vehicle.grid_fins import N_GRID, N_GRID_CMD
 from rocketsim.vehicle.rcs import N_RCS
@@ -54,11 +55,14 @@ def no_aero() -> AeroArrays:
                       _empty(N_GRID_CMD), _empty(N_RCS), np.zeros(0), _empty(N_CONTACT), np.zeros(3))
 
 
-def outline(stages, top_parts, nose_length: float, nose_shape: str):
-    """``diameter(x)`` (m) of the body at station ``x`` (m) and its length.
+def outline(stages, top_parts, nose_length: float, nose_shape: str, boattail=None):
+    """``diameter(x)`` (m) of the body at station ``x`` (m), its length, the station of the
+    nose's base and the nose's base diameter.
 
     ``stages``: (base, length, diameter) of each stage bottom to top;
-    ``top_parts``: (length, diameter) of what sits on the top stage.
+    ``top_parts``: (length, diameter) of what sits on the top stage; ``boattail``:
+    (length, diameter at the base) of a cone frustum narrowing the lowest stage to its
+    base, or None.
     """
     pieces = list(stages)
     top = pieces[-1][0] + pieces[-1][1]
@@ -76,6 +80,9 @@ def outline(stages, top_parts, nose_length: float, nose_shape: str):
     base_d = cylinder(max(nose_base - 1e-9, 0.0))
 
     def diameter(x):
+        if boattail is not None and x < pieces[0][0] + boattail[0]:
+            length, aft = boattail
+            return aft + (pieces[0][2] - aft) * max(0.0, x - pieces[0][0]) / length
         if nose_length <= 0.0 or x < nose_base:
             return cylinder(x)
         s = (total - x) / nose_length          # 1 at the nose's base, 0 at the tip
@@ -91,12 +98,17 @@ def outline(stages, top_parts, nose_length: float, nose_shape: str):
     return diameter, total, nose_base, base_d
 
 
-def nose_centre_of_pressure(diameter, tip: float, length: float, base_d: float) -> float:
-    """Station (m) of the slender-body lift of a nose: ``tip - (L - V / S_base)``."""
+def transition_centre_of_pressure(diameter, a: float, b: float) -> float:
+    """Station (m) of the slender-body lift of the body between stations ``a < b`` (m),
+    where its cross-section goes from ``S(a)`` to ``S(b)``: the mean station weighted by
+    ``dS/dx``, ``(b S(b) - a S(a) - V) / (S(b) - S(a))`` (``V`` the volume between, by
+    parts). A nose (``S(tip) = 0``): ``tip - (L - V / S_base)``; a cone frustum: Barrowman's
+    ``L/3 (1 + (1 - d_1/d_2) / (1 - (d_1/d_2)^2))`` from the end of diameter ``d_1``."""
     n = 400
-    xs = tip - length + (np.arange(n) + 0.5) * length / n
-    volume = sum(math.pi * diameter(x) ** 2 / 4 for x in xs) * length / n
-    return tip - (length - volume / (math.pi * base_d ** 2 / 4))
+    xs = a + (np.arange(n) + 0.5) * (b - a) / n
+    volume = sum(math.pi * diameter(x) ** 2 / 4 for x in xs) * (b - a) / n
+    area_a, area_b = (math.pi * diameter(x) ** 2 / 4 for x in (a, b))
+    return (b * area_b - a * area_a - volume) / (area_b - area_a)
 
 
 def barrowman(fin, body_d: float) -> tuple[float, float]:
@@ -129,7 +141,11 @@ def build_aero(spec, chosen, stage_base, top: bool, with_fairing: bool, tank_nam
     stages = [(b, st.length, st.diameter) for b, st in zip(stage_base, chosen)]
     nose_len = aero.nose.length if top else 0.0
     shape = aero.nose.shape if top else "blunt"
-    diameter, total, nose_base, base_d = outline(stages, top_parts, nose_len, shape)
+    boattail = aero.boattail
+    if boattail is not None and boattail.stage != chosen[0].name:      # it left with its stage
+        boattail = None
+    diameter, total, nose_base, base_d = outline(
+        stages, top_parts, nose_len, shape, None if boattail is None else (boattail.length, boattail.diameter))
     d_max = max(max(d for _, _, d in stages), max((d for _, d in top_parts), default=0.0))
     area = math.pi * d_max ** 2 / 4
 
@@ -138,9 +154,12 @@ def build_aero(spec, chosen, stage_base, top: bool, with_fairing: bool, tank_nam
     ref[A_AREA] = area
     ref[A_ETA] = float(np.interp(total / d_max, EFFICIENCY_FINENESS, EFFICIENCY_SUBSONIC))
     if nose_len > 0.0 and shape != "blunt":
-        ref[A_NOSE_X] = nose_centre_of_pressure(diameter, total, nose_len, base_d)
+        ref[A_NOSE_X] = transition_centre_of_pressure(diameter, total - nose_len, total)
         ref[A_NOSE_AREA] = math.pi * base_d ** 2 / 4
-    ref[A_BASE_AREA] = math.pi * chosen[0].diameter ** 2 / 4
+    if boattail is not None:
+        ref[A_TAIL_X] = transition_centre_of_pressure(diameter, 0.0, boattail.length)
+        ref[A_TAIL_AREA] = math.pi * (boattail.diameter ** 2 - chosen[0].diameter ** 2) / 4
+    ref[A_BASE_AREA] = math.pi * diameter(0.0) ** 2 / 4
     ref[A_WIND] = 1.0 if has_wind else 0.0
 
     n = aero.segments
@@ -182,7 +201,7 @@ def build_aero(spec, chosen, stage_base, top: bool, with_fairing: bool, tank_nam
     dry = sum(st.dry_mass for st in chosen) + sum(
         part.mass for part, on in ((spec.payload, top), (spec.fairing, with_fairing)) if on and part is not None)
     kb, cb = aero.body_springs(dry)
-    for x, r in ((0.0, 0.5 * chosen[0].diameter), (nose_base, 0.5 * base_d)):
+    for x, r in ((0.0, 0.5 * diameter(0.0)), (nose_base, 0.5 * base_d)):
         for j in range(4):
             phi = 0.5 * math.pi * j
             contact.append((x, r * math.cos(phi), r * math.sin(phi), kb, cb, 0.6, FRICTION_REGULARISATION))
