@@ -71,7 +71,11 @@ def fly(scenario: Path, output: Path | None, step: float | None, duration: float
     from rocketsim.telemetry.writer import strict_json
     from rocketsim_cli.compiling import compile_message
 
+    import rocketsim
+
     loaded = load(scenario, overrides(settings))
+    for line in rocketsim.design_warnings(loaded):
+        click.echo(f"warning: {scenario}: {line}", err=True)
     output = output or Path(f"{scenario.stem}.mcap")
     check_writable(output, "--output")
     if summary_json is not None:

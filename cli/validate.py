@@ -22,6 +22,9 @@ def validate(files: tuple[Path, ...]) -> None:
 
     The kind of each file is recognised from its fields (a scenario has
     'mission', a vehicle 'rigid_body' or 'stages', a site 'latitude', a mission 'start').
+    A valid staged vehicle or scenario is then reviewed ('rocketsim vehicle'), and
+    each way its design will fail (break up, tumble, not steer, not lift off) is a
+    warning line on stderr.
 
     \b
     Example:
@@ -36,6 +39,9 @@ def validate(files: tuple[Path, ...]) -> None:
             failed = True
         else:
             click.echo(f"ok: {path} ({kind})")
+            import rocketsim
+            for line in rocketsim.design_warnings(path):
+                click.echo(f"warning: {path}: {line}", err=True)
     if failed:
         sys.exit(2)
 

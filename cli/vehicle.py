@@ -1,4 +1,5 @@
-"""``rocketsim vehicle``: the stack of a vehicle file, its masses, Delta-v and inertia."""
+"""``rocketsim vehicle``: the stack of a vehicle file, its masses, Delta-v and inertia, and
+its design review (``rocketsim.review``)."""
 
 from __future__ import annotations
 
@@ -7,7 +8,6 @@ from pathlib import Path
 
 import click
 
-from rocketsim.errors import InputError
 from rocketsim_cli.errors import output_file, reports_input_errors
 
 
@@ -23,32 +23,28 @@ def vehicle(file, fmt, plot):
     equation, vacuum and sea level, 1 % of each stage's propellant unusable, the
     stages above carried along), thrust-to-weight at liftoff, and the centre of
     mass (above the base) and inertia (roll, pitch, yaw about the centre of mass)
-    full and empty. SI units.
+    full and empty; then its design review: where the nose sits, the centre of
+    pressure and static margin at liftoff and burnout, each stage's peak axial load
+    against the structural limit and how it steers, and warnings. FILE is a vehicle
+    file, or a scenario (then also the rail-exit speed off its rail). SI units.
 
     \b
     Examples:
         rocketsim vehicle vehicles/falcon9-block5.yaml
+        rocketsim vehicle scenarios/hobby-rocket.yaml
         rocketsim vehicle vehicles/falcon9-block5.yaml --format json --plot f9.png
     """
-    from rocketsim.scenario.load import validate
-    from rocketsim.scenario.models import VehicleSpec
-    from rocketsim.scenario.yaml_source import read_yaml
+    import rocketsim
 
-    if not file.is_file():
-        raise InputError(f"vehicle file not found: {file}", file=file)
-    spec = validate(read_yaml(file), VehicleSpec)
-    if spec.stages is None:
-        raise InputError("a rigid-body vehicle has no stack to show: this command reads "
-                         "vehicles with 'stages'", file=file, line=1, column=1, field="stages")
-    from rocketsim.vehicle.summary import summary
-    figures = summary(spec)
+    review = rocketsim.review(file)
+    figures = review.summary
     if fmt == "json":
-        click.echo(json.dumps(figures, indent=2))
+        click.echo(json.dumps({**figures, "review": review.as_dict()}, indent=2))
     else:
-        click.echo(_table(figures))
+        click.echo(_table(figures) + "\n\n" + review.text())
     if plot is not None:
         from rocketsim.vehicle.build import build
-        _plot(plot, spec, build(spec), figures)
+        _plot(plot, review.spec, build(review.spec), figures)
         click.echo(f"plot: {plot}", err=True)
 
 

@@ -11,7 +11,10 @@ value, or flies as designed:
   (on the ellipsoid's ground it would start in the air and fall); a ground given
   explicitly below a pad the vehicle stands on is refused;
 - ``fc.ignite()`` lights the lowest stage's engines, never an upper stage's stacked above
-  it (which would burn inside its interstage).
+  it (which would burn inside its interstage);
+- a hobby rocket whose motor alone pushes it past the 15 g axial limit assumed for a
+  launcher (a K1000T on 7 kg: 15.3 g at T+0.02 s, on the rail) is refused unless the
+  file gives its airframe's limit; with one it flies as designed.
 """
 
 import pytest
@@ -112,3 +115,45 @@ def test_ignite_with_no_argument_lights_the_lowest_stage_only(write):
                                      "start": {"orbit": {"altitude": "400 km", "inclination": "51.6 deg"}}}})
     lit = run.events.set_index("name").loc["lit", "engines"]
     assert lit == ",".join(f"booster/main/{k}" for k in range(1, 5))
+
+
+HOBBY = f"""\
+name: hobby-k
+stages:
+  - name: rocket
+    length: 1.6 m
+    diameter: 0.1 m
+    structure_mass: 4.1 kg
+    motors: [{{name: K1000T, file: {ROOT / 'motors' / 'AeroTech_K1000T.eng'}}}]
+    parachutes:
+      - {{name: drogue, cd_s: 0.3 m2, deploy: apogee}}
+      - {{name: main, cd_s: 2.5 m2, deploy: {{height: 300 m}}}}
+payload: {{name: nose cone, mass: 0.4 kg, length: 0.4 m, diameter: 0.1 m}}
+aero:
+  nose: {{length: 0.4 m, shape: ogive}}
+  fins: [{{stage: rocket, count: 4, position: 0.25 m, root_chord: 0.2 m, tip_chord: 0.08 m,
+          span: 0.1 m, sweep: 0.1 m}}]
+"""
+
+
+def test_a_motor_past_the_launcher_limit_needs_the_airframes_own(write, cli):
+    """The K1000T on a 7.1 kg rocket: 18.0 g 1.4 s into its burn (its thrust over the mass
+    left), past the assumed 15 g. Refused at the aero section with a typical value; with
+    ``limits: {axial_load: 40 g}`` it leaves its rail, burns out, reaches apogee and opens
+    its drogue: no breakup."""
+    path = write("hobby.yaml", HOBBY)
+    assert_clean_error(cli("validate", path), "hobby.yaml:12:1:", "aero.limits:",
+                       "the K1000T of stage 'rocket' pushes the stack at 18.0 g",
+                       "past the 15 g axial limit assumed for a launcher",
+                       "e.g. limits: {axial_load: 40 g}")
+    path = write("hobby.yaml", HOBBY + "  limits: {axial_load: 40 g}\n")
+    run = rocketsim.fly({"name": "hobby", "vehicle": str(path),
+                         "site": {"name": "range", "latitude": "32.99 deg", "longitude": "-106.975 deg",
+                                  "height": "1380 m"},
+                         "mission": {"epoch": "2026-06-13T15:00:00Z", "duration": "40 s",
+                                     "start": {"site": {"rail": {"length": "5.2 m", "inclination": "85 deg"}}}}})
+    names = list(run.events["name"])
+    print(f"\n[hobby] {names}")
+    assert "breakup" not in names
+    for name in ("off_rail", "burnout", "apogee", "parachute_deployed"):
+        assert name in names

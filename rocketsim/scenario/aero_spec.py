@@ -242,6 +242,32 @@ def check_aero(aero: AeroSpec | None, stages, payload=None) -> None:
                        "body_contact_stiffness", "body_contact_damping")
 
 
+def check_axial_load(vehicle) -> None:
+    """A staged ``vehicle`` flying in the air without its own axial limit is held to the
+    launcher default (docs/physics.md#structural-limits): if a stage's burn alone pushes the
+    stack past it however it is flown (solid motors; liquid engines at their least
+    throttle), the default cannot be this vehicle's, and the limit is required (a located
+    ValidationError at ``aero.limits``)."""
+    aero = vehicle.aero
+    if aero is None or not aero.aerodynamics or aero.limits.axial_load is not None:
+        return
+    from rocketsim.constants import STRUCTURE_AXIAL_LIMIT_G
+    from rocketsim.scenario.vehicle import REQUIRED, field_error
+    from rocketsim.vehicle.review import stage_loads
+    for i, stage in enumerate(vehicle.stages):
+        loads = stage_loads(vehicle, i)
+        if loads.least_peak_axial_load_g > STRUCTURE_AXIAL_LIMIT_G:
+            what = (f"the {', '.join(loads.motors)} of stage {stage.name!r} "
+                    + ("pushes" if len(loads.motors) == 1 else "push") if loads.motors
+                    else f"the engines of stage {stage.name!r}, at their least throttle, push")
+            raise field_error(("aero", "limits"), f"{what} the stack at "
+                              f"{loads.least_peak_axial_load_g:.1f} g, past the "
+                              f"{STRUCTURE_AXIAL_LIMIT_G:g} g axial limit assumed for a launcher's "
+                              "structure when the file gives none: it would break up on the pad. "
+                              "Give the axial load this airframe is built for, e.g. limits: "
+                              "{axial_load: 40 g} (docs/physics.md#structural-limits)", None, REQUIRED)
+
+
 def _check_boattail(aero: AeroSpec, stages, stack: float) -> None:
     """A boattail narrows the base of the lowest stage, within that stage and below the
     nose of the ``stack`` (m, the stages and the payload; a located ValidationError

@@ -31,7 +31,7 @@ from rocketsim.scenario.bounds import (BODY_MASS, BOUNDS, EXTENT, MAX_PROGRAM_CP
 from rocketsim.scenario.classic_range import CLASSIC, classic_site
 from rocketsim.scenario.weather import Weather
 from rocketsim.scenario.units import STRICT, Angle, Duration, Frequency, Inertia, Length, Mass, Speed
-from rocketsim.scenario.aero_spec import AeroSpec, check_aero
+from rocketsim.scenario.aero_spec import AeroSpec, check_aero, check_axial_load
 from rocketsim.scenario.vehicle import FairingSpec, PayloadSpec, StageSpec, check_staged, field_error
 from rocketsim.scenario.stage_selection import keep_stages, reload_tanks, stack_spacecraft
 
@@ -104,6 +104,7 @@ class VehicleSpec(Strict):
         if self.stages is not None:
             check_staged(self.stages, self.engines, self.payload)
             check_aero(self.aero, self.stages, self.payload)
+            check_axial_load(self)
         elif (self.engines is not None or self.payload is not None or self.fairing is not None
               or self.aero is not None):
             raise ValueError("'engines', 'payload', 'fairing' and 'aero' go with 'stages', not 'rigid_body'")

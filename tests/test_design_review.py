@@ -1,0 +1,170 @@
+"""The pre-flight design review (rocketsim/vehicle/review.py, ``rocketsim.review``,
+``rocketsim vehicle``), each figure against an independent reference:
+
+- the static margin of the hobby rocket and of the two measured-flight rockets
+  against RocketPy's ``static_margin`` (a peer library used only in tests, its own
+  Barrowman sum and mass model) for the same rocket (tests/rocketpy_rockets.py), at
+  liftoff and at burnout: within 0.1 calibre (measured: within 1e-4);
+- the crossflow centre of pressure of a slender body against Jorgensen's eq. (1), its
+  two terms at their stations: the nose's slender-body lift at the nose's centre of
+  pressure, the crossflow at the planform's centroid (NASA TR R-474, 1977);
+- the rail exit of a constant-thrust, constant-mass rocket against
+  ``v = sqrt(2 L (T/m - g sin theta))``, ``t = sqrt(2 L / (T/m - g sin theta))``, and
+  the hobby rocket's against its flight's ``off_rail``;
+- the peak axial load of a constant-thrust motor: at its burnout, ``T / m_burnout``;
+- the warnings: one line each for a design that will break up, tumble or cannot steer.
+"""
+
+import math
+
+import pytest
+
+import rocketsim
+from rocketsim.constants import G0
+from rocketsim.vehicle.aero import NOSE_FIRST_CA, NOSE_FIRST_MACH
+from rocketsim.vehicle.build import build
+from rocketsim.vehicle.review import crossflow_centre_of_pressure, rail_exit, review, stage_loads
+from tests.aero_vehicles import SLENDER, shipped, spec
+from tests.conftest import ROOT
+
+
+@pytest.mark.parametrize("name", ["hobby-rocket.yaml", "ndrt-2020.yaml", "bella-lui.yaml"])
+def test_the_static_margin_is_rocketpys_for_the_same_rocket(name):
+    pytest.importorskip("rocketpy")
+    from tests.rocketpy_rockets import rocketpy_rocket
+    vehicle = shipped(name)
+    drag = list(zip(NOSE_FIRST_MACH.tolist(), NOSE_FIRST_CA.tolist()))
+    rocket, motor = rocketpy_rocket(vehicle, drag)
+    liftoff, burnout = review(vehicle).phases
+    peer = (rocket.static_margin(0), rocket.static_margin(motor.burn_out_time))
+    print(f"\n[margin] {name}: CP {liftoff.centre_of_pressure_m:.4f} m (RocketPy "
+          f"{rocket.cp_position(0):.4f}); margin {liftoff.static_margin_cal:.4f} / "
+          f"{burnout.static_margin_cal:.4f} cal at liftoff / burnout, RocketPy {peer[0]:.4f} / {peer[1]:.4f}")
+    assert liftoff.static_margin_cal == pytest.approx(peer[0], abs=0.1)
+    assert burnout.static_margin_cal == pytest.approx(peer[1], abs=0.1)
+
+
+@pytest.mark.parametrize("scenario", ["hobby-rocket.yaml", "measured/ndrt-2020.yaml",
+                                      "measured/bella-lui.yaml"])
+def test_rocketsim_vehicle_prints_the_centre_of_pressure_and_static_margin(cli, scenario):
+    result = cli("vehicle", ROOT / "scenarios" / scenario)
+    assert result.exit_code == 0, result.output
+    liftoff = rocketsim.review(ROOT / "scenarios" / scenario).phases[0]
+    line = next(row for row in result.output.splitlines() if row.startswith("rocket liftoff"))
+    assert f"{liftoff.centre_of_pressure_m:.3f}" in line and f"{liftoff.static_margin_cal:.2f}" in line
+    assert "CP m" in result.output and "margin cal" in result.output and "off a " in result.output
+
+
+def test_the_crossflow_centre_of_pressure_is_jorgensens():
+    # The 10 m x 0.5 m body with its 2 m cone (tests/aero_vehicles.py) at 5 deg, Mach 0.5
+    # (crossflow Mach 0.044: C_dc 1.2, eta 0.70 for fineness 20): Jorgensen's eq. (1) puts
+    # the nose's (A_b/A_r) sin 2a cos(a/2) at the cone's 2/3 L from its tip and
+    # eta C_dc (A_p/A_r) sin^2 a at the planform's centroid.
+    model = build(spec(SLENDER))
+    a = math.radians(5.0)
+    area = math.pi * 0.25 ** 2
+    nose = math.sin(2 * a) * math.cos(a / 2)
+    cylinder, cone = 0.5 * 8.0, 0.5 * 0.5 * 2.0                  # planform areas, m^2
+    centroid = (cylinder * 4.0 + cone * (8.0 + 2.0 / 3.0)) / (cylinder + cone)
+    cross = 0.70 * 1.2 * (cylinder + cone) / area * math.sin(a) ** 2
+    expected = (nose * (10.0 - 2.0 * 2.0 / 3.0) + cross * centroid) / (nose + cross)
+    found = crossflow_centre_of_pressure(model.arrays.aero)
+    print(f"\n[crossflow] centre of pressure {found:.3f} m, Jorgensen {expected:.3f} m")
+    assert found == pytest.approx(expected, abs=0.1)
+
+
+def _motor_rocket(thrust_points, propellant, total, limits=None):
+    vehicle = {"name": "dart", "stages": [{"name": "dart", "length": "1.5 m", "diameter": "0.1 m",
+                                           "structure_mass": "8 kg",
+                                           "motors": [{"name": "M", "thrust": thrust_points,
+                                                       "diameter": "75 mm", "length": "0.4 m",
+                                                       "propellant_mass": f"{propellant} kg",
+                                                       "total_mass": f"{total} kg"}]}],
+               "aero": {"nose": {"length": "0.3 m", "shape": "ogive"},
+                        "fins": [{"stage": "dart", "count": 4, "position": "0.2 m",
+                                  "root_chord": "0.2 m", "tip_chord": "0.1 m", "span": "0.1 m"}]}}
+    if limits is not None:
+        vehicle["aero"]["limits"] = limits
+    return spec(vehicle)
+
+
+def test_the_rail_exit_of_a_constant_thrust_rocket_is_the_closed_form():
+    # 1 kN from 1 ms on (the curve starts from nothing), 1 g of propellant on a 10 kg
+    # rocket: constant mass to 1e-4; a 5 m rail at 80 deg, 0.2 m to its last button
+    rocket = _motor_rocket([[0, 0], [0.001, 1000.0], [30.0, 1000.0]], 0.001, 2.0)
+    mass = 10.0
+    length, theta, button = 5.0, math.radians(80.0), 0.2
+    accel = 1000.0 / mass - G0 * math.sin(theta)
+    travel = length - button
+    found = rail_exit(rocket, length, theta, button, G0)
+    print(f"\n[rail] {found.speed_m_s:.5f} m/s at {found.time_s:.5f} s, closed form "
+          f"{math.sqrt(2 * travel * accel):.5f} m/s at {math.sqrt(2 * travel / accel):.5f} s")
+    assert found.speed_m_s == pytest.approx(math.sqrt(2 * travel * accel), rel=2e-4)
+    assert found.time_s == pytest.approx(math.sqrt(2 * travel / accel), abs=1.5e-3)
+
+
+def test_the_rail_exit_is_the_flights_off_rail():
+    """The hobby rocket off its 5.2 m rail (scenarios/hobby-rocket.yaml): the review's exit
+    (thrust alone) against the flight's ``off_rail`` event (its drag, the turning Earth,
+    the integrator's steps cut at the exit): measured 29.093 against 29.082 m/s, both at
+    T+0.3668 s."""
+    path = ROOT / "scenarios" / "hobby-rocket.yaml"
+    found = rocketsim.review(path).rail
+    flown = rocketsim.fly(path, duration=1.0).events.set_index("name").loc["off_rail"]
+    print(f"\n[rail] review {found.speed_m_s:.3f} m/s at {found.time_s:.4f} s, flight "
+          f"{flown['speed_m_s']:.3f} m/s at {flown['at_s']:.4f} s")
+    assert found.speed_m_s == pytest.approx(flown["speed_m_s"], rel=1e-3)
+    assert found.time_s == pytest.approx(flown["at_s"], abs=1e-3)
+
+
+def test_the_peak_axial_load_of_a_constant_thrust_motor_is_at_its_burnout():
+    # 2 kN for 2 s (1 ms ramps) burning 1.5 kg in proportion to the impulse: the last
+    # instant of full thrust has burnt all but the tail's share, I_tail / I_total
+    points = [[0, 0], [0.001, 2000.0], [2.0, 2000.0], [2.001, 0.0]]
+    rocket = _motor_rocket(points, 1.5, 3.0, {"axial_load": "40 g"})
+    impulse = 2000.0 * (0.0005 + 1.999 + 0.0005)
+    left = 1.5 * (2000.0 * 0.0005) / impulse
+    mass = 8.0 + 1.5 + left                             # structure, case, the tail's propellant
+    loads = stage_loads(rocket, 0)
+    print(f"\n[axial] peak {loads.peak_axial_load_g:.6f} g at {loads.peak_at_s:.4f} s, "
+          f"T / m_burnout {2000.0 / mass / G0:.6f} g")
+    assert loads.peak_axial_load_g == pytest.approx(2000.0 / mass / G0, rel=1e-6)
+    assert loads.least_peak_axial_load_g == loads.peak_axial_load_g     # a motor cannot throttle
+    assert loads.peak_at_s == pytest.approx(2.0, abs=1e-6)
+
+
+def test_validate_warns_one_line_each_of_a_design_that_breaks_tumbles_or_cannot_steer(write, cli):
+    motor = ROOT / "motors" / "AeroTech_K1000T.eng"
+    fragile = write("fragile.yaml", f"""\
+        name: fragile
+        stages:
+          - name: rocket
+            length: 1.6 m
+            diameter: 0.1 m
+            structure_mass: 4.5 kg
+            structure_centre: 0.4 m
+            motors: [{{name: K1000T, file: {motor}}}]
+        payload: {{name: nose cone, mass: 0.5 kg, length: 0.4 m, diameter: 0.1 m}}
+        aero:
+          nose: {{length: 0.4 m, shape: ogive}}
+          limits: {{axial_load: 12 g}}
+        """)
+    blind = write("blind.yaml", """\
+        name: blind
+        stages:
+          - name: kick
+            length: 2 m
+            diameter: 1 m
+            structure_mass: 100 kg
+            tanks: [{name: T, propellant: MMH, density: 880 kg/m3, radius: 0.45 m, length: 1 m, position: 0.5 m}]
+            engines: [{name: E, thrust_vacuum: 5 kN, isp_vacuum: 300 s, exit_area: 0.05 m2}]
+        """)
+    result = cli("validate", ROOT / "vehicles" / "hobby-rocket.yaml", fragile, blind)
+    assert result.exit_code == 0, result.output
+    warnings = [line for line in result.output.splitlines() if line.startswith("warning:")]
+    print("\n" + "\n".join(warnings))
+    assert len(warnings) == 3
+    assert "fragile.yaml: will break up: the burn of stage 'rocket' pushes the stack at 16.7 g" in warnings[0]
+    assert "12 g axial limit (the file's aero.limits)" in warnings[0]
+    assert "fragile.yaml: will tumble: static margin -1" in warnings[1]
+    assert "blind.yaml: cannot steer: stage 'kick' burns liquid engines" in warnings[2]
