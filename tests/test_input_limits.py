@@ -277,7 +277,8 @@ aero:
      "4e+07 N s/m together) on 1000 kg (the dry mass they hold up) are a mode of 39999 /s"),
     ("direction: [0, 1, 0]", "direction: [1.0e+300, 1.0e+300, 0]", "v.yaml:27:", "within 1e30"),
     ("isp: 70 s", "isp: 7.0e+9 s", "v.yaml:27:", "at most 100000 s"),
-    ("length: 2 m, shape", "length: 200 m, shape", "v.yaml:25:", "longer than the stack"),
+    ("length: 2 m, shape", "length: 200 m, shape", "v.yaml:25:",
+     "longer than the top stage 'S1' (10 m), the part it caps"),
     ("count: 1", "count: 3\n        layout_radius: 5 m", "v.yaml:21:", "wider than stage"),
 ])
 def test_a_vehicle_figure_beyond_its_physical_bound_is_refused_at_its_line(write, cli, written, changed,

@@ -43,10 +43,16 @@ class _Strict(BaseModel):
 
 
 class NoseSpec(_Strict):
-    """The nose: the top ``length`` of the body, a cone or a tangent ogive (or blunt: no nose lift)."""
+    """The nose: the top ``length`` of the part it caps (the fairing, else the payload, else
+    the top stage), a cone or a tangent ogive (or blunt: no nose lift). That part's
+    ``length`` includes it: a stage that caps the stack reaches to the nose's tip, and a
+    stage written to end at the nose's base puts the nose inside it (docs/physics.md#the-stack-and-its-nose)."""
 
-    length: NonNegativeLength = Field(description="length of the nose, from its base to the tip")
-    shape: Literal["cone", "ogive", "blunt"] = "ogive"
+    length: NonNegativeLength = Field(
+        description="length of the nose from its base to the tip, e.g. '0.61 m': the top of the "
+        "part it caps (the fairing, else the payload, else the top stage), whose length includes it")
+    shape: Literal["cone", "ogive", "blunt"] = Field("ogive", description="cone, ogive (tangent) "
+                                                     "or blunt (no nose lift)")
 
 
 class BoattailSpec(_Strict):
@@ -203,19 +209,23 @@ class AeroSpec(_Strict):
         return value
 
 
-def check_aero(aero: AeroSpec | None, stages, payload=None) -> None:
+def check_aero(aero: AeroSpec | None, stages, payload=None, fairing=None) -> None:
     """Every part of ``aero`` names a stage of the vehicle (and a thruster a tank of its
-    stage), and the nose is no longer than the stack under it (its stages and
-    ``payload``, the top once a fairing is gone); raises a located ValidationError
-    (relative to the vehicle)."""
+    stage), and the nose is no longer than each part it caps (the fairing, and the
+    payload, the top once a fairing is gone, else the top stage); raises a located
+    ValidationError (relative to the vehicle)."""
     if aero is None or stages is None:
         return
     from rocketsim.scenario.vehicle import field_error
     stack = sum(st.length for st in stages) + (payload.length if payload is not None else 0.0)
-    if aero.nose.length > stack * (1 + 1e-12):
-        raise field_error(("aero", "nose", "length"), f"the nose ({aero.nose.length:g} m) is longer "
-                          f"than the stack it tops ({stack:g} m: the stages and the payload)",
-                          aero.nose.length)
+    caps = [(f"the fairing ({fairing.length:g} m)", fairing.length)] if fairing is not None else []
+    caps.append((f"the payload {payload.name!r} ({payload.length:g} m)", payload.length) if payload is not None
+                else (f"the top stage {stages[-1].name!r} ({stages[-1].length:g} m)", stages[-1].length))
+    for part, length in caps:
+        if aero.nose.length > length * (1 + 1e-12):
+            raise field_error(("aero", "nose", "length"), f"the nose ({aero.nose.length:g} m) is "
+                              f"longer than {part}, the part it caps: the nose is the top of that "
+                              "part, and its length includes the nose", aero.nose.length)
     by_name = {st.name: st for st in stages}
     _check_boattail(aero, stages, stack)
     for label in ("fins", "grid_fins", "legs", "rcs"):

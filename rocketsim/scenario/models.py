@@ -103,7 +103,7 @@ class VehicleSpec(Strict):
             raise ValueError("give exactly one of 'rigid_body' or 'stages'")
         if self.stages is not None:
             check_staged(self.stages, self.engines, self.payload)
-            check_aero(self.aero, self.stages, self.payload)
+            check_aero(self.aero, self.stages, self.payload, self.fairing)
             check_axial_load(self)
         elif (self.engines is not None or self.payload is not None or self.fairing is not None
               or self.aero is not None):
