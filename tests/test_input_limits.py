@@ -359,6 +359,54 @@ def test_the_schema_names_each_bound_and_why(cli):
     assert "at least 0.001 m and at most 1000 m" in stage["length"]["description"]
 
 
+@pytest.mark.parametrize("kind", ["scenario", "vehicle", "site", "mission"])
+def test_every_quantity_in_the_schema_names_its_units_and_gives_an_example(cli, kind):
+    """Every field of every model that reads a quantity (rocketsim.scenario.units) says in
+    its schema's description its dimension and the units it takes, and gives an example
+    value the file could hold (read back as that quantity, it parses)."""
+    from rocketsim.scenario.load import REFERENCED
+    from rocketsim.scenario.models import Scenario
+    from rocketsim.scenario.units import Dimension, _dimension_of, parse_quantity
+    schema = json.loads(cli("schema", "--kind", kind).output)
+    models = {}
+
+    def collect(model):
+        if model.__name__ in models:
+            return
+        models[model.__name__] = model
+        for info in model.model_fields.values():
+            for inner in _models(info.annotation):
+                collect(inner)
+
+    collect(Scenario if kind == "scenario" else REFERENCED[kind])
+    checked = 0
+    for name, model in models.items():
+        properties = (schema if model.__name__ == schema.get("title") else
+                      schema.get("$defs", {}).get(name, {})).get("properties", {})
+        for field, info in model.model_fields.items():
+            dimension = next((m for m in info.metadata if isinstance(m, Dimension)), None) \
+                or _dimension_of(info.annotation)
+            if dimension is None or field not in properties:
+                continue
+            prop = properties[field]
+            assert f"({dimension.name.replace('_', ' ')}:" in prop["description"], (name, field)
+            for example in prop["examples"]:
+                parse_quantity(example, dimension.name)
+            checked += 1
+    print(f"\n[schema] {kind}: {checked} quantity fields")
+    assert checked > {"scenario": 100, "vehicle": 80, "site": 3, "mission": 10}[kind]
+
+
+def _models(annotation):
+    """The pydantic models inside an annotation (through Optional, Union, list, tuple, dict)."""
+    import typing
+    from pydantic import BaseModel
+    if isinstance(annotation, type) and issubclass(annotation, BaseModel):
+        yield annotation
+    for arg in typing.get_args(annotation):
+        yield from _models(arg)
+
+
 # the hobby rocket of vehicles/hobby-rocket.yaml (13.9 kg dry with its nose cone, the payload),
 # its motor file named where it is
 HOBBY = (ROOT / "vehicles" / "hobby-rocket.yaml").read_text().replace(

@@ -73,10 +73,11 @@ class FinSetSpec(_Strict):
 
     stage: str = Field(description="name of the stage the fins are on")
     count: Annotated[int, Field(ge=3, le=4)] = 4
-    position: Station = Field(description="height of the root chord's leading (upper) edge above the stage base")
-    root_chord: PositiveLength
-    tip_chord: NonNegativeLength
-    span: PositiveLength = Field(description="from the body to the tip")
+    position: Station = Field(description="height of the root chord's leading (upper) edge above "
+                              "the stage base, e.g. '0.27 m'")
+    root_chord: PositiveLength = Field(description="e.g. '0.15 m'")
+    tip_chord: NonNegativeLength = Field(description="e.g. '0.08 m'")
+    span: PositiveLength = Field(description="from the body to the tip, e.g. '0.17 m'")
     sweep: NonNegativeLength = Field(0.0, description="axial distance from the root's to the tip's leading edge")
 
 

@@ -117,8 +117,10 @@ class SiteSpec(Strict):
     """A launch site on the WGS84 ellipsoid."""
 
     name: str
-    latitude: Angle = Field(description="geodetic latitude")
-    longitude: Angle = Field(description="longitude, east positive")
+    latitude: Angle = Field(description="geodetic latitude, north positive, e.g. '28.5619 deg' "
+                            "(Cape Canaveral SLC-40)")
+    longitude: Angle = Field(description="longitude, east positive, e.g. '-80.5774 deg' "
+                             "(Cape Canaveral SLC-40)")
     height: SiteHeight = Field(
         0.0, description="height of the pad above the WGS84 ellipsoid, e.g. '1380 m' (the height "
         "above sea level plus the geoid's undulation there)")
@@ -207,7 +209,8 @@ class OrbitStart(Strict):
     body: Literal["earth", "moon", "mars"] = Field("earth", description="the body orbited")
     elements: ElementsKind = Field("mean", description=ELEMENTS_DESCRIPTION)
 
-    altitude: Optional[Annotated[Length, Field(le=MAX_START_DISTANCE)]] = None
+    altitude: Optional[Annotated[Length, Field(le=MAX_START_DISTANCE)]] = Field(
+        None, description="circular altitude above the equatorial radius, e.g. '415 km'")
     semi_major_axis: Optional[Annotated[Length, Field(gt=0, le=MAX_START_DISTANCE)]] = None
     eccentricity: Annotated[float, Field(ge=0, lt=1)] = 0.0
     inclination: Union[Angle, Literal["sso"]] = Field(
@@ -300,13 +303,14 @@ class RailSpec(Strict):
     away from the crowd, into the day's wind), while the site file stays the place.
     """
 
-    length: Annotated[Length, SIZE] = Field(description="length of the rail")
+    length: Annotated[Length, SIZE] = Field(description="length of the rail, e.g. '5.2 m'")
     inclination: Optional[Angle] = Field(
         None, description="elevation of the rail above the horizon; default the start's elevation")
     heading: Optional[Angle] = Field(
         None, description="azimuth the rail leans towards, from north; default the site's pad azimuth")
     last_button: Annotated[Length, EXTENT] = Field(
-        0.0, description="height of the vehicle's aft rail button above its base (the last to leave)")
+        0.0, description="height of the vehicle's aft rail button above its base (the last to "
+        "leave), e.g. '0.25 m'")
 
     @model_validator(mode="after")
     def _travel(self) -> "RailSpec":
@@ -421,7 +425,7 @@ class MissionSpec(Strict):
     epoch: dt.datetime = Field(description="UTC instant of mission time 0 (ISO 8601)")
     dut1: Annotated[float, Field(ge=-0.9, le=0.9)] = Field(0.0, description="UT1 - UTC, s")
     start: StartSpec
-    duration: Annotated[Duration, Field(gt=0)] = Field(description="mission time to fly")
+    duration: Annotated[Duration, Field(gt=0)] = Field(description="mission time to fly, e.g. '3 h'")
     initial_rates: tuple[_Rate, _Rate, _Rate] = Field(
         (0.0, 0.0, 0.0), description="body rates at the start, rad/s (roll, pitch, yaw)")
     target: TargetSpec = Field(TargetSpec(), description="what the mission aims for")

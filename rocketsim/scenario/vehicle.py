@@ -84,11 +84,13 @@ class TankSpec(_Strict):
     name: str
     propellant: str = Field(description="what it holds, e.g. LOX, RP-1, LCH4, LH2")
     density: Annotated[Density, within(MIN_DENSITY, MAX_DENSITY, "density", "kg/m3")] = Field(
-        description="propellant density")
-    radius: PositiveLength = Field(description="inner radius of the cylinder")
-    length: PositiveLength = Field(description="length of the cylinder")
-    position: NonNegativeLength = Field(description="height of the tank's bottom above the stage base")
-    wall_mass: NonNegativeMass = Field(0.0, description="mass of the tank wall (thin shell)")
+        description="propellant density, e.g. '1141 kg/m3' (LOX; RP-1 810, LH2 71, LCH4 423)")
+    radius: PositiveLength = Field(description="inner radius of the cylinder, e.g. '1.83 m'")
+    length: PositiveLength = Field(description="length of the cylinder, e.g. '22.9 m'")
+    position: NonNegativeLength = Field(description="height of the tank's bottom above the stage "
+                                        "base, e.g. '15.4 m'")
+    wall_mass: NonNegativeMass = Field(0.0, description="mass of the tank wall (thin shell), "
+                                       "e.g. '2500 kg'")
     propellant_mass: Optional[NonNegativeMass] = Field(
         None, description="propellant loaded at liftoff; default: full")
     feeds_engines: bool = Field(
@@ -134,12 +136,15 @@ class EngineSpec(_Strict):
     layout_angle: Angle = Field(0.0, description="angle of the first engine from body +y about +x")
     position: NonNegativeLength = Field(0.0, description="height of the gimbal points above the stage base")
     mass: NonNegativeMass = Field(0.0, description="mass of one engine (a point mass at its gimbal point)")
-    thrust_vacuum: Annotated[Force, THRUST] = Field(description="vacuum thrust of one engine at full throttle")
-    isp_vacuum: Optional[Annotated[SpecificImpulse, ISP]] = Field(None, description="vacuum specific impulse")
+    thrust_vacuum: Annotated[Force, THRUST] = Field(description="vacuum thrust of one engine at full "
+                                                    "throttle, e.g. '914 kN' (a Merlin 1D)")
+    isp_vacuum: Optional[Annotated[SpecificImpulse, ISP]] = Field(
+        None, description="vacuum specific impulse, e.g. '311 s'")
     mass_flow: Optional[Annotated[MassFlow, Field(gt=0)]] = Field(
         None, description="mass flow of one engine at full throttle (the specific impulse it "
         "gives with the thrust is held to the bounds of isp_vacuum)")
-    exit_area: Annotated[Area, within(0.0, MAX_SIZE ** 2, "size", "m2")] = Field(description="nozzle exit area")
+    exit_area: Annotated[Area, within(0.0, MAX_SIZE ** 2, "size", "m2")] = Field(
+        description="nozzle exit area, e.g. '0.68 m2'")
     exit_pressure: Optional[Annotated[Pressure, within(0.0, MAX_PRESSURE, "pressure", "Pa", above=True)]] = Field(
         None, description="nozzle exit pressure at full throttle (flow separation check); "
         "none: the nozzle never separates")
@@ -247,7 +252,7 @@ class MotorSpec(_Strict):
         None, description="(time s since ignition, thrust N) pairs, times increasing; "
         "instead of 'file'")
     position: NonNegativeLength = Field(0.0, description="height of the motor's aft end (nozzle "
-                                        "exit) above the stage base")
+                                        "exit) above the stage base, e.g. '0 m'")
     diameter: Optional[PositiveLength] = Field(None, description="motor diameter (default: the .eng header's)")
     length: Optional[PositiveLength] = Field(None, description="motor length (default: the .eng header's)")
     propellant_mass: Optional[Annotated[Mass, within(0.0, MAX_MASS, "mass", "kg", above=True)]] = Field(
@@ -355,7 +360,8 @@ class ParachuteSpec(_Strict):
 
     name: str
     cd_s: Annotated[Area, DRAG_AREA] = Field(description="C_D S: drag coefficient times "
-                                             "reference area, fully inflated")
+                                             "reference area, fully inflated, e.g. '5.65 m2' (a "
+                                             "3 m flat circular canopy at C_D 0.8)")
     lag: Annotated[Duration, OPENING_LAG] = Field(1.0, description="from deployment to the start "
                                                   "of inflation")
     inflation: Annotated[Duration, INFLATION] = Field(1.0, description="from the start of "
@@ -384,15 +390,19 @@ class StageSpec(_Strict):
     """One stage: structure, tanks, engines and point masses; positions from its base."""
 
     name: str
-    length: PositiveLength
-    diameter: PositiveLength
+    length: PositiveLength = Field(description="from the stage's base to its top (to the nose's "
+                                   "tip if the nose caps it), e.g. '41.2 m'")
+    diameter: PositiveLength = Field(description="e.g. '3.7 m'")
     structure_mass: PositiveMass = Field(
-        description="dry mass of the structure alone (a thin shell of the stage's size); "
+        description="e.g. '8890 kg': dry mass of the structure alone (a thin shell of the stage's size); "
         "tank walls, engines and point masses are listed separately. Every stage has one: "
         "it keeps the mass and inertia of a stage flying on its own, its tanks dry, positive")
     structure_centre: Optional[NonNegativeLength] = Field(
         None, description="height of the structure's centre of mass above the base; default mid-stage")
-    tanks: list[TankSpec] = []
+    tanks: list[TankSpec] = Field([], description="propellant tanks; those feeding engines feed "
+                                   "all the stage's engines, drawn in proportion to their loads "
+                                   "(the loads are the mixture ratio: each runs dry at the same "
+                                   "instant)")
     engines: list[EngineSpec] = []
     point_masses: list[PointMassSpec] = []
     motors: list[MotorSpec] = Field([], description="solid motors (thrust curves) of the stage")
