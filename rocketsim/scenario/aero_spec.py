@@ -212,21 +212,24 @@ class AeroSpec(_Strict):
 
 def check_aero(aero: AeroSpec | None, stages, payload=None, fairing=None) -> None:
     """Every part of ``aero`` names a stage of the vehicle (and a thruster a tank of its
-    stage), and the nose is no longer than each part it caps (the fairing, and the
-    payload, the top once a fairing is gone, else the top stage); raises a located
-    ValidationError (relative to the vehicle)."""
+    stage), and the nose is no longer than the part it caps at liftoff (the fairing, else
+    the payload, else the top stage; once a fairing is gone, out of the air, the nose's
+    shape is taken from the top of what is left); raises a located ValidationError
+    (relative to the vehicle)."""
     if aero is None or stages is None:
         return
     from rocketsim.scenario.vehicle import field_error
     stack = sum(st.length for st in stages) + (payload.length if payload is not None else 0.0)
-    caps = [(f"the fairing ({fairing.length:g} m)", fairing.length)] if fairing is not None else []
-    caps.append((f"the payload {payload.name!r} ({payload.length:g} m)", payload.length) if payload is not None
-                else (f"the top stage {stages[-1].name!r} ({stages[-1].length:g} m)", stages[-1].length))
-    for part, length in caps:
-        if aero.nose.length > length * (1 + 1e-12):
-            raise field_error(("aero", "nose", "length"), f"the nose ({aero.nose.length:g} m) is "
-                              f"longer than {part}, the part it caps: the nose is the top of that "
-                              "part, and its length includes the nose", aero.nose.length)
+    if fairing is not None:
+        part, length = f"the fairing ({fairing.length:g} m)", fairing.length
+    elif payload is not None:
+        part, length = f"the payload {payload.name!r} ({payload.length:g} m)", payload.length
+    else:
+        part, length = f"the top stage {stages[-1].name!r} ({stages[-1].length:g} m)", stages[-1].length
+    if aero.nose.length > length * (1 + 1e-12):
+        raise field_error(("aero", "nose", "length"), f"the nose ({aero.nose.length:g} m) is "
+                          f"longer than {part}, the part it caps: the nose is the top of that "
+                          "part, and its length includes the nose", aero.nose.length)
     by_name = {st.name: st for st in stages}
     _check_boattail(aero, stages, stack)
     for label in ("fins", "grid_fins", "legs", "rcs"):
