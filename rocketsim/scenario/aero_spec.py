@@ -148,15 +148,17 @@ class HeatShieldSpec(_Strict):
 
 class LimitsSpec(_Strict):
     """A vehicle's own structural limits (docs/physics.md#structural-limits), in place of
-    the defaults sized for launchers (250 kPa deg, 15 g): a small hobby rocket takes
-    far higher loads."""
+    the launcher's assumed without them (250 kPa deg, 15 g): a small hobby rocket takes
+    far higher loads, and one whose motor alone passes 15 g must give its own."""
 
     q_alpha: Optional[Annotated[float, within(0.0, MAX_Q_ALPHA, "structural limit", "Pa deg",
                                               above=True)]] = Field(
-        None, description="bending load q alpha that breaks the vehicle, Pa deg")
+        None, description="bending load q alpha that breaks the vehicle, Pa deg, e.g. 500000; "
+        "default 250000 (a launcher's, assumed)")
     axial_load: Optional[Annotated[Acceleration, within(0.0, MAX_AXIAL_LOAD, "structural limit",
                                                         "m/s2", above=True)]] = Field(
-        None, description="axial load that breaks the vehicle, e.g. '40 g'")
+        None, description="axial load that breaks the vehicle, e.g. '40 g'; default 15 g (a "
+        "launcher's, assumed), required when a stage's motor alone passes it")
 
 
 class AeroSpec(_Strict):
@@ -183,7 +185,8 @@ class AeroSpec(_Strict):
         None, description="N s/m; default 2e5, or 100 per kg of dry mass under 2 t")
     rcs: list[ThrusterSpec] = []
     heat_shield: Optional[HeatShieldSpec] = None
-    limits: LimitsSpec = Field(LimitsSpec(), description="structural limits in place of the defaults")
+    limits: LimitsSpec = Field(LimitsSpec(), description="structural limits in place of the "
+                               "launcher's assumed (15 g, 250 000 Pa deg)")
 
     def body_springs(self, dry_mass: float) -> tuple[float, float]:
         """``(stiffness N/m, damping N s/m)`` of each of the body's contact points: the
