@@ -5,7 +5,7 @@ single stage, whose length reaches to the nose's tip (the nose is the top 0.61 m
 of the stage it caps), with its boattail, fins, motor, parachute attachment and
 the design review's centres of mass and pressure; and the top of the Electron,
 whose nose is the top 1.5 m of its fairing. Outlines are the aerodynamics'
-own (:func:`rocketsim.vehicle.aero_build.outline`). Run from the repository:
+own (:func:`rocketsim.vehicle.outline.outline`). Run from the repository:
 
     python docs/vehicle_geometry.py [out.png]
 """
@@ -24,7 +24,7 @@ import numpy as np  # noqa: E402
 from rocketsim.scenario.load import validate  # noqa: E402
 from rocketsim.scenario.models import VehicleSpec  # noqa: E402
 from rocketsim.scenario.yaml_source import read_yaml  # noqa: E402
-from rocketsim.vehicle.aero_build import outline  # noqa: E402
+from rocketsim.vehicle.outline import outline  # noqa: E402
 from rocketsim.vehicle.review import review  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]

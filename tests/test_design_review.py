@@ -13,7 +13,10 @@
   ``v = sqrt(2 L (T/m - g sin theta))``, ``t = sqrt(2 L / (T/m - g sin theta))``, and
   the hobby rocket's against its flight's ``off_rail``;
 - the peak axial load of a constant-thrust motor: at its burnout, ``T / m_burnout``;
-- the warnings: one line each for a design that will break up, tumble or cannot steer.
+- the warnings: one line each for a design that will break up, tumble or cannot steer;
+- the review's pure-Python centre of mass (what ``rocketsim validate`` computes without
+  numpy) against the compiled mass model's, for every shipped staged vehicle, loaded and
+  after each stage's burn (to 1e-12 relative).
 """
 
 import math
@@ -24,7 +27,9 @@ import rocketsim
 from rocketsim.constants import G0
 from rocketsim.vehicle.aero import NOSE_FIRST_CA, NOSE_FIRST_MACH
 from rocketsim.vehicle.build import build
-from rocketsim.vehicle.review import crossflow_centre_of_pressure, rail_exit, review, stage_loads
+from rocketsim.constants import UNUSABLE_PROPELLANT
+from rocketsim.vehicle.review import (centre_of_mass, crossflow_centre_of_pressure, rail_exit, review,
+                                      stage_loads)
 from tests.aero_vehicles import SLENDER, shipped, spec
 from tests.conftest import ROOT
 
@@ -54,6 +59,22 @@ def test_rocketsim_vehicle_prints_the_centre_of_pressure_and_static_margin(cli, 
     line = next(row for row in result.output.splitlines() if row.startswith("rocket liftoff"))
     assert f"{liftoff.centre_of_pressure_m:.3f}" in line and f"{liftoff.static_margin_cal:.2f}" in line
     assert "CP m" in result.output and "margin cal" in result.output and "off a " in result.output
+
+
+@pytest.mark.parametrize("name", ["falcon9-block5.yaml", "electron.yaml", "starship-superheavy.yaml",
+                                  "lander.yaml", "hobby-rocket.yaml", "ndrt-2020.yaml", "bella-lui.yaml"])
+def test_the_reviews_centre_of_mass_is_the_mass_models(name):
+    vehicle = shipped(name)
+    for first in range(len(vehicle.stages)):
+        model = build(vehicle, first=first)
+        burnt_tanks = model.tank_load * [UNUSABLE_PROPELLANT if s == 0 and tank.feeds_engines else 1.0
+                                         for s, st in enumerate(vehicle.stages[first:]) for tank in
+                                         sorted(st.tanks, key=lambda t: not t.feeds_engines)]
+        burnt_motors = [0.0 if s == 0 else m.propellant_mass
+                        for s, st in enumerate(vehicle.stages[first:]) for m in st.motors]
+        for burnt, tanks, motors in ((False, model.tank_load, None), (True, burnt_tanks, burnt_motors)):
+            mass, x_cm = model.mass_properties(tanks, motors)[:2]
+            assert centre_of_mass(vehicle, first, burnt) == pytest.approx((mass, x_cm), rel=1e-12)
 
 
 def test_the_crossflow_centre_of_pressure_is_jorgensens():

@@ -16,11 +16,10 @@ from pathlib import Path
 
 from rocketsim.constants import G0
 from rocketsim.errors import InputError
-from rocketsim.frames.geodetic import normal_gravity
 from rocketsim.scenario.load import LoadedScenario, load, validate
 from rocketsim.scenario.models import VehicleSpec
 from rocketsim.scenario.yaml_source import YamlSource, read_yaml
-from rocketsim.vehicle.review import Review, review as review_vehicle
+from rocketsim.vehicle.review import Review, design_warnings as vehicle_warnings, review as review_vehicle
 
 
 def review(source: str | Path | Mapping | LoadedScenario, *, base_dir: str | Path | None = None) -> Review:
@@ -28,7 +27,11 @@ def review(source: str | Path | Mapping | LoadedScenario, *, base_dir: str | Pat
     scenario has ``mission``), a mapping of either (file references relative to
     ``base_dir``), or a loaded scenario. :class:`InputError` for bad input and for a
     ``rigid_body`` vehicle (no stack to review)."""
-    spec, file, rail, gravity, pad = _vehicle(source, base_dir)
+    spec, file, rail, latitude, pad = _vehicle(source, base_dir)
+    gravity = G0
+    if rail is not None:                  # the pad's normal gravity for its rail exit
+        from rocketsim.frames.geodetic import normal_gravity
+        gravity = normal_gravity(latitude)
     if spec.stages is None:
         raise InputError("a rigid-body vehicle has no stack to review: the design review reads "
                          "vehicles with 'stages'", file=file, line=1 if file else None,
@@ -38,17 +41,19 @@ def review(source: str | Path | Mapping | LoadedScenario, *, base_dir: str | Pat
 
 def design_warnings(source: str | Path | Mapping | LoadedScenario, *, base_dir: str | Path | None = None) -> list[str]:
     """The review's warnings for ``source`` (as :func:`review` reads it): one line for each
-    way its design will fail; none for a rigid body, a site or a mission file."""
+    way its design will fail; none for a rigid body, a site or a mission file. Pure
+    Python: no array library, no compiled kernel (``rocketsim validate`` stays light)."""
     if isinstance(source, (str, Path)):
         data = read_yaml(Path(source)).data
         if not isinstance(data, dict) or not ("mission" in data or "stages" in data):
             return []
-    spec, _, rail, gravity, pad = _vehicle(source, base_dir)
-    return [] if spec.stages is None else review_vehicle(spec, rail, gravity, pad).warnings
+    spec, _, _, _, pad = _vehicle(source, base_dir)
+    return [] if spec.stages is None else vehicle_warnings(spec, pad)
 
 
 def _vehicle(source, base_dir):
-    """``(vehicle spec, its file or None, rail or None, gravity, starts on a pad)``."""
+    """``(vehicle spec, its file or None, rail or None, the site's latitude (rad) or None,
+    starts on a pad)``."""
     if isinstance(source, LoadedScenario):
         return _of_scenario(source)
     if isinstance(source, Mapping):
@@ -56,14 +61,14 @@ def _vehicle(source, base_dir):
             return _of_scenario(load(source, base_dir=base_dir))
         folder = Path(base_dir or ".").resolve()
         spec = validate(YamlSource(None, dict(source), {}), VehicleSpec, base_dir=folder)
-        return spec, None, None, G0, False
+        return spec, None, None, None, False
     path = Path(source)
     if not path.is_file():
         raise InputError(f"file not found: {path}", file=path)
     read = read_yaml(path)
     if isinstance(read.data, dict) and "mission" in read.data:
         return _of_scenario(load(path))
-    return validate(read, VehicleSpec), path, None, G0, False
+    return validate(read, VehicleSpec), path, None, None, False
 
 
 def _of_scenario(loaded: LoadedScenario):
@@ -72,5 +77,5 @@ def _of_scenario(loaded: LoadedScenario):
     rail = None
     if start is not None and start.rail is not None:
         rail = (start.rail.length, start.nose_elevation, start.rail.last_button)
-    gravity = normal_gravity(scenario.site.latitude) if scenario.site is not None else G0
-    return scenario.vehicle, loaded.files.get("vehicle"), rail, gravity, start is not None
+    latitude = scenario.site.latitude if scenario.site is not None else None
+    return scenario.vehicle, loaded.files.get("vehicle"), rail, latitude, start is not None

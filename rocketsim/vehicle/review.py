@@ -10,8 +10,9 @@ figures a designer checks before flying (docs/physics.md#design-review):
   nose (slender body, 2 per radian), a boattail and the fins summed at their
   centres of pressure (J. S. Barrowman, *The Practical Calculation of the
   Aerodynamic Characteristics of Slender Finned Vehicles*, M.S. thesis, Catholic
-  University of America, 1967; :func:`~rocketsim.vehicle.aero.centre_of_pressure`),
-  the figure a finned rocket's stability is judged by; and at
+  University of America, 1967; the lifts of
+  :meth:`~rocketsim.vehicle.outline.BodyShape.lift_slopes`, as the flight's arrays
+  hold them), the figure a finned rocket's stability is judged by; and at
   :data:`CROSSFLOW_ALPHA` in subsonic flow from the flight's own normal-force
   model, the slender-body lift plus Jorgensen's crossflow along the body (NASA TR
   R-474, 1977; :func:`~rocketsim.vehicle.aero.body_aero`), where an unfinned
@@ -35,22 +36,21 @@ figures a designer checks before flying (docs/physics.md#design-review):
 :func:`review` returns a :class:`Review`; its ``warnings`` are one line each for
 a design that will break up (however its program throttles: a full-throttle peak
 past the limit is the program's to avoid, and shows in the table), tumble, cannot
-steer or cannot lift off.
+steer or cannot lift off. :func:`design_warnings` gives them alone, in pure Python
+(no array library, no compiled kernel: ``rocketsim validate`` stays light); the
+crossflow centre of pressure and the stack's summary (masses, Delta-v, inertia) are
+the full review's, from the compiled model.
 """
 
 from __future__ import annotations
 
+import bisect
 import math
 from dataclasses import asdict, dataclass, field, replace
 
-import numpy as np
-
 from rocketsim.constants import (DEG, G0, STRUCTURE_AXIAL_LIMIT_G, STRUCTURE_Q_ALPHA_LIMIT,
-                                 UNUSABLE_PROPELLANT)
-from rocketsim.vehicle.aero import A_AREA, A_ON, body_aero, centre_of_pressure
-from rocketsim.vehicle.build import build
-from rocketsim.vehicle.motors import M_PROPELLANT, M_STAGE
-from rocketsim.vehicle.summary import stage_engines, summary
+                                 UNUSABLE_PROPELLANT, USSA_P0)
+from rocketsim.vehicle.outline import body_shape
 
 CROSSFLOW_ALPHA = 5.0 * DEG     # rad, the angle of attack of the crossflow centre of pressure
 CROSSFLOW_MACH = 0.5            # the Mach number it is evaluated at (subsonic)
@@ -174,6 +174,29 @@ def review(spec, rail=None, gravity: float = G0, pad: bool = False) -> Review:
     ``(length m, inclination rad, last_button m)`` for the rail exit; ``gravity``: the
     pad's (m/s^2, default g0); ``pad``: the flight starts on a pad (a thrust-to-weight
     under 1 then cannot lift off)."""
+    from rocketsim.vehicle.build import build
+    from rocketsim.vehicle.summary import summary
+    found = _review(spec, rail, gravity, pad)
+    if found.aerodynamics:
+        phases = []
+        for p in found.phases:
+            i = [st.name for st in spec.stages].index(p.stage)
+            cross = crossflow_centre_of_pressure(build(spec, first=i).arrays.aero)
+            phases.append(replace(p, crossflow_centre_of_pressure_m=cross,
+                                  crossflow_static_margin_cal=(p.centre_of_mass_m - cross) / found.diameter_m))
+        found.phases = phases
+    found.summary = summary(spec)
+    return found
+
+
+def design_warnings(spec, pad: bool = False) -> list[str]:
+    """The warnings of :func:`review`, one line each, in pure Python (the review without
+    its crossflow centre of pressure and summary, which need the compiled model)."""
+    return _review(spec, None, G0, pad).warnings
+
+
+def _review(spec, rail, gravity: float, pad: bool) -> Review:
+    """The review's figures that pure Python gives (see :func:`review`)."""
     aero = spec.aero
     aerodynamic = aero is not None and aero.aerodynamics
     limits = aero.limits if aero is not None else None
@@ -181,17 +204,32 @@ def review(spec, rail=None, gravity: float = G0, pad: bool = False) -> Review:
     axial_limit = limits.axial_load / G0 if given else STRUCTURE_AXIAL_LIMIT_G
     q_alpha_limit = (limits.q_alpha if limits is not None and limits.q_alpha is not None
                      else STRUCTURE_Q_ALPHA_LIMIT)
-    model = build(spec)
-    d = math.sqrt(4.0 * model.arrays.aero.ref[A_AREA] / math.pi) if aerodynamic else max(
-        st.diameter for st in spec.stages)
+    shape = _shape(spec, 0) if aerodynamic else None
+    length = shape.length if shape is not None else _stack_length(spec)
+    d = shape.reference_diameter if shape is not None else max(st.diameter for st in spec.stages)
     loads = [stage_loads(spec, i) for i in range(len(spec.stages))]
     phases = stability(spec, pad or rail is not None) if aerodynamic else []
-    found = Review(spec.name, model.length, d, nose_place(spec), aerodynamic, axial_limit,
-                   q_alpha_limit, given, phases, loads,
-                   None if rail is None else rail_exit(spec, *rail, gravity), summary(spec),
+    found = Review(spec.name, length, d, nose_place(spec), aerodynamic, axial_limit, q_alpha_limit,
+                   given, phases, loads, None if rail is None else rail_exit(spec, *rail, gravity),
                    spec=spec)
     found.warnings = warnings(found, spec, pad or rail is not None)
     return found
+
+
+def _shape(spec, first: int):
+    """The :class:`~rocketsim.vehicle.outline.BodyShape` of stages ``first``.. (the top's
+    payload and fairing on)."""
+    bases, base = [], 0.0
+    for st in spec.stages[first:]:
+        bases.append(base)
+        base += st.length
+    return body_shape(spec, spec.stages[first:], bases, True, spec.fairing is not None)
+
+
+def _stack_length(spec) -> float:
+    """m, from the base to the top of the payload or fairing."""
+    return sum(st.length for st in spec.stages) + max(
+        [p.length for p in (spec.payload, spec.fairing) if p is not None], default=0.0)
 
 
 def nose_place(spec) -> str:
@@ -214,32 +252,57 @@ def nose_place(spec) -> str:
 
 def stability(spec, pad: bool = True) -> list[Phase]:
     """Each stage's ignition (``liftoff`` for the lowest off a ``pad``) and its burnout, the
-    stages above still full: the stack's centre of mass and centres of pressure."""
+    stages above still full: the stack's centre of mass and its centre of pressure at zero
+    angle of attack (the crossflow's left nan: :func:`review` fills it in)."""
     phases = []
     for i, stage in enumerate(spec.stages):
-        model = build(spec, first=i)
-        a = model.arrays.aero
-        d = math.sqrt(4.0 * a.ref[A_AREA] / math.pi)
-        cp = centre_of_pressure(a.ref, a.fin)
-        cross = crossflow_centre_of_pressure(a)
-        full = model.tank_load.copy()
-        empty = full.copy()
-        empty[model.tank_stage == 0] *= UNUSABLE_PROPELLANT
-        motors = model.arrays.motor[:, M_PROPELLANT].copy()
-        burnt = motors.copy()
-        burnt[model.arrays.motor[:, M_STAGE] == 0] = 0.0    # this stage's (the lowest built)
-        for moment, tanks, solid in (("liftoff" if i == 0 and pad else "ignition", full, motors),
-                                     ("burnout", empty, burnt)):
-            mass, x_cm = model.mass_properties(tanks, solid)[:2]
-            phases.append(Phase(stage.name, moment, float(mass), float(x_cm), cp, (x_cm - cp) / d,
-                                cross, (x_cm - cross) / d))
+        shape = _shape(spec, i)
+        slopes = shape.lift_slopes()
+        total = sum(k for _, k in slopes)
+        cp = sum(x * k for x, k in slopes) / total if total > 0.0 else math.nan
+        for moment, burnt in (("liftoff" if i == 0 and pad else "ignition", False), ("burnout", True)):
+            mass, x_cm = centre_of_mass(spec, i, burnt)
+            phases.append(Phase(stage.name, moment, mass, x_cm, cp,
+                                (x_cm - cp) / shape.reference_diameter, math.nan, math.nan))
     return phases
+
+
+def centre_of_mass(spec, first: int = 0, burnt: bool = False) -> tuple[float, float]:
+    """``(mass kg, station m of the centre of mass)`` of stages ``first``.. of ``spec``
+    with the payload and fairing, loaded, or with stage ``first``'s burn done (its
+    feeding tanks down to their unusable 1 %, its motors empty): the parts where
+    :func:`rocketsim.vehicle.build.build` puts them (structure at its centre, tank walls
+    mid-tank, liquid columns settled on their tanks' bottoms, engines and point masses at
+    their stations, motors' cases and propellant at the motors' centres, payload and
+    fairing at theirs)."""
+    mass = moment = base = 0.0
+    for s, st in enumerate(spec.stages[first:]):
+        done = burnt and s == 0
+        parts = [(st.structure_mass, 0.5 * st.length if st.structure_centre is None else st.structure_centre)]
+        for tank in st.tanks:
+            load = tank.load * (UNUSABLE_PROPELLANT if done and tank.feeds_engines else 1.0)
+            column = load / (tank.density * math.pi * tank.radius ** 2)
+            parts += [(tank.wall_mass, tank.position + 0.5 * tank.length), (load, tank.position + 0.5 * column)]
+        parts += [(e.mass * e.count, e.position) for e in st.engines]
+        parts += [(p.mass * p.count, p.position) for p in st.point_masses]
+        parts += [(m.case_mass + (0.0 if done else m.propellant_mass), m.position + 0.5 * m.length)
+                  for m in st.motors]
+        for m, x in parts:
+            mass += m
+            moment += m * (base + x)
+        base += st.length
+    for part in (spec.payload, spec.fairing):
+        if part is not None:
+            mass += part.mass
+            moment += part.mass * (base + 0.5 * part.length)
+    return mass, moment / mass
 
 
 def crossflow_centre_of_pressure(a) -> float:
     """Station (m) where the flight's normal force acts at :data:`CROSSFLOW_ALPHA` nose first,
     Mach :data:`CROSSFLOW_MACH` in sea-level air (``a``: the stack's AeroArrays): ``x_cm -
-    M_pitch / F_z`` (independent of ``x_cm``: no rotation)."""
+    M_pitch / F_z`` (independent of ``x_cm``: no rotation). Compiled: the full review's."""
+    from rocketsim.vehicle.aero import A_ON, body_aero
     if a.ref[A_ON] == 0.0:
         return math.nan
     rho, sound = SEA_LEVEL
@@ -249,15 +312,43 @@ def crossflow_centre_of_pressure(a) -> float:
     return -my / fz if fz != 0.0 else math.nan
 
 
+def stage_engines(stage) -> tuple[float, float, float]:
+    """``(vacuum thrust N, sea-level thrust N, mass flow kg/s)`` of a stage's engines at full
+    throttle, and of its solid motors at their mean thrust and flow (total impulse and
+    propellant over the curve's duration; the same at sea level: a curve is measured there)."""
+    vacuum = sum(e.count * e.thrust_vacuum for e in stage.engines)
+    sea = sum(e.count * max(0.0, e.thrust_vacuum - USSA_P0 * e.exit_area) for e in stage.engines)
+    flow = sum(e.count * e.thrust_vacuum / (G0 * e.isp) for e in stage.engines)
+    for m in stage.motors:
+        burn = m.thrust[-1][0]
+        vacuum, sea, flow = vacuum + m.total_impulse / burn, sea + m.total_impulse / burn, \
+            flow + m.propellant_mass / burn
+    return vacuum, sea, flow
+
+
+def _interp(xs, ys, x: float, left: float | None = None, right: float | None = None) -> float:
+    """Linear interpolation in ``(xs, ys)`` (increasing ``xs``), held at the ends unless
+    ``left``/``right`` are given for beyond them."""
+    if x <= xs[0]:
+        return ys[0] if left is None or x == xs[0] else left
+    if x >= xs[-1]:
+        return ys[-1] if right is None or x == xs[-1] else right
+    k = bisect.bisect_right(xs, x)
+    f = (x - xs[k - 1]) / (xs[k] - xs[k - 1])
+    return ys[k - 1] + f * (ys[k] - ys[k - 1])
+
+
 def _motor_curves(stage):
-    """``(times, thrust N, burnt fraction)`` of each of ``stage``'s motors on its own points:
-    the curve times ``thrust_scale`` and the impulse delivered over the total."""
+    """``(times, thrust N, burnt fraction, propellant kg)`` of each of ``stage``'s motors on
+    its own points: the curve times ``thrust_scale``, the impulse delivered over the total."""
     found = []
     for motor in stage.motors:
-        t = np.array([p[0] for p in motor.thrust])
-        f = motor.thrust_scale * np.array([p[1] for p in motor.thrust])
-        impulse = np.concatenate(([0.0], np.cumsum(0.5 * (f[1:] + f[:-1]) * np.diff(t))))
-        found.append((t, f, impulse / impulse[-1], motor.propellant_mass))
+        t = [p[0] for p in motor.thrust]
+        f = [motor.thrust_scale * p[1] for p in motor.thrust]
+        impulse = [0.0]
+        for k in range(1, len(t)):
+            impulse.append(impulse[-1] + 0.5 * (f[k] + f[k - 1]) * (t[k] - t[k - 1]))
+        found.append((t, f, [i / impulse[-1] for i in impulse], motor.propellant_mass))
     return found
 
 
@@ -274,10 +365,10 @@ def _stage_burn(stage, throttle: str):
     end = usable / flow if flow > 0 else 0.0
 
     def force(t):
-        return (thrust if t < end else 0.0) + sum(float(np.interp(t, c[0], c[1], right=0.0)) for c in curves)
+        return (thrust if t < end else 0.0) + sum(_interp(c[0], c[1], t, right=0.0) for c in curves)
 
     def burnt(t):
-        return flow * min(t, end) + sum(m * float(np.interp(t, c[0], c[2])) for c in curves for m in [c[3]])
+        return flow * min(t, end) + sum(c[3] * _interp(c[0], c[2], t) for c in curves)
 
     kinks = sorted({0.0, *(float(x) for c in curves for x in c[0]), *([end] if end > 0 else [])})
     return force, burnt, kinks
@@ -339,8 +430,8 @@ def rail_exit(spec, length: float, inclination: float, last_button: float, gravi
         f = thrust * min(1.0, max(0.0, (t - dead) / spool)) if thrust else 0.0
         gone = flow * max(0.0, t - dead)
         for (times, force, fraction, m0), start in zip(curves, starts):
-            f += float(np.interp(t - start, times, force, left=0.0, right=0.0))
-            gone += m0 * float(np.interp(t - start, times, fraction, left=0.0))
+            f += _interp(times, force, t - start, left=0.0, right=0.0)
+            gone += m0 * _interp(times, fraction, t - start, left=0.0)
         return f / (mass0 - gone) - gravity * math.sin(inclination)
 
     travel, s, v, t, h = length - last_button, 0.0, 0.0, 0.0, _RAIL_STEP
