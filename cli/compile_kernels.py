@@ -28,9 +28,9 @@ from rocketsim.errors import InputError
 from rocketsim_cli.errors import reports_input_errors
 
 def _start_worker(beside: bool) -> None:
-    from rocketsim import _jit
+    from rocketsim.api import set_compiling_beside
 
-    _jit.COMPILE_BESIDE = beside        # off: the pool's processes are the cores' compilers already
+    set_compiling_beside(beside)        # off: the pool's processes are the cores' compilers already
 
 
 def _signatures(folder: str) -> int:
@@ -44,9 +44,7 @@ def _warm(path: str) -> tuple[str, int, float, str | None]:
     compiled in this process, seconds, error message or None)."""
     import tempfile
 
-    from rocketsim._jit import finish_beside
-    from rocketsim.scenario.load import load
-    from rocketsim.sim.flight import fly
+    from rocketsim.api import finish_compiling_beside as finish_beside, fly_to_file as fly, load
     from rocketsim_cli.compiling import Compiles
 
     start = time.perf_counter()
@@ -98,8 +96,7 @@ def compile_kernels(scenarios: tuple[Path, ...], jobs: int | None) -> None:
     """
     import multiprocessing
 
-    from rocketsim._jit import cache_dir
-    from rocketsim.scenario.load import load
+    from rocketsim.api import kernel_cache_dir as cache_dir, load
 
     paths = _scenarios(scenarios)
     for path in paths:                  # a bad file fails now, not after minutes of compiling

@@ -66,15 +66,11 @@ def fly(scenario: Path, output: Path | None, step: float | None, duration: float
         rocketsim fly scenarios/iss-coast.yaml -o iss.mcap --summary-json iss.json
         rocketsim fly scenarios/falcon9-hop.yaml --duration 30s --set seed=3
     """
-    from rocketsim.scenario.load import load
-    from rocketsim.sim.flight import fly as fly_scenario
-    from rocketsim.telemetry.writer import strict_json
+    from rocketsim.api import design_warnings, fly_to_file, load, strict_json
     from rocketsim_cli.compiling import compile_message
 
-    import rocketsim
-
     loaded = load(scenario, overrides(settings))
-    for line in rocketsim.design_warnings(loaded):
+    for line in design_warnings(loaded):
         click.echo(f"warning: {scenario}: {line}", err=True)
     output = output or Path(f"{scenario.stem}.mcap")
     check_writable(output, "--output")
@@ -84,8 +80,8 @@ def fly(scenario: Path, output: Path | None, step: float | None, duration: float
     try:
         with compile_message():
             with flight_progress(duration or loaded.scenario.mission.duration) as on_progress:
-                summary = fly_scenario(loaded, output, step=step, duration=duration,
-                                       on_progress=on_progress)
+                summary = fly_to_file(loaded, output, step=step, duration=duration,
+                                      on_progress=on_progress)
     except KeyboardInterrupt:
         click.echo(f"\ninterrupted; telemetry so far is in {output}", err=True)
         sys.exit(130)

@@ -17,7 +17,7 @@ from rocketsim.errors import InputError
 from rocketsim_cli.errors import output_file, output_folder, reports_input_errors
 
 if TYPE_CHECKING:
-    from rocketsim.telemetry.reader import RunFile
+    from rocketsim.api import RunFile
 
 
 @click.command()
@@ -46,8 +46,7 @@ def replay(run_file: Path, export_to, plot: Path | None, check: bool, trust: boo
         rocketsim replay iss.mcap --export csv tables/ --plot iss.png
         rocketsim replay iss.mcap --verify --trust
     """
-    from rocketsim.telemetry.reader import read_run
-    from rocketsim.telemetry.tables import export
+    from rocketsim.api import export_tables, read_run
 
     if not run_file.is_file():
         raise InputError(f"no such file: {run_file}", file=run_file)
@@ -56,12 +55,12 @@ def replay(run_file: Path, export_to, plot: Path | None, check: bool, trust: boo
     if export_to is not None:
         kind, folder = export_to
         try:
-            written = export(run_file, folder, kind)
+            written = export_tables(run_file, folder, kind)
         except ImportError as error:
             raise InputError(str(error), field="--export") from None
         click.echo("exported: " + ", ".join(str(p) for p in written))
     if plot is not None:
-        from rocketsim.telemetry.plot import plot_run
+        from rocketsim.plots import run as plot_run
         click.echo(f"plot: {plot_run(run_file, plot)}")
     status = 0
     if check:
@@ -74,7 +73,7 @@ def replay(run_file: Path, export_to, plot: Path | None, check: bool, trust: boo
 
 
 def _verify(run_file: Path, run: RunFile, trust: bool) -> int:
-    from rocketsim.api.verify import UntrustedProgram, verify
+    from rocketsim.api import UntrustedProgram, verify
 
     if run.program and trust:
         click.echo(f"--trust: executing the program {run.program} carried by {run_file}", err=True)

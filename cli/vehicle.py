@@ -1,5 +1,5 @@
 """``rocketsim vehicle``: the stack of a vehicle file, its masses, Delta-v and inertia, and
-its design review (``rocketsim.review``)."""
+its design review (``rocketsim.api.vehicle_report``)."""
 
 from __future__ import annotations
 
@@ -34,17 +34,16 @@ def vehicle(file, fmt, plot):
         rocketsim vehicle scenarios/hobby-rocket.yaml
         rocketsim vehicle vehicles/falcon9-block5.yaml --format json --plot f9.png
     """
-    import rocketsim
+    from rocketsim.api import vehicle_report
 
-    review = rocketsim.review(file)
-    figures = review.summary
+    report = vehicle_report(file)
     if fmt == "json":
-        click.echo(json.dumps({**figures, "review": review.as_dict()}, indent=2))
+        click.echo(json.dumps({**report.figures, "review": report.review.as_dict()}, indent=2))
     else:
-        click.echo(_table(figures) + "\n\n" + review.text())
+        click.echo(_table(report.figures) + "\n\n" + report.review.text())
     if plot is not None:
-        from rocketsim.vehicle.build import build
-        _plot(plot, review.spec, build(review.spec), figures)
+        from rocketsim.plots import vehicle as plot_vehicle
+        plot_vehicle(report, plot)
         click.echo(f"plot: {plot}", err=True)
 
 
@@ -72,42 +71,3 @@ def _table(f: dict) -> str:
                      f"  inertia roll {ixx:.4g}, pitch {iyy:.4g}, yaw {izz:.4g} kg m2")
     return "\n".join(lines)
 
-
-def _plot(path: Path, spec, model, figures) -> None:
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    from matplotlib.patches import Rectangle
-
-    fig, ax = plt.subplots(figsize=(4, 10))
-    for s, st in enumerate(spec.stages):
-        base = model.stage_base[s]
-        r = 0.5 * st.diameter
-        ax.add_patch(Rectangle((-r, base), 2 * r, st.length, fill=False, lw=1.2))
-        ax.text(r + 0.3, base + 0.5 * st.length, st.name, va="center", fontsize=8)
-        for tank in st.tanks:
-            ax.add_patch(Rectangle((-tank.radius, base + tank.position), 2 * tank.radius, tank.length,
-                                   alpha=0.35, color="tab:blue" if "ox" in tank.propellant.lower()
-                                   else "tab:orange"))
-        for group in st.engines:
-            ax.plot([group.layout_radius, -group.layout_radius] if group.layout_radius else [0.0],
-                    [base + group.position] * (2 if group.layout_radius else 1), "kv", ms=5)
-        for part in st.point_masses:
-            ax.plot([part.radius, -part.radius] if part.radius else [0.0],
-                    [base + part.position] * (2 if part.radius else 1), "s", color="gray", ms=4)
-    top = model.stage_base[-1] + spec.stages[-1].length
-    for part, style in ((spec.payload, dict(color="tab:green", alpha=0.5)),
-                        (spec.fairing, dict(fill=False, ls="--"))):
-        if part is not None:
-            ax.add_patch(Rectangle((-0.5 * part.diameter, top), part.diameter, part.length, **style))
-    for key, marker in (("full", "ro"), ("empty", "rx")):
-        ax.plot([0.0], [figures[key]["centre_of_mass_m"]], marker, label=f"centre of mass, {key}")
-    ax.set_aspect("equal")
-    ax.set_xlim(-0.5 * model.length / 4 - 2, model.length / 4 + 2)
-    ax.set_ylim(-1, model.length + 1)
-    ax.set_ylabel("height above the base (m)")
-    ax.set_title(spec.name)
-    ax.legend(loc="lower right", fontsize=7)
-    fig.tight_layout()
-    fig.savefig(path, dpi=120)
-    plt.close(fig)

@@ -13,10 +13,12 @@ import sys
 import time
 from dataclasses import replace
 from pathlib import Path
-from typing import Any, Callable, Mapping
+from typing import TYPE_CHECKING, Any, Callable, Mapping
 
-from rocketsim.api.run import Run, open_run
 from rocketsim.scenario.load import LoadedScenario, load as load_scenario, program_file, unknown_stage
+
+if TYPE_CHECKING:
+    from rocketsim.api.run import Run
 
 
 def load(scenario: str | Path | Mapping | LoadedScenario, overrides: Mapping[str, Any] | None = None, *,
@@ -55,9 +57,11 @@ def fly(scenario: str | Path | Mapping | LoadedScenario, telemetry: str | Path |
     ``run`` (written to a file, the file holds it)."""
     loaded = with_programs(load(scenario), program, programs or {})
     on_progress = _progress_line() if progress is True else progress or None
-    # the flight's modules (numba's kernels) load with the first flight, not with rocketsim
+    # the flight's modules (numba's kernels) and the run's reader load with the first
+    # flight, not with rocketsim or load
     from rocketsim.api.recorder import Recorder
-    from rocketsim.sim.flight import fly as fly_to_file, fly_into
+    from rocketsim.api.run import Run, open_run
+    from rocketsim.api.telemetry_flight import fly_into, fly_to_file
     recorders = []
     if telemetry is None:
 

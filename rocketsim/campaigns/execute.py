@@ -45,6 +45,7 @@ from rocketsim.campaigns.outputs import run_columns
 from rocketsim.campaigns.spec import read_campaign
 from rocketsim.campaigns.store import Store, frame, read_results
 from rocketsim.errors import InputError
+from rocketsim.extras import needs
 
 WORKER_WARM_S = 1.0      # s of the nominal run a worker flies before its first run
 # Dask settings of the embedded cluster's workers. A worker flies a run in a thread
@@ -168,6 +169,8 @@ def run(campaign, directory: str | Path, *, workers: int | None = None, schedule
     as runs finish (``total``: the runs this call flies), ``log(message)`` with the warm-up's costs. Raises
     :class:`~rocketsim.errors.InputError` for a bad campaign before anything flies,
     :class:`Interrupted` on Ctrl-C (everything finished saved)."""
+    in_process = workers == 1 and scheduler is None and scheduler_file is None
+    needs("campaign", "a campaign", "pyarrow", *(() if in_process else ("distributed",)))
     import yaml
     log = log or (lambda message: None)
     found = read_campaign(campaign, base_dir)
@@ -195,7 +198,7 @@ def run(campaign, directory: str | Path, *, workers: int | None = None, schedule
                 progress(0, 0, len(todo))
 
         try:
-            if workers == 1 and scheduler is None and scheduler_file is None:
+            if in_process:
                 _in_process(text, todo, found.spec, finished, log, started)
             else:
                 _on_dask(text, todo, found.spec, finished, log, started, workers, scheduler, scheduler_file)
@@ -299,6 +302,7 @@ def rerun(directory: str | Path, k: int, telemetry: str | Path):
     """Fly run ``k`` of the campaign in ``directory`` alone into the MCAP file
     ``telemetry``; ``(row, recorded)``: its row, and its row in the results (None if
     it has none), both as one-row tables with the same columns."""
+    needs("campaign", "a campaign's rerun", "pyarrow")
     directory = Path(directory)
     if not (directory / "campaign.yaml").is_file():
         raise InputError(f"{directory} holds no campaign (no campaign.yaml)", field="DIR")

@@ -45,6 +45,14 @@ def rotate_components(w, ux, uy, uz, vx, vy, vz):
             vz + w * tz + (ux * ty - uy * tx))
 
 
+@njit(inline="always")     # a few operations: typed in its callers, no kernel of its own
+def body_x_components(w, x, y, z):
+    """The body x axis (a vehicle's nose) in frame components for the unit quaternion
+    ``(w, x, y, z)``, as a 3-tuple (no array: for the hot kernels): the first column of
+    :func:`quat_to_matrix`, ``(1 - 2 (y^2 + z^2), 2 (x y + w z), 2 (x z - w y))``."""
+    return (1.0 - 2.0 * (y * y + z * z), 2.0 * (x * y + w * z), 2.0 * (x * z - w * y))
+
+
 @njit
 def quat_multiply(a, b):
     """Hamilton product ``a (x) b`` of two quaternions (4,) -> (4,)."""
@@ -91,13 +99,11 @@ def quat_to_matrix(q):
     """Rotation matrix (3, 3) body -> frame of a unit quaternion ``q``."""
     w, x, y, z = q[0], q[1], q[2], q[3]
     m = np.empty((3, 3))
-    m[0, 0] = 1.0 - 2.0 * (y * y + z * z)
+    m[0, 0], m[1, 0], m[2, 0] = body_x_components(w, x, y, z)
     m[0, 1] = 2.0 * (x * y - w * z)
     m[0, 2] = 2.0 * (x * z + w * y)
-    m[1, 0] = 2.0 * (x * y + w * z)
     m[1, 1] = 1.0 - 2.0 * (x * x + z * z)
     m[1, 2] = 2.0 * (y * z - w * x)
-    m[2, 0] = 2.0 * (x * z - w * y)
     m[2, 1] = 2.0 * (y * z + w * x)
     m[2, 2] = 1.0 - 2.0 * (x * x + y * y)
     return m

@@ -45,6 +45,7 @@ from rocketsim.telemetry.held_signals import holding
 from rocketsim.telemetry.frames import MISSION_FRAME, CentralFrame, FrameTree, central_frame
 from rocketsim.telemetry.mcap_stream import McapStream
 from rocketsim.telemetry.schemas import BODY_STATE, EVENT, schema_bytes
+from rocketsim.telemetry.sink import TelemetrySink
 from rocketsim.telemetry.writing_thread import WritingThread
 
 PROFILE = ""
@@ -194,7 +195,7 @@ def _create(path: Path):
     return open(path, "wb")
 
 
-class TelemetryWriter:
+class TelemetryWriter(TelemetrySink):
     """One MCAP telemetry file: per body its state, Foxglove transform and (about
     Earth) location; the central bodies' frames (:mod:`rocketsim.telemetry.frames`);
     the events; the program's log.

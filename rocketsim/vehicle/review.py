@@ -49,8 +49,9 @@ import math
 from dataclasses import asdict, dataclass, field, replace
 
 from rocketsim.constants import (DEG, G0, STRUCTURE_AXIAL_LIMIT_G, STRUCTURE_Q_ALPHA_LIMIT,
-                                 UNUSABLE_PROPELLANT, USSA_P0)
+                                 UNUSABLE_PROPELLANT)
 from rocketsim.vehicle.outline import body_shape
+from rocketsim.vehicle.stage_thrust import stage_engines
 
 CROSSFLOW_ALPHA = 5.0 * DEG     # rad, the angle of attack of the crossflow centre of pressure
 CROSSFLOW_MACH = 0.5            # the Mach number it is evaluated at (subsonic)
@@ -310,20 +311,6 @@ def crossflow_centre_of_pressure(a) -> float:
     _, _, fz, _, my, _ = body_aero(speed * math.cos(CROSSFLOW_ALPHA), 0.0, speed * math.sin(CROSSFLOW_ALPHA),
                                    0.0, 0.0, 0.0, rho, sound, 0.0, 0.0, a.ref, a.seg, a.fin, a.ca_nf, a.ca_tf)
     return -my / fz if fz != 0.0 else math.nan
-
-
-def stage_engines(stage) -> tuple[float, float, float]:
-    """``(vacuum thrust N, sea-level thrust N, mass flow kg/s)`` of a stage's engines at full
-    throttle, and of its solid motors at their mean thrust and flow (total impulse and
-    propellant over the curve's duration; the same at sea level: a curve is measured there)."""
-    vacuum = sum(e.count * e.thrust_vacuum for e in stage.engines)
-    sea = sum(e.count * max(0.0, e.thrust_vacuum - USSA_P0 * e.exit_area) for e in stage.engines)
-    flow = sum(e.count * e.thrust_vacuum / (G0 * e.isp) for e in stage.engines)
-    for m in stage.motors:
-        burn = m.thrust[-1][0]
-        vacuum, sea, flow = vacuum + m.total_impulse / burn, sea + m.total_impulse / burn, \
-            flow + m.propellant_mass / burn
-    return vacuum, sea, flow
 
 
 def _interp(xs, ys, x: float, left: float | None = None, right: float | None = None) -> float:

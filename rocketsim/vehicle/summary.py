@@ -23,7 +23,7 @@ import numpy as np
 
 from rocketsim.constants import G0, UNUSABLE_PROPELLANT
 from rocketsim.vehicle.build import build
-from rocketsim.vehicle.review import stage_engines
+from rocketsim.vehicle.stage_thrust import stage_engines
 
 
 def summary(spec) -> dict:
