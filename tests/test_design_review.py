@@ -13,7 +13,10 @@
   ``v = sqrt(2 L (T/m - g sin theta))``, ``t = sqrt(2 L / (T/m - g sin theta))``, and
   the hobby rocket's against its flight's ``off_rail``;
 - the peak axial load of a constant-thrust motor: at its burnout, ``T / m_burnout``;
-- the warnings: one line each for a design that will break up, tumble or cannot steer;
+- the warnings: one line each for a design that will break up, tumble or cannot steer,
+  from ``rocketsim validate`` and before ``rocketsim fly`` flies;
+- each shipped stack's length from its base to the nose's tip against the sum of its
+  parts' published lengths;
 - the review's pure-Python centre of mass (what ``rocketsim validate`` computes without
   numpy) against the compiled mass model's, for every shipped staged vehicle, loaded and
   after each stage's burn (to 1e-12 relative).
@@ -155,10 +158,12 @@ def test_the_peak_axial_load_of_a_constant_thrust_motor_is_at_its_burnout():
     assert loads.peak_at_s == pytest.approx(2.0, abs=1e-6)
 
 
-def test_validate_warns_one_line_each_of_a_design_that_breaks_tumbles_or_cannot_steer(write, cli):
+def finless_rocket(write, name: str, axial_limit: str):
+    """A K1000T rocket without fins, ``name``.yaml: its nose's lift ahead of its centre of
+    mass (unstable), 16.7 g at its motor's burnout, its structure's ``axial_limit``."""
     motor = ROOT / "motors" / "AeroTech_K1000T.eng"
-    fragile = write("fragile.yaml", f"""\
-        name: fragile
+    return write(f"{name}.yaml", f"""\
+        name: {name}
         stages:
           - name: rocket
             length: 1.6 m
@@ -169,8 +174,12 @@ def test_validate_warns_one_line_each_of_a_design_that_breaks_tumbles_or_cannot_
         payload: {{name: nose cone, mass: 0.5 kg, length: 0.4 m, diameter: 0.1 m}}
         aero:
           nose: {{length: 0.4 m, shape: ogive}}
-          limits: {{axial_load: 12 g}}
+          limits: {{axial_load: {axial_limit}}}
         """)
+
+
+def test_validate_warns_one_line_each_of_a_design_that_breaks_tumbles_or_cannot_steer(write, cli):
+    fragile = finless_rocket(write, "fragile", "12 g")
     blind = write("blind.yaml", """\
         name: blind
         stages:
@@ -190,6 +199,53 @@ def test_validate_warns_one_line_each_of_a_design_that_breaks_tumbles_or_cannot_
     assert "12 g axial limit (the file's aero.limits)" in warnings[0]
     assert "fragile.yaml: will tumble: static margin -1" in warnings[1]
     assert "blind.yaml: cannot steer: stage 'kick' burns liquid engines" in warnings[2]
+
+
+def test_fly_prints_the_warnings_before_it_flies(write, cli, tmp_path):
+    """A finless rocket (its nose's lift alone, ahead of its centre of mass; its own axial
+    limit, so that only the tumble is warned of) is warned of on a line ``rocketsim fly``
+    prints before the flight's summary; the flight still flies (a warning, not a refusal)."""
+    finless_rocket(write, "finless", "40 g")
+    hobby = (ROOT / "scenarios" / "hobby-rocket.yaml").read_text()
+    flown = write("finless-flight.yaml", hobby.replace("../vehicles/hobby-rocket.yaml", "finless.yaml"))
+    result = cli("fly", flown, "-o", tmp_path / "run.mcap", "--duration", "0.1s")
+    assert result.exit_code == 0, result.output
+    lines = result.output.splitlines()
+    warned = [k for k, line in enumerate(lines) if line.startswith("warning:")]
+    print("\n" + "\n".join(lines[k] for k in warned))
+    assert len(warned) == 1 and "finless-flight.yaml: will tumble: static margin -" in lines[warned[0]]
+    assert warned[0] < next(k for k, line in enumerate(lines) if line.startswith("telemetry:"))
+
+
+# Each shipped vehicle's length from its base to the nose's tip, as the review finds it,
+# against the published lengths of its parts:
+# - Falcon 9 Block 5: first stage 41.2 m, second stage 13.8 m, fairing 13.1 m (SpaceX's
+#   Falcon User's Guide as Wikipedia "Falcon 9 Block 5" quotes them); overall 69.8 m there
+# - Electron: first stage 12.1 m, second stage 2.4 m, fairing 2.5 m, 17 m tall (Space Launch
+#   Report, "Electron"); Rocket Lab's vehicle page gives 18 m overall
+# - Starship: Super Heavy 71 m, Starship 50 m (its payload section 17 m with the nose), 121 m
+#   (SpaceX's Starship page)
+# - Notre Dame 2020 and Bella Lui: RocketPy's acceptance stations, the base below the
+#   centre of mass without motor (1.321656 m, 1.1356 m), the nose's base above it
+#   (0.71971 m, 1.3 m), the nose (0.610 m, 0.242 m)
+PUBLISHED_LENGTHS = [("falcon9-block5.yaml", (41.2, 13.8, 13.1), 69.8),
+                     ("electron.yaml", (12.1, 2.4, 2.5), 18.0),
+                     ("starship-superheavy.yaml", (71.0, 50.0), 121.0),
+                     ("ndrt-2020.yaml", (1.321656, 0.71971, 0.610), None),
+                     ("bella-lui.yaml", (1.1356, 1.3, 0.242), None)]
+
+
+@pytest.mark.parametrize("name, parts, overall", PUBLISHED_LENGTHS)
+def test_each_shipped_stack_is_as_long_as_its_published_parts(name, parts, overall):
+    """The nose inside the part it caps, no part counted twice or left out: the stack is
+    the sum of its parts' published lengths. Where a published overall height differs
+    from that sum (Falcon 9 1.7 m, Electron 1 m), the difference is printed, not flown:
+    which part spans it is not published (docs/physics.md#the-stack-and-its-nose)."""
+    found = review(shipped(name))
+    if overall is not None:
+        print(f"\n[length] {name}: {found.length_m:.3f} m, published overall {overall:g} m "
+              f"({found.length_m - overall:+.2f} m)")
+    assert found.length_m == pytest.approx(sum(parts), abs=1e-9)
 
 
 def test_the_geometry_figure_draws_from_the_shipped_files(tmp_path):
