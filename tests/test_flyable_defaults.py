@@ -14,7 +14,9 @@ value, or flies as designed:
   it (which would burn inside its interstage);
 - a hobby rocket whose motor alone pushes it past the 15 g axial limit assumed for a
   launcher (a K1000T on 7 kg: 15.3 g at T+0.02 s, on the rail) is refused unless the
-  file gives its airframe's limit; with one it flies as designed.
+  file gives its airframe's limit; with one it flies as designed;
+- a payload with no length or diameter (a 1 m by 1 m default would put a drum on a
+  hobby rocket's nose) is refused.
 """
 
 import pytest
@@ -157,3 +159,22 @@ def test_a_motor_past_the_launcher_limit_needs_the_airframes_own(write, cli):
     assert "breakup" not in names
     for name in ("off_rail", "burnout", "apogee", "parachute_deployed"):
         assert name in names
+
+
+def test_a_payload_without_its_size_is_refused_at_its_line(write, cli):
+    """A payload's size defaulted to 1 m by 1 m: on the 0.1 m hobby rocket, whose nose caps
+    its payload, a 1 m drum on top. Its length and diameter are required, each refused
+    at the payload's line with why and a typical value; given, the rocket is valid and its
+    review finds it 0.1 m across (the stage's diameter, not the drum's)."""
+    limited = HOBBY + "  limits: {axial_load: 40 g}\n"
+    sized = "length: 0.4 m, diameter: 0.1 m"
+    path = write("bare.yaml", limited.replace(", " + sized, ""))
+    assert_clean_error(cli("validate", path), "bare.yaml:11:1:", "payload.length:",
+                       "payload 'nose cone' gives no length", "the top of the vehicle's outline",
+                       "e.g. length: 6 m for a launcher's satellite, 0.4 m for a hobby rocket's nose cone")
+    path = write("short.yaml", limited.replace(sized, "length: 0.4 m"))
+    assert_clean_error(cli("validate", path), "short.yaml:11:1:", "payload.diameter:",
+                       "gives no diameter", "e.g. diameter: 4 m in a 5.2 m fairing")
+    path = write("sized.yaml", limited)
+    assert cli("validate", path).exit_code == 0
+    assert rocketsim.review(path).diameter_m == pytest.approx(0.1)
