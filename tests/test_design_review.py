@@ -13,8 +13,9 @@
   ``v = sqrt(2 L (T/m - g sin theta))``, ``t = sqrt(2 L / (T/m - g sin theta))``, and
   the hobby rocket's against its flight's ``off_rail``;
 - the peak axial load of a constant-thrust motor: at its burnout, ``T / m_burnout``;
-- the warnings: one line each for a design that will break up, tumble or cannot steer,
-  from ``rocketsim validate`` and before ``rocketsim fly`` flies;
+- the warnings: one line each for a design that will break up, tumble, cannot steer or,
+  leaving a site with no aero section, flies as in vacuum, from ``rocketsim validate`` and
+  before ``rocketsim fly`` flies;
 - each shipped stack's length from its base to the nose's tip against the sum of its
   parts' published lengths;
 - the review's pure-Python centre of mass (what ``rocketsim validate`` computes without
@@ -215,6 +216,24 @@ def test_fly_prints_the_warnings_before_it_flies(write, cli, tmp_path):
     print("\n" + "\n".join(lines[k] for k in warned))
     assert len(warned) == 1 and "finless-flight.yaml: will tumble: static margin -" in lines[warned[0]]
     assert warned[0] < next(k for k, line in enumerate(lines) if line.startswith("telemetry:"))
+
+
+def test_a_vehicle_leaving_a_site_without_aero_is_warned_it_flies_as_in_vacuum(write, cli):
+    """The hobby rocket's scenario flying its vehicle without the aero section: one
+    warning line; with ``aero: {aerodynamics: false}`` (vacuum on purpose) none."""
+    hobby = (ROOT / "scenarios" / "hobby-rocket.yaml").read_text()
+    vehicle = (ROOT / "vehicles" / "hobby-rocket.yaml").read_text().replace("../motors/", f"{ROOT}/motors/")
+    bare = vehicle[:vehicle.index("\naero:")] + "\n"
+    flights = []
+    for name, text in (("bare", bare), ("vacuum", bare + "aero: {aerodynamics: false}\n")):
+        write(f"{name}.yaml", text)
+        flights.append(write(f"{name}-flight.yaml", hobby.replace("../vehicles/hobby-rocket.yaml", f"{name}.yaml")))
+    result = cli("validate", *flights)
+    assert result.exit_code == 0, result.output
+    warnings = [line for line in result.output.splitlines() if line.startswith("warning:")]
+    print("\n" + "\n".join(warnings))
+    assert len(warnings) == 1
+    assert "bare-flight.yaml: flies as in vacuum: the vehicle has no aero section" in warnings[0]
 
 
 # Each shipped vehicle's length from its base to the nose's tip, as the review finds it,

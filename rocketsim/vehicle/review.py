@@ -36,7 +36,7 @@ figures a designer checks before flying (docs/physics.md#design-review):
 :func:`review` returns a :class:`Review`; its ``warnings`` are one line each for
 a design that will break up (however its program throttles: a full-throttle peak
 past the limit is the program's to avoid, and shows in the table), tumble, cannot
-steer or cannot lift off. :func:`design_warnings` gives them alone, in pure Python
+steer, cannot lift off, or, with no ``aero`` section, flies from its pad as in vacuum. :func:`design_warnings` gives them alone, in pure Python
 (no array library, no compiled kernel: ``rocketsim validate`` stays light); the
 crossflow centre of pressure and the stack's summary (masses, Delta-v, inertia) are
 the full review's, from the compiled model.
@@ -445,9 +445,14 @@ def ignition_mass(spec, i: int) -> float:
 
 def warnings(found: Review, spec, pad: bool) -> list[str]:
     """One line for each way ``found``'s design will fail: break up, tumble, not steer, not
-    lift off (from a ``pad``)."""
+    lift off (from a ``pad``), or (from a pad, in the air) fly as in vacuum for want of an
+    ``aero`` section."""
     lines = []
     first = found.stages[0]
+    if pad and spec.aero is None:
+        lines.append("flies as in vacuum: the vehicle has no aero section, so from its site it meets "
+                     "no drag, no lift and no structural limit in the air (give aero, its nose at "
+                     "least; or aero: {aerodynamics: false} to fly without air on purpose)")
     if pad and first.thrust_to_weight < 1.0 and (spec.stages[0].engines or spec.stages[0].motors):
         lines.append(f"cannot lift off: thrust-to-weight {first.thrust_to_weight:.2f} at liftoff "
                      f"(stage {first.name!r} at sea level)")
