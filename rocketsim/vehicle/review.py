@@ -108,7 +108,8 @@ class Review:
     aerodynamics: bool
     axial_limit_g: float
     q_alpha_limit_pa_deg: float
-    limits_given: bool                   # the file's aero.limits, or the launcher defaults
+    limits_given: bool                   # the axial limit is the file's aero.limits (else assumed)
+    q_alpha_limit_given: bool            # the q alpha limit is the file's (else assumed)
     phases: list[Phase]
     stages: list[StageLoads]
     rail: RailExit | None = None
@@ -128,9 +129,12 @@ class Review:
         """The review as a table for a terminal."""
         lines = [f"{self.name}: {self.length_m:.3f} m from its base to the nose's tip, "
                  f"{self.diameter_m:.3f} m across; {self.nose}"]
+        given = {"axial_load": self.limits_given, "q_alpha": self.q_alpha_limit_given}
         limits = (f"structural limits {self.axial_limit_g:g} g axial, {self.q_alpha_limit_pa_deg:,.0f} Pa deg "
-                  + ("(the file's aero.limits)" if self.limits_given else
-                     "(assumed: the launcher defaults; give aero.limits for another structure)"))
+                  + ("(the file's aero.limits)" if all(given.values()) else
+                     "(assumed: a launcher's; give aero.limits for another structure)" if not any(given.values())
+                     else "(the file's " + next(k for k, v in given.items() if v) + "; its "
+                     + next(k for k, v in given.items() if not v) + " assumed, a launcher's)"))
         lines.append(limits if self.aerodynamics else "no aerodynamics: no centre of pressure, "
                      "no breakup checks")
         if self.rail is not None:
@@ -203,15 +207,15 @@ def _review(spec, rail, gravity: float, pad: bool) -> Review:
     limits = aero.limits if aero is not None else None
     given = limits is not None and limits.axial_load is not None
     axial_limit = limits.axial_load / G0 if given else STRUCTURE_AXIAL_LIMIT_G
-    q_alpha_limit = (limits.q_alpha if limits is not None and limits.q_alpha is not None
-                     else STRUCTURE_Q_ALPHA_LIMIT)
+    q_alpha_given = limits is not None and limits.q_alpha is not None
+    q_alpha_limit = limits.q_alpha if q_alpha_given else STRUCTURE_Q_ALPHA_LIMIT
     shape = _shape(spec, 0) if aerodynamic else None
     length = shape.length if shape is not None else _stack_length(spec)
     d = shape.reference_diameter if shape is not None else max(st.diameter for st in spec.stages)
     loads = [stage_loads(spec, i) for i in range(len(spec.stages))]
     phases = stability(spec, pad or rail is not None) if aerodynamic else []
     found = Review(spec.name, length, d, nose_place(spec), aerodynamic, axial_limit, q_alpha_limit,
-                   given, phases, loads, None if rail is None else rail_exit(spec, *rail, gravity),
+                   given, q_alpha_given, phases, loads, None if rail is None else rail_exit(spec, *rail, gravity),
                    spec=spec)
     found.warnings = warnings(found, spec, pad or rail is not None)
     return found
