@@ -478,27 +478,30 @@ PAYLOAD_SIZE_WHY = ("the payload's cylinder is the top of the vehicle's outline 
 
 class PayloadSpec(_Strict):
     """The payload, a uniform solid cylinder sitting on top of the top stage; its
-    ``length`` and ``diameter`` are required (:data:`PAYLOAD_SIZE_WHY`)."""
+    ``length`` and ``diameter`` have no default (:data:`PAYLOAD_SIZE_WHY`)."""
 
     name: str = "payload"
     mass: NonNegativeMass
-    length: Optional[PositiveLength] = Field(
-        None, description="required; e.g. '6 m' (a launcher's satellite) or '0.4 m' (a hobby "
-        "rocket's nose cone, the nose included when it caps the payload)")
-    diameter: Optional[PositiveLength] = Field(
-        None, description="required; e.g. '4 m' (inside a 5.2 m fairing) or the body's '0.1 m' "
-        "(a hobby rocket's payload bay)")
+    length: PositiveLength = Field(
+        description="e.g. '6 m' (a launcher's satellite) or '0.4 m' (a hobby rocket's nose cone, "
+        "the nose included when it caps the payload)")
+    diameter: PositiveLength = Field(
+        description="e.g. '4 m' (inside a 5.2 m fairing) or the body's '0.1 m' (a hobby rocket's "
+        "payload bay)")
 
-    @model_validator(mode="after")
-    def _sized(self) -> "PayloadSpec":
-        for name, typical in (("length", "length: 6 m for a launcher's satellite, 0.4 m for a hobby "
-                                         "rocket's nose cone"),
-                              ("diameter", "diameter: 4 m in a 5.2 m fairing, or the body's own for "
-                                           "a hobby rocket's payload bay")):
-            if getattr(self, name) is None:
-                raise field_error((name,), f"payload {self.name!r} gives no {name}: {PAYLOAD_SIZE_WHY}; "
-                                  f"give it, e.g. {typical}", None, REQUIRED)
-        return self
+    @model_validator(mode="before")
+    @classmethod
+    def _sized(cls, data):
+        """A missing size refused with why and a typical value (not pydantic's bare 'missing')."""
+        if isinstance(data, dict):
+            for name, typical in (("length", "length: 6 m for a launcher's satellite, 0.4 m for a "
+                                             "hobby rocket's nose cone"),
+                                  ("diameter", "diameter: 4 m in a 5.2 m fairing, or the body's own "
+                                               "for a hobby rocket's payload bay")):
+                if name not in data:
+                    raise field_error((name,), f"payload {data.get('name', 'payload')!r} gives no "
+                                      f"{name}: {PAYLOAD_SIZE_WHY}; give it, e.g. {typical}", None, REQUIRED)
+        return data
 
 
 class FairingSpec(_Strict):
