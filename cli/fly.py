@@ -102,7 +102,7 @@ def fly(scenario: Path, output: Path | None, step: float | None, duration: float
         rocketsim fly scenarios/iss-coast.yaml --duration 60d --rate 1Hz --coast-rate 0.01Hz
         rocketsim fly scenarios/falcon9-hop.yaml --live --warp 10
     """
-    from rocketsim.api import fly_live, fly_to_file, load, strict_json, telemetry_size
+    from rocketsim.api import design_warnings, fly_live, fly_to_file, load, strict_json, telemetry_size
     from rocketsim_cli.compiling import compile_message
 
     given = overrides(settings)
@@ -110,6 +110,8 @@ def fly(scenario: Path, output: Path | None, step: float | None, duration: float
         if value is not None:
             given[path] = f"{value!r} Hz"
     loaded = load(scenario, given)
+    for line in design_warnings(loaded):
+        click.echo(f"warning: {scenario}: {line}", err=True)
     output = output or Path(f"{scenario.stem}.mcap")
     check_writable(output, "--output")
     _check_size(telemetry_size(loaded, duration), output, large_ok)

@@ -175,6 +175,8 @@ FIGURES = {
     "landing_latitude_deg": "geodetic latitude where the body came down, deg",
     "landing_longitude_deg": "longitude where the body came down, deg",
     "mission_time_s": "mission time the flight reached, s", "step_s": "the integration step, s",
+    "propellant_kg": "liquid propellant left in a staged body's tanks, the unusable reserve included, kg",
+    "usable_propellant_kg": "the liquid propellant left above each stage's unusable reserve, kg",
 }
 
 # names that say no reference: not written by the simulator or a shipped program
