@@ -74,9 +74,12 @@ def _interrupt(signum, frame):
 @click.option("--scheduler-file", type=click.Path(dir_okay=False, exists=True, path_type=Path), default=None,
               help="An existing Dask cluster's scheduler file (dask scheduler --scheduler-file).")
 @click.option("--resume", is_flag=True, help="Fly only the runs the directory is missing.")
+@click.option("--runs", type=int, default=None,
+              help="Fly this many runs in place of the file's (its first N; with --resume, a larger N "
+                   "adds runs to a random or Sobol campaign).")
 @reports_input_errors
 def run(campaign_file: Path, output: Path, workers: int | None, scheduler: str | None,
-        scheduler_file: Path | None, resume: bool) -> None:
+        scheduler_file: Path | None, resume: bool, runs: int | None) -> None:
     """Fly every run of CAMPAIGN into the directory -o.
 
     Every run's inputs derive from the campaign's seed and the run's number
@@ -87,8 +90,8 @@ def run(campaign_file: Path, output: Path, workers: int | None, scheduler: str |
 
     \b
     Example:
-        rocketsim campaign run campaigns/falcon9-landing.yaml -o f9
-        rocketsim campaign run campaigns/falcon9-landing.yaml -o f9 --resume
+        rocketsim campaign run campaigns/falcon9-landing.yaml -o f9 --runs 20
+        rocketsim campaign run campaigns/falcon9-landing.yaml -o f9 --runs 200 --resume
         rocketsim campaign run campaigns/falcon9-landing.yaml -o f9 --scheduler tcp://head:8786
     """
     from rocketsim.api import CampaignInterrupted, run_campaign
@@ -99,7 +102,7 @@ def run(campaign_file: Path, output: Path, workers: int | None, scheduler: str |
     previous = signal.signal(signal.SIGTERM, _interrupt)
     try:
         results = run_campaign(campaign_file, output, workers=workers, scheduler=scheduler,
-                               scheduler_file=scheduler_file, resume=resume, progress=_Progress(),
+                               scheduler_file=scheduler_file, resume=resume, runs=runs, progress=_Progress(),
                                log=lambda message: click.echo(message, err=True))
     except CampaignInterrupted as stopped:
         click.echo(f"\n{stopped}; 'rocketsim campaign run {campaign_file} -o {output} --resume' "

@@ -125,9 +125,12 @@ def describe(run: RunFile) -> str:
         final = run.final.get(body)
         lines.append(f"{body}: {run.counts[f'/{body}/state']} states")
         if final:
+            over = (f", {_number(final['surface_speed'], 1, 2)} m/s over the ground"
+                    if "surface_speed" in final else "")
             lines.append(f"  last: T+{final['t']:.2f} s, altitude {_number(final['altitude'], 1e3, 3)} km, "
                          f"lat {_number(final['latitude_deg'], 1, 4)} deg, "
-                         f"lon {_number(final['longitude_deg'], 1, 4)} deg, speed {_number(final['speed'], 1, 2)} m/s")
+                         f"lon {_number(final['longitude_deg'], 1, 4)} deg, "
+                         f"inertial speed {_number(final['inertial_speed'], 1, 2)} m/s{over}")
     lines.append(f"events ({len(run.events)}):")
     for event in run.events:
         figures = ", ".join(f"{k} {v:.6g}" if isinstance(v, float) else f"{k} {v}"

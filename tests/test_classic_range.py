@@ -30,6 +30,7 @@ from rocketsim.api.reflight import verify
 from rocketsim.vehicle.engines import ignite
 from rocketsim.vehicle.build import build
 from tests.conftest import ROOT
+from tests.plot_checks import assert_the_plot_reads
 
 CLASSIC_ASCENT = ROOT / "scenarios" / "classic-ascent.yaml"
 BURN = 70.0                     # s: the seed's "about 3 m of error after 70 s of burn"
@@ -222,6 +223,7 @@ def test_the_ascent_program_reaches_orbit_on_the_classic_range(tmp_path):
     real = load(ROOT / "scenarios" / "falcon9-leo.yaml")
     assert loaded.program_path == real.program_path                 # the same program file
     summary = fly(loaded, tmp_path / "classic.mcap", step=0.05, duration=525.0)
+    assert_the_plot_reads(tmp_path / "classic.mcap", "classic-ascent")
     events = {e["name"]: e for e in summary["bodies"]["falcon9-block5"]["events"]}
     assert {"liftoff", "MECO", "separation", "orbit"} <= set(events)
     assert events["orbit"]["periapsis_altitude_m"] >= 190e3

@@ -26,6 +26,7 @@ from rocketsim.constants import EARTH_J2, EARTH_MU, EARTH_RADIUS_EQ
 from rocketsim.scenario.load import load
 from rocketsim.api.telemetry_flight import fly_to_file as fly
 from tests.conftest import ROOT
+from tests.plot_checks import assert_the_plot_reads
 
 TROPICAL_YEAR = 365.24219 * 86400.0          # s
 
@@ -58,7 +59,7 @@ def flight(tmp_path_factory):
     summary = fly(load(ROOT / "scenarios" / "electron-sso.yaml"), out, step=0.1, duration=430.0)
     for body in summary["bodies"].values():
         body["by_name"] = {e["name"]: e for e in body["events"]}
-    return summary
+    return {**summary, "file": out}
 
 
 def test_orbit_reached_at_the_sun_synchronous_inclination(flight):
@@ -79,7 +80,7 @@ def test_the_ascent_goes_through_max_q_staging_and_a_payload_deploy(flight):
     assert all(name in remaining for name in order), names      # a subsequence, in order
     assert "breakup" not in names
     deployed = flight["bodies"]["payload"]
-    assert deployed["orbit"]["periapsis_altitude"] >= 475e3     # the payload is in orbit too
+    assert deployed["orbit"]["periapsis_altitude_m"] >= 475e3     # the payload is in orbit too
     assert deployed["by_name"]["payload deploy"]["payload_mass_kg"] == pytest.approx(100.0)
 
 
@@ -88,3 +89,8 @@ def test_the_launch_goes_south_from_mahia(flight):
     flies south: the first stage comes down south of the pad."""
     first = flight["bodies"]["first_stage"]["final"]
     assert first["latitude_deg"] < -40.0
+
+
+def test_its_plot_reads(flight):
+    """The replay plot of the whole flight (tests/plot_checks.py)."""
+    assert_the_plot_reads(flight["file"], "electron-sso")

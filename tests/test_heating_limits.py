@@ -110,10 +110,10 @@ def test_heat_shield_past_2400_k_is_an_event_that_ends_the_vehicle():
             break
     assert [name for name, _ in world.events] == ["heat shield failure"]
     figures = world.events[0][1]
-    assert below <= 2400.0 < figures["temperature_k"] < 2400.0 + 0.2 and not body.flying
+    assert below <= 2400.0 < figures["shield_temperature_K"] < 2400.0 + 0.2 and not body.flying
     rho = standard_table().at(60e3)[0][0]
     speed = np.linalg.norm(body.y[3:6] - corotating(body.y[0:3]))
-    assert figures["heat_flux_w_m2"] == pytest.approx(1.7415e-4 * math.sqrt(rho / 0.3) * speed ** 3, rel=1e-4)
+    assert figures["heat_flux_W_m2"] == pytest.approx(1.7415e-4 * math.sqrt(rho / 0.3) * speed ** 3, rel=1e-4)
 
 
 # --- structural limits ---------------------------------------------------------
@@ -124,7 +124,7 @@ def test_bending_limit_is_250_kpa_deg():
     q = 36_400.0
     assert breakup(q, 6.8 * DEG, 0.0) is None
     hit = breakup(q, 7.0 * DEG, 0.0)
-    assert hit["cause"] == "bending" and hit["q_alpha_pa_deg"] == pytest.approx(q * 7.0)
+    assert hit["cause"] == "bending" and hit["q_alpha_Pa_deg"] == pytest.approx(q * 7.0)
     # flying tail first the bending angle is measured from the tail: 178 deg is 2 deg
     assert breakup(q, 178.0 * DEG, 0.0) is None
 
@@ -151,7 +151,7 @@ def test_a_vehicle_pitched_hard_at_max_q_breaks_up_at_the_right_q_alpha():
             name, figures = world.events[0]
             assert name == "breakup" and figures["cause"] == "bending" and not body.flying
             assert figures["angle_of_attack_deg"] == pytest.approx(pitch, abs=1e-6)
-            assert figures["q_alpha_pa_deg"] == pytest.approx(view.dynamic_pressure * pitch, rel=1e-6)
+            assert figures["q_alpha_Pa_deg"] == pytest.approx(view.dynamic_pressure * pitch, rel=1e-6)
         else:
             assert world.events == [] and body.flying
 
@@ -207,5 +207,5 @@ def test_on_mars_the_shield_heats_with_the_co2_constant():
     checks.after_step(world, body, 0.02)
     rho = standard_table().at(60e3)[0][0]
     speed = np.linalg.norm(body.y[3:6] - corotating(body.y[0:3]))
-    assert world.events[0][1]["heat_flux_w_m2"] == pytest.approx(1.9027e-4 * math.sqrt(rho / 0.3) * speed ** 3,
+    assert world.events[0][1]["heat_flux_W_m2"] == pytest.approx(1.9027e-4 * math.sqrt(rho / 0.3) * speed ** 3,
                                                                  rel=1e-4)

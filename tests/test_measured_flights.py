@@ -51,7 +51,8 @@ from functools import lru_cache
 import pytest
 
 from tests.measured_flights import (MOTORS, SCENARIOS, figures_of_run, measured,
-                                    rocketpy_figures, rocketpy_flight, rocketsim_figures)
+                                    rocketpy_figures, rocketpy_flight)
+from tests.plot_checks import assert_the_plot_reads
 
 rocketpy = pytest.importorskip("rocketpy")
 
@@ -62,9 +63,16 @@ BELLA_MASS = ("rocketsim flies the K828FJ's .eng propellant (1.45 kg), RocketPy'
 
 
 @lru_cache(maxsize=None)
+def run_of(name: str):
+    """rocketsim's run of scenarios/measured/<name>.yaml (in memory), flown once per session."""
+    import rocketsim
+    return rocketsim.fly(SCENARIOS / f"{name}.yaml")
+
+
+@lru_cache(maxsize=None)
 def flights(name: str):
     """(log, rocketsim, RocketPy) figures of ``name``, flown once per session."""
-    log, ours, peer = measured(name), rocketsim_figures(name), rocketpy_figures(name, MOTORS)
+    log, ours, peer = measured(name), figures_of_run(name, run_of(name)), rocketpy_figures(name, MOTORS)
     rows = [("apogee (m AGL)", "apogee"), ("apogee time (s)", "apogee_time"),
             ("peak vertical speed (m/s)", "peak_vertical_speed"),
             ("descent rate (m/s)", "descent_rate")]
@@ -171,3 +179,9 @@ def test_with_rocketpys_masses_rocketsim_and_rocketpy_fly_bella_lui_alike():
     assert ours.apogee == pytest.approx(peer.apogee, rel=0.005)
     assert ours.apogee_time == pytest.approx(peer.apogee_time, rel=0.01)
     assert ours.peak_vertical_speed == pytest.approx(peer.peak_vertical_speed, rel=0.01)
+
+
+@pytest.mark.parametrize("name", ["ndrt-2020", "bella-lui"])
+def test_its_plot_reads(name):
+    """The replay plot of the whole flight (tests/plot_checks.py)."""
+    assert_the_plot_reads(run_of(name), name)

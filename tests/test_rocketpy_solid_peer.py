@@ -80,10 +80,10 @@ def test_off_rail_apogee_and_landing_agree_with_rocketpy():
     peer_apogee = float(flight.apogee - flight.env.elevation)
     drogue, main = (c.cd_s for c in shipped("hobby-rocket.yaml").stages[0].parachutes)
     peer_landing = abs(float(flight.impact_velocity)) * math.sqrt(main / (main + drogue))
-    print(f"\n[peer] off the rail: rocketsim {off['speed_m_s']:.2f} m/s, RocketPy {peer_off:.2f} m/s; "
+    print(f"\n[peer] off the rail: rocketsim {off['surface_speed_m_s']:.2f} m/s, RocketPy {peer_off:.2f} m/s; "
           f"apogee {apogee:.1f} m against {peer_apogee:.1f} m ({100 * (apogee / peer_apogee - 1):+.2f} %); "
           f"touchdown {-touchdown['vertical_speed_m_s']:.2f} m/s against {peer_landing:.2f} m/s")
-    assert off["speed_m_s"] == pytest.approx(peer_off, rel=0.01)
+    assert off["surface_speed_m_s"] == pytest.approx(peer_off, rel=0.01)
     assert apogee == pytest.approx(peer_apogee, rel=0.03)
     assert -touchdown["vertical_speed_m_s"] == pytest.approx(peer_landing, rel=0.03)
     assert np.isfinite(touchdown["drift_time_s"])

@@ -174,7 +174,7 @@ def main(fc):
     fc.event("climbed", altitude_m=fc.altitude)
     fc.sleep(0.37)
     fc.wait_until(fc.below("vertical_speed", fc.vertical_speed - 30.0))
-    fc.event("slower", speed_m_s=fc.vertical_speed)
+    fc.event("slower", vertical_speed_m_s=fc.vertical_speed)
 """,
     "raises": """
 def main(fc):

@@ -20,6 +20,7 @@ Flying and reading runs:
 * :func:`verify` -> a :class:`Verdict`: the run flown again from its attachments and
   compared message by message (:class:`UntrustedProgram` without ``trust``);
 * :func:`strict_json` -> JSON text with NaN and infinities as null (the summary's file);
+* :func:`telemetry_size` -> the :class:`SizeEstimate` of a flight's MCAP file, before it flies.
 * :func:`fly_live` / :func:`replay_live`: a flight, or a run's file, served to Foxglove as it
   plays at a warp (a :class:`Live` server's settings; :func:`parse_warp` reads a warp).
 
@@ -73,6 +74,8 @@ _HOMES = {
     "fly_live": "rocketsim.api.live", "replay_live": "rocketsim.api.live", "Live": "rocketsim.api.live",
     "parse_warp": "rocketsim.api.live", "LOOPBACK": "rocketsim.api.live", "PORT": "rocketsim.api.live",
     "strict_json": "rocketsim.telemetry.writer",
+    "telemetry_size": ("rocketsim.api.file_size", "estimate"),
+    "SizeEstimate": "rocketsim.api.file_size",
     "parse_quantity": "rocketsim.scenario.units", "UnitError": "rocketsim.scenario.units",
     "UNITS": "rocketsim.scenario.units",
     "classic_site": "rocketsim.scenario.classic_range",

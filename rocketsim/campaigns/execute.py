@@ -162,8 +162,12 @@ def _lost(k: int, error: BaseException) -> dict:
 def run(campaign, directory: str | Path, *, workers: int | None = None, scheduler: str | None = None,
         scheduler_file: str | Path | None = None, resume: bool = False, base_dir=None,
         progress: Callable[[int, int, int], None] | None = None,
-        log: Callable[[str], None] | None = None):
+        log: Callable[[str], None] | None = None, runs: int | None = None):
     """Fly ``campaign`` (a campaign file or mapping) into ``directory``; the results table.
+
+    ``runs``: fly that many runs in place of the file's (the first ones of the same
+    campaign); with ``resume`` a larger number grows a campaign sampled at random or
+    on a Sobol design (:meth:`rocketsim.campaigns.store.Store.open`).
 
     ``progress(done, failed, total)`` is called when the first run starts (0 done) and
     as runs finish (``total``: the runs this call flies), ``log(message)`` with the warm-up's costs. Raises
@@ -173,7 +177,7 @@ def run(campaign, directory: str | Path, *, workers: int | None = None, schedule
     needs("campaign", "a campaign", "pyarrow", *(() if in_process else ("distributed",)))
     import yaml
     log = log or (lambda message: None)
-    found = read_campaign(campaign, base_dir)
+    found = read_campaign(campaign, base_dir).with_runs(runs)
     Plan(found)         # every problem reported at its line of the campaign file, before anything else
     # what flies is the resolved campaign: the text every worker reads, campaign.yaml of the directory
     text = yaml.safe_dump(found.resolved(), sort_keys=False)
@@ -346,7 +350,7 @@ def same_row(a, b, ignore=("wall_time_s",)) -> list[str]:
 def campaign(campaign: str | Path | Mapping, directory: str | Path | None = None, *,
              workers: int | None = None, scheduler: str | None = None,
              scheduler_file: str | Path | None = None, resume: bool = False,
-             base_dir: str | Path | None = None):
+             base_dir: str | Path | None = None, runs: int | None = None):
     """Fly a Monte Carlo campaign and return its results as a pandas DataFrame (a row
     per run: ``run``, ``status``, ``error``, ``wall_time_s``, ``outcome`` and the
     output columns of :mod:`rocketsim.campaigns.outputs`).
@@ -356,11 +360,12 @@ def campaign(campaign: str | Path | Mapping, directory: str | Path | None = None
     default a temporary folder, removed); ``workers``: 1 flies in this process,
     otherwise a local Dask cluster of that many processes (default one per core);
     ``scheduler`` / ``scheduler_file``: an existing Dask cluster's; ``resume``: fly the
-    runs ``directory`` is missing. Every run's inputs derive from the campaign's
-    seed and the run's number alone (:mod:`rocketsim.campaigns.sampling`)."""
+    runs ``directory`` is missing; ``runs``: that many runs in place of the file's. Every
+    run's inputs derive from the campaign's seed and the run's number alone
+    (:mod:`rocketsim.campaigns.sampling`)."""
     if directory is None:
         with tempfile.TemporaryDirectory(prefix="rocketsim-campaign-") as folder:
             return run(campaign, Path(folder) / "campaign", workers=workers, scheduler=scheduler,
-                       scheduler_file=scheduler_file, base_dir=base_dir)
+                       scheduler_file=scheduler_file, base_dir=base_dir, runs=runs)
     return run(campaign, directory, workers=workers, scheduler=scheduler, scheduler_file=scheduler_file,
-               resume=resume, base_dir=base_dir)
+               resume=resume, base_dir=base_dir, runs=runs)

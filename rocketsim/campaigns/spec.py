@@ -19,7 +19,7 @@ errors (file, line, column, field; the nearest name of a misspelt field)::
       slip: {kind: slip, low: 0 s, high: 2 h}
     correlations:
       - {names: [thrust, isp], correlation: [[1, 0.6], [0.6, 1]]}
-    outputs: [bodies.booster.final.speed_m_s]     # extra summary values, by path
+    outputs: [bodies.booster.final.surface_speed_m_s]     # extra summary values, by path
     telemetry: failed                # none | failed | all | [3, 17]: runs kept as MCAP
     timeout: 10 min                  # a run's wall time before it is stopped
     retries: 2                       # a run re-flown after its worker was lost
@@ -214,6 +214,16 @@ class Campaign:
         self.path = path
         self.source = source
         self.scenario = (base_dir / spec.scenario).resolve()
+
+    def with_runs(self, runs: int | None) -> "Campaign":
+        """This campaign flying ``runs`` runs in place of its file's (None: the file's), as
+        the command line's ``--runs`` asks: run k is the same flight either way (its inputs
+        derive from the seed and k alone; a Latin hypercube is drawn for the runs asked)."""
+        if runs is not None:
+            if not 0 < runs <= MAX_RUNS:
+                raise InputError(f"{runs} runs: a campaign flies 1 .. {MAX_RUNS:,}", field="--runs")
+            self.spec = self.spec.model_copy(update={"runs": runs})
+        return self
 
     def check_groups(self) -> None:
         """Each correlated group names normal dispersions, once each, untruncated, with

@@ -112,11 +112,16 @@ class Store:
                 raise InputError(f"{self.dir} already holds a campaign: add --resume to fly its missing "
                                  "runs, or write to another directory", field="--output")
             before = yaml.safe_load(held.read_text())
-            if before != json.loads(json.dumps(resolved)):
-                changed = sorted(k for k in set(before) | set(resolved) if before.get(k) != resolved.get(k))
+            now = json.loads(json.dumps(resolved))
+            changed = sorted(k for k in set(before) | set(now) if before.get(k) != now.get(k))
+            if changed == ["runs"] and now["runs"] > before["runs"] and now["sampling"] != "lhs":
+                self._grow(campaign, plan, now)     # the same runs, and more of them
+            elif changed:
+                why = (f"it has {before['runs']} runs; --runs may only add to a campaign sampled at random "
+                       "or on a Sobol design" if changed == ["runs"] else
+                       "resume it with its own file, " + str(held))
                 raise InputError(f"{self.dir} holds another campaign (its campaign.yaml differs in "
-                                 f"{', '.join(changed)}): resume it with its own file, "
-                                 f"{held}", field="--resume")
+                                 f"{', '.join(changed)}): {why}", field="--resume")
             self.consolidate()
             return set(read_results(self.dir)["run"].tolist())
         if resume:
@@ -140,6 +145,18 @@ class Store:
                                                                         sort_keys=False))
         os.replace(self.dir / ".campaign.yaml.partial", held)
         return set()
+
+    def _grow(self, campaign, plan, resolved: dict) -> None:
+        """Rewrite the directory's campaign, meta.json and inputs for ``campaign``'s larger
+        number of runs (the inputs of the runs already there are unchanged: random and
+        Sobol draws of run k depend on the seed and k alone)."""
+        import yaml
+        meta = json.loads((self.dir / "meta.json").read_text())
+        meta["runs"] = campaign.spec.runs
+        _write(plan.inputs_table(), self.dir / "inputs.parquet")
+        (self.dir / "meta.json").write_text(json.dumps(meta, indent=1) + "\n")
+        (self.dir / ".campaign.yaml.partial").write_text(yaml.safe_dump(resolved, sort_keys=False))
+        os.replace(self.dir / ".campaign.yaml.partial", self.dir / "campaign.yaml")
 
     # --- rows -------------------------------------------------------------------
 

@@ -455,6 +455,15 @@ class MissionSpec(Strict):
 class TelemetrySpec(Strict):
     rate: Annotated[Frequency, Field(ge=1e-6, le=50)] = Field(
         10.0, description="samples per second (1e-6 Hz, one every 11.6 days, .. 50 Hz)")
+    coast_rate: Optional[Annotated[Frequency, Field(ge=1e-6, le=50)]] = Field(
+        None, description="samples per second of a body coasting (no engine running, dynamic "
+        "pressure under 1 Pa), at most the rate; default: the rate (rocketsim.sim.sample_watch)")
+
+    @model_validator(mode="after")
+    def _coast_rate(self) -> "TelemetrySpec":
+        if self.coast_rate is not None and self.coast_rate > self.rate:
+            raise ValueError(f"coast_rate {self.coast_rate:g} Hz is above the rate {self.rate:g} Hz")
+        return self
 
 
 class Scenario(Strict):

@@ -101,6 +101,9 @@ def build_world(loaded: LoadedScenario, step: float | None = None,
     body.watch = FlightEvents(world, body, on_ground=mission.start.site is not None,
                               stage_names=[s.name for s in scenario.vehicle.stages or []])
     world.sample_every = max(1, round(1.0 / (scenario.telemetry.rate * h)))
+    coast = scenario.telemetry.coast_rate
+    if coast is not None:           # a multiple of the sample interval (rocketsim.sim.sample_watch)
+        world.coast_every = world.sample_every * max(1, round(1.0 / (coast * h * world.sample_every)))
     world.seed, world.sensor_level = scenario.seed, scenario.sensors
     world.target = mission.target
     world.pad_azimuth = scenario.site.pad_azimuth if scenario.site else math.nan

@@ -10,10 +10,10 @@ temperature and whether touchdown has been reported.
 
 Events (figures in SI units, degrees where named):
 
-* ``breakup``: ``cause`` ("bending" or "axial load"), ``q_alpha_pa_deg``,
-  ``dynamic_pressure_pa``, ``angle_of_attack_deg``, ``axial_load_g``; the body
+* ``breakup``: ``cause`` ("bending" or "axial load"), ``q_alpha_Pa_deg``,
+  ``dynamic_pressure_Pa``, ``angle_of_attack_deg``, ``axial_load_g``; the body
   stops flying;
-* ``heat shield failure``: ``temperature_k``, ``heat_flux_w_m2``; the body stops flying;
+* ``heat shield failure``: ``shield_temperature_K``, ``heat_flux_W_m2``; the body stops flying;
 * ``touchdown``: ``vertical_speed_m_s`` (negative: down), ``horizontal_speed_m_s``,
   ``tilt_deg`` (body x from the local vertical), ``distance_to_target_m`` (horizontal,
   from the centre of mass to the mission's target pad, else the launch site), and
@@ -263,8 +263,8 @@ class VehicleChecks:
                                           k, cp, s.emissivity, s.area, s.mass * s.specific_heat)
         if self.temperature > HEAT_SHIELD_LIMIT:
             world.event(body, "heat shield failure", {
-                "temperature_k": self.temperature,
-                "heat_flux_w_m2": sutton_graves(rho, speed, s.nose_radius, k)})
+                "shield_temperature_K": self.temperature,
+                "heat_flux_W_m2": sutton_graves(rho, speed, s.nose_radius, k)})
             body.flying = False
 
     def _approach(self, body) -> tuple[np.ndarray, np.ndarray, float, float]:

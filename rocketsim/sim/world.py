@@ -46,6 +46,8 @@ from rocketsim.flight.program import ProgramRunner
 from rocketsim.sim import sampling, staging
 from rocketsim.sim.body import Body
 from rocketsim.sim.craft import BodyCraft
+from rocketsim.sim.ground_crossing import back_to_ground
+from rocketsim.sim.sample_watch import SampleWatch
 from rocketsim.sim.handover import hand_over, watch_soi
 from rocketsim.sim.schedule import Schedule, inertia, rails_field
 from rocketsim.sim.summary import summary
@@ -72,6 +74,8 @@ class World:
         self.k = 0
         self.telemetry = None
         self.sample_every = 1
+        self.coast_every = None             # steps between a coasting body's samples (None: every)
+        self.sample_watch = None            # the telemetry's SampleWatch while it flies with one
         self.on_progress: Callable[[float], None] | None = None
         self.phase = ""                     # the latest event, "<body>: <name>" (progress bars)
         self.schedule = Schedule(self)
@@ -158,7 +162,11 @@ class World:
 
     # --- the loop -----------------------------------------------------------
     def run(self, telemetry=None) -> dict:
-        """Fly to the end of the mission (or until every body has landed or hit)."""
+        """Fly to the end of the mission (or until every body has landed or hit), writing
+        ``telemetry`` through a :class:`~rocketsim.sim.sample_watch.SampleWatch` (the flight
+        figures of the summary, the coasts thinned)."""
+        if telemetry is not None:
+            telemetry = self.sample_watch = SampleWatch(telemetry, self.h, self.sample_every, self.coast_every)
         self.telemetry = telemetry
         for body in self.bodies:
             if telemetry is not None:
@@ -178,6 +186,8 @@ class World:
                             body.watch.after_step()
                     self.k += n
                     self.reached()
+            if self.sample_watch is not None:
+                self.sample_watch.finish()
         finally:
             for body in self.bodies:
                 if body.runner is not None:
@@ -354,13 +364,18 @@ class World:
         ground = 0.0 if body.vehicle is None else body.vehicle.arrays.aero.ref[A_GROUND]
         if body.flying and (crash is not None or short or radial_height(body.y, body.p) < ground):
             # the body went below the ground in its last step (the batch's last one
-            # included, where advance cannot say so by stopping early), or its first
-            # contact was a crash (its speeds at the contact, not after the springs): it has hit
+            # included, where advance cannot say so by stopping early): it has hit, where
+            # it crossed the ground (its time no longer a whole number of steps); or its
+            # first contact was a crash (its speeds at the contact, not after the springs)
+            if crash is None:
+                tau, body.y = back_to_ground(body.y, body.p, ground, self.h)
+                body.t += tau
             lat, lon, _ = self.where(body)
             ground_speed = np.linalg.norm(body.view().surface_velocity)     # over the central body's ground
-            figures = {"latitude_deg": lat / DEG, "longitude_deg": lon / DEG, "speed_m_s": float(ground_speed)}
+            figures = {"latitude_deg": lat / DEG, "longitude_deg": lon / DEG,
+                       "surface_speed_m_s": float(ground_speed)}
             if crash is not None:
-                figures.update(crash, speed_m_s=math.hypot(crash["vertical_speed_m_s"],
+                figures.update(crash, surface_speed_m_s=math.hypot(crash["vertical_speed_m_s"],
                                                            crash["horizontal_speed_m_s"]))
             self.event(body, "impact", figures)
             body.flying = False

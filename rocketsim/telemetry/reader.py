@@ -20,6 +20,8 @@ from mcap.reader import make_reader
 from mcap.records import Attachment, Channel, Message, Metadata
 from mcap.stream_reader import StreamReader
 
+from rocketsim.telemetry.names import FORMER_FIELDS
+
 STATE_SUFFIX = "/state"
 TEXT_TOPICS = ("/events", "/log", "/events/log")
 
@@ -204,12 +206,16 @@ _NUMBER = (int, float, type(None))
 _FIELDS = {"/events": {"t": _NUMBER, "body": str, "name": str, "figures": dict},
            "/log": {"message": str}, "/events/log": {"message": str, "level": int},
            STATE_SUFFIX: {"t": _NUMBER, "altitude": _NUMBER, "latitude_deg": _NUMBER,
-                          "longitude_deg": _NUMBER, "speed": _NUMBER}}
+                          "longitude_deg": _NUMBER, "inertial_speed": _NUMBER}}
 
 
 def _message(data: bytes, kind: str) -> dict:
-    """A message's JSON, with the fields of ``kind`` (a topic or STATE_SUFFIX) of their types."""
+    """A message's JSON, with the fields of ``kind`` (a topic or STATE_SUFFIX) of their types;
+    a state written before a field was renamed has it under today's name
+    (:data:`rocketsim.telemetry.names.FORMER_FIELDS`)."""
     message = json.loads(data)
+    if kind == STATE_SUFFIX and isinstance(message, dict):
+        message = {FORMER_FIELDS.get(key, key): value for key, value in message.items()}
     if not isinstance(message, dict) or not all(
             isinstance(message.get(key, ...), types) for key, types in _FIELDS[kind].items()):
         raise ValueError(f"a damaged {kind} message")

@@ -55,8 +55,8 @@ def main(fc):
         return math.sqrt(2.0 * MARS_MU * PERIAPSIS / (rn * (rn + PERIAPSIS))) * along
     burn(fc, deorbit, "deorbit", THRUST, ISP)
     fc.wait_until(lambda: height(fc.position) < 150e3)
-    fc.event("entry_interface", speed_m_s=float(np.linalg.norm(fc.velocity)))
+    fc.event("entry_interface", inertial_speed_m_s=float(np.linalg.norm(fc.velocity)))
     fc.wait_until(lambda: mach(fc) < PARACHUTE_MACH or height(fc.position) < PARACHUTE_HEIGHT)
-    fc.event("parachute_conditions", mach=mach(fc), height_m=height(fc.position),
-             speed_m_s=float(np.linalg.norm(fc.velocity)))
+    fc.event("parachute_conditions", mach=mach(fc), altitude_m=height(fc.position),
+             inertial_speed_m_s=float(np.linalg.norm(fc.velocity)))
     fc.deploy_parachute("disk-gap-band")
