@@ -24,7 +24,7 @@ LAYERS = [
     ("rocketsim.orbits",),
     ("rocketsim.vehicle",),
     ("rocketsim.dynamics",),
-    ("rocketsim.transfer", "rocketsim.flight"),
+    ("rocketsim.transfer", "rocketsim.flight", "rocketsim.guidance"),
     ("rocketsim.scenario", "rocketsim.telemetry"),
     ("rocketsim.sim",),
     ("rocketsim.api", "rocketsim"),

@@ -1,0 +1,1 @@
+"""Guidance a flight program imports: ascent insertion (:mod:`rocketsim.guidance.ascent`)."""
