@@ -51,9 +51,15 @@ Shuttle ascent guidance, navigation, and control", *J. Astronaut. Sci.* 27,
 The first cycle starts from a guess (the cut-off point ahead along the target
 plane by the arc the burn covers) and is repeated on the same state until the
 time to go settles (:func:`start`, :func:`settle`); so is a cycle whose thrust
-has changed (a throttle step). Near the end the solution loses its
-conditioning (``Q - S J / L`` shrinks as ``tgo^3``): below ``freeze`` seconds to
-go the last law is flown as it is.
+has stepped. Two refinements for the end of the burn: the burn may be planned
+as two constant-thrust phases, its last ``final_speed`` at a lower throttle
+(:func:`burn_phases`, :func:`thrust_integrals`: the UPFG document sums the
+integrals of its stages the same way), so that the step down does not turn the
+law; and in the last seconds the position is released (``released``:
+``lambda_dot = 0``, the thrust along ``vgo``): ``lambda_dot`` answers a
+position error with a gain growing as ``1 / tgo^3``, and there a metre of
+navigation noise would swing the law by degrees while a metre of radius is
+worth a metre of apsis. In the last ``freeze`` seconds the law is flown as it is.
 
 **The target** (:class:`Orbit`): a periapsis and an apoapsis radius and an
 inclination, read as osculating two-body elements or as Kozai mean elements
@@ -69,11 +75,11 @@ guidance never spends propellant on a node nobody asked for.
 **Flying it** (:class:`Insertion`): the nose is pointed (``fc.point_at``) where
 the law will be ``LEAD`` later, the lag of the autopilot's second-order response
 behind a steadily turning command (``2 zeta / omega_n``,
-:mod:`rocketsim.flight.steering`). With ``throttle_down`` s to go the throttle
-drops to the engines' lowest and the solution is settled on the new thrust:
-then a step's velocity gain, which sets how well the cut-off is timed, is small
-(0.4 m/s at the Falcon 9-class second stage's lowest throttle, 1 m/s at full).
-The engine is shut down in the step that brings the orbital energy
+:mod:`rocketsim.flight.steering`). The burn's last 150 m/s are planned and flown
+at the engines' lowest throttle (``fc.engines``' ``throttle_range``): a step's
+velocity gain, which sets how well the cut-off is timed, is then small (0.4 m/s
+at the Falcon 9-class second stage's lowest throttle, 1 m/s at full). The
+engine is shut down in the step that brings the orbital energy
 ``v^2 / 2 - mu / r``, with the tail-off's impulse (``a_T t_tail / 2`` along the
 thrust, the linear tail-off of :mod:`rocketsim.vehicle.engines`), nearest the
 target's: the semi-major axis is then right to half a step's velocity gain.
