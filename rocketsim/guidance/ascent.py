@@ -495,28 +495,35 @@ class Insertion:
             fc.point_at(fc.velocity)
             return 0.0
         r, v = fc.position, fc.velocity
-        acceleration = fc.acceleration * G0
+        sensed = fc.acceleration * G0               # the thrust's, in vacuum
         exhaust = thrust / sum(e["mass_flow_kg_s"] for e in on)
         solution = self.solution
         if not self.throttled and solution is not None and solution.switch is not None and t >= solution.switch:
             fc.throttle(0.0)            # clipped to each engine's lowest
             self.throttled = True
+        # the thrust at the engines' lowest throttle over the thrust now: the last phase's
+        # share, planned; once throttled, 1 when the throttle has slewed down, and until
+        # then the plan flies on as it was made (it holds the step down)
         lowest = sum(e["thrust_N"] * e["throttle_range"][0] / e["throttle"] for e in on) / thrust
+        slewing = self.throttled and lowest < 1.0 - 1e-9
         final = (0.0, 1.0) if self.throttled else (self.final_speed, lowest)
         if solution is None:
-            solution = start(t, r, v, acceleration, exhaust, self.orbit, final)
-        else:
-            left = solution.tgo - (t - solution.t)
+            solution = start(t, r, v, sensed, exhaust, self.orbit, final)
+        elif not slewing and solution.tgo - (t - solution.t) > self.freeze:
             expected = solution.exhaust / (solution.tau - (t - solution.t))     # the last solution's thrust
-            if abs(acceleration / expected - 1.0) > SETTLE_CHANGE and left > self.freeze:
-                solution = settle(solution, t, r, v, acceleration, exhaust, self.orbit, left < self.release, final)
-            elif t - solution.t >= self.period - 1e-9 and left > self.freeze:
-                solution = cycle(solution, t, r, v, acceleration, exhaust, self.orbit, left < self.release, final)
+            solve = settle if abs(sensed / expected - 1.0) > SETTLE_CHANGE else \
+                cycle if t - solution.t >= self.period - 1e-9 else None
+            if solve is not None:
+                released = solution.tgo - (t - solution.t) < self.release
+                new = solve(solution, t, r, v, sensed, exhaust, self.orbit, released, final)
+                if not released and new.tgo < self.release:     # arrived sooner than the last plan said
+                    new = solve(solution, t, r, v, sensed, exhaust, self.orbit, True, final)
+                solution = new
         self.solution = solution
         mu = self.orbit.mu
         nose = solution.direction(t)
         energy = 0.5 * float(v @ v) - mu / math.sqrt(float(r @ r))
-        gain_rate = float(v @ nose) * acceleration             # J/kg per s of thrust
+        gain_rate = float(v @ nose) * sensed                   # J/kg per s of thrust
         tail = 0.5 * self.tail_off * gain_rate
         wanted = 0.5 * solution.target.speed ** 2 - mu / solution.target.radius
         half_step = 0.5 * gain_rate * (step if step is not None and step < 0.1 else 0.0)
