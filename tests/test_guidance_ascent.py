@@ -36,10 +36,13 @@ import pytest
 from scipy.integrate import quad, solve_ivp
 from scipy.optimize import minimize
 
+from rocketsim import fly
+from rocketsim.api.flying import load as load_scenario
 from rocketsim.constants import DEG, EARTH_MU, EARTH_OMEGA, EARTH_RADIUS_EQ, G0
 from rocketsim.frames.mean_elements import mean_elements_of_state
 from rocketsim.guidance.ascent import (Orbit, burn_phases, cycle, launch_azimuth, plane_normal, plane_through,
                                        settle, start, thrust_integrals, unit)
+from tests.conftest import ROOT
 
 # a Falcon 9-class second stage just after staging (vehicles/falcon9-block5.yaml, 10 t payload)
 THRUST, ISP = 934e3, 348.0                   # N, s
@@ -249,3 +252,17 @@ def test_the_launch_azimuth_reaches_the_inclination_at_orbital_speed(latitude_de
     heading = math.atan2(east, north)
     assert math.degrees(math.acos(math.cos(lat) * math.sin(heading))) == pytest.approx(inclination_deg, abs=1e-9)
 
+
+
+def test_a_stage_short_of_propellant_ends_its_burn_ran_dry():
+    """The Falcon 9-class ascent with 40 % of its second stage's load (a 0.1 s step, the
+    booster's return left out, to keep it short): the stage runs dry before the target
+    energy, the guidance says so (the program's log) and the vehicle is left suborbital."""
+    loaded = load_scenario(ROOT / "scenarios" / "falcon9-leo.yaml",
+                           {"programs": {}, "mission.duration": "600 s",
+                            "vehicle.stages[second stage].tanks[LOX].propellant_mass": "30207 kg",
+                            "vehicle.stages[second stage].tanks[RP-1].propellant_mass": "12793 kg"})
+    run = fly(loaded, step=0.1)
+    lines = [line["message"] for line in run.logs if "insertion" in line["message"]]
+    assert len(lines) == 1 and lines[0].startswith("insertion (ran dry)"), lines
+    assert run.bodies["falcon9-block5"].orbit["periapsis_altitude"] < 0.0
