@@ -9,30 +9,13 @@ import click
 from rocketsim.errors import InputError
 from rocketsim_cli.errors import output_file, reports_input_errors
 
-_COLUMNS = ("height_m", "temperature_K", "pressure_Pa", "density_kg_m3", "speed_of_sound_m_s")
-_WIND = ("wind_east_m_s", "wind_north_m_s")
-
 
 def _quantity(text: str, dimension: str, option: str) -> float:
-    from rocketsim.scenario.units import UnitError, parse_quantity
+    from rocketsim.api import UnitError, parse_quantity
     try:
         return parse_quantity(text, dimension)
     except UnitError as error:
         raise InputError(str(error), field=option) from None
-
-
-def _table(weather: Path | None, body: str, latitude: float, longitude: float, epoch):
-    if body == "mars":
-        if weather is not None:
-            raise InputError("--weather is for Earth; Mars has one mean atmosphere",
-                             field="--weather")
-        from rocketsim.atmosphere.mars import mars_table
-        return mars_table()
-    from rocketsim.scenario.weather import StandardWeather, build_atmosphere, load_weather
-    if weather is None:
-        return build_atmosphere(StandardWeather(kind="standard"), latitude, ".")
-    return build_atmosphere(load_weather(weather), latitude, weather.resolve().parent,
-                            site_longitude=longitude, epoch=epoch)
 
 
 def _epoch(text: str | None):
@@ -45,31 +28,6 @@ def _epoch(text: str | None):
     except ValueError:
         raise InputError(f"not an ISO 8601 instant: {text!r}", field="--epoch") from None
     return value.replace(tzinfo=dt.timezone.utc) if value.tzinfo is None else value
-
-
-def _plot(path: Path, heights, rows, wind: bool, title: str) -> None:
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    km = heights / 1000.0
-    panels = [("temperature (K)", rows[1], False), ("pressure (Pa)", rows[2], True),
-              ("density (kg/m³)", rows[3], True)]
-    fig, axes = plt.subplots(1, 4 if wind else 3, figsize=(14 if wind else 11, 6), sharey=True)
-    for ax, (label, values, log) in zip(axes, panels):
-        ax.plot(values, km)
-        ax.set_xlabel(label)
-        if log:
-            ax.set_xscale("log")
-    if wind:
-        axes[3].plot(rows[5], km, label="east")
-        axes[3].plot(rows[6], km, label="north")
-        axes[3].set_xlabel("wind (m/s)")
-        axes[3].legend()
-    axes[0].set_ylabel("height (km)")
-    fig.suptitle(title)
-    fig.tight_layout()
-    fig.savefig(path)
-    plt.close(fig)
 
 
 @click.command()
@@ -105,6 +63,8 @@ def atmosphere(weather, body, latitude, longitude, epoch, h_from, h_to, h_step, 
     """
     import numpy as np
 
+    from rocketsim.api import atmosphere as air_profile
+
     lat = _quantity(latitude, "angle", "--latitude")
     lo, hi = _quantity(h_from, "length", "--from"), _quantity(h_to, "length", "--to")
     step = _quantity(h_step, "length", "--step")
@@ -115,13 +75,13 @@ def atmosphere(weather, body, latitude, longitude, epoch, h_from, h_to, h_step, 
                          field="--to")
     if (hi - lo) / step > 1_000_000:
         raise InputError("more than a million rows: use a larger --step", field="--step")
-    table = _table(weather, body, lat, _quantity(longitude, "angle", "--longitude"),
-                   _epoch(epoch))
+    longitude, moment = _quantity(longitude, "angle", "--longitude"), _epoch(epoch)
+    if body == "mars" and weather is not None:
+        raise InputError("--weather is for Earth; Mars has one mean atmosphere", field="--weather")
     heights = lo + step * np.arange(int(np.floor((hi - lo) / step + 1e-9)) + 1)
-    rho, p, t, a, we, wn = table.at(heights)
-    wind = table.has_wind
-    rows = [heights, t, p, rho, a] + ([we, wn] if wind else [])
-    names = _COLUMNS + (_WIND if wind else ())
+    profile = air_profile(heights, weather=weather, body=body, latitude=lat, longitude=longitude,
+                          epoch=moment)
+    names, rows = list(profile.columns), list(profile.columns.values())
     if fmt == "csv":
         click.echo(",".join(names))
         for values in zip(*rows):
@@ -131,6 +91,6 @@ def atmosphere(weather, body, latitude, longitude, epoch, h_from, h_to, h_step, 
         for values in zip(*rows):
             click.echo("".join(f"{v:>16.6g}" for v in values))
     if plot is not None:
-        title = "Mars" if body == "mars" else (str(weather) if weather else "US Standard 1976")
-        _plot(plot, heights, rows, wind, title)
+        from rocketsim.plots import atmosphere as plot_air
+        plot_air(profile, plot)
         click.echo(f"plot: {plot}", err=True)

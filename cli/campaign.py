@@ -91,7 +91,7 @@ def run(campaign_file: Path, output: Path, workers: int | None, scheduler: str |
         rocketsim campaign run campaigns/falcon9-landing.yaml -o f9 --resume
         rocketsim campaign run campaigns/falcon9-landing.yaml -o f9 --scheduler tcp://head:8786
     """
-    from rocketsim.campaigns.execute import Interrupted, run as run_campaign
+    from rocketsim.api import CampaignInterrupted, run_campaign
 
     if scheduler is not None and scheduler_file is not None:
         from rocketsim.errors import InputError
@@ -101,7 +101,7 @@ def run(campaign_file: Path, output: Path, workers: int | None, scheduler: str |
         results = run_campaign(campaign_file, output, workers=workers, scheduler=scheduler,
                                scheduler_file=scheduler_file, resume=resume, progress=_Progress(),
                                log=lambda message: click.echo(message, err=True))
-    except Interrupted as stopped:
+    except CampaignInterrupted as stopped:
         click.echo(f"\n{stopped}; 'rocketsim campaign run {campaign_file} -o {output} --resume' "
                    "flies the rest", err=True)
         sys.exit(130)
@@ -132,12 +132,12 @@ def rerun(directory: Path, k: int, output: Path | None) -> None:
     Example:
         rocketsim campaign rerun f9 17 -o run-17.mcap && rocketsim replay run-17.mcap
     """
-    from rocketsim.campaigns.execute import rerun as rerun_case, same_row
+    from rocketsim.api import rerun_campaign, same_row
     from rocketsim_cli.errors import check_writable
 
     output = output or Path(f"run-{k}.mcap")
     check_writable(output, "--output")
-    row, recorded = rerun_case(directory, k, output)
+    row, recorded = rerun_campaign(directory, k, output)
     click.echo(f"run {k}: {row['status'].iloc[0]}, outcome {row['outcome'].iloc[0]}; telemetry: {output}")
     if recorded is None:
         click.echo(f"run {k} has no row in {directory / 'results.parquet'} to compare with")
@@ -164,11 +164,11 @@ def report(directory: Path, plot_dir: Path | None) -> None:
         rocketsim campaign report f9 --plot f9/plots
     """
     try:
-        from rocketsim.campaigns.report import report as make_report
+        from rocketsim.api import campaign_report
     except ImportError as error:
         click.echo(f"error: the campaign report is not in this installation ({error})", err=True)
         sys.exit(1)
-    found = make_report(directory, plot_dir)
+    found = campaign_report(directory, plot_dir)
     click.echo(found.text)
     errored = found.errored if isinstance(found.errored, int) else len(found.errored)
     if errored:

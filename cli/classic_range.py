@@ -25,7 +25,7 @@ def classic_range(seed, output):
     """
     import yaml
 
-    from rocketsim.scenario.classic_range import classic_site
+    from rocketsim.api import classic_site
 
     site = classic_site(seed)
     degrees = ", ".join(f"{pad['name']} {_deg(pad['longitude']):.4f} deg E" for pad in site["pads"])

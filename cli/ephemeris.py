@@ -5,21 +5,14 @@ from __future__ import annotations
 import datetime as _dt
 import math
 
-from typing import TYPE_CHECKING
-
 import click
 
-from rocketsim.constants import AU
 from rocketsim.errors import InputError
 from rocketsim_cli.errors import reports_input_errors
 from rocketsim_cli.lazy import LibraryChoice
 
-if TYPE_CHECKING:
-    import numpy as np
-
 MAX_ROWS = 200_000
 CSV_COLUMNS = "utc,tt_jd,x_km,y_km,z_km,vx_km_s,vy_km_s,vz_km_s"
-DEFAULT_CENTER = {"sun": "earth", "earth": "sun", "mars": "sun", "moon": "earth"}
 
 
 def _utc(text: str, option: str) -> _dt.datetime:
@@ -35,7 +28,7 @@ def _utc(text: str, option: str) -> _dt.datetime:
 
 
 def _instants(start: _dt.datetime, stop: _dt.datetime, step_text: str) -> list[_dt.datetime]:
-    from rocketsim.scenario.units import UnitError, parse_quantity
+    from rocketsim.api import UnitError, parse_quantity
     try:
         step = parse_quantity(step_text, "time")
     except UnitError as error:
@@ -52,16 +45,9 @@ def _instants(start: _dt.datetime, stop: _dt.datetime, step_text: str) -> list[_
     return [start + _dt.timedelta(seconds=k * step) for k in range(count)]
 
 
-def _elongation_deg(sun: np.ndarray, body: np.ndarray) -> np.ndarray:
-    """Angle Sun-Earth-body (deg) from geocentric vectors (N, 3)."""
-    import numpy as np
-    cos = np.sum(sun * body, axis=1) / (np.linalg.norm(sun, axis=1) * np.linalg.norm(body, axis=1))
-    return np.degrees(np.arccos(np.clip(cos, -1.0, 1.0)))
-
-
 def _bodies() -> tuple[str, ...]:
-    from rocketsim.ephemeris.solar_system import BODIES
-    return BODIES
+    from rocketsim.api import EPHEMERIS_BODIES
+    return EPHEMERIS_BODIES
 
 
 @click.command()
@@ -86,32 +72,22 @@ def ephemeris(body, center, start, stop, step, fmt):
         rocketsim ephemeris --body mars --from 2026-01-01 --to 2027-01-01 --step 10d
         rocketsim ephemeris --body moon --from 2026-03-01 --to 2026-04-01 --format csv
     """
-    import numpy as np
+    from rocketsim.api import ephemeris as positions
 
-    from rocketsim.ephemeris.solar_system import states
-    from rocketsim.timescales import Epoch
-
-    center = center or DEFAULT_CENTER[body]
     utc = _instants(_utc(start, "--from"), _utc(stop, "--to"), step)
-    jd_tt = np.array([Epoch.from_utc(moment).jd_tt() for moment in utc])
-    field = states(jd_tt, center="earth")
-    r = field[body][0] - field[center][0]
-    v = field[body][1] - field[center][1]
+    found = positions(body, utc, center)
     if fmt == "csv":
         click.echo(CSV_COLUMNS)
-        for moment, jd, pos, vel in zip(utc, jd_tt, r / 1e3, v / 1e3):
+        for moment, jd, pos, vel in zip(utc, found.jd_tt, found.position / 1e3, found.velocity / 1e3):
             click.echo(f"{moment:%Y-%m-%dT%H:%M:%SZ},{jd:.6f},{pos[0]:.3f},{pos[1]:.3f},"
                        f"{pos[2]:.3f},{vel[0]:.6f},{vel[1]:.6f},{vel[2]:.6f}")
         return
-    distance = np.linalg.norm(r, axis=1)
-    from_earth = np.linalg.norm(field[body][0], axis=1)
-    elongation = (_elongation_deg(field["sun"][0], field[body][0])
-                  if body not in ("earth", "sun") else None)
-    click.echo(f"# {body} from {center}, J2000 equatorial; elongation = angle Sun-Earth-{body}")
+    elongation = found.elongation_deg
+    click.echo(f"# {body} from {found.center}, J2000 equatorial; elongation = angle Sun-Earth-{body}")
     click.echo(f"{'utc':<20} {'tt_jd':>15} {'distance_km':>16} {'distance_au':>12} "
                f"{'from_earth_km':>16} {'speed_km_s':>10} {'elongation_deg':>14}")
-    speed = np.linalg.norm(v, axis=1) / 1e3
+    speed = found.speed / 1e3
     for k, moment in enumerate(utc):
         elong = f"{elongation[k]:14.3f}" if elongation is not None else f"{'-':>14}"
-        click.echo(f"{moment:%Y-%m-%d %H:%M:%S} {jd_tt[k]:15.6f} {distance[k] / 1e3:16.1f} "
-                   f"{distance[k] / AU:12.6f} {from_earth[k] / 1e3:16.1f} {speed[k]:10.4f} {elong}")
+        click.echo(f"{moment:%Y-%m-%d %H:%M:%S} {found.jd_tt[k]:15.6f} {found.distance[k] / 1e3:16.1f} "
+                   f"{found.distance_au[k]:12.6f} {found.from_earth[k] / 1e3:16.1f} {speed[k]:10.4f} {elong}")

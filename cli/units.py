@@ -1,7 +1,7 @@
 """Quantities on the command line, read as the scenario files read them.
 
 ``--duration 10s``, ``--duration "10 s"``, ``--step 20ms`` or a bare number in SI:
-the parser and the errors of :mod:`rocketsim.scenario.units`; a bad unit exits 2
+the parser and the errors of the scenario files (:func:`rocketsim.api.parse_quantity`); a bad unit exits 2
 with click's usage error naming the option. An option whose users think in a unit
 that is not SI (C3 in km^2/s^2, v-infinity in km/s) refuses a bare number rather
 than read ``20`` as 20 m^2/s^2.
@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import click
 
-from rocketsim.scenario.units import UNITS, UnitError, parse_quantity
+from rocketsim.api import UNITS, UnitError, parse_quantity
 
 
 class Quantity(click.ParamType):

@@ -11,9 +11,6 @@ import click
 from rocketsim.errors import InputError
 from rocketsim_cli.lazy import LibraryChoice
 
-# file kinds by the top-level field only that kind has
-_KINDS = {"rigid_body": "vehicle", "stages": "vehicle", "latitude": "site", "start": "mission"}
-
 
 @click.command()
 @click.argument("files", nargs=-1, required=True, type=click.Path(dir_okay=False, path_type=Path))
@@ -27,10 +24,12 @@ def validate(files: tuple[Path, ...]) -> None:
     Example:
         rocketsim validate scenarios/iss-coast.yaml vehicles/cubesat-6u.yaml
     """
+    from rocketsim.api import validate_file
+
     failed = False
     for path in files:
         try:
-            kind = _validate_one(path)
+            kind = validate_file(path)
         except InputError as error:
             click.echo(f"error: {error}", err=True)
             failed = True
@@ -40,26 +39,9 @@ def validate(files: tuple[Path, ...]) -> None:
         sys.exit(2)
 
 
-def _validate_one(path: Path) -> str:
-    from rocketsim.scenario.load import REFERENCED, load, validate as validate_source
-    from rocketsim.scenario.yaml_source import read_yaml
-
-    source = read_yaml(path)
-    if isinstance(source.data, dict) and "mission" in source.data:
-        load(path)
-        return "scenario"
-    if isinstance(source.data, dict):
-        for field, kind in _KINDS.items():
-            if field in source.data:
-                validate_source(source, REFERENCED[kind])
-                return kind
-    raise InputError("not a scenario, vehicle, site or mission file (no 'mission', 'rigid_body', "
-                     "'latitude' or 'start' field)", file=path, line=1, column=1)
-
-
 def _kinds() -> list[str]:
-    from rocketsim.scenario.load import REFERENCED
-    return ["scenario", *REFERENCED]
+    from rocketsim.api import schema_kinds
+    return schema_kinds()
 
 
 @click.command()
@@ -75,8 +57,6 @@ def schema(kind: str) -> None:
         rocketsim schema > rocketsim-scenario.schema.json
         rocketsim schema --kind vehicle > vehicle.schema.json
     """
-    from rocketsim.scenario.load import REFERENCED
-    from rocketsim.scenario.models import Scenario
+    from rocketsim.api import schema as schema_of
 
-    model = Scenario if kind == "scenario" else REFERENCED[kind]
-    click.echo(json.dumps(model.model_json_schema(), indent=2))
+    click.echo(json.dumps(schema_of(kind), indent=2))

@@ -7,7 +7,6 @@ from pathlib import Path
 
 import click
 
-from rocketsim.errors import InputError
 from rocketsim_cli.errors import output_file, reports_input_errors
 
 
@@ -30,25 +29,16 @@ def vehicle(file, fmt, plot):
         rocketsim vehicle vehicles/falcon9-block5.yaml
         rocketsim vehicle vehicles/falcon9-block5.yaml --format json --plot f9.png
     """
-    from rocketsim.scenario.load import validate
-    from rocketsim.scenario.models import VehicleSpec
-    from rocketsim.scenario.yaml_source import read_yaml
+    from rocketsim.api import vehicle_report
 
-    if not file.is_file():
-        raise InputError(f"vehicle file not found: {file}", file=file)
-    spec = validate(read_yaml(file), VehicleSpec)
-    if spec.stages is None:
-        raise InputError("a rigid-body vehicle has no stack to show: this command reads "
-                         "vehicles with 'stages'", file=file, line=1, column=1, field="stages")
-    from rocketsim.vehicle.summary import summary
-    figures = summary(spec)
+    report = vehicle_report(file)
     if fmt == "json":
-        click.echo(json.dumps(figures, indent=2))
+        click.echo(json.dumps(report.figures, indent=2))
     else:
-        click.echo(_table(figures))
+        click.echo(_table(report.figures))
     if plot is not None:
-        from rocketsim.vehicle.build import build
-        _plot(plot, spec, build(spec), figures)
+        from rocketsim.plots import vehicle as plot_vehicle
+        plot_vehicle(report, plot)
         click.echo(f"plot: {plot}", err=True)
 
 
@@ -76,42 +66,3 @@ def _table(f: dict) -> str:
                      f"  inertia roll {ixx:.4g}, pitch {iyy:.4g}, yaw {izz:.4g} kg m2")
     return "\n".join(lines)
 
-
-def _plot(path: Path, spec, model, figures) -> None:
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    from matplotlib.patches import Rectangle
-
-    fig, ax = plt.subplots(figsize=(4, 10))
-    for s, st in enumerate(spec.stages):
-        base = model.stage_base[s]
-        r = 0.5 * st.diameter
-        ax.add_patch(Rectangle((-r, base), 2 * r, st.length, fill=False, lw=1.2))
-        ax.text(r + 0.3, base + 0.5 * st.length, st.name, va="center", fontsize=8)
-        for tank in st.tanks:
-            ax.add_patch(Rectangle((-tank.radius, base + tank.position), 2 * tank.radius, tank.length,
-                                   alpha=0.35, color="tab:blue" if "ox" in tank.propellant.lower()
-                                   else "tab:orange"))
-        for group in st.engines:
-            ax.plot([group.layout_radius, -group.layout_radius] if group.layout_radius else [0.0],
-                    [base + group.position] * (2 if group.layout_radius else 1), "kv", ms=5)
-        for part in st.point_masses:
-            ax.plot([part.radius, -part.radius] if part.radius else [0.0],
-                    [base + part.position] * (2 if part.radius else 1), "s", color="gray", ms=4)
-    top = model.stage_base[-1] + spec.stages[-1].length
-    for part, style in ((spec.payload, dict(color="tab:green", alpha=0.5)),
-                        (spec.fairing, dict(fill=False, ls="--"))):
-        if part is not None:
-            ax.add_patch(Rectangle((-0.5 * part.diameter, top), part.diameter, part.length, **style))
-    for key, marker in (("full", "ro"), ("empty", "rx")):
-        ax.plot([0.0], [figures[key]["centre_of_mass_m"]], marker, label=f"centre of mass, {key}")
-    ax.set_aspect("equal")
-    ax.set_xlim(-0.5 * model.length / 4 - 2, model.length / 4 + 2)
-    ax.set_ylim(-1, model.length + 1)
-    ax.set_ylabel("height above the base (m)")
-    ax.set_title(spec.name)
-    ax.legend(loc="lower right", fontsize=7)
-    fig.tight_layout()
-    fig.savefig(path, dpi=120)
-    plt.close(fig)

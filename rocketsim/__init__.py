@@ -16,28 +16,15 @@ The front door, for scripts and notebooks::
   Monte Carlo campaign's results as a pandas DataFrame (:mod:`rocketsim.campaigns`);
 * :class:`InputError`: what bad input raises (file, line, field, or path).
 
-The names load on first use (PEP 562), so ``import rocketsim.constants`` or the
-command line's light commands do not import the flight's compiled kernels.
+These are :mod:`rocketsim.api`'s, which has the rest of the front door (what every
+command of the command line calls). The names load on first use
+(:mod:`rocketsim.exports`), so ``import rocketsim.constants`` or the command line's
+light commands do not import the flight's compiled kernels.
 """
 
+from rocketsim.exports import lazy
 from rocketsim.version import __version__
 
 __all__ = ["__version__", "load", "fly", "open_run", "Run", "InputError", "campaign"]
 
-_HOMES = {"load": "rocketsim.api.flying", "fly": "rocketsim.api.flying",
-          "open_run": "rocketsim.api.run", "Run": "rocketsim.api.run",
-          "InputError": "rocketsim.errors", "campaign": "rocketsim.campaigns.execute"}
-
-
-def __getattr__(name: str):
-    home = _HOMES.get(name)
-    if home is None:
-        raise AttributeError(f"module 'rocketsim' has no attribute {name!r}")
-    import importlib
-    value = getattr(importlib.import_module(home), name)
-    globals()[name] = value
-    return value
-
-
-def __dir__() -> list[str]:
-    return sorted(set(globals()) | set(__all__))
+__getattr__, __dir__ = lazy(globals(), {name: "rocketsim.api" for name in __all__[1:]})

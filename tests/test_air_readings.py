@@ -5,7 +5,7 @@ import math
 import pytest
 
 from rocketsim.scenario.load import load
-from rocketsim.sim.flight import fly
+from rocketsim.api.telemetry_flight import fly_to_file as fly
 from tests.conftest import ROOT, VEHICLE
 
 FIXTURE = ROOT / "tests" / "fixtures" / "atmosphere" / "oun_20110522_12z_extract.txt"

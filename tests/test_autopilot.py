@@ -7,7 +7,7 @@ import pytest
 
 from rocketsim.flight.steering import attitude_error
 from rocketsim.scenario.load import load
-from rocketsim.sim.flight import fly
+from rocketsim.api.telemetry_flight import fly_to_file as fly
 
 VEHICLE = """\
 name: kick stage

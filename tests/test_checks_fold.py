@@ -1,10 +1,10 @@
 """One compiled call per step of a vehicle with aerodynamics (for speed): the
 autopilot's step, the RK4 advance and the checks' figures folded into
-:func:`rocketsim.sim.vehicle_checks.advance_checked`.
+:func:`rocketsim.stepping.checked_step.advance_checked`.
 
 A pure speed refactor: the reference is the code before it, three calls
 (:func:`rocketsim.flight.steering.steer_step`, :func:`rocketsim.dynamics.rk4.advance`,
-:func:`rocketsim.sim.vehicle_checks.step_figures` on the arrays without contact
+:func:`rocketsim.stepping.checked_step.step_figures` on the arrays without contact
 points), which these tests run side by side with the fold: same bits. The
 breakup test's axial load is also checked against its closed form ``T / (m g0)``.
 """
@@ -15,14 +15,15 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from rocketsim._jit import Entries
+from rocketsim.jit import Entries
 from rocketsim.constants import G0
 from rocketsim.dynamics import rk4
 from rocketsim.dynamics.third_bodies import nbody_flag
 from rocketsim.flight.fc import FlightComputer
 from rocketsim.scenario.load import load
 from rocketsim.sim import vehicle_checks, world as world_module
-from rocketsim.sim.vehicle_checks import VehicleChecks, advance_checked
+from rocketsim.sim.vehicle_checks import VehicleChecks
+from rocketsim.stepping.checked_step import advance_checked
 from rocketsim.sim.build import build_world
 from tests.test_contact import _World
 from tests.test_heating_limits import light_stage

@@ -25,9 +25,9 @@ from rocketsim.scenario.models import Scenario, SiteSpec
 from rocketsim.scenario.weather import ClassicWeather, build_atmosphere
 from rocketsim.scenario.yaml_source import read_yaml
 from rocketsim.scenario.models import VehicleSpec
-from rocketsim.sim.flight import fly
+from rocketsim.api.telemetry_flight import fly_to_file as fly
 from rocketsim.sim.build import build_world
-from rocketsim.api.verify import verify
+from rocketsim.api.reflight import verify
 from rocketsim.vehicle.engines import ignite
 from rocketsim.vehicle.build import build
 from tests.conftest import ROOT

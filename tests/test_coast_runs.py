@@ -1,4 +1,5 @@
-"""Compiled runs of whole sample intervals (rocketsim.sim.coast_runs) against the loop's own path.
+"""Compiled runs of whole sample intervals (rocketsim.sim.coast_runs, rocketsim.stepping.runs.coast_run)
+against the loop's own path.
 
 The reference is the world's loop flying the same bodies one sample interval at
 a time in Python (the runs switched off): the runs must write the same file, byte
@@ -11,7 +12,7 @@ import pytest
 from rocketsim.errors import InputError
 from rocketsim.scenario.load import load
 from rocketsim.sim import coast_runs, world as world_module
-from rocketsim.sim.flight import fly
+from rocketsim.api.telemetry_flight import fly_to_file as fly
 from rocketsim.telemetry.reader import messages
 
 

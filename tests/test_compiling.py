@@ -33,12 +33,13 @@ from pathlib import Path
 
 import pytest
 
-from rocketsim._jit import cache_dir
+from rocketsim.jit import cache_dir
 from rocketsim.scenario.load import load
-from rocketsim.sim.flight import fly
+from rocketsim.api.telemetry_flight import fly_to_file as fly
 from rocketsim_cli.compiling import FIRST_RUN
+from tests.cold_cache import cold_env
 
-KERNEL = "sampling.orbit_figures-*"
+KERNEL = "sample_figures.orbit_figures-*"
 
 
 def _cache_without(path, tmp_path, *kernels):
@@ -57,9 +58,7 @@ def _cache_without(path, tmp_path, *kernels):
         assert removed, f"the flight's cache holds {kernel}"
         for file in removed:
             file.unlink()
-    env = {k: v for k, v in os.environ.items() if k != "NUMBA_CACHE_DIR"}
-    env["ROCKETSIM_CACHE_DIR"] = str(root)
-    return env, root / warm.name
+    return cold_env(root), root / warm.name
 
 
 @pytest.fixture
@@ -92,7 +91,7 @@ def test_a_terminal_sees_the_kernels_compile(one_cold_kernel, tmp_path):
     os.close(master)
     assert process.wait(timeout=300) == 0
     text = shown.decode()
-    assert f"{FIRST_RUN}: 0 compiled sim.sampling.orbit_figures" in text
+    assert f"{FIRST_RUN}: 0 compiled stepping.sample_figures.orbit_figures" in text
     assert "compiled 1 flight kernel for this machine in" in text
     assert list(cache.rglob(KERNEL)), "the compiled kernel went back into the cache"
 
@@ -133,7 +132,7 @@ _COMPILED = """
 import json, sys
 from rocketsim.dynamics import rk4, third_bodies
 from rocketsim.scenario.load import load
-from rocketsim.sim.flight import fly
+from rocketsim.api.telemetry_flight import fly_to_file as fly
 fly(load(sys.argv[1]), sys.argv[2])
 print(json.dumps({k.__name__: len(k.signatures) for k in (rk4.step_into, third_bodies.hold_field)}))
 """
@@ -143,7 +142,7 @@ def test_a_flight_without_an_n_body_field_does_not_compile_its_hold(scenario, tm
     # a coasting body about Earth alone: its step (and advance, and the coast runs that
     # call them) compiled afresh in a fresh process, the rest from the cache
     path = scenario(duration="1 s")
-    env, _ = _cache_without(path, tmp_path, "rk4.step_into-*", "rk4.advance-*", "coast_runs.coast_run-*")
+    env, _ = _cache_without(path, tmp_path, "rk4.step_into-*", "rk4.advance-*", "runs.coast_run-*")
     done = subprocess.run([sys.executable, "-c", _COMPILED, str(path), str(tmp_path / "cold.mcap")],
                           env=env, capture_output=True, text=True, timeout=300)
     assert done.returncode == 0, done.stderr
@@ -174,10 +173,8 @@ class Census(event.Listener):
 
 
 event.register("numba:compile", Census())
-from rocketsim import _jit
-_jit.COMPILE_BESIDE = False       # every kernel the flight needs compiles here, to be counted
 from rocketsim.scenario.load import load
-from rocketsim.sim.flight import fly
+from rocketsim.api.telemetry_flight import fly_to_file as fly
 fly(load(sys.argv[1]), sys.argv[2])
 print(json.dumps(compiled))
 """
@@ -185,14 +182,12 @@ print(json.dumps(compiled))
 
 def test_a_cold_coast_compiles_only_the_kernels_it_flies(scenario, tmp_path):
     path = scenario(duration="1 s")           # a coasting body about Earth alone
-    env = {k: v for k, v in os.environ.items() if k != "NUMBA_CACHE_DIR"}
-    env["ROCKETSIM_CACHE_DIR"] = str(tmp_path / "empty")
     done = subprocess.run([sys.executable, "-c", _CENSUS, str(path), str(tmp_path / "cold.mcap")],
-                          env=env, capture_output=True, text=True, timeout=600)
+                          env=cold_env(tmp_path / "empty"), capture_output=True, text=True, timeout=600)
     assert done.returncode == 0, done.stderr
     compiled = json.loads(done.stdout.strip().splitlines()[-1])
     assert compiled["rocketsim.dynamics.rk4.step_into"] == 1, "the flight compiled its step"
-    assert compiled["rocketsim.sim.sampling.figures"] == 1, "and its telemetry"
+    assert compiled["rocketsim.stepping.sample_figures.figures"] == 1, "and its telemetry"
     for name in compiled:
         assert "third_bodies" not in name, f"{name}: no n-body field, no pull of other bodies"
         assert "cross" not in name and "unicode" not in name, f"{name}: an array routine's error path"

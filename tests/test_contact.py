@@ -254,26 +254,26 @@ def test_a_compiled_run_hands_a_landed_body_to_python_short_of_tipping_over():
     """The compiled runs' checks are quiet for a landed body standing upright and not
     for one tilted past the watch (the cosine of the tip-over angle less the margin),
     so the Python side sees the step where it starts to fall."""
-    from rocketsim.sim import runs
-    watch = np.full(runs.N_WATCH, math.inf)
-    watch[runs.W_SHIELD], watch[runs.W_CLEARANCE] = 0.0, 1.0
-    watch[runs.W_TIP] = math.cos(math.radians(20.0))
+    from rocketsim.stepping import quiet
+    watch = np.full(quiet.N_WATCH, math.inf)
+    watch[quiet.WATCH_SHIELD], watch[quiet.WATCH_CLEARANCE] = 0.0, 1.0
+    watch[quiet.WATCH_TIP] = math.cos(math.radians(20.0))
     figures = (0.0, 288.0, 0.0, 0.0, 0.0, 0.0, -0.01)       # no air, no loads, the feet on the ground
     carry = np.array((math.nan, 1.0, 0.0, 0.0))
     r = np.array(geodetic_to_ecef(LAT, LON, 20.0))
     up = r / np.linalg.norm(r)
     side = np.cross(up, [0.0, 0.0, 1.0])
     side /= np.linalg.norm(side)
-    for tilt_deg, quiet in ((19.0, True), (21.0, False)):
+    for tilt_deg, still in ((19.0, True), (21.0, False)):
         t = math.radians(tilt_deg)
         bx = math.cos(t) * up + math.sin(t) * side
         bz = np.cross(bx, np.cross(up, bx))
         bz /= np.linalg.norm(bz)
         y = np.zeros(13)
         y[0:3], y[6:10] = r, quat_from_matrix(np.column_stack((bx, np.cross(bz, bx), bz)))
-        assert runs._checks_quiet(y, 0.02, figures, carry, watch)[0] is quiet
-    watch[runs.W_TIP] = -math.inf                            # before a touchdown: never
-    assert runs._checks_quiet(y, 0.02, figures, carry, watch)[0]
+        assert quiet.checks_quiet(y, 0.02, figures, carry, watch)[0] is still
+    watch[quiet.WATCH_TIP] = -math.inf                            # before a touchdown: never
+    assert quiet.checks_quiet(y, 0.02, figures, carry, watch)[0]
 
 
 def test_touchdown_distance_is_measured_to_the_mission_target_pad(write):

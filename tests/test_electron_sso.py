@@ -27,7 +27,7 @@ import pytest
 
 from rocketsim.constants import EARTH_J2, EARTH_MU, EARTH_RADIUS_EQ
 from rocketsim.scenario.load import load
-from rocketsim.sim.flight import fly
+from rocketsim.api.telemetry_flight import fly_to_file as fly
 from tests.conftest import ROOT
 
 TROPICAL_YEAR = 365.24219 * 86400.0          # s

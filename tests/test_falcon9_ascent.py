@@ -14,7 +14,7 @@ import pytest
 from rocketsim.atmosphere.ussa1976 import us_standard_1976
 from rocketsim.constants import EARTH_MU, EARTH_RADIUS_EQ
 from rocketsim.scenario.load import load
-from rocketsim.sim.flight import fly
+from rocketsim.api.telemetry_flight import fly_to_file as fly
 from rocketsim.telemetry.land import land_fraction
 from rocketsim.vehicle.tumbling import continuum_cd, half_shell_area
 from tests.conftest import ROOT

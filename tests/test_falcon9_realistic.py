@@ -11,7 +11,7 @@ insertion with these sensors is not what this test checks.
 import pytest
 
 from rocketsim.scenario.load import load
-from rocketsim.sim.flight import fly
+from rocketsim.api.telemetry_flight import fly_to_file as fly
 from tests.conftest import ROOT
 
 

@@ -4,7 +4,7 @@ import pytest
 
 from rocketsim.constants import G0
 from rocketsim.scenario.load import load
-from rocketsim.sim.flight import fly
+from rocketsim.api.telemetry_flight import fly_to_file as fly
 from tests.conftest import ROOT
 
 PROGRAM = """

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from rocketsim.scenario.load import load
-from rocketsim.sim.flight import fly
+from rocketsim.api.telemetry_flight import fly_to_file as fly
 from rocketsim.telemetry.reader import messages, raw_messages
 from tests.conftest import ROOT, VEHICLE
 

@@ -20,7 +20,7 @@ import pytest
 from rocketsim.flight.fc import FlightComputer
 from rocketsim.flight.program import ProgramError
 from rocketsim.scenario.load import load
-from rocketsim.sim.flight import fly
+from rocketsim.api.telemetry_flight import fly_to_file as fly
 from tests.conftest import ROOT, VEHICLE
 
 DOC = ROOT / "docs" / "fc.md"

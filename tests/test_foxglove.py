@@ -14,7 +14,7 @@ from scipy.spatial.transform import Rotation
 
 from rocketsim.frames.earth_fixed import eci_to_ecef
 from rocketsim.scenario.load import load
-from rocketsim.sim.flight import fly
+from rocketsim.api.telemetry_flight import fly_to_file as fly
 from tests.run_files import write_scenario
 
 PUBLISHED = Path(__file__).parent / "fixtures" / "foxglove"

@@ -23,7 +23,7 @@ from mcap.reader import make_reader
 from scipy.spatial.transform import Rotation
 
 from rocketsim.scenario.load import load
-from rocketsim.sim.flight import fly
+from rocketsim.api.telemetry_flight import fly_to_file as fly
 from rocketsim.sim.build import build_world
 from rocketsim.telemetry.schemas import BODY_STATE, EVENT
 from rocketsim.telemetry import foxglove

@@ -33,7 +33,7 @@ import yaml
 import rocketsim
 from rocketsim.api.run import same_table, unit_name
 from rocketsim.errors import InputError
-from rocketsim.api.verify import verify
+from rocketsim.api.reflight import verify
 from rocketsim.flight.program import load_program, load_program_module
 from rocketsim.telemetry.tables import table as csv_table
 from tests.conftest import ROOT

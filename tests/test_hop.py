@@ -9,7 +9,7 @@ import pytest
 
 from rocketsim.scenario.load import load
 from rocketsim.scenario.stage_selection import keep_stages, reload_tanks
-from rocketsim.sim.flight import fly
+from rocketsim.api.telemetry_flight import fly_to_file as fly
 from rocketsim.sim.build import build_world
 from tests.conftest import ROOT
 

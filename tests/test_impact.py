@@ -22,7 +22,7 @@ from rocketsim.flight.impact import predict_impact
 from rocketsim.frames.earth_fixed import ecef_to_eci, eci_to_ecef
 from rocketsim.frames.geodetic import ecef_to_geodetic, enu_basis, geodetic_to_ecef
 from rocketsim.scenario.load import load
-from rocketsim.sim.flight import fly
+from rocketsim.api.telemetry_flight import fly_to_file as fly
 from rocketsim.telemetry.reader import messages
 from tests.conftest import ROOT
 

@@ -12,7 +12,7 @@ import pytest
 from mcap.reader import make_reader
 
 from rocketsim.scenario.load import load
-from rocketsim.sim.flight import fly_into
+from rocketsim.api.telemetry_flight import fly_into
 from rocketsim.telemetry import writer
 from rocketsim.telemetry.reader import metadata
 from rocketsim.telemetry.writer import TelemetryWriter

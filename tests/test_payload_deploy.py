@@ -11,7 +11,7 @@ import pytest
 
 from rocketsim.layout import P_IXX, P_IYY, P_IZZ
 from rocketsim.scenario.load import load
-from rocketsim.sim.flight import fly
+from rocketsim.api.telemetry_flight import fly_to_file as fly
 from rocketsim.sim.build import build_world
 from rocketsim.telemetry.reader import messages
 from tests.conftest import ROOT

@@ -11,7 +11,7 @@ from rocketsim.errors import signal_behind
 from rocketsim.flight.program import (ProgramError, ProgramOverBudget, _program_error,
                                       _raised_by_program, load_program_module)
 from rocketsim.scenario.load import load
-from rocketsim.sim.flight import fly
+from rocketsim.api.telemetry_flight import fly_to_file as fly
 from rocketsim.telemetry.reader import messages, metadata
 
 
@@ -170,7 +170,7 @@ def test_the_integrator_is_imported_at_the_first_prediction_outside_the_budget(s
     script = """
 import sys
 from rocketsim.scenario.load import load
-from rocketsim.sim.flight import fly
+from rocketsim.api.telemetry_flight import fly_to_file as fly
 fly(load(sys.argv[1]), sys.argv[3])
 print("imported after a flight without predictions:", "scipy.integrate" in sys.modules)
 summary = fly(load(sys.argv[2]), sys.argv[4])

@@ -5,7 +5,7 @@ import io
 import sys
 
 from rocketsim.scenario.load import load
-from rocketsim.sim.flight import fly
+from rocketsim.api.telemetry_flight import fly_to_file as fly
 from rocketsim_cli.progress import MIN_MISSION_SECONDS, flight_progress
 
 PROGRAM = """

@@ -15,7 +15,7 @@ from rocketsim.flight.autopilot import rcs_command, rcs_torques
 from rocketsim.flight.steering import OMEGA_N, RATE_LIMIT, ZETA
 from rocketsim.frames.quaternion import quat_to_matrix
 from rocketsim.scenario.load import load
-from rocketsim.sim.flight import fly
+from rocketsim.api.telemetry_flight import fly_to_file as fly
 from rocketsim.telemetry.reader import messages
 
 THRUST = 200.0     # N, each thruster

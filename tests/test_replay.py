@@ -9,8 +9,8 @@ from mcap.reader import make_reader
 from mcap.writer import CompressionType, Writer
 
 from rocketsim.scenario.load import load
-from rocketsim.sim.flight import fly
-from rocketsim.api.verify import UntrustedProgram, lay_out, verify
+from rocketsim.api.telemetry_flight import fly_to_file as fly
+from rocketsim.api.reflight import UntrustedProgram, lay_out, verify
 from rocketsim.telemetry.reader import read_run
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -10,7 +10,7 @@ from click.testing import CliRunner
 from mcap.reader import make_reader
 
 from rocketsim.scenario.load import load
-from rocketsim.sim.flight import fly
+from rocketsim.api.telemetry_flight import fly_to_file as fly
 from tests.run_files import write_scenario
 
 PROGRAM = """

@@ -6,7 +6,7 @@ import pytest
 from rocketsim.frames.quaternion import quat_rotate
 from rocketsim.scenario.load import load
 from rocketsim.sim.build import build_world
-from rocketsim.sim.flight import fly
+from rocketsim.api.telemetry_flight import fly_to_file as fly
 from rocketsim.telemetry.reader import messages
 from tests.conftest import ROOT
 

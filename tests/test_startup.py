@@ -77,7 +77,7 @@ def test_a_bad_choice_is_still_refused_without_importing_the_library():
 
 def test_replay_of_a_summary_does_not_load_the_simulator(scenario, tmp_path):
     from rocketsim.scenario.load import load
-    from rocketsim.sim.flight import fly
+    from rocketsim.api.telemetry_flight import fly_to_file as fly
 
     run_file = tmp_path / "run.mcap"
     fly(load(scenario(duration="1 s")), run_file)

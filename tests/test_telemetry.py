@@ -6,7 +6,7 @@ import jsonschema
 import pytest
 
 from rocketsim.scenario.load import load
-from rocketsim.sim.flight import fly
+from rocketsim.api.telemetry_flight import fly_to_file as fly
 from rocketsim.telemetry.reader import attachments, messages, metadata, raw_messages
 
 PROGRAM = """

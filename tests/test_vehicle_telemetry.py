@@ -28,7 +28,7 @@ from mcap.reader import make_reader
 from rocketsim.atmosphere.ussa1976 import us_standard_1976
 from rocketsim.constants import AIR_CP, EARTH_OMEGA, G0, STEFAN_BOLTZMANN
 from rocketsim.scenario.load import load
-from rocketsim.sim.flight import fly
+from rocketsim.api.telemetry_flight import fly_to_file as fly
 from rocketsim.sim.build import build_world
 from rocketsim.telemetry.reader import raw_messages
 from rocketsim.telemetry.tables import export, table
@@ -215,7 +215,7 @@ def _blue_in_centre_panel(png: Path) -> int:
 
 
 def test_the_plot_draws_throttle_and_propellant(burn, tmp_path):
-    from rocketsim.telemetry.plot import plot_run
+    from rocketsim.plots import run as plot_run
     path, _ = burn
     drawn = plot_run(path, tmp_path / "burn.png")
     # a rigid body's run (no throttle, no propellant) leaves that panel empty: the same
@@ -279,6 +279,7 @@ def _both_encodings(bodies, folder: Path, monkeypatch, trials: int = 120) -> Non
     import orjson
     import rocketsim.telemetry.writer as writer_module
     from rocketsim.sim import sampling
+    from rocketsim.stepping.sample_figures import SAMPLE_VEHICLE
     from rocketsim.telemetry.writer import TelemetryWriter
     monkeypatch.setattr(writer_module, "CHUNK_SIZE", 3_000)
     rng = np.random.default_rng(10)
@@ -296,7 +297,7 @@ def _both_encodings(bodies, folder: Path, monkeypatch, trials: int = 120) -> Non
                 v[chosen] = rng.choice(special, chosen.sum())
                 v[-2] = values[-2] + 0.37 * k                  # the time: finite, increasing
                 if body.vehicle is not None:
-                    v[sampling.VEHICLE + 3] = rng.integers(0, 40)   # engines running: a count
+                    v[SAMPLE_VEHICLE + 3] = rng.integers(0, 40)   # engines running: a count
             samples.append((body.name, v, fields))
     alone = len(bodies) == 1
     if not alone:       # and again later: every template made, so interleaved blocks are spliced at once

@@ -17,7 +17,6 @@ an unbound orbit's period) is NaN.
 
 from __future__ import annotations
 
-import io
 import json
 from pathlib import Path
 
@@ -143,21 +142,10 @@ class Run:
 
     def plot(self, path: str | Path | None = None):
         """Draw the run (altitude, speed, q, acceleration, throttle, Mach, attitude, ground
-        track: :mod:`rocketsim.telemetry.plot`) to the PNG ``path`` and return the path;
+        track: :func:`rocketsim.plots.run`) to the PNG ``path`` and return the path;
         without one, return the picture, which a notebook shows inline."""
-        from rocketsim.telemetry.plot import draw
-        tables = {}
-        for name, body in self.bodies.items():
-            columns = body.samples.columns()
-            tables[name] = {k: [None] * len(v) if v.dtype.kind == "f" and np.isnan(v).all() else v
-                            for k, v in columns.items()}
-        title = self.path.stem if self.path else "run"
-        if path is not None:
-            draw(self.file, tables, path, title)
-            return Path(path)
-        picture = io.BytesIO()
-        draw(self.file, tables, picture, title)
-        return Picture(picture.getvalue())
+        from rocketsim.plots import run as plot_run
+        return plot_run(self, path)
 
     def __eq__(self, other) -> bool:
         if not isinstance(other, Run):
@@ -178,20 +166,6 @@ class Run:
         where = f"file {self.path}" if self.path else "in memory"
         return (f"<Run {info.get('scenario', '?')!r}: {len(self.bodies)} bodies, {len(self.file.events)} events, "
                 f"T+0 .. {end:.1f} s, {self.outcome}, {where}>")
-
-
-class Picture:
-    """A PNG picture; a notebook shows it inline, :meth:`save` writes it."""
-
-    def __init__(self, png: bytes):
-        self.png = png
-
-    def _repr_png_(self) -> bytes:
-        return self.png
-
-    def save(self, path: str | Path) -> Path:
-        Path(path).write_bytes(self.png)
-        return Path(path)
 
 
 def same_table(a, b) -> bool:

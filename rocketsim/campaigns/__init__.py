@@ -6,7 +6,7 @@ run's number alone (:mod:`.sampling`, :mod:`.cases`); the runs fly through the
 front door in this process or on Dask (:mod:`.execute`), each giving one row of
 results (:mod:`.outputs`) written to the campaign directory as it finishes
 (:mod:`.store`); :mod:`.report` reads that directory back into statistics,
-landing dispersions and sensitivities (:mod:`.statistics`, :mod:`.landing`,
-:mod:`.report_plots`). :func:`rocketsim.campaign` is the Python entry point,
+landing dispersions and sensitivities (:mod:`.statistics`, :mod:`.landing`), and
+:func:`rocketsim.plots.campaign` draws them. :func:`rocketsim.campaign` is the Python entry point,
 ``rocketsim campaign run`` and ``rocketsim campaign report`` the command line's.
 """

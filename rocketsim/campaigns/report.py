@@ -25,9 +25,9 @@ The *main outputs* (at most 16, those that vary) are the campaign's own ``output
 each body's landing offsets, touchdown speeds and tilt, orbit and final altitude and speed:
 the text names their three strongest inputs, and they are the histograms and tornadoes.
 With ``plot_dir`` the report also writes ``landing.png`` (the scatter on a local map with
-the coastline), ``histograms.png``, ``sensitivities.png`` and ``landing.geojson`` there
-(:mod:`rocketsim.campaigns.report_plots`). Everything the report says follows from the
-files and the campaign's seed: the same directory gives the same report, bootstrap
+the coastline), ``histograms.png``, ``sensitivities.png`` (:func:`rocketsim.plots.campaign`,
+which draws them from a :class:`Report` in a notebook too) and ``landing.geojson`` there.
+Everything the report says follows from the files and the campaign's seed: the same directory gives the same report, bootstrap
 intervals included. The bootstraps cost most: about 0.3 s per output per 10 000 runs
 (measured: 23 outputs of 10 000 runs in 8.8 s on a loaded 2-core machine).
 """
@@ -44,6 +44,7 @@ import numpy as np
 
 from rocketsim.campaigns import insertion, landing, statistics
 from rocketsim.errors import InputError
+from rocketsim.extras import needs
 
 META, INPUTS, RESULTS = "meta.json", "inputs.parquet", "results.parquet"
 MAIN_OUTPUTS = 16                     # histograms and sensitivities drawn and printed at most
@@ -66,8 +67,11 @@ class Report:
     """A campaign's report: ``text`` (what ``rocketsim campaign report`` prints), ``errored``
     (finished runs whose status is not ``ok``), ``counts`` (planned, finished, by status,
     missing), ``tables`` (pandas DataFrames ``statistics``, ``probabilities``, ``landing``,
-    ``sensitivities``), ``dispersions`` (by body, :class:`~rocketsim.campaigns.landing.Dispersion`)
-    and ``files`` (the plots and the GeoJSON written)."""
+    ``sensitivities``), ``dispersions`` (by body, :class:`~rocketsim.campaigns.landing.Dispersion`),
+    what the plots draw (``flown``: the ok runs' outputs with each landing body's offsets
+    about the target, a DataFrame; ``main``: the main outputs; ``target``: meta.json's, or
+    None without a position; ``name``: the campaign's) and ``files`` (the plots and the
+    GeoJSON written)."""
 
     directory: Path
     text: str
@@ -75,6 +79,10 @@ class Report:
     counts: dict
     tables: dict
     dispersions: dict
+    flown: object
+    main: list
+    target: dict | None
+    name: str
     files: list = field(default_factory=list)
 
     @property
@@ -87,6 +95,7 @@ def load(directory) -> tuple:
     """``(meta, inputs, results)`` of the campaign ``directory``, or an InputError naming the
     file (and the line and field) that is missing or wrong. ``results`` keeps the last row
     of a run written twice and is sorted by ``run``."""
+    needs("campaign", "a campaign's report", "pyarrow")
     import pandas as pd
     directory = Path(directory)
     if not directory.is_dir():
@@ -207,12 +216,12 @@ def report(directory, plot_dir=None) -> Report:
         text += (f"\nnote: {parts} part files in {directory / 'results'} are not yet in results.parquet; "
                  "their runs are not in this report (`rocketsim campaign run CAMPAIGN -o DIR --resume` "
                  "gathers them)\n")
-    out = Report(directory, text, errored, counts, tables, dispersions)
+    out = Report(directory, text, errored, counts, tables, dispersions, flown, main, target,
+                 meta.get("name") or directory.name)
     if plot_dir is not None:
-        from rocketsim.campaigns import report_plots
+        from rocketsim.plots import campaign as plot_campaign
         plot_dir = Path(plot_dir)
-        plot_dir.mkdir(parents=True, exist_ok=True)
-        out.files = report_plots.draw_all(out, flown, main, target, plot_dir, meta.get("name") or directory.name)
+        out.files = plot_campaign(out, plot_dir)
         if target is not None:
             path = plot_dir / "landing.geojson"
             path.write_text(json.dumps(landing.geojson(target, dispersions.values()), indent=1, allow_nan=False))

@@ -51,7 +51,7 @@ from pydantic import BaseModel, Field, field_validator, model_validator
 
 from rocketsim.campaigns.insertion import InsertionTolerance
 from rocketsim.errors import InputError
-from rocketsim.scenario.load import validate
+from rocketsim.scenario.validation import validate
 from rocketsim.scenario.units import STRICT, Duration
 from rocketsim.scenario.yaml_source import YamlSource, read_yaml
 

@@ -8,7 +8,7 @@ Because the simulator knows what such a condition reads, it tests it in the
 same compiled call that advances the vehicle (:func:`holds`, once per step on
 the state at the step's end, the state the program's readings would see), so
 a vehicle waiting on one is flown many steps per call instead of one (see
-:mod:`rocketsim.sim.runs`); the test gives the same boolean at the same step as
+:mod:`rocketsim.stepping.runs`); the test gives the same boolean at the same step as
 the reading's, from the same operations on the same numbers.
 
 Readings (:data:`READINGS`), of the true state about Earth (a program
@@ -41,8 +41,9 @@ import math
 
 import numpy as np
 
-from rocketsim._jit import njit
+from rocketsim.jit import njit
 from rocketsim.frames.local import where_and_how_fast
+from rocketsim.frames.quaternion import body_x_components
 from rocketsim.layout import P_POLAR_RADIUS, P_RADIUS, P_SPIN, Q, R, V
 
 READINGS = ("altitude", "vertical_speed", "propellant", "time", "nose_angle")
@@ -114,8 +115,8 @@ def nose_dot(q, a, b, c):
     """``nose . (a, b, c)``: the nose (body x in ECI) of the attitude quaternion ``q``
     (w, x, y, z, body -> ECI) dotted with a direction; :func:`holds` and the condition's
     Python test both call it, so the two agree to the bit."""
-    w, x, y, z = q[0], q[1], q[2], q[3]
-    return (1.0 - 2.0 * (y * y + z * z)) * a + 2.0 * (x * y + w * z) * b + 2.0 * (x * z - w * y) * c
+    nx, ny, nz = body_x_components(q[0], q[1], q[2], q[3])
+    return nx * a + ny * b + nz * c
 
 
 def compare_propellant(fc, vehicle, stage: int, value: float, op: float) -> Condition:

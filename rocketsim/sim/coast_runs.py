@@ -6,10 +6,10 @@ is flown by the world's loop one telemetry interval at a time: the RK4 steps
 (:func:`rocketsim.dynamics.rk4.advance`), then the finiteness test and the
 sample, all in Python between intervals. While every flying body is such a body
 (a spacecraft coasting in orbit), :func:`fly_coast` flies up to :data:`MAX_INTERVALS`
-intervals in one compiled call per body (:func:`coast_run`): the same
-``advance`` of each interval, the same test of the state, and each interval's
-sample figures (:func:`rocketsim.sim.sampling.figures`, the arguments of the
-world's sampler) into rows the world then writes in the loop's order (by
+intervals in one compiled call per body (:func:`rocketsim.stepping.runs.coast_run`):
+the same ``advance`` of each interval, the same test of the state, and each
+interval's sample figures (:func:`rocketsim.stepping.sample_figures.figures`, the
+arguments of the world's sampler) into rows the world then writes in the loop's order (by
 interval, then body). The same steps and the same figures: the same file.
 
 The run leaves the last interval's sample to the loop (its ``check_finite`` and
@@ -20,38 +20,15 @@ rows before it are written and the loop's test raises its error there.
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 
-from rocketsim._jit import compile_beside, compiling_elsewhere, njit
-from rocketsim.dynamics.rk4 import advance
+from rocketsim.jit import compile_beside, compiling_elsewhere
 from rocketsim.dynamics.third_bodies import nbody_flag
 from rocketsim.sim import sampling
+from rocketsim.stepping.runs import coast_run
+from rocketsim.stepping.sample_figures import N_SAMPLE_RIGID
 
 MAX_INTERVALS = 128     # sample intervals in one run (12.8 s at 10 Hz): the rows waiting to be written
-
-
-@njit(nogil=True)
-def coast_run(y, k0, h, every, m, p, nbody, rows, fixed):
-    """Fly a rigid body (state ``y``, parameters ``p``, ``nbody`` as
-    :func:`~rocketsim.dynamics.rk4.advance`'s) ``m`` intervals of ``every`` steps of
-    ``h`` s from step ``k0``, each as the world flies it, filling row ``j`` of ``rows``
-    (while ``j < rows.shape[0]``) with :func:`~rocketsim.sim.sampling.figures` at the
-    end of interval ``j`` (``fixed``: its arguments after the state and parameters).
-    Returns ``(y, intervals flown)``: fewer than ``m`` after an interval whose state is
-    not finite (its row not filled)."""
-    for j in range(m):
-        k = k0 + j * every
-        y, _ = advance(y, k, h, every, p, None, nbody)
-        for x in y:
-            if not math.isfinite(x):
-                return y, j + 1
-        if j < rows.shape[0]:
-            row = sampling.figures((k + every) * h, y, p, *fixed)
-            for c in range(row.shape[0]):   # a loop: no broadcast (and its error message) to compile
-                rows[j, c] = row[c]
-    return y, m
 
 
 def fly_coast(world) -> bool:
@@ -72,7 +49,7 @@ def fly_coast(world) -> bool:
         fixed, shape = sampling.arguments(body, world.gmst0)
         if world.telemetry is None:
             shape = None                    # no samples: the same call, no rows
-        rows = np.empty((m - 1 if shape is not None else 0, sampling.RIGID_WIDTH))
+        rows = np.empty((m - 1 if shape is not None else 0, N_SAMPLE_RIGID))
         y, flown = coast_run(*_coast_arguments(body, k0, h, every, m, rows, fixed))
         runs.append((body, y, flown, rows, shape))
     flown = min(run[2] for run in runs)     # a state no longer finite: nothing written from it on
@@ -98,13 +75,13 @@ def _coast_arguments(body, k0: int, h: float, every: int, m: int, rows: np.ndarr
 
 def compile_coasts_beside(world) -> None:
     """On a cold cache, queue :func:`coast_run`'s kernel for each rigid body coasting about
-    Earth for a second process to compile (:func:`rocketsim._jit.compile_beside`) while
+    Earth for a second process to compile (:func:`rocketsim.jit.compile_beside`) while
     this one compiles the first sample's."""
     for body in world.bodies:
         if body.vehicle is None and body.central == "earth":
             fixed, _ = sampling.arguments(body, world.gmst0)
             compile_beside(coast_run, _coast_arguments(body, 0, world.h, world.sample_every, 2,
-                                                       np.empty((1, sampling.RIGID_WIDTH)), fixed))
+                                                       np.empty((1, N_SAMPLE_RIGID)), fixed))
 
 
 def _coasts(world, body, seconds: float) -> bool:

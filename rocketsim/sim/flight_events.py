@@ -52,8 +52,8 @@ from rocketsim.vehicle.motors import M_CURVE0, M_IGNITION, M_IMPULSE, M_POINTS
 from rocketsim.vehicle.parachutes import CH_CUT_BY, CH_DEPLOYED, CH_INFLATION, CH_LAG, cut_away, deploy
 from rocketsim.vehicle.rail import RL_OFF_AT, RL_OFF_SPEED, RL_ON
 from rocketsim.scenario.vehicle import AfterTrigger, HeightTrigger
-from rocketsim.sim import runs
 from rocketsim.sim.vehicle_checks import ground_motion
+from rocketsim.stepping import quiet
 
 LIFTOFF_HEIGHT = 1.0          # m above the starting height
 MAX_Q_MIN = 1000.0            # Pa, a peak smaller than this is not "max-Q"
@@ -111,17 +111,17 @@ class FlightEvents:
 
     def run_watch(self, watch) -> float:
         """Fill the slots of a compiled run's ``watch`` that these events decide
-        (:mod:`rocketsim.sim.runs`: max-Q pending, its definitions, the orbit test's
+        (:mod:`rocketsim.stepping.quiet`: max-Q pending, its definitions, the orbit test's
         bound, the liftoff height, the next motor burn-out); returns the dynamic-pressure
         peak so far (Pa; nan: none). The run needs the body's parachutes none."""
         body = self.body
-        watch[runs.W_MAX_Q] = 0.0 if self.max_q_done else 1.0
-        watch[runs.W_MAX_Q_MIN], watch[runs.W_MAX_Q_DROP] = MAX_Q_MIN, MAX_Q_DROP
-        watch[runs.W_ORBIT] = math.inf if self.in_orbit else ORBIT_PERIAPSIS_BOUND
-        watch[runs.W_LIFTOFF] = self.liftoff_height()
+        watch[quiet.WATCH_MAX_Q] = 0.0 if self.max_q_done else 1.0
+        watch[quiet.WATCH_MAX_Q_MIN], watch[quiet.WATCH_MAX_Q_DROP] = MAX_Q_MIN, MAX_Q_DROP
+        watch[quiet.WATCH_ORBIT] = math.inf if self.in_orbit else ORBIT_PERIAPSIS_BOUND
+        watch[quiet.WATCH_LIFTOFF] = self.liftoff_height()
         model = body.vehicle
         motor, curve = model.arrays.motor, model.arrays.curve
-        watch[runs.W_BURNOUT] = min((_curve_end(motor, curve, i) for i, name in enumerate(model.motor_names)
+        watch[quiet.WATCH_BURNOUT] = min((_curve_end(motor, curve, i) for i, name in enumerate(model.motor_names)
                                      if name not in self.burnt_out), default=math.inf)
         return math.nan if self.peak is None else self.peak[0]
 

@@ -1,9 +1,9 @@
 """The telemetry sample of one body: its state message, every number of it from one compiled call.
 
-:func:`figures` computes, for one body at its time, the state and everything
-derived from it (geodetic position, speed, orbit elements, mass,
-accelerations, air data; for a staged vehicle the engines, propellant and
-heating) into one flat float64 array; :func:`values` returns that array with
+:func:`rocketsim.stepping.sample_figures.figures` computes, for one body at its
+time, the state and everything derived from it (geodetic position, speed, orbit
+elements, mass, accelerations, air data; for a staged vehicle the engines,
+propellant and heating) into one flat float64 array; :func:`values` returns that array with
 the function that lays it out as the state message (keys in the order of
 :data:`rocketsim.telemetry.schemas.BODY_STATE`), one per message shape, with a
 layout worked out once per vehicle model. The flight writes the array as it
@@ -12,48 +12,7 @@ numbers into a byte template of the message): a sample costs one compiled call
 for its numbers and one for its bytes, no dictionary; :func:`message` builds
 the dictionary for those who read it.
 
-Read-only: nothing here changes the state, the engines' commands or the checks,
-and no sensor is read (the figures are the truth). The computations are those
-of the flight itself: the readings' geodetic position and the day's air
-(:func:`rocketsim.frames.local.where_and_how_fast`, ``air_here``), the
-derivative the integrator uses (:func:`rocketsim.sim.vehicle_checks.accelerations`),
-the engine model (:func:`rocketsim.vehicle.engines.thrusts`, ``engine_state``).
-
-Fields of every body (SI units; degrees where the name ends in ``_deg``):
-position, velocity (ECI of the central body, m, m/s), attitude (quaternion
-w, x, y, z, body -> ECI), body rates (rad/s), latitude, longitude and height
-(geodetic over WGS84 about Earth; planetocentric over the central body's
-ellipsoid elsewhere, :func:`rocketsim.dynamics.central.planetocentric`), inertial
-speed, the osculating elements (RAAN from the equinox about Earth, from the
-node of the body's equator on the J2000 equator elsewhere; altitudes over the
-central body's equatorial radius; apoapsis and period missing unless
-elliptic), mass (kg), inertial acceleration ``|dv/dt|`` and sensed acceleration
-``|dv/dt - g|`` (m/s^2), airspeed (m/s), Mach and dynamic pressure (Pa) in the
-readings' air (the day's air about Earth, none elsewhere).
-
-Fields of a staged vehicle:
-
-* ``throttle``: the throttle actually flown (after the slew limit and the
-  flow-separation floor, 0-1 of vacuum thrust), averaged over the engines
-  running; missing when none runs. ``group_throttle`` is the same by engine
-  group (``<stage>_<group>``, missing for a group with no engine running);
-* ``thrust`` (N) in total and ``group_thrust`` (N) by engine group, at the
-  ambient pressure of the state message's air; solid motors count in the total;
-* ``mass_flow``: propellant drawn by all engines and burnt by solid motors, kg/s;
-* ``engines_running``: engines whose spool fraction is above zero on a stage
-  with usable propellant left (spooling up, at thrust, or tailing off), and
-  solid motors inside their curve;
-* ``propellant``: all propellant on board, kg (the unusable reserve and the
-  solid motors' included), and ``propellant_tanks`` by tank (``<stage>_<tank>``, kg).
-
-Fields of a staged vehicle with a heat shield:
-
-* ``heat_flux``: cold-wall stagnation-point convective heat flux, W/m^2, by
-  Sutton-Graves (:func:`rocketsim.vehicle.heating.sutton_graves`) on the
-  shield's nose radius, in the air the shield's checks read (the vehicle's
-  air table at the radial height; the air-relative speed of its aerodynamics);
-* ``shield_temperature``: the lumped shield's temperature, K (as the checks
-  integrate it after every step).
+The fields and their units are those of :mod:`rocketsim.stepping.sample_figures`.
 
 A missing value is nan in the figures, None in :func:`message`'s dictionary, and
 left out of the file's message (:meth:`rocketsim.telemetry.writer.TelemetryWriter.sample`),
@@ -73,174 +32,20 @@ from typing import NamedTuple
 
 import numpy as np
 
-from rocketsim._jit import entry_point, njit
-from rocketsim.atmosphere.table import air_in
+from rocketsim.jit import entry_point
 from rocketsim.constants import DEG
-from rocketsim.dynamics.derivative import radial_height
-from rocketsim.frames.local import body_air_velocity
+from rocketsim.dynamics.central import air_about
 from rocketsim.dynamics.nbody import FIELD_JD0, FIELD_ROT
 from rocketsim.dynamics.soi import frame_rotation
-from rocketsim.layout import N_STATE, P_MASS, P_POLAR_RADIUS, P_RADIUS, P_SPIN, R, V
 from rocketsim.dynamics.third_bodies import P_BUCKET, field_of, hold_field, nbody_flag
-from rocketsim.flight.readings import air_here
-from rocketsim.frames.local import where_and_how_fast
-from rocketsim.frames.elements import elements_tuple
-from rocketsim.dynamics.central import air_about
-from rocketsim.sim.vehicle_checks import accelerations
+from rocketsim.layout import P_RADIUS
+from rocketsim.stepping.sample_figures import (FLIGHT_KEYS, ORBIT_KEYS, SAMPLE_GROUPS, SAMPLE_HEIGHT, SAMPLE_LAT,
+                                               SAMPLE_LON, SAMPLE_MASS, SAMPLE_ORBIT, SAMPLE_SPEED, SAMPLE_VEHICLE,
+                                               figures, orbit_figures)
 from rocketsim.telemetry.frames import CentralFrame, central_frame
-from rocketsim.vehicle.engines import E_MDOT, E_STAGE, S_DRY, engine_state, thrusts
-from rocketsim.vehicle.heating import sutton_graves, sutton_graves_constant
-from rocketsim.vehicle.mass_properties import vehicle_mass_properties
-from rocketsim.vehicle.motors import M_IMPULSE, M_PROPELLANT, motor_thrust
-
-_TWO_PI = 2.0 * math.pi
-
-# the flat array of figures(): the state (position, velocity, attitude, rates), then
-LAT, LON, HEIGHT, SPEED = range(N_STATE, N_STATE + 4)   # deg, deg, m, m/s
-ORBIT = SPEED + 1                                 # ORBIT_KEYS, in order
-ORBIT_KEYS = ("semi_major_axis", "eccentricity", "inclination_deg", "raan_deg", "arg_periapsis_deg",
-              "true_anomaly_deg", "periapsis_altitude", "apoapsis_altitude", "period")
-MASS = ORBIT + len(ORBIT_KEYS)                    # kg, then FLIGHT_KEYS in order
-FLIGHT_KEYS = ("mass", "acceleration", "sensed_acceleration", "airspeed", "mach", "dynamic_pressure")
-VEHICLE = MASS + len(FLIGHT_KEYS)                 # a staged vehicle: VEHICLE_KEYS, then by group
-VEHICLE_KEYS = ("throttle", "thrust", "mass_flow", "engines_running", "propellant", "heat_flux")
-GROUPS = VEHICLE + len(VEHICLE_KEYS)              # throttle by group, thrust by group, tanks
-RIGID_WIDTH = VEHICLE + 2                         # a rigid body's figures: t and nan (no shield) end them
+from rocketsim.vehicle.heating import sutton_graves_constant
 
 
-@njit
-def orbit_into(out, k, r, v, mu, radius, node):
-    """Write the osculating elements of ``r`` (m), ``v`` (m/s) about ``mu`` (m^3/s^2) into
-    ``out[k:k + 9]`` in the order of ``ORBIT_KEYS``: angles in degrees, RAAN turned by
-    ``node`` (rad), periapsis and apoapsis radii less ``radius`` (m); apoapsis and
-    period nan unless elliptic (the formulas of :class:`rocketsim.frames.elements.Elements`)."""
-    a, e, i, raan, argp, nu, p = elements_tuple(r, v, mu)
-    out[k] = a
-    out[k + 1] = e
-    out[k + 2] = i / DEG
-    out[k + 3] = np.fmod(raan + node, _TWO_PI) / DEG      # exact, as math.fmod
-    out[k + 4] = argp / DEG
-    out[k + 5] = nu / DEG
-    out[k + 6] = p / (1.0 + e) - radius
-    apoapsis = p / (1.0 - e) if e < 1.0 else math.inf
-    period = _TWO_PI * math.sqrt(a ** 3.0 / mu) if e < 1.0 else math.inf
-    out[k + 7] = apoapsis - radius if math.isfinite(apoapsis) else math.nan
-    out[k + 8] = period if math.isfinite(period) else math.nan
-
-
-@njit
-def orbit_figures(r, v, mu, radius, node):
-    """The elements of :func:`orbit_into` as an array of 9."""
-    out = np.empty(9)
-    orbit_into(out, 0, r, v, mu, radius, node)
-    return out
-
-
-@njit
-def _vehicle_into(out, t, y, p, p_a, veh, group, n_groups, nose_radius, k_heat):
-    """The engine, propellant and heating figures of a staged vehicle into ``out[VEHICLE:]``
-    (see the module): nan for a throttle with no engine running and for the heat flux
-    without a heat shield (``nose_radius`` 0)."""
-    eng, cmd, stage = veh.eng, veh.cmd, veh.stage
-    g_tau, g_thrust, tanks = GROUPS, GROUPS + n_groups, GROUPS + 2 * n_groups
-    thrust = thrusts(t, y, veh.first_clock, eng, cmd, stage, p_a)
-    counts = np.zeros(n_groups)
-    out[g_tau:tanks] = 0.0
-    total, total_tau, flow, running = 0.0, 0.0, 0.0, 0
-    for e in range(eng.shape[0]):
-        total += thrust[e]
-        if stage[int(eng[e, E_STAGE]), S_DRY] > 0.5:
-            continue
-        f, tau, _, _ = engine_state(t, e, y[veh.first_clock + e], eng, cmd, p_a)
-        if f <= 0.0:
-            continue
-        g = group[e]
-        total_tau += tau
-        running += 1
-        out[g_tau + g] += tau
-        counts[g] += 1.0
-        out[g_thrust + g] += thrust[e]
-        flow += f * tau * eng[e, E_MDOT]
-    for g in range(n_groups):
-        out[g_tau + g] = out[g_tau + g] / counts[g] if counts[g] > 0.0 else math.nan
-    propellant = 0.0
-    for j in range(veh.tank_bottom.shape[0]):
-        out[tanks + j] = y[N_STATE + j]
-        propellant += y[N_STATE + j]
-    burning = 0
-    for i in range(veh.motor.shape[0]):     # solid motors: in the totals (no group, no throttle)
-        motor = motor_thrust(t, veh.motor, veh.curve, i)
-        if motor > 0.0:
-            total += motor
-            flow += veh.motor[i, M_PROPELLANT] * motor / veh.motor[i, M_IMPULSE]
-            burning += 1
-        propellant += y[veh.first_motor + i]
-    out[VEHICLE] = total_tau / running if running > 0 else math.nan
-    out[VEHICLE + 1] = total
-    out[VEHICLE + 2] = flow
-    out[VEHICLE + 3] = running + burning
-    out[VEHICLE + 4] = propellant
-    out[VEHICLE + 5] = math.nan
-    if nose_radius > 0.0:
-        rho = air_in(veh.air, radial_height(y, p))[0]
-        u, v, w = body_air_velocity(y, veh.aero.wind, p[P_SPIN])
-        out[VEHICLE + 5] = sutton_graves(rho, math.sqrt(u * u + v * v + w * w), nose_radius, k_heat)
-
-
-@njit
-def figures(t, y, p, mu, node, geodetic, h0, dh, density, pressure, temperature, sound, wind_east,
-            wind_north, veh, group, n_groups, nose_radius, k_heat, nbody, shield_temperature):
-    """Every number of the state message of a body in state ``y`` (parameters ``p``,
-    central body's ``mu`` m^3/s^2) at mission time ``t`` (s), in the flat layout of this
-    module (the state's ECI axes; the geodetic position is WGS84's).
-
-    ``node``: rad added to the RAAN; ``geodetic``: the body flies about Earth (the air is
-    read at the WGS84 height, else at the height over the central body's ellipsoid along
-    the radius, as the derivative reads it); ``h0`` ... ``wind_north``: the central body's
-    air table (:meth:`~rocketsim.atmosphere.table.AtmosphereTable.arrays`, turning at
-    ``p[P_SPIN]``); ``veh``: the vehicle's
-    arrays (None: a rigid body, whose figures end before ``VEHICLE``), ``group`` the
-    engine group of each engine (``n_groups`` groups), ``nose_radius`` the heat shield's
-    (m, 0: none) and ``k_heat`` the Sutton-Graves constant of the central body's air;
-    ``nbody`` True when ``p`` carries an n-body field, else None (the derivative's switch,
-    :func:`~rocketsim.dynamics.third_bodies.nbody_flag`).
-    The array ends with ``t`` and ``shield_temperature`` (K, nan: no shield): every
-    number of the message, for :func:`rocketsim.telemetry.splice.records`."""
-    if veh is None:
-        out = np.empty(RIGID_WIDTH)
-        out[MASS] = p[P_MASS]
-    else:
-        n_tanks = veh.tank_bottom.shape[0]
-        out = np.empty(GROUPS + 2 * n_groups + n_tanks + 2)
-        out[MASS] = vehicle_mass_properties(veh, y)[0]
-    for k in range(N_STATE):        # a loop: no broadcast (and its error message) to compile
-        out[k] = y[k]
-    r, v = y[R:R + 3], y[V:V + 3]
-    lat, lon, height, _, _ = where_and_how_fast(r, v, t, p[P_SPIN], p[P_RADIUS], p[P_POLAR_RADIUS])
-    out[LAT] = lat / DEG
-    out[LON] = lon / DEG
-    out[HEIGHT] = height
-    out[SPEED] = math.sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2])
-    orbit_into(out, ORBIT, r, v, mu, p[P_RADIUS], node)
-    rho, p_a, _, a_sound, _, air = air_here(h0, dh, density, pressure, temperature, sound,
-                                            wind_east, wind_north, lat, lon,
-                                            height if geodetic else radial_height(y, p), t, r, v,
-                                            p[P_SPIN])
-    ax, ay, az, sx, sy, sz = accelerations(t, y, p, veh, nbody)
-    out[MASS + 1] = math.sqrt(ax * ax + ay * ay + az * az)
-    out[MASS + 2] = math.sqrt(sx * sx + sy * sy + sz * sz)
-    airspeed = math.sqrt(air[0] * air[0] + air[1] * air[1] + air[2] * air[2])
-    out[MASS + 3] = airspeed
-    out[MASS + 4] = airspeed / a_sound
-    out[MASS + 5] = 0.5 * rho * airspeed * airspeed
-    if veh is not None:
-        _vehicle_into(out, t, y, p, p_a, veh, group, n_groups, nose_radius, k_heat)
-    out[-2] = t
-    out[-1] = shield_temperature
-    return out
-
-
-# --- the message ---------------------------------------------------------------
 _NO_GROUPS = np.zeros(0, dtype=np.int64)
 
 
@@ -263,8 +68,8 @@ def values(body, gmst0: float, where) -> tuple[np.ndarray, "Shape"]:
             entry = plan[1] = _entry(body.vehicle, args)
         v = entry(*args)
     if not earth:
-        lat, lon, v[HEIGHT] = where(body)
-        v[LAT], v[LON] = lat / DEG, lon / DEG
+        lat, lon, v[SAMPLE_HEIGHT] = where(body)
+        v[SAMPLE_LAT], v[SAMPLE_LON] = lat / DEG, lon / DEG
     return v, shape
 
 
@@ -283,14 +88,14 @@ def _with_shield(body, fixed: tuple, shield: bool) -> tuple:
 
 def run_sampler(body, gmst0: float) -> tuple[tuple, "Shape", int, bool]:
     """``(arguments, shape, length, whole)`` for a compiled run of the staged vehicle
-    ``body`` to compute its samples in (:func:`rocketsim.sim.runs.fly_run`): ``figures(t,
+    ``body`` to compute its samples in (:func:`rocketsim.stepping.runs.fly_run`): ``figures(t,
     y, body.p, *arguments, shield_temperature)`` is what :func:`values` computes for
     the body in state ``y`` at time ``t`` (s), ``shape`` its ``fields``, ``length`` the
     number of its figures; ``whole``: they are the whole message (about Earth; elsewhere
     :func:`values` places the body in Python)."""
     _, _, fixed, shape, _, earth = _plan(body, gmst0)
     n_groups = len(_layout(body.vehicle)[1])
-    return fixed, shape, GROUPS + 2 * n_groups + body.vehicle.arrays.tank_bottom.shape[0] + 2, earth
+    return fixed, shape, SAMPLE_GROUPS + 2 * n_groups + body.vehicle.arrays.tank_bottom.shape[0] + 2, earth
 
 
 # id(body) -> [weak reference to the body, what values() works out once for it while its
@@ -371,7 +176,7 @@ def _held(body) -> np.ndarray:
 
 def _entry(model, args):
     """The compiled entry of ``figures(*args)``, bound once per vehicle model and n-body
-    switch (and once per switch for every rigid body): :meth:`rocketsim._jit.Entries.call`
+    switch (and once per switch for every rigid body): :meth:`rocketsim.jit.Entries.call`
     without its look at every argument, to call with contiguous state and parameters (a
     view is called through the dispatcher). The switch (``args[-2]``, True or None) is a
     type of the entry: a body with an n-body field and one without need two."""
@@ -426,23 +231,24 @@ def _fields(v, integer, central: str, groups, tanks, shield: bool) -> dict:
     """The state message (keys in the order of :data:`rocketsim.telemetry.schemas.BODY_STATE`)
     from the numbers ``v`` of :func:`figures` (a list, or slots standing for them)."""
     out = {"t": v[-2], "position": v[0:3], "velocity": v[3:6], "attitude": v[6:10],
-           "body_rates": v[10:13], "latitude_deg": v[LAT], "longitude_deg": v[LON],
-           "altitude": v[HEIGHT], "speed": v[SPEED], "orbit": _orbit(v[ORBIT:MASS]),
+           "body_rates": v[10:13], "latitude_deg": v[SAMPLE_LAT], "longitude_deg": v[SAMPLE_LON],
+           "altitude": v[SAMPLE_HEIGHT], "speed": v[SAMPLE_SPEED], "orbit": _orbit(v[SAMPLE_ORBIT:SAMPLE_MASS]),
            "central_body": central}
-    out.update(zip(FLIGHT_KEYS, v[MASS:VEHICLE]))
+    out.update(zip(FLIGHT_KEYS, v[SAMPLE_MASS:SAMPLE_VEHICLE]))
     if groups is not None:
         n = len(groups)
-        throttle = v[VEHICLE]
+        throttle = v[SAMPLE_VEHICLE]
         out["throttle"] = throttle if throttle == throttle else None
-        out["group_throttle"] = {g: x if x == x else None for g, x in zip(groups, v[GROUPS:GROUPS + n])}
-        out["thrust"] = v[VEHICLE + 1]
-        out["group_thrust"] = dict(zip(groups, v[GROUPS + n:GROUPS + 2 * n]))
-        out["mass_flow"] = v[VEHICLE + 2]
-        out["engines_running"] = integer(v[VEHICLE + 3])
-        out["propellant"] = v[VEHICLE + 4]
-        out["propellant_tanks"] = dict(zip(tanks, v[GROUPS + 2 * n:-2]))
+        out["group_throttle"] = {g: x if x == x else None
+                                 for g, x in zip(groups, v[SAMPLE_GROUPS:SAMPLE_GROUPS + n])}
+        out["thrust"] = v[SAMPLE_VEHICLE + 1]
+        out["group_thrust"] = dict(zip(groups, v[SAMPLE_GROUPS + n:SAMPLE_GROUPS + 2 * n]))
+        out["mass_flow"] = v[SAMPLE_VEHICLE + 2]
+        out["engines_running"] = integer(v[SAMPLE_VEHICLE + 3])
+        out["propellant"] = v[SAMPLE_VEHICLE + 4]
+        out["propellant_tanks"] = dict(zip(tanks, v[SAMPLE_GROUPS + 2 * n:-2]))
         if shield:
-            out["heat_flux"] = v[VEHICLE + 5]
+            out["heat_flux"] = v[SAMPLE_VEHICLE + 5]
             out["shield_temperature"] = v[-1]
     return out
 

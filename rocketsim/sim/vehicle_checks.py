@@ -37,29 +37,25 @@ import math
 
 import numpy as np
 
-from rocketsim._jit import Entries, compile_beside, njit
-from rocketsim.atmosphere.table import TOP, air_in
-from rocketsim.bodies.gravity import point_mass_j2
+from rocketsim.jit import Entries, compile_beside
+from rocketsim.atmosphere.table import TOP
 from rocketsim.bodies.orientation import BODIES as ORIENTED, spin_rate
 from rocketsim.constants import (AIR_CP, CO2_CP, DEG, G0, HEAT_SHIELD_LIMIT, MARS_MU,
                                 STRUCTURE_AXIAL_LIMIT_G, STRUCTURE_Q_ALPHA_LIMIT)
-from rocketsim.dynamics.derivative import derivative, held_derivative, radial_height
-from rocketsim.frames.local import body_air_velocity
+from rocketsim.dynamics.derivative import held_derivative
 from rocketsim.dynamics.central import WATCH_RADIUS
-from rocketsim.dynamics.rk4 import advance, near_ground
 from rocketsim.dynamics.third_bodies import FIELD_CENTER, field_of, nbody_flag
 from rocketsim.ephemeris.solar_system import BODIES
-from rocketsim.layout import P_J2, P_MU, P_RADIUS, P_SPIN, Q, R, V, W
+from rocketsim.layout import P_RADIUS, Q, R, V
 from rocketsim.flight.conditions import NO_CONDITION
 from rocketsim.flight.readings import StateView
-from rocketsim.flight.steering import steer_step
 from rocketsim.frames.earth_fixed import eci_to_ecef
 from rocketsim.frames.quaternion import quat_rotate
-from rocketsim.vehicle.aero import A_GROUND, A_REACH
-from rocketsim.vehicle.contact import (axis_up, contact_heights, footprint, lowest_contact_height,
-                                       tip_over_angle)
+from rocketsim.stepping import quiet, runs
+from rocketsim.stepping.checked_step import advance_checked, step_figures
+from rocketsim.vehicle.aero import A_REACH
+from rocketsim.vehicle.contact import axis_up, contact_heights, footprint, tip_over_angle
 from rocketsim.vehicle.heating import advance_shield, sutton_graves, sutton_graves_constant
-from rocketsim.vehicle.mass_properties import vehicle_mass_properties
 from rocketsim.vehicle.parachutes import CH_DEPLOYED
 from rocketsim.vehicle.limits import breakup
 
@@ -118,8 +114,9 @@ class VehicleChecks:
     def advance(self, body, k0: int, h: float, n: int, steering: tuple | None = None) -> tuple[np.ndarray, int]:
         """Advance ``body`` like :func:`rocketsim.dynamics.rk4.advance` (up to ``n`` steps
         of ``h`` seconds from step ``k0``; returns ``(y, steps taken)``) and compute the
-        checks' figures at the new state in the same compiled call (:func:`advance_checked`:
-        the vehicle's arrays are unboxed once, not two or three times); :meth:`after_step`
+        checks' figures at the new state in the same compiled call
+        (:func:`~rocketsim.stepping.checked_step.advance_checked`: the vehicle's arrays
+        are unboxed once, not two or three times); :meth:`after_step`
         reads them if the body's state is still that one. ``steering``: the autopilot's
         step to run first in that call, ``(command code, fins)`` from
         :meth:`rocketsim.flight.fc.FlightComputer.autopilot`, or None."""
@@ -133,9 +130,9 @@ class VehicleChecks:
                 condition: np.ndarray, samples: tuple) -> tuple[np.ndarray, int, int, int]:
         """Fly ``body`` up to ``n`` steps of ``h`` seconds from step ``k0`` in one compiled
         call, returning after the first step the Python side may have something to do
-        with (:func:`rocketsim.sim.runs.fly_run`); returns ``(y, steps taken, reason,
+        with (:func:`rocketsim.stepping.runs.fly_run`); returns ``(y, steps taken, reason,
         samples computed)``. ``samples``: ``(every, rows, record, sampler)``, the
-        telemetry samples the run computes (see :func:`~rocketsim.sim.runs.fly_run`).
+        telemetry samples the run computes (see :func:`~rocketsim.stepping.runs.fly_run`).
         The checks' state is left as :meth:`after_step` would have left it before the
         last step (the shield's temperature, the contact flag, the state before the
         step), the figures of the last step for :meth:`after_step` to read, and the
@@ -143,27 +140,23 @@ class VehicleChecks:
         told of a new dynamic-pressure peak. ``steering`` as in :meth:`advance`, run
         before every step; ``condition``: the program's compiled condition
         (:mod:`rocketsim.flight.conditions`; no rows: none)."""
-        from rocketsim.sim import runs     # here: runs' kernel reads this module's step_figures
-
         arguments, carry = self._run_arguments(body, k0, h, n, steering, events, condition, samples)
         y, before, taken, figures, reason, y_peak, filled = body.kernels.call(runs.fly_run, body.vehicle.arrays,
                                                                               *arguments)
-        self.temperature = float(carry[runs.C_TEMPERATURE])
-        self.touched_down = bool(carry[runs.C_TOUCHED] > 0.5)
+        self.temperature = float(carry[quiet.CARRY_TEMPERATURE])
+        self.touched_down = bool(carry[quiet.CARRY_TOUCHED] > 0.5)
         if taken > 1:
             self.previous = ((k0 + taken - 1) * h, before.copy())
-        if carry[runs.C_PEAK_STEP] > 0.0:
-            events.peak_at((k0 + int(carry[runs.C_PEAK_STEP])) * h, y_peak)
+        if carry[quiet.CARRY_PEAK_STEP] > 0.0:
+            events.peak_at((k0 + int(carry[quiet.CARRY_PEAK_STEP])) * h, y_peak)
         self._figures = (y, figures)
         return y, taken, reason, filled
 
     def compile_beside(self, body, h: float, samples: tuple | None) -> None:
         """On a cold cache, queue the kernels of this body's one-step advance (:meth:`advance`)
         and, given ``samples`` (as :meth:`fly_run`'s), of its compiled runs for a second
-        process to compile (:func:`rocketsim._jit.compile_beside`): their types are the
+        process to compile (:func:`rocketsim.jit.compile_beside`): their types are the
         body's from its first step to its staging."""
-        from rocketsim.sim import runs
-
         if samples is not None:
             compile_beside(runs.fly_run, self._run_arguments(body, 0, h, 1, None, body.watch, NO_CONDITION,
                                                              samples)[0])
@@ -172,28 +165,26 @@ class VehicleChecks:
     def _run_arguments(self, body, k0: int, h: float, n: int, steering: tuple | None, events,
                        condition: np.ndarray, samples: tuple) -> tuple[tuple, np.ndarray]:
         """``(arguments of runs.fly_run, its carry)`` for :meth:`fly_run`'s call."""
-        from rocketsim.sim import runs
-
         arrays = body.vehicle.arrays
         self._bind(arrays)
         steer = steering is not None
         code, fins = steering if steer else _NO_STEERING
-        watch = np.full(runs.N_WATCH, math.inf)
-        watch[runs.W_Q_ALPHA], watch[runs.W_AXIAL] = self.limits
-        watch[runs.W_SHIELD] = 0.0
+        watch = np.full(quiet.N_WATCH, math.inf)
+        watch[quiet.WATCH_Q_ALPHA], watch[quiet.WATCH_AXIAL] = self.limits
+        watch[quiet.WATCH_SHIELD] = 0.0
         if self.shield is not None:
             s = self.shield
-            watch[runs.W_SHIELD:runs.W_HEAT_CAPACITY + 1] = (
+            watch[quiet.WATCH_SHIELD:quiet.WATCH_HEAT_CAPACITY + 1] = (
                 1.0, s.nose_radius, sutton_graves_constant(body.mu), _heat_capacity_of_air(body.mu),
                 s.emissivity, s.area, s.mass * s.specific_heat)
-        watch[runs.W_HEAT_LIMIT] = HEAT_SHIELD_LIMIT
-        watch[runs.W_WATCHED] = self._watched
-        watch[runs.W_CLEARANCE] = AIRBORNE_CLEARANCE
-        watch[runs.W_TIP] = self._tip_watch(body)
-        watch[runs.W_MU] = body.mu
+        watch[quiet.WATCH_HEAT_LIMIT] = HEAT_SHIELD_LIMIT
+        watch[quiet.WATCH_REACH] = self._watched
+        watch[quiet.WATCH_CLEARANCE] = AIRBORNE_CLEARANCE
+        watch[quiet.WATCH_TIP] = self._tip_watch(body)
+        watch[quiet.WATCH_MU] = body.mu
         fp = field_of(body.p)
         if fp is not None:
-            watch[runs.W_SOI] = WATCH_RADIUS[BODIES[int(fp[FIELD_CENTER])]]
+            watch[quiet.WATCH_SOI] = WATCH_RADIUS[BODIES[int(fp[FIELD_CENTER])]]
         peak = events.run_watch(watch)
         carry = np.array((self.temperature, float(self.touched_down), peak, 0.0))
         return (body.y, k0, h, n, body.p, arrays, self._in_flight, steer, code, fins, watch, carry, condition,
@@ -345,80 +336,3 @@ def ground_motion(central: str, t: float, y) -> tuple[np.ndarray, np.ndarray]:
     r = y[R:R + 3]
     spin = spin_rate(central) if central in ORIENTED else 0.0
     return r / math.sqrt(r @ r), y[V:V + 3] - spin * np.array((-r[1], r[0], 0.0))
-
-
-@njit(inline="always")     # small: typed in its callers, no kernel of its own
-def accelerations(t, y, p, veh, nbody=None):
-    """``(ax, ay, az, sx, sy, sz)``: the inertial acceleration ``dv/dt`` and the sensed
-    (specific-force) acceleration ``dv/dt - g`` (m/s^2, ECI axes) of state ``y`` at
-    mission time ``t`` (s), from the derivative the integrator uses (``veh`` the
-    vehicle's arrays, None for a rigid body; ``nbody`` as the derivative's); ``g`` is
-    the central body's point mass and J2 of ``p``."""
-    return accelerations_into(np.empty(y.shape[0]), t, y, p, veh, nbody)
-
-
-@njit(inline="always")     # small: typed in its callers, no kernel of its own
-def accelerations_into(dy, t, y, p, veh, nbody=None):
-    """:func:`accelerations`, the derivative written into ``dy`` (every slot)."""
-    derivative(t, y, p, dy, veh, nbody)
-    gx, gy, gz = point_mass_j2(y[R], y[R + 1], y[R + 2], p[P_MU], p[P_RADIUS], p[P_J2])
-    return dy[V], dy[V + 1], dy[V + 2], dy[V] - gx, dy[V + 1] - gy, dy[V + 2] - gz
-
-
-@njit
-def step_figures(t, y, p, veh, contact, nbody=None):
-    """:func:`step_figures_into` with an array of its own."""
-    return step_figures_into(np.empty(y.shape[0]), t, y, p, veh, contact, nbody)
-
-
-@njit(borrows=True)
-def step_figures_into(dy, t, y, p, veh, contact, nbody=None):
-    """What the checks read after a step, in one compiled call: ``(density kg/m^3, air
-    temperature K, airspeed m/s, dynamic pressure Pa, total angle of attack rad, sensed
-    acceleration along body x m/s^2 from the flight loads, height of the lowest contact
-    point m)``. ``veh`` is the vehicle's arrays without their contact points (the flight
-    loads), ``contact`` its contact points (one named tuple to unbox per call, not two);
-    ``nbody`` as the derivative's; the derivative at ``y`` is written into ``dy``.
-
-    The air moves with the ground and the wind held for the step (as the derivative
-    sees it); the angle of attack is measured from the nose.
-    """
-    x_cm = vehicle_mass_properties(veh, y)[1]
-    rho, _, temperature, _, _, _ = air_in(veh.air, radial_height(y, p))
-    u, v, w = body_air_velocity(y, veh.aero.wind, p[P_SPIN])
-    speed = math.sqrt(u * u + v * v + w * w)
-    alpha = math.acos(max(-1.0, min(1.0, u / speed))) if speed > 0.0 else 0.0
-    _, _, _, sx, sy, sz = accelerations_into(dy, t, y, p, veh, nbody)
-    # body x in inertial axes: first column of the rotation of q
-    qw, qx, qy, qz = y[Q], y[Q + 1], y[Q + 2], y[Q + 3]
-    ax = 1.0 - 2.0 * (qy * qy + qz * qz)
-    ay = 2.0 * (qx * qy + qw * qz)
-    az = 2.0 * (qx * qz - qw * qy)
-    lowest = lowest_contact_height(y, p, contact, x_cm, veh.aero.ref[A_GROUND])
-    return rho, temperature, speed, 0.5 * rho * speed * speed, alpha, sx * ax + sy * ay + sz * az, lowest
-
-
-@njit
-def advance_checked(y, k0, h, n_steps, p, veh, steer, code, fins, nbody=None):
-    """:func:`~rocketsim.dynamics.rk4.advance` of a staged vehicle with aerodynamics
-    (arrays ``veh``, ``nbody`` as its), then :func:`step_figures` at the new state, in one
-    compiled call. Returns ``(y, steps taken, near, figures)``.
-
-    With ``steer``, the autopilot's step comes first, as the world's loop runs it
-    before the advance: :func:`~rocketsim.flight.steering.steer_step` reading the
-    truth (the state ``y`` at the step's start time ``k0 h``) in the vehicle's air (the
-    day's) with the command ``code``, the grid fins when ``fins``, no RCS.
-
-    The figures' flight loads are the derivative's without the contact forces. Out of
-    the contact points' reach of the ground the derivative adds none, so ``veh`` itself
-    serves; within it (``near``, tested with the margin of the ground sub-steps) the
-    figures are computed here all the same but the caller must compute them again
-    with the contact points removed.
-    """
-    if steer:
-        t = k0 * h
-        steer_step(veh, y, p, t, t, y[R:R + 3], y[V:V + 3], y[Q:Q + 4], y[W:W + 3], math.nan, veh.air, code, fins,
-                   False)
-    y, taken = advance(y, k0, h, n_steps, p, veh, nbody)
-    near = near_ground(y, p, veh.aero.ref[A_REACH] + veh.aero.ref[A_GROUND])
-    return y, taken, near, step_figures((k0 + taken) * h, y, p, veh, veh.aero.contact, nbody)

@@ -14,11 +14,11 @@ on its own:
   compiled step or not at all, its program asleep or waiting on a compiled
   condition (:mod:`rocketsim.flight.conditions`), no parachutes, in compiled runs
   (:meth:`rocketsim.sim.vehicle_checks.VehicleChecks.fly_run`,
-  :mod:`rocketsim.sim.runs`), each returning at a step where its checks or
+  :mod:`rocketsim.stepping.runs`), each returning at a step where its checks or
   events may act, its program wakes or its condition is true, and that step
   handled as the loop handles every step;
 * a tumbling part below its rails floor (a fairing half) in compiled runs of its
-  free steps (:func:`rocketsim.sim.runs.fly_part`), returning where its liftoff,
+  free steps (:func:`rocketsim.stepping.runs.fly_part`), returning where its liftoff,
   orbit or impact may be; a rigid body with no event to watch and out of the
   ground's reach in the loop's own batch (bit-identical to its steps one by one);
 * every other body one step at a time, exactly as the loop steps it (its
@@ -58,14 +58,16 @@ import math
 
 import numpy as np
 
-from rocketsim._jit import compile_beside, compiling_elsewhere
+from rocketsim.jit import compile_beside, compiling_elsewhere
 from rocketsim.dynamics.derivative import radial_height
 from rocketsim.dynamics.third_bodies import field_of, nbody_flag
 from rocketsim.flight.conditions import NO_CONDITION
 from rocketsim.layout import N_STATE
-from rocketsim.sim import runs, sampling
+from rocketsim.sim import sampling
 from rocketsim.sim.flight_events import ORBIT_PERIAPSIS_BOUND
 from rocketsim.sim.schedule import rails_field
+from rocketsim.stepping import runs
+from rocketsim.stepping.sample_figures import N_SAMPLE_RIGID
 
 VEHICLE, PART, BATCH = "vehicle", "part", "batch"   # how a body flies a segment (see _plan)
 RUN_SAMPLES = 128       # telemetry samples a vehicle's compiled run computes at most
@@ -285,13 +287,13 @@ def _rows_before(run: list, s: int, every: int) -> int:
 def _samples(world, body, record: bool = True) -> tuple:
     """``(samples, rows, shape)``: the telemetry samples of a compiled run of ``body`` (a
     vehicle's, ``samples`` for :meth:`~rocketsim.sim.vehicle_checks.VehicleChecks.fly_run`;
-    a tumbling part's, for :func:`rocketsim.sim.runs.fly_part`), the rows it fills and
+    a tumbling part's, for :func:`rocketsim.stepping.runs.fly_part`), the rows it fills and
     the shape to write them with; ``record`` with telemetry. Without telemetry the run
     makes only the finiteness test; away from Earth it returns at its first sample step
     (the world places the body in Python)."""
     if body.vehicle is None:
         sampler, shape = sampling.arguments(body, world.gmst0)
-        length, whole = sampling.RIGID_WIDTH, body.central == "earth"
+        length, whole = N_SAMPLE_RIGID, body.central == "earth"
     else:
         sampler, shape, length, whole = sampling.run_sampler(body, world.gmst0)
     record = record and world.telemetry is not None
@@ -304,7 +306,7 @@ def compile_runs_beside(world) -> None:
     for a second process to compile while this one compiles the first sample's
     (:meth:`rocketsim.sim.vehicle_checks.VehicleChecks.compile_beside`): their one-step
     advance and, without parachutes, their compiled runs; with a fairing, the runs its
-    halves will tumble in (:func:`rocketsim.sim.runs.fly_part`)."""
+    halves will tumble in (:func:`rocketsim.stepping.runs.fly_part`)."""
     for body in world.bodies:
         if body.vehicle is not None and body.checks is not None and body.watch is not None:
             body.checks.compile_beside(body, world.h,
@@ -315,7 +317,7 @@ def compile_runs_beside(world) -> None:
                 compile_beside(runs.fly_part, (body.y[:N_STATE].copy(), 0, world.h, 1, body.p, rails_field(body),
                                                world.air_of(body), 1.0, 1.0, 1.0, math.inf,
                                                ORBIT_PERIAPSIS_BOUND, body.mu, math.inf, world.sample_every,
-                                               np.empty((0, sampling.RIGID_WIDTH)), True,
+                                               np.empty((0, N_SAMPLE_RIGID)), True,
                                                sampling.part_arguments(body, world.gmst0), nbody_flag(body.p)))
 
 

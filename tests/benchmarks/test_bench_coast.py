@@ -72,7 +72,7 @@ def test_coasting_body_speed():
 
 def test_fly_loop_with_telemetry_speed(tmp_path):
     from rocketsim.scenario.load import load
-    from rocketsim.sim.flight import fly
+    from rocketsim.api.telemetry_flight import fly_to_file as fly
     loaded = load(ROOT / "scenarios" / "iss-coast.yaml")
     fly(loaded, tmp_path / "warm.mcap", duration=1.0)
     duration = 600.0

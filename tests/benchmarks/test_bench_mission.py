@@ -4,7 +4,7 @@ Target: at least 100x real time on one core (the whole mission, about nine
 minutes of flight, in under about 6 s), telemetry at 10 Hz included.
 
 The benchmark flies ``scenarios/falcon9-leo.yaml`` as shipped (its programs,
-the booster's return included) through :func:`rocketsim.sim.flight.fly` with
+the booster's return included) through :func:`rocketsim.api.telemetry_flight.fly_to_file` with
 the file's 10 Hz telemetry. In the suite it flies the first ARC seconds (the
 ascent, staging and the start of the boost-back, two vehicles awake after
 separation: the suite's budget is ~15 s per benchmark); with
@@ -17,7 +17,7 @@ Printed (run with ``pytest -s``):
   drag included; for a vehicle with
   aerodynamics one compiled call per step, which also runs the autopilot's
   step before it, when nothing of that is left to Python, and computes the
-  checks' figures after it: :func:`rocketsim.sim.vehicle_checks.advance_checked`),
+  checks' figures after it: :func:`rocketsim.stepping.checked_step.advance_checked`),
   the rails (sleeping bodies' compiled steps), the programs (their Python code
   and the readings they compute first), the autopilot (what is left of it
   outside that call), the per-step checks (limits, heating, touchdown, on those
@@ -48,7 +48,7 @@ only (about a microsecond per wrapped call, included in the figures).
 
 Also printed: the machine's load, and the same flight uninstrumented, in-process
 (best of 2 in the suite, 1 for the whole mission): the real-time factor.
-Compiled runs (:mod:`rocketsim.sim.window`, :mod:`rocketsim.sim.runs`) count as
+Compiled runs (:mod:`rocketsim.sim.window`, :mod:`rocketsim.stepping.runs`) count as
 physics: the autopilot's step, RK4, the checks' figures and the tests of the
 checks and events inside them; their Python around them (the window's queue, the
 runs' arguments) as the loop.
@@ -76,11 +76,12 @@ import time
 from collections import Counter
 from pathlib import Path
 
-from rocketsim._jit import Entries
+from rocketsim.jit import Entries
 from rocketsim.scenario.load import load
-from rocketsim.sim import flight_events, runs, schedule, vehicle_checks, world
-from rocketsim.sim.vehicle_checks import advance_checked
-from rocketsim.sim.flight import fly
+from rocketsim.sim import flight_events, schedule, vehicle_checks, world
+from rocketsim.stepping import runs
+from rocketsim.stepping.checked_step import advance_checked
+from rocketsim.api.telemetry_flight import fly_to_file as fly
 from rocketsim.telemetry.writer import TelemetryWriter
 from tests.benchmarks.timing import best_of, load_text
 

@@ -56,7 +56,7 @@ from mcap.reader import make_reader
 from rocketsim.dynamics.rk4 import advance
 from rocketsim.scenario.load import load
 from rocketsim.sim.build import build_world
-from rocketsim.sim.flight import fly
+from rocketsim.api.telemetry_flight import fly_to_file as fly
 from tests.benchmarks.timing import best_of, load_text
 
 rocketpy = pytest.importorskip("rocketpy")

@@ -74,7 +74,7 @@ from mcap.stream_reader import StreamReader
 
 from rocketsim.scenario.load import load
 from rocketsim.sim import sampling
-from rocketsim.sim.flight import fly
+from rocketsim.api.telemetry_flight import fly_to_file as fly
 from rocketsim.sim.build import build_world
 from rocketsim.telemetry.mcap_stream import ZSTD_LEVEL
 from rocketsim.telemetry.reader import read_run

@@ -1,6 +1,6 @@
 """The pictures of a campaign report: the landing map, the output histograms, the tornado
-of sensitivities. PNG files, drawn the way :mod:`rocketsim.telemetry.plot` draws a run
-(matplotlib imported here, lazily, with the non-interactive Agg backend; 80 dpi).
+of sensitivities. PNG files, drawn the way :mod:`rocketsim.plots.flight_panels` draws a
+run (80 dpi).
 
 - ``landing.png``: a row per body that came down: the landing points about the target
   (east/north on the target's tangent plane, m or km) over the land and coastline of
@@ -21,6 +21,7 @@ from pathlib import Path
 import numpy as np
 
 from rocketsim.campaigns.landing import geodetic_of
+from rocketsim.plots.canvas import pyplot, save
 from rocketsim.telemetry.land import land_fraction
 
 KM_ABOVE = 5000.0                # m: a map wider than this is drawn in km
@@ -29,25 +30,21 @@ _LAND = "#efe6d2"                # land fill; the coastline is telemetry.land's 
 _STYLES = ("-", "--", ":")
 
 
-def _pyplot():
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    return plt
-
-
-def draw_all(report, flown, main, target: dict | None, plot_dir: Path, title: str) -> list[Path]:
+def campaign(report, folder: str | Path) -> list[Path]:
     """Draw what ``report`` (a :class:`~rocketsim.campaigns.report.Report`) has to show into
-    ``plot_dir``: the landing map when a body came down, the histograms of ``main`` (output
-    columns of the ok runs' frame ``flown``) and their sensitivities; return the paths."""
+    ``folder`` (made if need be): ``landing.png`` when a body came down, the histograms of
+    its main outputs over the ok runs and their sensitivities; return the paths."""
+    folder = Path(folder)
+    folder.mkdir(parents=True, exist_ok=True)
+    title, main = report.name, report.main
     files = []
     if report.dispersions:
-        files.append(landing_map(report.dispersions, target, plot_dir / "landing.png", title))
+        files.append(landing_map(report.dispersions, report.target, folder / "landing.png", title))
     if main:
-        files.append(histograms(flown, main, plot_dir / "histograms.png", title))
+        files.append(histograms(report.flown, main, folder / "histograms.png", title))
         table = report.tables["sensitivities"]
         if len(table[table["output"].isin(main)]):
-            files.append(tornado(table, main, plot_dir / "sensitivities.png", title))
+            files.append(tornado(table, main, folder / "sensitivities.png", title))
     return files
 
 
@@ -56,7 +53,7 @@ def _grid(count: int, columns: int):
     return ncols, math.ceil(count / ncols)
 
 
-def _finish(plt, figure, axes, used: int, out: Path, title: str, spacing: dict | None) -> Path:
+def _finish(figure, axes, used: int, out: Path, title: str, spacing: dict | None) -> Path:
     """Blank the panels past the ``used`` ones, title, lay out (``spacing`` for
     ``subplots_adjust``: a grid of many panels, where ``tight_layout`` costs seconds; None
     for ``tight_layout``), write the PNG ``out`` and close the figure."""
@@ -67,9 +64,7 @@ def _finish(plt, figure, axes, used: int, out: Path, title: str, spacing: dict |
         figure.tight_layout()
     else:
         figure.subplots_adjust(**{"right": 0.98, "bottom": 0.06, **spacing})
-    figure.savefig(out, dpi=80, format="png")
-    plt.close(figure)
-    return out
+    return save(figure, out, dpi=80, format="png")
 
 
 def _draw_land(ax, target: dict, east_limits, north_limits, scale: float) -> None:
@@ -90,12 +85,12 @@ def landing_map(dispersions: dict, target: dict, out: Path, title: str) -> Path:
     """Draw the landing map of ``dispersions`` (by body) about ``target`` to ``out``: a row
     per body, the scatter about the target (with the circles about it) on the left, zoomed
     on the scatter (with the circles about the mean) on the right."""
-    plt = _pyplot()
+    plt = pyplot()
     figure, axes = plt.subplots(len(dispersions), 2, figsize=(19.0, 6.5 * len(dispersions)), squeeze=False)
     for row, (body, d) in zip(axes, dispersions.items()):
         for ax, about in zip(row, ("target", "mean")):
             _landing_panel(ax, body, d, target, about)
-    return _finish(plt, figure, axes, axes.size, out,
+    return _finish(figure, axes, axes.size, out,
                    f"{title}: landing dispersion about {target.get('name') or 'the target'}", None)
 
 
@@ -144,7 +139,7 @@ def _landing_panel(ax, body: str, d, target: dict, about: str) -> None:
 
 def histograms(flown, columns: list[str], out: Path, title: str) -> Path:
     """Draw a histogram of each of ``columns`` of the ok runs' frame ``flown`` to ``out``."""
-    plt = _pyplot()
+    plt = pyplot()
     ncols, nrows = _grid(len(columns), 4)
     figure, axes = plt.subplots(nrows, ncols, figsize=(4.2 * ncols, 3.2 * nrows), squeeze=False)
     for ax, column in zip(axes.flat, columns):
@@ -158,14 +153,14 @@ def histograms(flown, columns: list[str], out: Path, title: str) -> Path:
         ax.tick_params(labelsize=7)
         ax.grid(True, lw=0.4)
     axes.flat[0].legend(fontsize=7)
-    return _finish(plt, figure, axes, len(columns), out, f"{title}: outputs of the ok runs",
+    return _finish(figure, axes, len(columns), out, f"{title}: outputs of the ok runs",
                    {"left": 0.05, "top": 0.9 if nrows == 1 else 0.93, "wspace": 0.25, "hspace": 0.45})
 
 
 def tornado(table, columns: list[str], out: Path, title: str) -> Path:
     """Draw a tornado of the sensitivities ``table`` (the report's) for each of ``columns``
     that has rows in it, to ``out``."""
-    plt = _pyplot()
+    plt = pyplot()
     shown = [c for c in columns if (table["output"] == c).any()]
     ncols, nrows = _grid(len(shown), 3)
     height = max(2.0, 0.35 * table["input"].nunique() + 1.2)
@@ -184,5 +179,5 @@ def tornado(table, columns: list[str], out: Path, title: str) -> Path:
         ax.tick_params(axis="x", labelsize=7)
         ax.grid(True, axis="x", lw=0.4)
     axes.flat[0].legend(fontsize=7, loc="lower right")
-    return _finish(plt, figure, axes, len(shown), out, f"{title}: which dispersed input drives each output",
+    return _finish(figure, axes, len(shown), out, f"{title}: which dispersed input drives each output",
                    {"left": 0.1, "top": 0.88 if nrows == 1 else 0.92, "wspace": 0.55, "hspace": 0.6})

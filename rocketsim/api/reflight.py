@@ -22,7 +22,7 @@ from pathlib import Path, PurePosixPath
 
 from rocketsim.flight.program import load_program
 from rocketsim.scenario.load import load
-from rocketsim.sim.flight import fly
+from rocketsim.api.telemetry_flight import fly_to_file
 from rocketsim.telemetry.reader import RunFile, iter_raw_messages, read_run
 from rocketsim.telemetry.tables import flat_row
 
@@ -87,7 +87,7 @@ def verify(path: str | Path, trust: bool = False) -> Verdict:
         try:
             overrides = {path: json.loads(value) for path, value in run.metadata.get("overrides", {}).items()}
             overrides.update(_programs(run, scenario))
-            fly(load(scenario, overrides), again, step=float(info["step_s"]),
+            fly_to_file(load(scenario, overrides), again, step=float(info["step_s"]),
                 duration=float(info["duration_s"]))
         except Exception as error:      # the original may have ended the same way
             flight_error = f"{type(error).__name__}: {error}"

@@ -1,8 +1,10 @@
-"""Fly a loaded scenario to an MCAP file: the world plus its telemetry.
+"""Fly a loaded scenario into its telemetry: the world plus an MCAP file, or any sink
+with the writer's interface (:func:`fly_into`).
 
-The telemetry file is opened first and closed last, whatever happens in
-between (a program error, Ctrl-C): what was written stays readable, with the
-error logged as an event.
+The telemetry is opened first and closed last, whatever happens in between (a
+program error, Ctrl-C): what was written stays readable, with the error logged
+as an event. The world's modules (the compiled kernels) are imported with this
+module, so the front door imports it only when a flight begins.
 """
 
 from __future__ import annotations
@@ -21,8 +23,8 @@ from rocketsim.telemetry.writer import TelemetryWriter, strict_json
 MEDIA_TYPES = {".py": "text/x-python", ".nc": "application/x-netcdf"}
 
 
-def fly(loaded: LoadedScenario, out: str | Path, *, step: float | None = None,
-        duration: float | None = None, on_progress=None) -> dict:
+def fly_to_file(loaded: LoadedScenario, out: str | Path, *, step: float | None = None,
+                duration: float | None = None, on_progress=None) -> dict:
     """Fly ``loaded`` and write its telemetry to ``out``; return the summary.
 
     ``on_progress(t, phase)``, if given, is called after every batch of steps with the
@@ -41,7 +43,7 @@ def fly(loaded: LoadedScenario, out: str | Path, *, step: float | None = None,
 
 def fly_into(loaded: LoadedScenario, open_telemetry, *, step: float | None = None,
              duration: float | None = None, on_progress=None) -> dict:
-    """:func:`fly` into the telemetry ``open_telemetry(epoch_ns, program_file)`` opens
+    """:func:`fly_to_file` into the telemetry ``open_telemetry(epoch_ns, program_file)`` opens
     (a context manager with the interface of
     :class:`~rocketsim.telemetry.writer.TelemetryWriter`: an MCAP file, or samples kept
     in memory by :class:`rocketsim.api.recorder.Recorder`)."""

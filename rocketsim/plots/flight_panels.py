@@ -5,8 +5,8 @@ propellant on board on a second axis, dashed), attitude and the ground track
 on a latitude/longitude map with the coastlines
 (:mod:`rocketsim.telemetry.land`). A quantity the telemetry does
 not carry (throttle of a rigid body without engines, q in a vacuum run) gets an
-empty panel that says so; throttle is a gap while no engine runs. Reads the
-file only; matplotlib is imported here, lazily, with the non-interactive Agg backend.
+empty panel that says so; throttle is a gap while no engine runs. Reads a run's
+file only (nothing it carries is executed), or a run in memory.
 """
 
 from __future__ import annotations
@@ -15,6 +15,7 @@ from pathlib import Path
 
 import numpy as np
 
+from rocketsim.plots.canvas import Picture, pyplot, save
 from rocketsim.telemetry.land import draw_coastline
 from rocketsim.telemetry.reader import read_run
 from rocketsim.telemetry.tables import table
@@ -27,22 +28,31 @@ def _column(columns: dict, key: str) -> np.ndarray | None:
     return np.array([np.nan if v is None else v for v in values], dtype=float)
 
 
-def plot_run(path: str | Path, out: str | Path) -> Path:
-    """Draw the run in ``path`` to the PNG ``out``; return ``out``."""
-    run = read_run(path)
-    draw(run, {body: table(path, body) for body in run.bodies}, out, Path(path).stem)
-    return Path(out)
+def run(run, out: str | Path | None = None) -> Path | Picture:
+    """Draw ``run``: a :class:`~rocketsim.api.run.Run` (what :func:`rocketsim.fly` and
+    :func:`rocketsim.open_run` return) or the path of a run's MCAP file, read without
+    executing anything. To the PNG ``out``, returning its path; without ``out``, a
+    :class:`~rocketsim.plots.canvas.Picture`."""
+    if isinstance(run, (str, Path)):
+        file = read_run(run)
+        return draw(file, {body: table(run, body) for body in file.bodies}, out, Path(run).stem)
+    tables = {name: _sample_columns(body.samples) for name, body in run.bodies.items()}
+    return draw(run.file, tables, out, run.path.stem if run.path else "run")
 
 
-def draw(run, tables: dict, out, title: str) -> None:
+def _sample_columns(samples) -> dict:
+    """A body's samples in memory (:class:`~rocketsim.api.samples.Samples`) as the columns
+    a file's table has: a number no sample has is None throughout."""
+    return {k: [None] * len(v) if v.dtype.kind == "f" and np.isnan(v).all() else v
+            for k, v in samples.columns().items()}
+
+
+def draw(run, tables: dict, out, title: str) -> Path | Picture:
     """Draw ``run`` (a :class:`~rocketsim.telemetry.reader.RunFile`: its events, logs,
     metadata) with each body's columns ``tables[body]`` (:func:`rocketsim.telemetry.tables.table`'s,
-    lists or arrays) to the PNG ``out`` (a path or a binary file); ``title`` names a run
-    whose metadata does not."""
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
+    lists or arrays) to the PNG ``out`` (:func:`rocketsim.plots.canvas.save`); ``title``
+    names a run whose metadata does not."""
+    plt = pyplot()
     figure, axes = plt.subplots(3, 3, figsize=(15, 11))
     panels = {
         "altitude": (axes[0, 0], "altitude", 1e-3, "altitude, km"),
@@ -127,8 +137,7 @@ def draw(run, tables: dict, out, title: str) -> None:
     info = run.metadata.get("rocketsim", {})
     figure.suptitle(f"{info.get('scenario', title)}  (epoch {info.get('epoch_utc', '?')})")
     figure.tight_layout()
-    figure.savefig(out, dpi=80, format="png")
-    plt.close(figure)
+    return save(figure, out, dpi=80, format="png")
 
 
 def _caption(run) -> str:
