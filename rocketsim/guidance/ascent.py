@@ -103,7 +103,7 @@ import numpy as np
 
 from rocketsim.constants import (EARTH_J2, EARTH_MU, EARTH_OMEGA, EARTH_RADIUS_EQ, ENGINE_TAIL_OFF,
                                  G0)
-from rocketsim.flight.guidance_rate import Approach
+from rocketsim.guidance.rate import Approach
 from rocketsim.flight.steering import OMEGA_N, ZETA
 from rocketsim.frames.elements import Elements
 from rocketsim.frames.mean_elements import state_of_mean_elements
@@ -457,7 +457,7 @@ class Insertion:
     step that brings the orbital energy, with the tail-off's impulse (``tail_off`` s of
     linear decay), nearest the target's (the module's "cut-off"). A stage that runs dry
     first ends the burn where it is (:attr:`outcome` says which). The wake-ups quicken
-    as the energy nears the cut-off's (:class:`~rocketsim.flight.guidance_rate.Approach`):
+    as the energy nears the cut-off's (:class:`~rocketsim.guidance.rate.Approach`):
     the last ones come every step.
     """
 
