@@ -79,6 +79,9 @@ class Plan:
         campaign.check_groups()
         self.fixed = dict(spec.overrides)
         self.base = self._load(self.fixed)
+        if spec.insertion is not None and self.base.scenario.mission.target.orbit is None:
+            raise campaign.error("an insertion is measured against the scenario's target orbit, and it "
+                                 "names none (mission.target.orbit: altitude, inclination)", "insertion")
         self.places: dict[str, list[Place]] = {}
         self.scales: dict[str, list[Scale]] = {}
         laws: dict[str, Law] = {}

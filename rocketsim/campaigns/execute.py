@@ -41,6 +41,7 @@ from typing import Callable, Mapping
 
 from rocketsim.jit import beside
 from rocketsim.campaigns.cases import Plan
+from rocketsim.campaigns.insertion import insertion_columns
 from rocketsim.campaigns.outputs import run_columns
 from rocketsim.campaigns.spec import read_campaign
 from rocketsim.campaigns.store import Store, frame, read_results
@@ -100,11 +101,14 @@ def _fly(plan: Plan, k: int, telemetry: Path | None, timeout: float | None):
         if timeout is not None and time.perf_counter() - start > timeout:
             raise _Timeout(f"stopped at T+{t:.1f} s after {timeout:g} s of wall time")
 
-    paths = plan.campaign.spec.outputs
+    paths, tolerance = plan.campaign.spec.outputs, plan.campaign.spec.insertion
     row = {"run": k, "status": "ok", "error": None}
     try:
-        run = fly(plan.scenario(k), telemetry, progress=watch)
+        scenario = plan.scenario(k)
+        run = fly(scenario, telemetry, progress=watch)
         row.update(run_columns(run, paths))
+        if tolerance is not None:
+            row.update(insertion_columns(run, scenario.scenario.mission.target.orbit, tolerance))
     except _Timeout as error:
         row.update(status="timeout", error=str(error), outcome="timeout")
     except Exception as error:              # noqa: BLE001 - a failed run is a row, the campaign goes on

@@ -3,7 +3,8 @@
 ::
 
     DIR/campaign.yaml      the campaign, its scenario an absolute path
-    DIR/meta.json          name, seed, runs, scenario, dispersions, target, outputs, version
+    DIR/meta.json          name, seed, runs, scenario, dispersions, target, outputs, version,
+                           insertion (tolerances)
     DIR/inputs.parquet     every run's inputs, written before anything flies
     DIR/results.parquet    a row per finished run (ok, error or timeout), sorted by run
     DIR/results/part-*.parquet   rows not yet consolidated into results.parquet
@@ -137,7 +138,10 @@ class Store:
         meta = {"name": spec.name, "seed": spec.seed, "runs": spec.runs, "scenario": str(campaign.scenario),
                 "dispersions": [{"name": name, **given.model_dump(mode="json", exclude_none=True)}
                                 for name, given in spec.dispersions.items()],
-                "target": plan.target(), "outputs": list(spec.outputs), "version": __version__}
+                "target": plan.target(), "outputs": list(spec.outputs), "version": __version__,
+                "insertion": None if spec.insertion is None else {
+                    "periapsis_m": spec.insertion.periapsis, "apoapsis_m": spec.insertion.apoapsis,
+                    "inclination_deg": math.degrees(spec.insertion.inclination)}}
         _write(plan.inputs_table(), self.dir / "inputs.parquet")
         (self.dir / "meta.json").write_text(json.dumps(meta, indent=1) + "\n")
         # the campaign file last: a directory holding it holds the rest

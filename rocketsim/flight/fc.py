@@ -633,7 +633,7 @@ class FlightComputer:
 
     @property
     def engines(self) -> list[dict]:
-        """Each engine now: name, on, spool, throttle, gimbal_rad, thrust_N,
+        """Each engine now: name, on, spool, throttle, throttle_range, gimbal_rad, thrust_N,
         mass_flow_kg_s, ignitions_left, separated (flow separation)."""
         body = self._craft
         return self._propulsion().states(body.y, self._craft.time, body.truth().air[1])
