@@ -61,7 +61,7 @@ _HOMES = {
     "read_run": "rocketsim.telemetry.reader", "RunFile": "rocketsim.telemetry.reader",
     "export_tables": ("rocketsim.telemetry.tables", "export"),
     "verify": "rocketsim.api.reflight", "Verdict": "rocketsim.api.reflight",
-    "UntrustedProgram": "rocketsim.api.reflight",
+    "UntrustedProgram": "rocketsim.scenario.trust",
     "strict_json": "rocketsim.telemetry.writer",
     "parse_quantity": "rocketsim.scenario.units", "UnitError": "rocketsim.scenario.units",
     "UNITS": "rocketsim.scenario.units",

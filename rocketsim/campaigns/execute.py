@@ -46,6 +46,7 @@ from rocketsim.campaigns.spec import read_campaign
 from rocketsim.campaigns.store import Store, frame, read_results
 from rocketsim.errors import InputError
 from rocketsim.extras import needs
+from rocketsim.scenario.trust import approve
 
 WORKER_WARM_S = 1.0      # s of the nominal run a worker flies before its first run
 # Dask settings of the embedded cluster's workers. A worker flies a run in a thread
@@ -162,13 +163,15 @@ def _lost(k: int, error: BaseException) -> dict:
 def run(campaign, directory: str | Path, *, workers: int | None = None, scheduler: str | None = None,
         scheduler_file: str | Path | None = None, resume: bool = False, base_dir=None,
         progress: Callable[[int, int, int], None] | None = None,
-        log: Callable[[str], None] | None = None):
+        log: Callable[[str], None] | None = None, trust: bool = False):
     """Fly ``campaign`` (a campaign file or mapping) into ``directory``; the results table.
 
     ``progress(done, failed, total)`` is called when the first run starts (0 done) and
     as runs finish (``total``: the runs this call flies), ``log(message)`` with the warm-up's costs. Raises
     :class:`~rocketsim.errors.InputError` for a bad campaign before anything flies,
-    :class:`Interrupted` on Ctrl-C (everything finished saved)."""
+    :class:`Interrupted` on Ctrl-C (everything finished saved). A campaign file that is
+    the directory's own ``campaign.yaml`` (resuming a folder as it came) flies the
+    programs it names only with ``trust`` (:func:`rocketsim.scenario.trust.approve`)."""
     in_process = workers == 1 and scheduler is None and scheduler_file is None
     needs("campaign", "a campaign", "pyarrow", *(() if in_process else ("distributed",)))
     import yaml
@@ -178,6 +181,8 @@ def run(campaign, directory: str | Path, *, workers: int | None = None, schedule
     # what flies is the resolved campaign: the text every worker reads, campaign.yaml of the directory
     text = yaml.safe_dump(found.resolved(), sort_keys=False)
     plan = plan_of(text)
+    if found.path is not None and _same_file(found.path, Path(directory) / "campaign.yaml"):
+        approve(plan.variants(), trust, f"the campaign folder {directory}")
     if scheduler is not None or scheduler_file is not None:
         connect(scheduler, scheduler_file).close()     # reachable, before the directory is written
     store = Store(directory)
@@ -298,10 +303,20 @@ def _local_cluster(workers: int | None):
             signal.signal(signal.SIGINT, previous)
 
 
-def rerun(directory: str | Path, k: int, telemetry: str | Path):
+def _same_file(a: Path, b: Path) -> bool:
+    try:
+        return a.samefile(b)
+    except OSError:
+        return False
+
+
+def rerun(directory: str | Path, k: int, telemetry: str | Path, trust: bool = False):
     """Fly run ``k`` of the campaign in ``directory`` alone into the MCAP file
     ``telemetry``; ``(row, recorded)``: its row, and its row in the results (None if
-    it has none), both as one-row tables with the same columns."""
+    it has none), both as one-row tables with the same columns. The folder may come
+    from someone else: the programs run ``k`` flies run only with ``trust``
+    (:func:`rocketsim.scenario.trust.approve` raises
+    :class:`~rocketsim.scenario.trust.UntrustedProgram` naming them)."""
     needs("campaign", "a campaign's rerun", "pyarrow")
     directory = Path(directory)
     if not (directory / "campaign.yaml").is_file():
@@ -311,6 +326,7 @@ def rerun(directory: str | Path, k: int, telemetry: str | Path):
     runs = plan.campaign.spec.runs
     if not 0 <= k < runs:
         raise InputError(f"the campaign has runs 0 .. {runs - 1}, not {k}", field="K")
+    approve(plan.scenario(k), trust, f"the campaign folder {directory}")
     row = _fly(plan, k, Path(telemetry), plan.campaign.spec.timeout)
     results = read_results(directory)
     recorded = results[results["run"] == k]
@@ -346,7 +362,7 @@ def same_row(a, b, ignore=("wall_time_s",)) -> list[str]:
 def campaign(campaign: str | Path | Mapping, directory: str | Path | None = None, *,
              workers: int | None = None, scheduler: str | None = None,
              scheduler_file: str | Path | None = None, resume: bool = False,
-             base_dir: str | Path | None = None):
+             base_dir: str | Path | None = None, trust: bool = False):
     """Fly a Monte Carlo campaign and return its results as a pandas DataFrame (a row
     per run: ``run``, ``status``, ``error``, ``wall_time_s``, ``outcome`` and the
     output columns of :mod:`rocketsim.campaigns.outputs`).
@@ -357,10 +373,11 @@ def campaign(campaign: str | Path | Mapping, directory: str | Path | None = None
     otherwise a local Dask cluster of that many processes (default one per core);
     ``scheduler`` / ``scheduler_file``: an existing Dask cluster's; ``resume``: fly the
     runs ``directory`` is missing. Every run's inputs derive from the campaign's
-    seed and the run's number alone (:mod:`rocketsim.campaigns.sampling`)."""
+    seed and the run's number alone (:mod:`rocketsim.campaigns.sampling`); ``trust``:
+    resuming ``directory`` with its own ``campaign.yaml`` may run its programs (see :func:`run`)."""
     if directory is None:
         with tempfile.TemporaryDirectory(prefix="rocketsim-campaign-") as folder:
             return run(campaign, Path(folder) / "campaign", workers=workers, scheduler=scheduler,
                        scheduler_file=scheduler_file, base_dir=base_dir)
     return run(campaign, directory, workers=workers, scheduler=scheduler, scheduler_file=scheduler_file,
-               resume=resume, base_dir=base_dir)
+               resume=resume, base_dir=base_dir, trust=trust)
