@@ -18,7 +18,7 @@ from rocketsim.dynamics.central import nbody_field
 from rocketsim.dynamics.soi import central_params
 from rocketsim.dynamics.third_bodies import with_field
 from rocketsim.errors import InputError
-from rocketsim.flight.program import load_program
+from rocketsim.flight.program import load_program, plain_program
 from rocketsim.flight.sensors import Sensors
 from rocketsim.frames.earth_fixed import ecef_to_eci_velocity
 from rocketsim.frames.geodetic import enu_basis, geodetic_to_ecef
@@ -105,16 +105,18 @@ def build_world(loaded: LoadedScenario, step: float | None = None,
     world.target = mission.target
     world.pad_azimuth = scenario.site.pad_azimuth if scenario.site else math.nan
     world.program_cpu_budget = scenario.program_cpu_budget
+    world.program_time_limit = scenario.program_time_limit
     # on a cold cache a second process compiles the first runs' kernels from here on, while
     # this one compiles the programs' and the first sample's
     compile_runs_beside(world)
     compile_coasts_beside(world)
     programs = loaded.programs()
     for stage, path in loaded.stage_program_paths.items():
-        world.stage_programs[stage] = (programs[f"program/{stage}"][0] or load_program(path), path)
+        given = programs[f"program/{stage}"][0]
+        world.stage_programs[stage] = (plain_program(given, path) if given else load_program(path), path)
     if "program" in programs:
         main, path = programs["program"]
-        world.attach_program(body, main or load_program(path), path)
+        world.attach_program(body, plain_program(main, path) if main else load_program(path), path)
     return world
 
 
