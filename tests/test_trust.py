@@ -21,7 +21,7 @@ import pytest
 import yaml
 
 import rocketsim
-from rocketsim.api.reflight import verify
+from rocketsim.api import rerun_campaign, run_campaign, verify
 from rocketsim.scenario.trust import UntrustedProgram
 from tests.campaign_files import write_arc
 from tests.run_files import rewrite_run
@@ -141,7 +141,7 @@ def test_campaign_rerun_of_a_received_folder_executes_nothing_without_trust(fold
     result = cli("campaign", "rerun", folder, "1", "-o", tmp_path / "run.mcap")
     assert result.exit_code == 2 and "evil.py" in result.output and "--trust" in result.output, result.output
     with pytest.raises(UntrustedProgram):
-        rocketsim.api.rerun_campaign(folder, 1, tmp_path / "run.mcap")
+        rerun_campaign(folder, 1, tmp_path / "run.mcap")
     assert not marker.exists() and not (tmp_path / "run.mcap").exists()
     assert cli("campaign", "rerun", folder, "1", "-o", tmp_path / "run.mcap", "--trust").exit_code in (0, 1)
     assert marker.read_text() == "ran"
@@ -182,6 +182,6 @@ def test_a_choice_among_programs_names_every_one(folder, tmp_path):
 
     _bring(folder, marker, choose)
     with pytest.raises(UntrustedProgram) as refused:
-        rocketsim.api.run_campaign(folder / "campaign.yaml", folder, workers=1, resume=True)
+        run_campaign(folder / "campaign.yaml", folder, workers=1, resume=True)
     assert "good.py" in str(refused.value) and "evil.py" in str(refused.value)
     assert not marker.exists()
