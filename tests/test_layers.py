@@ -21,7 +21,7 @@ ROOT = Path(__file__).resolve().parent.parent
 
 # bottom to top; a module belongs to the longest prefix that names it
 LAYERS = [
-    ("rocketsim.constants", "rocketsim.errors", "rocketsim._jit", "rocketsim.version",
+    ("rocketsim.constants", "rocketsim.errors", "rocketsim.jit", "rocketsim.version",
      "rocketsim.limits", "rocketsim.extras"),
     ("rocketsim.timescales", "rocketsim.frames", "rocketsim.layout"),
     ("rocketsim.bodies", "rocketsim.ephemeris", "rocketsim.atmosphere"),

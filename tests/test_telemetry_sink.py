@@ -18,6 +18,7 @@ from pathlib import Path
 import pytest
 
 from rocketsim.api.recorder import Recorder
+from rocketsim.live.tee import Tee
 from rocketsim.telemetry.sink import TelemetrySink
 from rocketsim.telemetry.writer import TelemetryWriter
 
@@ -48,7 +49,7 @@ def problems(sink: type) -> list[str]:
     return found
 
 
-@pytest.mark.parametrize("sink", [TelemetryWriter, Recorder])
+@pytest.mark.parametrize("sink", [TelemetryWriter, Recorder, Tee])
 def test_each_sink_defines_every_call_with_the_protocols_parameters(sink):
     assert issubclass(sink, TelemetrySink)
     assert not problems(sink)

@@ -22,7 +22,7 @@ it, the run's MCAP file. So run ``k`` flies bit for bit the same alone
   must see the scenario's files and the campaign directory at the same paths.
 * Warm-up: the nominal run (every dispersion at its centre) is flown whole once
   in this process first, so the compiled kernels it needs are in the disk cache
-  (:mod:`rocketsim._jit`), compiled once; then each worker flies its first
+  (:mod:`rocketsim.jit`), compiled once; then each worker flies its first
   :data:`WORKER_WARM_S` seconds, importing the flight's modules and loading the
   kernels of the flight's steps from the cache before its first run (the
   kernels of later events, a staging, a landing, load in its first run, a few
@@ -41,7 +41,7 @@ import time
 from pathlib import Path
 from typing import Callable, Mapping
 
-from rocketsim import _jit
+from rocketsim.jit import beside
 from rocketsim.campaigns.cases import Plan
 from rocketsim.campaigns.outputs import run_columns
 from rocketsim.campaigns.spec import read_campaign
@@ -172,7 +172,7 @@ def fly_case(text: str, k: int, keep: str, timeout: float | None, retries: int =
     lost += _times_lost()
     if lost > retries:
         return _lost(k, lost, retries), None
-    _jit.COMPILE_BESIDE = False     # the workers fill the cores: each compiles what its runs need itself
+    beside.COMPILE_BESIDE = False     # the workers fill the cores: each compiles what its runs need itself
     plan = plan_of(text)
     with tempfile.TemporaryDirectory(prefix="rocketsim-run-") as folder:
         path = Path(folder) / f"run-{k:06d}.mcap"

@@ -30,7 +30,7 @@ import math
 
 import numpy as np
 
-from rocketsim._jit import copy_into, njit
+from rocketsim.jit import copy_into, njit
 from rocketsim.constants import RAILS_FLOOR
 from rocketsim.dynamics.derivative import radial_height
 from rocketsim.dynamics.nbody import FIELD_CENTER, FIELD_MU, bodies_at, hold_time, translational_rk4

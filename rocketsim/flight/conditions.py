@@ -41,7 +41,7 @@ import math
 
 import numpy as np
 
-from rocketsim._jit import njit
+from rocketsim.jit import njit
 from rocketsim.frames.local import where_and_how_fast
 from rocketsim.frames.quaternion import body_x_components
 from rocketsim.layout import P_POLAR_RADIUS, P_RADIUS, P_SPIN, Q, R, V

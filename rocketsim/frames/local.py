@@ -15,7 +15,7 @@ import math
 
 import numpy as np
 
-from rocketsim._jit import njit
+from rocketsim.jit import njit
 from rocketsim.constants import DEG, EARTH_OMEGA, EARTH_RADIUS_EQ, EARTH_RADIUS_POLAR
 from rocketsim.frames.quaternion import rotate_components
 from rocketsim.layout import Q, R, V

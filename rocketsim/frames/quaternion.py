@@ -8,7 +8,7 @@ Composition follows the Hamilton product: if ``q_ab`` takes b-axes into a
 and ``q_bc`` takes c-axes into b, then ``quat_multiply(q_ab, q_bc)`` takes
 c-axes into a, and its matrix is ``M(q_ab) @ M(q_bc)``.
 
-Every function is compiled with :func:`rocketsim._jit.njit` so the dynamics
+Every function is compiled with :func:`rocketsim.jit.njit` so the dynamics
 kernels can call them; they work the same when called from Python on float64
 numpy arrays. They take and return plain arrays of shape (4,), (3,) or (3, 3)
 (:func:`hamilton_product` takes and returns components).
@@ -20,7 +20,7 @@ import math
 
 import numpy as np
 
-from rocketsim._jit import njit
+from rocketsim.jit import njit
 
 
 @njit(inline="always")     # a few operations: typed in its callers, no kernel of its own

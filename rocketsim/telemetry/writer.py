@@ -39,7 +39,7 @@ import numpy as np
 import orjson
 
 from rocketsim.version import __version__
-from rocketsim._jit import compile_beside, entry_point
+from rocketsim.jit import compile_beside, entry_point
 from rocketsim.telemetry import foxglove, splice
 from rocketsim.telemetry.held_signals import holding
 from rocketsim.telemetry.frames import MISSION_FRAME, CentralFrame, FrameTree, central_frame
@@ -80,7 +80,7 @@ def _records():
     """:func:`rocketsim.telemetry.splice.records`' compiled entry (bound on first need:
     its argument types never change, and the dispatcher's typing of fifteen arguments
     costs about as much as the call). On a cold cache it is compiled beside the flight
-    (queued by every writer: :func:`rocketsim._jit.compile_beside`) and loaded from the
+    (queued by every writer: :func:`rocketsim.jit.compile_beside`) and loaded from the
     cache here."""
     global _RECORDS
     if _RECORDS is None:

@@ -50,7 +50,7 @@ import math
 
 import numpy as np
 
-from rocketsim._jit import njit
+from rocketsim.jit import njit
 from rocketsim.constants import DEG
 
 # --- tables ----------------------------------------------------------------

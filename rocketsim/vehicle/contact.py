@@ -34,7 +34,7 @@ import math
 
 import numpy as np
 
-from rocketsim._jit import njit
+from rocketsim.jit import njit
 from rocketsim.frames.quaternion import body_x_components, rotate_components
 from rocketsim.layout import P_POLAR_RADIUS, P_RADIUS, Q, R
 from rocketsim.vehicle.aero import A_GROUND, moment_about_cm

@@ -53,7 +53,7 @@ import math
 
 import numpy as np
 
-from rocketsim._jit import njit
+from rocketsim.jit import njit
 from rocketsim.constants import USSA_MEAN_FREE_PATH0, USSA_RHO0
 
 # sphere drag against Mach number, high Reynolds number (see the module docstring)
