@@ -167,10 +167,12 @@ def _released_upwards(timeout: str) -> str:
 def test_a_worker_stops_a_run_blocked_past_its_timeout(cluster, tmp_path):
     """The runs released slowest upwards sleep in their program at T+1.5 s, in a worker's
     thread where nothing interrupts a sleep: each is stopped at the campaign's timeout
-    and its thread left behind; the others fly."""
+    and its thread left behind; the others fly. The timeout, 6 s, leaves a loaded machine
+    (load 20 on 2 cores) time to fly every run to T+1.5 s: at 3 s a slow run was
+    sometimes stopped before it reached its sleep."""
     file, start_workers = cluster
     start_workers()
-    campaign = write_arc(tmp_path, _released_upwards("3 s"), program=SLOW.format(client=os.getpid()))
+    campaign = write_arc(tmp_path, _released_upwards("6 s"), program=SLOW.format(client=os.getpid()))
     results = rocketsim.campaign(campaign, tmp_path / "out", scheduler_file=file)
     inputs = pd.read_parquet(tmp_path / "out" / "inputs.parquet")
     slow = set(inputs.loc[inputs["v_up"] < 91.3, "run"])
@@ -178,7 +180,7 @@ def test_a_worker_stops_a_run_blocked_past_its_timeout(cluster, tmp_path):
     assert set(results.loc[results["status"] == "timeout", "run"]) == slow
     assert (results.loc[~results["run"].isin(slow), "status"] == "ok").all()
     for error in results.loc[results["status"] == "timeout", "error"]:
-        assert "stopped after 3 s of wall time" in error and "left behind" in error
+        assert "stopped after 6 s of wall time" in error and "left behind" in error
 
 
 def test_in_this_process_a_run_blocked_past_its_timeout_is_stopped(tmp_path):
