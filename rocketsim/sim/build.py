@@ -25,6 +25,7 @@ from rocketsim.frames.geodetic import enu_basis, geodetic_to_ecef
 from rocketsim.layout import P_MU, R, V, W, make_params, make_state
 from rocketsim.scenario.load import LoadedScenario
 from rocketsim.scenario.models import check_duration, check_step
+from rocketsim.scenario.units import parse_quantity
 from rocketsim.sim.body import Body, Vehicle, channel_name
 from rocketsim.sim.coast_runs import compile_coasts_beside
 from rocketsim.sim.flight_events import FlightEvents
@@ -120,9 +121,10 @@ def build_world(loaded: LoadedScenario, step: float | None = None,
     return world
 
 
-def _checked(check, value: float, option: str) -> float:
-    """``check(value)`` (a step or duration, s), its ValueError an input error naming ``option``."""
+def _checked(check, value: float | str, option: str) -> float:
+    """``check`` of ``value`` (a step or duration: s, or a time as the files write it,
+    ``"10 s"``), its ValueError an input error naming ``option``."""
     try:
-        return check(value)
+        return check(parse_quantity(value, "time"))
     except ValueError as error:
         raise InputError(str(error), field=option) from None
