@@ -266,6 +266,8 @@ def run(campaign, directory: str | Path, *, workers: int | None = None, schedule
         connect(scheduler, scheduler_file).close()     # reachable, before the directory is written
     store = Store(directory)
     done = store.open(found, plan, resume)
+    for line in store.set_aside:
+        log(line)
     todo = [k for k in range(found.spec.runs) if k not in done]
     if todo:
         counts = [0, 0]
@@ -458,8 +460,7 @@ def rerun(directory: str | Path, k: int, telemetry: str | Path, trust: bool = Fa
     directory = Path(directory)
     if not (directory / "campaign.yaml").is_file():
         raise InputError(f"{directory} holds no campaign (no campaign.yaml)", field="DIR")
-    import yaml
-    plan = Plan(read_campaign(yaml.safe_load((directory / "campaign.yaml").read_text())))
+    plan = Plan(read_campaign(directory / "campaign.yaml"))
     runs = plan.campaign.spec.runs
     if not 0 <= k < runs:
         raise InputError(f"the campaign has runs 0 .. {runs - 1}, not {k}", field="K")

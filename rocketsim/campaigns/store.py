@@ -31,6 +31,7 @@ from pathlib import Path
 import numpy as np
 
 from rocketsim.errors import InputError
+from rocketsim.scenario.yaml_source import read_yaml
 
 FLUSH_S = 1.0           # s between part files (rows waiting)
 CONSOLIDATE_S = 10.0    # s between rewrites of results.parquet
@@ -79,12 +80,46 @@ def _write(table, path: Path) -> None:
 
 def read_results(directory: str | Path):
     """The results of a campaign directory: ``results.parquet`` and any part files not yet
-    consolidated into it (after a crash), as one table (:func:`frame`)."""
+    consolidated into it (after a crash), as one table (:func:`frame`); :class:`InputError`
+    naming a file that is not such a table (:func:`_rows`)."""
+    return frame([_rows(path) for path in _result_files(Path(directory))])
+
+
+def _result_files(directory: Path) -> list[Path]:
+    whole = directory / "results.parquet"
+    return ([whole] if whole.exists() else []) + sorted((directory / "results").glob("part-*.parquet"))
+
+
+def _rows(path: Path):
+    """The rows of the results file ``path``; :class:`InputError` naming it when it is not
+    a Parquet table with whole ``run`` numbers and a ``status``."""
     import pandas as pd
-    directory = Path(directory)
-    tables = [pd.read_parquet(directory / "results.parquet")] if (directory / "results.parquet").is_file() else []
-    tables += [pd.read_parquet(part) for part in sorted((directory / "results").glob("part-*.parquet"))]
-    return frame(tables)
+    try:
+        table = pd.read_parquet(path)
+    except Exception as error:          # noqa: BLE001 - pyarrow's errors have no common base
+        raise InputError(f"not a readable Parquet file ({type(error).__name__}: {str(error)[:160]})",
+                         file=path) from None
+    for column in ("run", "status"):
+        if column not in table.columns:
+            raise InputError("missing column", file=path, field=column)
+    if not pd.api.types.is_integer_dtype(table["run"].dtype):
+        raise InputError(f"expected whole run numbers, not {table['run'].dtype}", file=path, field="run")
+    return table
+
+
+def set_aside_damaged(directory: Path) -> list[str]:
+    """Rename each results file of ``directory`` that :func:`_rows` refuses to
+    ``<name>.damaged`` (kept, not read again: its runs are flown again); what was done, a
+    line each."""
+    said = []
+    for path in _result_files(directory):
+        try:
+            _rows(path)
+        except InputError as error:
+            aside = path.with_name(path.name + ".damaged")
+            os.replace(path, aside)
+            said.append(f"{error}: set aside as {aside.name}, its runs are flown again")
+    return said
 
 
 class Store:
@@ -97,6 +132,7 @@ class Store:
         self._waiting: list[dict] = []
         self._flushed = self._consolidated = time.monotonic()
         self._count = 0
+        self.set_aside: list[str] = []      # the damaged results files a resume set aside
 
     # --- starting ----------------------------------------------------------------
 
@@ -111,12 +147,14 @@ class Store:
             if not resume:
                 raise InputError(f"{self.dir} already holds a campaign: add --resume to fly its missing "
                                  "runs, or write to another directory", field="--output")
-            before = yaml.safe_load(held.read_text())
+            before = read_yaml(held).data
             if before != json.loads(json.dumps(resolved)):
-                changed = sorted(k for k in set(before) | set(resolved) if before.get(k) != resolved.get(k))
+                changed = (sorted(k for k in set(before) | set(resolved) if before.get(k) != resolved.get(k))
+                           if isinstance(before, dict) else ["everything: it is not a mapping"])
                 raise InputError(f"{self.dir} holds another campaign (its campaign.yaml differs in "
                                  f"{', '.join(changed)}): resume it with its own file, "
                                  f"{held}", field="--resume")
+            self.set_aside = set_aside_damaged(self.dir)
             self.consolidate()
             return set(read_results(self.dir)["run"].tolist())
         if resume:
