@@ -1,7 +1,8 @@
 """A campaign folder with a damaged file: ``--resume`` recovers what can be recovered
 (a results file that is not a results table is set aside, renamed, never deleted, and
-its runs flown again), ``rerun`` names the damaged file; a damaged ``campaign.yaml``
-is a located error for both. Never a traceback.
+its runs flown again; ``inputs.parquet`` and ``meta.json``, which the campaign
+determines, written again), ``rerun`` names the damaged file; a damaged
+``campaign.yaml`` is a located error for both. Never a traceback.
 
 One small campaign (4 runs of the arc, in this process) is flown once and copied
 for each damage.
@@ -9,6 +10,7 @@ for each damage.
 
 from __future__ import annotations
 
+import json
 import shutil
 
 import pandas as pd
@@ -93,3 +95,28 @@ def test_a_damaged_campaign_file_is_a_located_error(text, says, flown, cli, tmp_
     resumed = cli("campaign", "run", folder / "campaign.yaml", "-o", folder, "--resume", "--workers", "1",
                   "--trust")
     assert_clean_error(resumed, says)
+
+
+@pytest.mark.parametrize("name, damage", [("inputs.parquet", _cut), ("inputs.parquet", None),
+                                          ("meta.json", _not_parquet), ("meta.json", None)])
+def test_resume_writes_a_damaged_or_missing_plan_file_again(name, damage, flown, cli, tmp_path):
+    """inputs.parquet and meta.json are what the campaign determines: a resume sets a
+    damaged one aside and writes both again, equal to the campaign's own."""
+    campaign, out, _ = flown
+    folder = tmp_path / "out"
+    shutil.copytree(out, folder)
+    path = folder / name
+    if damage is None:
+        path.unlink()
+    else:
+        damage(path)
+    resumed = cli("campaign", "run", campaign, "-o", folder, "--resume", "--workers", "1")
+    assert resumed.exit_code == 0 and "Traceback" not in resumed.output, resumed.output
+    assert f"{path}: " in resumed.output and "written again from the campaign" in resumed.output
+    assert path.with_name(name + ".damaged").exists() == (damage is not None)
+    if name == "meta.json":
+        assert json.loads(path.read_text()) == json.loads((out / name).read_text())
+    else:
+        pd.testing.assert_frame_equal(pd.read_parquet(path), pd.read_parquet(out / name))
+    report = cli("campaign", "report", folder)
+    assert report.exit_code == 0, report.output

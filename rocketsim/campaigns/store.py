@@ -140,7 +140,6 @@ class Store:
         """Start the campaign here (a new or empty directory) or, with ``resume``, go on
         with the same campaign; the runs already finished."""
         import yaml
-        from rocketsim.version import __version__
         resolved = campaign.resolved()
         held = self.dir / "campaign.yaml"
         if held.is_file():
@@ -154,7 +153,7 @@ class Store:
                 raise InputError(f"{self.dir} holds another campaign (its campaign.yaml differs in "
                                  f"{', '.join(changed)}): resume it with its own file, "
                                  f"{held}", field="--resume")
-            self.set_aside = set_aside_damaged(self.dir)
+            self.set_aside = set_aside_damaged(self.dir) + self._rewrite_damaged_plan(campaign, plan)
             self.consolidate()
             return set(read_results(self.dir)["run"].tolist())
         if resume:
@@ -166,18 +165,46 @@ class Store:
             self.parts.mkdir(exist_ok=True)
         except OSError as error:
             raise InputError(f"cannot create {self.dir}: {error.strerror or error}", field="--output") from None
-        spec = campaign.spec
-        meta = {"name": spec.name, "seed": spec.seed, "runs": spec.runs, "scenario": str(campaign.scenario),
-                "dispersions": [{"name": name, **given.model_dump(mode="json", exclude_none=True)}
-                                for name, given in spec.dispersions.items()],
-                "target": plan.target(), "outputs": list(spec.outputs), "version": __version__}
-        _write(plan.inputs_table(), self.dir / "inputs.parquet")
-        (self.dir / "meta.json").write_text(json.dumps(meta, indent=1) + "\n")
+        self._write_plan(campaign, plan, ("inputs.parquet", "meta.json"))
         # the campaign file last: a directory holding it holds the rest
         (self.dir / ".campaign.yaml.partial").write_text(yaml.safe_dump(json.loads(json.dumps(resolved)),
                                                                         sort_keys=False))
         os.replace(self.dir / ".campaign.yaml.partial", held)
         return set()
+
+    def _write_plan(self, campaign, plan, names) -> None:
+        """Write the files ``names`` (``inputs.parquet``, ``meta.json``) that the campaign and
+        its plan determine."""
+        from rocketsim.version import __version__
+        if "inputs.parquet" in names:
+            _write(plan.inputs_table(), self.dir / "inputs.parquet")
+        if "meta.json" in names:
+            spec = campaign.spec
+            meta = {"name": spec.name, "seed": spec.seed, "runs": spec.runs, "scenario": str(campaign.scenario),
+                    "dispersions": [{"name": name, **given.model_dump(mode="json", exclude_none=True)}
+                                    for name, given in spec.dispersions.items()],
+                    "target": plan.target(), "outputs": list(spec.outputs), "version": __version__}
+            (self.dir / "meta.json").write_text(json.dumps(meta, indent=1) + "\n")
+
+    def _rewrite_damaged_plan(self, campaign, plan) -> list[str]:
+        """On resume: ``inputs.parquet`` or ``meta.json`` missing or unreadable (the campaign
+        determines both) set aside as ``<name>.damaged`` and written again; a line each."""
+        import pandas as pd
+        said = []
+        for name, read in (("inputs.parquet", pd.read_parquet), ("meta.json", lambda p: json.loads(p.read_text()))):
+            path = self.dir / name
+            try:
+                if not isinstance(read(path), (pd.DataFrame, dict)):
+                    raise ValueError("not a table or a mapping")
+                continue
+            except FileNotFoundError:
+                said.append(f"{path}: missing, written again from the campaign")
+            except Exception as error:      # noqa: BLE001 - pyarrow's and json's errors alike
+                os.replace(path, path.with_name(name + ".damaged"))
+                said.append(f"{path}: unreadable ({type(error).__name__}), set aside as {name}.damaged "
+                            "and written again from the campaign")
+            self._write_plan(campaign, plan, (name,))
+        return said
 
     # --- rows -------------------------------------------------------------------
 
