@@ -138,7 +138,7 @@ def fly(scenario: Path, output: Path | None, step: float | None, duration: float
         click.echo(f"\nerror: {error}; " + (f"what was written to {output} is readable with "
                    f"'rocketsim replay {output}'" if written else f"nothing was written to {output}"),
                    err=True)
-        sys.exit(1)
+        sys.exit(2)
     finally:
         signal.signal(signal.SIGTERM, previous)
     click.echo(format_summary(summary))

@@ -86,6 +86,7 @@ class World:
         self.sensor_level = "truth"
         self.stage_programs: dict[str, object] = {}      # stage name -> (main, path)
         self.program_cpu_budget = 1.0
+        self.program_time_limit = 10.0      # s of wall time a program's wake-up may take
         self.target = None                  # the mission's target (TargetSpec)
         self.pad_azimuth = math.nan
         self.scenario_file = None           # Path of the scenario's file (None: given as a mapping)
@@ -106,7 +107,7 @@ class World:
 
     def attach_program(self, body: Body, main, path) -> None:
         """Fly ``body`` with the program ``main`` (loaded from ``path``)."""
-        body.runner = ProgramRunner(main, path, self.program_cpu_budget)
+        body.runner = ProgramRunner(main, path, self.program_cpu_budget, self.program_time_limit)
         body.fc = FlightComputer(BodyCraft(self, body))
 
     # --- staging (rocketsim.sim.staging) -------------------------------------
