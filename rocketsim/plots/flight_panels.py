@@ -42,6 +42,7 @@ import numpy as np
 
 from rocketsim.campaigns.landing import east_north
 from rocketsim.constants import G0
+from rocketsim.errors import InputError
 from rocketsim.plots.canvas import Picture, pyplot, save
 from rocketsim.telemetry.land import draw_coastline
 from rocketsim.telemetry.reader import read_run
@@ -130,6 +131,8 @@ def compose(run, tables: dict, title: str):
     clock = _Time(max(end - start, 1e-9))
     panels = [p for p in (_height, _speed, _air, _acceleration, _propulsion, _attitude, _orbit, _track)
               if p(None, bodies, clock, landed)]
+    if not panels:
+        raise InputError(f"{title}: nothing to plot (no body has a state sample)", field="--plot")
     events = run.events
     ncols = 3
     nrows = math.ceil(len(panels) / ncols)
