@@ -48,6 +48,8 @@ from rocketsim.dynamics.third_bodies import FIELD_CENTER, field_of, nbody_flag
 from rocketsim.ephemeris.solar_system import BODIES
 from rocketsim.layout import P_RADIUS, Q, R, V
 from rocketsim.flight.conditions import NO_CONDITION
+from rocketsim.flight.navigation import tanks
+from rocketsim.flight.sensors import NO_ERRORS
 from rocketsim.flight.readings import StateView
 from rocketsim.frames.earth_fixed import eci_to_ecef
 from rocketsim.frames.quaternion import quat_rotate
@@ -73,7 +75,21 @@ def _advance_arguments(body, k0: int, h: float, n: int, steering: tuple | None) 
     """The arguments of :func:`advance_checked` for :meth:`VehicleChecks.advance`'s call."""
     steer = steering is not None
     code, fins = steering if steer else _NO_STEERING
-    return body.y, k0, h, n, body.p, body.vehicle.arrays, steer, code, fins, nbody_flag(body.p)
+    errors, j, _ = estimate_errors(body, k0) if steer else (NO_ERRORS, 0, 0)
+    return body.y, k0, h, n, body.p, body.vehicle.arrays, steer, code, fins, errors, j, nbody_flag(body.p)
+
+
+def estimate_errors(body, k: int) -> tuple[np.ndarray, int, int]:
+    """``(errors, j, gauges)``: what a compiled step or run reads of the navigation estimate
+    of the staged vehicle ``body`` from step ``k`` on: its sensors' errors
+    (:meth:`rocketsim.flight.sensors.Sensors.run_errors`, with the gauges of its tanks;
+    :data:`~rocketsim.flight.sensors.NO_ERRORS` for the truth), the row of step ``k`` and
+    the state slot of its first tank."""
+    sensors = body.sensors
+    if sensors is None or sensors.perfect:
+        return NO_ERRORS, 0, 0
+    errors, first = sensors.run_errors(k, tanks(body.vehicle))
+    return errors, k - first, body.vehicle.tanks.start
 
 
 class VehicleChecks:
@@ -187,8 +203,8 @@ class VehicleChecks:
             watch[quiet.WATCH_SOI] = WATCH_RADIUS[BODIES[int(fp[FIELD_CENTER])]]
         peak = events.run_watch(watch)
         carry = np.array((self.temperature, float(self.touched_down), peak, 0.0))
-        return (body.y, k0, h, n, body.p, arrays, self._in_flight, steer, code, fins, watch, carry, condition,
-                *samples, nbody_flag(body.p)), carry
+        return (body.y, k0, h, n, body.p, arrays, self._in_flight, steer, code, fins, *estimate_errors(body, k0),
+                watch, carry, condition, *samples, nbody_flag(body.p)), carry
 
     def after_step(self, world, body, h: float) -> dict | None:
         """Run the checks on the body's new state (after a step of ``h`` seconds). Returns

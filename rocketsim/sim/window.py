@@ -357,7 +357,7 @@ def _plan(world, body, first: bool, seconds: float):
     condition = NO_CONDITION
     if _waiting(body):
         condition = body.runner.condition
-        if condition is None or body.central != "earth" or not (body.sensors is None or body.sensors.perfect):
+        if condition is None or body.central != "earth":
             return None
     steering = None
     if body.attitude_command is not None:

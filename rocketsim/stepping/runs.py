@@ -12,7 +12,7 @@ exactly as the world's one-step path computes them, followed by the tests that
 decide whether the Python side would do anything at this step
 (:mod:`rocketsim.stepping.quiet`, the Python side's twins). The run returns
 after the first step where it might (or after ``n_max`` steps), or where the
-program's compiled condition (:mod:`rocketsim.flight.conditions`) is true
+program's compiled condition (:func:`rocketsim.flight.conditions.holds_on`) is true
 (reason :data:`CONDITION`: the program is due at the next step), and the world
 handles that step as it handles every step (:meth:`rocketsim.sim.world.World.advance`).
 The telemetry samples of the steps before it are computed in the run (the
@@ -40,9 +40,8 @@ from rocketsim._jit import copy_into, njit
 from rocketsim.dynamics.derivative import radial_height
 from rocketsim.dynamics.free_body import free_step
 from rocketsim.dynamics.rk4 import N_WORK, advance, near_ground, step_into
-from rocketsim.flight.conditions import holds
-from rocketsim.flight.steering import steer_step
-from rocketsim.layout import Q, R, V, W
+from rocketsim.flight.conditions import holds_on
+from rocketsim.flight.steering import steer_on_estimate
 from rocketsim.stepping.checked_step import step_figures_into
 from rocketsim.stepping.quiet import (CARRY_PEAK_Q, CARRY_PEAK_STEP, CARRY_TEMPERATURE, CARRY_TOUCHED, MARGIN,
                                       WATCH_LIFTOFF, WATCH_MAX_Q, below_liftoff, checks_quiet, events_quiet,
@@ -93,8 +92,8 @@ def fly_part(y, k0, h, n_max, p, fp, air, area_mass, length, floor, liftoff, orb
 
 
 @njit(nogil=True)
-def fly_run(y, k0, h, n_max, p, veh, in_flight, steer, code, fins, watch, carry, condition, every, rows, record,
-            sampler, nbody=None):
+def fly_run(y, k0, h, n_max, p, veh, in_flight, steer, code, fins, errors, j0, gauges, watch, carry, condition,
+            every, rows, record, sampler, nbody=None):
     """Fly the staged vehicle with aerodynamics ``veh`` (its arrays; ``in_flight`` the same
     without contact points) from state ``y`` at step ``k0`` (of ``h`` s) for up to
     ``n_max`` steps, returning after the first step where the Python side may have
@@ -104,8 +103,12 @@ def fly_run(y, k0, h, n_max, p, veh, in_flight, steer, code, fins, watch, carry,
     step runs before each step, as
     :func:`~rocketsim.stepping.checked_step.advance_checked` runs it (the command
     ``code``, the grid fins when ``fins``); ``condition`` is the program's compiled
-    condition (no rows: none). ``carry`` is updated in place to its values before
-    the last step's checks. ``nbody`` as :func:`rocketsim.dynamics.rk4.step`'s.
+    condition (no rows: none). Both read the navigation estimate: the truth, or with
+    the sensors' ``errors`` (:meth:`rocketsim.flight.sensors.Sensors.run_errors`) those
+    of row ``j0 + i`` at step ``k0 + i`` (the run takes at most ``len(errors) - 1 - j0``
+    steps), the tanks' gauges from column ``gauges`` on (the state slot of the
+    vehicle's first tank). ``carry`` is updated in place to its values before the
+    last step's checks. ``nbody`` as :func:`rocketsim.dynamics.rk4.step`'s.
 
     At each telemetry sample step (a multiple of ``every``) before the last step the
     world's finiteness test is made (:func:`~rocketsim.stepping.quiet.surely_finite`) and, with ``record``, the
@@ -121,6 +124,8 @@ def fly_run(y, k0, h, n_max, p, veh, in_flight, steer, code, fins, watch, carry,
     :data:`PYTHON` or :data:`CONDITION`, the state of the new dynamic-pressure peak
     (``carry[CARRY_PEAK_STEP]`` steps into the run; 0: none), and the samples in ``rows``.
     """
+    if errors.shape[0] > 0:
+        n_max = min(n_max, errors.shape[0] - 1 - j0)
     dry = veh.stage[:, S_DRY].copy()
     on_rail = veh.rail[RL_ON]
     reach = veh.aero.ref[A_REACH] + veh.aero.ref[A_GROUND]
@@ -136,8 +141,7 @@ def fly_run(y, k0, h, n_max, p, veh, in_flight, steer, code, fins, watch, carry,
         before = y
         t0 = (k0 + j - 1) * h
         if steer:
-            steer_step(veh, y, p, t0, t0, y[R:R + 3], y[V:V + 3], y[Q:Q + 4], y[W:W + 3], math.nan, veh.air,
-                       code, fins, False)
+            steer_on_estimate(veh, y, p, t0, errors, j0 + j - 1, code, fins)
         y = np.empty(n)
         step_into(y, k, work, before, t0, h, p, veh, nbody)
         t = (k0 + j) * h
@@ -145,7 +149,7 @@ def fly_run(y, k0, h, n_max, p, veh, in_flight, steer, code, fins, watch, carry,
         # derivative adds none, within it the arrays without them (as the checks compute them)
         figures = step_figures_into(dy, t, y, p, in_flight if near_ground(y, p, reach) else veh,
                                     veh.aero.contact, nbody)
-        if condition.shape[0] > 0 and holds(condition, t, y, p):
+        if condition.shape[0] > 0 and holds_on(condition, t, y, p, errors, j0 + j, gauges):
             return y, before, j, figures, CONDITION, y_peak, filled
         if j == n_max or radial_height(y, p) < ground:
             return y, before, j, figures, LIMIT if j == n_max else PYTHON, y_peak, filled
