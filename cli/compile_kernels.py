@@ -1,18 +1,16 @@
 """``rocketsim compile``: compile the flight kernels into the cache ahead of the first flight.
 
 The kernels are compiled for the machine they run on the first time a flight
-needs them (tens of seconds) and cached (:func:`rocketsim._jit.cache_dir`).
-This command pays that once, with all cores: it flies each scenario to its end
-in a pool of processes (the telemetry is thrown away), so every kernel those
-flights call is compiled by one of the processes and saved in the cache, where
-the others, and every later flight, load it. Each flight has a second process
-compiling its runs beside it, as a first flight has
-(:class:`rocketsim._jit.CompiledBeside`), and waits at its end for what it flew
-without: a flight per two processes. Flights side by side would share most of
-their kernels and wait for each other's compiling of them: on two cores three
-small scenarios took 29 s flown two at a time against 32 s in one process,
-21 s flown one after another each with its second process; the Falcon 9
-mission alone 22 s against 38 s.
+needs them and cached (:func:`rocketsim.jit.cache_dir`). This command pays that
+once, with all cores: it flies each scenario to its end in a pool of processes
+(the telemetry is thrown away), so every kernel those flights call is compiled
+by one of the processes and saved in the cache, where the others, and every
+later flight, load it. On two cores or more each flight has a second process
+compiling its runs beside it (:mod:`rocketsim.jit.beside`, switched on here
+whatever ``ROCKETSIM_COMPILE_BESIDE`` says), and waits at its end for what it
+flew without: a flight per two processes. Flights side by side would share most
+of their kernels and wait for each other's compiling of them (measured in
+tests/benchmarks/test_bench_startup.py).
 """
 
 from __future__ import annotations
@@ -27,10 +25,12 @@ import click
 from rocketsim.errors import InputError
 from rocketsim_cli.errors import reports_input_errors
 
+
 def _start_worker(beside: bool) -> None:
     from rocketsim.api import set_compiling_beside
 
-    set_compiling_beside(beside)        # off: the pool's processes are the cores' compilers already
+    set_compiling_beside(beside)        # on: each flight with its second process; off: the pool's
+                                        # processes are the cores' compilers already
 
 
 def _signatures(folder: str) -> int:

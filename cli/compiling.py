@@ -2,7 +2,7 @@
 
 On a new machine (or after an upgrade) the first flight compiles its kernels,
 tens of seconds; afterwards they load from the cache
-(:func:`rocketsim._jit.cache_dir`). numba announces each compile it starts
+(:func:`rocketsim.jit.cache_dir`). numba announces each compile it starts
 and ends (its event API, ``numba.core.event``, kind ``numba:compile``: fired
 only when a kernel is compiled, not when it is loaded from the cache).
 :class:`Compiles` counts them; :func:`compile_message` shows them on a

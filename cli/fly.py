@@ -10,6 +10,7 @@ import click
 
 from rocketsim.errors import InputError
 from rocketsim_cli.errors import check_writable, reports_input_errors
+from rocketsim_cli.live import Live, live_options
 from rocketsim_cli.progress import flight_progress
 from rocketsim_cli.summary import format_summary
 from rocketsim_cli.units import Quantity
@@ -53,20 +54,23 @@ def _raise_terminated(signum, frame):
                    "--set 'vehicle.stages[booster].structure_mass=26 t' (repeatable; paths as in the README).")
 @click.option("--summary-json", type=click.Path(dir_okay=False, path_type=Path), default=None,
               help="Also write the flight summary as JSON to this file.")
+@live_options
 @reports_input_errors
 def fly(scenario: Path, output: Path | None, step: float | None, duration: float | None,
-        settings: tuple[str, ...], summary_json: Path | None) -> None:
+        settings: tuple[str, ...], summary_json: Path | None, live: Live | None) -> None:
     """Fly SCENARIO and write its telemetry as MCAP.
 
     Ctrl-C or SIGTERM stops the flight and still finishes the MCAP file
-    (exit status 130 or 143).
+    (exit status 130 or 143). With --live the flight is served to Foxglove as it
+    flies, at --warp times real time; the file is the same, byte for byte.
 
     \b
     Example:
         rocketsim fly scenarios/iss-coast.yaml -o iss.mcap --summary-json iss.json
         rocketsim fly scenarios/falcon9-hop.yaml --duration 30s --set seed=3
+        rocketsim fly scenarios/falcon9-hop.yaml --live --warp 10
     """
-    from rocketsim.api import fly_to_file, load, strict_json
+    from rocketsim.api import fly_live, fly_to_file, load, strict_json
     from rocketsim_cli.compiling import compile_message
 
     loaded = load(scenario, overrides(settings))
@@ -78,8 +82,12 @@ def fly(scenario: Path, output: Path | None, step: float | None, duration: float
     try:
         with compile_message():
             with flight_progress(duration or loaded.scenario.mission.duration) as on_progress:
-                summary = fly_to_file(loaded, output, step=step, duration=duration,
-                                      on_progress=on_progress)
+                if live is not None:
+                    summary = fly_live(loaded, output, live, step=step, duration=duration,
+                                       on_progress=on_progress)
+                else:
+                    summary = fly_to_file(loaded, output, step=step, duration=duration,
+                                          on_progress=on_progress)
     except KeyboardInterrupt:
         click.echo(f"\ninterrupted; telemetry so far is in {output}", err=True)
         sys.exit(130)

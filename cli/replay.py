@@ -15,6 +15,7 @@ import click
 
 from rocketsim.errors import InputError
 from rocketsim_cli.errors import output_file, output_folder, reports_input_errors
+from rocketsim_cli.live import Live, live_options
 
 if TYPE_CHECKING:
     from rocketsim.api import RunFile
@@ -32,19 +33,23 @@ if TYPE_CHECKING:
               help="Fly the run again from its attachments and compare every message.")
 @click.option("--trust", is_flag=True,
               help="Allow --verify to execute the program the file carries.")
+@live_options
 @reports_input_errors
-def replay(run_file: Path, export_to, plot: Path | None, check: bool, trust: bool) -> None:
+def replay(run_file: Path, export_to, plot: Path | None, check: bool, trust: bool, live: Live | None) -> None:
     """Summarise the run in RUN.mcap: its flight summary, events and errors.
 
     Reading, exporting and plotting never execute the program inside the
     file; --verify executes it only with --trust. A truncated or damaged
     file exits with status 2 after summarising what is readable.
 
+    With --live the run is served to Foxglove again, at --warp times real time.
+
     \b
     Examples:
         rocketsim replay iss.mcap
         rocketsim replay iss.mcap --export csv tables/ --plot iss.png
         rocketsim replay iss.mcap --verify --trust
+        rocketsim replay iss.mcap --live --warp 100
     """
     from rocketsim.api import export_tables, read_run
 
@@ -63,6 +68,12 @@ def replay(run_file: Path, export_to, plot: Path | None, check: bool, trust: boo
         from rocketsim.plots import run as plot_run
         click.echo(f"plot: {plot_run(run_file, plot)}")
     status = 0
+    if live is not None:
+        from rocketsim.api import replay_live
+        try:
+            replay_live(run_file, live)
+        except KeyboardInterrupt:
+            sys.exit(130)
     if check:
         status = _verify(run_file, run, trust)
     if run.problem:

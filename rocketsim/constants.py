@@ -20,6 +20,10 @@ AU = 149_597_870_700.0                     # m, IAU 2012 Resolution B2
 
 # --- Universal --------------------------------------------------------------
 G0 = 9.80665                               # m/s^2, standard gravity (CGPM 1901)
+ATMOSPHERE = 101_325.0                     # Pa, one standard atmosphere (CGPM 1954, Resolution 4)
+CELSIUS_ZERO = 273.15                      # K, 0 degrees Celsius (SI Brochure, 9th ed., 2.3.1)
+NAUTICAL_MILE = 1852.0                     # m, international nautical mile (IHB 1929; SI Brochure Table 8)
+KNOT = NAUTICAL_MILE / 3600.0              # m/s, one nautical mile per hour
 GAS_CONSTANT_USSA = 8.31432                # J/(mol K), US Standard Atmosphere 1976
 STEFAN_BOLTZMANN = 5.670374419e-8          # W/(m^2 K^4), CODATA 2018
 
@@ -71,7 +75,9 @@ GROUND_SUBSTEP_MAX = 0.005                 # s, longest sub-step there at any st
 USSA_R0 = 6_356_766.0                      # m, effective Earth radius for geopotential height
 USSA_M0 = 0.0289644                        # kg/mol, sea-level mean molar mass of air
 USSA_T0 = 288.15                           # K, sea-level temperature
-USSA_P0 = 101_325.0                        # Pa, sea-level pressure
+USSA_P0 = ATMOSPHERE                       # Pa, sea-level pressure
+USSA_RHO0 = 1.225                          # kg/m^3, sea-level density (Table I: 1.2250)
+USSA_MEAN_FREE_PATH0 = 6.6328e-8           # m, sea-level mean free path (Table I)
 USSA_GAMMA = 1.40                          # ratio of specific heats of air
 USSA_BOLTZMANN = 1.380622e-23              # J/K, the standard's Boltzmann constant (p = N k T)
 USSA_SUTHERLAND_BETA = 1.458e-6            # kg/(m s K^0.5), viscosity law eq. 51

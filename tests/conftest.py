@@ -10,14 +10,14 @@ import pytest
 from click.testing import CliRunner
 from hypothesis import HealthCheck, settings
 
-from rocketsim import _jit
+from rocketsim.jit import beside
 
 ROOT = Path(__file__).resolve().parents[1]
 
 # no test queues kernels for a second compiling process: with one test worker per core every
 # core compiles already, and tests wrap kernels in plain functions (timing, counting) that
-# cannot be queued; tests/test_jit_cache.py tests the queue where it switches it on
-_jit.COMPILE_BESIDE = False
+# cannot be queued; tests/test_jit_beside.py tests the queue where it switches it on
+beside.COMPILE_BESIDE = False
 
 # Hypothesis profiles of tests/fuzz: "ci" (the default) replays the same examples every
 # run (derandomize) on a fixed budget; "long", for a developer, draws 17 times as many

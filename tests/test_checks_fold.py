@@ -15,7 +15,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from rocketsim._jit import Entries
+from rocketsim.jit import Entries
 from rocketsim.constants import G0
 from rocketsim.dynamics import rk4
 from rocketsim.dynamics.third_bodies import nbody_flag

@@ -33,10 +33,11 @@ from pathlib import Path
 
 import pytest
 
-from rocketsim._jit import cache_dir
+from rocketsim.jit import cache_dir
 from rocketsim.scenario.load import load
 from rocketsim.api.telemetry_flight import fly_to_file as fly
 from rocketsim_cli.compiling import FIRST_RUN
+from tests.cold_cache import cold_env
 
 KERNEL = "sample_figures.orbit_figures-*"
 
@@ -57,9 +58,7 @@ def _cache_without(path, tmp_path, *kernels):
         assert removed, f"the flight's cache holds {kernel}"
         for file in removed:
             file.unlink()
-    env = {k: v for k, v in os.environ.items() if k != "NUMBA_CACHE_DIR"}
-    env["ROCKETSIM_CACHE_DIR"] = str(root)
-    return env, root / warm.name
+    return cold_env(root), root / warm.name
 
 
 @pytest.fixture
@@ -174,8 +173,6 @@ class Census(event.Listener):
 
 
 event.register("numba:compile", Census())
-from rocketsim import _jit
-_jit.COMPILE_BESIDE = False       # every kernel the flight needs compiles here, to be counted
 from rocketsim.scenario.load import load
 from rocketsim.api.telemetry_flight import fly_to_file as fly
 fly(load(sys.argv[1]), sys.argv[2])
@@ -185,10 +182,8 @@ print(json.dumps(compiled))
 
 def test_a_cold_coast_compiles_only_the_kernels_it_flies(scenario, tmp_path):
     path = scenario(duration="1 s")           # a coasting body about Earth alone
-    env = {k: v for k, v in os.environ.items() if k != "NUMBA_CACHE_DIR"}
-    env["ROCKETSIM_CACHE_DIR"] = str(tmp_path / "empty")
     done = subprocess.run([sys.executable, "-c", _CENSUS, str(path), str(tmp_path / "cold.mcap")],
-                          env=env, capture_output=True, text=True, timeout=600)
+                          env=cold_env(tmp_path / "empty"), capture_output=True, text=True, timeout=600)
     assert done.returncode == 0, done.stderr
     compiled = json.loads(done.stdout.strip().splitlines()[-1])
     assert compiled["rocketsim.dynamics.rk4.step_into"] == 1, "the flight compiled its step"

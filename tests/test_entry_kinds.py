@@ -8,7 +8,7 @@ from itertools import combinations
 import numpy as np
 from numba import typeof
 
-from rocketsim._jit import _kinds, entry_point
+from rocketsim.jit.entries import _kinds, entry_point
 from rocketsim.dynamics.rk4 import advance
 
 Pair = namedtuple("Pair", "a b")

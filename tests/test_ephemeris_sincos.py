@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from rocketsim._jit import njit
+from rocketsim.jit import njit
 from rocketsim.ephemeris.sincos import sincos
 
 

@@ -1,7 +1,7 @@
 """Kernels compiled without reference counting (``njit(borrows=True)``) return no arrays.
 
 A borrowing kernel takes its caller's arrays without counting references to them
-(:mod:`rocketsim._jit`). numba refuses to compile one that makes an array; one that
+(:mod:`rocketsim.jit`). numba refuses to compile one that makes an array; one that
 returned an array (its argument, or a view of one) would hand its caller a
 reference that was never counted, and the caller's release would free the array
 under whoever still holds it. The flights here go through the derivative's
@@ -20,7 +20,8 @@ from numba import types
 from numba.core.errors import TypingError
 
 import rocketsim
-from rocketsim._jit import Kernel, njit
+from rocketsim.jit import Kernel, njit
+from rocketsim.jit.numba_internals import cached_signatures
 
 
 def _holds_array(t) -> bool:
@@ -38,18 +39,16 @@ def _borrowing_kernels() -> dict[str, Kernel]:
     for name, module in list(sys.modules.items()):
         if name.startswith("rocketsim.") and module is not None:
             for value in vars(module).values():
-                if isinstance(value, Kernel) and value._options.get("_nrt") is False:
+                if isinstance(value, Kernel) and value.borrows:
                     found[f"{value.__module__}.{value.__qualname__}"] = value
     return found
 
 
 def _signatures(kernel: Kernel) -> list:
     """Every signature of ``kernel`` compiled in this process or in the kernel cache (loaded)."""
-    dispatcher = kernel.dispatcher
-    cached = getattr(dispatcher._cache, "_cache_file", None)        # none: compiled uncached
-    for key in cached._load_index() if cached else ():
-        dispatcher.compile(key[0])          # the argument types: loaded from the cache
-    return dispatcher.nopython_signatures
+    for signature in cached_signatures(kernel):
+        kernel.compile(signature)           # loaded from the cache
+    return kernel.nopython_signatures
 
 
 def _array_returns(kernel: Kernel) -> list:

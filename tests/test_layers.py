@@ -3,13 +3,17 @@
 The layers, bottom to top, are those of docs/architecture.md. Every import
 of every module under ``rocketsim/`` and ``cli/`` counts: at module level,
 inside functions and under ``TYPE_CHECKING`` alike (a name imported only for
-a type still ties the module to the layer it comes from). The checks parse
-the source (nothing is imported), so they also run on a planted tree.
+a type still ties the module to the layer it comes from). Every import also
+counts toward circles: two modules that import each other, whether at module
+level or inside a function, are one circle, named with the lines that close
+it. The checks parse the source (nothing is imported), so they also run on a
+planted tree.
 """
 
 from __future__ import annotations
 
 import ast
+import functools
 import textwrap
 from pathlib import Path
 
@@ -17,8 +21,8 @@ ROOT = Path(__file__).resolve().parent.parent
 
 # bottom to top; a module belongs to the longest prefix that names it
 LAYERS = [
-    ("rocketsim.constants", "rocketsim.errors", "rocketsim._jit", "rocketsim.version",
-     "rocketsim.limits"),
+    ("rocketsim.constants", "rocketsim.errors", "rocketsim.jit", "rocketsim.version",
+     "rocketsim.limits", "rocketsim.extras"),
     ("rocketsim.timescales", "rocketsim.frames", "rocketsim.layout"),
     ("rocketsim.bodies", "rocketsim.ephemeris", "rocketsim.atmosphere"),
     ("rocketsim.orbits",),
@@ -56,13 +60,19 @@ def modules(root: Path) -> dict[str, Path]:
     return found
 
 
-def imports(name: str, path: Path) -> list[tuple[str, int, bool]]:
+def imports(name: str, path: Path) -> tuple[tuple[str, int, bool], ...]:
     """``(imported module, line, at module level)`` of every project import in ``path``."""
-    tree = ast.parse(path.read_text(), str(path))
+    return _imports(name, path.name == "__init__.py", path.read_text())
+
+
+@functools.lru_cache(maxsize=None)      # a text is parsed once, whichever tree holds it
+def _imports(name: str, is_package: bool, text: str) -> tuple[tuple[str, int, bool], ...]:
+    tree = ast.parse(text)
+    # run at import time: a module-level statement, or one inside a module-level if/try
     top_level = {id(node) for node in tree.body}
-    top_level |= {id(node) for node in ast.walk(tree)
-                  if isinstance(node, (ast.Import, ast.ImportFrom)) and _under_module_if(tree, node)}
-    package = name.split(".") if path.name == "__init__.py" else name.split(".")[:-1]
+    top_level |= {id(node) for statement in tree.body if isinstance(statement, (ast.If, ast.Try))
+                  for node in ast.walk(statement)}
+    package = name.split(".") if is_package else name.split(".")[:-1]
     found = []
     for node in ast.walk(tree):
         if isinstance(node, ast.Import):
@@ -78,45 +88,54 @@ def imports(name: str, path: Path) -> list[tuple[str, int, bool]]:
         for target in targets:
             if target.split(".")[0] in PACKAGES.values():
                 found.append((target, node.lineno, id(node) in top_level))
-    return found
-
-
-def _under_module_if(tree: ast.Module, node: ast.AST) -> bool:
-    """True for an import inside a module-level ``if``/``try`` (run at import time)."""
-    for statement in tree.body:
-        if isinstance(statement, (ast.If, ast.Try)) and any(n is node for n in ast.walk(statement)):
-            return True
-    return False
+    return tuple(found)
 
 
 def upward_imports(root: Path) -> list[str]:
     """Every import that runs up the layers, as ``module:line -> imported (layers)``."""
-    found = []
-    for name, path in modules(root).items():
+    found, known = [], modules(root)
+    for name, path in known.items():
         own = layer_of(name)
         for target, line, _ in imports(name, path):
             theirs = layer_of(target)
             if own is not None and theirs is not None and theirs > own:
-                target = _module_of(target, modules(root)) or target
+                target = _module_of(target, known) or target
                 found.append(f"{path.relative_to(root)}:{line}: {name} (layer {own + 1}) imports "
                              f"{target} (layer {theirs + 1})")
     return found
 
 
-def import_cycles(root: Path) -> list[list[str]]:
-    """The circles of module-level imports between modules (each a strongly connected
-    component of two or more modules, Tarjan's algorithm)."""
+def import_graph(root: Path) -> dict[str, dict[str, list[tuple[int, bool]]]]:
+    """``module -> {imported module -> [(line, at module level), ...]}`` over every import
+    of the project, at module level and inside functions alike."""
     known = modules(root)
-    graph = {name: sorted({_module_of(target, known) for target, _, top in imports(name, path) if top}
-                          - {None, name})
-             for name, path in known.items()}
+    graph: dict[str, dict[str, list[tuple[int, bool]]]] = {}
+    for name, path in known.items():
+        edges = graph.setdefault(name, {})
+        for target, line, top in imports(name, path):
+            imported = _module_of(target, known)
+            if imported is not None and imported != name and (line, top) not in edges.get(imported, []):
+                edges.setdefault(imported, []).append((line, top))
+    return graph
+
+
+def import_cycles(root: Path) -> list[list[str]]:
+    """The circles of imports between modules, module-level and inside functions alike:
+    each a strongly connected component of two or more modules (Tarjan's algorithm),
+    its modules sorted. An import inside a function closes a circle as surely as one at
+    module level: the two modules cannot be understood, tested or moved one without the
+    other."""
+    return _cycles(import_graph(root))
+
+
+def _cycles(graph: dict[str, dict]) -> list[list[str]]:
     index, low, stack, on_stack, cycles = {}, {}, [], set(), []
 
     def visit(node: str) -> None:
         index[node] = low[node] = len(index)
         stack.append(node)
         on_stack.add(node)
-        for nxt in graph[node]:
+        for nxt in sorted(graph[node]):
             if nxt not in index:
                 visit(nxt)
                 low[node] = min(low[node], low[nxt])
@@ -133,10 +152,29 @@ def import_cycles(root: Path) -> list[list[str]]:
             if len(component) > 1:
                 cycles.append(sorted(component))
 
-    for node in graph:
+    for node in sorted(graph):
         if node not in index:
             visit(node)
-    return cycles
+    return sorted(cycles)
+
+
+def describe_cycles(root: Path) -> list[str]:
+    """Each circle of :func:`import_cycles` named by its files, then every import that
+    ties its modules together, as ``file:line: module imports module``."""
+    graph, known = import_graph(root), modules(root)
+    described = []
+    for cycle in _cycles(graph):
+        files = [str(known[name].relative_to(root)) for name in cycle]
+        lines = [" <-> ".join(files)]
+        for name in cycle:
+            for imported, places in sorted(graph[name].items()):
+                if imported in cycle:
+                    for line, top in places:
+                        where = "" if top else " (inside a function)"
+                        lines.append(f"    {known[name].relative_to(root)}:{line}: {name} imports "
+                                     f"{imported}{where}")
+        described.append("\n".join(lines))
+    return described
 
 
 def _module_of(target: str, known: dict[str, Path]) -> str | None:
@@ -154,8 +192,8 @@ def test_no_import_runs_up_the_layers():
 
 
 def test_no_import_circles():
-    found = import_cycles(ROOT)
-    assert not found, "import circles:\n" + "\n".join(" <-> ".join(c) for c in found)
+    found = describe_cycles(ROOT)
+    assert not found, "import circles:\n" + "\n".join(found)
 
 
 def test_every_module_has_a_layer():
@@ -201,3 +239,43 @@ def test_a_planted_circle_is_reported(tmp_path):
         "rocketsim/sim/d.py": "def late():\n    from rocketsim.sim import a\n",
     })
     assert import_cycles(root) == [["rocketsim.sim.a", "rocketsim.sim.b", "rocketsim.sim.c"]]
+
+
+def test_a_circle_closed_inside_a_function_is_reported(tmp_path):
+    # load.py imports weather.py at module level; weather.py imports load.py back inside a
+    # function, by a relative import: one circle, named by its files and the import's line
+    root = _planted(tmp_path, {
+        "rocketsim/__init__.py": "",
+        "rocketsim/scenario/__init__.py": "",
+        "rocketsim/scenario/load.py": "from rocketsim.scenario.weather import load_weather\n",
+        "rocketsim/scenario/weather.py": "import math\n\n\ndef load_weather():\n"
+                                         "    from .load import validate\n",
+        "rocketsim/scenario/units.py": "from . import load\n",
+    })
+    assert import_cycles(root) == [["rocketsim.scenario.load", "rocketsim.scenario.weather"]]
+    [described] = describe_cycles(root)
+    assert described.splitlines() == [
+        "rocketsim/scenario/load.py <-> rocketsim/scenario/weather.py",
+        "    rocketsim/scenario/load.py:1: rocketsim.scenario.load imports rocketsim.scenario.weather",
+        "    rocketsim/scenario/weather.py:5: rocketsim.scenario.weather imports rocketsim.scenario.load"
+        " (inside a function)",
+    ]
+
+
+def test_the_checks_fail_on_a_planted_copy_of_the_library(tmp_path):
+    # the same checks over a copy of this tree with an upward import planted in a new
+    # module, and a circle closed inside functions between two modules that do not import
+    # each other (timescales, frames.quaternion): each is named
+    import shutil
+    for folder in PACKAGES:
+        shutil.copytree(ROOT / folder, tmp_path / folder,
+                        ignore=shutil.ignore_patterns("__pycache__", "*.npz", "*.json", "*.txt"))
+    (tmp_path / "rocketsim/frames/planted.py").write_text(
+        "def late():\n    from ..sim.world import World\n")
+    with open(tmp_path / "rocketsim/timescales.py", "a") as timescales:
+        timescales.write("\n\ndef _planted():\n    from rocketsim.frames import quaternion\n")
+    with open(tmp_path / "rocketsim/frames/quaternion.py", "a") as quaternion:
+        quaternion.write("\n\ndef _planted():\n    import rocketsim.timescales\n")
+    assert ("rocketsim/frames/planted.py:2: rocketsim.frames.planted (layer 2) imports "
+            "rocketsim.sim.world (layer 10)") in upward_imports(tmp_path)
+    assert ["rocketsim.frames.quaternion", "rocketsim.timescales"] in import_cycles(tmp_path)

@@ -26,7 +26,7 @@ import importlib
 import shutil
 from pathlib import Path
 
-from rocketsim._jit import Kernel
+from rocketsim.jit import Kernel
 from rocketsim.stepping import quiet, runs
 from rocketsim.stepping.twins import TWINS, Twin
 

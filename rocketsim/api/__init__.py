@@ -19,7 +19,9 @@ Flying and reading runs:
 * :func:`export_tables` -> one CSV or Parquet table per body, and the events;
 * :func:`verify` -> a :class:`Verdict`: the run flown again from its attachments and
   compared message by message (:class:`UntrustedProgram` without ``trust``);
-* :func:`strict_json` -> JSON text with NaN and infinities as null (the summary's file).
+* :func:`strict_json` -> JSON text with NaN and infinities as null (the summary's file);
+* :func:`fly_live` / :func:`replay_live`: a flight, or a run's file, served to Foxglove as it
+  plays at a warp (a :class:`Live` server's settings; :func:`parse_warp` reads a warp).
 
 Files, quantities and the things a scenario names:
 
@@ -62,6 +64,8 @@ _HOMES = {
     "export_tables": ("rocketsim.telemetry.tables", "export"),
     "verify": "rocketsim.api.reflight", "Verdict": "rocketsim.api.reflight",
     "UntrustedProgram": "rocketsim.api.reflight",
+    "fly_live": "rocketsim.api.live", "replay_live": "rocketsim.api.live", "Live": "rocketsim.api.live",
+    "parse_warp": "rocketsim.api.live", "LOOPBACK": "rocketsim.api.live", "PORT": "rocketsim.api.live",
     "strict_json": "rocketsim.telemetry.writer",
     "parse_quantity": "rocketsim.scenario.units", "UnitError": "rocketsim.scenario.units",
     "UNITS": "rocketsim.scenario.units",
@@ -81,8 +85,8 @@ _HOMES = {
     "same_row": "rocketsim.campaigns.execute",
     "CampaignInterrupted": ("rocketsim.campaigns.execute", "Interrupted"),
     "campaign_report": ("rocketsim.campaigns.report", "report"),
-    "kernel_cache_dir": ("rocketsim._jit", "cache_dir"),
-    "finish_compiling_beside": ("rocketsim._jit", "finish_beside"),
+    "kernel_cache_dir": ("rocketsim.jit", "cache_dir"),
+    "finish_compiling_beside": ("rocketsim.jit", "finish_beside"),
     "set_compiling_beside": "rocketsim.api.kernels",
     "InputError": "rocketsim.errors",
 }

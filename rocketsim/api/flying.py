@@ -43,14 +43,17 @@ def load(scenario: str | Path | Mapping | LoadedScenario, overrides: Mapping[str
 def fly(scenario: str | Path | Mapping | LoadedScenario, telemetry: str | Path | None = None, *,
         step: float | None = None, duration: float | None = None, progress: bool | Callable = False,
         program: Callable | str | Path | None = None,
-        programs: Mapping[str, Callable | str | Path] | None = None) -> Run:
+        programs: Mapping[str, Callable | str | Path] | None = None, live: bool | Mapping = False) -> Run:
     """Fly ``scenario`` (loaded, or a file or mapping :func:`load` reads) and return its :class:`Run`.
 
     ``telemetry``: None keeps the samples in memory and writes nothing; a path writes the
     MCAP file there. ``step``, ``duration`` (s) override the scenario's. ``progress``: True
     shows mission time and phase on stderr, or a callable ``progress(t, phase)``.
     ``program`` and ``programs`` (stage name -> program) fly in place of the scenario's:
-    a callable ``main(fc)`` or a program file.
+    a callable ``main(fc)`` or a program file. ``live``: True, or the fields of a
+    :class:`rocketsim.api.live.Live` (``{"warp": 10, "port": 8765}``), shows the flight in
+    Foxglove as it flies (:func:`rocketsim.api.live.fly_live`), and returns once it is shown;
+    the run is the same, bit for bit.
 
     A flight that ends in an error (a program's exception, a state no longer finite,
     Ctrl-C) raises it; kept in memory, the run up to the error is the exception's
@@ -70,7 +73,11 @@ def fly(scenario: str | Path | Mapping | LoadedScenario, telemetry: str | Path |
             return recorders[0]
 
     try:
-        if telemetry is None:
+        if live:
+            from rocketsim.api.live import Live, fly_live
+            fly_live(loaded, telemetry, Live.of(live), step=step, duration=duration, on_progress=on_progress,
+                     also=open_recorder if telemetry is None else None)
+        elif telemetry is None:
             fly_into(loaded, open_recorder, step=step, duration=duration, on_progress=on_progress)
         else:
             fly_to_file(loaded, telemetry, step=step, duration=duration, on_progress=on_progress)

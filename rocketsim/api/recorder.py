@@ -1,8 +1,7 @@
 """A flight's telemetry kept in memory: what the MCAP writer writes, without a file.
 
-:class:`Recorder` has the interface the flight writes through
-(:class:`rocketsim.telemetry.writer.TelemetryWriter`: ``add_body``, ``sample``,
-``event``, ``log``, ``error``, ``attach``, ``metadata``, ``close``) and keeps what
+:class:`Recorder` is a :class:`~rocketsim.telemetry.sink.TelemetrySink`, as the MCAP
+writer is (:class:`rocketsim.telemetry.writer.TelemetryWriter`), and keeps what
 a reader of the file gets back (:class:`rocketsim.telemetry.reader.RunFile`):
 events, log lines and errors as the file's JSON decodes them (each message is
 encoded as the writer encodes it and decoded again: NaN becomes None, tuples
@@ -21,12 +20,13 @@ import orjson
 from rocketsim.api.samples import Samples
 from rocketsim.telemetry import foxglove
 from rocketsim.telemetry.reader import RunFile
+from rocketsim.telemetry.sink import TelemetrySink
 from rocketsim.telemetry.writer import encode, interleaved_samples
 
 MEMORY = Path("<memory>")       # the path of a run that has no file
 
 
-class Recorder:
+class Recorder(TelemetrySink):
     """The telemetry of one flight, in memory (``program_file`` names the program in
     the log lines, as the writer's does)."""
 

@@ -37,7 +37,7 @@ import numpy as np
 from rocketsim.atmosphere.hydrostatic import hermite, integrate_log_pressure
 from rocketsim.atmosphere.sounding import Sounding
 from rocketsim.atmosphere.table import STEP, AtmosphereTable, grid, make_table
-from rocketsim.atmosphere.ussa1976 import Z_86, sutherland_viscosity, us_standard_1976
+from rocketsim.atmosphere.ussa1976 import LAPSE, Z_86, sutherland_viscosity, us_standard_1976
 from rocketsim.atmosphere.ussa1976 import standard_gravity as ussa_gravity
 from rocketsim.constants import (EARTH_RADIUS_EQ, EARTH_RADIUS_POLAR, G0, GAS_CONSTANT_USSA,
                                  USSA_GAMMA, USSA_M0, USSA_P0, USSA_R0, WATER_AIR_MOLAR_RATIO)
@@ -46,7 +46,7 @@ from rocketsim.frames.geodetic import normal_gravity
 BLEND_DEPTH = 5_000.0          # m, depth of the blend into the standard atmosphere
 BLEND_START_MAX = 26_000.0     # m, data above this is not used: the blend ends by 31 km
 LOWEST = -500.0                # m, every table reaches at least this far down
-STANDARD_LAPSE = 0.0065        # K/m, extrapolation below the lowest level (standard layer 0)
+STANDARD_LAPSE = -float(LAPSE[0])   # K/m, extrapolation below the lowest level (standard layer 0)
 
 
 def geocentric_radius(lat):

@@ -37,7 +37,7 @@ import numpy as np
 
 from rocketsim.atmosphere.sounding import (Sounding, mixing_ratio_from_vapour,
                                            saturation_vapour_pressure)
-from rocketsim.constants import USSA_P0
+from rocketsim.constants import CELSIUS_ZERO, USSA_P0
 
 QUANTITIES = ("tropopause", "pressure", "temperature", "tropopause_temperature", "humidity",
               "wind")
@@ -80,7 +80,7 @@ def random_profile(seed: int, latitude: float) -> Sounding:
     t = t_sl + (t_tp - t_sl) * np.minimum(z, tropopause) / tropopause
     # A rough column pressure only for the humidity conversion (the table integrates its own).
     p_hpa = p_sl / 100.0 * np.exp(-z / 8_000.0)
-    e = rh0 * np.exp(-z / 3_000.0) * saturation_vapour_pressure(t - 273.15)
+    e = rh0 * np.exp(-z / 3_000.0) * saturation_vapour_pressure(t - CELSIUS_ZERO)
     w = mixing_ratio_from_vapour(e, p_hpa)
     base = surface_speed + (jet_speed - surface_speed) * np.clip(z / tropopause, 0.0, 1.0) * 0.3
     speed = base + (jet_speed - base) * np.exp(-(((z - tropopause) / 4_000.0) ** 2))

@@ -53,8 +53,9 @@ import numpy as np
 
 from rocketsim.atmosphere.sounding import (Sounding, mixing_ratio_from_vapour,
                                            saturation_vapour_pressure)
-from rocketsim.constants import G0
+from rocketsim.constants import CELSIUS_ZERO, G0
 from rocketsim.errors import InputError
+from rocketsim.extras import needs
 
 TIME = ("time", "valid_time")
 LEVEL = ("level", "pressure_level", "isobaric", "lev")
@@ -158,6 +159,7 @@ def read_reanalysis(path: str | Path, latitude: float, longitude: float,
     path = Path(path)
     if not path.is_file():
         raise InputError("no such reanalysis file", file=path)
+    needs("weather", "a reanalysis weather file", "xarray", "netCDF4")
     import xarray as xr
     try:
         data = xr.open_dataset(path, engine="netcdf4")
@@ -256,7 +258,7 @@ def _column(data, path, latitude, longitude, when):
         w = q / (1.0 - q)
     else:
         rh = np.clip(column["humidity"][order], 0.0, 100.0)
-        w = mixing_ratio_from_vapour(rh / 100.0 * saturation_vapour_pressure(t - 273.15), p / 100.0)
+        w = mixing_ratio_from_vapour(rh / 100.0 * saturation_vapour_pressure(t - CELSIUS_ZERO), p / 100.0)
     if len(p) < 2:
         raise InputError("a column needs at least two pressure levels", file=path,
                          field=level_name)

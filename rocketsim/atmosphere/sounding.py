@@ -34,13 +34,12 @@ from pathlib import Path
 import numpy as np
 import yaml
 
-from rocketsim.constants import WATER_AIR_MOLAR_RATIO
+from rocketsim.constants import CELSIUS_ZERO, KNOT, WATER_AIR_MOLAR_RATIO
 from rocketsim.errors import InputError
 from rocketsim.limits import MAX_TEXT_BYTES, compose_yaml, read_bounded
 
 COLUMNS = ("PRES", "HGHT", "TEMP", "DWPT", "RELH", "MIXR", "DRCT", "SKNT")
 REQUIRED = ("PRES", "HGHT", "TEMP")
-KNOT = 1852.0 / 3600.0                # m/s
 # Plausible ranges, in the file's units; a value outside is refused.
 PLAUSIBLE = {"PRES": (1.0, 1100.0), "HGHT": (-500.0, 60_000.0), "TEMP": (-120.0, 60.0),
              "DWPT": (-130.0, 60.0), "RELH": (0.0, 100.5), "MIXR": (0.0, 40.0),
@@ -155,7 +154,7 @@ def from_columns(columns: dict, lines: dict | None, source: str = "",
         if s is not None:
             direction = np.mod(np.arctan2(s, c), 2 * np.pi)
     zeros = np.zeros(n)
-    return Sounding(h.copy(), p * 100.0, t_c + 273.15, zeros if w is None else w,
+    return Sounding(h.copy(), p * 100.0, t_c + CELSIUS_ZERO, zeros if w is None else w,
                     zeros if speed is None else speed,
                     zeros if direction is None else direction, True, source)
 

@@ -22,7 +22,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from rocketsim._jit import njit
+from rocketsim.jit import njit
 from rocketsim.frames.geodetic import enu_basis
 
 STEP = 50.0                 # m, the table's row spacing

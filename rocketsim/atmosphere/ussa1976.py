@@ -41,7 +41,7 @@ from typing import NamedTuple
 import numpy as np
 
 from rocketsim.atmosphere.hydrostatic import hermite
-from rocketsim.constants import (G0, GAS_CONSTANT_USSA, USSA_BOLTZMANN, USSA_GAMMA, USSA_M0,
+from rocketsim.constants import (CELSIUS_ZERO, G0, GAS_CONSTANT_USSA, USSA_BOLTZMANN, USSA_GAMMA, USSA_M0,
                                  USSA_P0, USSA_R0, USSA_SUTHERLAND_BETA, USSA_SUTHERLAND_S,
                                  USSA_T0)
 
@@ -52,7 +52,7 @@ Z_MAX = 1_000_000.0                 # m, top of the standard
 
 # Table 4: geopotential base heights (m') and molecular-scale temperature gradients (K/m').
 _H_BASE = np.array([0.0, 11_000.0, 20_000.0, 32_000.0, 47_000.0, 51_000.0, 71_000.0])
-_LAPSE = np.array([-0.0065, 0.0, 0.0010, 0.0028, 0.0, -0.0028, -0.0020])
+LAPSE = np.array([-0.0065, 0.0, 0.0010, 0.0028, 0.0, -0.0028, -0.0020])
 
 # Table 8: M/M0 at geometric heights 80.0 to 86.0 km every 0.5 km (linear between).
 _RATIO_Z = np.arange(80_000.0, 86_000.1, 500.0)
@@ -123,11 +123,11 @@ def _layer_bases():
     tb, pb = [USSA_T0], [USSA_P0]
     for i in range(len(_H_BASE) - 1):
         dh = _H_BASE[i + 1] - _H_BASE[i]
-        t_top = tb[i] + _LAPSE[i] * dh
-        if _LAPSE[i] == 0.0:
+        t_top = tb[i] + LAPSE[i] * dh
+        if LAPSE[i] == 0.0:
             p_top = pb[i] * np.exp(-G0 * USSA_M0 * dh / (R_STAR * tb[i]))
         else:
-            p_top = pb[i] * (tb[i] / t_top) ** (G0 * USSA_M0 / (R_STAR * _LAPSE[i]))
+            p_top = pb[i] * (tb[i] / t_top) ** (G0 * USSA_M0 / (R_STAR * LAPSE[i]))
         tb.append(t_top)
         pb.append(p_top)
     return np.array(tb), np.array(pb)
@@ -138,7 +138,7 @@ def _lower(z):
     h = geopotential_height(z)
     tb, pb = _layer_bases()
     i = np.clip(np.searchsorted(_H_BASE, h, side="right") - 1, 0, len(_H_BASE) - 1)
-    lapse, dh = _LAPSE[i], h - _H_BASE[i]
+    lapse, dh = LAPSE[i], h - _H_BASE[i]
     tm = tb[i] + lapse * dh
     k = G0 * USSA_M0 / R_STAR
     exponent = k / np.where(lapse != 0.0, lapse, 1.0)          # (unused where lapse is 0)
@@ -210,7 +210,7 @@ def number_densities(z):
             trio = ("N2", "O", "O2")
             background = sum(n[b] for b in trio)
             m_k = np.where(mixed, USSA_M0, sum(n[b] * _MOLAR[b] for b in trio) / background)
-        d = _DIFF_A[s] / background * (t / 273.15) ** _DIFF_B[s]
+        d = _DIFF_A[s] / background * (t / CELSIUS_ZERO) ** _DIFF_B[s]
         f = (g / (R_STAR * t)) * d / (d + k_eddy) * (
             _MOLAR[s] + m_k * k_eddy / d + _ALPHA[s] * R_STAR * dt / g) + _flux_term(s, z)
         n[s] = _N86[s] * (_T7 / t) * np.exp(-_integral(f, x=z))
@@ -222,7 +222,7 @@ def number_densities(z):
     tau = _integral(_MOLAR["H"] * g[above] / (R_STAR * th), x=zh)
     tau = tau - np.interp(500_000.0, zh, tau)
     bg = sum(n[s][above] for s in ("N2", "O", "O2", "Ar", "He"))
-    d_h = _DIFF_A["H"] / bg * (th / 273.15) ** _DIFF_B["H"]
+    d_h = _DIFF_A["H"] / bg * (th / CELSIUS_ZERO) ** _DIFF_B["H"]
     expo = 1.0 + _ALPHA["H"]
     integrand = _PHI_H / d_h * (th / t500) ** expo * np.exp(tau)
     from_500 = _integral(integrand, x=zh)

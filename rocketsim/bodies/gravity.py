@@ -16,7 +16,7 @@ import math
 
 import numpy as np
 
-from rocketsim._jit import njit
+from rocketsim.jit import njit
 from rocketsim.constants import EARTH_J2, EARTH_MU, EARTH_RADIUS_EQ
 
 

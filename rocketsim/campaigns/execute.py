@@ -21,7 +21,7 @@ it, the run's MCAP file. So run ``k`` flies bit for bit the same alone
   must see the scenario's files and the campaign directory at the same paths.
 * Warm-up: the nominal run (every dispersion at its centre) is flown whole once
   in this process first, so the compiled kernels it needs are in the disk cache
-  (:mod:`rocketsim._jit`), compiled once; then each worker flies its first
+  (:mod:`rocketsim.jit`), compiled once; then each worker flies its first
   :data:`WORKER_WARM_S` seconds, importing the flight's modules and loading the
   kernels of the flight's steps from the cache before its first run (the
   kernels of later events, a staging, a landing, load in its first run, a few
@@ -39,12 +39,13 @@ import time
 from pathlib import Path
 from typing import Callable, Mapping
 
-from rocketsim import _jit
+from rocketsim.jit import beside
 from rocketsim.campaigns.cases import Plan
 from rocketsim.campaigns.outputs import run_columns
 from rocketsim.campaigns.spec import read_campaign
 from rocketsim.campaigns.store import Store, frame, read_results
 from rocketsim.errors import InputError
+from rocketsim.extras import needs
 
 WORKER_WARM_S = 1.0      # s of the nominal run a worker flies before its first run
 # Dask settings of the embedded cluster's workers. A worker flies a run in a thread
@@ -122,7 +123,7 @@ def fly_case(text: str, k: int, keep: str, timeout: float | None) -> tuple[dict,
     """A worker's task: run ``k`` of the campaign ``text``; ``keep`` its telemetry
     (``all``: flown into an MCAP file; ``failed``: flown again into one if it failed;
     ``none``). Returns ``(row, MCAP bytes or None)``."""
-    _jit.COMPILE_BESIDE = False     # the workers fill the cores: each compiles what its runs need itself
+    beside.COMPILE_BESIDE = False     # the workers fill the cores: each compiles what its runs need itself
     plan = plan_of(text)
     with tempfile.TemporaryDirectory(prefix="rocketsim-run-") as folder:
         path = Path(folder) / f"run-{k:06d}.mcap"
@@ -168,6 +169,8 @@ def run(campaign, directory: str | Path, *, workers: int | None = None, schedule
     as runs finish (``total``: the runs this call flies), ``log(message)`` with the warm-up's costs. Raises
     :class:`~rocketsim.errors.InputError` for a bad campaign before anything flies,
     :class:`Interrupted` on Ctrl-C (everything finished saved)."""
+    in_process = workers == 1 and scheduler is None and scheduler_file is None
+    needs("campaign", "a campaign", "pyarrow", *(() if in_process else ("distributed",)))
     import yaml
     log = log or (lambda message: None)
     found = read_campaign(campaign, base_dir)
@@ -195,7 +198,7 @@ def run(campaign, directory: str | Path, *, workers: int | None = None, schedule
                 progress(0, 0, len(todo))
 
         try:
-            if workers == 1 and scheduler is None and scheduler_file is None:
+            if in_process:
                 _in_process(text, todo, found.spec, finished, log, started)
             else:
                 _on_dask(text, todo, found.spec, finished, log, started, workers, scheduler, scheduler_file)
@@ -299,6 +302,7 @@ def rerun(directory: str | Path, k: int, telemetry: str | Path):
     """Fly run ``k`` of the campaign in ``directory`` alone into the MCAP file
     ``telemetry``; ``(row, recorded)``: its row, and its row in the results (None if
     it has none), both as one-row tables with the same columns."""
+    needs("campaign", "a campaign's rerun", "pyarrow")
     directory = Path(directory)
     if not (directory / "campaign.yaml").is_file():
         raise InputError(f"{directory} holds no campaign (no campaign.yaml)", field="DIR")

@@ -44,6 +44,7 @@ import numpy as np
 
 from rocketsim.campaigns import landing, statistics
 from rocketsim.errors import InputError
+from rocketsim.extras import needs
 
 META, INPUTS, RESULTS = "meta.json", "inputs.parquet", "results.parquet"
 MAIN_OUTPUTS = 16                     # histograms and sensitivities drawn and printed at most
@@ -94,6 +95,7 @@ def load(directory) -> tuple:
     """``(meta, inputs, results)`` of the campaign ``directory``, or an InputError naming the
     file (and the line and field) that is missing or wrong. ``results`` keeps the last row
     of a run written twice and is sorted by ``run``."""
+    needs("campaign", "a campaign's report", "pyarrow")
     import pandas as pd
     directory = Path(directory)
     if not directory.is_dir():

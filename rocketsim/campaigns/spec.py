@@ -49,7 +49,7 @@ from typing import Annotated, Any, Literal, Mapping, Optional, Union
 from pydantic import BaseModel, Field, field_validator, model_validator
 
 from rocketsim.errors import InputError
-from rocketsim.scenario.load import validate
+from rocketsim.scenario.validation import validate
 from rocketsim.scenario.units import STRICT, Duration
 from rocketsim.scenario.yaml_source import YamlSource, read_yaml
 

@@ -29,7 +29,7 @@ import math
 
 import numpy as np
 
-from rocketsim._jit import njit
+from rocketsim.jit import njit
 from rocketsim.constants import (CRUISE_CLEARANCE, CRUISE_MAX_STEP, CRUISE_MAX_TURN,
                                  CRUISE_MIN_SUBSTEP, CRUISE_TURN_PER_SUBSTEP, EARTH_RADIUS_EQ,
                                  MARS_RADIUS_EQ, MOON_RADIUS, SUN_RADIUS)

@@ -39,7 +39,7 @@ its RCS thrusters only.
 
 import math
 
-from rocketsim._jit import njit
+from rocketsim.jit import njit
 from rocketsim.atmosphere.table import air_in
 from rocketsim.atmosphere.ussa1976 import Z_86
 from rocketsim.bodies.gravity import point_mass_j2

@@ -29,7 +29,7 @@ import math
 
 import numpy as np
 
-from rocketsim._jit import copy_into, njit
+from rocketsim.jit import copy_into, njit
 from rocketsim.atmosphere.table import air_in
 from rocketsim.dynamics.derivative import radial_height
 from rocketsim.dynamics.nbody import translational_rk4

@@ -39,7 +39,7 @@ import math
 
 import numpy as np
 
-from rocketsim._jit import njit
+from rocketsim.jit import njit
 from rocketsim.bodies.gravity import point_mass_j2
 from rocketsim.atmosphere.table import air_in
 from rocketsim.dynamics.derivative import derivative, radial_height
@@ -111,7 +111,7 @@ def no_air():
     return (0.0, 1.0, zero, zero, zero, zero, zero, zero)
 
 
-# inlined by LLVM (forceinline) into translational_rk4, a borrowing kernel (rocketsim._jit):
+# inlined by LLVM (forceinline) into translational_rk4, a borrowing kernel (rocketsim.jit):
 # typed and lowered once, not once per RK4 stage as numba's own inlining did (3.4 s of a cold
 # Falcon 9's compiling, now 1.3 s); a call per stage left to LLVM's choice is not inlined and
 # costs rails 5 %; in a kernel that counts references its tuple of arrays' counts were half

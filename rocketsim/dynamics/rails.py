@@ -30,14 +30,15 @@ import math
 
 import numpy as np
 
-from rocketsim._jit import copy_into, njit
+from rocketsim.jit import copy_into, njit
 from rocketsim.constants import RAILS_FLOOR
 from rocketsim.dynamics.derivative import radial_height
 from rocketsim.dynamics.nbody import FIELD_CENTER, FIELD_MU, bodies_at, hold_time, translational_rk4
 from rocketsim.layout import P_MU, P_POLAR_RADIUS, P_RADIUS, P_SPIN, Q, R, V, W
 from rocketsim.frames.local import VERTICAL, where_and_how_fast
-from rocketsim.frames.quaternion import (quat_conjugate, quat_from_axis_angle, quat_from_matrix,
-                                         quat_multiply, quat_normalize, quat_rotate, rotate_components)
+from rocketsim.frames.quaternion import (hamilton_product, quat_conjugate, quat_from_axis_angle,
+                                         quat_from_matrix, quat_multiply, quat_normalize, quat_rotate,
+                                         rotate_components)
 
 FREE = 0      # torque-free rotation
 HELD = 1      # attitude held fixed in an inertial command frame
@@ -77,13 +78,6 @@ def command_code(command) -> np.ndarray:
 def hold_mode(code: np.ndarray) -> int:
     """:data:`HELD` for an inertial direction with no roll, else :data:`TRACK`."""
     return HELD if code[0] == DIRECTION and math.isnan(code[5]) else TRACK
-
-
-@njit
-def _product(a0, a1, a2, a3, b0, b1, b2, b3):
-    """Hamilton product of two quaternions given by components (a tuple of four)."""
-    return (a0 * b0 - a1 * b1 - a2 * b2 - a3 * b3, a0 * b1 + a1 * b0 + a2 * b3 - a3 * b2,
-            a0 * b2 - a1 * b3 + a2 * b0 + a3 * b1, a0 * b3 + a1 * b2 - a2 * b1 + a3 * b0)
 
 
 @njit
@@ -136,8 +130,8 @@ def turn_constants(y, inertia, dt):
 @njit(borrows=True)
 def apply_turn(y, a, b, c, s):
     """Turn the attitude and rates of ``y`` in place by :func:`turn_constants`."""
-    p0, p1, p2, p3 = _product(a[0], a[1], a[2], a[3], y[Q], y[Q + 1], y[Q + 2], y[Q + 3])
-    q0, q1, q2, q3 = _product(p0, p1, p2, p3, b[0], b[1], b[2], b[3])
+    p0, p1, p2, p3 = hamilton_product(a[0], a[1], a[2], a[3], y[Q], y[Q + 1], y[Q + 2], y[Q + 3])
+    q0, q1, q2, q3 = hamilton_product(p0, p1, p2, p3, b[0], b[1], b[2], b[3])
     norm = math.sqrt(q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3)
     y[Q] = q0 / norm
     y[Q + 1] = q1 / norm

@@ -30,7 +30,7 @@ import math
 
 import numpy as np
 
-from rocketsim._jit import njit
+from rocketsim.jit import njit
 from rocketsim.atmosphere.table import air_in, wind_earth_fixed
 from rocketsim.constants import (GROUND_SUBSTEP_HEIGHT, GROUND_SUBSTEP_MAX, GROUND_SUBSTEPS,
                                 UNUSABLE_PROPELLANT)

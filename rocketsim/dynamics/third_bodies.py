@@ -30,7 +30,7 @@ import math
 
 import numpy as np
 
-from rocketsim._jit import njit
+from rocketsim.jit import njit
 from rocketsim.constants import (AU, EARTH_MU, MARS_MU, MOON_MU, NBODY_HOLD, SECONDS_PER_DAY,
                                  SOLAR_IRRADIANCE_1AU, SPEED_OF_LIGHT, SUN_MU)
 from rocketsim.layout import N_PARAMS, P_NBODY

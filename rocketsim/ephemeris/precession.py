@@ -24,7 +24,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from rocketsim._jit import njit
+from rocketsim.jit import njit
 from rocketsim.constants import ARCSEC, DAYS_PER_JULIAN_CENTURY, J2000_JD
 from rocketsim.ephemeris.sincos import sincos
 

@@ -23,7 +23,7 @@ import math
 
 import numpy as np
 
-from rocketsim._jit import njit
+from rocketsim.jit import njit
 
 TWO_OVER_PI = 2.0 / math.pi
 # pi/2 = PIO2_1 + PIO2_2 + PIO2_3 (PIO2_1, PIO2_2: 31 and 32 significant bits)

@@ -22,7 +22,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from rocketsim._jit import njit
+from rocketsim.jit import njit
 from rocketsim.constants import DAYS_PER_JULIAN_CENTURY, J2000_JD
 from rocketsim.ephemeris import elp2000, vsop87
 from rocketsim.ephemeris.precession import turn

@@ -34,7 +34,7 @@ from __future__ import annotations
 import math
 import numpy as np
 
-from rocketsim._jit import njit
+from rocketsim.jit import njit
 from rocketsim.constants import (
     ARCSEC,
     AU,

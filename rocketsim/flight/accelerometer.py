@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from rocketsim._jit import njit
+from rocketsim.jit import njit
 from rocketsim.bodies.gravity import point_mass_j2
 from rocketsim.dynamics.derivative import derivative
 from rocketsim.layout import P_J2, P_MU, P_RADIUS, R, V

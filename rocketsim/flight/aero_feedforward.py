@@ -28,7 +28,7 @@ from __future__ import annotations
 
 import math
 
-from rocketsim._jit import njit
+from rocketsim.jit import njit
 from rocketsim.vehicle.aero import A_ON, body_aero
 
 

@@ -42,10 +42,11 @@ import math
 
 import numpy as np
 
-from rocketsim._jit import njit
 from rocketsim.flight.navigation import estimate
 from rocketsim.flight.sensors import E_GAUGES, gauged
+from rocketsim.jit import njit
 from rocketsim.frames.local import where_and_how_fast
+from rocketsim.frames.quaternion import body_x_components
 from rocketsim.layout import P_POLAR_RADIUS, P_RADIUS, P_SPIN, Q, R, V
 
 READINGS = ("altitude", "vertical_speed", "propellant", "time", "nose_angle")
@@ -117,8 +118,8 @@ def nose_dot(q, a, b, c):
     """``nose . (a, b, c)``: the nose (body x in ECI) of the attitude quaternion ``q``
     (w, x, y, z, body -> ECI) dotted with a direction; :func:`holds` and the condition's
     Python test both call it, so the two agree to the bit."""
-    w, x, y, z = q[0], q[1], q[2], q[3]
-    return (1.0 - 2.0 * (y * y + z * z)) * a + 2.0 * (x * y + w * z) * b + 2.0 * (x * z - w * y) * c
+    nx, ny, nz = body_x_components(q[0], q[1], q[2], q[3])
+    return nx * a + ny * b + nz * c
 
 
 def compare_propellant(fc, vehicle, stage: int, value: float, op: float) -> Condition:

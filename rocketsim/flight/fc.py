@@ -20,7 +20,7 @@ from typing import Callable
 
 import numpy as np
 
-from rocketsim.constants import G0, MAX_DURATION
+from rocketsim.constants import G0, MAX_DURATION, SECONDS_PER_DAY
 from rocketsim.dynamics.central import planetocentric
 from rocketsim.dynamics.third_bodies import nbody_flag
 from rocketsim.ephemeris.solar_system import BODIES
@@ -204,7 +204,7 @@ class FlightComputer:
             return view.geodetic
         if key not in self._nav.readings:
             self._nav.readings[key] = planetocentric(
-                view.position, body.central, self._craft.epoch.jd_tt() + body.t / 86400.0)
+                view.position, body.central, self._craft.epoch.jd_tt() + body.t / SECONDS_PER_DAY)
         return self._nav.readings[key]
 
     def _true_height(self) -> float:

@@ -29,7 +29,7 @@ from __future__ import annotations
 
 import math
 
-from rocketsim._jit import njit
+from rocketsim.jit import njit
 from rocketsim.bodies.gravity import point_mass_j2
 from rocketsim.constants import (EARTH_J2, EARTH_MU, EARTH_OMEGA, EARTH_RADIUS_EQ,
                                  EARTH_RADIUS_POLAR)

@@ -29,7 +29,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from rocketsim._jit import njit
+from rocketsim.jit import njit
 from rocketsim.constants import EARTH_RADIUS_EQ, EARTH_RADIUS_POLAR
 from rocketsim.frames.earth_fixed import eci_to_ecef
 from rocketsim.frames.geodetic import ecef_to_geodetic

@@ -31,7 +31,7 @@ import math
 
 import numpy as np
 
-from rocketsim.constants import G0
+from rocketsim.constants import G0, SECONDS_PER_DAY
 from rocketsim.frames.quaternion import quat_to_matrix
 
 MIN_THROTTLE = 0.1
@@ -168,7 +168,7 @@ def periapsis_radius(fc, delta_v, horizon: float) -> float:
 
 
 def trim_periapsis(fc, radius: float, label: str, thrust: float, isp: float,
-                   horizon: float = 3 * 86400.0, smallest: float = 1.0, rcs_turn: bool = False) -> float:
+                   horizon: float = 3 * SECONDS_PER_DAY, smallest: float = 1.0, rcs_turn: bool = False) -> float:
     """Turn the velocity in its plane (speed kept) so that the next periapsis is at
     ``radius`` (m, within 200 m); burns only when the change is at least
     ``smallest`` m/s (turning the vehicle to burn costs more; ``rcs_turn`` as in
@@ -190,6 +190,6 @@ def trim_periapsis(fc, radius: float, label: str, thrust: float, isp: float,
     return burn(fc, lambda: start + change, label, thrust, isp, rcs_turn=rcs_turn)
 
 
-def time_to_periapsis(fc, horizon: float = 3 * 86400.0) -> float:
+def time_to_periapsis(fc, horizon: float = 3 * SECONDS_PER_DAY) -> float:
     """Seconds to the next periapsis about the central body (the full field)."""
     return fc.predict(horizon, periapsis=True)[0] - fc.time

@@ -21,7 +21,7 @@ from typing import Callable
 
 import numpy as np
 
-from rocketsim._jit import njit
+from rocketsim.jit import njit
 from rocketsim.flight.craft import Craft
 from rocketsim.flight.readings import StateView
 from rocketsim.flight.sensors import E_ATTITUDE, E_POSITION, E_RATES, E_VELOCITY, measured

@@ -24,7 +24,7 @@ import math
 
 import numpy as np
 
-from rocketsim._jit import njit
+from rocketsim.jit import njit
 from rocketsim.atmosphere.table import air_at, wind_earth_fixed
 from rocketsim.bodies.gravity import point_mass_j2
 from rocketsim.constants import EARTH_J2, EARTH_MU, EARTH_OMEGA, EARTH_RADIUS_EQ, EARTH_RADIUS_POLAR

@@ -40,7 +40,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from rocketsim._jit import njit
+from rocketsim.jit import njit
 from rocketsim.constants import DEG
 
 BLOCK = 4096            # samples drawn at a time per stream

@@ -25,7 +25,7 @@ import math
 
 import numpy as np
 
-from rocketsim._jit import njit
+from rocketsim.jit import njit
 from rocketsim.dynamics.rails import nose_target
 from rocketsim.layout import P_POLAR_RADIUS, P_RADIUS, P_SPIN, Q, R, V, W
 from rocketsim.flight.aero_feedforward import destabilising_moment

@@ -28,7 +28,7 @@ from dataclasses import asdict, dataclass
 
 import numpy as np
 
-from rocketsim._jit import njit
+from rocketsim.jit import njit
 from rocketsim.constants import EARTH_MU
 
 CIRCULAR_ECCENTRICITY = 1e-11        # below this eccentricity an orbit is treated as circular

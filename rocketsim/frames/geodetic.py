@@ -21,7 +21,7 @@ import math
 
 import numpy as np
 
-from rocketsim._jit import njit
+from rocketsim.jit import njit
 from rocketsim.constants import (
     EARTH_E2,
     EARTH_FLATTENING,

@@ -15,15 +15,15 @@ import math
 
 import numpy as np
 
-from rocketsim._jit import njit
-from rocketsim.constants import EARTH_OMEGA, EARTH_RADIUS_EQ, EARTH_RADIUS_POLAR
+from rocketsim.jit import njit
+from rocketsim.constants import DEG, EARTH_OMEGA, EARTH_RADIUS_EQ, EARTH_RADIUS_POLAR
 from rocketsim.frames.quaternion import rotate_components
 from rocketsim.layout import Q, R, V
 from rocketsim.frames.geodetic import ecef_to_geodetic_njit, enu_basis, geodetic_on
 
 # sin(pitch) above which the nose counts as vertical (within 0.01 deg): heading
 # and roll are then read from body z instead
-VERTICAL = math.cos(0.01 * math.pi / 180.0)
+VERTICAL = math.cos(0.01 * DEG)
 
 
 @njit(inline="always")     # a few operations: typed in its callers, no kernel of its own

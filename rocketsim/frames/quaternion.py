@@ -8,7 +8,7 @@ Composition follows the Hamilton product: if ``q_ab`` takes b-axes into a
 and ``q_bc`` takes c-axes into b, then ``quat_multiply(q_ab, q_bc)`` takes
 c-axes into a, and its matrix is ``M(q_ab) @ M(q_bc)``.
 
-Every function is compiled with :func:`rocketsim._jit.njit` so the dynamics
+Every function is compiled with :func:`rocketsim.jit.njit` so the dynamics
 kernels can call them; they work the same when called from Python on float64
 numpy arrays. They take and return plain arrays of shape (4,), (3,) or (3, 3)
 (:func:`hamilton_product` takes and returns components).
@@ -20,7 +20,7 @@ import math
 
 import numpy as np
 
-from rocketsim._jit import njit
+from rocketsim.jit import njit
 
 
 @njit(inline="always")     # a few operations: typed in its callers, no kernel of its own
@@ -43,6 +43,14 @@ def rotate_components(w, ux, uy, uz, vx, vy, vz):
     tz = 2.0 * (ux * vy - uy * vx)
     return (vx + w * tx + (uy * tz - uz * ty), vy + w * ty + (uz * tx - ux * tz),
             vz + w * tz + (ux * ty - uy * tx))
+
+
+@njit(inline="always")     # a few operations: typed in its callers, no kernel of its own
+def body_x_components(w, x, y, z):
+    """The body x axis (a vehicle's nose) in frame components for the unit quaternion
+    ``(w, x, y, z)``, as a 3-tuple (no array: for the hot kernels): the first column of
+    :func:`quat_to_matrix`, ``(1 - 2 (y^2 + z^2), 2 (x y + w z), 2 (x z - w y))``."""
+    return (1.0 - 2.0 * (y * y + z * z), 2.0 * (x * y + w * z), 2.0 * (x * z - w * y))
 
 
 @njit
@@ -91,13 +99,11 @@ def quat_to_matrix(q):
     """Rotation matrix (3, 3) body -> frame of a unit quaternion ``q``."""
     w, x, y, z = q[0], q[1], q[2], q[3]
     m = np.empty((3, 3))
-    m[0, 0] = 1.0 - 2.0 * (y * y + z * z)
+    m[0, 0], m[1, 0], m[2, 0] = body_x_components(w, x, y, z)
     m[0, 1] = 2.0 * (x * y - w * z)
     m[0, 2] = 2.0 * (x * z + w * y)
-    m[1, 0] = 2.0 * (x * y + w * z)
     m[1, 1] = 1.0 - 2.0 * (x * x + z * z)
     m[1, 2] = 2.0 * (y * z - w * x)
-    m[2, 0] = 2.0 * (x * z - w * y)
     m[2, 1] = 2.0 * (y * z + w * x)
     m[2, 2] = 1.0 - 2.0 * (x * x + y * y)
     return m

@@ -31,7 +31,7 @@ import math
 
 import numpy as np
 
-from rocketsim._jit import njit
+from rocketsim.jit import njit
 from rocketsim.errors import InputError
 from rocketsim.orbits._broadcast import flat_rows
 

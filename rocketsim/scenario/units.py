@@ -18,31 +18,33 @@ from typing import Annotated, Any
 
 from pydantic import BeforeValidator, ConfigDict, WithJsonSchema
 
+from rocketsim.constants import (ATMOSPHERE, AU, CELSIUS_ZERO, DEG, G0, KNOT, NAUTICAL_MILE,
+                                 SECONDS_PER_DAY)
 from rocketsim.limits import MAX_QUANTITY
 from rocketsim.scenario.bounds import document_bounds
 
 # dimension -> {unit spelling: factor to the SI unit}
 UNITS: dict[str, dict[str, float]] = {
     "length": {"m": 1.0, "km": 1e3, "cm": 1e-2, "mm": 1e-3, "ft": 0.3048,
-               "mi": 1609.344, "nmi": 1852.0, "au": 149_597_870_700.0},
+               "mi": 1609.344, "nmi": NAUTICAL_MILE, "au": AU},
     "mass": {"kg": 1.0, "g": 1e-3, "t": 1e3, "lb": 0.45359237},
-    "time": {"s": 1.0, "ms": 1e-3, "min": 60.0, "h": 3600.0, "d": 86400.0, "day": 86400.0,
-             "days": 86400.0},
-    "angle": {"rad": 1.0, "deg": math.pi / 180.0, "°": math.pi / 180.0,
+    "time": {"s": 1.0, "ms": 1e-3, "min": 60.0, "h": 3600.0, "d": SECONDS_PER_DAY,
+             "day": SECONDS_PER_DAY, "days": SECONDS_PER_DAY},
+    "angle": {"rad": 1.0, "deg": DEG, "°": DEG,
               "arcmin": math.pi / 10800.0, "arcsec": math.pi / 648000.0},
-    "speed": {"m/s": 1.0, "km/s": 1e3, "km/h": 1 / 3.6, "kn": 1852.0 / 3600.0, "ft/s": 0.3048},
+    "speed": {"m/s": 1.0, "km/s": 1e3, "km/h": 1 / 3.6, "kn": KNOT, "ft/s": 0.3048},
     "force": {"N": 1.0, "kN": 1e3, "MN": 1e6, "lbf": 4.4482216152605},
     "pressure": {"Pa": 1.0, "hPa": 100.0, "kPa": 1e3, "MPa": 1e6, "bar": 1e5, "mbar": 100.0,
-                 "atm": 101325.0, "psi": 6894.757293168},
+                 "atm": ATMOSPHERE, "psi": 6894.757293168},
     "temperature": {"K": 1.0},        # Celsius is an offset: handled below
     "density": {"kg/m3": 1.0, "kg/m^3": 1.0, "g/cm3": 1000.0},
     "area": {"m2": 1.0, "m^2": 1.0, "cm2": 1e-4},
     "inertia": {"kg m2": 1.0, "kg*m^2": 1.0, "kg m^2": 1.0},
-    "angular_rate": {"rad/s": 1.0, "deg/s": math.pi / 180.0, "rpm": 2 * math.pi / 60.0},
+    "angular_rate": {"rad/s": 1.0, "deg/s": DEG, "rpm": 2 * math.pi / 60.0},
     "frequency": {"Hz": 1.0, "kHz": 1e3},
     "specific_impulse": {"s": 1.0},
     "mass_flow": {"kg/s": 1.0},
-    "acceleration": {"m/s2": 1.0, "m/s^2": 1.0, "g": 9.80665},
+    "acceleration": {"m/s2": 1.0, "m/s^2": 1.0, "g": G0},
     # C3 (twice the orbital energy per unit mass), as launch windows quote it in km^2/s^2
     "specific_energy": {"m2/s2": 1.0, "m^2/s^2": 1.0, "km2/s2": 1e6, "km^2/s^2": 1e6},
     "dimensionless": {"": 1.0, "%": 0.01},
@@ -90,7 +92,7 @@ def _si_value(value: Any, dimension: str) -> float:
         raise UnitError(f"expected '<number> <unit>' for a {dimension}, got {value!r}")
     number, unit = float(match.group(1)), match.group(2)
     if dimension == "temperature" and unit in ("C", "°C", "degC"):
-        return number + 273.15
+        return number + CELSIUS_ZERO
     table = UNITS[dimension]
     if unit not in table:
         if unit == "" and dimension != "angle":

@@ -32,6 +32,8 @@ from rocketsim.constants import USSA_P0
 from rocketsim.errors import InputError
 from rocketsim.limits import MAX_SEED
 from rocketsim.scenario.units import STRICT, Pressure, Temperature
+from rocketsim.scenario.validation import validate
+from rocketsim.scenario.yaml_source import read_yaml
 
 if TYPE_CHECKING:       # the atmosphere's modules (numpy) load when a table is built, so that
     from rocketsim.atmosphere.table import AtmosphereTable    # validating a file stays light
@@ -120,8 +122,6 @@ def load_weather(path):
     The model of the file's ``kind`` validates it directly, so error locations
     carry no union tag and point at the line of the offending field.
     """
-    from rocketsim.scenario.load import validate
-    from rocketsim.scenario.yaml_source import read_yaml
     source = read_yaml(Path(path)) if isinstance(path, (str, Path)) else path
     kind = source.data.get("kind") if isinstance(source.data, dict) else None
     if isinstance(kind, str) and kind in KINDS:

@@ -27,7 +27,7 @@ from typing import Callable, ClassVar
 
 import numpy as np
 
-from rocketsim._jit import Entries
+from rocketsim.jit import Entries
 from rocketsim.constants import EARTH_MU
 from rocketsim.dynamics.central import air_about
 from rocketsim.flight.fc import FlightComputer

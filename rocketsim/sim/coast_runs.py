@@ -22,7 +22,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from rocketsim._jit import compile_beside, compiling_elsewhere
+from rocketsim.jit import compile_beside, compiling_elsewhere
 from rocketsim.dynamics.third_bodies import nbody_flag
 from rocketsim.sim import sampling
 from rocketsim.stepping.runs import coast_run
@@ -75,7 +75,7 @@ def _coast_arguments(body, k0: int, h: float, every: int, m: int, rows: np.ndarr
 
 def compile_coasts_beside(world) -> None:
     """On a cold cache, queue :func:`coast_run`'s kernel for each rigid body coasting about
-    Earth for a second process to compile (:func:`rocketsim._jit.compile_beside`) while
+    Earth for a second process to compile (:func:`rocketsim.jit.compile_beside`) while
     this one compiles the first sample's."""
     for body in world.bodies:
         if body.vehicle is None and body.central == "earth":

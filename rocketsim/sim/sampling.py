@@ -32,7 +32,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from rocketsim._jit import entry_point
+from rocketsim.jit import entry_point
 from rocketsim.constants import DEG
 from rocketsim.dynamics.central import air_about
 from rocketsim.dynamics.nbody import FIELD_JD0, FIELD_ROT
@@ -176,7 +176,7 @@ def _held(body) -> np.ndarray:
 
 def _entry(model, args):
     """The compiled entry of ``figures(*args)``, bound once per vehicle model and n-body
-    switch (and once per switch for every rigid body): :meth:`rocketsim._jit.Entries.call`
+    switch (and once per switch for every rigid body): :meth:`rocketsim.jit.Entries.call`
     without its look at every argument, to call with contiguous state and parameters (a
     view is called through the dispatcher). The switch (``args[-2]``, True or None) is a
     type of the entry: a body with an n-body field and one without need two."""

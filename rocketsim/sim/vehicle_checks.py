@@ -37,7 +37,7 @@ import math
 
 import numpy as np
 
-from rocketsim._jit import Entries, compile_beside
+from rocketsim.jit import Entries, compile_beside
 from rocketsim.atmosphere.table import TOP
 from rocketsim.bodies.orientation import BODIES as ORIENTED, spin_rate
 from rocketsim.constants import (AIR_CP, CO2_CP, DEG, G0, HEAT_SHIELD_LIMIT, MARS_MU,
@@ -171,7 +171,7 @@ class VehicleChecks:
     def compile_beside(self, body, h: float, samples: tuple | None) -> None:
         """On a cold cache, queue the kernels of this body's one-step advance (:meth:`advance`)
         and, given ``samples`` (as :meth:`fly_run`'s), of its compiled runs for a second
-        process to compile (:func:`rocketsim._jit.compile_beside`): their types are the
+        process to compile (:func:`rocketsim.jit.compile_beside`): their types are the
         body's from its first step to its staging."""
         if samples is not None:
             compile_beside(runs.fly_run, self._run_arguments(body, 0, h, 1, None, body.watch, NO_CONDITION,

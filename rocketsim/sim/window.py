@@ -58,7 +58,7 @@ import math
 
 import numpy as np
 
-from rocketsim._jit import compile_beside, compiling_elsewhere
+from rocketsim.jit import compile_beside, compiling_elsewhere
 from rocketsim.dynamics.derivative import radial_height
 from rocketsim.dynamics.third_bodies import field_of, nbody_flag
 from rocketsim.flight.conditions import NO_CONDITION

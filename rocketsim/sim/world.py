@@ -29,7 +29,7 @@ from typing import Callable
 
 import numpy as np
 
-from rocketsim.constants import DEG
+from rocketsim.constants import DEG, SECONDS_PER_DAY
 from rocketsim.dynamics.central import air_about, nbody_field, next_center, planetocentric
 from rocketsim.dynamics.cruise import SOI, advance_cruise
 from rocketsim.dynamics.derivative import radial_height
@@ -275,7 +275,7 @@ class World:
         (:func:`rocketsim.dynamics.central.planetocentric`)."""
         if body.central == "earth":
             return body.view().geodetic
-        return planetocentric(body.position, body.central, self.epoch.jd_tt() + body.t / 86400.0)
+        return planetocentric(body.position, body.central, self.epoch.jd_tt() + body.t / SECONDS_PER_DAY)
 
     def _cruise(self, body: Body, n: int) -> int:
         """Cruise ``body`` up to ``n`` steps; returns the steps taken (the rest fly awake)."""

@@ -14,7 +14,7 @@ import math
 
 import numpy as np
 
-from rocketsim._jit import njit
+from rocketsim.jit import njit
 from rocketsim.atmosphere.table import air_in
 from rocketsim.bodies.gravity import point_mass_j2
 from rocketsim.dynamics.derivative import derivative, radial_height

@@ -44,7 +44,7 @@ fill their slots of ``watch``: :meth:`rocketsim.sim.flight_events.FlightEvents.r
 
 import math
 
-from rocketsim._jit import njit
+from rocketsim.jit import njit
 from rocketsim.atmosphere.table import TOP
 from rocketsim.constants import DEG, G0
 from rocketsim.flight.readings import air_here

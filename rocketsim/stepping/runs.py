@@ -36,7 +36,7 @@ import math
 
 import numpy as np
 
-from rocketsim._jit import copy_into, njit
+from rocketsim.jit import copy_into, njit
 from rocketsim.dynamics.derivative import radial_height
 from rocketsim.dynamics.free_body import free_step
 from rocketsim.dynamics.rk4 import N_WORK, advance, near_ground, step_into

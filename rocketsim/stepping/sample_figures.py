@@ -58,7 +58,7 @@ import math
 
 import numpy as np
 
-from rocketsim._jit import njit
+from rocketsim.jit import njit
 from rocketsim.atmosphere.table import air_in
 from rocketsim.constants import DEG
 from rocketsim.dynamics.derivative import radial_height

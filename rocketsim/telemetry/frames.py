@@ -47,6 +47,7 @@ from typing import NamedTuple
 import numpy as np
 
 from rocketsim.bodies.orientation import pole_and_meridian
+from rocketsim.constants import SECONDS_PER_DAY
 from rocketsim.dynamics.nbody import make_field
 from rocketsim.dynamics.third_bodies import bodies_at
 from rocketsim.ephemeris.solar_system import BODIES
@@ -56,7 +57,6 @@ from rocketsim.telemetry import foxglove
 
 MISSION_FRAME = "mission"
 _NAMES = {"earth": ("eci", "ecef")}
-_SECONDS_PER_DAY = 86400.0
 
 
 class CentralFrame(NamedTuple):
@@ -156,7 +156,7 @@ class FrameTree:
         """Angle (rad) about ``z`` from the inertial frame's ``x`` to the body-fixed frame's."""
         if frame.center == "earth":
             return earth_rotation_angle(t)
-        return float(pole_and_meridian(frame.center, frame.jd0_tt + t / _SECONDS_PER_DAY)[2])
+        return float(pole_and_meridian(frame.center, frame.jd0_tt + t / SECONDS_PER_DAY)[2])
 
     def _placement(self, frame: CentralFrame, t: float) -> tuple[np.ndarray, np.ndarray]:
         """``frame``'s centre in the root frame at ``t`` (m: where the ephemeris has it) and

@@ -25,7 +25,7 @@ import orjson
 from numba.core import cgutils, types
 from numba.extending import intrinsic
 
-from rocketsim._jit import njit
+from rocketsim.jit import njit
 
 FLOAT, INTEGER, SECONDS, NANOSECONDS = 0, 1, 2, 3
 _KINDS = "fisn"

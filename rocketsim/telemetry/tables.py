@@ -11,6 +11,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
+from rocketsim.extras import needs
 from rocketsim.telemetry.reader import read_run, states
 
 # components of the vector fields of a state message, in their order
@@ -55,11 +56,9 @@ def export(path: str | Path, out_dir: str | Path, kind: str = "csv") -> list[Pat
     into ``out_dir``; return the files written. Floats keep every digit."""
     out_dir = Path(out_dir)
     if kind == "parquet":
-        try:
-            import pyarrow
-            import pyarrow.parquet
-        except ImportError:
-            raise ImportError("parquet export needs pyarrow: pip install 'rocketsim[parquet]'") from None
+        needs("parquet", "the Parquet export", "pyarrow")
+        import pyarrow
+        import pyarrow.parquet
     out_dir.mkdir(parents=True, exist_ok=True)
     run = read_run(path)
     written = []

@@ -39,12 +39,13 @@ import numpy as np
 import orjson
 
 from rocketsim.version import __version__
-from rocketsim._jit import compile_beside, entry_point
+from rocketsim.jit import compile_beside, entry_point
 from rocketsim.telemetry import foxglove, splice
 from rocketsim.telemetry.held_signals import holding
 from rocketsim.telemetry.frames import MISSION_FRAME, CentralFrame, FrameTree, central_frame
 from rocketsim.telemetry.mcap_stream import McapStream
 from rocketsim.telemetry.schemas import BODY_STATE, EVENT, schema_bytes
+from rocketsim.telemetry.sink import TelemetrySink
 from rocketsim.telemetry.writing_thread import WritingThread
 
 PROFILE = ""
@@ -79,7 +80,7 @@ def _records():
     """:func:`rocketsim.telemetry.splice.records`' compiled entry (bound on first need:
     its argument types never change, and the dispatcher's typing of fifteen arguments
     costs about as much as the call). On a cold cache it is compiled beside the flight
-    (queued by every writer: :func:`rocketsim._jit.compile_beside`) and loaded from the
+    (queued by every writer: :func:`rocketsim.jit.compile_beside`) and loaded from the
     cache here."""
     global _RECORDS
     if _RECORDS is None:
@@ -194,7 +195,7 @@ def _create(path: Path):
     return open(path, "wb")
 
 
-class TelemetryWriter:
+class TelemetryWriter(TelemetrySink):
     """One MCAP telemetry file: per body its state, Foxglove transform and (about
     Earth) location; the central bodies' frames (:mod:`rocketsim.telemetry.frames`);
     the events; the program's log.

@@ -21,7 +21,7 @@ frame, "prograde" meaning a transfer whose angular momentum has a positive
 z component in that frame.
 
 The public entry :func:`lambert` broadcasts over leading dimensions and
-solves every problem in one compiled loop (``rocketsim._jit.njit``).
+solves every problem in one compiled loop (``rocketsim.jit.njit``).
 """
 
 from __future__ import annotations
@@ -30,7 +30,7 @@ import math
 
 import numpy as np
 
-from rocketsim._jit import njit
+from rocketsim.jit import njit
 from rocketsim.errors import InputError
 from rocketsim.orbits._broadcast import flat_rows
 

@@ -50,7 +50,8 @@ import math
 
 import numpy as np
 
-from rocketsim._jit import njit
+from rocketsim.jit import njit
+from rocketsim.constants import DEG
 
 # --- tables ----------------------------------------------------------------
 # Axial coefficient, nose first: docs/physics.md#axial-force's points (0.30 subsonic,
@@ -69,7 +70,7 @@ EFFICIENCY_FINENESS = np.array([1.0, 5.0, 10.0, 20.0, 25.0])
 EFFICIENCY_SUBSONIC = np.array([0.55, 0.60, 0.65, 0.70, 0.72])
 EFFICIENCY_SUBSONIC_MACH = 0.6        # eta is its subsonic value up to this crossflow Mach ...
 EFFICIENCY_SUPERSONIC_MACH = 1.0      # ... and 1 from this one (linear between)
-HANDOVER = math.sin(10.0 * math.pi / 180.0)   # |cos alpha| of the hand-over band (80-100 deg)
+HANDOVER = math.sin(10.0 * DEG)   # |cos alpha| of the hand-over band (80-100 deg)
 
 # rows of AeroArrays.ref
 A_ON = 0            # 1 when the vehicle has aerodynamics

@@ -34,8 +34,8 @@ import math
 
 import numpy as np
 
-from rocketsim._jit import njit
-from rocketsim.frames.quaternion import rotate_components
+from rocketsim.jit import njit
+from rocketsim.frames.quaternion import body_x_components, rotate_components
 from rocketsim.layout import P_POLAR_RADIUS, P_RADIUS, Q, R
 from rocketsim.vehicle.aero import A_GROUND, moment_about_cm
 
@@ -82,10 +82,9 @@ def tip_over_angle(feet: tuple[float, float], x_cm: float) -> float:
 @njit
 def axis_up(y):
     """Cosine of the angle between the body x axis of state ``y`` and the geocentric radial."""
-    w, a, b, c = y[Q], y[Q + 1], y[Q + 2], y[Q + 3]
+    nx, ny, nz = body_x_components(y[Q], y[Q + 1], y[Q + 2], y[Q + 3])
     x, y_, z = y[R], y[R + 1], y[R + 2]
-    return ((1.0 - 2.0 * (b * b + c * c)) * x + 2.0 * (a * b + w * c) * y_ + 2.0 * (a * c - w * b) * z) / \
-        math.sqrt(x * x + y_ * y_ + z * z)
+    return (nx * x + ny * y_ + nz * z) / math.sqrt(x * x + y_ * y_ + z * z)
 
 
 def contact_heights(y, p, vehicle) -> np.ndarray:
@@ -179,12 +178,7 @@ def contact_forces(y, x_cm, a, b, spin, contact, ground=0.0):
         gy = normal * ny + k * sy
         gz = normal * nz + k * sz
         # back to body axes: q* g
-        tx = 2.0 * (-uy * gz + uz * gy)
-        ty = 2.0 * (-uz * gx + ux * gz)
-        tz = 2.0 * (-ux * gy + uy * gx)
-        ex = gx + qw * tx + (-uy * tz + uz * ty)
-        ey = gy + qw * ty + (-uz * tx + ux * tz)
-        ez = gz + qw * tz + (-ux * ty + uy * tx)
+        ex, ey, ez = rotate_components(qw, -ux, -uy, -uz, gx, gy, gz)
         fx += ex
         fy += ey
         fz += ez

@@ -20,7 +20,7 @@ import math
 
 import numpy as np
 
-from rocketsim._jit import Entries
+from rocketsim.jit import Entries
 from rocketsim.vehicle import engines, motors
 from rocketsim.vehicle.motors import M_IGNITION
 from rocketsim.vehicle.build import VehicleModel

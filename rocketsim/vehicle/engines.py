@@ -52,7 +52,7 @@ import math
 
 import numpy as np
 
-from rocketsim._jit import njit
+from rocketsim.jit import njit
 from rocketsim.constants import SUMMERFIELD_SEPARATION_RATIO
 
 # eng columns

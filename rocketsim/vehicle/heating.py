@@ -23,7 +23,7 @@ from __future__ import annotations
 
 import math
 
-from rocketsim._jit import njit
+from rocketsim.jit import njit
 from rocketsim.constants import MARS_MU, STEFAN_BOLTZMANN, SUTTON_GRAVES_EARTH, SUTTON_GRAVES_MARS
 
 

@@ -12,7 +12,7 @@ records the event with these figures and ends the body.
 
 from __future__ import annotations
 
-from rocketsim._jit import njit
+from rocketsim.jit import njit
 from rocketsim.constants import DEG, G0, STRUCTURE_AXIAL_LIMIT_G, STRUCTURE_Q_ALPHA_LIMIT
 
 

@@ -29,7 +29,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from rocketsim._jit import njit
+from rocketsim.jit import njit
 from rocketsim.constants import LIQUID_ROLL_INERTIA_FRACTION
 from rocketsim.vehicle.motors import M_CORE_A, M_CORE_B, M_LATERAL, M_RADIUS2, M_X_CENTRE
 

@@ -41,7 +41,7 @@ import math
 
 import numpy as np
 
-from rocketsim._jit import njit
+from rocketsim.jit import njit
 
 # motor columns
 M_STAGE = 0         # index of the stage the motor belongs to

@@ -43,7 +43,7 @@ from __future__ import annotations
 
 import math
 
-from rocketsim._jit import njit
+from rocketsim.jit import njit
 from rocketsim.frames.local import air_velocity_inertial, body_air_velocity
 from rocketsim.vehicle.motors import sooner, within_step
 

@@ -36,7 +36,7 @@ import math
 
 import numpy as np
 
-from rocketsim._jit import njit
+from rocketsim.jit import njit
 from rocketsim.layout import R, V
 
 RL_ON = 0           # 1 while on the rail

@@ -13,7 +13,7 @@ nothing.
 
 from __future__ import annotations
 
-from rocketsim._jit import njit
+from rocketsim.jit import njit
 from rocketsim.vehicle.aero import moment_about_cm
 
 # columns of AeroArrays.rcs

@@ -53,14 +53,13 @@ import math
 
 import numpy as np
 
-from rocketsim._jit import njit
+from rocketsim.jit import njit
+from rocketsim.constants import USSA_MEAN_FREE_PATH0, USSA_RHO0
 
 # sphere drag against Mach number, high Reynolds number (see the module docstring)
 SPHERE_MACH = np.array([0.0, 0.5, 0.7, 0.8, 0.9, 1.0, 1.2, 1.5, 2.0, 3.0, 5.0])
 SPHERE_CD = np.array([0.47, 0.50, 0.56, 0.62, 0.75, 0.90, 1.00, 1.02, 0.98, 0.94, 0.92])
 FREE_MOLECULAR_CD = 2.2             # diffuse re-emission (Vallado 2013, 8.6.2)
-MEAN_FREE_PATH_SL = 6.6328e-8       # m, sea level (USSA 1976, table I)
-DENSITY_SL = 1.225                  # kg/m^3, sea level (USSA 1976)
 KN_CONTINUUM, KN_FREE = 1e-3, 10.0  # the bridging's ends
 
 
@@ -83,7 +82,7 @@ def tumbling_cd(mach, rho, length):
     """Drag coefficient (on the mean projected area) of a body ``length`` m long
     tumbling at Mach ``mach`` in air of density ``rho`` kg/m^3: continuum, free
     molecular or bridged by the Knudsen number (module docstring)."""
-    kn = MEAN_FREE_PATH_SL * DENSITY_SL / (rho * length)
+    kn = USSA_MEAN_FREE_PATH0 * USSA_RHO0 / (rho * length)
     if kn >= KN_FREE:
         return FREE_MOLECULAR_CD
     c = continuum_cd(mach)

@@ -76,7 +76,7 @@ import time
 from collections import Counter
 from pathlib import Path
 
-from rocketsim._jit import Entries
+from rocketsim.jit import Entries
 from rocketsim.scenario.load import load
 from rocketsim.sim import flight_events, schedule, vehicle_checks, world
 from rocketsim.stepping import runs
