@@ -33,8 +33,13 @@ A rigid body coasting with nothing for Python (a spacecraft in orbit,
 """
 
 import math
+import threading
+import warnings
+from contextlib import contextmanager
 
 import numpy as np
+from numba import objmode
+from numba.core.errors import NumbaWarning
 
 from rocketsim.jit import copy_into, njit
 from rocketsim.dynamics.derivative import radial_height
@@ -51,8 +56,30 @@ from rocketsim.vehicle.aero import A_GROUND, A_REACH
 from rocketsim.vehicle.engines import S_DRY
 from rocketsim.vehicle.rail import RL_ON
 
-# why a run returned
-LIMIT, PYTHON, CONDITION = 0, 1, 2
+# why a run returned (QUIET: where the Python side asked, after a step with nothing for it)
+LIMIT, PYTHON, CONDITION, QUIET = 0, 1, 2, 3
+# numba says so of every kernel with an objmode block: fly_run's holds the GIL only for that
+warnings.filterwarnings("ignore", message="Code running in object mode won't allow parallel execution",
+                        category=NumbaWarning)
+_ASKING = threading.local()         # what fly_run asks between its steps in this thread (asking)
+
+
+def ask(y, k: int) -> bool:
+    """Called by :func:`fly_run` (asked to) after a step with nothing for the Python side,
+    its state ``y`` at step ``k``: whether the run ends there (see :func:`asking`)."""
+    return _ASKING.question(y, k)
+
+
+@contextmanager
+def asking(question):
+    """While inside, :func:`fly_run`'s question between its steps in this thread is
+    ``question(y, k)`` (True: the run ends after step ``k``, state ``y``): a program's
+    condition read in Python (:meth:`rocketsim.sim.vehicle_checks.VehicleChecks.fly_run`)."""
+    _ASKING.question = question
+    try:
+        yield
+    finally:
+        _ASKING.question = None
 
 
 @njit(nogil=True)
@@ -92,8 +119,19 @@ def fly_part(y, k0, h, n_max, p, fp, air, area_mass, length, floor, liftoff, orb
 
 
 @njit(nogil=True)
+def _asked(y, k):
+    """:func:`ask` from compiled code, holding the GIL for the call alone. A kernel of its
+    own: the object-mode block's dispatcher is handed to Python unpickled at every call,
+    so it is kept to this function's few lines (in :func:`fly_run` it would carry that
+    whole function's code)."""
+    with objmode(ends="boolean"):
+        ends = ask(y, k)
+    return ends
+
+
+@njit(nogil=True)
 def fly_run(y, k0, h, n_max, p, veh, in_flight, steer, code, fins, errors, j0, gauges, watch, carry, condition,
-            every, rows, record, sampler, nbody=None):
+            asks, every, rows, record, sampler, nbody=None):
     """Fly the staged vehicle with aerodynamics ``veh`` (its arrays; ``in_flight`` the same
     without contact points) from state ``y`` at step ``k0`` (of ``h`` s) for up to
     ``n_max`` steps, returning after the first step where the Python side may have
@@ -110,18 +148,23 @@ def fly_run(y, k0, h, n_max, p, veh, in_flight, steer, code, fins, errors, j0, g
     vehicle's first tank). ``carry`` is updated in place to its values before the
     last step's checks. ``nbody`` as :func:`rocketsim.dynamics.rk4.step`'s.
 
+    With ``asks`` the Python side is asked after every step but the last that it has
+    nothing to do at (:func:`ask`, a program's condition read in Python: its checks'
+    state, ``carry``, and sample as after that step) whether the run ends there: then
+    it returns with reason :data:`QUIET`.
+
     At each telemetry sample step (a multiple of ``every``) before the last step the
-    world's finiteness test is made (:func:`~rocketsim.stepping.quiet.surely_finite`) and, with ``record``, the
-    sample's figures (:func:`rocketsim.stepping.sample_figures.figures` of the state, its time,
-    the arguments ``sampler`` and the shield's temperature after the step) go to the
-    next row of ``rows``; the run returns at a sample step where the test may fail or
+    world's finiteness test is made (:func:`~rocketsim.stepping.quiet.surely_finite`) and,
+    with ``record``, the sample's figures (:func:`rocketsim.stepping.sample_figures.figures`
+    of the state, its time, the arguments ``sampler`` and the shield's temperature after
+    the step) go to the next row of ``rows``; the run returns at a sample step where the test may fail or
     (with ``record``) the rows are full, leaving that step and its sample to the world.
 
     Returns ``(y, y_before, steps taken, figures, reason, y_peak, rows filled)``: the
     state after the last step and before it, the checks' figures at the last state
     (:func:`~rocketsim.stepping.checked_step.step_figures`, the flight loads without
     contact forces), :data:`LIMIT`,
-    :data:`PYTHON` or :data:`CONDITION`, the state of the new dynamic-pressure peak
+    :data:`PYTHON`, :data:`CONDITION` or :data:`QUIET`, the state of the new dynamic-pressure peak
     (``carry[CARRY_PEAK_STEP]`` steps into the run; 0: none), and the samples in ``rows``.
     """
     if errors.shape[0] > 0:
@@ -174,6 +217,8 @@ def fly_run(y, k0, h, n_max, p, veh, in_flight, steer, code, fins, errors, j0, g
         if not math.isnan(peak):
             carry[CARRY_PEAK_Q], carry[CARRY_PEAK_STEP] = peak, j
             y_peak = y
+        if asks and _asked(y, k0 + j):
+            return y, before, j, figures, QUIET, y_peak, filled
 
 
 @njit(nogil=True)
