@@ -70,10 +70,12 @@ def fly(scenario: Path, output: Path | None, step: float | None, duration: float
         rocketsim fly scenarios/falcon9-hop.yaml --duration 30s --set seed=3
         rocketsim fly scenarios/falcon9-hop.yaml --live --warp 10
     """
-    from rocketsim.api import fly_live, fly_to_file, load, strict_json
+    from rocketsim.api import design_warnings, fly_live, fly_to_file, load, strict_json
     from rocketsim_cli.compiling import compile_message
 
     loaded = load(scenario, overrides(settings))
+    for line in design_warnings(loaded):
+        click.echo(f"warning: {scenario}: {line}", err=True)
     output = output or Path(f"{scenario.stem}.mcap")
     check_writable(output, "--output")
     if summary_json is not None:

@@ -158,13 +158,14 @@ def test_a_vehicle_pitched_hard_at_max_q_breaks_up_at_the_right_q_alpha():
 
 def light_stage(thrust: float):
     """``(model, body)``: one engine of ``thrust`` (N, spooled up) under a light stage in
-    vacuum (700 km, above the air)."""
+    vacuum (700 km, above the air). Its file gives the 15 g axial limit (a vehicle whose
+    engines pass the launcher's assumed limit at their least throttle must give its own)."""
     data = {"name": "light", "stages": [{
         "name": "S", "length": "4 m", "diameter": "0.5 m", "structure_mass": "300 kg",
         "tanks": [{"name": "T", "propellant": "X", "density": 1000.0, "radius": "0.2 m", "length": "3 m",
                    "position": "0.5 m", "propellant_mass": "200 kg"}],
         "engines": [{"name": "E", "thrust_vacuum": f"{thrust} N", "isp_vacuum": "300 s", "exit_area": "0.01 m2",
-                     "spool_up": "0.01 s"}]}], "aero": {}}
+                     "spool_up": "0.01 s"}]}], "aero": {"limits": {"axial_load": "15 g"}}}
     model = build(spec(data))
     r = np.array([EARTH_RADIUS_EQ + 700e3, 0.0, 0.0])
     y = model.state(r, np.array([0.0, 7500.0, 0.0]))

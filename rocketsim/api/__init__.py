@@ -32,8 +32,14 @@ Files, quantities and the things a scenario names:
 
 What a scenario's parts are on paper and in the sky:
 
-* :func:`vehicle_report` -> a staged vehicle's :class:`VehicleReport`: masses, Delta-v,
-  thrust-to-weight, centre of mass and inertia (drawn by :func:`rocketsim.plots.vehicle`);
+* :func:`vehicle_report` -> a staged vehicle's :class:`VehicleReport` (its file a vehicle's
+  or a scenario's): masses, Delta-v, thrust-to-weight, centre of mass and inertia, and its
+  design review (drawn by :func:`rocketsim.plots.vehicle`);
+* :func:`review` -> the pre-flight :class:`Review` of a vehicle or scenario (a file, a
+  mapping or what ``load`` returned): centre of pressure and static margin at liftoff
+  and burnout, thrust-to-weight, rail-exit speed, peak axial loads against the limit,
+  how each stage steers, warnings; :func:`design_warnings` -> the warnings alone (pure
+  Python; none for a rigid body, a site or a mission file);
 * :func:`atmosphere` -> an :class:`AirProfile`: the air of a day or of Mars against height
   (drawn by :func:`rocketsim.plots.atmosphere`);
 * :func:`ephemeris` -> the :class:`BodyPositions` of the Sun, Earth, Moon or Mars
@@ -73,6 +79,8 @@ _HOMES = {
     "validate_file": "rocketsim.api.scenario_files", "schema": "rocketsim.api.scenario_files",
     "schema_kinds": "rocketsim.api.scenario_files",
     "vehicle_report": "rocketsim.api.vehicle_figures", "VehicleReport": "rocketsim.api.vehicle_figures",
+    "review": "rocketsim.scenario.preflight", "design_warnings": "rocketsim.scenario.preflight",
+    "Review": "rocketsim.vehicle.review",
     "atmosphere": "rocketsim.api.air_profile", "AirProfile": "rocketsim.api.air_profile",
     "ephemeris": "rocketsim.api.body_positions", "BodyPositions": "rocketsim.api.body_positions",
     "EPHEMERIS_BODIES": ("rocketsim.ephemeris.solar_system", "BODIES"),

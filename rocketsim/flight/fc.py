@@ -577,16 +577,17 @@ class FlightComputer:
         return self._engines
 
     def ignite(self, which=None) -> list[str]:
-        """Command ignition of all engines and solid motors, or of an engine, group, stage or
-        motor by name (``"booster"``, ``"Merlin 1D ring"``, ``"booster/Merlin 1D ring/3"``,
-        ``"sustainer/K1000T"``) or an engine by index. An engine's thrust follows after its
-        ignition dead time and spool-up; a solid motor's curve starts now. Returns the
-        engines that accepted (not already on, propellant left, an ignition left) and the
-        motors lit (``ignition: program`` in the vehicle file, not lit yet: a motor
-        lights once)."""
+        """Command ignition of the engines and solid motors of the lowest stage that has any
+        (``which=None``: the stage flying now, never the stages stacked above it), or of an
+        engine, group, stage or motor by name (``"second stage"``, ``"Merlin 1D ring"``,
+        ``"booster/Merlin 1D ring/3"``, ``"sustainer/K1000T"``), an engine by index, or a
+        list of those. An engine's thrust follows after its ignition dead time and spool-up;
+        a solid motor's curve starts now. Returns the engines that accepted (not already on,
+        propellant left, an ignition left) and the motors lit (``ignition: program`` in the
+        vehicle file, not lit yet: a motor lights once)."""
         which = arguments.engines("fc.ignite", which)
         propulsion = self._propulsion()
-        chosen, motors = propulsion.choose(which)
+        chosen, motors = propulsion.choose(propulsion.lowest_stage() if which is None else which)
         names = propulsion.ignite(self._craft.y, chosen)
         motors = propulsion.light(self._craft.time, motors)
         if names or motors:

@@ -85,8 +85,8 @@ def build_world(loaded: LoadedScenario, step: float | None = None,
             up = enu_basis(scenario.site.latitude, scenario.site.longitude)[2]
             x_cm = body.vehicle.mass_properties(body.y)[1]
             body.y[R:R + 3] = standing_on_ground(r, up, x_cm, float(contact[:, 0].min()))
-        if scenario.site is not None and scenario.site.ground_height is not None and mission.start.site:
-            body.vehicle.arrays.aero.ref[A_GROUND] = scenario.site.ground_height   # flat ground
+        if scenario.site is not None and mission.start.site:
+            body.vehicle.arrays.aero.ref[A_GROUND] = scenario.site.ground   # flat ground
         if scenario.vehicle.aero is not None and scenario.vehicle.aero.aerodynamics:
             site, target_pad = scenario.site, mission.target.pad
             if target_pad is not None:

@@ -16,7 +16,7 @@ One :class:`FlightEvents` watches one body; the world calls
   instant ``burnout_s``, its total impulse).
 * ``apogee`` — a vehicle with parachutes that rose from the ground has begun to
   come down (its vertical speed over the ground turned negative; figures:
-  ``altitude_m`` above the ground: the ellipsoid, or the site's ``ground_height``,
+  ``altitude_m`` above the ground: the site's flat ground, or the ellipsoid,
   and where: ``latitude_deg``, ``longitude_deg``).
 * ``parachute_deployed`` — a parachute's trigger fired (its YAML trigger, at the
   end of the step in which it was met, or ``fc.deploy_parachute``; figures: the

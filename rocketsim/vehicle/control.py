@@ -53,6 +53,13 @@ class Propulsion:
             raise ValueError(f"no engine, group or stage named {which!r}; engines: {', '.join(names)}")
         return found
 
+    def lowest_stage(self) -> str | None:
+        """The name of the lowest stage with engines or solid motors (None: there is none):
+        what ``fc.ignite()`` lights when it names nothing."""
+        found = {int(self.a.eng[e, engines.E_STAGE]) for e in range(self.model.n_engines)}
+        found |= {self.model.stage_names.index(name.split("/", 1)[0]) for name in self.model.motor_names}
+        return self.model.stage_names[min(found)] if found else None
+
     def choose(self, which=None) -> tuple[list[int], list[int]]:
         """``(engines, motors)``: the indices of the engines and of the solid motors named
         by ``which`` (see the module; an index names an engine); ValueError if an item
