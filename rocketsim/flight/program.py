@@ -286,11 +286,32 @@ class ProgramRunner:
         self._wake_time = 0.0
         self._predicate: Callable[[], bool] | None = None
         self._predicate_line: int | None = None     # the program's line that handed it over
+        self._checked: tuple | None = None          # (t, what due(t) gives: True, False or its error)
         self.finished = False
 
     # --- called by the simulator -------------------------------------------
     def due(self, t: float) -> bool:
-        """Whether the program is to run in the step starting at ``t``."""
+        """Whether the program is to run in the step starting at ``t`` (what :meth:`check`
+        found for ``t``, if it was asked)."""
+        checked, self._checked = self._checked, None
+        if checked is not None and checked[0] == t:
+            if isinstance(checked[1], ProgramError):
+                raise checked[1]
+            return checked[1]
+        return self._due(t)
+
+    def check(self, t: float) -> bool:
+        """:meth:`due` at ``t`` read now, its outcome (True, False or the program's error)
+        kept for the call of :meth:`due` at ``t`` (a condition read ahead of the world's
+        loop, once, as the loop reads it); True unless it is False."""
+        try:
+            outcome = self._due(t)
+        except ProgramError as error:
+            outcome = error
+        self._checked = (t, outcome)
+        return outcome is not False
+
+    def _due(self, t: float) -> bool:
         if self.finished or t + WAKE_TOLERANCE < self._wake_time:
             return False
         if self._predicate is None:
