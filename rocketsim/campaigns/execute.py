@@ -56,13 +56,12 @@ WORKER_WARM_S = 1.0      # s of the nominal run a worker flies before its first 
 # Dask settings of the embedded cluster's workers. A worker flies a run in a thread
 # beside its event loop, and each time another thread takes the GIL the flight
 # thread hands it over and takes it back (two futex calls, a sleep and a wake-up on
-# another core: on a 2-vCPU VM measured at 0.4-0.6 s of system time and as much
-# again of user time in a 5 s flight). By default a worker's statistical profiler
-# samples every 10 ms and its event loop ticks every 20 ms, both for the dashboard
-# this cluster does not serve; with these settings a Falcon 9 landing on one worker
-# took 4.0-5.8 s against 5.1-7.4 s (five runs each, twice, load < 1), as in a plain
-# process (4.0-4.5 s). The memory monitor still pauses or restarts a worker over
-# its memory limit, every 2 s rather than every 100 ms: a flight's memory grows slowly.
+# another core), a cost of both system and user time. By default a worker's
+# statistical profiler samples every 10 ms and its event loop ticks every 20 ms, both
+# for the dashboard this cluster does not serve; with these settings a run on a worker
+# costs about what it costs in a plain process (the campaign benchmark prints both).
+# The memory monitor still pauses or restarts a worker over its memory limit, every
+# 2 s rather than every 100 ms: a flight's memory grows slowly.
 QUIET_WORKERS = {
     "distributed.worker.profile.enabled": False,
     "distributed.admin.tick.interval": "1s",

@@ -220,8 +220,8 @@ def load_program_module(path: Path) -> SimpleNamespace:
 @functools.lru_cache(maxsize=64)
 def _compiled(source: str, filename: str):
     """The code object of a program's text (kept by text and file name: each flight of a
-    campaign or a notebook loads its programs again, and compiling the F9 mission's two
-    took 3.9 of its world's 5.2 ms to build; a code object is immutable, and each load
+    campaign or a notebook loads its programs again, and compiling them was most of the
+    cost of building a world; a code object is immutable, and each load
     runs it in a namespace of its own). A syntax error is raised again at every load."""
     return compile(source, filename, "exec")
 
