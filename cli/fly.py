@@ -51,7 +51,7 @@ def _raise_terminated(signum, frame):
               help="Mission time to fly, e.g. 10s, '3 h', 311d (overrides the mission; a bare number is s).")
 @click.option("--set", "settings", multiple=True, metavar="PATH=VALUE",
               help="Change a field before flying, as the file would hold it, e.g. "
-                   "--set 'vehicle.stages[booster].structure_mass=26 t' (repeatable; paths as in the README).")
+                   "--set 'vehicle.stages[booster].structure_mass=26 t' (repeatable; paths: docs/how-to/change-fields.md).")
 @click.option("--summary-json", type=click.Path(dir_okay=False, path_type=Path), default=None,
               help="Also write the flight summary as JSON to this file.")
 @live_options
