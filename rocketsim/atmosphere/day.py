@@ -83,7 +83,7 @@ def smoothstep(x):
 def standard_table(h_low: float = LOWEST) -> AtmosphereTable:
     """The 1976 standard atmosphere, no wind, every 50 m from ``h_low`` to 600 km.
 
-    Built once per ``h_low`` (about 8 ms) and shared: the table is immutable
+    Built once per ``h_low`` and shared: the table is immutable
     (a frozen dataclass of read-only arrays)."""
     z = grid(min(h_low, LOWEST))
     air = us_standard_1976(z)

@@ -79,7 +79,7 @@ def describe(values, seed, *, confidence: float = CONFIDENCE, n_resamples: int =
     elif constant:
         low = high = point
     else:
-        from scipy import stats     # here: scipy.stats takes ~0.5 s to import
+        from scipy import stats     # here: scipy.stats is slow to import
         result = stats.bootstrap((x,), _statistics, n_resamples=n_resamples, batch=_BATCH,
                                  vectorized=True, confidence_level=confidence,
                                  method=BOOTSTRAP_METHOD, random_state=np.random.default_rng(seed))

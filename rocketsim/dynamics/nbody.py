@@ -112,10 +112,10 @@ def no_air():
 
 
 # inlined by LLVM (forceinline) into translational_rk4, a borrowing kernel (rocketsim.jit):
-# typed and lowered once, not once per RK4 stage as numba's own inlining did (3.4 s of a cold
-# Falcon 9's compiling, now 1.3 s); a call per stage left to LLVM's choice is not inlined and
-# costs rails 5 %; in a kernel that counts references its tuple of arrays' counts were half
-# of a rails step (measured by tests/benchmarks/test_bench_rails.py)
+# typed and lowered once, not once per RK4 stage as numba's own inlining did (a large part of
+# a cold Falcon 9's compiling); a call per stage left to LLVM's choice is not inlined and
+# slows the rails; in a kernel that counts references its tuple of arrays' counts would cost
+# more than the rest of a rails step (tests/benchmarks/test_bench_rails.py measures it)
 @njit(borrows=True, forceinline=True)
 def translational_acceleration(x, y, z, vx, vy, vz, p, s, fp, air, pos):
     """The field at ``(x, y, z)`` (m) and, with ``fp[FIELD_DRAG]`` set, point-mass drag

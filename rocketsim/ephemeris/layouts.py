@@ -6,9 +6,9 @@ terms grouped by what the kernel sums together, each distinct frequency (or
 multiplier row) listed once, and a plan to get most of their sines and
 cosines from two others by angle addition (:func:`rocketsim.ephemeris.sincos.sum_recipe`).
 The plan is the costly part (a search among the pairs of every phase, in
-Python: some 40 ms for the project's three series), so the generator
+Python), so the generator
 (``generate.py``) writes the truncated series' plans into ``_tables.py`` beside
-the series, and a process lays them out at import with those (about 1 ms); the
+the series, and a process lays them out at import with those; the
 tests and the benchmark lay out the full series here to measure the truncation.
 """
 

@@ -1,8 +1,7 @@
 """Sine and cosine together, inlined, for the series' inner loops.
 
 The ephemeris kernels evaluate a few hundred sines and cosines per instant;
-the C library's ``sin`` and ``cos`` are opaque calls that cost ~20 ns each
-and stop the compiler from vectorising the loop. :func:`sincos` is plain
+the C library's ``sin`` and ``cos`` are opaque calls that stop the compiler from vectorising the loop. :func:`sincos` is plain
 arithmetic the compiler can inline and vectorise:
 
 1. reduction: ``k = round(x / (pi/2))``, ``r = x - k pi/2`` with pi/2 split

@@ -116,7 +116,7 @@ def rcs_command(torques: np.ndarray, wanted: np.ndarray) -> np.ndarray:
     to ``wanted`` (N m, body axes): bounded-variable least squares."""
     if not np.any(wanted) or not np.any(torques):
         return np.zeros(torques.shape[1])
-    from scipy.optimize import lsq_linear   # here: scipy.optimize takes ~0.5 s to import
+    from scipy.optimize import lsq_linear   # here: scipy.optimize is slow to import
     return np.clip(lsq_linear(torques, wanted, bounds=(0.0, 1.0), method="bvls").x, 0.0, 1.0)
 
 

@@ -9,9 +9,9 @@ serves is what the file holds, record for record.
 
 The records are parsed with the ``mcap`` package (schemas, channels, chunks and
 their decompression); the messages inside a chunk are cut out here
-(:func:`chunk_messages`), as the ``mcap`` package's reader takes some 25 us per
-message (an object per record) where a live view of a coasting orbit must
-serve a few hundred thousand a second: cutting them out costs about 1 us.
+(:func:`chunk_messages`), as the ``mcap`` package's reader makes an object per
+record, too slow for a live view of a coasting orbit, which must serve a few
+hundred thousand messages a second.
 """
 
 from __future__ import annotations

@@ -277,7 +277,7 @@ def _curve_end(motor, curve, i: int) -> float:
 def periapsis_bound(y, mu: float) -> float:
     """An upper bound (m) of the periapsis radius of state ``y`` (ECI position and
     velocity first, m and m/s) about ``mu`` (m^3/s^2): the semi-latus rectum
-    ``|r x v|^2 / mu`` (the periapsis is ``p / (1 + e)``), in plain floats (~1 us).
+    ``|r x v|^2 / mu`` (the periapsis is ``p / (1 + e)``), in plain floats.
     Below :data:`ORBIT_PERIAPSIS_BOUND` the body cannot be in orbit and the elements
     are not computed."""
     x, y_, z, u, v, w = y[:6].tolist()

@@ -13,8 +13,8 @@ handler can run there.
 
 The handlers are swapped through ``_signal``, the C module behind
 :mod:`signal`: ``signal.signal`` and ``signal.getsignal`` turn every handler
-returned into an enum member (5-10 us a call, where the swap itself takes under
-1 us), and the operations held are a sample's or a message's writing.
+returned into an enum member, a cost several times the swap's own, and the
+operations held are a sample's or a message's writing.
 """
 
 from __future__ import annotations

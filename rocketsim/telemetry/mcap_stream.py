@@ -1,8 +1,8 @@
 """A streaming MCAP writer with a cheap message path (the MCAP format, version 0).
 
 Telemetry writes tens of thousands of small messages per flight; the ``mcap``
-package's writer spends about 8 us on each (a record object, statistics and
-index objects, five stream writes). This writer packs a message record in one
+package's writer builds a record object, statistics and index objects and makes
+five stream writes for each. This writer packs a message record in one
 ``struct`` call into the open chunk, a reused byte array, and keeps the chunk's
 message index as an array of (channel, log time, offset); a caller that frames
 records itself writes them straight into both (:meth:`McapStream.reserve`,
@@ -47,9 +47,8 @@ SUMMARY_OFFSET, DATA_END = 14, 15
 _RECORD = struct.Struct("<BQ")               # opcode, content length
 _MESSAGE = struct.Struct("<BQHIQQ")          # record prefix, channel, sequence, log and publish time
 _MESSAGE_FIXED = 2 + 4 + 8 + 8               # content bytes before the data
-# zstd level of the chunks: on telemetry chunks level 1 compresses at about 580 MB/s
-# where the default level 3 does 260 MB/s (about 2 us less per 10 Hz sample of a
-# staged vehicle) and packs them no worse (5.9 : 1 against 4.9 : 1 on a Falcon 9 run)
+# zstd level of the chunks: on telemetry chunks level 1 compresses about twice as fast as
+# the default level 3 and packs them no worse (tests/benchmarks measure both)
 ZSTD_LEVEL = 1
 # bytes a chunk holds beyond its size (the records that take it there): grown when short
 _SLACK = 16 * 1024

@@ -106,7 +106,7 @@ EVENT = {
 
 def schema_bytes(schema: dict) -> bytes:
     """The schema as registered in the file (stable key order), written once per schema
-    dictionary (the schemas are constants; the state's takes about 0.2 ms)."""
+    dictionary (the schemas are constants; encoding the state's is not cheap)."""
     found = _BYTES.get(id(schema))
     if found is None or found[0] is not schema:
         found = _BYTES[id(schema)] = (schema, json.dumps(schema, sort_keys=True, separators=(",", ":")).encode())

@@ -209,8 +209,8 @@ def _copy(out, at, source, start, end):
 @intrinsic
 def _memcpy(typingctx, out, at, source, start, n):
     """``n`` bytes from ``source[start:]`` to ``out[at:]`` (uint8 arrays or bytes), as one
-    block copy: a byte loop costs 20-40 ns for each of a sample's hundred or so pieces
-    of 5-30 bytes, the block copy a few."""
+    block copy, where a byte loop would pay per byte for each of a sample's hundred or
+    so pieces of 5-30 bytes."""
     def codegen(context, builder, signature, args):
         target = context.make_array(signature.args[0])(context, builder, args[0])
         origin = context.make_array(signature.args[2])(context, builder, args[2])

@@ -63,8 +63,8 @@ PENDING = 128
 
 def encode(message: dict) -> bytes:
     """JSON bytes of a message: compact, keys in insertion order, floats in
-    their shortest round-trip form (orjson: ~2 us for a state message where
-    the standard library takes ~15 us). NaN and infinities become null, as
+    their shortest round-trip form (orjson, several times faster than the
+    standard library's json on a state message). NaN and infinities become null, as
     JSON has no spelling for them; numpy scalars and arrays are written as numbers."""
     return orjson.dumps(message, default=_plain, option=orjson.OPT_SERIALIZE_NUMPY)
 
@@ -96,7 +96,7 @@ _RECORDS_ARGUMENTS = (b"", np.zeros(1), _INTS, _INTS, 0, _BYTES, _INTS, _INTS, _
                       _INTS, _INTS, 0, _BYTES, 0, _INTS, 0)
 # where the second process compiles records among the flight's kernels: after the first
 # runs' (the flight's first samples come after its own kernels have compiled, seconds in
-# which the second core compiles the telemetry's: about 2 s of a cold coast's 8-10 s)
+# which the second core compiles the telemetry's)
 RECORDS_PRIORITY = 1
 
 
@@ -183,8 +183,8 @@ def _plain(value):
 def _create(path: Path):
     """``path`` opened for writing as a new file: an earlier regular file there (with no
     other name) is removed first rather than truncated, as ext4 (auto_da_alloc) writes a
-    file truncated to nothing out to disk when it is closed, some 4 ms for a 1 MB run
-    where a new file's writing costs 0.2 ms."""
+    file truncated to nothing out to disk when it is closed (a synchronous write a
+    new file does not pay)."""
     try:
         found = os.lstat(path)
     except OSError:
