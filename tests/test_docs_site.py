@@ -1,5 +1,5 @@
 """The documentation site (docs/) builds with warnings as errors, its reference is the
-code's, its links resolve, and the pages a user follows step by step run.
+code's and its links resolve (the pages a reader runs are run by test_docs_pages.py).
 
 * The build is ``python -m sphinx -W --keep-going -n`` (every warning an error, every
   cross-reference resolved), as CI builds it on a fresh clone.
@@ -8,12 +8,6 @@ code's, its links resolve, and the pages a user follows step by step run.
   appears on the page without editing it.
 * Every link between the built pages leads to a page and an anchor that exist.
 * The README stays a front page, and its test command is the one CI (``.ci/run``) runs.
-* The getting-started page, the tutorials and the telemetry how-to are run as a reader
-  runs them, from a folder holding the repository's scenarios, vehicles, motors and
-  campaigns: each ``$ rocketsim ...`` line of their ``console`` blocks, in order, then
-  their ``python`` blocks as one script. The flights they fly are the pages' own,
-  chosen small (a 0.1 s step, a shortened duration, a 16-run campaign) so that the
-  whole file takes a minute or two.
 """
 
 from __future__ import annotations
@@ -21,7 +15,6 @@ from __future__ import annotations
 import functools
 import html.parser
 import os
-import re
 import subprocess
 import sys
 from pathlib import Path
@@ -35,14 +28,6 @@ DOCS = ROOT / "docs"
 sys.path.insert(0, str(DOCS / "_ext"))
 
 import rocketsim_docs  # noqa: E402  (docs/_ext, what conf.py loads)
-
-# The pages a reader follows by running them, and the repository folders they read.
-RUNNABLE = ["getting-started.md", *sorted(p.relative_to(DOCS).as_posix()
-                                          for p in (DOCS / "tutorials").glob("*.md")),
-            "how-to/telemetry.md"]
-INPUTS = ["scenarios", "vehicles", "motors", "campaigns"]
-# the ``rocketsim`` command installed beside this Python (pip's console script)
-ROCKETSIM = str(Path(sys.executable).parent / "rocketsim")
 
 
 @pytest.fixture(scope="module")
@@ -171,34 +156,6 @@ def test_every_link_between_pages_resolves(site):
                     parts.fragment not in _page(site, target.relative_to(site).as_posix()).ids:
                 broken.append(f"{path.relative_to(site)}: {href}")
     assert broken == []
-
-
-_FENCE = re.compile(r"^```(\w+)\n(.*?)^```", re.S | re.M)
-
-
-def _blocks(page: str, language: str) -> list[str]:
-    return [body for lang, body in _FENCE.findall((DOCS / page).read_text()) if lang == language]
-
-
-@pytest.mark.parametrize("page", RUNNABLE)
-def test_a_page_runs_as_its_reader_runs_it(page, tmp_path):
-    for name in INPUTS:
-        (tmp_path / name).symlink_to(ROOT / name)
-    env = {**os.environ, "MPLBACKEND": "Agg"}
-    commands = [line[2:] for body in _blocks(page, "console") for line in body.splitlines()
-                if line.startswith("$ rocketsim ")]
-    scripts = _blocks(page, "python")
-    assert commands or scripts, f"{page} has nothing to run"
-    for command in commands:
-        args = command.split()[1:]
-        done = subprocess.run([ROCKETSIM, *args], cwd=tmp_path,
-                              env=env, capture_output=True, text=True, timeout=900)
-        assert done.returncode == 0, f"{page}: $ {command}\n{done.stdout[-2000:]}\n{done.stderr[-3000:]}"
-    if scripts:
-        (tmp_path / "page.py").write_text("\n".join(scripts))
-        done = subprocess.run([sys.executable, "page.py"], cwd=tmp_path, env=env,
-                              capture_output=True, text=True, timeout=900)
-        assert done.returncode == 0, f"{page}\n{done.stdout[-2000:]}\n{done.stderr[-3000:]}"
 
 
 def test_the_readme_is_a_front_page_holding_the_command_ci_runs():

@@ -1,4 +1,4 @@
-"""The flight-computer scheduling contract (docs/how-to/programs.md).
+"""The flight-computer scheduling contract (docs/how-to/programs.md)."""
 
 import json
 import re
