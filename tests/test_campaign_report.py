@@ -152,7 +152,7 @@ def test_probabilities_are_clopper_pearson_of_the_outcomes(campaign):
     rep, truth, _ = campaign
     table = rep.tables["probabilities"].set_index("outcome")
     ok = truth["ok"]
-    expected = {"booster landed (touchdown)": ((ok & ~truth["impact"]).sum(), ok.sum()),
+    expected = {"booster touched down (first contact; tip-overs too)": ((ok & ~truth["impact"]).sum(), ok.sum()),
                 "booster crashed (impact)": ((ok & truth["impact"]).sum(), ok.sum()),
                 "stage2 reached orbit": ((ok & (truth["periapsis"] > 180e3)).sum(), ok.sum()),
                 "fairing crashed (impact)": (ok.sum(), ok.sum()),
@@ -164,7 +164,7 @@ def test_probabilities_are_clopper_pearson_of_the_outcomes(campaign):
         low = stats.beta.ppf(0.025, k, n - k + 1) if k else 0.0
         high = stats.beta.ppf(0.975, k + 1, n - k) if k < n else 1.0
         assert (row["low"], row["high"]) == pytest.approx((low, high), abs=1e-9)
-    assert "booster landed (touchdown)" in rep.text and "Clopper-Pearson" in rep.text
+    assert "booster touched down (first contact; tip-overs too)" in rep.text and "Clopper-Pearson" in rep.text
 
 
 def test_landing_dispersion_per_body(campaign):

@@ -14,7 +14,7 @@ import math
 
 import pytest
 
-from rocketsim.flight.guidance_rate import Approach
+from rocketsim.guidance.rate import Approach
 
 STEP = 0.02     # s, the flight's step
 

@@ -28,7 +28,7 @@ LAYERS = [
     ("rocketsim.orbits",),
     ("rocketsim.vehicle",),
     ("rocketsim.dynamics",),
-    ("rocketsim.transfer", "rocketsim.flight"),
+    ("rocketsim.transfer", "rocketsim.flight", "rocketsim.guidance"),
     ("rocketsim.stepping",),
     ("rocketsim.scenario", "rocketsim.telemetry"),
     ("rocketsim.sim",),

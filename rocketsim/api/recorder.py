@@ -49,7 +49,7 @@ class Recorder(TelemetrySink):
         ``leaving`` only decides the file's frames, which a run in memory has not)."""
         self.samples[body].add_values(values, fields)
         self.run.counts[f"/{body}/state"] += 1
-        stamp = self._stamp(values.item(-2))       # the state's t (rocketsim.sim.sampling.figures)
+        stamp = self._stamp(values.item(-2))       # the state's t (rocketsim.stepping.sample_figures)
         self.run.start_ns = stamp if self.run.start_ns is None else min(self.run.start_ns, stamp)
         self.run.end_ns = stamp if self.run.end_ns is None else max(self.run.end_ns, stamp)
         self._finals[body] = (values, fields)

@@ -1,5 +1,30 @@
-"""Where a campaign's bodies came down: east/north scatter about the target, its
-covariance ellipses, the circles that hold a share of the points, and GeoJSON of them.
+"""How and where a campaign's bodies came down: the landing outcome, the east/north
+scatter about the target, its covariance ellipses, the circles that hold a share of the
+points, and GeoJSON of them.
+
+**Outcomes.** From a body's events (docs/physics.md#ground-contact: the checks that
+report touchdown, tip-over, impact and breakup; the engines' dry flag), the first that
+applies of:
+
+* ``broke up``: a ``breakup`` event (its bending or axial load beyond the structure's);
+* ``tipped over``: it touched down, then leaned past the tilt at which its centre of mass
+  left the footprint of its feet (``tip-over``);
+* ``ran dry``: it hit the ground (``impact``) after a stage of it ran out of usable
+  propellant (``stage_dry``, or ``MECO``/``SECO`` for a vehicle's first/second stage);
+* ``impact``: it hit the ground (a first contact faster than the 10 m/s the legs take,
+  or no legs);
+* ``under a parachute``: it touched down under a canopy (the touchdown carries a drift
+  time);
+* ``hard landing``: it touched down and stayed up, but faster than HARD_VERTICAL_SPEED
+  down or HARD_HORIZONTAL_SPEED sideways (this report's limits: a Falcon 9 booster
+  touches down at 1-2 m/s; beyond 3 m/s the legs' shock absorbers are taken as
+  damaged, and a stage sliding 2 m/s on its feet as one that needs no tip-over to be
+  lost);
+* ``upright on target``: touched down softly within ON_TARGET_RADIUS (horizontal, from
+  the centre of mass to the mission's pad, or the launch site);
+* ``upright off target``: touched down softly farther away.
+
+No outcome (None) for a body that neither came down nor broke up.
 
 **Offsets.** A landing point (geodetic latitude/longitude, degrees, WGS84) and the target
 (the mission's pad, else the launch site) both stand on the ellipsoid (height 0); the
@@ -40,11 +65,41 @@ import numpy as np
 from rocketsim.constants import DEG
 from rocketsim.frames.geodetic import ecef_to_geodetic, enu_basis, geodetic_to_ecef
 
+ON_TARGET_RADIUS = 10.0                # m: "on target"
+HARD_VERTICAL_SPEED = 3.0              # m/s down at the first contact: a hard landing beyond
+HARD_HORIZONTAL_SPEED = 2.0            # m/s sideways at the first contact: likewise
+UPRIGHT = ("upright on target", "upright off target", "hard landing")
+OUTCOMES = (*UPRIGHT, "tipped over", "impact", "ran dry", "broke up", "under a parachute")
+DRY_EVENTS = ("stage_dry", "MECO", "SECO")
 PROBABILITIES = (0.5, 0.9, 0.99)       # of the ellipses and the circles
 OUTLINE_POINTS = 180                   # vertices of a drawn or exported ellipse (area 0.02 % short)
 _INVERSE_PASSES = 20                   # corrections at most, of geodetic_of (8 at 1000 km)
 _INVERSE_TOLERANCE = 1e-6              # m, of geodetic_of's round trip
 _DECIMALS = 9                          # of GeoJSON degrees: 1e-9 deg is 0.1 mm
+
+
+def landing_outcome(events: dict) -> str | None:
+    """The body's landing outcome (see the module) from its ``events``: event name ->
+    ``(time s, figures)`` of the first event of that name."""
+    if "breakup" in events:
+        return "broke up"
+    if "tip-over" in events:
+        return "tipped over"
+    if "impact" in events:
+        down = events["impact"][0]
+        dry = any(name in events and events[name][0] <= down for name in DRY_EVENTS)
+        return "ran dry" if dry else "impact"
+    if "touchdown" not in events:
+        return None
+    figures = events["touchdown"][1]
+    if "drift_time_s" in figures:
+        return "under a parachute"
+    vertical = abs(float(figures.get("vertical_speed_m_s", 0.0)))
+    horizontal = float(figures.get("horizontal_speed_m_s", 0.0))
+    if vertical > HARD_VERTICAL_SPEED or horizontal > HARD_HORIZONTAL_SPEED:
+        return "hard landing"
+    distance = figures.get("distance_to_target_m")
+    return "upright on target" if distance is not None and distance <= ON_TARGET_RADIUS else "upright off target"
 
 
 def east_north(latitude_deg, longitude_deg, target_latitude_deg: float, target_longitude_deg: float):

@@ -10,7 +10,9 @@ Columns (the campaign directory's ``results.parquet``; floats unless said):
   that is not NaN says the event happened;
 * ``<body>.landing.t_s``, ``.latitude_deg``, ``.longitude_deg`` and ``.kind``
   (``touchdown`` or ``impact``, a string): where the body first came down, from that
-  event's figures;
+  event's figures; ``<body>.landing.outcome`` (a string): how it came down or broke up
+  (:func:`rocketsim.campaigns.landing.landing_outcome`: upright on target, upright off
+  target, hard landing, tipped over, impact, ran dry, broke up, under a parachute);
 * each extra output path (the campaign's ``outputs:``) into the summary, in the
   scenario path syntax (``bodies.booster.events[touchdown].tilt_deg``;
   ``[name]`` picks the first item of that name): the column is the path.
@@ -25,6 +27,7 @@ import json
 import math
 from typing import Any
 
+from rocketsim.campaigns.landing import landing_outcome
 from rocketsim.scenario.paths import parse
 
 LANDINGS = ("touchdown", "impact")
@@ -56,7 +59,9 @@ def summary_columns(summary: dict | None, events: list[dict]) -> dict[str, Any]:
         for section in ("final", "orbit", "touchdown"):
             _flat(f"{body}.{section}", part.get(section), row)
     landed: set[str] = set()
+    seen: dict[str, dict] = {}
     for event in events:
+        seen.setdefault(event["body"], {}).setdefault(event["name"], (float(event["t"]), event.get("figures") or {}))
         body, name = event["body"], event["name"]
         if f"{body}.{name}.t_s" in row:
             continue
@@ -69,6 +74,10 @@ def summary_columns(summary: dict | None, events: list[dict]) -> dict[str, Any]:
             row[f"{body}.landing.latitude_deg"] = _scalar(figures.get("latitude_deg"))
             row[f"{body}.landing.longitude_deg"] = _scalar(figures.get("longitude_deg"))
             row[f"{body}.landing.kind"] = name
+    for body, named in seen.items():
+        outcome = landing_outcome(named)
+        if outcome is not None:
+            row[f"{body}.landing.outcome"] = outcome
     return row
 
 

@@ -13,10 +13,20 @@ and which dispersed input drove each output.
   body's events (landed: a touchdown, crashed: an impact, reached orbit, broke up, came
   down, and every other event that has a column) over the ``ok`` runs, with exact
   Clopper-Pearson intervals;
+- ``outcomes``: per body with landing outcomes (``<body>.landing.outcome``: upright on
+  target, upright off target, hard landing, tipped over, impact, ran dry, broke up, under
+  a parachute; :func:`rocketsim.campaigns.landing.landing_outcome`), the share of the
+  ``ok`` runs of each, ``not down`` for the rest, with exact Clopper-Pearson intervals.
+  The text leads with the *landing body* (the one that lit an engine and came down
+  softly most often): its upright-on-target share, the miss and touchdown speeds of its
+  upright landings and the propellant they kept (``final.usable_propellant_kg``: mean and
+  1st percentile, with bootstrap intervals);
 - ``landing``: per body that came down on Earth: the mean offset, standard deviations and
   correlation of the east/north scatter, the 50/90/99 % covariance ellipses (chi-square
   with 2 degrees of freedom) and the R50/R90/R99 circles about the target and about the
-  mean (:mod:`rocketsim.campaigns.landing`);
+  mean (:mod:`rocketsim.campaigns.landing`); a body with landing outcomes has two
+  scatters, ``<body> upright`` (its upright landings) and ``<body> crashed`` (tipped
+  over, impacts, ran dry), so an ellipse never mixes a pad's landings with wrecks;
 - ``sensitivities``: per output and numeric dispersed input (a seed is not ranked: its
   value has no order that means anything, nor is a choice among strings), Spearman's rho
   and the standardized regression coefficients with the fit's R².
@@ -52,7 +62,7 @@ OUTCOMES_PRINTED = 8                  # the most frequent outcome strings the te
 TOP_INPUTS = 3                        # inputs the text names per output
 _NOT_OUTPUTS = ("run", "wall_time_s")
 _SECTIONS = ("final", "orbit", "touchdown", "landing")
-_EVENT_LABELS = {"touchdown": "landed (touchdown)", "impact": "crashed (impact)",
+_EVENT_LABELS = {"touchdown": "touched down (first contact; tip-overs too)", "impact": "crashed (impact)",
                  "orbit": "reached orbit", "breakup": "broke up", "tip-over": "tipped over after landing",
                  "landing": "came down (touchdown or impact)"}
 # the summary figures worth a histogram, by section, in this order (after the campaign's own outputs)
@@ -202,14 +212,16 @@ def report(directory, plot_dir=None) -> Report:
     stats_table = stats_table[stats_table["n"] > 0] if len(stats_table) else stats_table
 
     probabilities = _probabilities(results, status, ok, bodies, extra)
+    outcomes = _outcomes(results, ok, bodies)
+    headline = _headline(meta, outputs, ok, outcomes)
     landing_table = _landing_table(dispersions)
     sensitivities, ranked, unranked = _sensitivities(meta, inputs, flown, list(stats_table.index))
     main = _main_outputs(stats_table, bodies, meta.get("outputs") or [])
 
-    tables = {"statistics": stats_table, "probabilities": probabilities, "landing": landing_table,
-              "sensitivities": sensitivities}
+    tables = {"statistics": stats_table, "probabilities": probabilities, "outcomes": outcomes,
+              "landing": landing_table, "sensitivities": sensitivities}
     text = _text(meta, counts, results, status, stats_table, probabilities, dispersions, elsewhere,
-                 target, sensitivities, main, ranked, unranked)
+                 target, sensitivities, main, ranked, unranked, headline)
     parts = len(list((directory / "results").glob("part-*.parquet")))
     if parts:       # rows the engine has not yet gathered into results.parquet
         text += (f"\nnote: {parts} part files in {directory / 'results'} are not yet in results.parquet; "
@@ -265,11 +277,79 @@ def _landings(outputs, ok, bodies, target) -> tuple[dict, dict]:
         if away:
             elsewhere[body] = away
         down = ok & np.isfinite(east) & np.isfinite(north)
-        if down.any():
-            kinds = outputs.get(f"{body}.landing.kind")
-            kinds = None if kinds is None else ["" if pd.isna(k) else str(k) for k in kinds[down]]
-            dispersions[body] = landing.dispersion(body, east[down], north[down], kinds)
+        kinds = outputs.get(f"{body}.landing.kind")
+        kinds = np.array(["" if pd.isna(k) else str(k) for k in kinds] if kinds is not None else [""] * len(down))
+        outcome = _outcome_column(outputs, body)
+        groups = [(body, down)]
+        if outcome is not None and np.isin(outcome[down], (*landing.UPRIGHT, "tipped over")).any():
+            upright = np.isin(outcome, landing.UPRIGHT)
+            groups = [(f"{body} upright", down & upright), (f"{body} crashed", down & ~upright)]
+        for name, chosen in groups:
+            if chosen.any():
+                dispersions[name] = landing.dispersion(name, east[chosen], north[chosen], list(kinds[chosen]))
     return dispersions, elsewhere
+
+
+def _outcome_column(outputs, body):
+    """The body's landing outcomes (strings, '' for none) or None without the column."""
+    import pandas as pd
+    column = outputs.get(f"{body}.landing.outcome")
+    if column is None:
+        return None
+    return np.array(["" if pd.isna(v) else str(v) for v in column], dtype=object)
+
+
+def _outcomes(results, ok, bodies):
+    """Per body with landing outcomes, the share of the ok runs of each (and ``not down``)."""
+    import pandas as pd
+    rows = []
+    n_ok = int(ok.sum())
+    for body in bodies:
+        outcome = _outcome_column(results, body)
+        if outcome is None:
+            continue
+        flown = outcome[ok]
+        for name in (*landing.OUTCOMES, "not down"):
+            k = int(np.sum(flown == ("" if name == "not down" else name)))
+            if k == 0 and name in ("under a parachute", "not down"):
+                continue
+            p, low, high = statistics.proportion(k, n_ok)
+            rows.append({"body": body, "outcome": name, "k": k, "n": n_ok, "p": p, "low": low, "high": high})
+    return pd.DataFrame(rows, columns=["body", "outcome", "k", "n", "p", "low", "high"])
+
+
+def _headline(meta, outputs, ok, outcomes) -> dict | None:
+    """The landing body's headline figures (see the module), or None without one: the body
+    with landing outcomes that lit an engine (an ``ignition`` column) and came down upright
+    most often, then the one with the most outcomes."""
+    if not len(outcomes):
+        return None
+
+    def rank(body):
+        rows = outcomes[outcomes["body"] == body]
+        upright = int(rows[rows["outcome"].isin(landing.UPRIGHT)]["k"].sum())
+        powered = f"{body}.ignition.t_s" in outputs and bool(np.isfinite(outputs[f"{body}.ignition.t_s"]).any())
+        return (powered, upright, int(rows[rows["outcome"] != "not down"]["k"].sum()))
+
+    body = max(dict.fromkeys(outcomes["body"]), key=rank)
+    if rank(body)[2] == 0:
+        return None
+    outcome = _outcome_column(outputs, body)
+    upright = ok & np.isin(outcome, landing.UPRIGHT)
+    figures = {}
+    for key, column in (("miss", f"{body}.touchdown.distance_to_target_m"),
+                        ("down", f"{body}.touchdown.vertical_speed_m_s"),
+                        ("sideways", f"{body}.touchdown.horizontal_speed_m_s"),
+                        ("tilt", f"{body}.touchdown.tilt_deg")):
+        if column in outputs:
+            figures[key] = np.abs(outputs[column].to_numpy(float)[upright])
+    propellant = None
+    if f"{body}.final.usable_propellant_kg" in outputs:
+        name = f"{body}.final.usable_propellant_kg (upright landings)"
+        propellant = statistics.describe(outputs[f"{body}.final.usable_propellant_kg"].to_numpy(float)[upright],
+                                         _seed(meta, name))
+    return {"body": body, "outcomes": outcomes[outcomes["body"] == body], "figures": figures,
+            "propellant": propellant}
 
 
 def _probabilities(results, status, ok, bodies, extra):
@@ -368,8 +448,39 @@ def _main_outputs(stats_table, bodies, asked) -> list[str]:
     return list(dict.fromkeys(names))[:MAIN_OUTPUTS]
 
 
+def _headline_text(headline, target) -> list[str]:
+    """The landing body's lines of the text (see :func:`_headline`)."""
+    body, rows = headline["body"], headline["outcomes"].set_index("outcome")
+    where = "the target" if target is None else f"the {target.get('kind') or 'target'} {target.get('name') or ''}".strip()
+    confidence = f"{100 * statistics.CONFIDENCE:g} %"
+    n = int(rows["n"].iloc[0])
+    on = rows.loc["upright on target"]
+    lines = [f"landing of {body} at {where}, over the {n} ok runs ({confidence} Clopper-Pearson intervals):",
+             f"  upright within {landing.ON_TARGET_RADIUS:g} m: {on.k} of {n}, {_percent(on.p)} "
+             f"[{_percent(on.low)}, {_percent(on.high)}]"]
+    others = [f"{name} {int(row.k)} ({_percent(row.p)} [{_percent(row.low)}, {_percent(row.high)}])"
+              for name, row in rows.iterrows() if name != "upright on target"]
+    lines.append("  then: " + "; ".join(others))
+    figures = headline["figures"]
+    labels = {"miss": ("miss", "m"), "down": ("touchdown down", "m/s"), "sideways": ("touchdown sideways", "m/s"),
+              "tilt": ("tilt at touchdown", "deg")}
+    for key, values in figures.items():
+        if values.size:
+            label, unit = labels[key]
+            lines.append(f"  {label} (upright landings, {values.size}): median {_fmt(float(np.median(values)))}, "
+                         f"p90 {_fmt(float(np.percentile(values, 90)))}, p99 {_fmt(float(np.percentile(values, 99)))}, "
+                         f"max {_fmt(float(values.max()))} {unit}")
+    left = headline["propellant"]
+    if left is not None and left["n"]:
+        lines.append(f"  usable propellant left at touchdown (upright landings, {left['n']}): mean "
+                     f"{_fmt(left['mean'])} kg {_interval(left['mean_low'], left['mean_high'])}, 1st percentile "
+                     f"{_fmt(left['p1'])} kg {_interval(left['p1_low'], left['p1_high'])}, least {_fmt(left['min'])} kg")
+    lines.append("")
+    return lines
+
+
 def _text(meta, counts, results, status, stats_table, probabilities, dispersions, elsewhere,
-          target, sensitivities, main, ranked, unranked) -> str:
+          target, sensitivities, main, ranked, unranked, headline=None) -> str:
     """The plain-text report (see :class:`Report`)."""
     import pandas as pd
     lines = [f"campaign {meta.get('name') or '?'}: seed {meta.get('seed')}, "
@@ -390,6 +501,8 @@ def _text(meta, counts, results, status, stats_table, probabilities, dispersions
             shown = ", ".join(map(str, runs[:8])) + (", ..." if len(runs) > 8 else "")
             lines.append(f"  {len(runs)} x {st}: {message or '(no message)'} (runs {shown})")
     lines.append("")
+    if headline is not None:
+        lines += _headline_text(headline, target)
 
     confidence = f"{100 * statistics.CONFIDENCE:g} %"
     lines.append(f"outputs over the {counts['ok']} ok runs (mean and std with {confidence} bootstrap "

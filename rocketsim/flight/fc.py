@@ -316,6 +316,16 @@ class FlightComputer:
         return self._view().air[4].copy()
 
     @property
+    def forecast(self):
+        """The day's air over the site as the flight was given it: an
+        :class:`~rocketsim.atmosphere.table.AtmosphereTable` (density, pressure,
+        temperature, speed of sound and wind east/north against height every 50 m) of
+        Earth's air (ValueError after a handover to another body)."""
+        if self._craft.central != "earth":
+            raise ValueError("the forecast is of Earth's air only")
+        return self._view()._atmosphere()
+
+    @property
     def air_velocity(self) -> np.ndarray:
         """Velocity relative to the air, ``v - omega_E x r - wind``, ECI, m/s."""
         return self._view().air[5].copy()

@@ -1,430 +1,346 @@
-"""Return of a separated first stage to the mission's landing pad (``fc.target.pad``).
+"""Return of a separated first stage to the mission's landing pad (``fc.target.pad``), on rocketsim.guidance.
 
 Attached to the lower stage by the scenario's ``programs:`` (it starts at
-separation), or flown from the pad by a hop. Reads only the navigation
-estimate, so it flies with ``sensors: realistic`` as with the truth. Phases:
+separation). It reads only the navigation estimate and the day's forecast
+(``fc.forecast``), so it flies with ``sensors: realistic`` as with the truth.
+docs/guidance.md explains each algorithm; the phases:
 
-1. boost-back: three engines (the centre and two opposite ones of the ring,
-   THREE_ENGINES; all those with an ignition left on another vehicle) burn
-   with the thrust horizontal, against the miss of the predicted impact point
-   (below); the autopilot flips the stage with the gimbals on the way. The burn
-   ends when the predicted impact point reaches the pad (throttled back to the
-   engines' minimum over the last few kilometres). It aims OVERSHOOT beyond
-   the pad: the entry burn, mostly against the velocity, shortens the fall;
-2. coast; the grid fins are handed to the autopilot;
-3. entry burn: below ENTRY_ALTITUDE, falling faster than ENTRY_SPEED, and
-   once the nose is within ENTRY_ALIGNMENT of the airflow's reverse (the
-   stage has no thrusters: it keeps the boost-back's attitude through the
-   vacuum and the grid fins turn it tail first only as the air thickens), the
-   engines burn against the air-relative velocity until the airspeed is down
-   to ENTRY_END_SPEED (or only the landing burn's propellant is left), leaned
-   (as in the descent, towards the pad) so that the impact point predicted from
-   the burn's end is on the pad: how far the burn shortens the fall, which
-   OVERSHOOT only estimates, depends on the path the boost-back left (a wind in
-   the ascent changes it by kilometres);
-4. aerodynamic descent tail first on the grid fins: the nose is held on
-   the air-relative velocity's reverse, leaned away from the direction the
-   impact point must move (a body falling tail first is pushed away from
-   the side its nose leans to), by an angle that keeps q * alpha far from
-   the structure's limit;
-5. landing burn on the centre engine (LANDING_ENGINES): lit when stopping at a constant deceleration needs
-   LANDING_MARGIN of what the engines and the drag (``q / BALLISTIC``) give; the throttle then flies a
-   descent-rate reference against the radar clearance of the feet (:func:`land`),
-   the thrust leaned by a zero-effort-miss law onto the pad
-   (``a = -6 (x + v t_go) / t_go^2 + 2 v / t_go`` horizontally, ``t_go`` the time
-   to a gate TERMINAL_HEIGHT above the ground at the mean speed), the last TERMINAL_HEIGHT metres nearly upright,
-   killing the drift and what is left of the offset; the engines are cut just above the ground. The legs are deployed at the start of the burn.
+1. **boost-back** (three engines): burn along the velocity to gain that puts
+   the predicted landing point (through the day's air and wind, with the entry
+   and landing burns as planned) AIM_OFF short of the pad
+   (:func:`rocketsim.guidance.boostback.velocity_to_gain`);
+2. **coast**, the grid fins handed to the autopilot, tail first into the air;
+3. **entry burn** (three engines) below ENTRY_ALTITUDE down to ENTRY_SPEED of
+   airspeed, or to what the landing burn needs, leaned so that the predicted
+   landing point is on the pad (:func:`rocketsim.guidance.descent.solve_lean`);
+4. **aerodynamic descent** on the grid fins: the lean of a body falling tail
+   first that flies the predicted point onto the pad, within the bending load
+   Q_ALPHA; the body's drag learnt on the way (:class:`~rocketsim.guidance.drag.DragArea`);
+5. **landing burn** (the centre engine), lit from the throttle margin
+   (LANDING.plan), guided to the pad (:mod:`rocketsim.guidance.powered_descent`),
+   cut just above the ground.
 
-Impact prediction: the state (Earth-fixed, from the navigation estimate) is
-integrated to the ground under point-mass + J2 gravity, the Coriolis and
-centrifugal terms and drag on an exponential air (scale height 7.2 km) at
-the stage's ballistic coefficient ``m / (C_D A)``, estimated here (BALLISTIC).
-In the descent the prediction includes the landing burn (lit by the same
-rule, against the velocity, stopping the stage at the ground), which keeps
-the stage near its velocity's line. A guidance model, not the physics: its
-errors are what the later phases correct. It is compiled
-(:func:`rocketsim.flight.guidance.descent_point`): about 20 us a prediction.
-
-Guidance rate: the boost-back predicts its miss once a second and sleeps
-between predictions, waiting on compiled conditions while the stage turns
-onto its aim (the nose within AIMED of it, or the next prediction's time).
-The descent updates its lean every DESCENT_PERIOD (0.5 s), the entry and
-landing burns their direction and throttle every GUIDANCE_STEP (0.1 s); the
-autopilot holds the last command every 20 ms step. Each goes to every step
-as the limit it acts at nears (:class:`~rocketsim.flight.guidance_rate.Approach`:
-the boost-back's miss, the entry burn's end speed and propellant reserve, the
-landing burn's altitude and rule, the cut-off's clearance), so it acts in the
-step the limit is crossed.
+Each phase records an event with its figures; a return that cannot succeed
+(too little propellant left) says so in its events and flies on.
 """
 
 import math
 
 import numpy as np
 
-from rocketsim.constants import EARTH_J2, EARTH_MU, EARTH_OMEGA
-from rocketsim.frames.earth_fixed import eci_to_ecef, eci_to_ecef_velocity
-from rocketsim.frames.geodetic import enu_basis, geodetic_to_ecef
-from rocketsim.flight.guidance import descent_point, warm_up
-from rocketsim.flight.guidance_rate import Approach
+from rocketsim.constants import EARTH_MU, G0
+from rocketsim.guidance import boostback, descent, powered_descent
+from rocketsim.guidance.drag import DragArea
+from rocketsim.guidance.landing_point import LandingPoint, entry_burn, landing_burn
+from rocketsim.guidance.pad import Pad
+from rocketsim.guidance.rate import Approach
 
-BALLISTIC = 1800.0          # kg/m^2: the empty stage tail first with its grid fins (estimate)
-SEA_LEVEL_DENSITY = 1.225   # kg/m^3, and scale height (m): the predictor's air
-SCALE_HEIGHT = 7200.0
-ENTRY_ALTITUDE = 60e3       # m
-ENTRY_SPEED = 900.0         # m/s
-ENTRY_END_SPEED = 650.0     # m/s
-ENTRY_ALIGNMENT = math.radians(10.0)  # the entry burn lights with the nose this close to the airflow's reverse
-UNUSABLE = 4200.0           # kg: propellant the engines cannot draw (1 % of the booster's load)
-OVERSHOOT = 6000.0          # m: boost-back aims this far beyond the pad (the entry burn shortens the fall)
-FINE_MISS = 3000.0          # m: boost-back throttled back below this miss
-AIMED = math.radians(20.0)  # rad: the boost-back burns with the nose this near its aim
-LANDING_ALTITUDE = 8e3     # m: the landing burn starts below this (drag brakes the stage above)
-LANDING_MARGIN = 0.5        # share of the available deceleration the landing burn plans on
-TOUCH_SPEED = 0.5           # m/s: descent rate the landing burn aims for at contact
-CUTOFF_CLEARANCE = 0.15      # m: engines off this high (the tail-off finishes the job)
-FINAL_HEIGHT = 60.0         # m of clearance: below this the landing burn slows at
-FINAL_DECELERATION = 2.5    # m/s^2 (more than the least thrust gives the empty stage)
-MIN_TIME_TO_GO = 8.0        # s: floor of t_go (the attitude loop, ~1 rad/s, lags the law)
-SPEED_GAIN = 1.5            # 1/s: throttle feedback on the descent rate's error
-TERMINAL_HEIGHT = 40.0      # m: nearly upright from here down, the drift killed and
-TERMINAL_TIME = 1.5         # s: the offset closed with this time constant,
-TERMINAL_LEAN = math.radians(3.0)     # leaning at most this much (touchdown must be within 5 deg)
-MAX_LEAN = math.radians(15.0)
-LEAN_SCALE = 300.0         # m of miss for the full lean (entry burn, descent)
-THREE_ENGINES = ("centre", "ring/1", "ring/5")    # boost-back and entry burns (Falcon 9's three)
-LANDING_ENGINES = ("centre",)                      # the landing burn
-LANDING_DV = 450.0          # m/s kept for the landing burn (terminal speed and gravity loss)
-EXHAUST_SPEED = 2800.0      # m/s, effective exhaust speed of the engines low in the air (estimate)
-# Pa deg: lean commanded in the air at most; the structure's limit is 250 kPa deg, and the
-# autopilot's lag through the wind's shears overshoots a command by up to ~100 kPa deg
-Q_ALPHA = 100e3
-ENTRY_PREDICTION_STEP = 0.2  # s, steps of the entry burn's prediction
-DESCENT_PERIOD = 0.5        # s between the descent's lean updates (see the module)
-GUIDANCE_STEP = 0.1         # s between the burns' steering and throttle updates
+# the booster (vehicles/falcon9-block5.yaml) falling tail first with its grid fins out,
+# measured in a flight of the shipped vehicle (docs/guidance.md): Mach, the drag area C_D A
+# (m^2), the lift-to-drag ratio per radian of angle of attack
+AERO = ((0.0, 15.0, 1.5), (0.6, 15.0, 1.5), (0.8, 16.7, 1.5), (0.9, 20.0, 1.0), (1.0, 23.2, 0.8),
+        (1.1, 23.9, 0.7), (1.3, 22.4, 0.75), (2.0, 21.6, 0.85), (3.0, 20.7, 1.2), (5.0, 20.7, 1.2))
+EXIT_AREA = 0.680           # m^2: a Merlin 1D's nozzle exit (its thrust falls by p_a A_e in the air)
+UNUSABLE = 4109.0           # kg: what the engines cannot draw (1 % of the load)
+THREE_ENGINES = ("centre", "ring/1", "ring/5")   # boost-back and entry burns
+LANDING_ENGINE = "centre"
 
-warm_up()       # the predictor's compiled kernels, loaded with the program, not inside a step
+# the plan
+AIM_OFF = 0.0               # m: the boost-back aims this far short of the pad (sea side)
+DIPS = tuple(math.radians(d) for d in (0.0, 3.0, 6.0, 9.0, 12.0))   # the boost-back's dips tried
+ENTRY_ALTITUDE = 60e3       # m: the entry burn starts here, falling (as planned and predicted),
+ENTRY_WINDOW = 3e3          # m: or up to this much higher, as the air swings the nose through
+ENTRY_SPEED = 650.0         # m/s of airspeed at the entry burn's end
+ENTRY_ALIGNMENT = math.radians(10.0)   # the nose this near the airflow's reverse before lighting it,
+ENTRY_LOWEST = 40e3         # m: or lit anyway this low
+CAPTURED = math.radians(3.0)   # rad/s: the entry burn goes to full thrust and leans once the engines
+                                # have stopped the swing within ENTRY_ALIGNMENT,
+CAPTURE_TIME = 4.0          # s: or this long after their ignition
+LANDING_NEED = 5500.0       # kg: the landing burn's propellant until predicted
+LANDING_MARGIN = 800.0      # kg of usable propellant the entry burn leaves beyond the landing burn's
+MAX_ENTRY_LEAN = 0.35       # horizontal share of the entry burn's thrust at most (19 deg),
+UNTILT = 1.5                # s: none over the burn's last this long
+Q_ALPHA = math.radians(60e3)           # Pa rad: the bending load commanded at most (the limit is 250 kPa deg)
+MAX_ALPHA = math.radians(5.0)    # and the angle of attack commanded at most,
+TRIM_TIME = 2.0             # s: the lean's integral trim (the autopilot holds only part of a lean)
+TRIM_LIMIT = math.radians(8.0)
+LANDING = powered_descent.Plan(plan=0.8, touch_speed=1.0, ceiling=8e3)
+LEAD = 0.3 + 0.75           # s: the engine's dead time and half its spool-up
+TAIL_OFF = 0.25             # s: an engine's thrust falls to nothing this long after its shutdown
+AIMED = math.radians(20.0)  # the boost-back burns at full thrust with the nose this near its aim
+FINE_GAIN = 30.0            # m/s: the boost-back ends at its engines' least throttle below this,
+STEADY = 1.5                # s: and holds its attitude over its last this long
+CYCLE = 0.5                 # s between guidance updates in the air
+BURN_CYCLE = 0.1            # s between the burns' updates
 
 
 def main(fc):
-    pad = fc.target.pad
-    guide = Guide(fc, pad.latitude, pad.longitude)
-    relight = [e["name"] for e in fc.engines if e["ignitions_left"] > 0]
-    three = [name for name in relight if name.endswith(THREE_ENGINES)] or relight
-    landing = [name for name in relight if name.endswith(LANDING_ENGINES)] or relight
-    fc.sleep(2.0)                                       # clear of the upper stage
-    boost_back(fc, guide, three)
+    pad = Pad.target_of(fc)
+    names = [e["name"] for e in fc.engines if e["ignitions_left"] > 0]
+    three = [n for n in names if n.endswith(THREE_ENGINES)] or names
+    centre = [n for n in names if n.endswith(LANDING_ENGINE)] or names[:1]
+    dry = fc.mass - sum(fc.propellant.values())
+    return_ = Return(fc, pad, dry)
+    fc.sleep(2.0)                                           # clear of the upper stage
+    return_.boost_back(centre, three)
     fc.deploy_grid_fins()
     fc.hold("surface_retrograde")
-    fc.wait_until(fc.below("altitude", ENTRY_ALTITUDE) & fc.below("vertical_speed", -ENTRY_SPEED))
-    while fc_nose(fc) @ fc.air_velocity > -math.cos(ENTRY_ALIGNMENT) * fc.airspeed:
-        fc.sleep(GUIDANCE_STEP)     # the grid fins are still turning the stage tail first
-    share = len(landing) / len(three)
-    landing_full = entry_burn(fc, guide, three, share) * share
-    descend(fc, guide, landing_full)
-    land(fc, guide, landing, landing_full)
+    fc.wait_until(fc.below("altitude", ENTRY_ALTITUDE + ENTRY_WINDOW) & fc.below("vertical_speed", 0.0))
+    return_.await_entry()
+    return_.entry(three)
+    return_.descend()
+    return_.land(centre)
 
 
-class Guide:
-    """The pad in the Earth-fixed frame and the impact-point prediction."""
+class Return:
+    """The return's guidance state: the pad, the predictor, the engines' measured figures."""
 
-    def __init__(self, fc, latitude, longitude):
-        self.fc = fc
-        self.pad = geodetic_to_ecef(latitude, longitude, 0.0)
-        self.enu = enu_basis(latitude, longitude)           # rows east, north, up (ECEF)
-        self._recent = {}                                  # name -> (mission time s, value)
+    def __init__(self, fc, pad, dry):
+        self.fc, self.pad, self.dry = fc, pad, dry
+        mach, area, slope = np.array(AERO).T
+        self.predict = LandingPoint(fc.forecast, mach, area, slope, Q_ALPHA, MAX_ALPHA)
+        self.drag = DragArea(mach, area)
+        self.ground_pressure = float(fc.forecast.at(0.0)[1][0])
+        self.engine_thrust, self.engine_flow = 914e3, 300.0      # N, kg/s: until measured
+        self.landing_need = LANDING_NEED           # kg, until predicted
 
-    def state(self):
-        """Earth-fixed position and velocity (m, m/s) of the estimate."""
-        fc = self.fc
-        r, v, t = fc.position, fc.velocity, fc.time
-        return eci_to_ecef(r, t), eci_to_ecef_velocity(r, v, t)
+    # --- the readings --------------------------------------------------------
+    def nose(self):
+        w, x, y, z = self.fc.attitude
+        return np.array((1.0 - 2.0 * (y * y + z * z), 2.0 * (x * y + w * z), 2.0 * (x * z - w * y)))
 
-    def offset(self):
-        """(east, north) of the vehicle from the pad (m) and its ground velocity (m/s)."""
-        r, v = self.state()
-        return (self.enu @ (r - self.pad))[:2], (self.enu @ v)[:2]
+    def after_boost_back(self, r, v, mass, dv, entry, landing):
+        """The prediction after a boost-back that changes the velocity ``v`` at ``r`` by ``dv``
+        (Earth-fixed), the mass left by the rocket equation at the engines' exhaust speed."""
+        left = mass * math.exp(-float(np.linalg.norm(dv)) * self.engine_flow / self.engine_thrust)
+        rb, vb, _ = boostback.after_burn(r, v, dv, 6.0 * self.engine_thrust / (mass + left), EARTH_MU)
+        return self.predict(rb, vb, left, entry=entry, landing=landing)
+
+    def best_dip(self, back, aim):
+        """``(dip, v_go)``: of the boost-back's dips DIPS (rad), the one whose burn, entry
+        burn (to ENTRY_SPEED whatever it costs) and landing burn leave the most mass at
+        touchdown, and its velocity to gain (Earth-fixed, m/s)."""
+        fc, pad = self.fc, self.pad
+        r, v = pad.state(fc)
+        mass = fc.mass
+        entry, landing = self.burns(unbounded=True)
+        best = None
+        for dip in DIPS:
+            def miss(trial):
+                return pad.offset(self.after_boost_back(r, v, mass, trial - v, entry, landing).point) - aim
+
+            to_gain = boostback.velocity_to_gain(miss, v, boostback.burn_plane(r, back, dip), passes=6)
+            kept = self.after_boost_back(r, v, mass, to_gain, entry, landing).mass
+            if best is None or kept > best[0]:
+                best = (kept, dip, to_gain)
+        return best[1], best[2]
 
     def usable(self):
-        """Propellant (kg) the engines can still burn (the gauges less the unusable part)."""
+        """Propellant (kg) the engines can still draw."""
         return sum(self.fc.propellant.values()) - UNUSABLE
 
-    def recent(self, name, age, compute):
-        """``compute()``, recomputed once every ``age`` seconds (kept under ``name``)."""
-        when, value = self._recent.get(name, (-math.inf, None))
-        if self.fc.time - when >= age:
-            when, value = self.fc.time, compute()
-            self._recent[name] = (when, value)
-        return value
+    def measure_engines(self):
+        """One lit engine's vacuum thrust (N) and mass flow (kg/s) at full throttle, from the
+        engines running at full thrust."""
+        full = [e for e in self.fc.engines if e["thrust_N"] > 0.0 and e["spool"] >= 1.0 and e["throttle"] > 0.99]
+        if full:
+            pressure = self.fc.air_pressure
+            self.engine_thrust = float(np.mean([e["thrust_N"] for e in full])) + pressure * EXIT_AREA
+            self.engine_flow = float(np.mean([e["mass_flow_kg_s"] for e in full]))
 
-    def recent_miss(self, age=1.0, thrust_accel=0.0):
-        """The miss (as :meth:`miss`), recomputed once every ``age`` seconds."""
-        return self.recent("miss", age, lambda: self.miss(thrust_accel))
+    def learn_landing_need(self, lit_mass, touchdown_mass):
+        """The propellant (kg) the landing burn needs, from the last prediction that lit it
+        (the mass when it is lit and at touchdown, kg)."""
+        if lit_mass == lit_mass:
+            self.landing_need = lit_mass - touchdown_mass
 
-    def recent_burn_end_miss(self, age, full, landing_share):
-        """The miss from the entry burn's end (as :meth:`burn_end_miss`), recomputed once
-        every ``age`` seconds."""
-        return self.recent("burn end miss", age, lambda: self.burn_end_miss(full, landing_share))
+    def floor(self):
+        """The mass (kg) at which the entry burn must end: the dry stage, what its engines
+        cannot draw, what the landing burn was last predicted to need and LANDING_MARGIN."""
+        return self.dry + UNUSABLE + self.landing_need + LANDING_MARGIN
 
-    def burn_end_miss(self, full, landing_share):
-        """(east, north) of the impact point from the pad (m) predicted from where the
-        entry burn, at ``full`` thrust (N) against the velocity, ends (ENTRY_END_SPEED, or
-        only the landing burn's propellant left), with the landing burn at
-        ``landing_share`` of that thrust. The burn is integrated in the Earth-fixed frame
-        (point-mass gravity, the Coriolis and centrifugal terms, no drag: it burns above
-        50 km) in ENTRY_PREDICTION_STEP steps, its mass flow ``full / EXHAUST_SPEED``."""
-        r, v = self.state()
-        mass, usable = self.fc.mass, self.usable()
-        w = EARTH_OMEGA
-        dt = ENTRY_PREDICTION_STEP
-        flow = full / EXHAUST_SPEED * dt
+    def burns(self, lit_entry=False, lean=(0.0, 0.0), unbounded=False):
+        """The entry burn (three engines, lit now when ``lit_entry``) and the landing burn (one
+        engine at the ground's pressure) as the predictor models them; ``unbounded``, as if
+        the tanks held whatever they need (to compare plans by what they leave)."""
+        entry = entry_burn(math.inf if lit_entry else ENTRY_ALTITUDE, ENTRY_SPEED, 3.0 * self.engine_thrust,
+                           3.0 * self.engine_flow, 0.0 if unbounded else self.floor(), lean)
+        landing = landing_burn(self.engine_thrust - self.ground_pressure * EXIT_AREA, self.engine_flow,
+                               LANDING.plan, LANDING.touch_speed, 0.0 if unbounded else self.dry + UNUSABLE,
+                               LANDING.ceiling)
+        return entry, landing
+
+    # --- 1. boost-back ----------------------------------------------------------
+    def boost_back(self, centre, three):
+        """Flip on the centre engine at its least throttle, then burn on three along the
+        velocity to gain; the landing point is predicted from the burn's end
+        (:func:`~rocketsim.guidance.boostback.after_burn`), with the mass the burn leaves
+        (the rocket equation at the engines' exhaust speed)."""
+        fc, pad = self.fc, self.pad
+        now = [*pad.state(fc), fc.mass]             # the state the misses are predicted from
+        entry, landing = self.burns()
+
+        def miss(trial):
+            return pad.offset(self.after_boost_back(*now, trial - now[1], entry, landing).point) - aim
+
+        aim = np.zeros(2)
+        first = miss(now[1])
+        aim = AIM_OFF * first / np.linalg.norm(first)
+        back = -pad.horizontal(*first)                      # over the ground, back towards the pad
+        dip, to_gain = self.best_dip(back, aim)
+        fc.point_at(pad.to_eci(to_gain, fc.time))
+        fc.ignite(centre)
+        fc.throttle(0.0)
+        fc.event("boost-back start", miss_m=float(np.linalg.norm(first)), to_gain_m_s=float(np.linalg.norm(to_gain)),
+                 dip_deg=math.degrees(dip))
+        lit = False
+        checked = fc.time
         while True:
-            speed = math.sqrt(v @ v)
-            if speed <= ENTRY_END_SPEED or usable <= landing_propellant(mass):
+            now = [*pad.state(fc), fc.mass]
+            plane = boostback.burn_plane(now[0], to_gain, dip)
+            to_gain = boostback.velocity_to_gain(miss, now[1], plane, guess=to_gain, passes=2)
+            down = self.after_boost_back(*now, to_gain, entry, landing)
+            self.learn_landing_need(down.ignition_mass, down.mass)
+            size = float(np.linalg.norm(to_gain))
+            acceleration = fc.thrust / fc.mass
+            step, checked = fc.time - checked, fc.time       # the update period now
+            if lit and boostback.cutoff_due(to_gain, pad.from_eci(self.nose(), fc.time), acceleration,
+                                            step, TAIL_OFF):
                 break
-            gravity = -EARTH_MU / (r @ r) ** 1.5 * r
-            # the Coriolis and centrifugal terms, 2 w x v and w x (w x r), w along +z
-            coriolis = np.array((-(w * v[1]), w * v[0], 0.0))
-            centrifugal = np.array((-(w * (w * r[0])), -(w * (w * r[1])), 0.0))
-            a = -full / mass / speed * v + gravity - 2.0 * coriolis - centrifugal
-            v = v + a * dt
-            r = r + v * dt
-            mass, usable = mass - flow, usable - flow
-        return (self.enu @ (impact(r, v, BALLISTIC, landing_share * full / mass) - self.pad))[:2]
+            if size > STEADY * max(acceleration, 1.0) or not lit:   # then hold still: no spin at cut-off
+                aim_eci = pad.to_eci(to_gain / size, fc.time)
+                fc.point_at(aim_eci)
+            if not lit and self.nose() @ aim_eci > math.cos(AIMED):
+                fc.ignite(three)
+                lit = True
+            fc.throttle(1.0 if lit and size > FINE_GAIN else 0.0)
+            if lit and size > FINE_GAIN:
+                self.measure_engines()
+                entry, landing = self.burns()
+            # the time to the cut-off at full thrust: a second's sleep far from it, a cycle's, a step's
+            left = (size - acceleration * 0.5 * (step + TAIL_OFF)) / max(acceleration, 1.0)
+            fc.sleep(1.0 if lit and left > 3.0 else BURN_CYCLE if left > 2.0 * BURN_CYCLE else 0.0)
+        fc.shutdown(three)
+        fc.event("boost-back end", to_gain_m_s=size, usable_propellant_kg=self.usable())
+        fc.sleep(1.0)                       # hold the attitude through the tail-off
 
-    def miss(self, thrust_accel=0.0):
-        """(east, north) of the predicted impact point from the pad, m (with the landing
-        burn when the engines' full thrust over the mass, m/s^2, is given)."""
-        r, v = self.state()
-        return (self.enu @ (impact(r, v, BALLISTIC, thrust_accel) - self.pad))[:2]
+    # --- 3. entry burn ----------------------------------------------------------
+    def tail_angle(self):
+        """The angle (rad) between the nose and the airflow's reverse."""
+        fc = self.fc
+        return math.acos(max(-1.0, min(1.0, -float(self.nose() @ fc.air_velocity) / fc.airspeed)))
 
+    def await_entry(self):
+        """Until the entry burn must be lit: the air swings the stage tail first (it has no
+        thrusters), and the engines are lit below ENTRY_ALTITUDE + ENTRY_WINDOW as the nose
+        will pass within ENTRY_ALIGNMENT of the airflow's reverse once they have come up
+        (LEAD on at the angle's present rate), so that their gimbals catch the swing; or at
+        ENTRY_LOWEST."""
+        fc = self.fc
+        before = None
+        while fc.altitude > ENTRY_LOWEST:
+            fc.point_at(-fc.air_velocity)                  # the grid fins turn it tail first
+            angle = self.tail_angle()
+            rate = 0.0 if before is None else (angle - before[0]) / max(fc.time - before[1], 1e-9)
+            before = (angle, fc.time)
+            if fc.altitude < ENTRY_ALTITUDE + ENTRY_WINDOW and angle + min(rate, 0.0) * LEAD < ENTRY_ALIGNMENT:
+                return
+            fc.sleep(BURN_CYCLE if angle > 4.0 * ENTRY_ALIGNMENT else 0.0)
 
-def _enu_eci(fc):
-    """Local east, north, up at the vehicle, ECI axes (from the estimate): ``up`` the
-    radial direction, ``east = z x up`` normalised, ``north = up x east``."""
-    up = fc.radial
-    ux, uy, uz = up.tolist()
-    size = math.sqrt(ux * ux + uy * uy)
-    ex, ey = -uy / size, ux / size
-    return np.array((ex, ey, 0.0)), np.array((-uz * ey, uz * ex, ux * ey - uy * ex)), up
+    def entry(self, engines):
+        fc, pad = self.fc, self.pad
+        fc.ignite(engines)
+        fc.throttle(0.0)                        # the least thrust until the gimbals have caught the swing
+        fc.event("entry burn start", altitude_m=fc.altitude, airspeed_m_s=fc.airspeed)
+        airspeed = Approach(ENTRY_SPEED, periods=(BURN_CYCLE,))
+        reserve = Approach(0.0, periods=(BURN_CYCLE,))
+        lean = np.zeros(2)
+        captured, lit = False, fc.time
+        while airspeed.ahead(fc.airspeed, fc.time) & reserve.ahead(fc.mass - self.floor(), fc.time):
+            r, v = pad.state(fc)
+            mass = fc.mass
 
+            def miss(trial):
+                entry, landing = self.burns(lit_entry=True, lean=trial)
+                return pad.offset(self.predict(r, v, mass, entry=entry, landing=landing).point)
 
-def impact(r, v, ballistic, thrust_accel=0.0):
-    """Earth-fixed point (m) where the state (r, v) (Earth-fixed, m, m/s) comes down on
-    the ellipsoid, with drag on the exponential air (see the module) and, when
-    ``thrust_accel`` (m/s^2, the engines' full thrust over the mass) is given, the
-    landing burn as the program flies it: lit by the same rule, against the
-    velocity, at the deceleration that stops the stage at the ground
-    (:func:`rocketsim.flight.guidance.descent_point`, compiled)."""
-    x, y, z = r.tolist()
-    vx, vy, vz = v.tolist()
-    return np.array(descent_point(x, y, z, vx, vy, vz, ballistic, thrust_accel, 2.0,
-                                  SEA_LEVEL_DENSITY, SCALE_HEIGHT, LANDING_ALTITUDE,
-                                  LANDING_MARGIN, TOUCH_SPEED, EARTH_J2))
+            if not captured and fc.thrust > 0.0 and (fc.time > lit + CAPTURE_TIME or (
+                    float(np.linalg.norm(fc.body_rates)) < CAPTURED and self.tail_angle() < ENTRY_ALIGNMENT)):
+                captured = True
+                fc.throttle(1.0)
+            # the lean flown until UNTILT before the end, as the prediction's lean held to the end
+            left = min((fc.airspeed - ENTRY_SPEED) * mass / max(fc.thrust, 1.0),
+                       (mass - self.floor()) / (3.0 * self.engine_flow))
+            share = max(left - UNTILT, 0.0) / max(left, 1e-3)
+            lean, off = descent.solve_lean(miss, lean, MAX_ENTRY_LEAN * share if captured else 0.0)
+            entry_, landing_ = self.burns(lit_entry=True, lean=lean)
+            _, _, mf, lit_mass, _ = self.predict(r, v, mass, entry=entry_, landing=landing_)
+            self.learn_landing_need(lit_mass, mf)
+            back = -fc.air_velocity / fc.airspeed
+            flown = lean / share if share > 0.0 else np.zeros(2)    # upright into the coast: no swing after
+            fc.point_at(descent.thrust_direction(back, pad.local_to_eci((flown[0], flown[1], 0.0), fc.time)))
+            self.measure_engines()
+            fc.sleep(min(airspeed.next_update(), reserve.next_update()))
+        fc.shutdown(engines)
+        fc.event("entry burn end", airspeed_m_s=fc.airspeed, altitude_m=fc.altitude,
+                 usable_propellant_kg=self.usable(), miss_m=float(np.linalg.norm(off)))
 
+    # --- 4. aerodynamic descent ---------------------------------------------------
+    def descend(self):
+        fc, pad = self.fc, self.pad
+        _, landing = self.burns()
+        full = landing[0]
+        rule = Approach(0.0, rising=True, periods=(CYCLE, BURN_CYCLE))
+        lean = np.zeros(2)
+        trim = descent.LeanTrim(TRIM_TIME, TRIM_LIMIT)
+        while True:
+            mass, q, mach = fc.mass, fc.dynamic_pressure, fc.mach
+            drag = fc.acceleration * G0
+            self.predict.set_scale(self.drag.update(fc.time, mass, drag, q, mach))
+            r, v = pad.state(fc)
 
-def horizontal(fc, east, north):
-    """A horizontal unit vector (ECI) from local (east, north) components."""
-    e, n, _ = _enu_eci(fc)
-    d = east * e + north * n
-    return d / np.linalg.norm(d)
+            def miss(trial):
+                return pad.offset(self.predict(r, v, mass, lean=trial, landing=landing).point)
 
+            lean, off = descent.solve_lean(miss, lean, 1.0)
+            back = -fc.air_velocity / fc.airspeed
+            alpha = float(np.linalg.norm(lean)) * min(MAX_ALPHA, Q_ALPHA / max(q, 1.0))
+            wanted = -alpha * lean / max(float(np.linalg.norm(lean)), 1e-9)    # the nose leans away
+            flown = (pad.axes @ pad.from_eci(self.nose() - back, fc.time))[:2]
+            asked = trim.command(wanted, flown, fc.time)
+            fc.point_at(descent.lean_attitude(back, pad.local_to_eci((-asked[0], -asked[1], 0.0), fc.time),
+                                              float(np.linalg.norm(asked))))
+            due = powered_descent.ignition_due(fc.clearance, -fc.vertical_speed, mass, full, fc.gravity, drag,
+                                               LEAD, LANDING, self.ground_pressure * EXIT_AREA)
+            if not rule.ahead(due, fc.time):
+                break
+            fc.sleep(rule.next_update())
+        fc.event("descent end", miss_m=float(np.linalg.norm(off)), lean=float(np.linalg.norm(lean)),
+                 drag_scale=self.drag.scale)
 
-def boost_back(fc, guide, engines):
-    """Burn until the predicted impact point is on the pad: at the engines' minimum
-    while the gimbals flip the stage, then at full thrust, and at the minimum again
-    over the last FINE_MISS metres. The miss is predicted once a second, then every
-    GUIDANCE_STEP and every step as its part along the first miss nears zero; the
-    burn ends where the next step would take it past (within half a step's change)."""
-    miss = guide.miss()
-    first = miss / np.linalg.norm(miss)
-    size = float(np.linalg.norm(miss))
-    fc.point_at(horizontal(fc, -miss[0], -miss[1]))
-    fc.ignite(engines)
-    fc.throttle(0.0)
-    fc.event("boost-back start", miss_m=float(np.linalg.norm(miss)))
-    remaining = Approach(0.0, periods=(1.0, GUIDANCE_STEP))     # the miss along the first one
-    along, wait, checked = miss @ first, 1.0, -math.inf
-    while True:
-        if fc.time - checked >= wait - 1e-9:
-            previous = along
-            miss, checked = guide.miss() + OVERSHOOT * first, fc.time
-            size = float(np.linalg.norm(miss))
-            if size > FINE_MISS:                    # hold still over the last part: no spin
-                wanted = horizontal(fc, -miss[0], -miss[1])     # is left when the engines stop
-            along = miss @ first
-            if not remaining.ahead(along, fc.time) or (wait == 0.0 and along <= 0.5 * (previous - along)):
-                break                               # on the aim within half a step
-            wait = remaining.next_update()
-        fc.point_at(wanted)
-        aligned = fc_nose(fc) @ wanted > math.cos(AIMED)
-        fc.throttle(1.0 if size > FINE_MISS and aligned else 0.0)
-        if aligned or wait < 1.0:                   # to the next prediction
-            fc.sleep(max(checked + wait - fc.time, 0.0))
-        else:                       # turning onto the aim: until it is reached, or the next prediction
-            fc.wait_until(fc.below("nose_angle", AIMED, towards=wanted) | fc.above("time", checked + 0.99))
-    fc.shutdown(engines)
-    fc.event("boost-back end", miss_m=size)
-    fc.sleep(1.0)                   # hold the attitude through the tail-off: no spin-up
-
-
-def fc_nose(fc):
-    """The nose direction (unit vector, ECI) from the estimated attitude."""
-    w, x, y, z = fc.attitude
-    return np.array([1.0 - 2.0 * (y * y + z * z), 2.0 * (x * y + w * z), 2.0 * (x * z - w * y)])
-
-
-def entry_burn(fc, guide, engines, landing_share):
-    """Slow down against the air, keeping what the landing burn needs, the thrust leaned
-    so that the impact point predicted from the burn's end (:meth:`Guide.burn_end_miss`)
-    is on the pad; returns the engines' full-throttle thrust (N) measured.
-    ``landing_share``: the landing burn's engines' share of that thrust. Updated every
-    GUIDANCE_STEP, every step as the airspeed or the propellant nears its end."""
-    fc.ignite(engines)
-    fc.throttle(1.0)
-    gauge = FullThrust(0.0)
-    airspeed = Approach(ENTRY_END_SPEED, periods=(GUIDANCE_STEP,))
-    reserve = Approach(0.0, periods=(GUIDANCE_STEP,))
-    while airspeed.ahead(fc.airspeed, fc.time) & reserve.ahead(guide.usable() - landing_propellant(fc.mass),
-                                                                fc.time):
-        full = gauge.read(fc)
-        if full > 0.0:      # spooled up: the burn's own prediction
-            lean_onto(fc, guide.recent_burn_end_miss(0.5, full, landing_share), thrusting=True)
-        else:
-            fc.point_at(-fc.air_velocity)
-        fc.sleep(min(airspeed.next_update(), reserve.next_update()))
-    fc.shutdown(engines)
-    fc.event("entry burn end", airspeed_m_s=fc.airspeed, altitude_m=fc.altitude,
-             usable_propellant_kg=guide.usable())
-    return gauge.full
-
-
-def landing_propellant(mass):
-    """Propellant (kg) a landing burn of LANDING_DV needs at ``mass`` (kg)."""
-    return mass * (1.0 - math.exp(-LANDING_DV / EXHAUST_SPEED))
-
-
-def lean_onto(fc, miss, thrusting):
-    """Point against the air-relative velocity, leaned so that the impact point moves by
-    ``-miss`` (east, north; m) onto the pad: thrust leans towards the pad, a body falling
-    tail first leans away."""
-    back = -fc.air_velocity / max(fc.airspeed, 1e-3)
-    size = float(np.linalg.norm(miss))
-    if size > 1.0:
-        towards = horizontal(fc, -miss[0], -miss[1])
-        side = towards - (towards @ back) * back
-        side /= max(np.linalg.norm(side), 1e-9)
-        sign = 1.0 if thrusting else -1.0
-        angle = min(MAX_LEAN, size / LEAN_SCALE * MAX_LEAN)
-        fc.point_at(within_air_limit(fc, math.cos(angle) * back + sign * math.sin(angle) * side))
-    else:
-        fc.point_at(back)
-
-
-def within_air_limit(fc, direction):
-    """``direction`` (unit, ECI), turned towards the air-relative velocity's reverse as far
-    as needed to keep q * alpha (alpha from the tail) within Q_ALPHA."""
-    speed = fc.airspeed
-    if speed < 1.0:
-        return direction
-    back = -fc.air_velocity / speed
-    limit = math.radians(Q_ALPHA / max(fc.dynamic_pressure, 1.0))
-    angle = math.acos(max(-1.0, min(1.0, float(direction @ back))))
-    if angle <= limit:
-        return direction
-    side = direction - (direction @ back) * back
-    side /= np.linalg.norm(side)
-    return math.cos(limit) * back + math.sin(limit) * side
-
-
-def descend(fc, guide, full):
-    """Fall tail first on the grid fins until the landing burn must start: below
-    LANDING_ALTITUDE, once stopping needs LANDING_MARGIN of the deceleration available.
-    Updated every DESCENT_PERIOD, every GUIDANCE_STEP and then every step as either nears."""
-    floor = Approach(LANDING_ALTITUDE, periods=(DESCENT_PERIOD, GUIDANCE_STEP))
-    rule = Approach(0.0, rising=True, periods=(DESCENT_PERIOD, GUIDANCE_STEP))
-    while True:
-        lean_onto(fc, guide.recent_miss(DESCENT_PERIOD, full / fc.mass), thrusting=False)
-        fall = -fc.vertical_speed
-        h = fc.clearance
-        available = full / fc.mass - fc.gravity + fc.dynamic_pressure / BALLISTIC   # thrust, drag
-        need = fall * fall / (2.0 * h) if fall > 0 and h > 0 else 0.0
-        high = floor.ahead(fc.altitude, fc.time)
-        short = rule.ahead(need - LANDING_MARGIN * available, fc.time)
-        if not high and not short:
-            return
-        # the burn lights at the later of the two crossings: look every step as either nears
-        fc.sleep(min(floor.next_update() if high else math.inf, rule.next_update() if short else math.inf))
-
-
-def land(fc, guide, engines, full):
-    """The landing burn, down to the engines' cut-off just above the ground, updated every
-    GUIDANCE_STEP and every step as the cut-off's clearance nears.
-
-    The descent rate follows a reference: the constant deceleration planned at
-    ignition down to FINAL_HEIGHT, then a gentler FINAL_DECELERATION (more than the
-    engine's least thrust gives, so the stage never stops above the ground) to
-    ``v_touch`` at the ground; the throttle gives the reference's deceleration plus
-    SPEED_GAIN times the speed error."""
-    fc.deploy_legs()
-    fc.ignite(engines)
-    fc.event("landing burn start", altitude_m=fc.altitude, speed_m_s=fc.airspeed)
-    h, fall = fc.clearance, -fc.vertical_speed
-    final_speed = math.sqrt(TOUCH_SPEED ** 2 + 2.0 * FINAL_DECELERATION * FINAL_HEIGHT)
-    plan = max((fall * fall - final_speed ** 2) / (2.0 * max(h - FINAL_HEIGHT, 1.0)), 1.0)
-    gate_speed = math.sqrt(TOUCH_SPEED ** 2 + 2.0 * FINAL_DECELERATION * TERMINAL_HEIGHT)
-    gauge = FullThrust(full)
-    cutoff = Approach(CUTOFF_CLEARANCE, periods=(GUIDANCE_STEP,))
-    while True:
-        h = fc.clearance
-        fall = -fc.vertical_speed
-        if not cutoff.ahead(h, fc.time) or (fall < 0.0 and h < 3.0):
-            break
-        if h > FINAL_HEIGHT:
-            reference = math.sqrt(final_speed ** 2 + 2.0 * plan * (h - FINAL_HEIGHT))
-            slowing = plan
-        else:
-            reference = math.sqrt(TOUCH_SPEED ** 2 + 2.0 * FINAL_DECELERATION * max(h, 0.0))
-            slowing = FINAL_DECELERATION
-        up_acc = max(fc.effective_gravity + slowing + SPEED_GAIN * (fall - reference), 0.5)
-        offset, ground = guide.offset()
-        if h > TERMINAL_HEIGHT:     # zero-effort miss onto the gate TERMINAL_HEIGHT above the pad
-            t_go = max(2.0 * (h - TERMINAL_HEIGHT) / (fall + gate_speed), MIN_TIME_TO_GO)
-            side = -6.0 * (offset + ground * t_go) / t_go ** 2 + 2.0 * ground / t_go
-            lean = MAX_LEAN
-        else:                       # nearly upright: the drift, and what is left of the offset
-            side = -2.0 * ground / TERMINAL_TIME - offset / TERMINAL_TIME ** 2     # critically damped
-            lean = TERMINAL_LEAN
-        side_size = float(np.linalg.norm(side))
-        cap = up_acc * math.tan(lean)
-        if side_size > cap:
-            side *= cap / side_size
-        e, n, u = _enu_eci(fc)
-        wanted = side[0] * e + side[1] * n + up_acc * u
-        total = float(np.linalg.norm(wanted))
-        fc.point_at(within_air_limit(fc, wanted / total))
-        fc.throttle(fc.mass * total / gauge.full)
-        gauge.read(fc)
-        fc.sleep(cutoff.next_update())
-    fc.shutdown(engines)
-    fc.release()
-    fc.event("landing burn end", clearance_m=fc.clearance, vertical_speed_m_s=fc.vertical_speed)
-
-
-class FullThrust:
-    """Full-throttle thrust (N) of the firing engines: ``full`` until they have spooled
-    up, then measured (thrust over throttle), again every GUIDANCE_STEP (it changes
-    only with the air's pressure: reading every engine's state every step costs more)."""
-
-    def __init__(self, full):
-        self.full = full
-        self.measured_at = -math.inf
-
-    def read(self, fc):
-        """Measure now if due; returns :attr:`full`."""
-        if fc.time - self.measured_at < GUIDANCE_STEP - 1e-9:
-            return self.full
-        firing = [e for e in fc.engines if e["thrust_N"] > 0.0]
-        if firing and all(e["spool"] >= 1.0 for e in firing):
-            self.full = sum(e["thrust_N"] / e["throttle"] for e in firing)
-            self.measured_at = fc.time
-        return self.full
+    # --- 5. landing burn ------------------------------------------------------------
+    def land(self, engines):
+        fc, pad = self.fc, self.pad
+        fc.deploy_legs()
+        fc.ignite(engines)
+        fc.event("landing burn start", altitude_m=fc.altitude, speed_m_s=fc.airspeed,
+                 usable_propellant_kg=self.usable())
+        cutoff = Approach(LANDING.cutoff_height, periods=(BURN_CYCLE,))
+        while True:
+            offset, velocity = pad.local(fc)
+            height, fall = fc.clearance, -fc.vertical_speed
+            if powered_descent.cutoff_due(height, fall, LANDING) or not cutoff.ahead(height, fc.time):
+                break
+            nose = pad.axes @ pad.from_eci(self.nose(), fc.time)
+            pushing = fc.thrust / fc.mass * nose[:2]
+            air = pad.axes @ pad.from_eci(fc.air_velocity, fc.time)
+            loss = fc.air_pressure * EXIT_AREA             # the air's push on the nozzle's exit
+            direction, throttle = powered_descent.command(offset, velocity, height, fc.mass, self.engine_thrust - loss,
+                                                          fc.gravity, fc.dynamic_pressure, air, LANDING, pushing, loss)
+            fc.point_at(pad.local_to_eci(direction, fc.time))
+            fc.throttle(throttle)
+            fc.sleep(cutoff.next_update())
+        fc.shutdown(engines)
+        fc.release()
+        fc.event("landing burn end", clearance_m=fc.clearance, vertical_speed_m_s=fc.vertical_speed,
+                 usable_propellant_kg=self.usable())

@@ -32,7 +32,7 @@ reserve is reached. The upper stage's
 program, like a real flight computer's guidance, solves its steering law every
 GUIDANCE_PERIOD (1 s) and sleeps in between, while the autopilot follows the
 law every 20 ms step (``fc.steer_linear_tangent``); it wakes more often as the
-cut-off nears (:class:`~rocketsim.flight.guidance_rate.Approach`: the insertion's
+cut-off nears (:class:`~rocketsim.guidance.rate.Approach`: the insertion's
 periapsis), every step at the end, so the engine is cut in the step the limit is
 crossed. A program that wants the per-step loop calls ``fc.step()`` instead.
 
@@ -44,7 +44,7 @@ import math
 
 from rocketsim.constants import EARTH_MU, EARTH_OMEGA, EARTH_RADIUS_EQ as EARTH_RADIUS
 from rocketsim.flight.guidance import solve_linear_tangent, warm_up
-from rocketsim.flight.guidance_rate import Approach
+from rocketsim.guidance.rate import Approach
 
 KICK_PER_TW = math.radians(12.66)  # kick per unit of thrust-to-weight above 1
 KICK_HEIGHT = 300.0            # m above the pad
