@@ -33,6 +33,25 @@ def overrides(settings: tuple[str, ...]) -> dict:
     return found
 
 
+def _terminal() -> tuple[bool, bool]:
+    """Whether standard error and standard input are a terminal."""
+    return sys.stderr.isatty(), sys.stdin.isatty()
+
+
+def _check_size(size, output: Path, large_ok: bool) -> None:
+    """Say the telemetry's estimated ``size`` on a terminal; above 2 GB ask (a terminal) or
+    stop with exit status 2 unless ``large_ok``."""
+    shown, asked = _terminal()
+    if shown:
+        click.echo(f"telemetry: {size} to {output}", err=True)
+    if not size.large or large_ok:
+        return
+    if shown and asked and click.confirm(f"write about {size.bytes / 1e9:.3g} GB?", err=True):
+        return
+    raise InputError(f"the telemetry would be {size}: fly with a lower --rate, thin its coasts with "
+                     "--coast-rate, or pass --yes to write it", field="--rate")
+
+
 class _Terminated(BaseException):
     """SIGTERM, raised in the main thread so the telemetry file is finished."""
 
@@ -54,28 +73,48 @@ def _raise_terminated(signum, frame):
                    "--set 'vehicle.stages[booster].structure_mass=26 t' (repeatable; paths: docs/how-to/change-fields.md).")
 @click.option("--summary-json", type=click.Path(dir_okay=False, path_type=Path), default=None,
               help="Also write the flight summary as JSON to this file.")
+@click.option("--rate", type=Quantity("frequency", "1 Hz"), default=None,
+              help="Telemetry samples per second, e.g. '1 Hz' or 0.01Hz (the scenario's telemetry.rate).")
+@click.option("--coast-rate", type=Quantity("frequency", "0.01 Hz"), default=None,
+              help="Samples per second while a body coasts: no engine running, under 1 Pa of dynamic "
+                   "pressure (the scenario's telemetry.coast_rate; see the README's Telemetry).")
+@click.option("--yes", "large_ok", is_flag=True,
+              help="Write the telemetry even if it is estimated above 2 GB.")
 @live_options
 @reports_input_errors
 def fly(scenario: Path, output: Path | None, step: float | None, duration: float | None,
-        settings: tuple[str, ...], summary_json: Path | None, live: Live | None) -> None:
+        settings: tuple[str, ...], summary_json: Path | None, rate: float | None,
+        coast_rate: float | None, large_ok: bool, live: Live | None) -> None:
     """Fly SCENARIO and write its telemetry as MCAP.
 
-    Ctrl-C or SIGTERM stops the flight and still finishes the MCAP file
-    (exit status 130 or 143). With --live the flight is served to Foxglove as it
-    flies, at --warp times real time; the file is the same, byte for byte.
+    Before flying, the telemetry file's size is estimated (shown on a
+    terminal); above 2 GB the flight asks first (a terminal) or stops with
+    exit status 2 unless --yes: a lower --rate, or --coast-rate for long
+    coasts, writes less. Ctrl-C or SIGTERM stops the flight and still
+    finishes the MCAP file (exit status 130 or 143). With --live the flight is
+    served to Foxglove as it flies, at --warp times real time; the file is the
+    same, byte for byte.
 
     \b
     Example:
         rocketsim fly scenarios/iss-coast.yaml -o iss.mcap --summary-json iss.json
         rocketsim fly scenarios/falcon9-hop.yaml --duration 30s --set seed=3
+        rocketsim fly scenarios/iss-coast.yaml --duration 60d --rate 1Hz --coast-rate 0.01Hz
         rocketsim fly scenarios/falcon9-hop.yaml --live --warp 10
     """
-    from rocketsim.api import fly_live, fly_to_file, load, strict_json
+    from rocketsim.api import design_warnings, fly_live, fly_to_file, load, strict_json, telemetry_size
     from rocketsim_cli.compiling import compile_message
 
-    loaded = load(scenario, overrides(settings))
+    given = overrides(settings)
+    for path, value in (("telemetry.rate", rate), ("telemetry.coast_rate", coast_rate)):
+        if value is not None:
+            given[path] = f"{value!r} Hz"
+    loaded = load(scenario, given)
+    for line in design_warnings(loaded):
+        click.echo(f"warning: {scenario}: {line}", err=True)
     output = output or Path(f"{scenario.stem}.mcap")
     check_writable(output, "--output")
+    _check_size(telemetry_size(loaded, duration), output, large_ok)
     if summary_json is not None:
         check_writable(summary_json, "--summary-json")
     previous = signal.signal(signal.SIGTERM, _raise_terminated)
@@ -99,7 +138,7 @@ def fly(scenario: Path, output: Path | None, step: float | None, duration: float
         click.echo(f"\nerror: {error}; " + (f"what was written to {output} is readable with "
                    f"'rocketsim replay {output}'" if written else f"nothing was written to {output}"),
                    err=True)
-        sys.exit(1)
+        sys.exit(2)
     finally:
         signal.signal(signal.SIGTERM, previous)
     click.echo(format_summary(summary))

@@ -19,12 +19,15 @@ def validate(files: tuple[Path, ...]) -> None:
 
     The kind of each file is recognised from its fields (a scenario has
     'mission', a vehicle 'rigid_body' or 'stages', a site 'latitude', a mission 'start').
+    A valid staged vehicle or scenario is then reviewed ('rocketsim vehicle'), and
+    each way its design will fail (break up, tumble, not steer, not lift off) is a
+    warning line on stderr.
 
     \b
     Example:
         rocketsim validate scenarios/iss-coast.yaml vehicles/cubesat-6u.yaml
     """
-    from rocketsim.api import validate_file
+    from rocketsim.api import design_warnings, validate_file
 
     failed = False
     for path in files:
@@ -35,6 +38,8 @@ def validate(files: tuple[Path, ...]) -> None:
             failed = True
         else:
             click.echo(f"ok: {path} ({kind})")
+            for line in design_warnings(path):
+                click.echo(f"warning: {path}: {line}", err=True)
     if failed:
         sys.exit(2)
 

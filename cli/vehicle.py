@@ -1,4 +1,5 @@
-"""``rocketsim vehicle``: the stack of a vehicle file, its masses, Delta-v and inertia."""
+"""``rocketsim vehicle``: the stack of a vehicle file, its masses, Delta-v and inertia, and
+its design review (``rocketsim.api.vehicle_report``)."""
 
 from __future__ import annotations
 
@@ -22,20 +23,24 @@ def vehicle(file, fmt, plot):
     equation, vacuum and sea level, 1 % of each stage's propellant unusable, the
     stages above carried along), thrust-to-weight at liftoff, and the centre of
     mass (above the base) and inertia (roll, pitch, yaw about the centre of mass)
-    full and empty. SI units.
+    full and empty; then its design review: where the nose sits, the centre of
+    pressure and static margin at liftoff and burnout, each stage's peak axial load
+    against the structural limit and how it steers, and warnings. FILE is a vehicle
+    file, or a scenario (then also the rail-exit speed off its rail). SI units.
 
     \b
     Examples:
         rocketsim vehicle vehicles/falcon9-block5.yaml
+        rocketsim vehicle scenarios/hobby-rocket.yaml
         rocketsim vehicle vehicles/falcon9-block5.yaml --format json --plot f9.png
     """
     from rocketsim.api import vehicle_report
 
     report = vehicle_report(file)
     if fmt == "json":
-        click.echo(json.dumps(report.figures, indent=2))
+        click.echo(json.dumps({**report.figures, "review": report.review.as_dict()}, indent=2))
     else:
-        click.echo(_table(report.figures))
+        click.echo(_table(report.figures) + "\n\n" + report.review.text())
     if plot is not None:
         from rocketsim.plots import vehicle as plot_vehicle
         plot_vehicle(report, plot)

@@ -64,7 +64,7 @@ def _print(rows: list[dict], fmt: str, target: str) -> None:
     if fmt == "csv":
         click.echo(",".join(columns))
         for row in rows:
-            click.echo(",".join(str(row[c]) for c in columns))
+            click.echo(",".join("" if row[c] is None else str(row[c]) for c in columns))
         return
     dec = "dla_deg" if target == "mars" else "moon_dec_deg"
     click.echo(f"{'#':>2} {'departure (UTC)':<20} {'arrival (UTC)':<20} {'tof_d':>8} "
@@ -75,7 +75,12 @@ def _print(rows: list[dict], fmt: str, target: str) -> None:
                    f"{row['arrival_utc'][:16].replace('T', ' '):<20} {row['tof_days']:8.1f} "
                    f"{row['c3_km2_s2']:10.3f} {row['dla_deg']:12.2f} "
                    f"{row['vinf_arrival_km_s']:13.3f} {row['dv_departure_km_s']:7.3f} "
-                   f"{row['dv_arrival_km_s']:7.3f} {row['dv_total_km_s']:8.3f}")
+                   f"{row['dv_arrival_km_s']:7.3f} {row['dv_total_km_s']:8.3f}"
+                   + ("  EDGE" if row["edge"] else ""))
+    for k, row in enumerate(rows, 1):
+        if row["edge"]:
+            click.echo(f"EDGE: #{k} lies on {row['edge']}: the best in this range, not an optimum "
+                       "(widen the range to find it)")
 
 
 def _targets() -> list[str]:
@@ -114,14 +119,25 @@ def _targets() -> list[str]:
               default=None, help="write the chosen window as a mission-file fragment (YAML)")
 @click.option("--pick", type=click.IntRange(1, 20), default=1, show_default=True,
               help="which listed window --mission-fragment writes")
+@click.option("--parking-inclination", type=Quantity("angle", "31 deg"), default=None,
+              help="the parking orbit's inclination in the mission fragment, e.g. '31 deg' "
+                   "[default: the least that holds the departure asymptote] (Mars)")
 @reports_input_errors
 def windows(target, start, stop, step, parking_orbit, capture_orbit, max_c3, max_vinf,
-            tof_range, objective, count, plot, fmt, mission_fragment, pick):
+            tof_range, objective, count, plot, fmt, mission_fragment, pick, parking_inclination):
     """Search launch windows: Lambert arcs (Izzo) over a grid of departure and
     arrival dates on the project's ephemerides, refined to the optima, priced
     as escape from a circular parking orbit plus capture at the target
     (patched conics). Lists departure, arrival, time of flight, C3, the
-    declination of the departure asymptote, arrival v-infinity and delta-v.
+    declination of the departure asymptote, arrival v-infinity and delta-v;
+    a window whose optimum lies on a bound of the search (its first or last
+    date, a time-of-flight limit) is marked EDGE: the best in the range, not
+    an optimum.
+
+    --mission-fragment writes the chosen window as a mission file: the
+    departure epoch, a start in the parking orbit whose plane holds the
+    departure asymptote (the Moon's orbital plane for the Moon), a duration
+    to the arrival, n-body gravity; a scenario names it as its mission.
 
     For the Moon the arc runs from the parking orbit (assumed in the Moon's
     plane, burning 179 deg before arrival) to the Moon's centre; the
@@ -197,5 +213,9 @@ def windows(target, start, stop, step, parking_orbit, capture_orbit, max_c3, max
         if pick > len(found.windows):
             raise InputError(f"--pick {pick}: only {len(found.windows)} window(s) found",
                              field="--pick")
-        mission_fragment.write_text(found.fragment(pick - 1))
+        try:
+            text = found.fragment(pick - 1, parking_inclination)
+        except InputError as error:
+            raise InputError(error.message, field="--parking-inclination") from None
+        mission_fragment.write_text(text)
         click.echo(f"mission fragment written to {mission_fragment}", err=True)

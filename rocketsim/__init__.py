@@ -14,6 +14,11 @@ The front door, for scripts and notebooks::
 * :func:`open_run` (an MCAP path) -> the same :class:`Run`, executing nothing;
 * :func:`campaign` (a campaign file or mapping, directory, workers, scheduler) -> a
   Monte Carlo campaign's results as a pandas DataFrame (:mod:`rocketsim.campaigns`);
+* :func:`review` (a vehicle or scenario file or mapping, or what ``load`` returned) -> the
+  pre-flight design review: centre of pressure and static margin at liftoff and burnout,
+  thrust-to-weight, rail-exit speed, peak axial load against the limit, how each stage
+  steers, and ``.warnings``; :func:`design_warnings` -> those warnings alone (none for a
+  rigid body, a site or a mission file) (:mod:`rocketsim.scenario.preflight`);
 * :class:`InputError`: what bad input raises (file, line, field, or path).
 
 These are :mod:`rocketsim.api`'s, which has the rest of the front door (what every
@@ -25,6 +30,7 @@ light commands do not import the flight's compiled kernels.
 from rocketsim.exports import lazy
 from rocketsim.version import __version__
 
-__all__ = ["__version__", "load", "fly", "open_run", "Run", "InputError", "campaign"]
+__all__ = ["__version__", "load", "fly", "open_run", "Run", "InputError", "campaign", "review",
+           "design_warnings"]
 
 __getattr__, __dir__ = lazy(globals(), {name: "rocketsim.api" for name in __all__[1:]})

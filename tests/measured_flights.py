@@ -122,12 +122,12 @@ def rocketpy_flight(name: str, motors: Path, weather: Path | None = None,
     .eng files; ``weather``: an ERA5 file in place of the day's; ``to_apogee``: stop there,
     RocketPy's ``terminate_on_apogee``).
 
-    ``physical`` (Notre Dame): the rocket as vehicles/ndrt-2020.yaml builds it, in place of
-    two figures of the acceptance test no rocket has: the motor in the tail (its nozzle at
-    -1.255 m, where the test adds the motor's own -1.255 m nozzle position once more, 1.2 m
-    below the tail) and the structure's pitch inertia of a thin shell of the body,
-    ``m (r^2/2 + L^2/12)``, in place of 83.351 kg m^2; and no boattail (rocketsim's
-    aerodynamics have none)."""
+    ``physical`` (Notre Dame): the rocket as vehicles/ndrt-2020.yaml builds it
+    (tests/rocketpy_rockets.py: our masses, centre of mass and inertia, the motor in the
+    tail), in place of two figures of the acceptance test no rocket has: the motor hung
+    1.2 m below the tail (its nozzle at -1.255 m, where the test adds the motor's own
+    -1.255 m nozzle position once more) and a pitch inertia of 83.351 kg m^2; the rail
+    buttons the acceptance test's."""
     from rocketpy import Environment, Flight, Function, Rocket, SolidMotor
     site = NDRT if name == "ndrt-2020" else BELLA
     env = Environment(gravity=9.81, latitude=site["latitude"], longitude=site["longitude"],
@@ -139,6 +139,14 @@ def rocketpy_flight(name: str, motors: Path, weather: Path | None = None,
     def drogue(p, h, y):          # at apogee (vertical speed below zero)
         return y[5] < 0
 
+    if name == "ndrt-2020" and physical:
+        from tests.aero_vehicles import shipped
+        from tests.rocketpy_rockets import rocketpy_rocket
+        rocket, _ = rocketpy_rocket(shipped("ndrt-2020.yaml"), 0.44, parachutes=True)
+        base = 1.321656                     # the acceptance test's stations are from the CM
+        rocket.set_rail_buttons(base + 0.2, base - 0.5, 45)
+        return Flight(rocket=rocket, environment=env, rail_length=3.353, inclination=90,
+                      heading=181, terminate_on_apogee=to_apogee), env
     if name == "ndrt-2020":
         motor = SolidMotor(
             thrust_source=str(motors / "Cesaroni_4895L1395-P.eng"), burn_time=3.45,
@@ -147,20 +155,16 @@ def rocketpy_flight(name: str, motors: Path, weather: Path | None = None,
             grain_density=1519.708, grain_outer_radius=0.033, grain_initial_inner_radius=0.015,
             grain_initial_height=0.120, nozzle_radius=49.5 / 2000, throat_radius=21.5 / 2000,
             interpolation_method="linear", nozzle_position=-1.255)
-        shell, radius, length = 23.321 - 4.323, 0.203 / 2, 2.041366     # the vehicle file's
-        pitch = shell * (radius ** 2 / 2 + length ** 2 / 12)
-        inertia = (pitch, pitch, shell * radius ** 2) if physical else (83.351, 83.351, 0.15982)
         rocket = Rocket(radius=203 / 2000, mass=23.321 - 2.475 - 1,
-                        inertia=inertia, power_off_drag=0.44,
+                        inertia=(83.351, 83.351, 0.15982), power_off_drag=0.44,
                         power_on_drag=0.44, center_of_mass_without_motor=0)
         rocket.set_rail_buttons(0.2, -0.5, 45)
-        rocket.add_motor(motor, 0.0 if physical else -1.255)
+        rocket.add_motor(motor, -1.255)
         rocket.add_nose(length=0.610, kind="tangent", position=0.71971 + 0.610)
         rocket.add_trapezoidal_fins(3, span=0.165, root_chord=0.152, tip_chord=0.0762,
                                     position=-1.04956)
-        if not physical:
-            rocket.add_tail(top_radius=203 / 2000, bottom_radius=155 / 2000, length=0.127,
-                            position=-1.194656)
+        rocket.add_tail(top_radius=203 / 2000, bottom_radius=155 / 2000, length=0.127,
+                        position=-1.194656)
 
         def main(p, h, y):        # 550 ft AGL, falling
             return y[5] < 0 and h < 167.64

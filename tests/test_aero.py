@@ -13,7 +13,7 @@ from rocketsim.dynamics.derivative import derivative
 from rocketsim.dynamics.rk4 import step
 from rocketsim.layout import P_SPIN, Q, W
 from rocketsim.frames.quaternion import quat_rotate
-from rocketsim.vehicle.aero import (A_AREA, A_ETA, A_NOSE_X, FIN_X, HANDOVER, NOSE_FIRST_CA,
+from rocketsim.vehicle.aero import (A_AREA, A_ETA, A_NOSE_X, A_TAIL_AREA, A_TAIL_X, FIN_X, HANDOVER, NOSE_FIRST_CA,
                                     NOSE_FIRST_MACH, TAIL_FIRST_CA, TAIL_FIRST_MACH,
                                     axial_coefficient, body_aero)
 from rocketsim.vehicle.grid_fins import (GC_CMD, GRID_CD, GRID_CN_ALPHA, GRID_MACH, G_MAX, G_RATE,
@@ -112,6 +112,36 @@ def test_nose_lift_acts_at_the_slender_body_centre_of_pressure():
     assert 10.0 - cone[A_NOSE_X] == pytest.approx(2.0 * 2.0 / 3.0, rel=1e-3)
     ogive = build(spec(SOUNDING)).arrays.aero.ref
     assert 6.0 - ogive[A_NOSE_X] == pytest.approx(0.466 * 1.0, rel=0.01)
+
+
+def test_a_boattail_lifts_against_the_nose_as_barrowmans_conical_transition():
+    # Barrowman (1967), conical transitions: C_N_alpha = 2 ((d_2/d)^2 - (d_1/d)^2) per radian
+    # on the reference section, at x_1 + L/3 (1 + (1 - d_1/d_2) / (1 - (d_1/d_2)^2)) from its
+    # fore end (d_1 there, d_2 at its aft end). Notre Dame 2020's boattail: 203 mm to 155 mm
+    # over 127 mm: -0.8340 per radian, 60.66 mm aft of its fore end. At 0.5 deg nose first
+    # the body's normal force and pitching moment change by that slope at that station.
+    body = {"name": "tail", "stages": [{"name": "r", "length": "2.65 m", "diameter": "0.203 m",
+                                        "structure_mass": "19 kg"}],
+            "aero": {"nose": {"length": "0.61 m", "shape": "ogive"}, "segments": 40}}
+    tailed = dict(body, aero=dict(body["aero"], boattail={"stage": "r", "length": "0.127 m",
+                                                          "diameter": "0.155 m"}))
+    d1, d2, length = 0.203, 0.155, 0.127
+    slope = 2 * ((d2 / d1) ** 2 - 1)
+    station = length - length / 3 * (1 + (1 - d1 / d2) / (1 - (d1 / d2) ** 2))     # above the base
+    ref = build(spec(tailed)).arrays.aero.ref
+    assert 2 * ref[A_TAIL_AREA] / ref[A_AREA] == pytest.approx(slope, rel=1e-12)
+    assert ref[A_TAIL_X] == pytest.approx(station, rel=1e-6)
+    forces = []
+    for vehicle in (body, tailed):
+        a = build(spec(vehicle)).arrays.aero
+        speed, al = 100.0, math.radians(0.5)
+        forces.append(body_aero(speed * math.cos(al), 0.0, speed * math.sin(al), 0.0, 0.0, 0.0,
+                                1.225, 340.0, 0.0, 1.2, a.ref, a.seg, a.fin, a.ca_nf, a.ca_tf))
+    q_s_alpha = 0.5 * 1.225 * 100.0 ** 2 * ref[A_AREA] * math.sin(al) * math.cos(al)
+    normal = -(forces[1][2] - forces[0][2]) / q_s_alpha          # the boattail's own, plus its
+    assert normal == pytest.approx(slope, rel=0.02)               # narrower crossflow segment
+    arm = (forces[1][4] - forces[0][4]) / (forces[1][2] - forces[0][2])
+    assert 1.2 - arm == pytest.approx(station, abs=0.005)
 
 
 # --- static stability --------------------------------------------------------

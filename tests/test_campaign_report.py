@@ -79,7 +79,7 @@ def synthetic(directory, n: int = N, errors=ERRORS, timeouts=TIMEOUTS, seed: int
         "stage2.final.altitude_m": 210e3 + rng.normal(0.0, 1e3, n),
         "stage2.orbit.periapsis_altitude": periapsis,
         "stage2.orbit.t_s": np.where(periapsis > 180e3, 500.0, np.nan),
-        "stage2.max_q.q_Pa": 30e3 + 1e3 * wind,
+        "stage2.max_q.dynamic_pressure_Pa": 30e3 + 1e3 * wind,
         "stage2.landing.latitude_deg": np.nan, "stage2.landing.longitude_deg": np.nan,
         "stage2.landing.t_s": np.nan, "stage2.landing.kind": np.array([None] * n, dtype=object),
         "summary.mission_time_s": 500.0 + rng.normal(0.0, 1.0, n),

@@ -157,14 +157,15 @@ def test_touchdown_event_reports_speed_tilt_and_distance_to_the_pad(lander):
 def fly_drop(write, speed: float, duration: float, target: str = "", east: float = 0.0) -> dict:
     """The lander dropped by World from a scenario at ``speed`` (m/s, down) and ``east``
     (m/s) with its feet 2 m above the ellipsoid (the site's height; the ground is the
-    WGS84 ellipsoid, terrain is not modelled); ``target`` a mission ``target:`` entry.
+    WGS84 ellipsoid, ``ground_height: 0 m``); ``target`` a mission ``target:`` entry.
     Its summary."""
     from rocketsim.scenario.load import load
     from rocketsim.sim.build import build_world
     from tests.aero_vehicles import ROOT
     model = build(shipped("lander.yaml"))
     x_cm = model.mass_properties(model.state([0, 0, 0], [0, 0, 0]))[1]
-    write("site.yaml", f"name: flat\nlatitude: 28.5 deg\nlongitude: -80.6 deg\nheight: {2.0 + 1.2 + x_cm} m\n")
+    write("site.yaml", f"name: flat\nlatitude: 28.5 deg\nlongitude: -80.6 deg\nheight: {2.0 + 1.2 + x_cm} m\n"
+                       "ground_height: 0 m\n")
     write("mission.yaml", "epoch: 2026-11-26T12:00:00Z\nstart:\n  site:\n"
                           f"    velocity: [{east!r} m/s, 0 m/s, {-speed!r} m/s]\nduration: {duration!r} s\n{target}")
     path = write("drop.yaml", f"name: drop\nvehicle: {ROOT / 'vehicles' / 'lander.yaml'}\nsite: site.yaml\n"
@@ -301,7 +302,7 @@ def test_a_contact_far_faster_than_any_landing_is_an_impact_not_a_bounce(write):
     impact = body["events"][0]
     expected = math.sqrt(30.0 ** 2 + 4.0 * somigliana(LAT))
     assert impact["vertical_speed_m_s"] == pytest.approx(-expected, rel=4e-3)
-    assert impact["speed_m_s"] == pytest.approx(expected, rel=4e-3)
+    assert impact["surface_speed_m_s"] == pytest.approx(expected, rel=4e-3)
     assert impact["time_s"] == pytest.approx((expected - 30.0) / somigliana(LAT), abs=0.021)
     assert body["final"]["time_s"] == impact["time_s"]          # it flies no further
 

@@ -18,12 +18,13 @@ from rocketsim.api.telemetry_flight import fly_to_file as fly
 from rocketsim.telemetry.land import land_fraction
 from rocketsim.vehicle.tumbling import continuum_cd, half_shell_area
 from tests.conftest import ROOT
+from tests.plot_checks import assert_the_plot_reads
 
 
 @pytest.fixture(scope="module")
 def flight(tmp_path_factory):
     out = tmp_path_factory.mktemp("falcon9") / "run.mcap"
-    return fly(load(ROOT / "scenarios" / "falcon9-leo.yaml"), out, step=0.05, duration=1050.0)
+    return {**fly(load(ROOT / "scenarios" / "falcon9-leo.yaml"), out, step=0.05, duration=1050.0), "file": out}
 
 
 def events(flight, body="falcon9-block5"):
@@ -52,7 +53,7 @@ def test_max_q_is_where_the_physics_model_quotes_it(flight):
     11.0 km, Mach 1.51, 63 s after liftoff. The program's trajectory is not
     the seed's, so within 10 % in q and Mach and 2 km in altitude."""
     max_q = events(flight)["max_q"]
-    assert max_q["q_Pa"] == pytest.approx(36.4e3, rel=0.10)
+    assert max_q["dynamic_pressure_Pa"] == pytest.approx(36.4e3, rel=0.10)
     assert max_q["mach"] == pytest.approx(1.51, rel=0.10)
     assert max_q["altitude_m"] == pytest.approx(11.0e3, abs=2e3)
 
@@ -102,9 +103,14 @@ def test_the_fairing_halves_tumble_down_into_the_sea(flight):
     hits = [events(flight, name)["impact"] for name in ("fairing_1", "fairing_2")]
     print(f"\nfairing halves hit the sea: {hits} (terminal {terminal:.2f} m/s)")
     for hit in hits:
-        assert hit["speed_m_s"] == pytest.approx(terminal, rel=0.03)
+        assert hit["surface_speed_m_s"] == pytest.approx(terminal, rel=0.03)
         assert land_fraction(hit["latitude_deg"], hit["longitude_deg"]) == 0.0
     apart = math.dist(*[(math.radians(h["latitude_deg"]) * EARTH_RADIUS_EQ,
                          math.radians(h["longitude_deg"]) * EARTH_RADIUS_EQ
                          * math.cos(math.radians(h["latitude_deg"]))) for h in hits])
     assert 50.0 < apart < 5000.0
+
+
+def test_its_plot_reads(flight):
+    """The replay plot of the whole flight (tests/plot_checks.py)."""
+    assert_the_plot_reads(flight["file"], "falcon9-leo")

@@ -13,12 +13,14 @@ import pytest
 from rocketsim.scenario.load import load
 from rocketsim.api.telemetry_flight import fly_to_file as fly
 from tests.conftest import ROOT
+from tests.plot_checks import assert_the_plot_reads
 
 
 @pytest.fixture(scope="module")
 def flight(tmp_path_factory):
     out = tmp_path_factory.mktemp("falcon9_realistic") / "run.mcap"
-    return fly(load(ROOT / "scenarios" / "falcon9-leo-realistic.yaml"), out, step=0.05, duration=480.0)
+    return {**fly(load(ROOT / "scenarios" / "falcon9-leo-realistic.yaml"), out, step=0.05, duration=480.0),
+            "file": out}
 
 
 def test_booster_lands_within_the_limits_with_realistic_sensors(flight):
@@ -30,3 +32,7 @@ def test_booster_lands_within_the_limits_with_realistic_sensors(flight):
     assert abs(touchdown["vertical_speed_m_s"]) < 2.0
     assert touchdown["distance_to_target_m"] < 15.0
 
+
+def test_its_plot_reads(flight):
+    """The replay plot of the whole flight (tests/plot_checks.py)."""
+    assert_the_plot_reads(flight["file"], "falcon9-leo-realistic")

@@ -294,7 +294,7 @@ def test_the_layout_names_only_topics_fields_and_frames_the_files_carry(hop):
         topic, _, field = path.partition(".")
         assert topic in contents.topics, path
         assert not field or field in state, path
-    assert {p.partition(".")[2] for p in paths} >= {"altitude", "speed", "dynamic_pressure"}
+    assert {p.partition(".")[2] for p in paths} >= {"altitude", "inertial_speed", "surface_speed", "dynamic_pressure"}
 
 
 @pytest.mark.skipif(shutil.which("node") is None or not CHECK.exists(),

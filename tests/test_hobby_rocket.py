@@ -39,11 +39,11 @@ def test_the_flight_runs_its_sequence_and_lands_under_the_main(flight):
     assert names == ["liftoff", "off_rail", "burnout", "max_q", "apogee", "parachute_deployed",
                      "parachute_inflated", "parachute_deployed", "parachute_inflated", "touchdown"]
     off = events["off_rail"]
-    assert 20.0 < off["speed_m_s"] < 40.0 and 1.5 < off["stability_margin_cal"] < 4.0
+    assert 20.0 < off["surface_speed_m_s"] < 40.0 and 1.5 < off["stability_margin_cal"] < 4.0
     assert events["burnout"]["total_impulse_N_s"] == pytest.approx(4895.0, rel=0.01)
     touchdown = events["touchdown"]
-    print(f"\n[hobby] off the rail {off['speed_m_s']:.1f} m/s, margin {off['stability_margin_cal']:.2f} cal; "
-          f"apogee {events['apogee']['altitude_m']:.0f} m; touchdown {touchdown['vertical_speed_m_s']:.2f} m/s, "
+    print(f"\n[hobby] off the rail {off['surface_speed_m_s']:.1f} m/s, margin {off['stability_margin_cal']:.2f} cal; "
+          f"apogee {events['apogee']['height_agl_m']:.0f} m; touchdown {touchdown['vertical_speed_m_s']:.2f} m/s, "
           f"{touchdown['distance_to_target_m']:.0f} m from the pad")
     assert -8.0 < touchdown["vertical_speed_m_s"] < -5.0
     assert not body.flying            # recovered: the flight ends at touchdown
@@ -54,7 +54,7 @@ def test_the_flight_runs_its_sequence_and_lands_under_the_main(flight):
     assert body.view().geodetic[2] - 1380.0 == pytest.approx(x_cm, abs=0.05)
     assert touchdown["tilt_deg"] < 5.0
     main = events["parachute_deployed:main"]
-    assert main["trigger"] == "height 300 m" and 295.0 < main["height_m"] <= 300.0
+    assert main["trigger"] == "height 300 m" and 295.0 < main["height_agl_m"] <= 300.0
     assert events["parachute_deployed:drogue"]["time_s"] == events["apogee"]["time_s"]
 
 
@@ -90,3 +90,48 @@ def test_the_telemetry_carries_the_motor_thrust_and_the_burning_mass():
         burnt = 2.475 * np.interp(t, fine, impulse) / impulse[-1]
         assert row["mass"] == pytest.approx(16.423 - burnt, abs=1e-6)
         assert row["engines_running"] == 1
+
+
+def test_the_summary_reads_as_a_hobby_flight(flight):
+    """Flown through the front door (its telemetry kept in memory): the summary has no orbit
+    but the flight: the apogee above the ground (the highest sample's altitude less the
+    site's ground, 1 380 m; within centimetres of the apogee event, found at the step where
+    the climb turned), the largest speed over the ground (worked out here from the samples'
+    state: ``|v - omega z x r|``, omega the simulator's Earth rate), Mach, q (the max_q
+    event's peak, found step by step, within 1 %), the largest load (at most the thrust
+    over the mass, the drag taking its share), the rail exit and the landing, where the
+    touchdown was and at what speed, drifted from the start as far as the touchdown's
+    distance to the pad (the launch site: the rocket starts 8 cm from it on its rail)."""
+    import numpy as np
+    import rocketsim
+    from rocketsim_cli.summary import format_summary
+    run = rocketsim.fly(SCENARIO)
+    _, _, events = flight
+    body = run.summary["bodies"]["hobby-rocket"]
+    assert "orbit" not in body and run.bodies["hobby-rocket"].orbit is None
+    f = body["flight"]
+    table = run.bodies["hobby-rocket"].table()
+    assert f["ground_height_m"] == 1380.0
+    assert f["apogee_height_agl_m"] == table["altitude_m"].max() - 1380.0
+    assert f["apogee_height_agl_m"] == pytest.approx(events["apogee"]["height_agl_m"], abs=0.05)
+    in_flight = table[table.index < events["touchdown"]["time_s"]]
+    r = in_flight[["position_x_m", "position_y_m", "position_z_m"]].to_numpy()
+    v = in_flight[["velocity_x_m_s", "velocity_y_m_s", "velocity_z_m_s"]].to_numpy()
+    from rocketsim.constants import EARTH_OMEGA
+    over_ground = np.linalg.norm(v - EARTH_OMEGA * np.stack([-r[:, 1], r[:, 0], 0 * r[:, 0]], axis=1), axis=1)
+    assert f["max_surface_speed_m_s"] == pytest.approx(over_ground.max(), rel=1e-9)
+    assert 250.0 < f["max_surface_speed_m_s"] < 300.0 and 0.7 < f["max_mach"] < 0.9
+    assert f["max_dynamic_pressure_Pa"] == pytest.approx(events["max_q"]["dynamic_pressure_Pa"], rel=0.01)
+    thrust_over_weight = (in_flight["thrust_N"] / in_flight["mass_kg"]).max() / 9.80665
+    assert 0.9 * thrust_over_weight < f["max_sensed_acceleration_g"] <= thrust_over_weight
+    assert f["rail_exit_surface_speed_m_s"] == events["off_rail"]["surface_speed_m_s"]
+    assert f["rail_exit_stability_margin_cal"] == events["off_rail"]["stability_margin_cal"]
+    down = events["touchdown"]
+    assert f["landing_kind"] == "touchdown" and f["landing_time_s"] == down["time_s"]
+    assert f["landing_surface_speed_m_s"] == pytest.approx(math.hypot(down["vertical_speed_m_s"],
+                                                                      down["horizontal_speed_m_s"]))
+    assert f["drift_m"] == pytest.approx(down["distance_to_target_m"], abs=1.0)
+    text = format_summary(run.summary)
+    print("\n" + text)
+    assert "apogee 2,9" in text and "m above the ground" in text and "Mach 0.8" in text and " g" in text
+    assert "rail exit" in text and "touchdown: T+" in text and "orbit" not in text

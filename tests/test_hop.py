@@ -12,13 +12,15 @@ from rocketsim.scenario.stage_selection import keep_stages, reload_tanks
 from rocketsim.api.telemetry_flight import fly_to_file as fly
 from rocketsim.sim.build import build_world
 from tests.conftest import ROOT
+from tests.plot_checks import assert_the_plot_reads
 
 HOP = ROOT / "scenarios" / "falcon9-hop.yaml"
 
 
 @pytest.fixture(scope="module")
 def flight(tmp_path_factory):
-    return fly(load(HOP), tmp_path_factory.mktemp("hop") / "run.mcap", step=0.05)
+    out = tmp_path_factory.mktemp("hop") / "run.mcap"
+    return {**fly(load(HOP), out, step=0.05), "file": out}
 
 
 def test_the_hop_vehicle_is_the_booster_alone_with_its_reload():
@@ -61,3 +63,8 @@ def test_stage_selection_refuses_what_the_vehicle_does_not_have():
     reloaded = reload_tanks(vehicle, {"booster/LOX": 1000.0})
     assert reloaded.stages[0].tanks[1].propellant_mass == 1000.0
     assert reloaded.stages[0].tanks[0].propellant_mass == vehicle.stages[0].tanks[0].propellant_mass
+
+
+def test_its_plot_reads(flight):
+    """The replay plot of the whole hop (tests/plot_checks.py)."""
+    assert_the_plot_reads(flight["file"], "falcon9-hop")

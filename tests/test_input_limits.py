@@ -171,9 +171,10 @@ def test_a_telemetry_rate_under_a_microhertz_is_refused_at_its_line(scenario, cl
 
 
 def test_a_pad_below_the_ground_is_refused_at_its_line(write, cli):
-    # found by tests/fuzz (long profile): a pad 120 m below the ellipsoid started the vehicle
-    # inside the ground, and its contact springs made the state non-finite at T+0.1 s
-    write("site.yaml", "name: low\nlatitude: 28 deg\nlongitude: -80 deg\nheight: -120 m\n")
+    # found by tests/fuzz (long profile): a pad 120 m below the ground started the vehicle
+    # inside it, and its contact springs made the state non-finite at T+0.1 s
+    write("site.yaml", "name: low\nlatitude: 28 deg\nlongitude: -80 deg\nheight: -120 m\n"
+          "ground_height: 0 m\n")
     write("vehicle.yaml", VEHICLE)
     write("mission.yaml", "epoch: 2026-11-26T12:00:00Z\nstart: {site: {}}\nduration: 1 s\n")
     path = write("scenario.yaml", "name: x\nvehicle: vehicle.yaml\nsite: site.yaml\nmission: mission.yaml\n")
@@ -244,6 +245,7 @@ STAGED = GOOD + """\
         count: 1
         spool_up: 1 s
         gimbal_range: 5 deg
+        gimbal_rate: 10 deg/s
 aero:
   nose: {length: 2 m, shape: ogive}
   legs: [{stage: S1, position: -1 m, radius: 2 m, stiffness: 1.0e+7, damping: 1.0e+5}]
@@ -266,16 +268,17 @@ aero:
     ("exit_area: 0.5 m2", "exit_area: 5.0e+11 m2", "v.yaml:18:", "at most 1e+06 m2"),
     ("spool_up: 1 s", "spool_up: 1.0e-6 s", "v.yaml:21:", "at least 0.001 s"),
     ("gimbal_range: 5 deg", "gimbal_range: 500 deg", "v.yaml:22:", "at most 1.5708 rad"),
-    ("stiffness: 1.0e+7", "stiffness: 1.0e+20", "v.yaml:25:", "at most 1e+12 N/m"),
+    ("stiffness: 1.0e+7", "stiffness: 1.0e+20", "v.yaml:26:", "at most 1e+12 N/m"),
     # within 1e12 N/m, but four legs of 1e10 N/m on the 1 t stage are a mode of 6 325 /s
     # (sqrt(4e10 / 1000)), far beyond RK4 at 5 ms; dampers of 1e7 N s/m one of 4e4 /s (c / m)
-    ("stiffness: 1.0e+7", "stiffness: 1.0e+10", "v.yaml:25:", "aero.legs.0.stiffness: 4 legs "
+    ("stiffness: 1.0e+7", "stiffness: 1.0e+10", "v.yaml:26:", "aero.legs.0.stiffness: 4 legs "
      "(stiffness 4e+10 N/m together) on 1000 kg (the dry mass they hold up) are a mode of 6324.56 /s"),
-    ("damping: 1.0e+5", "damping: 1.0e+7", "v.yaml:25:", "aero.legs.0.damping: 4 legs (damping "
+    ("damping: 1.0e+5", "damping: 1.0e+7", "v.yaml:26:", "aero.legs.0.damping: 4 legs (damping "
      "4e+07 N s/m together) on 1000 kg (the dry mass they hold up) are a mode of 39999 /s"),
-    ("direction: [0, 1, 0]", "direction: [1.0e+300, 1.0e+300, 0]", "v.yaml:26:", "within 1e30"),
-    ("isp: 70 s", "isp: 7.0e+9 s", "v.yaml:26:", "at most 100000 s"),
-    ("length: 2 m, shape", "length: 200 m, shape", "v.yaml:24:", "longer than the stack"),
+    ("direction: [0, 1, 0]", "direction: [1.0e+300, 1.0e+300, 0]", "v.yaml:27:", "within 1e30"),
+    ("isp: 70 s", "isp: 7.0e+9 s", "v.yaml:27:", "at most 100000 s"),
+    ("length: 2 m, shape", "length: 200 m, shape", "v.yaml:25:",
+     "longer than the top stage 'S1' (10 m), the part it caps"),
     ("count: 1", "count: 3\n        layout_radius: 5 m", "v.yaml:21:", "wider than stage"),
 ])
 def test_a_vehicle_figure_beyond_its_physical_bound_is_refused_at_its_line(write, cli, written, changed,
@@ -354,6 +357,54 @@ def test_the_schema_names_each_bound_and_why(cli):
     assert "at least 1 and at most 1000" in engine["count"]["description"]
     stage = schema["$defs"]["StageSpec"]["properties"]
     assert "at least 0.001 m and at most 1000 m" in stage["length"]["description"]
+
+
+@pytest.mark.parametrize("kind", ["scenario", "vehicle", "site", "mission"])
+def test_every_quantity_in_the_schema_names_its_units_and_gives_an_example(cli, kind):
+    """Every field of every model that reads a quantity (rocketsim.scenario.units) says in
+    its schema's description its dimension and the units it takes, and gives an example
+    value the file could hold (read back as that quantity, it parses)."""
+    from rocketsim.scenario.load import REFERENCED
+    from rocketsim.scenario.models import Scenario
+    from rocketsim.scenario.units import Dimension, _dimension_of, parse_quantity
+    schema = json.loads(cli("schema", "--kind", kind).output)
+    models = {}
+
+    def collect(model):
+        if model.__name__ in models:
+            return
+        models[model.__name__] = model
+        for info in model.model_fields.values():
+            for inner in _models(info.annotation):
+                collect(inner)
+
+    collect(Scenario if kind == "scenario" else REFERENCED[kind])
+    checked = 0
+    for name, model in models.items():
+        properties = (schema if model.__name__ == schema.get("title") else
+                      schema.get("$defs", {}).get(name, {})).get("properties", {})
+        for field, info in model.model_fields.items():
+            dimension = next((m for m in info.metadata if isinstance(m, Dimension)), None) \
+                or _dimension_of(info.annotation)
+            if dimension is None or field not in properties:
+                continue
+            prop = properties[field]
+            assert f"({dimension.name.replace('_', ' ')}:" in prop["description"], (name, field)
+            for example in prop["examples"]:
+                parse_quantity(example, dimension.name)
+            checked += 1
+    print(f"\n[schema] {kind}: {checked} quantity fields")
+    assert checked > {"scenario": 100, "vehicle": 80, "site": 3, "mission": 10}[kind]
+
+
+def _models(annotation):
+    """The pydantic models inside an annotation (through Optional, Union, list, tuple, dict)."""
+    import typing
+    from pydantic import BaseModel
+    if isinstance(annotation, type) and issubclass(annotation, BaseModel):
+        yield annotation
+    for arg in typing.get_args(annotation):
+        yield from _models(arg)
 
 
 # the hobby rocket of vehicles/hobby-rocket.yaml (13.9 kg dry with its nose cone, the payload),

@@ -24,7 +24,10 @@ from rocketsim.bodies.orientation import spin_rate
 from rocketsim.constants import HEAT_SHIELD_LIMIT, SUTTON_GRAVES_MARS
 from rocketsim.dynamics.derivative import radial_height
 from rocketsim.scenario.load import load
+from rocketsim.api.recorder import Recorder
+from rocketsim.api.run import Run
 from rocketsim.sim.build import build_world
+from tests.plot_checks import assert_the_plot_reads
 from rocketsim.vehicle.heating import sutton_graves
 
 SCENARIO = Path(__file__).resolve().parents[1] / "scenarios" / "mars-entry.yaml"
@@ -55,11 +58,11 @@ def test_the_capsule_reaches_parachute_conditions_with_its_shield_intact():
     assert "heat shield failure" not in events and "breakup" not in events and body.flying
     assert body.central == "mars" and events["deorbit"]["left_m_s"] < 2.0
     chute = events["parachute_conditions"]
-    entry_speed = events["entry_interface"]["speed_m_s"]
+    entry_speed = events["entry_interface"]["inertial_speed_m_s"]
     print(f"\n[mars entry] entry {entry_speed:.0f} m/s; peak {peak['flux'] / 1e4:.1f} W/cm^2 at "
           f"{peak['speed']:.0f} m/s; shield {peak['temperature']:.0f} K; parachute at Mach "
-          f"{chute['mach']:.2f}, {chute['height_m'] / 1e3:.1f} km")
-    assert chute["mach"] < 2.0 and chute["height_m"] > 7e3
+          f"{chute['mach']:.2f}, {chute['altitude_m'] / 1e3:.1f} km")
+    assert chute["mach"] < 2.0 and chute["altitude_m"] > 7e3
     assert 300.0 < peak["temperature"] < HEAT_SHIELD_LIMIT
     assert peak["flux"] > 1e4
     assert abs(peak["speed"] / entry_speed - math.exp(-1.0 / 6.0)) < 0.05
@@ -90,7 +93,9 @@ def test_the_capsule_descends_under_its_disk_gap_band_at_the_quasi_steady_speed(
                 air = v - np.cross((0.0, 0.0, spin_rate("mars")), r)
                 seen[mark] = (h, float(np.linalg.norm(air)), body.mass, r.copy(), float(body.view().mach))
     world.on_progress = watch
-    world.run()
+    with Recorder(0) as telemetry:          # kept in memory: its plot is drawn below
+        world.run(telemetry)
+    assert_the_plot_reads(Run(telemetry.run, telemetry.samples), "mars-entry")
     events = [e["name"] for e in body.events]
     assert events[-3:] == ["parachute_conditions", "parachute_deployed", "parachute_inflated"]
     assert body.flying and "impact" not in events

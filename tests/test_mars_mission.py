@@ -16,6 +16,7 @@ from rocketsim.scenario.load import load
 from rocketsim.sim.build import build_world
 from rocketsim.telemetry.reader import messages
 from rocketsim.telemetry.writer import TelemetryWriter
+from tests.plot_checks import assert_the_plot_reads
 
 SCENARIO = Path(__file__).resolve().parents[1] / "scenarios" / "mars-orbit.yaml"
 
@@ -28,6 +29,7 @@ def test_the_orbiter_is_captured_by_mars(tmp_path):
     with TelemetryWriter(out, 0, "") as telemetry:
         summary = world.run(telemetry)
     body = world.bodies[0]
+    assert_the_plot_reads(out, "mars-orbit")
     centres = [m["central_body"] for _, _, m in messages(out, [f"/{body.name}/state"])]
     assert [c for i, c in enumerate(centres) if i == 0 or c != centres[i - 1]] == ["earth", "sun", "mars"]
     handovers = [(e["from"], e["to"]) for e in body.events if e["name"] == "soi_handover"]
@@ -40,11 +42,11 @@ def test_the_orbiter_is_captured_by_mars(tmp_path):
     orbit = summary["bodies"][body.name]["orbit"]
     print(f"\n[mars] TMI {next(e for e in body.events if e['name'] == 'tmi')['delta_v_m_s']:.0f} m/s, "
           f"MOI {moi['delta_v_m_s']:.0f} m/s at {moi['time_s'] / 86400:.2f} d; orbit "
-          f"{orbit['periapsis_altitude'] / 1e3:.0f} x {orbit['apoapsis_altitude'] / 1e3:.0f} km")
+          f"{orbit['periapsis_altitude_m'] / 1e3:.0f} x {orbit['apoapsis_altitude_m'] / 1e3:.0f} km")
     # captured: a closed orbit about Mars, periapsis above the air's 151 km rails
     # floor and near the 400 km aimed for, apoapsis near the 33 000 km aimed for
     assert body.central == "mars" and orbit["eccentricity"] < 1.0
-    assert 200e3 < orbit["periapsis_altitude"] < 600e3
-    assert abs(orbit["apoapsis_altitude"] - 33000e3) < 1000e3
-    assert abs(orbit["semi_major_axis"] - MARS_RADIUS_EQ
-               - 0.5 * (orbit["periapsis_altitude"] + orbit["apoapsis_altitude"])) < 1.0
+    assert 200e3 < orbit["periapsis_altitude_m"] < 600e3
+    assert abs(orbit["apoapsis_altitude_m"] - 33000e3) < 1000e3
+    assert abs(orbit["semi_major_axis_m"] - MARS_RADIUS_EQ
+               - 0.5 * (orbit["periapsis_altitude_m"] + orbit["apoapsis_altitude_m"])) < 1.0

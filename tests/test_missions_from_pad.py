@@ -32,7 +32,10 @@ from rocketsim.constants import EARTH_MU, MOON_RADIUS
 from rocketsim.dynamics.nbody import FIELD_ROT
 from rocketsim.dynamics.third_bodies import field_of
 from rocketsim.scenario.load import load
+from rocketsim.api.recorder import Recorder
+from rocketsim.api.run import Run
 from rocketsim.sim.build import build_world
+from tests.plot_checks import assert_the_plot_reads
 
 SCENARIOS = Path(__file__).resolve().parents[1] / "scenarios"
 DAY = 86400.0
@@ -60,12 +63,14 @@ def check_ascent(world, inclination_deg):
 
 def test_moon_from_the_pad_to_lunar_orbit():
     """From SLC-40 to a ~100 km orbit about the Moon, flown whole as ``rocketsim fly``
-    flies it (World.run, the scenario's 3.45 d). References: the program's plan (a
+    flies it (World.run, the scenario's 3.7 d). References: the program's plan (a
     Lambert arc to a 100 km periapsis, circularised there: tests/test_moon_mission.py
     checks the same program from a parking orbit) and the Hohmann-like injection's
     cost from 200 km, ~3.1 km/s plus the burn's gravity loss."""
     world = build_world(load(SCENARIOS / "moon-from-pad.yaml"))
-    summary = world.run()
+    with Recorder(0) as telemetry:          # kept in memory: its plot is drawn below
+        summary = world.run(telemetry)
+    assert_the_plot_reads(Run(telemetry.run, telemetry.samples), "moon-from-pad")
     orbiter = check_ascent(world, 28.45)
     names = [e["name"] for e in orbiter.events]
     at = iter(names)
@@ -76,17 +81,17 @@ def test_moon_from_the_pad_to_lunar_orbit():
     tli, loi = event(orbiter, "tli"), event(orbiter, "loi")
     orbit = summary["bodies"][orbiter.name]["orbit"]
     print(f"\n[moon from the pad] TLI {tli['delta_v_m_s']:.0f} m/s, LOI {loi['delta_v_m_s']:.0f} m/s at "
-          f"{loi['time_s'] / DAY:.2f} d: {orbit['periapsis_altitude'] / 1e3:.1f} x "
-          f"{orbit['apoapsis_altitude'] / 1e3:.1f} km about the Moon")
+          f"{loi['time_s'] / DAY:.2f} d: {orbit['periapsis_altitude_m'] / 1e3:.1f} x "
+          f"{orbit['apoapsis_altitude_m'] / 1e3:.1f} km about the Moon")
     # launched 8 h off the plane that holds the Moon at arrival, the injection costs
     # a little more than the coplanar ~3.1 km/s
     assert tli["left_m_s"] < 0.5 and 3.1e3 < tli["delta_v_m_s"] < 3.4e3
     assert loi["left_m_s"] < 0.5 and 3.0 * DAY < loi["time_s"] < 3.8 * DAY
     assert orbiter.central == "moon" and orbit["eccentricity"] < 1.0
-    assert 80e3 < orbit["periapsis_altitude"] < 120e3
-    assert orbit["apoapsis_altitude"] < 150e3
-    assert abs(orbit["semi_major_axis"] - MOON_RADIUS
-               - 0.5 * (orbit["periapsis_altitude"] + orbit["apoapsis_altitude"])) < 1.0
+    assert 80e3 < orbit["periapsis_altitude_m"] < 120e3
+    assert orbit["apoapsis_altitude_m"] < 150e3
+    assert abs(orbit["semi_major_axis_m"] - MOON_RADIUS
+               - 0.5 * (orbit["periapsis_altitude_m"] + orbit["apoapsis_altitude_m"])) < 1.0
 
 
 def test_the_spacecraft_is_stacked_on_the_launcher():
@@ -148,7 +153,9 @@ def test_mars_from_the_pad_to_mars_orbit():
             rotation = field_of(orbiter.p)[FIELD_ROT:FIELD_ROT + 9].reshape(3, 3)     # frame -> J2000
             after_tmi.update(r=rotation @ orbiter.position, v=rotation @ orbiter.velocity)
     world.on_progress = watch
-    summary = world.run()
+    with Recorder(0) as telemetry:          # kept in memory: its plot is drawn below
+        summary = world.run(telemetry)
+    assert_the_plot_reads(Run(telemetry.run, telemetry.samples), "mars-from-pad")
     window = window_2026()
 
     check_ascent(world, 30.66)
@@ -176,8 +183,8 @@ def test_mars_from_the_pad_to_mars_orbit():
     print(f"\n[mars from the pad] TMI {tmi['delta_v_m_s']:.0f} m/s: C3 {v_inf ** 2 / 1e6:.3f} km^2/s^2 "
           f"(window {window['c3_km2_s2']}), asymptote dec {dec:.2f} RA {ra % 360:.2f} deg ({off:.3f} deg "
           f"off the window's); MOI {moi['delta_v_m_s']:.0f} m/s at {moi['time_s'] / DAY:.3f} d "
-          f"(window's arrival {arrival / DAY:.3f} d): {orbit['periapsis_altitude'] / 1e3:.0f} x "
-          f"{orbit['apoapsis_altitude'] / 1e3:.0f} km about Mars")
+          f"(window's arrival {arrival / DAY:.3f} d): {orbit['periapsis_altitude_m'] / 1e3:.0f} x "
+          f"{orbit['apoapsis_altitude_m'] / 1e3:.0f} km about Mars")
 
     assert tmi["left_m_s"] < 0.5 and 3.64e3 < tmi["delta_v_m_s"] < 3.8e3
     assert abs(v_inf - np.sqrt(window["c3_km2_s2"] * 1e6)) < 15.0      # C3 within 0.1 km^2/s^2
@@ -190,6 +197,6 @@ def test_mars_from_the_pad_to_mars_orbit():
     inserted = event(orbiter, "mars_orbit")
     assert abs(inserted["periapsis_altitude_m"] - 400e3) < 50e3
     assert abs(inserted["apoapsis_altitude_m"] - 33000e3) < 500e3
-    assert abs(orbit["periapsis_altitude"] - 400e3) < 50e3
-    assert abs(orbit["apoapsis_altitude"] - 33000e3) < 1000e3
+    assert abs(orbit["periapsis_altitude_m"] - 400e3) < 50e3
+    assert abs(orbit["apoapsis_altitude_m"] - 33000e3) < 1000e3
     assert abs(moi["time_s"] - arrival) < 0.5 * DAY

@@ -12,7 +12,10 @@ from pathlib import Path
 
 from rocketsim.constants import MOON_RADIUS
 from rocketsim.scenario.load import load
+from rocketsim.api.recorder import Recorder
+from rocketsim.api.run import Run
 from rocketsim.sim.build import build_world
+from tests.plot_checks import assert_the_plot_reads
 
 SCENARIO = Path(__file__).resolve().parents[1] / "scenarios" / "moon-orbit.yaml"
 
@@ -21,7 +24,9 @@ def test_the_orbiter_reaches_a_100_km_lunar_orbit():
     world = build_world(load(SCENARIO))
     batches = []
     world.on_progress = batches.append
-    summary = world.run()
+    with Recorder(0) as telemetry:          # kept in memory: its plot is drawn below
+        summary = world.run(telemetry)
+    assert_the_plot_reads(Run(telemetry.run, telemetry.samples), "moon-orbit")
     body = world.bodies[0]
     names = [e["name"] for e in body.events]
     for name in ("tli", "soi_handover", "approach_trim", "loi", "lunar_orbit"):
@@ -34,12 +39,12 @@ def test_the_orbiter_reaches_a_100_km_lunar_orbit():
     orbit = summary["bodies"][body.name]["orbit"]
     print(f"\n[moon] TLI {next(e for e in body.events if e['name'] == 'tli')['delta_v_m_s']:.0f} m/s, "
           f"LOI {loi['delta_v_m_s']:.0f} m/s at {loi['time_s'] / 86400:.2f} d; orbit "
-          f"{orbit['periapsis_altitude'] / 1e3:.1f} x {orbit['apoapsis_altitude'] / 1e3:.1f} km; "
+          f"{orbit['periapsis_altitude_m'] / 1e3:.1f} x {orbit['apoapsis_altitude_m'] / 1e3:.1f} km; "
           f"{len(batches)} batches")
-    assert 80e3 < orbit["periapsis_altitude"] < 120e3
-    assert orbit["apoapsis_altitude"] < 150e3
+    assert 80e3 < orbit["periapsis_altitude_m"] < 120e3
+    assert orbit["apoapsis_altitude_m"] < 150e3
     # the orbit's radii are about the Moon: a = R_moon + mean altitude
-    assert abs(orbit["semi_major_axis"] - MOON_RADIUS
-               - 0.5 * (orbit["periapsis_altitude"] + orbit["apoapsis_altitude"])) < 1.0
+    assert abs(orbit["semi_major_axis_m"] - MOON_RADIUS
+               - 0.5 * (orbit["periapsis_altitude_m"] + orbit["apoapsis_altitude_m"])) < 1.0
     # cruise rails carried the 3.9-day coast (at 0.1 s steps it would take 3.4 million)
     assert len(batches) < 150_000

@@ -61,7 +61,7 @@ def test_an_air_start_lit_by_the_program_delivers_the_curves_impulse(tmp_path, s
                 "motors": [{"name": "K1000T", "file": str(K1000T), "ignition": "program",
                             "thrust_scale": scale}]}]},
             "site": {"name": "range", "latitude": f"{LATITUDE} deg", "longitude": "-106.975 deg",
-                     "height": "1000 m"},
+                     "height": "1000 m", "ground_height": "0 m"},     # hanging in the air
             "mission": {"epoch": "2026-06-13T15:00:00Z", "duration": "3.6 s", "start": {"site": {}}}}
     world = build_world(load(data, base_dir=tmp_path))
     body = world.bodies[0]

@@ -43,7 +43,7 @@ def scenario(chutes, height="1500 m", duration="240 s", weather=None) -> dict:
                                                           "diameter": "0.2 m", "structure_mass": f"{MASS} kg",
                                                           "parachutes": chutes}]},
             "site": {"name": "range", "latitude": f"{LATITUDE} deg", "longitude": "-106.975 deg",
-                     "height": height},
+                     "height": height, "ground_height": "0 m"},     # thrown from up there
             "mission": {"epoch": "2026-06-01T12:00:00Z", "duration": duration,
                         "start": {"site": {"velocity": [0, 0, 20]}}}}
     if weather is not None:

@@ -1,4 +1,5 @@
-"""``rocketsim replay --export`` and ``--plot``: tables equal to the MCAP, a drawn PNG."""
+"""``rocketsim replay --export`` and ``--plot``: tables equal to the MCAP (columns named
+with their units, times without float noise, the events' figures as columns), a drawn PNG."""
 
 import csv
 import json
@@ -42,15 +43,31 @@ def mcap_states(path):
         return [json.loads(m.data) for _, _, m in make_reader(stream).iter_messages(topics=["/probe/state"])]
 
 
+# the units of the state's fields as the columns name them (the README's Telemetry table)
+UNITS = {"t": "s", "position": "m", "velocity": "m_s", "body_rates": "rad_s", "altitude": "m", "height_agl": "m",
+         "inertial_speed": "m_s", "surface_speed": "m_s", "mass": "kg", "acceleration": "m_s2",
+         "sensed_acceleration": "m_s2", "airspeed": "m_s", "dynamic_pressure": "Pa",
+         "semi_major_axis": "m", "periapsis_altitude": "m", "apoapsis_altitude": "m", "period": "s"}
+
+
+def by_hand(message):
+    """A state message's values by column, flattened and named with units by hand."""
+    out = {}
+    for key, value in message.items():
+        if key in AXES:
+            out.update({f"{key}_{a}_{UNITS[key]}" if key in UNITS else f"{key}_{a}": v
+                        for a, v in zip(AXES[key], value)})
+        elif key == "orbit":
+            out.update({f"orbit_{k}_{UNITS[k]}" if k in UNITS else f"orbit_{k}": v for k, v in value.items()})
+        else:
+            out[f"{key}_{UNITS[key]}" if key in UNITS else key] = value
+    out["t_s"] = round(out["t_s"], 6)
+    return out
+
+
 def expected_value(message, column):
-    """The value of a CSV column in a state message, found by hand."""
-    if column in message:
-        return message[column]
-    key, _, part = column.rpartition("_")
-    if key in AXES:
-        return message[key][AXES[key].index(part)]
-    assert column.startswith("orbit_")
-    return message["orbit"][column[len("orbit_"):]]
+    """The value of a CSV column in a state message, found by hand (None: absent)."""
+    return by_hand(message).get(column)
 
 
 def test_csv_rows_and_values_equal_the_mcap(run_file, tmp_path):
@@ -60,8 +77,10 @@ def test_csv_rows_and_values_equal_the_mcap(run_file, tmp_path):
         rows = list(csv.DictReader(stream))
     states = mcap_states(run_file)
     assert len(rows) == len(states) == 51
+    assert set(rows[0]) >= {"t_s", "position_x_m", "attitude_w", "orbit_eccentricity", "altitude_m",
+                            "inertial_speed_m_s", "orbit_periapsis_altitude_m", "mass_kg"}
+    assert [row["t_s"] for row in rows[:4]] == ["0.0", "0.1", "0.2", "0.3"]       # no float noise
     for row, message in zip(rows, states):
-        assert set(row) >= {"t", "position_x", "attitude_w", "orbit_eccentricity", "altitude"}
         for column, text in row.items():
             value = expected_value(message, column)
             if isinstance(value, str):              # central_body
@@ -71,11 +90,11 @@ def test_csv_rows_and_values_equal_the_mcap(run_file, tmp_path):
     with open(tmp_path / "tables" / "events.csv", newline="") as stream:
         events = list(csv.DictReader(stream))
     marker = [e for e in events if e["name"] == "marker"]
-    assert [e["t"] for e in marker] == ["2.0"]
-    assert json.loads(marker[0]["figures"])["altitude_m"] == pytest.approx(states[20]["altitude"])
+    assert [e["t_s"] for e in marker] == ["2.0"]
+    assert float(marker[0]["altitude_m"]) == states[20]["altitude"]       # a figure is a column
     with open(run_file, "rb") as stream:                    # every event of the file, in order
         recorded = [json.loads(m.data) for _, _, m in make_reader(stream).iter_messages(topics=["/events"])]
-    assert [(float(e["t"]), e["name"]) for e in events] == [(e["t"], e["name"]) for e in recorded]
+    assert [(float(e["t_s"]), e["name"]) for e in events] == [(round(e["t"], 6), e["name"]) for e in recorded]
 
 
 def test_parquet_rows_and_values_equal_the_mcap(run_file, tmp_path):
@@ -83,7 +102,7 @@ def test_parquet_rows_and_values_equal_the_mcap(run_file, tmp_path):
     assert replay(run_file, "--export", "parquet", tmp_path / "pq").exit_code == 0
     table = pyarrow_parquet.read_table(tmp_path / "pq" / "probe.parquet").to_pydict()
     states = mcap_states(run_file)
-    assert len(table["t"]) == len(states)
+    assert len(table["t_s"]) == len(states)
     for column, values in table.items():
         assert values == [expected_value(m, column) for m in states], column
 

@@ -28,7 +28,6 @@ canopies RocketPy flies a point mass with the parachute's drag only, we keep
 the body's own (small) drag.
 """
 
-import copy
 import math
 from pathlib import Path
 
@@ -41,9 +40,8 @@ from rocketsim.scenario.load import load  # noqa: E402
 from rocketsim.scenario.yaml_source import read_yaml  # noqa: E402
 from rocketsim.sim.build import build_world  # noqa: E402
 from rocketsim.vehicle.aero import NOSE_FIRST_CA, NOSE_FIRST_MACH  # noqa: E402
-from rocketsim.vehicle.build import build  # noqa: E402
-from rocketsim.vehicle.mass_properties import shell  # noqa: E402
 from tests.aero_vehicles import shipped  # noqa: E402
+from tests.rocketpy_rockets import rocketpy_rocket  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 LAT, LON = 32.99, -106.975
@@ -65,38 +63,9 @@ def _ours(release_drogue: bool = False):
 
 
 def _rocketpy():
-    from rocketpy import Environment, Flight, Rocket, SolidMotor
-    spec = shipped("hobby-rocket.yaml")
-    motor_spec = spec.stages[0].motors[0]
-    bare = copy.deepcopy(spec)
-    bare.stages[0].motors.clear()
-    dry_mass, dry_cm, ixx, iyy, _ = build(bare).mass_properties([])
-    case = motor_spec.case_mass
-    case_ixx, case_iyy = shell(case, 0.5 * motor_spec.diameter, motor_spec.length)
-    grain = motor_spec.grain
-    outer, core = 0.5 * grain.outer_diameter, 0.5 * grain.core_diameter
-    density = motor_spec.propellant_mass / (grain.count * math.pi * (outer ** 2 - core ** 2) * grain.length)
-    motor = SolidMotor(
-        thrust_source=str(ROOT / "motors" / "Cesaroni_4895L1395-P.eng"), dry_mass=case,
-        dry_inertia=(case_iyy, case_iyy, case_ixx), nozzle_radius=0.0248, throat_radius=0.0107,
-        grain_number=grain.count, grain_density=density, grain_outer_radius=outer,
-        grain_initial_inner_radius=core, grain_initial_height=grain.length,
-        grain_separation=grain.separation, grains_center_of_mass_position=0.5 * motor_spec.length,
-        center_of_dry_mass_position=0.5 * motor_spec.length, nozzle_position=0.0,
-        interpolation_method="linear", coordinate_system_orientation="nozzle_to_combustion_chamber",
-        only_radial_burn=True)
+    from rocketpy import Environment, Flight
     drag = list(zip(NOSE_FIRST_MACH.tolist(), NOSE_FIRST_CA.tolist()))
-    rocket = Rocket(radius=0.07, mass=dry_mass, inertia=(iyy, iyy, ixx), power_off_drag=drag,
-                    power_on_drag=drag, center_of_mass_without_motor=dry_cm,
-                    coordinate_system_orientation="tail_to_nose")
-    rocket.add_motor(motor, position=0.0)
-    rocket.add_nose(length=0.5, kind="tangent", position=2.4)
-    rocket.add_trapezoidal_fins(n=4, root_chord=0.22, tip_chord=0.08, span=0.14, position=0.22,
-                                sweep_length=0.12)
-    for chute in spec.stages[0].parachutes:
-        trigger = "apogee" if chute.deploy == "apogee" else chute.deploy.height
-        rocket.add_parachute(chute.name, cd_s=chute.cd_s, trigger=trigger, sampling_rate=100,
-                             lag=chute.lag + 0.5 * chute.inflation)
+    rocket, _ = rocketpy_rocket(shipped("hobby-rocket.yaml"), drag, parachutes=True)
     env = Environment(latitude=LAT, longitude=LON, elevation=0.0)
     env.set_atmospheric_model(type="standard_atmosphere")
     return Flight(rocket=rocket, environment=env, rail_length=RAIL, inclination=INCLINATION,
@@ -111,10 +80,10 @@ def test_off_rail_apogee_and_landing_agree_with_rocketpy():
     peer_apogee = float(flight.apogee - flight.env.elevation)
     drogue, main = (c.cd_s for c in shipped("hobby-rocket.yaml").stages[0].parachutes)
     peer_landing = abs(float(flight.impact_velocity)) * math.sqrt(main / (main + drogue))
-    print(f"\n[peer] off the rail: rocketsim {off['speed_m_s']:.2f} m/s, RocketPy {peer_off:.2f} m/s; "
+    print(f"\n[peer] off the rail: rocketsim {off['surface_speed_m_s']:.2f} m/s, RocketPy {peer_off:.2f} m/s; "
           f"apogee {apogee:.1f} m against {peer_apogee:.1f} m ({100 * (apogee / peer_apogee - 1):+.2f} %); "
           f"touchdown {-touchdown['vertical_speed_m_s']:.2f} m/s against {peer_landing:.2f} m/s")
-    assert off["speed_m_s"] == pytest.approx(peer_off, rel=0.01)
+    assert off["surface_speed_m_s"] == pytest.approx(peer_off, rel=0.01)
     assert apogee == pytest.approx(peer_apogee, rel=0.03)
     assert -touchdown["vertical_speed_m_s"] == pytest.approx(peer_landing, rel=0.03)
     assert np.isfinite(touchdown["drift_time_s"])

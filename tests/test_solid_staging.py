@@ -82,7 +82,7 @@ def test_the_sustainer_lights_on_time_after_the_booster_separates(tmp_path, igni
     assert deployed["parachute"] == "booster chute"
     assert separation["time_s"] + 1.0 <= deployed["time_s"] < separation["time_s"] + 1.0 + 0.02 + 1e-9
     assert not any(e["name"] == "parachute_deployed" for e in stack.events)    # no apogee yet
-    assert separation["mass_kg"] + separation["upper_mass_kg"] == pytest.approx(
+    assert separation["stage_mass_kg"] + separation["upper_mass_kg"] == pytest.approx(
         2 + 3 + 2 * 2.575 - 1.182, rel=1e-12)          # the booster's propellant burnt, the sustainer's not
 
 

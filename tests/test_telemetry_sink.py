@@ -19,6 +19,7 @@ import pytest
 
 from rocketsim.api.recorder import Recorder
 from rocketsim.live.tee import Tee
+from rocketsim.sim.sample_watch import SampleWatch
 from rocketsim.telemetry.sink import TelemetrySink
 from rocketsim.telemetry.writer import TelemetryWriter
 
@@ -49,7 +50,7 @@ def problems(sink: type) -> list[str]:
     return found
 
 
-@pytest.mark.parametrize("sink", [TelemetryWriter, Recorder, Tee])
+@pytest.mark.parametrize("sink", [TelemetryWriter, Recorder, Tee, SampleWatch])
 def test_each_sink_defines_every_call_with_the_protocols_parameters(sink):
     assert issubclass(sink, TelemetrySink)
     assert not problems(sink)

@@ -244,7 +244,8 @@ def test_a_planted_stop_without_a_twin_is_named(tmp_path):
 
 def test_an_event_recorded_elsewhere_or_gone_is_named(tmp_path):
     # orbit recorded by another function than the map's; max_q no longer recorded
-    sim = _planted(tmp_path, "flight_events.py", '"max_q", {"q_Pa"', '"max_q_passed", {"q_Pa"')
+    sim = _planted(tmp_path, "flight_events.py", '"max_q", {"dynamic_pressure_Pa"',
+                   '"max_q_passed", {"dynamic_pressure_Pa"')
     found = problems(python_decisions(sim), TWINS)
     assert "'max_q' is in rocketsim.stepping.twins but no longer made by the Python side" in found
     moved = dict(TWINS, orbit=TWINS["orbit"]._replace(python="rocketsim.sim.world.World.after_advance"))

@@ -31,6 +31,7 @@ from rocketsim.scenario.load import load
 from rocketsim.api.telemetry_flight import fly_to_file as fly
 from rocketsim.sim.build import build_world
 from rocketsim.telemetry.reader import raw_messages
+from rocketsim.telemetry.names import column_name
 from rocketsim.telemetry.tables import export, table
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -199,27 +200,35 @@ def test_the_new_columns_are_exported_row_for_row(burn, tmp_path):
     with open(written[f"{body}.csv"], newline="") as stream:
         rows = list(csv.DictReader(stream))
     assert len(rows) == len(states)
-    assert [float(r["propellant"]) for r in rows] == [m["propellant"] for m in states]
-    assert [r["throttle"] for r in rows][:1] == [""]        # no engine running at t = 0
+    assert "propellant_kg" in rows[0]          # the file's names carry their unit
+    assert [float(r[column_name("propellant")]) for r in rows] == [m["propellant"] for m in states]
+    assert [r[column_name("throttle")] for r in rows][:1] == [""]        # no engine running at t = 0
 
 
-def _blue_in_centre_panel(png: Path) -> int:
-    """Pixels in the blue of matplotlib's first line colour (C0, #1f77b4, antialiased:
-    blue well above red) inside the centre panel of the plot's 3 x 3 grid (the
-    throttle panel), its frame and labels left out (grey, black)."""
-    from matplotlib.image import imread
-    pixels = imread(png)[..., :3]
-    h, w = pixels.shape[:2]
-    centre = pixels[int(0.40 * h):int(0.60 * h), int(0.42 * w):int(0.62 * w)]
-    return int((centre[..., 2] - centre[..., 0] > 0.25).sum())
+def _propulsion_lines(path: Path) -> list[np.ndarray]:
+    """The y data of the curves drawn on the replay plot's propulsion panel (its left axis:
+    throttle or thrust; the events' vertical marks left out) of the run ``path``; None:
+    the plot has no such panel."""
+    from rocketsim.plots import flight_panels
+    from rocketsim.plots.canvas import pyplot
+    figure = flight_panels.figure(path)
+    try:
+        panels = [ax for ax in figure.axes if ax.get_title().startswith("propulsion")]
+        return [np.asarray(line.get_ydata(), float) for line in panels[0].lines
+                if len(line.get_ydata()) > 2] if panels else None
+    finally:
+        pyplot().close(figure)
 
 
 def test_the_plot_draws_throttle_and_propellant(burn, tmp_path):
-    from rocketsim.plots import run as plot_run
     path, _ = burn
-    drawn = plot_run(path, tmp_path / "burn.png")
-    # a rigid body's run (no throttle, no propellant) leaves that panel empty: the same
-    # count is the check's baseline
+    states, _ = _states(path, burn[1].bodies[0].name)
+    lines = _propulsion_lines(path)
+    # the throttle flown, sample for sample: full while the centre engine burns
+    flown = np.array([np.nan if m.get("throttle") is None else m["throttle"] for m in states])
+    assert len(lines) == 1 and np.array_equal(lines[0], flown, equal_nan=True)
+    assert np.nanmax(lines[0]) > 0.99
+    # a rigid body's run (no throttle, no propellant) has no propulsion panel
     rigid = tmp_path / "rigid"
     rigid.mkdir()
     (rigid / "vehicle.yaml").write_text("name: probe\nrigid_body:\n  mass: 10 kg\n  inertia: [0.15, 0.12, 0.05]\n")
@@ -227,9 +236,7 @@ def test_the_plot_draws_throttle_and_propellant(burn, tmp_path):
         "name: rigid\nvehicle: vehicle.yaml\nmission:\n  epoch: 2026-11-26T12:00:00Z\n"
         "  start: {orbit: {altitude: 415 km, inclination: 51.6 deg}}\n  duration: 2 s\n")
     fly(load(rigid / "scenario.yaml"), rigid / "run.mcap")
-    empty = plot_run(rigid / "run.mcap", tmp_path / "rigid.png")
-    assert _blue_in_centre_panel(empty) == 0
-    assert _blue_in_centre_panel(drawn) > 200
+    assert _propulsion_lines(rigid / "run.mcap") is None
 
 
 def test_the_burn_writes_the_same_bytes_twice(burn, tmp_path):
@@ -248,11 +255,11 @@ def test_parquet_export_keeps_the_rows_and_types_a_column_never_set_as_float(bur
     export(path, tmp_path, "parquet")
     written = pyarrow.parquet.read_table(tmp_path / f"{body}.parquet")
     assert written.num_rows == len(states)
-    assert written.column("thrust").to_pylist() == [m["thrust"] for m in states]
+    assert written.column("thrust_N").to_pylist() == [m["thrust"] for m in states]
     # the ring never runs: no throttle of it in any state, no column; the centre's throttle
     # is missing before ignition and after the shutdown: float, null there
-    assert "group_throttle_booster_Merlin_1D_ring" not in written.schema.names
-    centre = written.schema.field("group_throttle_booster_Merlin_1D_centre")
+    assert column_name("group_throttle_booster_Merlin_1D_ring") not in written.schema.names
+    centre = written.schema.field(column_name("group_throttle_booster_Merlin_1D_centre"))
     missing = sum("booster_Merlin_1D_centre" not in m["group_throttle"] for m in states)
     assert centre.type == pyarrow.float64() and written.column(centre.name).null_count == missing > 0
 

@@ -44,28 +44,50 @@ class KernelDocumenter(FunctionDocumenter):
         return found
 
 
-def _exists(path: str) -> bool:
-    """Whether ``path`` (``package.module.Name.attr``) names something importable, or an
-    attribute a class's instances set (``self.name = ...`` in its source)."""
+def _module_of(path: str):
+    """The deepest module ``path`` (``package.module.Name.attr``) names and the names after
+    it, or None when no prefix of it imports."""
     import importlib
-    import inspect
     parts = path.split(".")
     for cut in range(len(parts), 0, -1):
         try:
-            found = importlib.import_module(".".join(parts[:cut]))
+            return importlib.import_module(".".join(parts[:cut])), parts[cut:]
         except ImportError:
             continue
-        rest = parts[cut:]
-        for i, name in enumerate(rest):
-            if hasattr(found, name):
-                found = getattr(found, name)
-            elif i == len(rest) - 1 and inspect.isclass(found):
-                return f"self.{name} =" in inspect.getsource(found) or name in getattr(
-                    found, "__annotations__", {})
-            else:
-                return False
-        return True
-    return False
+    return None
+
+
+def _exists(path: str) -> bool:
+    """Whether ``path`` (``package.module.Name.attr``) names something importable, or an
+    attribute a class's instances set (``self.name = ...`` in its source)."""
+    import inspect
+    walked = _module_of(path)
+    if walked is None:
+        return False
+    found, rest = walked
+    for i, name in enumerate(rest):
+        if hasattr(found, name):
+            found = getattr(found, name)
+        elif i == len(rest) - 1 and inspect.isclass(found):
+            return f"self.{name} =" in inspect.getsource(found) or name in getattr(
+                found, "__annotations__", {})
+        else:
+            return False
+    return True
+
+
+def _home(path: str) -> str | None:
+    """The module that defines what ``path`` names (``rocketsim.api.SizeEstimate``, re-exported,
+    is defined in ``rocketsim.api.file_size``), or None."""
+    walked = _module_of(path)
+    if walked is None:
+        return None
+    found, rest = walked
+    for name in rest:
+        found = getattr(found, name, None)
+        if found is None:
+            return None
+    return getattr(found, "__module__", None)
 
 
 _DOCSTRING_OF = re.compile(r"docstring of ([\w.]+)")
@@ -74,9 +96,10 @@ _DOCSTRING_OF = re.compile(r"docstring of ([\w.]+)")
 def code_reference(app, env, node, contnode):
     """A Python cross-reference nothing on the site documents: shown as code when it names
     something in rocketsim, as written or relative to the module (and class) whose
-    docstring holds it, else left unresolved, which nitpicky mode reports. A bare name in
-    a signature's type hint (no docstring around it) is looked for in the modules of the
-    library already imported."""
+    docstring holds it, or to the module defining that class or function (documented
+    where it is re-exported), else left unresolved, which nitpicky mode reports. A bare
+    name in a signature's type hint (no docstring around it) is looked for in the
+    modules of the library already imported."""
     import sys
     if node.get("refdomain") != "py" or not node.get("reftarget"):
         return None
@@ -85,6 +108,7 @@ def code_reference(app, env, node, contnode):
     where = _DOCSTRING_OF.search(node.source or "")
     if where:
         contexts.append(where.group(1))
+        contexts += [_home(where.group(1)), _home(where.group(1).rsplit(".", 1)[0])]
     candidates = [target]
     for context in filter(None, contexts):
         parts = context.split(".")

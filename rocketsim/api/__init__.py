@@ -20,6 +20,7 @@ Flying and reading runs:
 * :func:`verify` -> a :class:`Verdict`: the run flown again from its attachments and
   compared message by message (:class:`UntrustedProgram` without ``trust``);
 * :func:`strict_json` -> JSON text with NaN and infinities as null (the summary's file);
+* :func:`telemetry_size` -> the :class:`SizeEstimate` of a flight's MCAP file, before it flies.
 * :func:`fly_live` / :func:`replay_live`: a flight, or a run's file, served to Foxglove as it
   plays at a warp (a :class:`Live` server's settings; :func:`parse_warp` reads a warp).
 
@@ -32,8 +33,14 @@ Files, quantities and the things a scenario names:
 
 What a scenario's parts are on paper and in the sky:
 
-* :func:`vehicle_report` -> a staged vehicle's :class:`VehicleReport`: masses, Delta-v,
-  thrust-to-weight, centre of mass and inertia (drawn by :func:`rocketsim.plots.vehicle`);
+* :func:`vehicle_report` -> a staged vehicle's :class:`VehicleReport` (its file a vehicle's
+  or a scenario's): masses, Delta-v, thrust-to-weight, centre of mass and inertia, and its
+  design review (drawn by :func:`rocketsim.plots.vehicle`);
+* :func:`review` -> the pre-flight :class:`Review` of a vehicle or scenario (a file, a
+  mapping or what ``load`` returned): centre of pressure and static margin at liftoff
+  and burnout, thrust-to-weight, rail-exit speed, peak axial loads against the limit,
+  how each stage steers, warnings; :func:`design_warnings` -> the warnings alone (pure
+  Python; none for a rigid body, a site or a mission file);
 * :func:`atmosphere` -> an :class:`AirProfile`: the air of a day or of Mars against height
   (drawn by :func:`rocketsim.plots.atmosphere`);
 * :func:`ephemeris` -> the :class:`BodyPositions` of the Sun, Earth, Moon or Mars
@@ -63,16 +70,20 @@ _HOMES = {
     "read_run": "rocketsim.telemetry.reader", "RunFile": "rocketsim.telemetry.reader",
     "export_tables": ("rocketsim.telemetry.tables", "export"),
     "verify": "rocketsim.api.reflight", "Verdict": "rocketsim.api.reflight",
-    "UntrustedProgram": "rocketsim.api.reflight",
+    "UntrustedProgram": "rocketsim.scenario.trust",
     "fly_live": "rocketsim.api.live", "replay_live": "rocketsim.api.live", "Live": "rocketsim.api.live",
     "parse_warp": "rocketsim.api.live", "LOOPBACK": "rocketsim.api.live", "PORT": "rocketsim.api.live",
     "strict_json": "rocketsim.telemetry.writer",
+    "telemetry_size": ("rocketsim.api.file_size", "estimate"),
+    "SizeEstimate": "rocketsim.api.file_size",
     "parse_quantity": "rocketsim.scenario.units", "UnitError": "rocketsim.scenario.units",
     "UNITS": "rocketsim.scenario.units",
     "classic_site": "rocketsim.scenario.classic_range",
     "validate_file": "rocketsim.api.scenario_files", "schema": "rocketsim.api.scenario_files",
     "schema_kinds": "rocketsim.api.scenario_files",
     "vehicle_report": "rocketsim.api.vehicle_figures", "VehicleReport": "rocketsim.api.vehicle_figures",
+    "review": "rocketsim.scenario.preflight", "design_warnings": "rocketsim.scenario.preflight",
+    "Review": "rocketsim.vehicle.review",
     "atmosphere": "rocketsim.api.air_profile", "AirProfile": "rocketsim.api.air_profile",
     "ephemeris": "rocketsim.api.body_positions", "BodyPositions": "rocketsim.api.body_positions",
     "EPHEMERIS_BODIES": ("rocketsim.ephemeris.solar_system", "BODIES"),

@@ -7,10 +7,12 @@ summary, events, log lines and, for every body, the same table, every number
 bit for bit.
 
 A body's :meth:`BodyRun.table` is a pandas DataFrame indexed by mission time
-(``t_s``), a row per state sample, with the columns of the CSV export
+(``t_s``, rounded to the microsecond: ``table.loc[23.9]`` finds the sample at
+23.9 s), a row per state sample, with the columns of the CSV export
 (:mod:`rocketsim.telemetry.tables`), named with their SI unit (``altitude_m``,
 ``velocity_x_m_s``, ``dynamic_pressure_Pa``; angles end in ``_deg``, ratios and
-counts carry none); ``table(units=False)`` gives the CSV's names as they are.
+counts carry none: :data:`rocketsim.telemetry.names.COLUMNS` says what each is);
+``table(units=False)`` names them as the state message's fields, flattened.
 A value JSON cannot hold (NaN, an infinity: a throttle with no engine running,
 an unbound orbit's period) is NaN.
 """
@@ -23,31 +25,9 @@ from pathlib import Path
 import numpy as np
 
 from rocketsim.api.samples import Samples
+from rocketsim.telemetry.names import column_name, mission_time
 from rocketsim.telemetry.reader import RunFile, read_run, states
-
-# the SI unit of each field of the state message (rocketsim.telemetry.schemas.BODY_STATE),
-# as a column-name suffix; a field of a group (group_thrust_*, propellant_tanks_*) has its group's
-_UNITS = {
-    "position": "m", "velocity": "m_s", "body_rates": "rad_s", "altitude": "m", "speed": "m_s",
-    "orbit_semi_major_axis": "m", "orbit_periapsis_altitude": "m", "orbit_apoapsis_altitude": "m",
-    "orbit_period": "s", "mass": "kg", "acceleration": "m_s2", "sensed_acceleration": "m_s2",
-    "airspeed": "m_s", "dynamic_pressure": "Pa", "thrust": "N", "group_thrust": "N",
-    "mass_flow": "kg_s", "propellant": "kg", "propellant_tanks": "kg", "heat_flux": "W_m2",
-    "shield_temperature": "K",
-}
-_VECTORS = ("position", "velocity", "body_rates")
-_GROUPS = ("group_thrust", "propellant_tanks")
-
-
-def unit_name(column: str) -> str:
-    """The column of the CSV export named with its SI unit (``altitude`` -> ``altitude_m``)."""
-    if column in _UNITS:
-        return f"{column}_{_UNITS[column]}"
-    for prefix in _VECTORS + _GROUPS:
-        if column.startswith(prefix + "_"):
-            return f"{column}_{_UNITS[prefix]}"
-    return column
-
+from rocketsim.telemetry.tables import event_rows
 
 class BodyRun:
     """One body of a run: its samples, and its part of the summary."""
@@ -61,10 +41,9 @@ class BodyRun:
         """The body's samples as a pandas DataFrame indexed by mission time (see the module)."""
         import pandas as pd
         columns = self.samples.columns()
-        t = columns.pop("t", np.empty(0))
-        frame = pd.DataFrame({unit_name(k) if units else k: v for k, v in columns.items()},
-                             index=pd.Index(t, name="t_s" if units else "t"))
-        return frame
+        t = mission_time(columns.pop("t", np.empty(0)))
+        return pd.DataFrame({column_name(k) if units else k: v for k, v in columns.items()},
+                            index=pd.Index(t, name="t_s" if units else "t"))
 
     @property
     def _summary(self) -> dict:
@@ -72,13 +51,21 @@ class BodyRun:
 
     @property
     def final(self) -> dict | None:
-        """The final state of the summary (``time_s``, ``altitude_m``, ``speed_m_s``...)."""
+        """The final state of the summary (``time_s``, ``altitude_m``, ``inertial_speed_m_s``,
+        ``surface_speed_m_s``...)."""
         return self._summary.get("final")
 
     @property
     def orbit(self) -> dict | None:
-        """The osculating orbit of the final state, with its ``central_body``."""
+        """The osculating orbit of the final state, with its ``central_body`` (None: the body
+        is not in orbit: its periapsis is below the central body's surface, or it landed)."""
         return self._summary.get("orbit")
+
+    @property
+    def flight(self) -> dict | None:
+        """A body not in orbit: its apogee above the ground, largest speed over the ground,
+        Mach, q and g, rail exit and landing (:mod:`rocketsim.sim.summary`; None: in orbit)."""
+        return self._summary.get("flight")
 
     @property
     def touchdown(self) -> dict | None:
@@ -127,12 +114,12 @@ class Run:
 
     @property
     def events(self):
-        """Every event as a pandas DataFrame: ``t_s``, ``body``, ``name`` and a column
-        per figure (SI, as the summary names them; NaN or None where an event has no such figure)."""
+        """Every event as a pandas DataFrame: ``t_s`` (rounded, as a table's), ``body``,
+        ``name`` and a column per figure (SI, as the summary names them; a vector by
+        component; NaN or None where an event has no such figure): ``events.csv``'s columns
+        (:func:`rocketsim.telemetry.tables.event_rows`)."""
         import pandas as pd
-        rows = [{"t_s": e["t"], "body": e["body"], "name": e["name"], **e["figures"]} for e in self.file.events]
-        return pd.DataFrame(rows, columns=list(dict.fromkeys(k for r in rows for k in r))
-                            or ["t_s", "body", "name"])
+        return pd.DataFrame(event_rows(self.file.events))
 
     @property
     def outcome(self) -> str:

@@ -100,7 +100,8 @@ class LaunchWindows:
 
     def rows(self) -> list[dict]:
         """Each window as a row: UTC dates, days, C3 (km²/s²), the departure asymptote's
-        declination and right ascension (deg), arrival v-infinity and Delta-v (km/s)."""
+        declination and right ascension (deg), arrival v-infinity and Delta-v (km/s), and
+        ``edge``: the bound of the search its optimum sits on (None: inside the range)."""
         utc = self.grid.clock.utc
         return [{
             "departure_utc": f"{utc(w.departure_jd_tt):%Y-%m-%dT%H:%M:%SZ}",
@@ -113,44 +114,57 @@ class LaunchWindows:
             "dv_departure_km_s": round(w.dv_departure / 1e3, 4),
             "dv_arrival_km_s": round(w.dv_arrival / 1e3, 4),
             "dv_total_km_s": round(w.dv_total / 1e3, 4),
+            "edge": w.edge,
         } for w in self.windows]
 
-    def fragment(self, index: int = 0) -> str:
-        """The window ``index`` (0: the best) as a mission-file fragment (YAML): the
-        mission's name and epoch, the departure burn's target, the arrival and capture."""
+    def fragment(self, index: int = 0, parking_inclination: float | None = None) -> str:
+        """The window ``index`` (0: the best) as a mission file (YAML) a scenario names as
+        its ``mission:``: the departure epoch, a start in the circular parking orbit the
+        window departs from (:func:`rocketsim.transfer.windows.parking_plane`: a plane
+        holding the departure asymptote inclined ``parking_inclination`` rad, by default
+        the least that does; to the Moon the Moon's orbital plane), a duration to the
+        arrival and a day beyond, ``gravity: n-body``; the window's figures (C3, the
+        asymptote, v-infinity, Delta-v, the arrival) in the comments above it."""
         import yaml
 
         window, target, orbits = self.windows[index], self.grid.target, self.orbits
         departure = self.grid.clock.utc(window.departure_jd_tt)
         arrival = self.grid.clock.utc(window.arrival_jd_tt)
-        vector = [round(c / 1e3, 6) for c in window.vinf_departure]
-        capture = {"periapsis_altitude": f"{orbits.capture_periapsis_altitude / 1e3:g} km",
-                   "apoapsis_altitude": f"{(orbits.capture_apoapsis_altitude if orbits.capture_apoapsis_altitude is not None else orbits.capture_periapsis_altitude) / 1e3:g} km"}
-        burn = {
+        inclination, raan = transfer_windows.parking_plane(window, target, parking_inclination)
+        capture = orbits.capture_apoapsis_altitude
+        capture = orbits.capture_periapsis_altitude if capture is None else capture
+        name = f"earth-{target}-{departure:%Y-%m-%d}"
+        mission = {
+            "name": name,
             "epoch": f"{departure:%Y-%m-%dT%H:%M:%SZ}",
-            "parking_orbit_altitude": f"{orbits.parking_altitude / 1e3:g} km",
-            "c3_km2_s2": round(window.c3 / 1e6, 4),
-            ("v_infinity_km_s" if target == "mars" else "burn_vector_km_s"): vector,
-            "rla_deg": round(math.degrees(window.rla), 4),
-            "dla_deg": round(math.degrees(window.dla), 4),
-            "dv": f"{window.dv_departure / 1e3:.4f} km/s",
+            "start": {"orbit": {"altitude": f"{orbits.parking_altitude / 1e3:g} km",
+                                "inclination": f"{math.degrees(inclination):.4f} deg",
+                                "raan": f"{math.degrees(raan):.4f} deg"}},
+            "duration": f"{math.ceil(window.tof_days) + 1:g} d",
+            "gravity": "n-body",
         }
-        data = {
-            "mission": {"name": f"earth-{target}-{departure:%Y-%m-%d}",
-                        "epoch": f"{departure:%Y-%m-%dT%H:%M:%SZ}"},
-            "departure_burn": burn,
-            "arrival": {"body": target, "epoch": f"{arrival:%Y-%m-%dT%H:%M:%SZ}",
-                        "tof": f"{window.tof_days:.4f} d",
-                        "v_infinity": f"{window.vinf_arrival / 1e3:.4f} km/s",
-                        "capture_orbit": capture,
-                        "dv": f"{window.dv_arrival / 1e3:.4f} km/s"},
-        }
-        note = (f"# Launch window to {target} from `rocketsim windows` (patched conics: Izzo's\n"
-                "# Lambert solver between the bodies' centres on the project's VSOP87D/ELP2000\n"
-                "# ephemerides). `mission` goes into a scenario's mission; `departure_burn` is\n"
-                "# the target of the departure burn (J2000 mean equatorial frame; for the Moon\n"
-                "# the burn vector itself, from a parking orbit in the Moon's plane).\n")
-        return note + yaml.safe_dump(data, sort_keys=False)
+        burn = ("departure burn " + ", ".join(f"{c / 1e3:+.6f}" for c in window.vinf_departure)
+                + " km/s (J2000)") if target == "moon" else (
+            f"v-infinity {', '.join(f'{c / 1e3:+.6f}' for c in window.vinf_departure)} km/s (J2000)")
+        lines = [
+            f"Launch window #{index + 1} to {target} from `rocketsim windows` (patched conics: Izzo's Lambert",
+            "solver between the bodies' centres on the project's VSOP87D/ELP2000 ephemerides).",
+            f"departure {departure:%Y-%m-%dT%H:%M:%SZ} from a {orbits.parking_altitude / 1e3:g} km circular "
+            f"parking orbit: C3 {window.c3 / 1e6:.4f} km2/s2,",
+            f"  asymptote RA {math.degrees(window.rla):.4f} deg, declination {math.degrees(window.dla):.4f} deg; "
+            f"{burn};",
+            f"  departure delta-v {window.dv_departure / 1e3:.4f} km/s",
+            f"arrival {arrival:%Y-%m-%dT%H:%M:%SZ} after {window.tof_days:.4f} d: v-infinity "
+            f"{window.vinf_arrival / 1e3:.4f} km/s,",
+            f"  capture into {orbits.capture_periapsis_altitude / 1e3:g} x {capture / 1e3:g} km: delta-v "
+            f"{window.dv_arrival / 1e3:.4f} km/s (total {window.dv_total / 1e3:.4f} km/s)",
+        ]
+        if window.edge:
+            lines.append(f"AT THE EDGE of the search: on {window.edge}; the optimum may lie beyond it")
+        lines += ["The parking orbit's plane " + ("is the Moon's orbital plane at arrival."
+                                                  if target == "moon" else "holds the departure asymptote."),
+                  "A scenario flies this mission with `mission: <this file>`, its vehicle and a program."]
+        return "".join(f"# {line}\n" for line in lines) + yaml.safe_dump(mission, sort_keys=False)
 
 
 def launch_windows(grid: WindowGrid, *, objective: str = "dv", parking_altitude: float = 200e3,

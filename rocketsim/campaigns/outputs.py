@@ -2,8 +2,8 @@
 
 Columns (the campaign directory's ``results.parquet``; floats unless said):
 
-* ``<body>.final.<key>``, ``<body>.orbit.<key>``, ``<body>.touchdown.<key>``: the
-  summary's numbers of that part (keys as the summary names them; vectors left out;
+* ``<body>.final.<key>``, ``<body>.orbit.<key>``, ``<body>.flight.<key>``,
+  ``<body>.touchdown.<key>``: the summary's numbers of that part (keys as the summary names them; vectors left out;
   ``orbit.central_body`` a string);
 * ``<body>.<event>.t_s`` and ``<body>.<event>.<figure>``: the body's FIRST event of
   that name, its time and its numeric or string figures (lists left out): a ``t_s``
@@ -31,6 +31,8 @@ from rocketsim.campaigns.landing import landing_outcome
 from rocketsim.scenario.paths import parse
 
 LANDINGS = ("touchdown", "impact")
+SUMMARY_SECTIONS = ("final", "orbit", "flight", "touchdown")   # the summary's parts of a body, as columns
+BODY_SECTIONS = (*SUMMARY_SECTIONS, "landing")                  # <body>.<section>.<key>: a body's figures
 
 
 def _scalar(value) -> Any:
@@ -56,7 +58,7 @@ def summary_columns(summary: dict | None, events: list[dict]) -> dict[str, Any]:
     (dicts with ``t``, ``body``, ``name``, ``figures``, as a run's file holds them)."""
     row: dict[str, Any] = {}
     for body, part in ((summary or {}).get("bodies") or {}).items():
-        for section in ("final", "orbit", "touchdown"):
+        for section in SUMMARY_SECTIONS:
             _flat(f"{body}.{section}", part.get(section), row)
     landed: set[str] = set()
     seen: dict[str, dict] = {}

@@ -52,7 +52,8 @@ from pathlib import Path
 
 import numpy as np
 
-from rocketsim.campaigns import landing, statistics
+from rocketsim.campaigns import insertion, landing, statistics
+from rocketsim.campaigns.outputs import BODY_SECTIONS
 from rocketsim.errors import InputError
 from rocketsim.extras import needs
 
@@ -61,15 +62,15 @@ MAIN_OUTPUTS = 16                     # histograms and sensitivities drawn and p
 OUTCOMES_PRINTED = 8                  # the most frequent outcome strings the text lists
 TOP_INPUTS = 3                        # inputs the text names per output
 _NOT_OUTPUTS = ("run", "wall_time_s")
-_SECTIONS = ("final", "orbit", "touchdown", "landing")
 _EVENT_LABELS = {"touchdown": "touched down (first contact; tip-overs too)", "impact": "crashed (impact)",
                  "orbit": "reached orbit", "breakup": "broke up", "tip-over": "tipped over after landing",
                  "landing": "came down (touchdown or impact)"}
 # the summary figures worth a histogram, by section, in this order (after the campaign's own outputs)
 _MAIN = (("landing", ("offset_m", "east_m", "north_m")),
          ("touchdown", ("vertical_speed_m_s", "horizontal_speed_m_s", "tilt_deg", "distance_to_target_m")),
-         ("orbit", ("periapsis_altitude", "apoapsis_altitude", "inclination_deg", "eccentricity")),
-         ("final", ("altitude_m", "speed_m_s")))
+         ("orbit", ("periapsis_altitude_m", "apoapsis_altitude_m", "inclination_deg", "eccentricity")),
+         ("flight", ("apogee_height_agl_m", "max_surface_speed_m_s", "max_sensed_acceleration_g")),
+         ("final", ("altitude_m", "surface_speed_m_s")))
 
 
 @dataclass
@@ -154,7 +155,7 @@ def _bodies(columns, extra) -> list[str]:
         if column in extra:
             continue
         parts = column.split(".")
-        if len(parts) >= 3 and parts[1] in _SECTIONS:
+        if len(parts) >= 3 and parts[1] in BODY_SECTIONS:
             found.setdefault(parts[0], None)
     return list(found)
 
@@ -222,6 +223,7 @@ def report(directory, plot_dir=None) -> Report:
               "landing": landing_table, "sensitivities": sensitivities}
     text = _text(meta, counts, results, status, stats_table, probabilities, dispersions, elsewhere,
                  target, sensitivities, main, ranked, unranked, headline)
+    text += "\n".join(["", *insertion.report_lines(meta.get("insertion"), results, ok)])
     parts = len(list((directory / "results").glob("part-*.parquet")))
     if parts:       # rows the engine has not yet gathered into results.parquet
         text += (f"\nnote: {parts} part files in {directory / 'results'} are not yet in results.parquet; "

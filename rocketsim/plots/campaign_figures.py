@@ -8,7 +8,11 @@ run (80 dpi).
   50/90/99 % covariance ellipses (2-D probability), the target and the mean; on the left
   framed on the target with the R50/R90/R99 circles about it, on the right zoomed on the
   scatter with the circles about the mean.
-- ``histograms.png``: a panel per main output with its mean and 5-95 % range.
+- ``histograms.png``: a panel per output chosen for the campaign (:func:`histogram_columns`:
+  its own outputs, then per body that came down the miss distance, the impact speed,
+  the touchdown's speeds and tilt, the apogee and the largest speed and load in flight,
+  per body that stayed in orbit its orbit), each with its mean and 5-95 % range, plain
+  tick labels (no offset) and a title saying what it is.
 - ``sensitivities.png``: a tornado per main output: Spearman's rho and the SRC of each
   input, largest |rho| on top, with the fit's R².
 """
@@ -21,6 +25,7 @@ from pathlib import Path
 import numpy as np
 
 from rocketsim.campaigns.landing import geodetic_of
+from rocketsim.campaigns.outputs import BODY_SECTIONS
 from rocketsim.plots.canvas import pyplot, save
 from rocketsim.telemetry.land import land_fraction
 
@@ -40,8 +45,10 @@ def campaign(report, folder: str | Path) -> list[Path]:
     files = []
     if report.dispersions:
         files.append(landing_map(report.dispersions, report.target, folder / "landing.png", title))
+    chosen = histogram_columns(report)
+    if chosen:
+        files.append(histograms(report.flown, chosen, folder / "histograms.png", title))
     if main:
-        files.append(histograms(report.flown, main, folder / "histograms.png", title))
         table = report.tables["sensitivities"]
         if len(table[table["output"].isin(main)]):
             files.append(tornado(table, main, folder / "sensitivities.png", title))
@@ -59,11 +66,12 @@ def _finish(figure, axes, used: int, out: Path, title: str, spacing: dict | None
     for ``tight_layout``), write the PNG ``out`` and close the figure."""
     for ax in list(axes.flat)[used:]:
         ax.axis("off")
-    figure.suptitle(title)
+    height = figure.get_size_inches()[1]
+    figure.suptitle(title, y=1.0 - 0.12 / height, va="top")
     if spacing is None:
-        figure.tight_layout()
-    else:
-        figure.subplots_adjust(**{"right": 0.98, "bottom": 0.06, **spacing})
+        figure.tight_layout(rect=(0.0, 0.0, 1.0, 1.0 - 0.4 / height))
+    else:       # the title's line, then the panels' titles (two lines at most) under it
+        figure.subplots_adjust(**{"right": 0.98, "bottom": 0.06, "top": 1.0 - 0.75 / height, **spacing})
     return save(figure, out, dpi=80, format="png")
 
 
@@ -137,6 +145,60 @@ def _landing_panel(ax, body: str, d, target: dict, about: str) -> None:
     ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
 
 
+HISTOGRAMS = 12                  # panels at most
+# per body, by what became of it: the columns worth a histogram, in this order
+_CAME_DOWN = ("landing.offset_m", "impact.surface_speed_m_s", "touchdown.vertical_speed_m_s",
+              "touchdown.horizontal_speed_m_s", "touchdown.tilt_deg", "flight.apogee_height_agl_m",
+              "flight.max_surface_speed_m_s", "flight.max_sensed_acceleration_g")
+_IN_ORBIT = ("orbit.periapsis_altitude_m", "orbit.apoapsis_altitude_m", "orbit.inclination_deg",
+             "orbit.eccentricity")
+_WHAT = {"landing.offset_m": "miss distance from the target", "impact.surface_speed_m_s": "impact speed",
+         "touchdown.vertical_speed_m_s": "touchdown vertical speed",
+         "touchdown.horizontal_speed_m_s": "touchdown horizontal speed", "touchdown.tilt_deg": "touchdown tilt",
+         "flight.apogee_height_agl_m": "apogee above the ground",
+         "flight.max_surface_speed_m_s": "largest speed over the ground",
+         "flight.max_sensed_acceleration_g": "largest sensed acceleration",
+         "orbit.periapsis_altitude_m": "periapsis altitude", "orbit.apoapsis_altitude_m": "apoapsis altitude",
+         "orbit.inclination_deg": "inclination", "orbit.eccentricity": "eccentricity"}
+_UNITS = (("_m_s2", "m/s²"), ("_m_s", "m/s"), ("_deg", "deg"), ("_m", "m"), ("_g", "g"), ("_s", "s"),
+          ("_kg", "kg"), ("_Pa", "Pa"))
+
+
+def histogram_columns(report) -> list[str]:
+    """The outputs of ``report`` worth a histogram, those that vary over its ok runs: the
+    campaign's own outputs, then per body that came down in some run (a landing
+    column) the figures of its coming down and its flight (:data:`_CAME_DOWN`), per
+    body that never came down its orbit (a body on the ground has no orbit worth
+    drawing); a column equal in every run to one before it is left out; at most
+    :data:`HISTOGRAMS`."""
+    flown = report.flown
+    varied = {c for c in flown.columns if flown[c].dtype.kind == "f" and flown[c].std() > 0}   # NaN: < 2 runs
+    def of_a_body(column: str) -> bool:         # <body>.<section>.<key>: the summary's parts
+        parts = column.split(".")
+        return len(parts) >= 3 and parts[1] in BODY_SECTIONS
+    own = [c for c in report.main if not of_a_body(c)]          # the campaign's own outputs
+    bodies = list(dict.fromkeys(c.split(".")[0] for c in flown.columns if of_a_body(c)))
+    names = [c for c in own if c in varied]
+    for body in bodies:
+        down = f"{body}.landing.t_s" in flown and flown[f"{body}.landing.t_s"].notna().any()
+        names += [f"{body}.{c}" for c in (_CAME_DOWN if down else _IN_ORBIT) if f"{body}.{c}" in varied]
+    drawn: list[str] = []
+    for name in dict.fromkeys(names):       # a figure the campaign also asked by its path: once
+        values = flown[name].to_numpy(float)
+        if not any(np.array_equal(values, flown[d].to_numpy(float), equal_nan=True) for d in drawn):
+            drawn.append(name)
+    return drawn[:HISTOGRAMS]
+
+
+def _label(column: str) -> str:
+    """What a results column is, as a histogram's title: ``sounding-payload: impact speed, m/s``."""
+    body, _, rest = column.partition(".")
+    if rest in _WHAT:
+        unit = next((u for suffix, u in _UNITS if rest.endswith(suffix)), "")
+        return f"{body}: {_WHAT[rest]}" + (f", {unit}" if unit else "")
+    return column
+
+
 def histograms(flown, columns: list[str], out: Path, title: str) -> Path:
     """Draw a histogram of each of ``columns`` of the ok runs' frame ``flown`` to ``out``."""
     plt = pyplot()
@@ -149,12 +211,13 @@ def histograms(flown, columns: list[str], out: Path, title: str) -> Path:
         ax.axvline(x.mean(), color="C3", lw=1.2, label="mean")
         for p, label in ((5, "5-95 %"), (95, None)):
             ax.axvline(np.percentile(x, p), color="C3", lw=0.8, ls="--", label=label)
-        ax.set_title(f"{column} (n {x.size})", fontsize=8)
+        ax.set_title(f"{_label(column)} (n {x.size})", fontsize=8)
         ax.tick_params(labelsize=7)
+        ax.ticklabel_format(axis="x", useOffset=False, style="plain")
         ax.grid(True, lw=0.4)
     axes.flat[0].legend(fontsize=7)
     return _finish(figure, axes, len(columns), out, f"{title}: outputs of the ok runs",
-                   {"left": 0.05, "top": 0.9 if nrows == 1 else 0.93, "wspace": 0.25, "hspace": 0.45})
+                   {"left": 0.05, "wspace": 0.25, "hspace": 0.45})
 
 
 def tornado(table, columns: list[str], out: Path, title: str) -> Path:
@@ -180,4 +243,4 @@ def tornado(table, columns: list[str], out: Path, title: str) -> Path:
         ax.grid(True, axis="x", lw=0.4)
     axes.flat[0].legend(fontsize=7, loc="lower right")
     return _finish(figure, axes, len(shown), out, f"{title}: which dispersed input drives each output",
-                   {"left": 0.1, "top": 0.88 if nrows == 1 else 0.92, "wspace": 0.55, "hspace": 0.6})
+                   {"left": 0.1, "wspace": 0.55, "hspace": 0.6})

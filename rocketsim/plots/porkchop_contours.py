@@ -1,6 +1,7 @@
-"""The porkchop plot of a launch-window search: contours of C3 (km²/s², red) and of the
-arrival v-infinity (km/s, blue dashed) over departure x arrival dates (UTC), the windows
-found starred and numbered best first."""
+"""The porkchop plot of a launch-window search: contours of C3 (km²/s², red, solid at any
+sign: a lunar C3 is negative) and of the arrival v-infinity (km/s, blue dashed) over
+departure x arrival dates (UTC), the windows found starred and numbered best first; a
+window on a bound of the search (its ``edge``) hollow and marked "edge"."""
 
 from __future__ import annotations
 
@@ -28,20 +29,21 @@ def porkchop(found, out: str | Path | None = None) -> Path | Picture:
     if np.isfinite(c3).any():
         low = float(np.nanmin(c3))
         span = max(1.0, abs(low))
-        c3_levels = low + span * np.array([0.02, 0.1, 0.25, 0.5, 1.0, 2.0, 4.0])
-        lines = ax.contour(x, y, c3, levels=c3_levels, colors="tab:red", linewidths=1.0)
+        c3_levels = low + span * np.array([0.02, 0.1, 0.3, 1.0, 3.0])
+        lines = ax.contour(x, y, c3, levels=c3_levels, colors="tab:red", linewidths=1.0,
+                           negative_linestyles="solid")
         ax.clabel(lines, fmt="%.1f", fontsize=8)
         low_v = float(np.nanmin(vinf))
-        v_levels = low_v + np.array([0.1, 0.5, 1.0, 2.0, 3.0])
+        v_levels = low_v + np.array([0.1, 0.5, 1.5])
         lines = ax.contour(x, y, vinf, levels=v_levels, colors="tab:blue", linewidths=0.8,
                            linestyles="dashed")
         ax.clabel(lines, fmt="%.1f", fontsize=8)
     for k, window in enumerate(found.windows, 1):
-        ax.plot(mdates.date2num(utc(window.departure_jd_tt)),
-                mdates.date2num(utc(window.arrival_jd_tt)), "k*", markersize=10)
-        ax.annotate(str(k), (mdates.date2num(utc(window.departure_jd_tt)),
-                             mdates.date2num(utc(window.arrival_jd_tt))),
-                    textcoords="offset points", xytext=(6, 6))
+        at = (mdates.date2num(utc(window.departure_jd_tt)), mdates.date2num(utc(window.arrival_jd_tt)))
+        ax.plot(*at, "*", markersize=12, color="k", mfc="none" if window.edge else "k", clip_on=False)
+        ax.annotate(f"{k} (edge)" if window.edge else str(k), at, textcoords="offset points",
+                    xytext=(-8, 8), ha="right", fontweight="bold",
+                    bbox={"boxstyle": "round,pad=0.2", "fc": "white", "ec": "none", "alpha": 0.8})
     ax.xaxis_date()
     ax.yaxis_date()
     ax.xaxis.set_major_formatter(mdates.DateFormatter("%Y-%m-%d"))
@@ -49,7 +51,7 @@ def porkchop(found, out: str | Path | None = None) -> Path | Picture:
     fig.autofmt_xdate()
     ax.set_xlabel("departure (UTC)")
     ax.set_ylabel("arrival (UTC)")
-    ax.set_title(f"Earth to {found.search.target.name}: C3 (km²/s², red) and arrival v∞ "
-                 "(km/s, blue dashed); * windows")
+    ax.set_title(f"Earth to {found.search.target.name.capitalize()}: C3 (km²/s², red) and arrival v∞ "
+                 "(km/s, blue dashed); ★ windows, best first")
     ax.grid(alpha=0.3)
     return save(fig, out, dpi=120)

@@ -43,10 +43,29 @@ class _Strict(BaseModel):
 
 
 class NoseSpec(_Strict):
-    """The nose: the top ``length`` of the body, a cone or a tangent ogive (or blunt: no nose lift)."""
+    """The nose: the top ``length`` of the part it caps (the fairing, else the payload, else
+    the top stage), a cone or a tangent ogive (or blunt: no nose lift). That part's
+    ``length`` includes it: a stage that caps the stack reaches to the nose's tip, and a
+    stage written to end at the nose's base puts the nose inside it (docs/physics.md#the-stack-and-its-nose)."""
 
-    length: NonNegativeLength = Field(description="length of the nose, from its base to the tip")
-    shape: Literal["cone", "ogive", "blunt"] = "ogive"
+    length: NonNegativeLength = Field(
+        description="length of the nose from its base to the tip, e.g. '0.61 m': the top of the "
+        "part it caps (the fairing, else the payload, else the top stage), whose length includes it")
+    shape: Literal["cone", "ogive", "blunt"] = Field("ogive", description="cone, ogive (tangent) "
+                                                     "or blunt (no nose lift)")
+
+
+class BoattailSpec(_Strict):
+    """A conical boattail: the bottom ``length`` of the vehicle's lowest stage narrows from
+    the stage's diameter to ``diameter`` at its base (part of the stage's length, as the
+    nose is part of the part it caps). Its slender-body lift acts against the nose's
+    (Barrowman's conical transition: it moves the centre of pressure forward)."""
+
+    stage: str = Field(description="name of the vehicle's lowest stage (the boattail leaves "
+                       "with it at a separation)")
+    length: PositiveLength = Field(description="length of the cone frustum, e.g. '0.127 m'")
+    diameter: PositiveLength = Field(description="diameter at the base, narrower than the "
+                                     "stage's, e.g. '155 mm'")
 
 
 class FinSetSpec(_Strict):
@@ -54,10 +73,11 @@ class FinSetSpec(_Strict):
 
     stage: str = Field(description="name of the stage the fins are on")
     count: Annotated[int, Field(ge=3, le=4)] = 4
-    position: Station = Field(description="height of the root chord's leading (upper) edge above the stage base")
-    root_chord: PositiveLength
-    tip_chord: NonNegativeLength
-    span: PositiveLength = Field(description="from the body to the tip")
+    position: Station = Field(description="height of the root chord's leading (upper) edge above "
+                              "the stage base, e.g. '0.27 m'")
+    root_chord: PositiveLength = Field(description="e.g. '0.15 m'")
+    tip_chord: NonNegativeLength = Field(description="e.g. '0.08 m'")
+    span: PositiveLength = Field(description="from the body to the tip, e.g. '0.17 m'")
     sweep: NonNegativeLength = Field(0.0, description="axial distance from the root's to the tip's leading edge")
 
 
@@ -128,15 +148,17 @@ class HeatShieldSpec(_Strict):
 
 class LimitsSpec(_Strict):
     """A vehicle's own structural limits (docs/physics.md#structural-limits), in place of
-    the defaults sized for launchers (250 kPa deg, 15 g): a small hobby rocket takes
-    far higher loads."""
+    the launcher's assumed without them (250 kPa deg, 15 g): a small hobby rocket takes
+    far higher loads, and one whose motor alone passes 15 g must give its own."""
 
     q_alpha: Optional[Annotated[float, within(0.0, MAX_Q_ALPHA, "structural limit", "Pa deg",
                                               above=True)]] = Field(
-        None, description="bending load q alpha that breaks the vehicle, Pa deg")
+        None, description="bending load q alpha that breaks the vehicle, Pa deg, e.g. 500000; "
+        "default 250000 (a launcher's, assumed)")
     axial_load: Optional[Annotated[Acceleration, within(0.0, MAX_AXIAL_LOAD, "structural limit",
                                                         "m/s2", above=True)]] = Field(
-        None, description="axial load that breaks the vehicle, e.g. '40 g'")
+        None, description="axial load that breaks the vehicle, e.g. '40 g'; default 15 g (a "
+        "launcher's, assumed), required when a stage's motor alone passes it")
 
 
 class AeroSpec(_Strict):
@@ -151,6 +173,8 @@ class AeroSpec(_Strict):
         None, description="(Mach, C_A) pairs, increasing Mach; default the physics model's table")
     axial_tail_first: Optional[list[AxialRow]] = Field(
         None, description="(Mach, C_A) pairs, increasing Mach; default the physics model's table")
+    boattail: Optional[BoattailSpec] = Field(None, description="a conical boattail at the "
+                                             "base of the lowest stage")
     fins: list[FinSetSpec] = []
     grid_fins: list[GridFinSpec] = []
     legs: list[LegSpec] = []
@@ -161,7 +185,8 @@ class AeroSpec(_Strict):
         None, description="N s/m; default 2e5, or 100 per kg of dry mass under 2 t")
     rcs: list[ThrusterSpec] = []
     heat_shield: Optional[HeatShieldSpec] = None
-    limits: LimitsSpec = Field(LimitsSpec(), description="structural limits in place of the defaults")
+    limits: LimitsSpec = Field(LimitsSpec(), description="structural limits in place of the "
+                               "launcher's assumed (15 g, 250 000 Pa deg)")
 
     def body_springs(self, dry_mass: float) -> tuple[float, float]:
         """``(stiffness N/m, damping N s/m)`` of each of the body's contact points: the
@@ -188,20 +213,28 @@ class AeroSpec(_Strict):
         return value
 
 
-def check_aero(aero: AeroSpec | None, stages, payload=None) -> None:
+def check_aero(aero: AeroSpec | None, stages, payload=None, fairing=None) -> None:
     """Every part of ``aero`` names a stage of the vehicle (and a thruster a tank of its
-    stage), and the nose is no longer than the stack under it (its stages and
-    ``payload``, the top once a fairing is gone); raises a located ValidationError
+    stage), and the nose is no longer than the part it caps at liftoff (the fairing, else
+    the payload, else the top stage; once a fairing is gone, out of the air, the nose's
+    shape is taken from the top of what is left); raises a located ValidationError
     (relative to the vehicle)."""
     if aero is None or stages is None:
         return
     from rocketsim.scenario.vehicle import field_error
     stack = sum(st.length for st in stages) + (payload.length if payload is not None else 0.0)
-    if aero.nose.length > stack * (1 + 1e-12):
-        raise field_error(("aero", "nose", "length"), f"the nose ({aero.nose.length:g} m) is longer "
-                          f"than the stack it tops ({stack:g} m: the stages and the payload)",
-                          aero.nose.length)
+    if fairing is not None:
+        part, length = f"the fairing ({fairing.length:g} m)", fairing.length
+    elif payload is not None:
+        part, length = f"the payload {payload.name!r} ({payload.length:g} m)", payload.length
+    else:
+        part, length = f"the top stage {stages[-1].name!r} ({stages[-1].length:g} m)", stages[-1].length
+    if aero.nose.length > length * (1 + 1e-12):
+        raise field_error(("aero", "nose", "length"), f"the nose ({aero.nose.length:g} m) is "
+                          f"longer than {part}, the part it caps: the nose is the top of that "
+                          "part, and its length includes the nose", aero.nose.length)
     by_name = {st.name: st for st in stages}
+    _check_boattail(aero, stages, stack)
     for label in ("fins", "grid_fins", "legs", "rcs"):
         for i, part in enumerate(getattr(aero, label)):
             if part.stage not in by_name:
@@ -224,6 +257,54 @@ def check_aero(aero: AeroSpec | None, stages, payload=None) -> None:
         k, c = aero.body_springs(lightest)
         _check_contact(("aero",), "the body's 4 base points", lightest, 4 * k, 4 * c,
                        "body_contact_stiffness", "body_contact_damping")
+
+
+def check_axial_load(vehicle) -> None:
+    """A staged ``vehicle`` flying in the air without its own axial limit is held to the
+    launcher default (docs/physics.md#structural-limits): if a stage's burn alone pushes the
+    stack past it however it is flown (solid motors; liquid engines at their least
+    throttle), the default cannot be this vehicle's, and the limit is required (a located
+    ValidationError at ``aero.limits``)."""
+    aero = vehicle.aero
+    if aero is None or not aero.aerodynamics or aero.limits.axial_load is not None:
+        return
+    from rocketsim.constants import STRUCTURE_AXIAL_LIMIT_G
+    from rocketsim.scenario.vehicle import REQUIRED, field_error
+    from rocketsim.vehicle.review import stage_loads
+    for i, stage in enumerate(vehicle.stages):
+        loads = stage_loads(vehicle, i)
+        if loads.least_peak_axial_load_g > STRUCTURE_AXIAL_LIMIT_G:
+            what = (f"the {', '.join(loads.motors)} of stage {stage.name!r} "
+                    + ("pushes" if len(loads.motors) == 1 else "push") if loads.motors
+                    else f"the engines of stage {stage.name!r}, at their least throttle, push")
+            raise field_error(("aero", "limits"), f"{what} the stack at "
+                              f"{loads.least_peak_axial_load_g:.1f} g, past the "
+                              f"{STRUCTURE_AXIAL_LIMIT_G:g} g axial limit assumed for a launcher's "
+                              "structure when the file gives none: it would break up on the pad. "
+                              "Give the axial load this airframe is built for, e.g. limits: "
+                              "{axial_load: 40 g} (docs/physics.md#structural-limits)", None, REQUIRED)
+
+
+def _check_boattail(aero: AeroSpec, stages, stack: float) -> None:
+    """A boattail narrows the base of the lowest stage, within that stage and below the
+    nose of the ``stack`` (m, the stages and the payload; a located ValidationError
+    otherwise)."""
+    from rocketsim.scenario.vehicle import field_error
+    tail = aero.boattail
+    if tail is None:
+        return
+    lowest = stages[0]
+    if tail.stage != lowest.name:
+        raise field_error(("aero", "boattail", "stage"), f"a boattail narrows the base of the "
+                          f"vehicle's lowest stage, {lowest.name!r}, not {tail.stage!r}", tail.stage)
+    if tail.diameter >= lowest.diameter:
+        raise field_error(("aero", "boattail", "diameter"), f"the boattail's base "
+                          f"({tail.diameter:g} m) must be narrower than stage {lowest.name!r} "
+                          f"({lowest.diameter:g} m)", tail.diameter)
+    if tail.length > lowest.length * (1 + 1e-12) or tail.length + aero.nose.length > stack * (1 + 1e-12):
+        raise field_error(("aero", "boattail", "length"), f"the boattail ({tail.length:g} m) "
+                          f"reaches above stage {lowest.name!r} ({lowest.length:g} m) or into the "
+                          "nose", tail.length)
 
 
 def _check_contact(loc: tuple, what: str, mass: float, stiffness: float, damping: float,

@@ -26,12 +26,12 @@ from rocketsim.constants import (EARTH_J2, EARTH_MU, EARTH_RADIUS_EQ, EARTH_RADI
                                  MAX_START_DISTANCE, MAX_START_SPEED, MIN_STEP, MOON_J2, MOON_MU,
                                  MOON_RADIUS, STEP)
 from rocketsim.limits import MAX_SEED, check_data
-from rocketsim.scenario.bounds import (BODY_MASS, BOUNDS, EXTENT, MAX_PROGRAM_CPU, MAX_SITE_HEIGHT,
-                                       MAX_SIZE, MIN_SITE_HEIGHT, MIN_SIZE, SIZE, within)
+from rocketsim.scenario.bounds import (BODY_MASS, BOUNDS, EXTENT, MAX_PROGRAM_CPU, MAX_PROGRAM_WAIT,
+                                       MAX_SITE_HEIGHT, MAX_SIZE, MIN_SITE_HEIGHT, MIN_SIZE, SIZE, within)
 from rocketsim.scenario.classic_range import CLASSIC, classic_site
 from rocketsim.scenario.weather import Weather
 from rocketsim.scenario.units import STRICT, Angle, Duration, Frequency, Inertia, Length, Mass, Speed
-from rocketsim.scenario.aero_spec import AeroSpec, check_aero
+from rocketsim.scenario.aero_spec import AeroSpec, check_aero, check_axial_load
 from rocketsim.scenario.vehicle import FairingSpec, PayloadSpec, StageSpec, check_staged, field_error
 from rocketsim.scenario.stage_selection import keep_stages, reload_tanks, stack_spacecraft
 
@@ -103,7 +103,8 @@ class VehicleSpec(Strict):
             raise ValueError("give exactly one of 'rigid_body' or 'stages'")
         if self.stages is not None:
             check_staged(self.stages, self.engines, self.payload)
-            check_aero(self.aero, self.stages, self.payload)
+            check_aero(self.aero, self.stages, self.payload, self.fairing)
+            check_axial_load(self)
         elif (self.engines is not None or self.payload is not None or self.fairing is not None
               or self.aero is not None):
             raise ValueError("'engines', 'payload', 'fairing' and 'aero' go with 'stages', not 'rigid_body'")
@@ -116,14 +117,20 @@ class SiteSpec(Strict):
     """A launch site on the WGS84 ellipsoid."""
 
     name: str
-    latitude: Angle = Field(description="geodetic latitude")
-    longitude: Angle = Field(description="longitude, east positive")
-    height: SiteHeight = Field(0.0, description="height of the pad above the WGS84 ellipsoid")
-    pad_azimuth: Angle = Field(1.5707963267948966, description="launch azimuth from north, default due east")
+    latitude: Angle = Field(description="geodetic latitude, north positive, e.g. '28.5619 deg' "
+                            "(Cape Canaveral SLC-40)")
+    longitude: Angle = Field(description="longitude, east positive, e.g. '-80.5774 deg' "
+                             "(Cape Canaveral SLC-40)")
+    height: SiteHeight = Field(
+        0.0, description="height of the pad above the WGS84 ellipsoid, e.g. '1380 m' (the height "
+        "above sea level plus the geoid's undulation there)")
+    pad_azimuth: Angle = Field(1.5707963267948966, description="launch azimuth from north, e.g. "
+                               "'90 deg'; default due east")
     ground_height: Optional[SiteHeight] = Field(
         None, description="height above the WGS84 ellipsoid of a flat ground around the site that "
-        "a vehicle launched from here lands on (its contact points, touchdown, impact, parachute "
-        "heights); default none: the ground is the ellipsoid itself. Usually the pad's height")
+        "a vehicle launched from here stands and lands on (its contact points, touchdown, impact, "
+        "parachute heights), e.g. '0 m' for the ellipsoid; default the pad's height (a vehicle "
+        "standing on the pad stands on the ground)")
     source: str = ""
     model: Literal["realistic", "classic"] = Field(
         "realistic", description="the physics model flown from this site: 'classic' is the classic "
@@ -140,14 +147,18 @@ class SiteSpec(Strict):
             raise ValueError("latitude must be within -90 deg .. 90 deg")
         return value
 
+    @property
+    def ground(self) -> float:
+        """m, height above the WGS84 ellipsoid of the flat ground around the site:
+        ``ground_height``, else the pad's ``height``."""
+        return self.height if self.ground_height is None else self.ground_height
+
     @model_validator(mode="after")
     def _pad_on_or_above_the_ground(self) -> "SiteSpec":
-        ground = 0.0 if self.ground_height is None else self.ground_height
-        if self.height < ground:
-            raise ValueError(f"the pad's height {self.height:g} m is below the ground ({ground:g} m: "
-                             + ("ground_height" if self.ground_height is not None else
-                                "the ellipsoid, as no ground_height is given") + "): a vehicle "
-                             "would start inside the ground")
+        if self.height < self.ground:
+            raise ValueError(f"the pad's height {self.height:g} m is below the ground "
+                             f"(ground_height {self.ground:g} m): a vehicle would start inside "
+                             "the ground")
         return self
 
 
@@ -198,7 +209,8 @@ class OrbitStart(Strict):
     body: Literal["earth", "moon", "mars"] = Field("earth", description="the body orbited")
     elements: ElementsKind = Field("mean", description=ELEMENTS_DESCRIPTION)
 
-    altitude: Optional[Annotated[Length, Field(le=MAX_START_DISTANCE)]] = None
+    altitude: Optional[Annotated[Length, Field(le=MAX_START_DISTANCE)]] = Field(
+        None, description="circular altitude above the equatorial radius, e.g. '415 km'")
     semi_major_axis: Optional[Annotated[Length, Field(gt=0, le=MAX_START_DISTANCE)]] = None
     eccentricity: Annotated[float, Field(ge=0, lt=1)] = 0.0
     inclination: Union[Angle, Literal["sso"]] = Field(
@@ -291,13 +303,14 @@ class RailSpec(Strict):
     away from the crowd, into the day's wind), while the site file stays the place.
     """
 
-    length: Annotated[Length, SIZE] = Field(description="length of the rail")
+    length: Annotated[Length, SIZE] = Field(description="length of the rail, e.g. '5.2 m'")
     inclination: Optional[Angle] = Field(
         None, description="elevation of the rail above the horizon; default the start's elevation")
     heading: Optional[Angle] = Field(
         None, description="azimuth the rail leans towards, from north; default the site's pad azimuth")
     last_button: Annotated[Length, EXTENT] = Field(
-        0.0, description="height of the vehicle's aft rail button above its base (the last to leave)")
+        0.0, description="height of the vehicle's aft rail button above its base (the last to "
+        "leave), e.g. '0.25 m'")
 
     @model_validator(mode="after")
     def _travel(self) -> "RailSpec":
@@ -412,7 +425,7 @@ class MissionSpec(Strict):
     epoch: dt.datetime = Field(description="UTC instant of mission time 0 (ISO 8601)")
     dut1: Annotated[float, Field(ge=-0.9, le=0.9)] = Field(0.0, description="UT1 - UTC, s")
     start: StartSpec
-    duration: Annotated[Duration, Field(gt=0)] = Field(description="mission time to fly")
+    duration: Annotated[Duration, Field(gt=0)] = Field(description="mission time to fly, e.g. '3 h'")
     initial_rates: tuple[_Rate, _Rate, _Rate] = Field(
         (0.0, 0.0, 0.0), description="body rates at the start, rad/s (roll, pitch, yaw)")
     target: TargetSpec = Field(TargetSpec(), description="what the mission aims for")
@@ -442,6 +455,15 @@ class MissionSpec(Strict):
 class TelemetrySpec(Strict):
     rate: Annotated[Frequency, Field(ge=1e-6, le=50)] = Field(
         10.0, description="samples per second (1e-6 Hz, one every 11.6 days, .. 50 Hz)")
+    coast_rate: Optional[Annotated[Frequency, Field(ge=1e-6, le=50)]] = Field(
+        None, description="samples per second of a body coasting (no engine running, dynamic "
+        "pressure under 1 Pa), at most the rate; default: the rate (rocketsim.sim.sample_watch)")
+
+    @model_validator(mode="after")
+    def _coast_rate(self) -> "TelemetrySpec":
+        if self.coast_rate is not None and self.coast_rate > self.rate:
+            raise ValueError(f"coast_rate {self.coast_rate:g} Hz is above the rate {self.rate:g} Hz")
+        return self
 
 
 class Scenario(Strict):
@@ -471,6 +493,9 @@ class Scenario(Strict):
     step: Annotated[Duration, Field(gt=0)] = Field(STEP, description="integration step, at most 0.1 s")
     program_cpu_budget: Annotated[Duration, within(0.0, MAX_PROGRAM_CPU, "cpu", "s", above=True)] = Field(
         1.0, description="CPU time the program may use in one step before it is stopped")
+    program_time_limit: Annotated[Duration, within(0.0, MAX_PROGRAM_WAIT, "wait", "s", above=True)] = Field(
+        10.0, description="wall time one wake-up of the program may take before it is stopped "
+        "(blocked or busy)")
     telemetry: TelemetrySpec = TelemetrySpec()
     seed: int = Field(0, ge=0, le=MAX_SEED, description="seed of every random stream of the run "
                       "(0 .. 2^64 - 1)")
@@ -527,6 +552,7 @@ class Scenario(Strict):
             object.__setattr__(self, "vehicle", reload_tanks(self.vehicle, self.propellant))
         if self.mission.start.site is not None and self.site is None:
             raise ValueError("mission starts on a site: give 'site'")
+        self._stands_on_the_ground()
         if self.mission.start.site is not None and self.mission.start.site.rail is not None \
                 and self.vehicle.stages is None:
             raise ValueError("a launch rail (mission.start.site.rail) goes with a staged vehicle, "
@@ -546,6 +572,21 @@ class Scenario(Strict):
                              "'standard' or 'classic' (the standard shifted by the day's "
                              f"surface temperature), not {self.weather.kind!r}")
         return self
+
+
+    def _stands_on_the_ground(self) -> None:
+        """A vehicle with ground contact starting at rest on the pad stands on the ground:
+        a pad above an explicit ``ground_height`` would start it in the air, to fall at
+        T+0 (a rail holds it; a pad on a tower is not modelled)."""
+        start, site, aero = self.mission.start.site, self.site, self.vehicle.aero
+        if start is None or start.rail is not None or any(start.velocity) or aero is None \
+                or not aero.aerodynamics or site.height <= site.ground:
+            return
+        raise field_error(("site", "ground_height"), f"the vehicle starts at rest on the pad, "
+                          f"{site.height - site.ground:g} m above the ground (ground_height "
+                          f"{site.ground:g} m, the pad's height {site.height:g} m): it would fall "
+                          "at T+0. Leave ground_height out (the ground is then the pad's height) "
+                          "or start on a rail (mission.start.site.rail)", site.ground_height)
 
 
 def check_step(value: float) -> float:

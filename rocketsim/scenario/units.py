@@ -14,6 +14,8 @@ from __future__ import annotations
 
 import math
 import re
+import typing
+from dataclasses import dataclass
 from typing import Annotated, Any
 
 from pydantic import BeforeValidator, ConfigDict, WithJsonSchema
@@ -50,11 +52,66 @@ UNITS: dict[str, dict[str, float]] = {
     "dimensionless": {"": 1.0, "%": 0.01},
 }
 
+# a value of each dimension as a file writes it, for the schema's examples
+EXAMPLES: dict[str, str] = {
+    "length": "2.5 m", "mass": "1500 kg", "time": "10 s", "angle": "28.5 deg", "speed": "7.5 km/s",
+    "force": "914 kN", "pressure": "101325 Pa", "temperature": "288 K", "density": "1141 kg/m3",
+    "area": "0.5 m2", "inertia": "12 kg m2", "angular_rate": "10 deg/s", "frequency": "10 Hz",
+    "specific_impulse": "311 s", "mass_flow": "300 kg/s", "acceleration": "40 g",
+    "specific_energy": "12 km2/s2", "dimensionless": "0.8",
+}
+# an example in a field's description: "e.g. '5 deg'"
+_EXAMPLE = re.compile(r"e\.g\. '([^']+)'")
+
+
+@dataclass(frozen=True)
+class Dimension:
+    """The dimension a quantity field reads (its annotation's marker, for the schema)."""
+
+    name: str
+
+    def text(self) -> str:
+        units = ", ".join(u for u in UNITS[self.name] if u)
+        how = "a string with one of" if self.name == "angle" else "a number in SI or a string with one of"
+        return f"({self.name.replace('_', ' ')}: {how}: {units})"
+
+
+def _dimension_of(annotation) -> Dimension | None:
+    """The :class:`Dimension` marker inside an annotation (through Annotated, Optional, Union)."""
+    for meta in getattr(annotation, "__metadata__", ()):
+        if isinstance(meta, Dimension):
+            return meta
+    for arg in typing.get_args(annotation):
+        if not isinstance(arg, Dimension):
+            found = _dimension_of(arg)
+            if found is not None:
+                return found
+    return None
+
+
+def document_fields(schema: dict, model) -> None:
+    """``json_schema_extra`` of the scenario models: each quantity field's description says
+    its dimension and units and the schema gives an example (the description's ``e.g.``,
+    else one of its dimension); then its bounds (:func:`document_bounds`)."""
+    for name, info in model.model_fields.items():
+        prop = schema.get("properties", {}).get(name)
+        dimension = next((m for m in info.metadata if isinstance(m, Dimension)), None) \
+            or _dimension_of(info.annotation)
+        if prop is None or dimension is None:
+            continue
+        text = prop.get("description", "")
+        if f"({dimension.name.replace('_', ' ')}:" not in text:
+            prop["description"] = f"{text} {dimension.text()}".strip()
+        found = _EXAMPLE.search(text)
+        prop.setdefault("examples", [found.group(1) if found else EXAMPLES[dimension.name]])
+    document_bounds(schema, model)
+
+
 # the settings of every scenario model: unknown fields are errors, and so is a number
 # that is not finite (nan, inf, or a quantity such as "1e308 km" whose SI value overflows);
-# the schema's descriptions name the physical bounds of fields (rocketsim.scenario.bounds)
+# the schema's descriptions name the dimension, units and physical bounds of fields
 STRICT = ConfigDict(extra="forbid", frozen=True, allow_inf_nan=False,
-                    json_schema_extra=document_bounds)
+                    json_schema_extra=document_fields)
 
 _QUANTITY = re.compile(r"^\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*(.*?)\s*$")
 
@@ -106,17 +163,13 @@ def quantity(dimension: str, description: str = "") -> Any:
     """A pydantic float type reading ``dimension`` quantities, stored in SI."""
     if dimension not in UNITS:
         raise KeyError(dimension)
-    units = ", ".join(u for u in UNITS[dimension] if u)
-    schema = {
-        "anyOf": [{"type": "number"}, {"type": "string"}],
-        "description": (f"{description} " if description else "")
-        + f"({dimension}: a number in SI or a string with one of: {units})",
-    }
+    marker = Dimension(dimension)
+    schema = {"anyOf": [{"type": "number"}, {"type": "string"}],
+              "description": (f"{description} " if description else "") + marker.text()}
     if dimension == "angle":
-        schema = {"type": "string", "description": schema["description"].replace(
-            "a number in SI or ", "")}
+        schema = {"type": "string", "description": schema["description"]}
     return Annotated[float, BeforeValidator(lambda v: parse_quantity(v, dimension)),
-                     WithJsonSchema(schema)]
+                     WithJsonSchema(schema), marker]
 
 
 Length = quantity("length")

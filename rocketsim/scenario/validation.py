@@ -21,6 +21,7 @@ from pydantic import BaseModel, ValidationError
 
 from rocketsim.errors import InputError
 from rocketsim.scenario.overrides import Edited
+from rocketsim.scenario.vehicle import REQUIRED
 from rocketsim.scenario.yaml_source import YamlSource
 
 # a value quoted in a message: a 60 000-character string is shown by its ends
@@ -66,7 +67,7 @@ def _input_error(error: ValidationError, source: YamlSource, model: type[BaseMod
     line, column = source.position(loc) or (None, None)
     # name the field as written; a missing field is not written, so add its name
     written = source.written_path(loc)
-    if first["type"] == "missing" and loc and written[-1:] != loc[-1:]:
+    if first["type"] in ("missing", REQUIRED) and loc and written[-1:] != loc[-1:]:
         written += loc[-1:]
     message = _describe(first, written, model)
     words = _words_also_accepted(problems, first)
@@ -124,6 +125,8 @@ def _describe(problem: dict, loc: tuple, model: type[BaseModel]) -> str:
             message += f"; expected one of: {', '.join(allowed)}"
     elif kind == "missing":
         message = f"missing required field {loc[-1]!r}" if loc else "missing required field"
+    elif kind == REQUIRED:
+        pass                # the message says what is missing and why
     else:
         given = problem.get("input")
         if not isinstance(given, (dict, list)) and f"got {given!r}" not in message:

@@ -29,6 +29,7 @@ propellant is unusable (:data:`rocketsim.constants.UNUSABLE_PROPELLANT`).
 from __future__ import annotations
 
 import math
+import os
 from typing import Annotated, Literal, Optional, Union
 
 from pathlib import Path
@@ -62,14 +63,20 @@ class _Strict(BaseModel):
     model_config = STRICT
 
 
-def field_error(loc: tuple, message: str, value) -> ValidationError:
+# the error type of a field this file needs although the schema has a default for others
+REQUIRED = "required"
+
+
+def field_error(loc: tuple, message: str, value, kind: str = "vehicle") -> ValidationError:
     """A validation error at ``loc`` (relative to the model raising it).
 
     Raised from a model validator, pydantic prefixes the model's own location,
-    so the loader names the exact field (and its line) of the problem.
+    so the loader names the exact field (and its line) of the problem. ``kind``
+    :data:`REQUIRED`: the field is needed here and not written (the loader then
+    names it, as it does a missing field, at its parent's line).
     """
     return ValidationError.from_exception_data("vehicle", [InitErrorDetails(
-        type=PydanticCustomError("vehicle", message), loc=loc, input=value)])
+        type=PydanticCustomError(kind, message), loc=loc, input=value)])
 
 
 class TankSpec(_Strict):
@@ -78,11 +85,13 @@ class TankSpec(_Strict):
     name: str
     propellant: str = Field(description="what it holds, e.g. LOX, RP-1, LCH4, LH2")
     density: Annotated[Density, within(MIN_DENSITY, MAX_DENSITY, "density", "kg/m3")] = Field(
-        description="propellant density")
-    radius: PositiveLength = Field(description="inner radius of the cylinder")
-    length: PositiveLength = Field(description="length of the cylinder")
-    position: NonNegativeLength = Field(description="height of the tank's bottom above the stage base")
-    wall_mass: NonNegativeMass = Field(0.0, description="mass of the tank wall (thin shell)")
+        description="propellant density, e.g. '1141 kg/m3' (LOX; RP-1 810, LH2 71, LCH4 423)")
+    radius: PositiveLength = Field(description="inner radius of the cylinder, e.g. '1.83 m'")
+    length: PositiveLength = Field(description="length of the cylinder, e.g. '22.9 m'")
+    position: NonNegativeLength = Field(description="height of the tank's bottom above the stage "
+                                        "base, e.g. '15.4 m'")
+    wall_mass: NonNegativeMass = Field(0.0, description="mass of the tank wall (thin shell), "
+                                       "e.g. '2500 kg'")
     propellant_mass: Optional[NonNegativeMass] = Field(
         None, description="propellant loaded at liftoff; default: full")
     feeds_engines: bool = Field(
@@ -109,6 +118,11 @@ class TankSpec(_Strict):
         return self
 
 
+# why an engine with a gimbal cone must say how fast it slews (no default is honest)
+GIMBAL_RATE_WHY = ("an engine that cannot slew stays centred and cannot steer (an unfinned launcher "
+                   "left so turns over in the air), and no rate is true of every actuator")
+
+
 class EngineSpec(_Strict):
     """``count`` identical engines, evenly spaced on a ring (one on the axis if the radius is 0).
 
@@ -123,20 +137,27 @@ class EngineSpec(_Strict):
     layout_angle: Angle = Field(0.0, description="angle of the first engine from body +y about +x")
     position: NonNegativeLength = Field(0.0, description="height of the gimbal points above the stage base")
     mass: NonNegativeMass = Field(0.0, description="mass of one engine (a point mass at its gimbal point)")
-    thrust_vacuum: Annotated[Force, THRUST] = Field(description="vacuum thrust of one engine at full throttle")
-    isp_vacuum: Optional[Annotated[SpecificImpulse, ISP]] = Field(None, description="vacuum specific impulse")
+    thrust_vacuum: Annotated[Force, THRUST] = Field(description="vacuum thrust of one engine at full "
+                                                    "throttle, e.g. '914 kN' (a Merlin 1D)")
+    isp_vacuum: Optional[Annotated[SpecificImpulse, ISP]] = Field(
+        None, description="vacuum specific impulse, e.g. '311 s'")
     mass_flow: Optional[Annotated[MassFlow, Field(gt=0)]] = Field(
         None, description="mass flow of one engine at full throttle (the specific impulse it "
         "gives with the thrust is held to the bounds of isp_vacuum)")
-    exit_area: Annotated[Area, within(0.0, MAX_SIZE ** 2, "size", "m2")] = Field(description="nozzle exit area")
+    exit_area: Annotated[Area, within(0.0, MAX_SIZE ** 2, "size", "m2")] = Field(
+        description="nozzle exit area, e.g. '0.68 m2'")
     exit_pressure: Optional[Annotated[Pressure, within(0.0, MAX_PRESSURE, "pressure", "Pa", above=True)]] = Field(
         None, description="nozzle exit pressure at full throttle (flow separation check); "
         "none: the nozzle never separates")
     throttle: tuple[Fraction, Fraction] = Field((1.0, 1.0), description="throttle range [min, max], fractions")
     throttle_rate: Annotated[float, within(0.0, MAX_THROTTLE_RATE, "throttle rate", "/s", above=True)] = Field(
         1.0, description="throttle slew limit, fraction of full thrust per second")
-    gimbal_range: Annotated[Angle, ANGLE] = Field(0.0, description="half-angle of the gimbal cone")
-    gimbal_rate: Annotated[AngularRate, SLEW] = Field(0.0, description="gimbal slew limit")
+    gimbal_range: Annotated[Angle, ANGLE] = Field(
+        0.0, description="half-angle of the gimbal cone, e.g. '5 deg'; default 0: the engine is "
+        "fixed (it cannot steer)")
+    gimbal_rate: Optional[Annotated[AngularRate, SLEW]] = Field(
+        None, description="gimbal slew limit, e.g. '10 deg/s' (launcher actuators slew at about "
+        f"5-20 deg/s); required with a gimbal_range: {GIMBAL_RATE_WHY}")
     ignition_delay: Annotated[Duration, Field(ge=0.2, le=0.5)] = Field(
         0.3, description="dead time from the ignition command to first thrust (0.2-0.5 s)")
     spool_up: Annotated[Duration, RESPONSE] = Field(1.0, description="time from first thrust to full thrust")
@@ -159,6 +180,15 @@ class EngineSpec(_Strict):
     def _one_flow(self) -> "EngineSpec":
         if (self.isp_vacuum is None) == (self.mass_flow is None):
             raise ValueError(f"engine {self.name!r}: give exactly one of 'isp_vacuum' or 'mass_flow'")
+        if self.gimbal_range > 0.0 and not self.gimbal_rate:
+            raise field_error(("gimbal_rate",), f"engine {self.name!r} gimbals "
+                              f"{math.degrees(self.gimbal_range):g} deg but "
+                              + ("its gimbal_rate is 0" if self.gimbal_rate == 0.0 else
+                                 "gives no gimbal_rate")
+                              + f": {GIMBAL_RATE_WHY}; give one, e.g. gimbal_rate: 10 deg/s "
+                              "(launcher actuators slew at about 5-20 deg/s), or gimbal_range: "
+                              "0 deg for a fixed engine", self.gimbal_rate,
+                              REQUIRED if self.gimbal_rate is None else "vehicle")
         if self.mass_flow is not None:
             try:
                 ISP.check(self.isp)
@@ -223,7 +253,7 @@ class MotorSpec(_Strict):
         None, description="(time s since ignition, thrust N) pairs, times increasing; "
         "instead of 'file'")
     position: NonNegativeLength = Field(0.0, description="height of the motor's aft end (nozzle "
-                                        "exit) above the stage base")
+                                        "exit) above the stage base, e.g. '0 m'")
     diameter: Optional[PositiveLength] = Field(None, description="motor diameter (default: the .eng header's)")
     length: Optional[PositiveLength] = Field(None, description="motor length (default: the .eng header's)")
     propellant_mass: Optional[Annotated[Mass, within(0.0, MAX_MASS, "mass", "kg", above=True)]] = Field(
@@ -245,9 +275,10 @@ class MotorSpec(_Strict):
             raise ValueError(f"motor {self.name!r}: give exactly one of 'file' or 'thrust'")
         if self.file is not None:
             base = (info.context or {}).get("base_dir") if info is not None else None
-            path = (Path(base) if base is not None else Path()) / self.file
+            # realpath, not resolve: a loop of symlinks is then the file's read error, located
+            path = Path(os.path.realpath((Path(base) if base is not None else Path()) / self.file))
             try:
-                curve = read_thrust_curve(path.resolve())
+                curve = read_thrust_curve(path)
             except MotorFileError as error:
                 raise field_error(("file",), str(error), self.file) from None
             header = {"diameter": curve.diameter, "length": curve.length,
@@ -258,7 +289,7 @@ class MotorSpec(_Strict):
                                       "give it in one place", getattr(self, key))
                 if value is not None:
                     object.__setattr__(self, key, value)
-            object.__setattr__(self, "file", str(path.resolve()))
+            object.__setattr__(self, "file", str(path))
             object.__setattr__(self, "thrust", [tuple(p) for p in curve.points])
         else:
             points = list(self.thrust)
@@ -331,7 +362,8 @@ class ParachuteSpec(_Strict):
 
     name: str
     cd_s: Annotated[Area, DRAG_AREA] = Field(description="C_D S: drag coefficient times "
-                                             "reference area, fully inflated")
+                                             "reference area, fully inflated, e.g. '5.65 m2' (a "
+                                             "3 m flat circular canopy at C_D 0.8)")
     lag: Annotated[Duration, OPENING_LAG] = Field(1.0, description="from deployment to the start "
                                                   "of inflation")
     inflation: Annotated[Duration, INFLATION] = Field(1.0, description="from the start of "
@@ -360,15 +392,19 @@ class StageSpec(_Strict):
     """One stage: structure, tanks, engines and point masses; positions from its base."""
 
     name: str
-    length: PositiveLength
-    diameter: PositiveLength
+    length: PositiveLength = Field(description="from the stage's base to its top (to the nose's "
+                                   "tip if the nose caps it), e.g. '41.2 m'")
+    diameter: PositiveLength = Field(description="e.g. '3.7 m'")
     structure_mass: PositiveMass = Field(
-        description="dry mass of the structure alone (a thin shell of the stage's size); "
+        description="e.g. '8890 kg': dry mass of the structure alone (a thin shell of the stage's size); "
         "tank walls, engines and point masses are listed separately. Every stage has one: "
         "it keeps the mass and inertia of a stage flying on its own, its tanks dry, positive")
     structure_centre: Optional[NonNegativeLength] = Field(
         None, description="height of the structure's centre of mass above the base; default mid-stage")
-    tanks: list[TankSpec] = []
+    tanks: list[TankSpec] = Field([], description="propellant tanks; those feeding engines feed "
+                                   "all the stage's engines, drawn in proportion to their loads "
+                                   "(the loads are the mixture ratio: each runs dry at the same "
+                                   "instant)")
     engines: list[EngineSpec] = []
     point_masses: list[PointMassSpec] = []
     motors: list[MotorSpec] = Field([], description="solid motors (thrust curves) of the stage")
@@ -437,13 +473,37 @@ class StageSpec(_Strict):
                 + sum(m.case_mass for m in self.motors))
 
 
+PAYLOAD_SIZE_WHY = ("the payload's cylinder is the top of the vehicle's outline where no fairing "
+                    "covers it (its nose's shape, the reference diameter) and sets its inertia, and no "
+                    "size is true of both a hobby rocket's payload bay and a launcher's satellite")
+
+
 class PayloadSpec(_Strict):
-    """The payload, a uniform solid cylinder sitting on top of the top stage."""
+    """The payload, a uniform solid cylinder sitting on top of the top stage; its
+    ``length`` and ``diameter`` have no default (:data:`PAYLOAD_SIZE_WHY`)."""
 
     name: str = "payload"
     mass: NonNegativeMass
-    length: PositiveLength = 1.0
-    diameter: PositiveLength = 1.0
+    length: PositiveLength = Field(
+        description="e.g. '6 m' (a launcher's satellite) or '0.4 m' (a hobby rocket's nose cone, "
+        "the nose included when it caps the payload)")
+    diameter: PositiveLength = Field(
+        description="e.g. '4 m' (inside a 5.2 m fairing) or the body's '0.1 m' (a hobby rocket's "
+        "payload bay)")
+
+    @model_validator(mode="before")
+    @classmethod
+    def _sized(cls, data):
+        """A missing size refused with why and a typical value (not pydantic's bare 'missing')."""
+        if isinstance(data, dict):
+            for name, typical in (("length", "length: 6 m for a launcher's satellite, 0.4 m for a "
+                                             "hobby rocket's nose cone"),
+                                  ("diameter", "diameter: 4 m in a 5.2 m fairing, or the body's own "
+                                               "for a hobby rocket's payload bay")):
+                if name not in data:
+                    raise field_error((name,), f"payload {data.get('name', 'payload')!r} gives no "
+                                      f"{name}: {PAYLOAD_SIZE_WHY}; give it, e.g. {typical}", None, REQUIRED)
+        return data
 
 
 class FairingSpec(_Strict):

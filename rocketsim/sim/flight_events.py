@@ -7,7 +7,8 @@ One :class:`FlightEvents` watches one body; the world calls
   starting height (figures: mass).
 * ``max_q`` — the peak of the dynamic pressure on a staged vehicle,
   reported once ``q`` has fallen 5 % below a peak of at least 1 kPa (figures
-  at the peak: q, Mach, altitude).
+  at the peak: ``dynamic_pressure_Pa``, ``mach``, ``altitude_m`` above the
+  ellipsoid, the instant ``at_s``).
 * ``stage_dry`` — a stage's usable propellant is gone (the engine model
   flags the instant); named ``MECO`` for the vehicle's first stage and
   ``SECO`` for its second when that is how the burn ends. A stage without
@@ -16,16 +17,16 @@ One :class:`FlightEvents` watches one body; the world calls
   instant ``burnout_s``, its total impulse).
 * ``apogee`` — a vehicle with parachutes that rose from the ground has begun to
   come down (its vertical speed over the ground turned negative; figures:
-  ``altitude_m`` above the ground: the ellipsoid, or the site's ``ground_height``,
+  ``height_agl_m`` above the ground: the site's flat ground, or the ellipsoid,
   and where: ``latitude_deg``, ``longitude_deg``).
 * ``parachute_deployed`` — a parachute's trigger fired (its YAML trigger, at the
   end of the step in which it was met, or ``fc.deploy_parachute``; figures: the
-  parachute, the trigger, ``height_m``, ``vertical_speed_m_s``);
+  parachute, the trigger, ``height_agl_m``, ``vertical_speed_m_s``);
   ``parachute_inflated`` when its drag area is full (figures: the parachute,
   ``at_s``, the exact instant); ``parachute_released`` when a parachute another
   one ``releases`` is cut away (figures: the parachute, ``by``, ``at_s``).
 * ``off_rail`` — the vehicle's last rail button has left its launch rail
-  (figures: the instant ``at_s``, the speed along the rail ``speed_m_s``, and,
+  (figures: the instant ``at_s``, the speed along the rail ``surface_speed_m_s``, and,
   when the aerodynamics give a centre of pressure, the static margin
   ``stability_margin_cal``: ``(x_cm - x_cp) / d`` in calibers of the reference
   diameter, stations from the base, positive when the centre of pressure is
@@ -140,7 +141,7 @@ class FlightEvents:
         elif self.peak[0] >= MAX_Q_MIN and q < MAX_Q_DROP * self.peak[0]:
             self.max_q_done = True
             q_peak, t_peak, mach, altitude = self.peak
-            self.world.event(self.body, "max_q", {"q_Pa": q_peak, "mach": mach, "altitude_m": altitude,
+            self.world.event(self.body, "max_q", {"dynamic_pressure_Pa": q_peak, "mach": mach, "altitude_m": altitude,
                                                   "at_s": t_peak})
 
     def _stages_dry(self) -> None:
@@ -166,7 +167,7 @@ class FlightEvents:
                 self.rising = True
             elif self.rising:
                 self.apogee_at = body.t
-                self.world.event(body, "apogee", {"altitude_m": height, "latitude_deg": lat / DEG,
+                self.world.event(body, "apogee", {"height_agl_m": height, "latitude_deg": lat / DEG,
                                                   "longitude_deg": lon / DEG})
         for i, spec in enumerate(model.parachutes):
             if math.isnan(chute[i, CH_DEPLOYED]):
@@ -218,7 +219,7 @@ class FlightEvents:
             vertical = float(surface @ up)
             height = self.world.where(body)[2] - body.vehicle.arrays.aero.ref[A_GROUND]
         self.world.event(body, "parachute_deployed", {"parachute": body.vehicle.parachutes[i].name,
-                                                      "trigger": trigger, "height_m": height,
+                                                      "trigger": trigger, "height_agl_m": height,
                                                       "vertical_speed_m_s": vertical})
         return True
 
@@ -239,7 +240,7 @@ class FlightEvents:
         self.on_rail = False
         model = self.body.vehicle
         rail, aero = model.arrays.rail, model.arrays.aero
-        figures = {"at_s": float(rail[RL_OFF_AT]), "speed_m_s": float(rail[RL_OFF_SPEED])}
+        figures = {"at_s": float(rail[RL_OFF_AT]), "surface_speed_m_s": float(rail[RL_OFF_SPEED])}
         if aero.ref[A_ON] > 0.5:
             x_cp = centre_of_pressure(aero.ref, aero.fin)
             if not math.isnan(x_cp):

@@ -39,9 +39,10 @@ from rocketsim.dynamics.nbody import FIELD_JD0, FIELD_ROT
 from rocketsim.dynamics.soi import frame_rotation
 from rocketsim.dynamics.third_bodies import P_BUCKET, field_of, hold_field, nbody_flag
 from rocketsim.layout import P_RADIUS
-from rocketsim.stepping.sample_figures import (FLIGHT_KEYS, ORBIT_KEYS, SAMPLE_GROUPS, SAMPLE_HEIGHT, SAMPLE_LAT,
-                                               SAMPLE_LON, SAMPLE_MASS, SAMPLE_ORBIT, SAMPLE_SPEED, SAMPLE_VEHICLE,
-                                               figures, orbit_figures)
+from rocketsim.stepping.sample_figures import (FLIGHT_KEYS, ORBIT_KEYS, SAMPLE_ALPHA, SAMPLE_GROUPS, SAMPLE_HEADING,
+                                               SAMPLE_HEIGHT, SAMPLE_HEIGHT_AGL, SAMPLE_LAT, SAMPLE_LON, SAMPLE_MASS,
+                                               SAMPLE_ORBIT, SAMPLE_PITCH, SAMPLE_SPEED, SAMPLE_SURFACE_SPEED,
+                                               SAMPLE_VEHICLE, figures, orbit_figures)
 from rocketsim.telemetry.frames import CentralFrame, central_frame
 from rocketsim.vehicle.heating import sutton_graves_constant
 
@@ -68,8 +69,9 @@ def values(body, gmst0: float, where) -> tuple[np.ndarray, "Shape"]:
             entry = plan[1] = _entry(body.vehicle, args)
         v = entry(*args)
     if not earth:
+        ground = v[SAMPLE_HEIGHT] - v[SAMPLE_HEIGHT_AGL]
         lat, lon, v[SAMPLE_HEIGHT] = where(body)
-        v[SAMPLE_LAT], v[SAMPLE_LON] = lat / DEG, lon / DEG
+        v[SAMPLE_LAT], v[SAMPLE_LON], v[SAMPLE_HEIGHT_AGL] = lat / DEG, lon / DEG, v[SAMPLE_HEIGHT] - ground
     return v, shape
 
 
@@ -232,9 +234,12 @@ def _fields(v, integer, central: str, groups, tanks, shield: bool) -> dict:
     from the numbers ``v`` of :func:`figures` (a list, or slots standing for them)."""
     out = {"t": v[-2], "position": v[0:3], "velocity": v[3:6], "attitude": v[6:10],
            "body_rates": v[10:13], "latitude_deg": v[SAMPLE_LAT], "longitude_deg": v[SAMPLE_LON],
-           "altitude": v[SAMPLE_HEIGHT], "speed": v[SAMPLE_SPEED], "orbit": _orbit(v[SAMPLE_ORBIT:SAMPLE_MASS]),
-           "central_body": central}
+           "altitude": v[SAMPLE_HEIGHT], "height_agl": v[SAMPLE_HEIGHT_AGL], "inertial_speed": v[SAMPLE_SPEED],
+           "surface_speed": v[SAMPLE_SURFACE_SPEED], "pitch_deg": v[SAMPLE_PITCH], "heading_deg": v[SAMPLE_HEADING],
+           "orbit": _orbit(v[SAMPLE_ORBIT:SAMPLE_MASS]), "central_body": central}
     out.update(zip(FLIGHT_KEYS, v[SAMPLE_MASS:SAMPLE_VEHICLE]))
+    alpha = v[SAMPLE_ALPHA]
+    out["angle_of_attack_deg"] = alpha if alpha == alpha else None
     if groups is not None:
         n = len(groups)
         throttle = v[SAMPLE_VEHICLE]

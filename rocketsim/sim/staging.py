@@ -82,7 +82,7 @@ def separate(world, body: Vehicle) -> Vehicle:
     if body.watch is not None:
         new.watch = FlightEvents(world, new, on_ground=False, stage_names=body.watch.stage_names)
         new.watch.inherit(body.watch)
-    figures = {"stage": stage, "mass_kg": new.mass, "upper_mass_kg": body.mass}
+    figures = {"stage": stage, "stage_mass_kg": new.mass, "upper_mass_kg": body.mass}
     world.event(body, "separation", {**figures, "separated_body": new.name})
     world.event(new, "separation", {**figures, "from_body": body.name})
     if stage in world.stage_programs:
@@ -126,6 +126,8 @@ def add_body(world, name: str, y: np.ndarray, p: np.ndarray, parent: Body,
     if vehicle is not None and parent.central != "earth":
         fly_in_air_of(world, new)
     world.bodies.append(new)
+    if world.sample_watch is not None:      # it flew with its parent so far
+        world.sample_watch.inherit(new.name, parent.name)
     if world.telemetry is not None:
         world.telemetry.add_body(new.name)
         world.record(new)

@@ -46,6 +46,8 @@ from rocketsim.flight.program import ProgramRunner
 from rocketsim.sim import sampling, staging
 from rocketsim.sim.body import Body
 from rocketsim.sim.craft import BodyCraft
+from rocketsim.sim.ground_crossing import back_to_ground
+from rocketsim.sim.sample_watch import SampleWatch
 from rocketsim.sim.handover import hand_over, watch_soi
 from rocketsim.sim.schedule import Schedule, inertia, rails_field
 from rocketsim.sim.summary import summary
@@ -72,6 +74,8 @@ class World:
         self.k = 0
         self.telemetry = None
         self.sample_every = 1
+        self.coast_every = None             # steps between a coasting body's samples (None: every)
+        self.sample_watch = None            # the telemetry's SampleWatch while it flies with one
         self.on_progress: Callable[[float], None] | None = None
         self.phase = ""                     # the latest event, "<body>: <name>" (progress bars)
         self.schedule = Schedule(self)
@@ -82,11 +86,15 @@ class World:
         self.sensor_level = "truth"
         self.stage_programs: dict[str, object] = {}      # stage name -> (main, path)
         self.program_cpu_budget = 1.0
+        self.program_time_limit = 10.0      # s of wall time a program's wake-up may take
         self.target = None                  # the mission's target (TargetSpec)
         self.pad_azimuth = math.nan
         self.scenario_file = None           # Path of the scenario's file (None: given as a mapping)
         self.vehicle_file = None            # Path of the vehicle's file (None: written inline)
         self.step_line = None               # line of ``step`` in the scenario's file (None: not written)
+        # called before a program acts (a command, a log line, an event): set while a window
+        # reads a condition ahead of its queue, to write first what comes first (rocketsim.sim.window)
+        self.before_act: Callable[[], None] | None = None
 
     @property
     def atmosphere(self):
@@ -100,9 +108,14 @@ class World:
         """Mission time (s)."""
         return self.k * self.h
 
+    def acting(self) -> None:
+        """A program is about to act (see :attr:`before_act`)."""
+        if self.before_act is not None:
+            self.before_act()
+
     def attach_program(self, body: Body, main, path) -> None:
         """Fly ``body`` with the program ``main`` (loaded from ``path``)."""
-        body.runner = ProgramRunner(main, path, self.program_cpu_budget)
+        body.runner = ProgramRunner(main, path, self.program_cpu_budget, self.program_time_limit)
         body.fc = FlightComputer(BodyCraft(self, body))
 
     # --- staging (rocketsim.sim.staging) -------------------------------------
@@ -158,7 +171,11 @@ class World:
 
     # --- the loop -----------------------------------------------------------
     def run(self, telemetry=None) -> dict:
-        """Fly to the end of the mission (or until every body has landed or hit)."""
+        """Fly to the end of the mission (or until every body has landed or hit), writing
+        ``telemetry`` through a :class:`~rocketsim.sim.sample_watch.SampleWatch` (the flight
+        figures of the summary, the coasts thinned)."""
+        if telemetry is not None:
+            telemetry = self.sample_watch = SampleWatch(telemetry, self.h, self.sample_every, self.coast_every)
         self.telemetry = telemetry
         for body in self.bodies:
             if telemetry is not None:
@@ -178,19 +195,25 @@ class World:
                             body.watch.after_step()
                     self.k += n
                     self.reached()
+            if self.sample_watch is not None:
+                self.sample_watch.finish()
         finally:
             for body in self.bodies:
                 if body.runner is not None:
                     body.runner.close()
         return summary(self)
 
-    def reached(self) -> None:
+    def reached(self, sample: Callable[[], None] | None = None) -> None:
         """The loop has flown to step ``k``: at a sample step (every ``sample_every``-th,
-        the last, after a cruise step) the finiteness check and the telemetry sample,
-        then ``on_progress``, which may end the flight earlier (``n_steps``)."""
+        the last, after a cruise step) the finiteness check and the telemetry sample
+        (``sample``, when the caller has them to write, else every flying body's from its
+        state), then ``on_progress``, which may end the flight earlier (``n_steps``)."""
         if self.k % self.sample_every == 0 or self.k >= self.n_steps or self.schedule.cruise_batch:
-            self.check_finite()
-            self._sample_all()
+            if sample is None:
+                self.check_finite()
+                self._sample_all()
+            else:
+                sample()
         if self.on_progress is not None:
             self.on_progress(self.t)
 
@@ -354,13 +377,18 @@ class World:
         ground = 0.0 if body.vehicle is None else body.vehicle.arrays.aero.ref[A_GROUND]
         if body.flying and (crash is not None or short or radial_height(body.y, body.p) < ground):
             # the body went below the ground in its last step (the batch's last one
-            # included, where advance cannot say so by stopping early), or its first
-            # contact was a crash (its speeds at the contact, not after the springs): it has hit
+            # included, where advance cannot say so by stopping early): it has hit, where
+            # it crossed the ground (its time no longer a whole number of steps); or its
+            # first contact was a crash (its speeds at the contact, not after the springs)
+            if crash is None:
+                tau, body.y = back_to_ground(body.y, body.p, ground, self.h)
+                body.t += tau
             lat, lon, _ = self.where(body)
             ground_speed = np.linalg.norm(body.view().surface_velocity)     # over the central body's ground
-            figures = {"latitude_deg": lat / DEG, "longitude_deg": lon / DEG, "speed_m_s": float(ground_speed)}
+            figures = {"latitude_deg": lat / DEG, "longitude_deg": lon / DEG,
+                       "surface_speed_m_s": float(ground_speed)}
             if crash is not None:
-                figures.update(crash, speed_m_s=math.hypot(crash["vertical_speed_m_s"],
+                figures.update(crash, surface_speed_m_s=math.hypot(crash["vertical_speed_m_s"],
                                                            crash["horizontal_speed_m_s"]))
             self.event(body, "impact", figures)
             body.flying = False

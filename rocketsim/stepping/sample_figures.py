@@ -15,17 +15,25 @@ of the flight itself: the readings' geodetic position and the day's air
 derivative the integrator uses (:func:`rocketsim.stepping.checked_step.accelerations`),
 the engine model (:func:`rocketsim.vehicle.engines.thrusts`, ``engine_state``).
 
-Fields of every body (SI units; degrees where the name ends in ``_deg``):
+Fields of every body (SI units; degrees where the name ends in ``_deg``; the
+names and what each means: :mod:`rocketsim.telemetry.names`):
 position, velocity (ECI of the central body, m, m/s), attitude (quaternion
-w, x, y, z, body -> ECI), body rates (rad/s), latitude, longitude and height
-(geodetic over WGS84 about Earth; planetocentric over the central body's
-ellipsoid elsewhere, :func:`rocketsim.dynamics.central.planetocentric`), inertial
-speed, the osculating elements (RAAN from the equinox about Earth, from the
+w, x, y, z, body -> ECI), body rates (rad/s), latitude, longitude and
+``altitude`` (geodetic over WGS84 about Earth; planetocentric over the central
+body's ellipsoid elsewhere, :func:`rocketsim.dynamics.central.planetocentric`),
+``height_agl`` (the altitude less the ground's: a vehicle's site's
+``ground_height``, else 0), ``inertial_speed``, ``surface_speed`` (over the
+central body's turning ground, :func:`rocketsim.frames.local.where_and_how_fast`),
+the nose's (body x axis) ``pitch_deg`` above the local horizontal and
+``heading_deg`` from north towards east (the local east-north-up axes of the
+same call), the osculating elements (RAAN from the equinox about Earth, from the
 node of the body's equator on the J2000 equator elsewhere; altitudes over the
 central body's equatorial radius; apoapsis and period missing unless
 elliptic), mass (kg), inertial acceleration ``|dv/dt|`` and sensed acceleration
-``|dv/dt - g|`` (m/s^2), airspeed (m/s), Mach and dynamic pressure (Pa) in the
-readings' air (the day's air about Earth, none elsewhere).
+``|dv/dt - g|`` (m/s^2), airspeed (m/s), the total ``angle_of_attack_deg``
+between the nose and the air-relative velocity (missing at zero airspeed), Mach
+and dynamic pressure (Pa) in the readings' air (the day's air about Earth, none
+elsewhere).
 
 Fields of a staged vehicle:
 
@@ -65,8 +73,10 @@ from rocketsim.dynamics.derivative import radial_height
 from rocketsim.flight.readings import air_here
 from rocketsim.frames.elements import elements_tuple
 from rocketsim.frames.local import body_air_velocity, where_and_how_fast
-from rocketsim.layout import N_STATE, P_MASS, P_POLAR_RADIUS, P_RADIUS, P_SPIN, R, V
+from rocketsim.frames.quaternion import rotate_components
+from rocketsim.layout import N_STATE, P_MASS, P_POLAR_RADIUS, P_RADIUS, P_SPIN, Q, R, V
 from rocketsim.stepping.checked_step import accelerations
+from rocketsim.vehicle.aero import A_GROUND
 from rocketsim.vehicle.engines import E_MDOT, E_STAGE, S_DRY, engine_state, thrusts
 from rocketsim.vehicle.heating import sutton_graves
 from rocketsim.vehicle.mass_properties import vehicle_mass_properties
@@ -75,14 +85,21 @@ from rocketsim.vehicle.motors import M_IMPULSE, M_PROPELLANT, motor_thrust
 _TWO_PI = 2.0 * math.pi
 
 # the flat array of figures(): the state (position, velocity, attitude, rates), then
-SAMPLE_LAT, SAMPLE_LON, SAMPLE_HEIGHT, SAMPLE_SPEED = range(N_STATE, N_STATE + 4)   # deg, deg, m, m/s
-SAMPLE_ORBIT = SAMPLE_SPEED + 1                         # ORBIT_KEYS, in order
+# deg, deg, m (altitude), m (height above the ground), m/s (inertial), m/s (over the ground), deg, deg
+(SAMPLE_LAT, SAMPLE_LON, SAMPLE_HEIGHT, SAMPLE_HEIGHT_AGL, SAMPLE_SPEED, SAMPLE_SURFACE_SPEED, SAMPLE_PITCH,
+ SAMPLE_HEADING) = range(N_STATE, N_STATE + 8)
+SAMPLE_ORBIT = SAMPLE_HEADING + 1                       # ORBIT_KEYS, in order
 ORBIT_KEYS = ("semi_major_axis", "eccentricity", "inclination_deg", "raan_deg", "arg_periapsis_deg",
               "true_anomaly_deg", "periapsis_altitude", "apoapsis_altitude", "period")
 SAMPLE_MASS = SAMPLE_ORBIT + len(ORBIT_KEYS)            # kg, then FLIGHT_KEYS in order
-FLIGHT_KEYS = ("mass", "acceleration", "sensed_acceleration", "airspeed", "mach", "dynamic_pressure")
+FLIGHT_KEYS = ("mass", "acceleration", "sensed_acceleration", "airspeed", "angle_of_attack_deg", "mach",
+               "dynamic_pressure")
+# m/s^2, m/s, deg, -, Pa
+SAMPLE_SENSED, SAMPLE_AIRSPEED, SAMPLE_ALPHA, SAMPLE_MACH, SAMPLE_DYNAMIC_PRESSURE = range(SAMPLE_MASS + 2,
+                                                                                          SAMPLE_MASS + 7)
 SAMPLE_VEHICLE = SAMPLE_MASS + len(FLIGHT_KEYS)         # a staged vehicle: VEHICLE_KEYS, then by group
 VEHICLE_KEYS = ("throttle", "thrust", "mass_flow", "engines_running", "propellant", "heat_flux")
+SAMPLE_ENGINES_RUNNING = SAMPLE_VEHICLE + 3             # a count
 SAMPLE_GROUPS = SAMPLE_VEHICLE + len(VEHICLE_KEYS)      # throttle by group, thrust by group, tanks
 N_SAMPLE_RIGID = SAMPLE_VEHICLE + 2                     # a rigid body's figures: t and nan (no shield) end them
 
@@ -157,7 +174,7 @@ def _vehicle_into(out, t, y, p, p_a, veh, group, n_groups, nose_radius, k_heat):
     out[SAMPLE_VEHICLE] = total_tau / running if running > 0 else math.nan
     out[SAMPLE_VEHICLE + 1] = total
     out[SAMPLE_VEHICLE + 2] = flow
-    out[SAMPLE_VEHICLE + 3] = running + burning
+    out[SAMPLE_ENGINES_RUNNING] = running + burning
     out[SAMPLE_VEHICLE + 4] = propellant
     out[SAMPLE_VEHICLE + 5] = math.nan
     if nose_radius > 0.0:
@@ -195,11 +212,20 @@ def figures(t, y, p, mu, node, geodetic, h0, dh, density, pressure, temperature,
     for k in range(N_STATE):        # a loop: no broadcast (and its error message) to compile
         out[k] = y[k]
     r, v = y[R:R + 3], y[V:V + 3]
-    lat, lon, height, _, _ = where_and_how_fast(r, v, t, p[P_SPIN], p[P_RADIUS], p[P_POLAR_RADIUS])
+    lat, lon, height, enu, surface = where_and_how_fast(r, v, t, p[P_SPIN], p[P_RADIUS], p[P_POLAR_RADIUS])
     out[SAMPLE_LAT] = lat / DEG
     out[SAMPLE_LON] = lon / DEG
     out[SAMPLE_HEIGHT] = height
+    out[SAMPLE_HEIGHT_AGL] = height - (0.0 if veh is None else veh.aero.ref[A_GROUND])
     out[SAMPLE_SPEED] = math.sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2])
+    out[SAMPLE_SURFACE_SPEED] = math.sqrt(surface[0] * surface[0] + surface[1] * surface[1]
+                                          + surface[2] * surface[2])
+    nx, ny, nz = rotate_components(y[Q], y[Q + 1], y[Q + 2], y[Q + 3], 1.0, 0.0, 0.0)    # the nose
+    up = nx * enu[2, 0] + ny * enu[2, 1] + nz * enu[2, 2]
+    out[SAMPLE_PITCH] = math.asin(min(1.0, max(-1.0, up))) / DEG
+    out[SAMPLE_HEADING] = np.fmod(math.atan2(nx * enu[0, 0] + ny * enu[0, 1] + nz * enu[0, 2],
+                                             nx * enu[1, 0] + ny * enu[1, 1] + nz * enu[1, 2]) + _TWO_PI,
+                                  _TWO_PI) / DEG
     orbit_into(out, SAMPLE_ORBIT, r, v, mu, p[P_RADIUS], node)
     rho, p_a, _, a_sound, _, air = air_here(h0, dh, density, pressure, temperature, sound,
                                             wind_east, wind_north, lat, lon,
@@ -207,11 +233,13 @@ def figures(t, y, p, mu, node, geodetic, h0, dh, density, pressure, temperature,
                                             p[P_SPIN])
     ax, ay, az, sx, sy, sz = accelerations(t, y, p, veh, nbody)
     out[SAMPLE_MASS + 1] = math.sqrt(ax * ax + ay * ay + az * az)
-    out[SAMPLE_MASS + 2] = math.sqrt(sx * sx + sy * sy + sz * sz)
+    out[SAMPLE_SENSED] = math.sqrt(sx * sx + sy * sy + sz * sz)
     airspeed = math.sqrt(air[0] * air[0] + air[1] * air[1] + air[2] * air[2])
-    out[SAMPLE_MASS + 3] = airspeed
-    out[SAMPLE_MASS + 4] = airspeed / a_sound
-    out[SAMPLE_MASS + 5] = 0.5 * rho * airspeed * airspeed
+    out[SAMPLE_AIRSPEED] = airspeed
+    along = (nx * air[0] + ny * air[1] + nz * air[2]) / airspeed if airspeed > 0.0 else math.nan
+    out[SAMPLE_ALPHA] = math.acos(min(1.0, max(-1.0, along))) / DEG if airspeed > 0.0 else math.nan
+    out[SAMPLE_MACH] = airspeed / a_sound
+    out[SAMPLE_DYNAMIC_PRESSURE] = 0.5 * rho * airspeed * airspeed
     if veh is not None:
         _vehicle_into(out, t, y, p, p_a, veh, group, n_groups, nose_radius, k_heat)
     out[-2] = t

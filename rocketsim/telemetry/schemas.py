@@ -35,7 +35,15 @@ BODY_STATE = {
                           "Moon or Mars from its IAU prime meridian)"},
         "altitude": {"type": "number", "description": "height above the WGS84 ellipsoid, m (about the "
                      "Moon or Mars over its ellipsoid, along the radius)"},
-        "speed": {"type": "number", "description": "inertial speed, m/s"},
+        "height_agl": {"type": "number", "description": "height above the ground: the altitude less the "
+                       "site's ground_height (0: the ellipsoid), m"},
+        "inertial_speed": {"type": "number", "description": "speed in the central body's inertial frame, m/s"},
+        "surface_speed": {"type": "number", "description": "speed over the central body's turning ground "
+                          "(Earth-relative), m/s"},
+        "pitch_deg": {"type": "number", "description": "the nose's (body x axis) elevation above the local "
+                      "horizontal, deg"},
+        "heading_deg": {"type": "number", "description": "the nose's azimuth from north towards east, "
+                        "0-360 deg"},
         "orbit": {
             "type": "object",
             "description": "osculating classical elements about the central body",
@@ -63,6 +71,8 @@ BODY_STATE = {
         "sensed_acceleration": {"type": "number",
                                 "description": "|dv/dt - gravity| (what an accelerometer reads), m/s^2"},
         "airspeed": {"type": "number", "description": "speed relative to the air, m/s"},
+        "angle_of_attack_deg": {"type": "number", "description": "total angle of attack: between the "
+                                "nose and the air-relative velocity, deg (absent at zero airspeed)"},
         "mach": {"type": "number", "description": "airspeed over the local speed of sound"},
         "dynamic_pressure": {"type": "number", "description": "q = rho v_air^2 / 2, Pa"},
         # a staged vehicle (rocketsim.sim.sampling)
@@ -88,7 +98,8 @@ BODY_STATE = {
         "shield_temperature": {"type": "number", "description": "lumped heat-shield temperature, K"},
     },
     "required": ["t", "position", "velocity", "attitude", "body_rates", "latitude_deg",
-                 "longitude_deg", "altitude", "speed", "orbit"],
+                 "longitude_deg", "altitude", "height_agl", "inertial_speed", "surface_speed", "pitch_deg",
+                 "heading_deg", "orbit"],
 }
 
 EVENT = {

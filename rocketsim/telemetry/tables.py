@@ -1,17 +1,23 @@
 """A run's state messages as tables: flat rows, columns, CSV and Parquet files.
 
 A state message becomes one row: vectors by component (``position_x``,
-``attitude_w``...), the orbit as ``orbit_*``, other values as they are. Columns
-keep every digit of the floats (``repr``); a value absent from a message is
-empty (CSV) or null (Parquet).
+``attitude_w``...), the orbit as ``orbit_*``, other values as they are
+(:func:`flat_row`). The files name each column with its unit
+(:func:`rocketsim.telemetry.names.column_name`: ``t_s``, ``altitude_m``,
+``velocity_x_m_s``), the mission time rounded to the microsecond
+(:func:`rocketsim.telemetry.names.mission_time`: ``2.3``, not
+``2.3000000000000003``); the other floats keep every digit (``repr``); a value
+absent from a message is empty (CSV) or null (Parquet). ``events.csv`` has a row
+per event: ``t_s``, ``body``, ``name`` and a column per figure (a vector figure by
+component, ``delta_v_m_s[0]``), empty where an event has no such figure.
 """
 
 from __future__ import annotations
 
-import json
 from pathlib import Path
 
 from rocketsim.extras import needs
+from rocketsim.telemetry.names import FORMER_FIELDS, column_name, mission_time
 from rocketsim.telemetry.reader import read_run, states
 
 # components of the vector fields of a state message, in their order
@@ -21,9 +27,12 @@ _AXES = {"position": "xyz", "velocity": "xyz", "body_rates": "xyz", "attitude": 
 def flat_row(message: dict, vectors: set | None = None) -> dict:
     """A state message as one flat row: vectors by component (``position_x``,
     ``attitude_w``...), the orbit as ``orbit_*``, other values as they are.
-    ``vectors``: a set the vectors' component columns are added to."""
+    ``vectors``: a set the vectors' component columns are added to. A field a file
+    written before a rename holds is read under today's name
+    (:data:`rocketsim.telemetry.names.FORMER_FIELDS`)."""
     row = {}
     for key, value in message.items():
+        key = FORMER_FIELDS.get(key, key)
         if isinstance(value, list):
             axes = _AXES.get(key) or [str(i) for i in range(len(value))]
             row.update({f"{key}_{a}": v for a, v in zip(axes, value)})
@@ -51,9 +60,34 @@ def table(path: str | Path, body: str) -> dict[str, list]:
     return columns
 
 
+def with_units(columns: dict[str, list]) -> dict[str, list]:
+    """:func:`table`'s columns as the files name them, the mission time rounded
+    (see the module)."""
+    return {column_name(key): ([mission_time(v) for v in values] if key == "t" else values)
+            for key, values in columns.items()}
+
+
+def event_rows(events: list[dict]) -> dict[str, list]:
+    """The columns of ``events`` (``t``, ``body``, ``name``, ``figures`` each, as a run's
+    file holds them): ``t_s`` (rounded, see the module), ``body``, ``name`` and one per
+    figure, in the order they first appear (a list by component, ``name[i]``), None
+    where an event has no such figure."""
+    rows = []
+    for event in events:
+        row = {"t_s": mission_time(event["t"]), "body": event["body"], "name": event["name"]}
+        for key, value in (event.get("figures") or {}).items():
+            if isinstance(value, list):
+                row.update({f"{key}[{i}]": v for i, v in enumerate(value)})
+            else:
+                row[key] = value
+        rows.append(row)
+    names = list(dict.fromkeys(["t_s", "body", "name", *(k for r in rows for k in r)]))
+    return {name: [r.get(name) for r in rows] for name in names}
+
+
 def export(path: str | Path, out_dir: str | Path, kind: str = "csv") -> list[Path]:
     """Write one table per body (``<body>.csv`` or ``.parquet``) and ``events.csv``
-    into ``out_dir``; return the files written. Floats keep every digit."""
+    into ``out_dir``; return the files written (see the module)."""
     out_dir = Path(out_dir)
     if kind == "parquet":
         needs("parquet", "the Parquet export", "pyarrow")
@@ -63,7 +97,7 @@ def export(path: str | Path, out_dir: str | Path, kind: str = "csv") -> list[Pat
     run = read_run(path)
     written = []
     for body in run.bodies:
-        columns = table(path, body)
+        columns = with_units(table(path, body))
         target = out_dir / f"{body}.{kind}"
         if kind == "csv":
             _write_csv(target, columns)
@@ -75,9 +109,7 @@ def export(path: str | Path, out_dir: str | Path, kind: str = "csv") -> list[Pat
                 else values for key, values in columns.items()}), target)
         written.append(target)
     events = out_dir / "events.csv"
-    _write_csv(events, {"t": [e["t"] for e in run.events], "body": [e["body"] for e in run.events],
-                        "name": [e["name"] for e in run.events],
-                        "figures": [json.dumps(e["figures"]) for e in run.events]})
+    _write_csv(events, event_rows(run.events))
     written.append(events)
     return written
 

@@ -7,7 +7,10 @@ ends are priced with :mod:`rocketsim.transfer.burns`. The grid is the
 porkchop plot; its local minima of the chosen objective (total Δv or C3),
 within the limits on C3, arrival v∞ and time of flight, are refined by a
 local minimiser (``scipy.optimize.minimize``, Nelder-Mead on the two dates)
-and returned as :class:`Window` objects.
+and returned as :class:`Window` objects. An optimum the refinement carries onto a
+bound of the search (the first or last departure date, the earliest or latest
+arrival date, the shortest or longest time of flight) is the best the search
+range holds, not a minimum of the problem: its window's ``edge`` names the bound.
 
 Targets (patched conics):
 
@@ -143,6 +146,7 @@ class Window:
     dv_departure: float             # m/s
     dv_arrival: float               # m/s
     dv_total: float                 # m/s
+    edge: str | None = None         # the search bound the optimum sits on (None: inside)
 
 
 @dataclass
@@ -250,6 +254,38 @@ def _lunar_departure_points(r_moon, v_moon, r_park, mu):
     r1 = r_park * r1_hat
     v_circ = math.sqrt(mu / r_park) * np.cross(h_hat, r1_hat)
     return r1, v_circ
+
+
+def parking_plane(window: Window, target_name: str, inclination: float | None = None,
+                  ephemeris: Callable | None = None) -> tuple[float, float]:
+    """``(inclination, RAAN)`` (rad, J2000 mean equator and equinox) of the circular
+    parking orbit ``window`` departs from.
+
+    To Mars: a plane holding the departure asymptote (right ascension ``a``,
+    declination ``d``) at ``inclination`` (default the smallest, ``|d|``), crossing
+    it northbound for ``d > 0``: ``sin(a - RAAN) = tan d / tan i`` (Vallado,
+    *Fundamentals of Astrodynamics and Applications*, 4th ed., sec. 12.4: a launch
+    azimuth's plane through a given direction). To the Moon: the Moon's orbital
+    plane at arrival (its geocentric angular momentum), which the search assumes the
+    parking orbit lies in; ``inclination`` is then refused."""
+    if target(target_name).name == "moon":
+        if inclination is not None:
+            raise InputError("a lunar window departs in the Moon's orbital plane: no parking inclination "
+                             "to choose", field="parking inclination")
+        eph = ephemeris or _default_ephemeris
+        r, v = eph("moon", np.array([window.arrival_jd_tt]), "earth")
+        h = np.cross(np.asarray(r, dtype=float).reshape(3), np.asarray(v, dtype=float).reshape(3))
+        return (math.acos(h[2] / float(np.linalg.norm(h))),
+                math.atan2(h[0], -h[1]) % (2.0 * math.pi))
+    declination = window.dla
+    smallest = abs(declination)
+    i = smallest if inclination is None else inclination
+    if not smallest <= i <= math.pi - smallest:
+        raise InputError(f"a parking orbit inclined {math.degrees(i):.2f} deg cannot hold the departure "
+                         f"asymptote at declination {math.degrees(declination):.2f} deg: give at least "
+                         f"{math.degrees(smallest):.2f} deg", field="parking inclination")
+    ratio = math.tan(declination) / math.tan(i) if math.tan(i) != 0.0 else 0.0
+    return i, (window.rla - math.asin(max(-1.0, min(1.0, ratio)))) % (2.0 * math.pi)
 
 
 def _objective_values(grid: Arcs, objective: str, limits: dict) -> np.ndarray:
@@ -378,6 +414,17 @@ def search(departure_jd, arrival_jd, *, target_name: str = "mars", objective: st
         best = result.x if np.isfinite(result.fun) and result.fun <= cost(start) else start
         return np.array([best[0], best[0] + best[1]])
 
+    tof_lo, tof_hi = limits["tof_days"] or (-np.inf, np.inf)
+    bounds = (("the first departure date searched", 0, lo_dep), ("the last departure date searched", 0, hi_dep),
+              ("the earliest arrival date searched", 1, lo_arr), ("the latest arrival date searched", 1, hi_arr),
+              ("the shortest time of flight searched", 2, tof_lo), ("the longest time of flight searched", 2, tof_hi))
+
+    def edge_of(point) -> str | None:
+        """The bound the optimum ``point`` (departure, arrival) sits on, within a
+        thousandth of the grid's step (the refinement stops on a bound it reaches)."""
+        place = (point[0], point[1], point[1] - point[0])
+        return next((name for name, axis, bound in bounds if abs(place[axis] - bound) <= 1e-3 * step), None)
+
     def window_at(point):
         one = evaluate(point)
         return Window(
@@ -386,7 +433,7 @@ def search(departure_jd, arrival_jd, *, target_name: str = "mars", objective: st
             vinf_departure=tuple(float(x) for x in one.vinf_departure[0]),
             vinf_arrival=float(one.vinf_arrival[0]), rla=float(one.rla[0]),
             dla=float(one.dla[0]), dv_departure=float(one.dv_departure[0]),
-            dv_arrival=float(one.dv_arrival[0]), dv_total=float(one.dv_total[0]))
+            dv_arrival=float(one.dv_arrival[0]), dv_total=float(one.dv_total[0]), edge=edge_of(point))
 
     windows: list[Window] = []
     for i, j in _local_minima(free):

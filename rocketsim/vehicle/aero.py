@@ -40,8 +40,13 @@ Slender-body lift at the leading end (Munk; Jorgensen eq. (1) first term,
 at the leading end's centre of pressure: nose first, the nose's base area at
 ``x_tip - V_nose / S_nose`` (slender-body theory: 2/3 of a cone's length from
 its tip, 0.467 of a tangent ogive's); tail first, the base's area at the base.
-The two are blended by the same weight as the axial tables. Planar fins (a
-sounding rocket's) add the same form scaled by their normal-force slope.
+The two are blended by the same weight as the axial tables. A conical boattail
+adds the same form with its change of area, ``S_aft - S_fore`` (negative nose
+first: it lifts against the nose; its sign turns tail first, where it widens
+towards the flow), at its slender-body centre of pressure, Barrowman's
+``x_fore + L/3 (1 + (1 - d_f/d_a) / (1 - (d_f/d_a)^2))`` from its fore end.
+Planar fins (a sounding rocket's) add the same form scaled by their
+normal-force slope.
 """
 
 from __future__ import annotations
@@ -82,7 +87,9 @@ A_BASE_AREA = 5     # m^2, area of the base (leading end when flying tail first)
 A_REACH = 6         # m, farthest any contact point can be from the centre of mass
 A_WIND = 7          # 1 when the day has wind (sampled once per step)
 A_GROUND = 8        # m, height of the (flat) ground above the ellipsoid (0: the ellipsoid)
-N_REF = 9
+A_TAIL_X = 9        # m, station of the boattail's slender-body centre of pressure
+A_TAIL_AREA = 10    # m^2, the boattail's change of area, aft less fore (0: none; < 0: it narrows)
+N_REF = 11
 # rows of AeroArrays.seg: station of the segment's middle, its length, its diameter
 SEG_X, SEG_DX, SEG_D = 0, 1, 2
 # rows of AeroArrays.fin (planar fin sets): centre of pressure, C_N_alpha * S (m^2 per rad)
@@ -92,13 +99,16 @@ FIN_X, FIN_CNA_S = 0, 1
 def centre_of_pressure(ref, fin) -> float:
     """Station (m) of the centre of pressure at small angles of attack, nose first: where
     the normal-force slopes act, the nose's slender-body lift (``2 S_nose`` per radian at
-    ``A_NOSE_X``) and the fins' (``C_N_alpha S`` at their centres of pressure), as
-    Barrowman's method sums them; the crossflow adds nothing at zero angle (it grows as
-    ``sin^2 alpha``). nan when nothing lifts."""
-    slope = 2.0 * ref[A_NOSE_AREA] + float(np.sum(fin[:, FIN_CNA_S]))
+    ``A_NOSE_X``), a boattail's (``2 (S_aft - S_fore)``, negative, at ``A_TAIL_X``) and the
+    fins' (``C_N_alpha S`` at their centres of pressure), as Barrowman's method sums them
+    (J. S. Barrowman, "The practical calculation of the aerodynamic characteristics of
+    slender finned vehicles", Catholic University of America thesis, 1967); the crossflow
+    adds nothing at zero angle (it grows as ``sin^2 alpha``). nan when nothing lifts."""
+    slope = 2.0 * ref[A_NOSE_AREA] + 2.0 * ref[A_TAIL_AREA] + float(np.sum(fin[:, FIN_CNA_S]))
     if slope <= 0.0:
         return math.nan
-    return (2.0 * ref[A_NOSE_AREA] * ref[A_NOSE_X] + float(np.sum(fin[:, FIN_CNA_S] * fin[:, FIN_X]))) / slope
+    return (2.0 * ref[A_NOSE_AREA] * ref[A_NOSE_X] + 2.0 * ref[A_TAIL_AREA] * ref[A_TAIL_X]
+            + float(np.sum(fin[:, FIN_CNA_S] * fin[:, FIN_X]))) / slope
 
 
 @njit(borrows=True)
@@ -233,15 +243,16 @@ def body_aero(u, v, w, wx, wy, wz, rho, sound, thrust, x_cm, ref, seg, fin, ca_n
         fz += k * cz
         my -= d * k * cz
         mz += d * k * cy
-    # slender-body lift at the leading end, fins
+    # slender-body lift at the leading end and of a boattail, fins
     tail = tail_first_weight(u / speed) if speed > 0.0 else 0.5
     au = abs(u)
     a = _lift(ref[A_NOSE_X] - x_cm, rho * (1.0 - tail) * ref[A_NOSE_AREA] * au, v, w, wy, wz)
     b = _lift(-x_cm, rho * tail * ref[A_BASE_AREA] * au, v, w, wy, wz)
-    fy += a[0] + b[0]
-    fz += a[1] + b[1]
-    my += a[2] + b[2]
-    mz += a[3] + b[3]
+    c = _lift(ref[A_TAIL_X] - x_cm, rho * (1.0 - 2.0 * tail) * ref[A_TAIL_AREA] * au, v, w, wy, wz)
+    fy += a[0] + b[0] + c[0]
+    fz += a[1] + b[1] + c[1]
+    my += a[2] + b[2] + c[2]
+    mz += a[3] + b[3] + c[3]
     for i in range(fin.shape[0]):
         a = _lift(fin[i, FIN_X] - x_cm, 0.5 * rho * fin[i, FIN_CNA_S] * au, v, w, wy, wz)
         fy += a[0]

@@ -9,10 +9,9 @@ the derivative then skips aerodynamics and contact. With ``aerodynamics: false``
 (a spacecraft that only flies in vacuum) the arrays are those too, plus the
 section's RCS thrusters.
 
-The body's outline is the stack of stage cylinders, then the fairing (or the
-payload) on top; the top ``nose.length`` of it tapers to the tip as a cone or
-a tangent ogive. The crossflow segments divide the whole length equally, each
-with the diameter at its middle.
+The body's outline and its slender-body and fin lift are
+:func:`rocketsim.vehicle.outline.body_shape`'s. The crossflow segments divide the
+whole length equally, each with the diameter at its middle.
 """
 
 from __future__ import annotations
@@ -26,11 +25,12 @@ from rocketsim.constants import FRICTION_REGULARISATION, G0
 from rocketsim.layout import N_STATE
 from rocketsim.errors import InputError
 from rocketsim.vehicle.aero import (A_AREA, A_BASE_AREA, A_ETA, A_NOSE_AREA, A_NOSE_X, A_ON,
-                                    A_REACH, A_WIND, EFFICIENCY_FINENESS, EFFICIENCY_SUBSONIC,
-                                    NOSE_FIRST_CA, NOSE_FIRST_MACH, N_REF, TAIL_FIRST_CA,
-                                    TAIL_FIRST_MACH)
+                                    A_REACH, A_TAIL_AREA, A_TAIL_X, A_WIND, EFFICIENCY_FINENESS,
+                                    EFFICIENCY_SUBSONIC, NOSE_FIRST_CA, NOSE_FIRST_MACH, N_REF,
+                                    TAIL_FIRST_CA, TAIL_FIRST_MACH)
 from rocketsim.vehicle.contact import N_CONTACT
 from rocketsim.vehicle.grid_fins import N_GRID, N_GRID_CMD
+from rocketsim.vehicle.outline import body_shape
 from rocketsim.vehicle.rcs import N_RCS
 
 AeroArrays = namedtuple("AeroArrays", [
@@ -54,65 +54,6 @@ def no_aero() -> AeroArrays:
                       _empty(N_GRID_CMD), _empty(N_RCS), np.zeros(0), _empty(N_CONTACT), np.zeros(3))
 
 
-def outline(stages, top_parts, nose_length: float, nose_shape: str):
-    """``diameter(x)`` (m) of the body at station ``x`` (m) and its length.
-
-    ``stages``: (base, length, diameter) of each stage bottom to top;
-    ``top_parts``: (length, diameter) of what sits on the top stage.
-    """
-    pieces = list(stages)
-    top = pieces[-1][0] + pieces[-1][1]
-    for length, diameter in top_parts:
-        pieces.append((top, length, diameter))
-    total = max(b + l for b, l, _ in pieces)
-    nose_base = total - nose_length
-
-    def cylinder(x):
-        for base, length, diameter in reversed(pieces):
-            if base <= x <= base + length + 1e-12:
-                return diameter
-        return pieces[0][2]
-
-    base_d = cylinder(max(nose_base - 1e-9, 0.0))
-
-    def diameter(x):
-        if nose_length <= 0.0 or x < nose_base:
-            return cylinder(x)
-        s = (total - x) / nose_length          # 1 at the nose's base, 0 at the tip
-        if nose_shape == "cone":
-            return base_d * s
-        if nose_shape == "ogive":
-            # tangent ogive of radius R, base radius r, length L: rho = R cos(.) ...
-            r = 0.5 * base_d
-            big = (r * r + nose_length ** 2) / (2 * r)
-            xi = nose_length * s                # distance from the tip
-            return 2.0 * (math.sqrt(big * big - (nose_length - xi) ** 2) + r - big)
-        return base_d
-    return diameter, total, nose_base, base_d
-
-
-def nose_centre_of_pressure(diameter, tip: float, length: float, base_d: float) -> float:
-    """Station (m) of the slender-body lift of a nose: ``tip - (L - V / S_base)``."""
-    n = 400
-    xs = tip - length + (np.arange(n) + 0.5) * length / n
-    volume = sum(math.pi * diameter(x) ** 2 / 4 for x in xs) * length / n
-    return tip - (length - volume / (math.pi * base_d ** 2 / 4))
-
-
-def barrowman(fin, body_d: float) -> tuple[float, float]:
-    """``(C_N_alpha per rad on the body's cross-section, centre of pressure aft of the
-    root's leading edge, m)`` of a fin set: J. S. Barrowman, "The practical calculation of
-    the aerodynamic characteristics of slender finned vehicles", NASA/Catholic Univ.
-    thesis (1967), eqs. for fins with body interference ``1 + r / (s + r)``."""
-    cr, ct, s, xt = fin.root_chord, fin.tip_chord, fin.span, fin.sweep
-    mid = math.hypot(s, xt + 0.5 * ct - 0.5 * cr)
-    r = 0.5 * body_d
-    cna = (1.0 + r / (s + r)) * 4.0 * fin.count * (s / body_d) ** 2 / (
-        1.0 + math.sqrt(1.0 + (2.0 * mid / (cr + ct)) ** 2))
-    xf = xt / 3.0 * (cr + 2.0 * ct) / (cr + ct) + (cr + ct - cr * ct / (cr + ct)) / 6.0
-    return cna, xf
-
-
 def build_aero(spec, chosen, stage_base, top: bool, with_fairing: bool, tank_names, has_wind: bool) -> AeroArrays:
     """The :class:`AeroArrays` of stages ``chosen`` (their specs, bottom to top) based at
     ``stage_base`` (m); ``top``: the top stage is among them (payload and fairing too)."""
@@ -121,37 +62,25 @@ def build_aero(spec, chosen, stage_base, top: bool, with_fairing: bool, tank_nam
         return no_aero()
     names = [st.name for st in chosen]
     base_of = dict(zip(names, stage_base))
-    top_parts = []
-    if top and with_fairing:
-        top_parts.append((spec.fairing.length, spec.fairing.diameter))
-    elif top and spec.payload is not None:
-        top_parts.append((spec.payload.length, spec.payload.diameter))
-    stages = [(b, st.length, st.diameter) for b, st in zip(stage_base, chosen)]
-    nose_len = aero.nose.length if top else 0.0
-    shape = aero.nose.shape if top else "blunt"
-    diameter, total, nose_base, base_d = outline(stages, top_parts, nose_len, shape)
-    d_max = max(max(d for _, _, d in stages), max((d for _, d in top_parts), default=0.0))
-    area = math.pi * d_max ** 2 / 4
+    shape = body_shape(spec, chosen, stage_base, top, with_fairing)
+    diameter, total, nose_base, base_d = shape.diameter, shape.length, shape.nose_base, shape.nose_base_diameter
+    area = math.pi * shape.reference_diameter ** 2 / 4
 
     ref = np.zeros(N_REF)
     ref[A_ON] = 1.0
     ref[A_AREA] = area
-    ref[A_ETA] = float(np.interp(total / d_max, EFFICIENCY_FINENESS, EFFICIENCY_SUBSONIC))
-    if nose_len > 0.0 and shape != "blunt":
-        ref[A_NOSE_X] = nose_centre_of_pressure(diameter, total, nose_len, base_d)
-        ref[A_NOSE_AREA] = math.pi * base_d ** 2 / 4
-    ref[A_BASE_AREA] = math.pi * chosen[0].diameter ** 2 / 4
+    ref[A_ETA] = float(np.interp(total / shape.reference_diameter, EFFICIENCY_FINENESS, EFFICIENCY_SUBSONIC))
+    if shape.nose is not None:
+        ref[A_NOSE_X], ref[A_NOSE_AREA] = shape.nose
+    if shape.boattail is not None:
+        ref[A_TAIL_X], ref[A_TAIL_AREA] = shape.boattail
+    ref[A_BASE_AREA] = math.pi * diameter(0.0) ** 2 / 4
     ref[A_WIND] = 1.0 if has_wind else 0.0
 
     n = aero.segments
     dx = total / n
     seg = np.array([((i + 0.5) * dx, dx, diameter((i + 0.5) * dx)) for i in range(n)])
-
-    fins = []
-    for k, fin, base in _built(spec, aero.fins, base_of, "fins"):
-        d = diameter(base + fin.position)
-        cna, xf = barrowman(fin, d)
-        fins.append((base + fin.position - xf, cna * math.pi * d ** 2 / 4))
+    fins = shape.fins
 
     grid = []
     for k, g, base in _built(spec, aero.grid_fins, base_of, "grid_fins"):
@@ -182,7 +111,7 @@ def build_aero(spec, chosen, stage_base, top: bool, with_fairing: bool, tank_nam
     dry = sum(st.dry_mass for st in chosen) + sum(
         part.mass for part, on in ((spec.payload, top), (spec.fairing, with_fairing)) if on and part is not None)
     kb, cb = aero.body_springs(dry)
-    for x, r in ((0.0, 0.5 * chosen[0].diameter), (nose_base, 0.5 * base_d)):
+    for x, r in ((0.0, 0.5 * diameter(0.0)), (nose_base, 0.5 * base_d)):
         for j in range(4):
             phi = 0.5 * math.pi * j
             contact.append((x, r * math.cos(phi), r * math.sin(phi), kb, cb, 0.6, FRICTION_REGULARISATION))

@@ -194,7 +194,7 @@ def build(spec, first: int = 0, last: int | None = None, air=None, fairing: bool
                 row[E_PEXIT] = group.exit_pressure or 0.0
                 row[E_TAU_MIN], row[E_TAU_MAX] = group.throttle
                 row[E_TAU_RATE] = group.throttle_rate
-                row[E_GIMBAL_RANGE], row[E_GIMBAL_RATE] = group.gimbal_range, group.gimbal_rate
+                row[E_GIMBAL_RANGE], row[E_GIMBAL_RATE] = group.gimbal_range, group.gimbal_rate or 0.0
                 row[E_DEAD], row[E_SPOOL], row[E_TAIL] = (group.ignition_delay, group.spool_up,
                                                                 group.tail_off)
                 row[E_IGNITIONS] = 1 + group.restarts

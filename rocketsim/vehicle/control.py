@@ -53,6 +53,13 @@ class Propulsion:
             raise ValueError(f"no engine, group or stage named {which!r}; engines: {', '.join(names)}")
         return found
 
+    def lowest_stage(self) -> str | None:
+        """The name of the lowest stage with engines or solid motors (None: there is none):
+        what ``fc.ignite()`` lights when it names nothing."""
+        found = {int(self.a.eng[e, engines.E_STAGE]) for e in range(self.model.n_engines)}
+        found |= {self.model.stage_names.index(name.split("/", 1)[0]) for name in self.model.motor_names}
+        return self.model.stage_names[min(found)] if found else None
+
     def choose(self, which=None) -> tuple[list[int], list[int]]:
         """``(engines, motors)``: the indices of the engines and of the solid motors named
         by ``which`` (see the module; an index names an engine); ValueError if an item
@@ -122,7 +129,8 @@ class Propulsion:
 
     def states(self, y: np.ndarray, t: float, p_a: float) -> list[dict]:
         """Each engine at time ``t`` and ambient pressure ``p_a`` (Pa): on, spool fraction,
-        throttle flown, gimbal (rad), thrust (N), mass flow (kg/s), ignitions left, separated."""
+        throttle flown and its range, gimbal (rad), thrust (N), mass flow (kg/s), ignitions
+        left, separated."""
         a, out = self.a, []
         rows = engines.engine_states(t, y, a.first_clock, a.eng, a.cmd, a.stage, p_a).tolist()
         for e, name in enumerate(self.model.engine_names):
@@ -132,6 +140,7 @@ class Propulsion:
                 "on": bool(a.cmd[e, engines.C_ON] > 0.5),
                 "spool": f,
                 "throttle": tau,
+                "throttle_range": (a.eng[e, engines.E_TAU_MIN], a.eng[e, engines.E_TAU_MAX]),
                 "gimbal_rad": (gy, gz),
                 "thrust_N": thrust,
                 "mass_flow_kg_s": f * tau * a.eng[e, engines.E_MDOT],

@@ -39,5 +39,5 @@ def breakup(q: float, alpha: float, axial_acceleration: float, q_alpha_limit: fl
         cause = "axial load"
     else:
         return None
-    return {"cause": cause, "q_alpha_pa_deg": q_alpha, "dynamic_pressure_pa": q,
+    return {"cause": cause, "q_alpha_Pa_deg": q_alpha, "dynamic_pressure_Pa": q,
             "angle_of_attack_deg": alpha / DEG, "axial_load_g": load}

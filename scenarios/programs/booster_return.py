@@ -323,7 +323,7 @@ class Return:
         fc, pad = self.fc, self.pad
         fc.deploy_legs()
         fc.ignite(engines)
-        fc.event("landing burn start", altitude_m=fc.altitude, speed_m_s=fc.airspeed,
+        fc.event("landing burn start", altitude_m=fc.altitude, airspeed_m_s=fc.airspeed,
                  usable_propellant_kg=self.usable())
         cutoff = Approach(LANDING.cutoff_height, periods=(BURN_CYCLE,))
         while True:

@@ -1,0 +1,194 @@
+"""What the world reads of its own telemetry samples on their way out: each body's flight
+figures, and the thinning of long coasts.
+
+:class:`SampleWatch` stands between the world and its telemetry (a
+:class:`~rocketsim.telemetry.sink.TelemetrySink`: an MCAP writer, or the samples kept
+in memory), a sink itself: every sample passes through it, as one sample, a block of
+one body's samples or interleaved blocks (the numbers of
+:func:`rocketsim.stepping.sample_figures.figures`), and it hands them on, and every
+other call unchanged, to the telemetry.
+
+**Flight figures** (:meth:`SampleWatch.figures`), over a body's samples in flight:
+from its first sample to its first ``touchdown`` or ``impact`` (the landing's own
+sample and those after it left out: a touchdown's contact spike is not a load of the
+flight): the highest ``height_agl`` and its time, the largest ``surface_speed``, Mach
+(in air: where the dynamic pressure is above nought), dynamic pressure and sensed
+acceleration (in standard gravities), and where the body was at its first sample. They
+are the samples' figures, at the telemetry rate: a peak between two samples is missed by
+at most what the quantity changes in half a sample interval (the apogee, where the climb
+rate is nought, by millimetres). A body split from another (a stage, a fairing half, the
+payload) starts with its parent's figures (:meth:`SampleWatch.inherit`): it flew the
+ascent with it, so a booster's largest q and load are those of the ascent it flew, and
+its drift is from the pad.
+
+**Coasts thinned** (the scenario's ``telemetry.coast_rate``): while a body coasts --
+no engine running (a rigid body has none) and a dynamic pressure under
+:data:`COAST_Q` -- its samples at the telemetry rate are written only at the multiples
+of the coast interval (``round(1 / (coast_rate h))`` steps); its samples between the
+sample steps (at a handover, a staging, a landing) are all written, and so is its
+last sample of the flight. The rule reads the sample's own numbers and its step
+number alone: the same inputs write the same samples, bit for bit.
+"""
+
+from __future__ import annotations
+
+import copy
+import math
+
+import numpy as np
+
+from rocketsim.constants import G0
+from rocketsim.stepping.sample_figures import (N_SAMPLE_RIGID, SAMPLE_DYNAMIC_PRESSURE, SAMPLE_ENGINES_RUNNING,
+                                               SAMPLE_HEIGHT, SAMPLE_HEIGHT_AGL, SAMPLE_LAT, SAMPLE_LON, SAMPLE_MACH,
+                                               SAMPLE_SENSED, SAMPLE_SURFACE_SPEED)
+from rocketsim.telemetry.sink import TelemetrySink
+from rocketsim.telemetry.writer import interleaved_samples
+
+COAST_Q = 1.0            # Pa: below it a body without engines running coasts
+LANDINGS = ("touchdown", "impact")
+
+
+class _Figures:
+    """One body's flight figures so far (see the module)."""
+
+    def __init__(self, row: np.ndarray):
+        self.start = (float(row[SAMPLE_LAT]), float(row[SAMPLE_LON]), float(row[SAMPLE_HEIGHT]))
+        self.ground = float(row[SAMPLE_HEIGHT] - row[SAMPLE_HEIGHT_AGL])
+        self.apogee = (-math.inf, math.nan)          # (height above the ground m, t s)
+        self.peaks = np.full(4, -math.inf)            # surface speed, Mach, q, sensed acceleration
+        self.landed = math.inf                        # s: the first landing's time
+
+    def add(self, rows: np.ndarray) -> None:
+        rows = rows[rows[:, -2] < self.landed]
+        if not len(rows):
+            return
+        heights = rows[:, SAMPLE_HEIGHT_AGL]
+        top = int(np.argmax(heights))
+        if heights[top] > self.apogee[0]:
+            self.apogee = (float(heights[top]), float(rows[top, -2]))
+        figures = rows[:, [SAMPLE_SURFACE_SPEED, SAMPLE_MACH, SAMPLE_DYNAMIC_PRESSURE, SAMPLE_SENSED]]
+        figures[~(rows[:, SAMPLE_DYNAMIC_PRESSURE] > 0.0), 1] = np.nan       # Mach only in air
+        np.fmax(self.peaks, np.nanmax(figures, axis=0, initial=-math.inf), out=self.peaks)
+
+    def summary(self) -> dict:
+        speed, mach, q, sensed = (float(x) if math.isfinite(x) else math.nan for x in self.peaks)
+        return {"apogee_height_agl_m": self.apogee[0] if math.isfinite(self.apogee[0]) else math.nan,
+                "apogee_time_s": self.apogee[1], "ground_height_m": self.ground,
+                "max_surface_speed_m_s": speed, "max_mach": mach, "max_dynamic_pressure_Pa": q,
+                "max_sensed_acceleration_g": sensed / G0,
+                "start_latitude_deg": self.start[0], "start_longitude_deg": self.start[1]}
+
+
+class SampleWatch(TelemetrySink):
+    """The world's telemetry ``telemetry``, its samples watched (see the module).
+
+    ``h``: the step (s); ``every``: steps between samples; ``coast_every``: steps between
+    a coasting body's samples (None: coasts are not thinned)."""
+
+    def __init__(self, telemetry, h: float, every: int, coast_every: int | None = None):
+        self.telemetry = telemetry
+        self.h, self.every, self.coast_every = h, every, coast_every
+        self._figures: dict[str, _Figures] = {}
+        self._held: dict[str, tuple] = {}       # body -> its last sample not written (thinned)
+
+    def figures(self, body: str) -> dict | None:
+        """The flight figures of ``body`` (see the module; None: no sample of it)."""
+        found = self._figures.get(body)
+        return None if found is None else found.summary()
+
+    def inherit(self, body: str, parent: str) -> None:
+        """``body``, split from ``parent`` now (before its first sample), starts with the
+        flight figures ``parent`` has so far."""
+        found = self._figures.get(parent)
+        if found is not None:
+            self._figures[body] = copy.deepcopy(found)
+
+    # --- the samples --------------------------------------------------------------
+    def _watch(self, body: str, rows: np.ndarray) -> None:
+        found = self._figures.get(body)
+        if found is None:
+            found = self._figures[body] = _Figures(rows[0])
+        found.add(rows)
+
+    def _kept(self, rows: np.ndarray) -> np.ndarray:
+        """Which of one body's samples ``rows`` the coast rule writes (see the module)."""
+        steps = np.rint(rows[:, -2] / self.h).astype(np.int64)
+        coasting = rows[:, SAMPLE_DYNAMIC_PRESSURE] < COAST_Q
+        if rows.shape[1] > N_SAMPLE_RIGID:
+            coasting &= rows[:, SAMPLE_ENGINES_RUNNING] == 0.0
+        return ~coasting | (steps % self.every != 0) | (steps % self.coast_every == 0)
+
+    def sample(self, body: str, values: np.ndarray, fields, leaving: bool = False) -> None:
+        self._watch(body, values.reshape(1, -1))
+        if self.coast_every is not None:
+            if not self._kept(values.reshape(1, -1))[0]:
+                self._held[body] = (values.copy(), fields, leaving)
+                return
+            self._held.pop(body, None)
+        self.telemetry.sample(body, values, fields, leaving=leaving)
+
+    def sample_rows(self, body: str, rows: np.ndarray, fields) -> None:
+        if not len(rows):
+            return
+        self._watch(body, rows)
+        if self.coast_every is None:
+            self.telemetry.sample_rows(body, rows, fields)
+            return
+        kept = self._kept(rows)
+        if not kept[-1]:
+            self._held[body] = (rows[-1].copy(), fields, False)
+        elif body in self._held:
+            del self._held[body]
+        if kept.any():
+            self.telemetry.sample_rows(body, rows[kept], fields)
+
+    def sample_interleaved(self, blocks: list[tuple]) -> None:
+        for body, rows, *_ in blocks:
+            if len(rows):
+                self._watch(body, rows)
+        if self.coast_every is None:
+            self.telemetry.sample_interleaved(blocks)
+            return
+        for body, values, fields in interleaved_samples(blocks):
+            if self._kept(values.reshape(1, -1))[0]:
+                self._held.pop(body, None)
+                self.telemetry.sample(body, values, fields)
+            else:
+                self._held[body] = (values.copy(), fields, False)
+
+    def event(self, t: float, body: str, name: str, figures: dict) -> None:
+        found = self._figures.get(body)
+        if name in LANDINGS and found is not None:
+            found.landed = min(found.landed, t)
+        self.telemetry.event(t, body, name, figures)
+
+    # --- the other calls, handed on -----------------------------------------------------
+    def add_body(self, name: str) -> None:
+        self.telemetry.add_body(name)
+
+    def log(self, t: float, body: str, message: str) -> None:
+        self.telemetry.log(t, body, message)
+
+    def error(self, t: float, message: str) -> None:
+        self.telemetry.error(t, message)
+
+    def attach(self, name: str, data: bytes, media_type: str = "text/plain") -> None:
+        self.telemetry.attach(name, data, media_type)
+
+    def metadata(self, name: str, values: dict[str, str]) -> None:
+        self.telemetry.metadata(name, values)
+
+    def close(self) -> None:
+        self.telemetry.close()
+
+    def __enter__(self) -> "SampleWatch":
+        return self
+
+    def __exit__(self, exc_type, exc, traceback) -> None:
+        self.telemetry.__exit__(exc_type, exc, traceback)
+
+    def finish(self) -> None:
+        """Write each body's last sample if the coast rule held it back."""
+        for body, (values, fields, leaving) in self._held.items():
+            self.telemetry.sample(body, values, fields, leaving=leaving)
+        self._held.clear()
