@@ -77,7 +77,7 @@ def _raise_terminated(signum, frame):
               help="Telemetry samples per second, e.g. '1 Hz' or 0.01Hz (the scenario's telemetry.rate).")
 @click.option("--coast-rate", type=Quantity("frequency", "0.01 Hz"), default=None,
               help="Samples per second while a body coasts: no engine running, under 1 Pa of dynamic "
-                   "pressure (the scenario's telemetry.coast_rate; see the README's Telemetry).")
+                   "pressure (the scenario's telemetry.coast_rate; see docs/reference/telemetry.md).")
 @click.option("--yes", "large_ok", is_flag=True,
               help="Write the telemetry even if it is estimated above 2 GB.")
 @live_options
