@@ -77,9 +77,11 @@ def _interrupt(signum, frame):
 @click.option("--runs", type=int, default=None,
               help="Fly this many runs in place of the file's (its first N; with --resume, a larger N "
                    "adds runs to a random or Sobol campaign).")
+@click.option("--trust", is_flag=True,
+              help="Allow resuming a directory with its own campaign.yaml to execute the programs it names.")
 @reports_input_errors
 def run(campaign_file: Path, output: Path, workers: int | None, scheduler: str | None,
-        scheduler_file: Path | None, resume: bool, runs: int | None) -> None:
+        scheduler_file: Path | None, resume: bool, runs: int | None, trust: bool) -> None:
     """Fly every run of CAMPAIGN into the directory -o.
 
     Every run's inputs derive from the campaign's seed and the run's number
@@ -102,7 +104,8 @@ def run(campaign_file: Path, output: Path, workers: int | None, scheduler: str |
     previous = signal.signal(signal.SIGTERM, _interrupt)
     try:
         results = run_campaign(campaign_file, output, workers=workers, scheduler=scheduler,
-                               scheduler_file=scheduler_file, resume=resume, runs=runs, progress=_Progress(),
+                               scheduler_file=scheduler_file, resume=resume, runs=runs, trust=trust,
+                               progress=_Progress(),
                                log=lambda message: click.echo(message, err=True))
     except CampaignInterrupted as stopped:
         click.echo(f"\n{stopped}; 'rocketsim campaign run {campaign_file} -o {output} --resume' "
@@ -123,24 +126,27 @@ def run(campaign_file: Path, output: Path, workers: int | None, scheduler: str |
 @click.argument("k", metavar="K", type=click.IntRange(min=0))
 @click.option("-o", "--output", type=click.Path(dir_okay=False, path_type=Path), default=None,
               help="MCAP file to write [default: run-K.mcap here].")
+@click.option("--trust", is_flag=True, help="Allow the run to execute the programs DIR's campaign names.")
 @reports_input_errors
-def rerun(directory: Path, k: int, output: Path | None) -> None:
+def rerun(directory: Path, k: int, output: Path | None, trust: bool) -> None:
     """Fly run K of the campaign in DIR alone, with its full telemetry.
 
     Its outputs are checked against its row in DIR's results: they are the
     same bit for bit (exit status 1 if not). The MCAP replays with
-    'rocketsim replay'.
+    'rocketsim replay'. A folder may come from someone else: a run that
+    executes a program flies only with --trust (without it, the programs are
+    named and nothing runs).
 
     \b
     Example:
-        rocketsim campaign rerun f9 17 -o run-17.mcap && rocketsim replay run-17.mcap
+        rocketsim campaign rerun f9 17 -o run-17.mcap --trust && rocketsim replay run-17.mcap
     """
     from rocketsim.api import rerun_campaign, same_row
     from rocketsim_cli.errors import check_writable
 
     output = output or Path(f"run-{k}.mcap")
     check_writable(output, "--output")
-    row, recorded = rerun_campaign(directory, k, output)
+    row, recorded = rerun_campaign(directory, k, output, trust=trust)
     click.echo(f"run {k}: {row['status'].iloc[0]}, outcome {row['outcome'].iloc[0]}; telemetry: {output}")
     if recorded is None:
         click.echo(f"run {k} has no row in {directory / 'results.parquet'} to compare with")

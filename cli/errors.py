@@ -1,10 +1,13 @@
 """Turn user-input errors into one paragraph on stderr and exit status 2; output
-paths that cannot be written are refused before any work is done."""
+paths that cannot be written are refused before any work is done, and the system's
+errors while writing them (a full disk, a device, no permission) are one located
+line and exit status 2 as well."""
 
 from __future__ import annotations
 
 import functools
 import os
+import stat
 import sys
 from pathlib import Path
 
@@ -14,7 +17,9 @@ from rocketsim.errors import InputError
 
 
 def reports_input_errors(command):
-    """Decorate a click callback: an :class:`InputError` exits 2, no traceback."""
+    """Decorate a click callback: an :class:`InputError` exits 2, no traceback; so does an
+    OSError (the system refusing a read or a write), naming its file, or else the
+    outputs the command was writing (:func:`check_writable`, :func:`check_folder`)."""
 
     @functools.wraps(command)
     def wrapper(*args, **kwargs):
@@ -23,15 +28,51 @@ def reports_input_errors(command):
         except InputError as error:
             click.echo(f"error: {error}", err=True)
             sys.exit(2)
+        except OSError as error:
+            click.echo(f"error: {system_error(error)}", err=True)
+            sys.exit(2)
 
     return wrapper
 
 
+def system_error(error: OSError) -> str:
+    """One line for an OSError: what failed, on which file (the command's checked outputs
+    when the error names none)."""
+    what = error.strerror or str(error) or type(error).__name__
+    if error.filename is not None:
+        return f"{error.filename}: {what}"
+    context = click.get_current_context(silent=True)
+    outputs = context.meta.get(_OUTPUTS, []) if context is not None else []
+    if not outputs:
+        return what
+    return f"{what}, while writing " + ", ".join(f"{path} ({option})" for option, path in outputs)
+
+
+_OUTPUTS = "rocketsim.outputs"      # click context meta: the (option, path) a command writes
+
+
+def _writes(path: Path, option: str) -> None:
+    context = click.get_current_context(silent=True)
+    if context is not None:         # its meta is shared by the command's nested contexts
+        context.meta.setdefault(_OUTPUTS, []).append((option, path))
+
+
 def check_writable(path: Path, option: str) -> None:
     """Refuse an output ``path`` that cannot be created (no such folder, no permission, a
-    folder of that name) with an :class:`InputError` naming ``option``, before any work
-    is done; a file the check creates is removed again, an existing one left as it is."""
-    existed = path.exists()
+    folder of that name, a FIFO, a device or a socket: writing one could block or fail
+    after the work) with an :class:`InputError` naming ``option``, before any work is
+    done; a file the check creates is removed again, an existing one left as it is."""
+    _writes(path, option)
+    try:
+        mode = path.stat().st_mode
+    except OSError:
+        mode = None
+    if mode is not None and not stat.S_ISREG(mode) and not stat.S_ISDIR(mode):
+        kind = ("a FIFO" if stat.S_ISFIFO(mode) else "a device" if stat.S_ISCHR(mode) or stat.S_ISBLK(mode)
+                else "a socket" if stat.S_ISSOCK(mode) else "not a regular file")
+        raise InputError(f"cannot write {path}: it is {kind}, not a file; nothing was written",
+                         field=option)
+    existed = mode is not None
     try:
         with open(path, "ab"):
             pass
@@ -46,6 +87,7 @@ def check_folder(path: Path, option: str) -> None:
     """Refuse an output folder ``path`` that cannot be made or written into (a file of
     that name, or above it; no permission) with an :class:`InputError` naming ``option``;
     nothing is created."""
+    _writes(path, option)
     above = path
     while not above.exists() and above != above.parent:
         above = above.parent

@@ -70,14 +70,14 @@ def _raise_terminated(signum, frame):
               help="Mission time to fly, e.g. 10s, '3 h', 311d (overrides the mission; a bare number is s).")
 @click.option("--set", "settings", multiple=True, metavar="PATH=VALUE",
               help="Change a field before flying, as the file would hold it, e.g. "
-                   "--set 'vehicle.stages[booster].structure_mass=26 t' (repeatable; paths as in the README).")
+                   "--set 'vehicle.stages[booster].structure_mass=26 t' (repeatable; paths: docs/how-to/change-fields.md).")
 @click.option("--summary-json", type=click.Path(dir_okay=False, path_type=Path), default=None,
               help="Also write the flight summary as JSON to this file.")
 @click.option("--rate", type=Quantity("frequency", "1 Hz"), default=None,
               help="Telemetry samples per second, e.g. '1 Hz' or 0.01Hz (the scenario's telemetry.rate).")
 @click.option("--coast-rate", type=Quantity("frequency", "0.01 Hz"), default=None,
               help="Samples per second while a body coasts: no engine running, under 1 Pa of dynamic "
-                   "pressure (the scenario's telemetry.coast_rate; see the README's Telemetry).")
+                   "pressure (the scenario's telemetry.coast_rate; see docs/reference/telemetry.md).")
 @click.option("--yes", "large_ok", is_flag=True,
               help="Write the telemetry even if it is estimated above 2 GB.")
 @live_options
@@ -138,7 +138,7 @@ def fly(scenario: Path, output: Path | None, step: float | None, duration: float
         click.echo(f"\nerror: {error}; " + (f"what was written to {output} is readable with "
                    f"'rocketsim replay {output}'" if written else f"nothing was written to {output}"),
                    err=True)
-        sys.exit(1)
+        sys.exit(2)
     finally:
         signal.signal(signal.SIGTERM, previous)
     click.echo(format_summary(summary))

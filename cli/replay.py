@@ -1,7 +1,8 @@
 """``rocketsim replay``: summarise, export, plot or re-verify a run's MCAP file.
 
-Nothing here runs the program a shared file carries, except ``--verify
---trust``, which says so before it flies.
+Nothing here runs a program a shared file carries, except ``--verify
+--trust``, which names each before it flies (without ``--trust`` it names
+them and refuses, exit status 2).
 """
 
 from __future__ import annotations
@@ -75,7 +76,7 @@ def replay(run_file: Path, export_to, plot: Path | None, check: bool, trust: boo
         except KeyboardInterrupt:
             sys.exit(130)
     if check:
-        status = _verify(run_file, run, trust)
+        status = _verify(run_file, trust)
     if run.problem:
         click.echo(f"error: {run_file} is damaged: {run.problem}; the summary above is what is readable",
                    err=True)
@@ -83,16 +84,14 @@ def replay(run_file: Path, export_to, plot: Path | None, check: bool, trust: boo
     sys.exit(status)
 
 
-def _verify(run_file: Path, run: RunFile, trust: bool) -> int:
-    from rocketsim.api import UntrustedProgram, verify
+def _verify(run_file: Path, trust: bool) -> int:
+    from rocketsim.api import verify
 
-    if run.program and trust:
-        click.echo(f"--trust: executing the program {run.program} carried by {run_file}", err=True)
+    def announce(programs: list[str]) -> None:
+        click.echo(f"--trust: executing {'; '.join(programs)} carried by {run_file}", err=True)
+
     try:
-        verdict = verify(run_file, trust=trust)
-    except UntrustedProgram as error:
-        raise InputError(f"{run_file} carries a program ({error}); --verify would execute it. "
-                         "Pass --trust if you trust it.", field="--trust") from None
+        verdict = verify(run_file, trust=trust, announce=announce)
     except (ValueError, KeyError) as error:
         raise InputError(f"cannot re-fly {run_file}: {error}", file=run_file) from None
     if verdict.flight_error:

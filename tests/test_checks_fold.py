@@ -50,10 +50,10 @@ def test_a_16_g_burn_breaks_the_vehicle_through_the_folded_step():
     assert separate.events == world.events
 
 
-def _fly(seconds, fold, monkeypatch):
+def _fly(seconds, fold, monkeypatch, sensors="truth"):
     """The shipped mission's first ``seconds`` (on the pad, liftoff, the climb through the
-    air): final states, events, the checks' inputs at every step and how many steps
-    took the fold's figures (out of contact) and steered inside it."""
+    air) with ``sensors``: final states, events, the checks' inputs at every step and how
+    many steps took the fold's figures (out of contact) and steered inside it."""
     seen = {"figures": [], "near": 0, "far": 0, "steered": 0}
 
     def recording_breakup(q, alpha, axial, *limits, original=vehicle_checks.breakup):
@@ -85,15 +85,19 @@ def _fly(seconds, fold, monkeypatch):
     # every step through the loop's one-step path (not the compiled runs of rocketsim.sim.window,
     # whose steps are those of the fold: tests/test_runs.py)
     monkeypatch.setattr(world_module, "fly_window", lambda world, length: False)
-    world = build_world(load(MISSION), duration=seconds)
+    world = build_world(load(MISSION, {"sensors": sensors}), duration=seconds)
     summary = world.run()
     monkeypatch.undo()
     return [b.y.copy() for b in world.bodies], summary, seen
 
 
-def test_the_folded_step_flies_the_same_bits_as_three_calls(monkeypatch):
-    states, summary, seen = _fly(12.0, True, monkeypatch)
-    states_before, summary_before, seen_before = _fly(12.0, False, monkeypatch)
+@pytest.mark.parametrize("sensors", ["truth", "realistic"])
+def test_the_folded_step_flies_the_same_bits_as_three_calls(monkeypatch, sensors):
+    # with realistic sensors the folded step steers on the navigation estimate it makes
+    # itself (with the truth's ambient pressure for the engines), the three calls on the
+    # flight computer's (rocketsim.flight.navigation) and the truth's air read in Python
+    states, summary, seen = _fly(12.0, True, monkeypatch, sensors)
+    states_before, summary_before, seen_before = _fly(12.0, False, monkeypatch, sensors)
     assert all(np.array_equal(a, b) for a, b in zip(states, states_before, strict=True))
     assert summary == summary_before
     assert seen["figures"] == seen_before["figures"] and len(seen["figures"]) == 600

@@ -16,6 +16,7 @@ from rocketsim.constants import (EARTH_J2, EARTH_MU, EARTH_OMEGA, EARTH_RADIUS_E
 from rocketsim.dynamics.derivative import derivative, held_derivative
 from rocketsim.dynamics.reference import integrate_reference
 from rocketsim.dynamics.rk4 import advance
+from rocketsim.frames.mean_elements import mean_elements_of_state
 from rocketsim.layout import P_CLASSIC, R, V, make_params
 from rocketsim.errors import InputError
 from rocketsim.scenario.classic_range import DRONE_SHIP_RANGE, LANDING_ZONE_RANGE, classic_site
@@ -217,16 +218,23 @@ def test_the_ascent_program_reaches_orbit_on_the_classic_range(tmp_path):
     """scenarios/classic-ascent.yaml flies programs/orbit_ascent.py unchanged -- the file
     falcon9-leo.yaml flies from SLC-40, where test_falcon9_ascent.py checks the orbit --
     due east to a 200 km equatorial orbit on the original model. A 0.05 s headless step
-    and 525 s of mission time (insertion is at ~521 s) keep it short; the classic model
-    is first order in the step, and the insertion still clears 190 km."""
+    and 525 s of mission time (insertion is at ~523 s) keep it short. The target is in
+    Kozai mean elements (the mission's default), whose osculating orbit, equatorial and
+    circular at 200 km, is 190.0 x 210.0 km (J2's short-period terms,
+    rocketsim.frames.mean_elements): the check reads the insertion's mean elements,
+    within 3 km of 200 km (the classic model is first order in the step, and at 0.05 s
+    a step at the end of the burn gains 1 m/s)."""
     loaded = load(CLASSIC_ASCENT)
     real = load(ROOT / "scenarios" / "falcon9-leo.yaml")
     assert loaded.program_path == real.program_path                 # the same program file
     summary = fly(loaded, tmp_path / "classic.mcap", step=0.05, duration=525.0)
     assert_the_plot_reads(tmp_path / "classic.mcap", "classic-ascent")
-    events = {e["name"]: e for e in summary["bodies"]["falcon9-block5"]["events"]}
+    body = summary["bodies"]["falcon9-block5"]
+    events = {e["name"]: e for e in body["events"]}
     assert {"liftoff", "MECO", "separation", "orbit"} <= set(events)
-    assert events["orbit"]["periapsis_altitude_m"] >= 190e3
+    mean = mean_elements_of_state(np.array(body["final"]["position_m"]), np.array(body["final"]["velocity_m_s"]))
+    for radius in (mean.periapsis, mean.apoapsis):
+        assert radius - EARTH_RADIUS_EQ == pytest.approx(200e3, abs=3e3)
     assert events["orbit"]["inclination_deg"] == pytest.approx(0.0, abs=0.1)
 
 

@@ -14,8 +14,11 @@ seed description's quoted 98.2 deg at 700 km (docs/physics.md#j2) ("+0.986 deg a
 700 km orbit at 98.2 deg sun-synchronous").
 
 Flown at a 0.1 s headless step (the largest) and 430 s of mission time (to
-just past the payload deploy) to keep the suite fast: at 20 ms the same flight
-reaches 491.7 x 526.5 km at 97.389 deg (0.1 s: 491.1 x 534.8 km, 97.389 deg).
+just past the payload deploy, ~421 s) to keep the suite fast: at 20 ms the
+same flight's orbit event reads 491.6 x 504.7 km at 97.410 deg osculating
+(Kozai mean elements 498.8 x 500.6 km at 97.409 deg, the target being 500 km
+at 97.408 deg mean); at 0.1 s 499.2 x 507.5 km at 97.408 deg osculating (the
+cut-off falls on a step: at the end of the burn a 0.1 s step gains some 4 m/s).
 """
 
 import math

@@ -5,8 +5,8 @@ References: the file sizes the flights write (the estimate is to be within a fac
 two of them: it prices the samples of the body a flight starts with,
 rocketsim/api/file_size.py; the hobby rocket flown to 150 s, before its touchdown at
 171 s: a flight that ends early writes fewer samples than its duration holds); a 60-day coast at 10 Hz is 51 840 001 samples; the coast
-rule's samples are those at whole multiples of the coast interval (the README's
-Telemetry section) and the same flight writes the same messages twice.
+rule's samples are those at whole multiples of the coast interval
+(docs/reference/telemetry.md) and the same flight writes the same messages twice.
 """
 
 import json

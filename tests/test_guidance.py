@@ -1,13 +1,9 @@
-"""The compiled guidance predictors (rocketsim.flight.guidance) against independent references.
+"""The compiled guidance predictor (rocketsim.flight.guidance) against independent references.
 
-* The linear-tangent burn (midpoint steps) against scipy's DOP853 at 1e-11 on the
-  same planar equations of motion; its error halves twice per halved step (second order).
-* The insertion solver: the law it returns, flown by the DOP853 reference, ends the
-  burn at the target radius with no radial speed.
-* The falling stage's predictor: in a vacuum without J2 it lands where the Kepler conic
-  meets the ellipsoid (rocketsim.flight.impact, itself checked against the reference
-  integrator in tests/test_impact.py); with drag against DOP853 on the same rotating-frame
-  equations; with the landing burn it stops the fall at the ground.
+The falling stage's predictor: in a vacuum without J2 it lands where the Kepler conic
+meets the ellipsoid (rocketsim.flight.impact, itself checked against the reference
+integrator in tests/test_impact.py); with drag against DOP853 on the same rotating-frame
+equations; with the landing burn it stops the fall at the ground.
 """
 
 import math
@@ -18,60 +14,11 @@ from scipy.integrate import solve_ivp
 from rocketsim.bodies.gravity import point_mass_j2
 from rocketsim.constants import (DEG, EARTH_J2, EARTH_MU, EARTH_OMEGA, EARTH_RADIUS_EQ,
                                  EARTH_RADIUS_POLAR)
-from rocketsim.flight.guidance import descent_point, linear_tangent_burn, solve_linear_tangent
+from rocketsim.flight.guidance import descent_point
 from rocketsim.flight.impact import predict_impact
 from rocketsim.frames.earth_fixed import eci_to_ecef
 from rocketsim.frames.geodetic import enu_basis, geodetic_to_ecef
 from rocketsim.vehicle.contact import point_height
-
-# an upper stage 150 s into its burn (Falcon 9-class second stage, estimates)
-R0, VR0, VH0 = EARTH_RADIUS_EQ + 160e3, 250.0, 5200.0      # m, m/s, m/s
-MASS, THRUST, FLOW = 60e3, 981e3, 287.0                      # kg, N, kg/s
-BURN = 120.0                                                 # s of propellant left
-TARGET = EARTH_RADIUS_EQ + 200e3                             # m
-
-
-def reference_burn(a, b, until):
-    """(r, vr, vh) after ``until`` s of the planar burn on ``tan(pitch) = a + b t``: DOP853."""
-    def rhs(t, s):
-        r, vr, vh, m = s
-        tangent = a + b * t
-        c = 1.0 / math.sqrt(1.0 + tangent * tangent)
-        acc = THRUST / m
-        return (vr, acc * tangent * c - EARTH_MU / r ** 2 + vh * vh / r, acc * c - vr * vh / r, -FLOW)
-    sol = solve_ivp(rhs, (0.0, until), (R0, VR0, VH0, MASS), method="DOP853", rtol=1e-11, atol=1e-9)
-    return sol.y[:3, -1]
-
-
-def test_the_linear_tangent_burn_converges_to_the_reference_at_second_order():
-    a, b = 0.2, -0.002
-    errors = []
-    for step in (2.0, 1.0, 0.5):
-        r, vr, vh, m, t = linear_tangent_burn(R0, VR0, VH0, MASS, THRUST, FLOW, 60.0, a, b, EARTH_MU, step)
-        assert t == 60.0 and m == MASS - 60.0 * FLOW      # stopped by the burn time, mass by the flow
-        errors.append(abs(r - reference_burn(a, b, 60.0)[0]))
-    assert errors[0] < 5.0                                            # m, at the guidance's 2 s step
-    assert 3.0 < errors[0] / errors[1] < 5.0 and 3.0 < errors[1] / errors[2] < 5.0
-
-
-def test_the_burn_ends_at_circular_speed():
-    r, vr, vh, m, t = linear_tangent_burn(R0, VR0, VH0, MASS, THRUST, FLOW, 1e4, 0.0, 0.0, EARTH_MU, 0.5)
-    assert t < 1e4 and vh * vh * r >= EARTH_MU
-    r, _, vh, _, _ = linear_tangent_burn(R0, VR0, VH0, MASS, THRUST, FLOW, t - 0.5, 0.0, 0.0, EARTH_MU, 0.5)
-    assert vh * vh * r < EARTH_MU                  # a step earlier it was short of circular speed
-
-
-def test_the_solved_law_flown_by_the_reference_ends_on_target():
-    a, b = 0.5, 0.0
-    for _ in range(6):                    # the guidance re-solves, warm-started, every second
-        a, b = solve_linear_tangent(R0, VR0, VH0, MASS, THRUST, FLOW, BURN, TARGET, a, b,
-                                    EARTH_MU, 2.0, 2)
-    _, _, _, _, t_end = linear_tangent_burn(R0, VR0, VH0, MASS, THRUST, FLOW, BURN, a, b, EARTH_MU, 2.0)
-    r, vr, vh = reference_burn(a, b, t_end)
-    assert abs(r - TARGET) < 50.0 and abs(vr) < 0.5                 # m, m/s
-    # at circular speed, passed by at most the last 2 s step's gain (thrust / mass at the end)
-    step_gain = 2.0 * THRUST / (MASS - FLOW * t_end)
-    assert 0.0 <= vh - math.sqrt(EARTH_MU / r) < step_gain
 
 
 def ecef_state(lat_deg, lon_deg, height, speed, elevation_deg, heading_deg):

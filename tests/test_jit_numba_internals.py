@@ -48,7 +48,8 @@ def test_every_patch_is_applied():
 
     assert halved(3.0) == 1.5
     assert applied(halved) == {"own callees": True, "optimisation level": True, "cache folder": True,
-                               "plain call templates": True, "compiled once": True, "locked saves": True}
+                               "plain call templates": True, "compiled once": True, "locked saves": True,
+                               "damaged files read as missing": True}
 
 
 def test_a_missing_internal_fails_loudly_naming_numba_and_the_internal(monkeypatch):

@@ -33,7 +33,7 @@ LAYERS = [
     ("rocketsim.scenario", "rocketsim.telemetry"),
     ("rocketsim.sim",),
     ("rocketsim.api", "rocketsim"),
-    ("rocketsim_cli",),
+    ("rocketsim_cli", "rocketsim.__main__"),         # python -m rocketsim is the command line
 ]
 PACKAGES = {"rocketsim": "rocketsim", "cli": "rocketsim_cli"}
 

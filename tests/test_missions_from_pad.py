@@ -63,7 +63,7 @@ def check_ascent(world, inclination_deg):
 
 def test_moon_from_the_pad_to_lunar_orbit():
     """From SLC-40 to a ~100 km orbit about the Moon, flown whole as ``rocketsim fly``
-    flies it (World.run, the scenario's 3.45 d). References: the program's plan (a
+    flies it (World.run, the scenario's 3.7 d). References: the program's plan (a
     Lambert arc to a 100 km periapsis, circularised there: tests/test_moon_mission.py
     checks the same program from a parking orbit) and the Hohmann-like injection's
     cost from 200 km, ~3.1 km/s plus the burn's gravity loss."""

@@ -1,9 +1,10 @@
 """A launcher of one's own, written from the docs alone, flies to orbit as designed.
 
-A two-stage kerolox launcher (the README's vehicle example's fields: stages with their
-LOX and RP-1 tanks loaded in the engines' mixture ratio, engines with their gimbal
-range and slew rate, payload, fairing, an ogive nose capping the fairing) from Kourou,
-a site no file ships (the README's site example's fields), to a 500 km orbit at 6 deg,
+A two-stage kerolox launcher (the vehicle example's fields in
+docs/how-to/write-files.md: stages with their LOX and RP-1 tanks loaded in the engines'
+mixture ratio, engines with their gimbal range and slew rate, payload, fairing, an ogive
+nose capping the fairing) from Kourou, a site no file ships (that page's site example's
+fields), to a 500 km orbit at 6 deg,
 flown by the shipped ascent program (scenarios/programs/orbit_ascent.py, which flies
 any two-stage vehicle to the mission's target). Nothing in the way: the files
 validate without a warning, the vehicle stands on the pad at the site's height and

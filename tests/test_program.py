@@ -1,4 +1,4 @@
-"""The flight-computer scheduling contract (README, "Flight-computer programs")."""
+"""The flight-computer scheduling contract (docs/how-to/programs.md)."""
 
 import json
 import re

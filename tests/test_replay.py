@@ -5,13 +5,12 @@ from pathlib import Path
 
 import pytest
 from click.testing import CliRunner
-from mcap.reader import make_reader
-from mcap.writer import CompressionType, Writer
 
 from rocketsim.scenario.load import load
 from rocketsim.api.telemetry_flight import fly_to_file as fly
 from rocketsim.api.reflight import UntrustedProgram, lay_out, verify
 from rocketsim.telemetry.reader import read_run
+from tests.run_files import rewrite_run
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -72,7 +71,7 @@ def test_nothing_from_a_shared_program_runs_without_trust(scenario, tmp_path):
         verify(out)
     assert not proof.exists()                    # nothing executed it
     trusted = replay(out, "--verify", "--trust")
-    assert "executing the program program/program.py" in trusted.output
+    assert "executing program (program.py)" in trusted.output
     assert trusted.exit_code == 0 and "bit-identical" in trusted.output
     assert proof.read_text() == "ran"            # --trust did
 
@@ -99,27 +98,6 @@ def test_verify_trust_on_a_staged_mission_with_separated_bodies(tmp_path):
     assert "verify: bit-identical" in result.output
 
 
-def _rewrite(source: Path, target: Path, change):
-    """Copy an MCAP record for record, letting ``change(index, topic, data)`` edit a message."""
-    with open(source, "rb") as stream, open(target, "wb") as sink:
-        reader = make_reader(stream)
-        writer = Writer(sink, compression=CompressionType.ZSTD)
-        writer.start()
-        summary = reader.get_summary()
-        schemas = {i: writer.register_schema(s.name, s.encoding, s.data) for i, s in summary.schemas.items()}
-        channels = {i: writer.register_channel(c.topic, c.message_encoding, schemas[c.schema_id])
-                    for i, c in summary.channels.items()}
-        for index, (_, channel, message) in enumerate(reader.iter_messages(log_time_order=False)):
-            writer.add_message(channels[message.channel_id], message.log_time,
-                               change(index, channel.topic, bytes(message.data)), message.publish_time)
-        for attachment in reader.iter_attachments():
-            writer.add_attachment(attachment.create_time, attachment.log_time, attachment.name,
-                                  attachment.media_type, attachment.data)
-        for record in reader.iter_metadata():
-            writer.add_metadata(record.name, record.metadata)
-        writer.finish()
-
-
 def test_a_run_edited_by_one_byte_is_caught_at_that_message(run_file, tmp_path):
     edited = tmp_path / "edited.mcap"
     target = {}
@@ -132,7 +110,7 @@ def test_a_run_edited_by_one_byte_is_caught_at_that_message(run_file, tmp_path):
             return data[:position + 2] + (b"1" if digit != b"1" else b"2") + data[position + 3:]
         return data
 
-    _rewrite(run_file, edited, change)
+    rewrite_run(run_file, edited, change)
     assert target
     verdict = verify(edited, trust=True)
     assert not verdict.identical
@@ -143,7 +121,7 @@ def test_a_run_edited_by_one_byte_is_caught_at_that_message(run_file, tmp_path):
     assert result.exit_code == 1 and f"DIFFERS at message {target['index']} (/probe/state" in result.output
     # the untouched copy is identical
     same = tmp_path / "same.mcap"
-    _rewrite(run_file, same, lambda i, t, d: d)
+    rewrite_run(run_file, same, lambda i, t, d: d)
     assert verify(same, trust=True).identical
 
 

@@ -43,7 +43,7 @@ def mcap_states(path):
         return [json.loads(m.data) for _, _, m in make_reader(stream).iter_messages(topics=["/probe/state"])]
 
 
-# the units of the state's fields as the columns name them (the README's Telemetry table)
+# the units of the state's fields as the columns name them (docs/reference/telemetry.md's table)
 UNITS = {"t": "s", "position": "m", "velocity": "m_s", "body_rates": "rad_s", "altitude": "m", "height_agl": "m",
          "inertial_speed": "m_s", "surface_speed": "m_s", "mass": "kg", "acceleration": "m_s2",
          "sensed_acceleration": "m_s2", "airspeed": "m_s", "dynamic_pressure": "Pa",

@@ -37,9 +37,10 @@ def _runs_go_on(world) -> bool:
     return any(body.flying and body.t < world.t for body in world.bodies)
 
 
-def _flight(tmp_path, name, monkeypatch, windows: bool, counts: dict):
-    """The mission's first ARC seconds with the windows (counting their runs' steps) or
-    one step at a time; returns the summary and the telemetry's messages."""
+def _flight(tmp_path, name, monkeypatch, windows: bool, counts: dict, overrides=None, duration=ARC):
+    """The mission's first ``duration`` seconds (with ``overrides``) with the windows
+    (counting their runs' steps) or one step at a time; returns the summary and the
+    telemetry's messages."""
     if windows:
         vehicle_run, part_run = VehicleChecks.fly_run, runs.fly_part
 
@@ -48,6 +49,9 @@ def _flight(tmp_path, name, monkeypatch, windows: bool, counts: dict):
             counts["vehicle steps"] += taken
             counts["conditions"] += reason == runs.CONDITION
             counts["waiting"] += condition.shape[0] > 0
+            if body.sensors is not None and not body.sensors.perfect:
+                counts["steered on the estimate"] += taken if steering is not None else 0
+                counts["conditions on the estimate"] += reason == runs.CONDITION
             return y, taken, reason, filled
 
         def counted_part(*args):
@@ -100,7 +104,7 @@ def _flight(tmp_path, name, monkeypatch, windows: bool, counts: dict):
     else:
         monkeypatch.setattr(world_module, "fly_window", lambda world, length: False)
     out = tmp_path / f"{name}.mcap"
-    summary = fly(load(MISSION), out, duration=ARC)
+    summary = fly(load(MISSION, overrides), out, duration=duration)
     monkeypatch.undo()
     return summary, list(iter_raw_messages(out))
 
@@ -130,6 +134,30 @@ def test_compiled_runs_fly_the_same_telemetry_as_one_step_at_a_time(tmp_path, mo
     assert counts["bodies made in windows"] == 3
     events = {e["name"] for b in summary["bodies"].values() for e in b["events"]}
     assert {"liftoff", "max_q", "MECO", "separation", "boost-back end", "fairing jettison"} <= events
+
+
+def test_with_realistic_sensors_the_runs_steer_and_wait_on_the_estimate_as_one_step_at_a_time(tmp_path,
+                                                                                            monkeypatch):
+    """The mission with ``sensors: realistic`` (rocketsim/flight/sensors.py) to past the
+    booster's cut-off and separation: its compiled runs steer on the navigation estimate
+    and test the programs' conditions on it (the kick's height, the booster's propellant
+    through the gauges of its tanks), the estimate drawn from the same streams as the
+    flight computer's; the file is the same, message for message and bit for bit, as the
+    loop's one step at a time, where the autopilot and the conditions read the estimate
+    in Python (the programs' decisions, MECO's step among them, follow the errors)."""
+    counts = {name: 0 for name in ("vehicle steps", "part steps", "conditions", "waiting", "steered on the estimate",
+                                   "conditions on the estimate", "samples in runs beside others",
+                                   "bodies interleaved", "resumes", "programs woken in windows",
+                                   "... while other bodies' runs go on", "bodies made in windows")}
+    sensors = {"sensors": "realistic"}
+    summary, messages = _flight(tmp_path, "runs", monkeypatch, True, counts, sensors, 160.0)
+    summary_before, messages_before = _flight(tmp_path, "steps", monkeypatch, False, counts, sensors, 160.0)
+    assert summary == summary_before
+    assert len(messages) == len(messages_before) > 5_000
+    assert messages == messages_before
+    assert counts["steered on the estimate"] > 5_000 and counts["conditions on the estimate"] >= 2
+    events = {e["name"] for b in summary["bodies"].values() for e in b["events"]}
+    assert {"liftoff", "max_q", "MECO", "separation"} <= events
 
 
 def _sounding(tmp_path, name, monkeypatch, how: str, duration: float = 110.0, cut: float = math.inf):

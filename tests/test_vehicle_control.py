@@ -46,6 +46,8 @@ def test_ignite_spool_and_read_the_booster_thrust():
     assert states[9]["thrust_N"] == 0.0 and not states[9]["on"]
     assert states[0]["ignitions_left"] == 3 and states[1]["ignitions_left"] == 2
     assert states[9]["separated"] and not states[0]["separated"]
+    # the vehicle file's ranges: Merlin 1D 40-100 %, Merlin Vacuum 39-100 %
+    assert states[0]["throttle_range"] == (0.4, 1.0) and states[9]["throttle_range"] == (0.39, 1.0)
 
 
 def test_throttle_gimbal_shutdown_and_propellant():

@@ -154,7 +154,7 @@ def test_late_2026_earth_mars_window_on_the_project_ephemerides():
 
 # --- the command line ----------------------------------------------------------
 
-# The keys every window of ``--format json`` carries (README, the command line).
+# The keys every window of ``--format json`` carries (what a script reading it relies on).
 JSON_KEYS = ("departure_utc", "arrival_utc", "tof_days", "c3_km2_s2", "vinf_arrival_km_s",
              "dv_total_km_s")
 

@@ -70,7 +70,7 @@ _HOMES = {
     "read_run": "rocketsim.telemetry.reader", "RunFile": "rocketsim.telemetry.reader",
     "export_tables": ("rocketsim.telemetry.tables", "export"),
     "verify": "rocketsim.api.reflight", "Verdict": "rocketsim.api.reflight",
-    "UntrustedProgram": "rocketsim.api.reflight",
+    "UntrustedProgram": "rocketsim.scenario.trust",
     "fly_live": "rocketsim.api.live", "replay_live": "rocketsim.api.live", "Live": "rocketsim.api.live",
     "parse_warp": "rocketsim.api.live", "LOOPBACK": "rocketsim.api.live", "PORT": "rocketsim.api.live",
     "strict_json": "rocketsim.telemetry.writer",

@@ -1,7 +1,10 @@
 """Re-fly a shared run from the files it carries and compare it message by message.
 
-Flying a run executes the program it carries, so :func:`verify` refuses a run
-with a program unless called with ``trust=True``. The scenario, vehicle,
+Flying a run executes the programs it would fly, so :func:`verify` refuses a
+run whose re-flight would execute any unless called with ``trust=True``
+(:func:`rocketsim.scenario.trust.approve`: the programs are read from the
+scenario as laid out and loaded with the recorded overrides, whatever the
+attachments are named; nothing of the run is executed before). The scenario, vehicle,
 site, weather and program are laid out from the run's attachments in their
 original folder layout (metadata ``files``), flown at the run's step and
 duration with the overrides it was flown with (metadata ``overrides``), and
@@ -20,16 +23,16 @@ import tempfile
 from dataclasses import dataclass
 from pathlib import Path, PurePosixPath
 
+from rocketsim.api.flying import with_programs
+from rocketsim.errors import InputError
 from rocketsim.flight.program import load_program
 from rocketsim.scenario.load import load
+from rocketsim.scenario.trust import UntrustedProgram, approve
 from rocketsim.api.telemetry_flight import fly_to_file
 from rocketsim.telemetry.reader import RunFile, iter_raw_messages, read_run
 from rocketsim.telemetry.tables import flat_row
 
-
-class UntrustedProgram(Exception):
-    """Re-flying would execute the program the run carries, and trust was not given."""
-
+__all__ = ["UntrustedProgram", "Verdict", "lay_out", "verify"]
 
 @dataclass
 class Verdict:
@@ -70,44 +73,63 @@ def lay_out(run: RunFile, folder: Path) -> Path:
     return scenario
 
 
-def verify(path: str | Path, trust: bool = False) -> Verdict:
+def verify(path: str | Path, trust: bool = False, announce=None) -> Verdict:
     """Fly the run again from its attachments and compare every message.
 
-    A run that carries a program is flown only with ``trust=True``: flying
-    executes that program. Raises :class:`UntrustedProgram` otherwise.
+    Re-flying executes the programs the laid-out scenario and the recorded overrides
+    name: without ``trust=True`` a run that would execute any raises
+    :class:`UntrustedProgram` naming them, before anything is executed. With it,
+    ``announce(programs)`` (if given) is called with their names before the flight.
     """
     run = read_run(path)
-    if run.program and not trust:
-        raise UntrustedProgram(run.program)
     info = run.metadata.get("rocketsim", {})
     with tempfile.TemporaryDirectory(prefix="rocketsim-verify-") as folder:
         scenario = lay_out(run, Path(folder) / "files")
         again = Path(folder) / "again.mcap"
         flight_error = None
+        overrides = {key: json.loads(value) for key, value in run.metadata.get("overrides", {}).items()}
+        overrides.update(_programs(run, scenario))
         try:
-            overrides = {path: json.loads(value) for path, value in run.metadata.get("overrides", {}).items()}
-            overrides.update(_programs(run, scenario))
-            fly_to_file(load(scenario, overrides), again, step=float(info["step_s"]),
-                duration=float(info["duration_s"]))
-        except Exception as error:      # the original may have ended the same way
-            flight_error = f"{type(error).__name__}: {error}"
-        return _compare(iter_raw_messages(path), iter_raw_messages(again), flight_error)
+            loaded = load(scenario, overrides)
+        except InputError as error:     # the original may have ended the same way
+            loaded, flight_error = None, f"{type(error).__name__}: {error}"
+        if loaded is not None:
+            programs = approve(loaded, trust, f"the run {path}")
+            if programs and announce is not None:
+                announce(programs)
+            try:
+                fly_to_file(_entries(run, loaded), again, step=float(info["step_s"]),
+                            duration=float(info["duration_s"]))
+            except Exception as error:      # the original may have ended the same way
+                flight_error = f"{type(error).__name__}: {error}"
+        return _compare(iter_raw_messages(path), iter_raw_messages(again) if again.is_file() else iter(()),
+                        flight_error)
 
 
 def _programs(run: RunFile, scenario: Path) -> dict:
-    """Overrides flying the programs the run carries (laid out beside ``scenario``) in
-    the roles they flew, whatever the scenario file names: a program given in place
-    of the file's, or a function not named ``main`` (metadata ``entries``)."""
-    entries = run.metadata.get("entries", {})
+    """Overrides flying the program files the run carries (laid out beside ``scenario``)
+    in the roles they flew, whatever the scenario file names (a program given in place
+    of the file's)."""
     found = {}
     for role, rel in run.metadata["files"].items():
         if role != "program" and not role.startswith("program/"):
             continue
-        path = Path(os.path.normpath(scenario.parent / rel))
-        entry = entries.get(role, "main")
-        found["program" if role == "program" else f"programs[{role.split('/', 1)[1]}]"] = (
-            str(path) if entry == "main" else load_program(path, entry))
+        key = "program" if role == "program" else f"programs[{role.split('/', 1)[1]}]"
+        found[key] = str(Path(os.path.normpath(scenario.parent / rel)))
     return found
+
+
+def _entries(run: RunFile, loaded):
+    """``loaded`` flying, in each role the run names a function not called ``main``
+    (metadata ``entries``), that function of its file (loaded once approved: loading
+    runs the file's top level)."""
+    entries = {role: entry for role, entry in run.metadata.get("entries", {}).items()
+               if entry != "main" and role in loaded.files}
+    if not entries:
+        return loaded
+    functions = {role: load_program(loaded.files[role], entry) for role, entry in entries.items()}
+    return with_programs(loaded, functions.pop("program", None),
+                         {role.split("/", 1)[1]: main for role, main in functions.items()})
 
 
 def _compare(original, again, flight_error) -> Verdict:

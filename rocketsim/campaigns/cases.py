@@ -79,6 +79,9 @@ class Plan:
         campaign.check_groups()
         self.fixed = dict(spec.overrides)
         self.base = self._load(self.fixed)
+        if spec.insertion is not None and self.base.scenario.mission.target.orbit is None:
+            raise campaign.error("an insertion is measured against the scenario's target orbit, and it "
+                                 "names none (mission.target.orbit: altitude, inclination)", "insertion")
         self.places: dict[str, list[Place]] = {}
         self.scales: dict[str, list[Scale]] = {}
         laws: dict[str, Law] = {}
@@ -125,6 +128,20 @@ class Plan:
         uniform's middle, the first choice, a seed's low); a problem an override causes is
         reported at the campaign's line that gave it."""
         return self._load(self.fixed | self._centre_overrides())
+
+    def variants(self) -> list[LoadedScenario]:
+        """The nominal scenario and, for each ``choice`` dispersion, the nominal with each of
+        its values: every program any run flies is one of theirs (the other kinds draw
+        numbers, seeds and epochs)."""
+        found = [self.nominal()]
+        centre = self.fixed | self._centre_overrides()
+        for name, given in self.campaign.spec.dispersions.items():
+            if isinstance(given, Choice):
+                for index in range(1, len(given.values)):
+                    values = self._values(name, index)
+                    found.append(self._load(centre | {place.path: self._written(name, place, value)
+                                                      for place, value in zip(self.places[name], values)}))
+        return found
 
     def inputs_table(self):
         """Every run's inputs as a DataFrame: ``run``, then a column per dispersion

@@ -12,7 +12,8 @@ it, the run's MCAP file. So run ``k`` flies bit for bit the same alone
   ``outcome``, not an error); ``error``: the program raised, a state went
   non-finite, a dispersed value was refused, or the worker flying it was lost
   more than ``retries`` times; ``timeout``: it flew longer than the campaign's
-  ``timeout`` (wall time, checked between batches of steps), and was stopped.
+  ``timeout`` (wall time) and was stopped from outside the flight, wherever it was
+  (:func:`bounded`: a program blocked in a sleep or a lock included).
   A failed run is a row with its error; the campaign goes on.
 * Executors: ``workers=1`` flies in this process, without Dask (debugging);
   otherwise an embedded :class:`distributed.LocalCluster` of ``workers`` (default:
@@ -35,29 +36,32 @@ from __future__ import annotations
 import hashlib
 import math
 import tempfile
+import threading
 import time
 from pathlib import Path
 from typing import Callable, Mapping
 
 from rocketsim.jit import beside
 from rocketsim.campaigns.cases import Plan
+from rocketsim.campaigns.insertion import insertion_columns
 from rocketsim.campaigns.outputs import run_columns
 from rocketsim.campaigns.spec import read_campaign
 from rocketsim.campaigns.store import Store, frame, read_results
 from rocketsim.errors import InputError
 from rocketsim.extras import needs
+from rocketsim.flight.leash import Leash, Stop
+from rocketsim.scenario.trust import approve
 
 WORKER_WARM_S = 1.0      # s of the nominal run a worker flies before its first run
 # Dask settings of the embedded cluster's workers. A worker flies a run in a thread
 # beside its event loop, and each time another thread takes the GIL the flight
 # thread hands it over and takes it back (two futex calls, a sleep and a wake-up on
-# another core: on a 2-vCPU VM measured at 0.4-0.6 s of system time and as much
-# again of user time in a 5 s flight). By default a worker's statistical profiler
-# samples every 10 ms and its event loop ticks every 20 ms, both for the dashboard
-# this cluster does not serve; with these settings a Falcon 9 landing on one worker
-# took 4.0-5.8 s against 5.1-7.4 s (five runs each, twice, load < 1), as in a plain
-# process (4.0-4.5 s). The memory monitor still pauses or restarts a worker over
-# its memory limit, every 2 s rather than every 100 ms: a flight's memory grows slowly.
+# another core), a cost of both system and user time. By default a worker's
+# statistical profiler samples every 10 ms and its event loop ticks every 20 ms, both
+# for the dashboard this cluster does not serve; with these settings a run on a worker
+# costs about what it costs in a plain process (the campaign benchmark prints both).
+# The memory monitor still pauses or restarts a worker over its memory limit, every
+# 2 s rather than every 100 ms: a flight's memory grows slowly.
 QUIET_WORKERS = {
     "distributed.worker.profile.enabled": False,
     "distributed.admin.tick.interval": "1s",
@@ -75,8 +79,13 @@ class Interrupted(KeyboardInterrupt):
         self.directory, self.done, self.runs = directory, done, runs
 
 
-class _Timeout(Exception):
-    """A run flew longer than the campaign's timeout."""
+class _Timeout(Stop):
+    """A run flew longer than the campaign's timeout (raised in the flight from outside it)."""
+
+
+# s a run's thread is given to stop after its timeout before it is left behind (a worker's
+# flight blocked in a call that only returns by itself: a sleep, a lock)
+TIMEOUT_GRACE = 2.0
 
 
 def plan_of(text: str) -> Plan:
@@ -95,18 +104,24 @@ def _fly(plan: Plan, k: int, telemetry: Path | None, timeout: float | None):
     from rocketsim.api.flying import fly
     from rocketsim.api.run import open_run
     start = time.perf_counter()
+    reached = [0.0]
 
     def watch(t: float, phase: str) -> None:
-        if timeout is not None and time.perf_counter() - start > timeout:
-            raise _Timeout(f"stopped at T+{t:.1f} s after {timeout:g} s of wall time")
+        reached[0] = t
 
-    paths = plan.campaign.spec.outputs
+    paths, tolerance = plan.campaign.spec.outputs, plan.campaign.spec.insertion
     row = {"run": k, "status": "ok", "error": None}
     try:
-        run = fly(plan.scenario(k), telemetry, progress=watch)
+        scenario = plan.scenario(k)
+        run = bounded(lambda: fly(scenario, telemetry, progress=watch), timeout)
         row.update(run_columns(run, paths))
+        if tolerance is not None:
+            row.update(insertion_columns(run, scenario.scenario.mission.target.orbit, tolerance))
     except _Timeout as error:
-        row.update(status="timeout", error=str(error), outcome="timeout")
+        text = f"stopped after {timeout:g} s of wall time, at T+{reached[0]:.1f} s or later"
+        if str(error):
+            text += f" ({error})"
+        row.update(status="timeout", error=text, outcome="timeout")
     except Exception as error:              # noqa: BLE001 - a failed run is a row, the campaign goes on
         text = str(error) if isinstance(error, InputError) else f"{type(error).__name__}: {error}"
         row.update(status="error", error=text, outcome=text)
@@ -119,10 +134,47 @@ def _fly(plan: Plan, k: int, telemetry: Path | None, timeout: float | None):
     return row
 
 
-def fly_case(text: str, k: int, keep: str, timeout: float | None) -> tuple[dict, bytes | None]:
+def bounded(call: Callable, timeout: float | None):
+    """``call()``, stopped by :class:`_Timeout` after ``timeout`` s of wall time (None: no
+    bound) whatever it is doing: in the main thread a :class:`~rocketsim.flight.leash.Leash`
+    interrupts it (a sleep or a lock included); in another (a Dask worker's) it flies in a
+    thread of its own under the leash, which stops Python code, and one still blocked
+    :data:`TIMEOUT_GRACE` s later (in a call only its own return ends) is left behind."""
+    if timeout is None:
+        return call()
+    if threading.current_thread() is threading.main_thread():
+        with Leash(timeout, _Timeout):
+            return call()
+    outcome: list = []
+
+    def leashed() -> None:
+        try:
+            with Leash(timeout, _Timeout):
+                outcome.append((True, call()))
+        except BaseException as error:      # noqa: BLE001 - handed to the caller's thread
+            outcome.append((False, error))
+
+    thread = threading.Thread(target=leashed, name="rocketsim-run", daemon=True)
+    thread.start()
+    thread.join(timeout + TIMEOUT_GRACE)
+    if not outcome:
+        raise _Timeout("blocked in a call that could not be interrupted: its thread was left behind")
+    done, value = outcome[0]
+    if not done:
+        raise value
+    return value
+
+
+def fly_case(text: str, k: int, keep: str, timeout: float | None, retries: int = 0,
+             lost: int = 0) -> tuple[dict, bytes | None]:
     """A worker's task: run ``k`` of the campaign ``text``; ``keep`` its telemetry
     (``all``: flown into an MCAP file; ``failed``: flown again into one if it failed;
-    ``none``). Returns ``(row, MCAP bytes or None)``."""
+    ``none``). Returns ``(row, MCAP bytes or None)``. A run whose workers were lost more
+    than ``retries`` times (``lost`` before this task, and those the scheduler counts
+    for it: :func:`_times_lost`) is not flown again: its row says so."""
+    lost += _times_lost()
+    if lost > retries:
+        return _lost(k, lost, retries), None
     beside.COMPILE_BESIDE = False     # the workers fill the cores: each compiles what its runs need itself
     plan = plan_of(text)
     with tempfile.TemporaryDirectory(prefix="rocketsim-run-") as folder:
@@ -131,6 +183,37 @@ def fly_case(text: str, k: int, keep: str, timeout: float | None) -> tuple[dict,
         if keep == "failed" and row["status"] == "error":
             _fly(plan, k, path, timeout)       # the same flight, bit for bit, into a file
         return row, (path.read_bytes() if path.is_file() else None)
+
+
+def _times_lost() -> int:
+    """How many times the Dask task running now started before (each start that never
+    returned was lost with its worker: a task queued on a lost worker but never started
+    is not counted), counting this start; 0 outside a Dask worker."""
+    try:
+        from distributed import get_client, get_worker
+        key = get_worker().get_current_task()
+    except (ImportError, ValueError):
+        return 0
+    return get_client().run_on_scheduler(_starts, key, 1)
+
+
+# the scheduler's count of each campaign task's starts (an attribute of the scheduler)
+_STARTS = "rocketsim_task_starts"
+
+
+def _starts(key, add: int, dask_scheduler=None) -> int:
+    """On the scheduler: the times the task ``key`` started before, counting ``add`` more."""
+    starts = dask_scheduler.__dict__.setdefault(_STARTS, {})
+    before = starts.get(key, 0)
+    starts[key] = before + add
+    return before
+
+
+def _forget(prefix: str, dask_scheduler=None) -> None:
+    """On the scheduler: drop the counts of the tasks whose keys start with ``prefix``."""
+    starts = dask_scheduler.__dict__.get(_STARTS, {})
+    for key in [key for key in starts if str(key).startswith(prefix)]:
+        del starts[key]
 
 
 def warm(text: str, duration: float | None = 0.0) -> float:
@@ -153,16 +236,16 @@ def _keep(retention, k: int) -> str:
     return retention
 
 
-def _lost(k: int, error: BaseException) -> dict:
-    text = f"{type(error).__name__}: {error}"
-    return {"run": k, "status": "error", "error": f"the worker was lost: {text}", "outcome": text,
-            "wall_time_s": math.nan}
+def _lost(k: int, times: int, retries: int, error: BaseException | None = None) -> dict:
+    text = (f"the worker flying it was lost {times} time{'s' if times != 1 else ''} (retries: {retries})"
+            + (f": {type(error).__name__}: {error}" if error is not None else ""))
+    return {"run": k, "status": "error", "error": text, "outcome": "lost", "wall_time_s": math.nan}
 
 
 def run(campaign, directory: str | Path, *, workers: int | None = None, scheduler: str | None = None,
         scheduler_file: str | Path | None = None, resume: bool = False, base_dir=None,
         progress: Callable[[int, int, int], None] | None = None,
-        log: Callable[[str], None] | None = None, runs: int | None = None):
+        log: Callable[[str], None] | None = None, runs: int | None = None, trust: bool = False):
     """Fly ``campaign`` (a campaign file or mapping) into ``directory``; the results table.
 
     ``runs``: fly that many runs in place of the file's (the first ones of the same
@@ -172,7 +255,9 @@ def run(campaign, directory: str | Path, *, workers: int | None = None, schedule
     ``progress(done, failed, total)`` is called when the first run starts (0 done) and
     as runs finish (``total``: the runs this call flies), ``log(message)`` with the warm-up's costs. Raises
     :class:`~rocketsim.errors.InputError` for a bad campaign before anything flies,
-    :class:`Interrupted` on Ctrl-C (everything finished saved)."""
+    :class:`Interrupted` on Ctrl-C (everything finished saved). A campaign file that is
+    the directory's own ``campaign.yaml`` (resuming a folder as it came) flies the
+    programs it names only with ``trust`` (:func:`rocketsim.scenario.trust.approve`)."""
     in_process = workers == 1 and scheduler is None and scheduler_file is None
     needs("campaign", "a campaign", "pyarrow", *(() if in_process else ("distributed",)))
     import yaml
@@ -182,10 +267,14 @@ def run(campaign, directory: str | Path, *, workers: int | None = None, schedule
     # what flies is the resolved campaign: the text every worker reads, campaign.yaml of the directory
     text = yaml.safe_dump(found.resolved(), sort_keys=False)
     plan = plan_of(text)
+    if found.path is not None and _same_file(found.path, Path(directory) / "campaign.yaml"):
+        approve(plan.variants(), trust, f"the campaign folder {directory}")
     if scheduler is not None or scheduler_file is not None:
         connect(scheduler, scheduler_file).close()     # reachable, before the directory is written
     store = Store(directory)
     done = store.open(found, plan, resume)
+    for line in store.set_aside:
+        log(line)
     todo = [k for k in range(found.spec.runs) if k not in done]
     if todo:
         counts = [0, 0]
@@ -225,7 +314,7 @@ def _in_process(text, todo, spec, finished, log, started) -> None:
 
 def _on_dask(text, todo, spec, finished, log, started, workers, scheduler, scheduler_file) -> None:
     import dask
-    from distributed import Client, as_completed
+    from distributed import Client
     token = hashlib.sha256(text.encode()).hexdigest()[:12]
     with dask.config.set({"distributed.scheduler.allowed-failures": spec.retries}):
         if scheduler is not None or scheduler_file is not None:
@@ -238,7 +327,7 @@ def _on_dask(text, todo, spec, finished, log, started, workers, scheduler, sched
             client = Client(cluster)
         try:
             start = time.perf_counter()
-            addresses = list(client.scheduler_info()["workers"])
+            addresses = _workers(client, log)
             warming = [client.submit(warm, text, WORKER_WARM_S, key=f"rocketsim-warm-{token}-{n}",
                                      workers=[address], allow_other_workers=False, pure=False)
                        for n, address in enumerate(addresses)]
@@ -246,24 +335,82 @@ def _on_dask(text, todo, spec, finished, log, started, workers, scheduler, sched
             log(f"warm-up: {len(addresses)} workers flew the nominal run's first {WORKER_WARM_S:g} s in "
                 f"{time.perf_counter() - start:.2f} s (each {min(costs):.2f} .. {max(costs):.2f} s)")
             started()
-            futures = {client.submit(fly_case, text, k, _keep(spec.telemetry, k), spec.timeout,
-                                     key=f"rocketsim-run-{token}-{k}", retries=spec.retries,
-                                     priority=-k, pure=False): k for k in todo}
-            try:
-                for future in as_completed(futures):
-                    k = futures[future]
-                    try:
-                        row, telemetry = future.result()
-                    except Exception as error:      # noqa: BLE001 - lost too often: a row
-                        row, telemetry = _lost(k, error), None
-                    finished(row, telemetry)
-                    future.release()
-            finally:
-                client.cancel(list(futures), force=True)
+            _fly_all(client, text, token, todo, spec, finished, log)
         finally:
             client.close()
             if cluster is not None:
                 cluster.close()
+
+
+# s a campaign waits with no worker in its cluster (at its start, or after the last one
+# was lost) before it stops, saying so every WORKER_NOTICE_S
+NO_WORKER_S = 120.0
+WORKER_NOTICE_S = 10.0
+
+
+def _workers(client, log) -> list[str]:
+    """The cluster's workers' addresses, waiting (visibly) up to :data:`NO_WORKER_S` for one."""
+    waited = 0.0
+    while True:
+        addresses = list(client.scheduler_info()["workers"])
+        if addresses:
+            return addresses
+        if waited >= NO_WORKER_S:
+            raise InputError(f"the Dask scheduler has no worker: none joined in {NO_WORKER_S:g} s; "
+                             "nothing was flown", field="--scheduler")
+        log(f"waiting for a Dask worker to join the scheduler ({waited:.0f} of {NO_WORKER_S:g} s)")
+        time.sleep(WORKER_NOTICE_S)
+        waited += WORKER_NOTICE_S
+
+
+def _fly_all(client, text, token, todo, spec, finished, log) -> None:
+    """Every run of ``todo`` on the cluster, each row to ``finished`` as it comes. A run
+    whose workers are lost while flying it is flown again up to ``spec.retries``
+    times, whatever the scheduler's own allowance (its ``allowed-failures``, which
+    also counts a task merely queued on a lost worker: a task past it comes back as
+    KilledWorker and is submitted again, counting only its starts); the campaign stops
+    (every finished run saved) after :data:`NO_WORKER_S` without a worker."""
+    from distributed import wait
+    from distributed.scheduler import KilledWorker
+
+    def submit(k: int, lost: int):
+        return client.submit(fly_case, text, k, _keep(spec.telemetry, k), spec.timeout, spec.retries, lost,
+                             key=f"rocketsim-run-{token}-{k}-{lost}", priority=-k, pure=False)
+
+    pending = {submit(k, 0): (k, 0) for k in todo}
+    idle = 0.0
+    try:
+        while pending:
+            try:
+                done = wait(list(pending), timeout=WORKER_NOTICE_S, return_when="FIRST_COMPLETED").done
+            except TimeoutError:
+                done = ()
+            if not done:
+                idle = idle + WORKER_NOTICE_S if not client.scheduler_info()["workers"] else 0.0
+                if idle >= NO_WORKER_S:
+                    raise InputError(f"the Dask cluster has had no worker for {NO_WORKER_S:g} s; every "
+                                     "finished run is saved: --resume flies the rest", field="--scheduler")
+                if idle:
+                    log(f"no Dask worker in the cluster for {idle:.0f} s: waiting up to {NO_WORKER_S:g} s")
+                continue
+            idle = 0.0
+            for future in done:
+                k, lost = pending.pop(future)
+                try:
+                    row, telemetry = future.result()
+                except KilledWorker:      # the scheduler's allowance is spent: count the starts
+                    lost += client.run_on_scheduler(_starts, future.key, 0)
+                    if lost <= spec.retries:
+                        pending[submit(k, lost)] = (k, lost)
+                        continue
+                    row, telemetry = _lost(k, lost, spec.retries), None
+                except Exception as error:      # noqa: BLE001 - a task that cannot run: a row
+                    row, telemetry = _lost(k, lost, spec.retries, error), None
+                finished(row, telemetry)
+                future.release()
+    finally:
+        client.cancel(list(pending), force=True)
+        client.run_on_scheduler(_forget, f"rocketsim-run-{token}-")
 
 
 def connect(scheduler: str | None, scheduler_file: str | Path | None):
@@ -302,19 +449,29 @@ def _local_cluster(workers: int | None):
             signal.signal(signal.SIGINT, previous)
 
 
-def rerun(directory: str | Path, k: int, telemetry: str | Path):
+def _same_file(a: Path, b: Path) -> bool:
+    try:
+        return a.samefile(b)
+    except OSError:
+        return False
+
+
+def rerun(directory: str | Path, k: int, telemetry: str | Path, trust: bool = False):
     """Fly run ``k`` of the campaign in ``directory`` alone into the MCAP file
     ``telemetry``; ``(row, recorded)``: its row, and its row in the results (None if
-    it has none), both as one-row tables with the same columns."""
+    it has none), both as one-row tables with the same columns. The folder may come
+    from someone else: the programs run ``k`` flies run only with ``trust``
+    (:func:`rocketsim.scenario.trust.approve` raises
+    :class:`~rocketsim.scenario.trust.UntrustedProgram` naming them)."""
     needs("campaign", "a campaign's rerun", "pyarrow")
     directory = Path(directory)
     if not (directory / "campaign.yaml").is_file():
         raise InputError(f"{directory} holds no campaign (no campaign.yaml)", field="DIR")
-    import yaml
-    plan = Plan(read_campaign(yaml.safe_load((directory / "campaign.yaml").read_text())))
+    plan = Plan(read_campaign(directory / "campaign.yaml"))
     runs = plan.campaign.spec.runs
     if not 0 <= k < runs:
         raise InputError(f"the campaign has runs 0 .. {runs - 1}, not {k}", field="K")
+    approve(plan.scenario(k), trust, f"the campaign folder {directory}")
     row = _fly(plan, k, Path(telemetry), plan.campaign.spec.timeout)
     results = read_results(directory)
     recorded = results[results["run"] == k]
@@ -350,7 +507,7 @@ def same_row(a, b, ignore=("wall_time_s",)) -> list[str]:
 def campaign(campaign: str | Path | Mapping, directory: str | Path | None = None, *,
              workers: int | None = None, scheduler: str | None = None,
              scheduler_file: str | Path | None = None, resume: bool = False,
-             base_dir: str | Path | None = None, runs: int | None = None):
+             base_dir: str | Path | None = None, runs: int | None = None, trust: bool = False):
     """Fly a Monte Carlo campaign and return its results as a pandas DataFrame (a row
     per run: ``run``, ``status``, ``error``, ``wall_time_s``, ``outcome`` and the
     output columns of :mod:`rocketsim.campaigns.outputs`).
@@ -362,10 +519,11 @@ def campaign(campaign: str | Path | Mapping, directory: str | Path | None = None
     ``scheduler`` / ``scheduler_file``: an existing Dask cluster's; ``resume``: fly the
     runs ``directory`` is missing; ``runs``: that many runs in place of the file's. Every
     run's inputs derive from the campaign's seed and the run's number alone
-    (:mod:`rocketsim.campaigns.sampling`)."""
+    (:mod:`rocketsim.campaigns.sampling`); ``trust``: resuming ``directory`` with its own
+    ``campaign.yaml`` may run its programs (see :func:`run`)."""
     if directory is None:
         with tempfile.TemporaryDirectory(prefix="rocketsim-campaign-") as folder:
             return run(campaign, Path(folder) / "campaign", workers=workers, scheduler=scheduler,
                        scheduler_file=scheduler_file, base_dir=base_dir, runs=runs)
     return run(campaign, directory, workers=workers, scheduler=scheduler, scheduler_file=scheduler_file,
-               resume=resume, base_dir=base_dir, runs=runs)
+               resume=resume, base_dir=base_dir, runs=runs, trust=trust)

@@ -52,7 +52,7 @@ from pathlib import Path
 
 import numpy as np
 
-from rocketsim.campaigns import landing, statistics
+from rocketsim.campaigns import insertion, landing, statistics
 from rocketsim.campaigns.outputs import BODY_SECTIONS
 from rocketsim.errors import InputError
 from rocketsim.extras import needs
@@ -223,6 +223,7 @@ def report(directory, plot_dir=None) -> Report:
               "landing": landing_table, "sensitivities": sensitivities}
     text = _text(meta, counts, results, status, stats_table, probabilities, dispersions, elsewhere,
                  target, sensitivities, main, ranked, unranked, headline)
+    text += "\n".join(["", *insertion.report_lines(meta.get("insertion"), results, ok)])
     parts = len(list((directory / "results").glob("part-*.parquet")))
     if parts:       # rows the engine has not yet gathered into results.parquet
         text += (f"\nnote: {parts} part files in {directory / 'results'} are not yet in results.parquet; "

@@ -20,6 +20,7 @@ errors (file, line, column, field; the nearest name of a misspelt field)::
     correlations:
       - {names: [thrust, isp], correlation: [[1, 0.6], [0.6, 1]]}
     outputs: [bodies.booster.final.surface_speed_m_s]     # extra summary values, by path
+    insertion: {periapsis: 2 km, apoapsis: 2 km, inclination: 0.02 deg}   # the orbit reached vs the target
     telemetry: failed                # none | failed | all | [3, 17]: runs kept as MCAP
     timeout: 10 min                  # a run's wall time before it is stopped
     retries: 2                       # a run re-flown after its worker was lost
@@ -48,6 +49,7 @@ from typing import Annotated, Any, Literal, Mapping, Optional, Union
 
 from pydantic import BaseModel, Field, field_validator, model_validator
 
+from rocketsim.campaigns.insertion import InsertionTolerance
 from rocketsim.errors import InputError
 from rocketsim.scenario.validation import validate
 from rocketsim.scenario.units import STRICT, Duration
@@ -189,6 +191,9 @@ class CampaignSpec(_Spec):
     dispersions: dict[str, Dispersion] = Field(default_factory=dict)
     correlations: list[Correlation] = Field(default_factory=list)
     outputs: list[str] = Field(default_factory=list, description="extra summary values, by path")
+    insertion: Optional[InsertionTolerance] = Field(
+        None, description="measure each run's insertion against the mission's target orbit, with these "
+        "tolerances (rocketsim.campaigns.insertion)")
     telemetry: Retention = "none"
     timeout: Optional[Annotated[Duration, Field(gt=0)]] = Field(
         None, description="wall time a run may take before it is stopped (status timeout)")

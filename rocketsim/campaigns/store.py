@@ -3,7 +3,8 @@
 ::
 
     DIR/campaign.yaml      the campaign, its scenario an absolute path
-    DIR/meta.json          name, seed, runs, scenario, dispersions, target, outputs, version
+    DIR/meta.json          name, seed, runs, scenario, dispersions, target, outputs, version,
+                           insertion (tolerances)
     DIR/inputs.parquet     every run's inputs, written before anything flies
     DIR/results.parquet    a row per finished run (ok, error or timeout), sorted by run
     DIR/results/part-*.parquet   rows not yet consolidated into results.parquet
@@ -31,6 +32,7 @@ from pathlib import Path
 import numpy as np
 
 from rocketsim.errors import InputError
+from rocketsim.scenario.yaml_source import read_yaml
 
 FLUSH_S = 1.0           # s between part files (rows waiting)
 CONSOLIDATE_S = 10.0    # s between rewrites of results.parquet
@@ -79,12 +81,46 @@ def _write(table, path: Path) -> None:
 
 def read_results(directory: str | Path):
     """The results of a campaign directory: ``results.parquet`` and any part files not yet
-    consolidated into it (after a crash), as one table (:func:`frame`)."""
+    consolidated into it (after a crash), as one table (:func:`frame`); :class:`InputError`
+    naming a file that is not such a table (:func:`_rows`)."""
+    return frame([_rows(path) for path in _result_files(Path(directory))])
+
+
+def _result_files(directory: Path) -> list[Path]:
+    whole = directory / "results.parquet"
+    return ([whole] if whole.exists() else []) + sorted((directory / "results").glob("part-*.parquet"))
+
+
+def _rows(path: Path):
+    """The rows of the results file ``path``; :class:`InputError` naming it when it is not
+    a Parquet table with whole ``run`` numbers and a ``status``."""
     import pandas as pd
-    directory = Path(directory)
-    tables = [pd.read_parquet(directory / "results.parquet")] if (directory / "results.parquet").is_file() else []
-    tables += [pd.read_parquet(part) for part in sorted((directory / "results").glob("part-*.parquet"))]
-    return frame(tables)
+    try:
+        table = pd.read_parquet(path)
+    except Exception as error:          # noqa: BLE001 - pyarrow's errors have no common base
+        raise InputError(f"not a readable Parquet file ({type(error).__name__}: {str(error)[:160]})",
+                         file=path) from None
+    for column in ("run", "status"):
+        if column not in table.columns:
+            raise InputError("missing column", file=path, field=column)
+    if not pd.api.types.is_integer_dtype(table["run"].dtype):
+        raise InputError(f"expected whole run numbers, not {table['run'].dtype}", file=path, field="run")
+    return table
+
+
+def set_aside_damaged(directory: Path) -> list[str]:
+    """Rename each results file of ``directory`` that :func:`_rows` refuses to
+    ``<name>.damaged`` (kept, not read again: its runs are flown again); what was done, a
+    line each."""
+    said = []
+    for path in _result_files(directory):
+        try:
+            _rows(path)
+        except InputError as error:
+            aside = path.with_name(path.name + ".damaged")
+            os.replace(path, aside)
+            said.append(f"{error}: set aside as {aside.name}, its runs are flown again")
+    return said
 
 
 class Store:
@@ -97,6 +133,7 @@ class Store:
         self._waiting: list[dict] = []
         self._flushed = self._consolidated = time.monotonic()
         self._count = 0
+        self.set_aside: list[str] = []      # the damaged results files a resume set aside
 
     # --- starting ----------------------------------------------------------------
 
@@ -104,24 +141,25 @@ class Store:
         """Start the campaign here (a new or empty directory) or, with ``resume``, go on
         with the same campaign; the runs already finished."""
         import yaml
-        from rocketsim.version import __version__
         resolved = campaign.resolved()
         held = self.dir / "campaign.yaml"
         if held.is_file():
             if not resume:
                 raise InputError(f"{self.dir} already holds a campaign: add --resume to fly its missing "
                                  "runs, or write to another directory", field="--output")
-            before = yaml.safe_load(held.read_text())
+            before = read_yaml(held).data
             now = json.loads(json.dumps(resolved))
-            changed = sorted(k for k in set(before) | set(now) if before.get(k) != now.get(k))
+            changed = (sorted(k for k in set(before) | set(now) if before.get(k) != now.get(k))
+                       if isinstance(before, dict) else ["everything: it is not a mapping"])
             if changed == ["runs"] and now["runs"] > before["runs"] and now["sampling"] != "lhs":
-                self._grow(campaign, plan, now)     # the same runs, and more of them
+                self._grow(plan, campaign, now)     # the same runs, and more of them
             elif changed:
                 why = (f"it has {before['runs']} runs; --runs may only add to a campaign sampled at random "
                        "or on a Sobol design" if changed == ["runs"] else
                        "resume it with its own file, " + str(held))
                 raise InputError(f"{self.dir} holds another campaign (its campaign.yaml differs in "
                                  f"{', '.join(changed)}): {why}", field="--resume")
+            self.set_aside = set_aside_damaged(self.dir) + self._rewrite_damaged_plan(campaign, plan)
             self.consolidate()
             return set(read_results(self.dir)["run"].tolist())
         if resume:
@@ -133,30 +171,58 @@ class Store:
             self.parts.mkdir(exist_ok=True)
         except OSError as error:
             raise InputError(f"cannot create {self.dir}: {error.strerror or error}", field="--output") from None
-        spec = campaign.spec
-        meta = {"name": spec.name, "seed": spec.seed, "runs": spec.runs, "scenario": str(campaign.scenario),
-                "dispersions": [{"name": name, **given.model_dump(mode="json", exclude_none=True)}
-                                for name, given in spec.dispersions.items()],
-                "target": plan.target(), "outputs": list(spec.outputs), "version": __version__}
-        _write(plan.inputs_table(), self.dir / "inputs.parquet")
-        (self.dir / "meta.json").write_text(json.dumps(meta, indent=1) + "\n")
+        self._write_plan(campaign, plan, ("inputs.parquet", "meta.json"))
         # the campaign file last: a directory holding it holds the rest
         (self.dir / ".campaign.yaml.partial").write_text(yaml.safe_dump(json.loads(json.dumps(resolved)),
                                                                         sort_keys=False))
         os.replace(self.dir / ".campaign.yaml.partial", held)
         return set()
 
-    def _grow(self, campaign, plan, resolved: dict) -> None:
+    def _grow(self, plan, campaign, resolved: dict) -> None:
         """Rewrite the directory's campaign, meta.json and inputs for ``campaign``'s larger
         number of runs (the inputs of the runs already there are unchanged: random and
         Sobol draws of run k depend on the seed and k alone)."""
         import yaml
-        meta = json.loads((self.dir / "meta.json").read_text())
-        meta["runs"] = campaign.spec.runs
-        _write(plan.inputs_table(), self.dir / "inputs.parquet")
-        (self.dir / "meta.json").write_text(json.dumps(meta, indent=1) + "\n")
+        self._write_plan(campaign, plan, ("inputs.parquet", "meta.json"))
         (self.dir / ".campaign.yaml.partial").write_text(yaml.safe_dump(resolved, sort_keys=False))
         os.replace(self.dir / ".campaign.yaml.partial", self.dir / "campaign.yaml")
+
+    def _write_plan(self, campaign, plan, names) -> None:
+        """Write the files ``names`` (``inputs.parquet``, ``meta.json``) that the campaign and
+        its plan determine."""
+        from rocketsim.version import __version__
+        if "inputs.parquet" in names:
+            _write(plan.inputs_table(), self.dir / "inputs.parquet")
+        if "meta.json" in names:
+            spec = campaign.spec
+            meta = {"name": spec.name, "seed": spec.seed, "runs": spec.runs, "scenario": str(campaign.scenario),
+                    "dispersions": [{"name": name, **given.model_dump(mode="json", exclude_none=True)}
+                                    for name, given in spec.dispersions.items()],
+                    "target": plan.target(), "outputs": list(spec.outputs), "version": __version__,
+                    "insertion": None if spec.insertion is None else {
+                        "periapsis_m": spec.insertion.periapsis, "apoapsis_m": spec.insertion.apoapsis,
+                        "inclination_deg": math.degrees(spec.insertion.inclination)}}
+            (self.dir / "meta.json").write_text(json.dumps(meta, indent=1) + "\n")
+
+    def _rewrite_damaged_plan(self, campaign, plan) -> list[str]:
+        """On resume: ``inputs.parquet`` or ``meta.json`` missing or unreadable (the campaign
+        determines both) set aside as ``<name>.damaged`` and written again; a line each."""
+        import pandas as pd
+        said = []
+        for name, read in (("inputs.parquet", pd.read_parquet), ("meta.json", lambda p: json.loads(p.read_text()))):
+            path = self.dir / name
+            try:
+                if not isinstance(read(path), (pd.DataFrame, dict)):
+                    raise ValueError("not a table or a mapping")
+                continue
+            except FileNotFoundError:
+                said.append(f"{path}: missing, written again from the campaign")
+            except Exception as error:      # noqa: BLE001 - pyarrow's and json's errors alike
+                os.replace(path, path.with_name(name + ".damaged"))
+                said.append(f"{path}: unreadable ({type(error).__name__}), set aside as {name}.damaged "
+                            "and written again from the campaign")
+            self._write_plan(campaign, plan, (name,))
+        return said
 
     # --- rows -------------------------------------------------------------------
 

@@ -11,9 +11,10 @@ a vehicle waiting on one is flown many steps per call instead of one (see
 :mod:`rocketsim.stepping.runs`); the test gives the same boolean at the same step as
 the reading's, from the same operations on the same numbers.
 
-Readings (:data:`READINGS`), of the true state about Earth (a program
-with sensor errors, or one flying about another body, has its condition read
-in Python every step, as a lambda's):
+Readings (:data:`READINGS`), of the navigation estimate about Earth (the
+truth, or with the sensors' errors: :func:`holds` reads the same estimate; a
+program flying about another body has its condition read in Python every
+step, as a lambda's):
 
 * ``altitude``: height above the WGS84 ellipsoid, m (:attr:`FlightComputer.altitude`);
 * ``vertical_speed``: rate of climb relative to the ground, m/s
@@ -41,6 +42,8 @@ import math
 
 import numpy as np
 
+from rocketsim.flight.navigation import estimate
+from rocketsim.flight.sensors import E_GAUGES, gauged
 from rocketsim.jit import njit
 from rocketsim.frames.local import where_and_how_fast
 from rocketsim.frames.quaternion import body_x_components
@@ -136,16 +139,32 @@ def _compared(fc, read, row: tuple, vehicle) -> Condition:
 
 
 @njit
-def holds(code, t, y, p):
+def holds(code, t, y, p, errors=None, j=0, gauges=0):
+    """:func:`holds_on`, of the truth itself without ``errors``."""
+    if errors is None:
+        return holds_on(code, t, y, p, np.zeros((0, 0, 3)), 0, 0)
+    return holds_on(code, t, y, p, errors, j, gauges)
+
+
+@njit
+def holds_on(code, t, y, p, errors, j, gauges):
     """The truth of the compiled condition ``code`` (rows ``(op, reading, value, a, b,
     c)``, see the module) on the state ``y`` at mission time ``t`` (s) of a body with
     parameters ``p``: the readings as :class:`~rocketsim.flight.readings.StateView`
     computes them (:func:`~rocketsim.frames.local.where_and_how_fast`; the vertical
     speed the dot product of the surface velocity with the local up), a stage's
     propellant as the sum of its tanks' slots, the time ``t``, the nose's dot product
-    (:func:`nose_dot`)."""
-    _, _, height, enu, surface = where_and_how_fast(y[R:R + 3], y[V:V + 3], t, p[P_SPIN], p[P_RADIUS],
-                                                    p[P_POLAR_RADIUS])
+    (:func:`nose_dot`). With the sensors' ``errors`` (:meth:`rocketsim.flight.sensors.Sensors.run_errors`,
+    none: the truth) the readings are those of the navigation estimate of their row
+    ``j`` (:func:`rocketsim.flight.navigation.estimate`) and each tank's propellant its
+    gauge's (:func:`~rocketsim.flight.sensors.gauged`; the column of the tank at state
+    slot ``s`` is ``E_GAUGES + s - gauges``), as the flight computer reads them."""
+    measuring = errors.shape[0] > 0
+    if measuring:
+        r, v, q, _ = estimate(y, errors, j)
+    else:
+        r, v, q = y[R:R + 3], y[V:V + 3], y[Q:Q + 4]
+    _, _, height, enu, surface = where_and_how_fast(r, v, t, p[P_SPIN], p[P_RADIUS], p[P_POLAR_RADIUS])
     climb = math.nan
     stack = np.zeros(code.shape[0], dtype=np.bool_)
     top = 0
@@ -160,11 +179,11 @@ def holds(code, t, y, p):
         elif code[row, 1] == 2.0:
             reading = 0.0           # the order of Python's sum over the tanks
             for k in range(int(code[row, 3]), int(code[row, 3]) + int(code[row, 4])):
-                reading += y[k]
+                reading += gauged(y[k], errors, j, E_GAUGES + k - gauges) if measuring else y[k]
         elif code[row, 1] == 3.0:
             reading = t
         elif code[row, 1] == 4.0:
-            reading = -nose_dot(y[Q:Q + 4], code[row, 3], code[row, 4], code[row, 5])
+            reading = -nose_dot(q, code[row, 3], code[row, 4], code[row, 5])
         else:
             if math.isnan(climb):
                 climb = surface @ enu[2]

@@ -422,11 +422,11 @@ class FlightComputer:
         """Run the autopilot for this step (the world calls it once per step).
 
         With ``fold`` (the caller's compiled step can run the autopilot's step first)
-        and nothing of it left to Python here (the navigation estimate is the truth,
-        about Earth, in the air the vehicle flies through, the RCS off, and any estimate
-        read earlier in this step still the truth's current view: not after a staging
-        within the step, where it steers on the estimate read before it), returns what
-        that step reads instead, ``(command code, fins)``
+        and nothing of it left to Python here (about Earth, in the air the vehicle flies
+        through, the RCS off, and any estimate read earlier in this step made from the
+        truth's current view: not after a staging within the step, where it steers on the
+        estimate read before it; the compiled step makes the same estimate, the truth or
+        with the sensors' errors), returns what that step reads instead, ``(command code, fins)``
         (:meth:`rocketsim.sim.vehicle_checks.VehicleChecks.advance`: the same compiled
         step, one call fewer); else runs it and returns None."""
         command = self._command
@@ -448,9 +448,9 @@ class FlightComputer:
         body = self._craft
         if command is None or body.vehicle is None:
             return None
-        nav = self._nav.current     # None, an earlier step's, or this step's (the truth's view when perfect)
-        if not self._rcs and body.central == "earth" and (body.sensors is None or body.sensors.perfect) \
-                and (nav is None or nav.t != body.t or body.is_truth(nav)) and body.flies_in_days_air():
+        nav = self._nav.current     # None, an earlier step's, or this step's
+        if not self._rcs and body.central == "earth" \
+                and (nav is None or nav.t != body.t or body.is_truth(self._nav.source)) and body.flies_in_days_air():
             return command.code, self._fins
         return None
 
@@ -633,7 +633,7 @@ class FlightComputer:
 
     @property
     def engines(self) -> list[dict]:
-        """Each engine now: name, on, spool, throttle, gimbal_rad, thrust_N,
+        """Each engine now: name, on, spool, throttle, throttle_range, gimbal_rad, thrust_N,
         mass_flow_kg_s, ignitions_left, separated (flow separation)."""
         body = self._craft
         return self._propulsion().states(body.y, self._craft.time, body.truth().air[1])

@@ -1,25 +1,19 @@
-"""Compiled guidance predictors a flight program can call at every guidance update.
+"""A compiled guidance predictor a flight program can call at every guidance update.
 
 A program's guidance predicts where its vehicle is going many times a
 second; in Python a prediction of a few hundred integration steps costs
-milliseconds, compiled it costs tens of microseconds. Two predictors, each a
+milliseconds, compiled it costs tens of microseconds. The predictor is a
 guidance model (simple on purpose: the closed loop re-solves from the
 navigation state at every update and absorbs what the model leaves out):
 
-* **Burn to orbit** (:func:`linear_tangent_burn`, :func:`solve_linear_tangent`):
-  a point mass in the orbit plane under inverse-square gravity and a thrust
-  of constant magnitude and mass flow whose pitch above the local horizontal
-  follows the linear-tangent law ``tan(pitch) = a + b t``; the burn ends at
-  circular speed or when the propellant runs out. Integrated by the midpoint
-  (RK2) rule in steps of ``step`` seconds. The solver finds ``a, b`` that end
-  the burn at a target radius with no radial speed (the upper stage's
-  insertion in ``scenarios/programs/orbit_ascent.py``).
 * **Falling stage** (:func:`descent_point`): an Earth-fixed state integrated
   to the WGS84 ellipsoid under point-mass + J2 gravity, the Coriolis and
   centrifugal terms of the Earth's rotation, drag on an exponential air at a
   ballistic coefficient ``m / (C_D A)``, and optionally a landing burn flown
   by a stated rule (the booster's return in
   ``scenarios/programs/booster_return.py``).
+
+(The upper stage's insertion guidance is :mod:`rocketsim.guidance.ascent`.)
 
 Units SI (m, s, kg, N, rad); frames as each function states. The kernels are
 plain numba functions: call them with floats.
@@ -35,83 +29,10 @@ from rocketsim.constants import (EARTH_J2, EARTH_MU, EARTH_OMEGA, EARTH_RADIUS_E
                                  EARTH_RADIUS_POLAR)
 from rocketsim.vehicle.contact import point_height
 
-# the insertion solver: residual scales (a 1 km miss weighs as much as 10 m/s of radial
-# speed), finite-difference steps of the law's coefficients, and the largest Newton
-# step of each (a poor first guess cannot throw the law far off in one pass)
-MISS_SCALE = 1e3            # m
-RADIAL_SPEED_SCALE = 10.0   # m/s
-DA, DB = 1e-3, 1e-5         # -, 1/s
-MAX_DA, MAX_DB = 0.5, 0.01  # -, 1/s
-TAN_PITCH_RANGE = (-1.0, 2.0)       # the solved tan(pitch) at the start: -45 deg to 63 deg
-
 # the falling stage: the steps of its prediction
 DESCENT_STEPS = 4000        # at most this many steps (the point reached is returned)
 FINE_HEIGHT = 5000.0        # m: below this height the step is FINE_STEP
 FINE_STEP = 0.25            # s
-
-
-@njit
-def _planar_rates(r, vr, vh, acceleration, tangent, mu):
-    """(dr/dt, dvr/dt, dvh/dt) in the orbit plane (m/s, m/s^2) under a thrust
-    ``acceleration`` (m/s^2) at pitch ``atan(tangent)`` above the local horizontal,
-    about a point mass ``mu`` (m^3/s^2)."""
-    c = 1.0 / math.sqrt(1.0 + tangent * tangent)
-    return (vr, acceleration * tangent * c - mu / (r * r) + vh * vh / r,
-            acceleration * c - vr * vh / r)
-
-
-@njit
-def linear_tangent_burn(r, vr, vh, mass, thrust, flow, burn_time, a, b, mu, step):
-    """The end of a planar burn flown on ``tan(pitch) = a + b t`` (``t`` s from now).
-
-    From radius ``r`` (m), radial and horizontal inertial speeds ``vr``, ``vh``
-    (m/s) and ``mass`` (kg), with ``thrust`` (N) and mass ``flow`` (kg/s)
-    constant, for ``burn_time`` s (the propellant left over the flow) or until
-    the horizontal speed reaches circular speed (``vh^2 r >= mu``), whichever
-    comes first; midpoint steps of ``step`` s about a point mass ``mu``
-    (m^3/s^2). Returns ``(r, vr, vh, mass, t)`` at the end."""
-    t = 0.0
-    m = mass
-    while t < burn_time and vh * vh * r < mu:
-        h = min(step, burn_time - t)
-        k1r, k1vr, k1vh = _planar_rates(r, vr, vh, thrust / m, a + b * t, mu)
-        k2r, k2vr, k2vh = _planar_rates(r + 0.5 * h * k1r, vr + 0.5 * h * k1vr, vh + 0.5 * h * k1vh,
-                                        thrust / (m - 0.5 * h * flow), a + b * (t + 0.5 * h), mu)
-        r, vr, vh, m = r + h * k2r, vr + h * k2vr, vh + h * k2vh, m - h * flow
-        t += h
-    return r, vr, vh, m, t
-
-
-@njit
-def _burn_miss(r, vr, vh, mass, thrust, flow, burn_time, radius, a, b, mu, step):
-    """(radius miss / MISS_SCALE, radial speed / RADIAL_SPEED_SCALE) at the burn's end."""
-    r1, vr1, _, _, _ = linear_tangent_burn(r, vr, vh, mass, thrust, flow, burn_time, a, b, mu, step)
-    return (r1 - radius) / MISS_SCALE, vr1 / RADIAL_SPEED_SCALE
-
-
-@njit
-def solve_linear_tangent(r, vr, vh, mass, thrust, flow, burn_time, radius, a, b,
-                         mu=EARTH_MU, step=2.0, passes=2):
-    """Coefficients ``(a, b)`` of ``tan(pitch) = a + b t`` that end the burn of
-    :func:`linear_tangent_burn` at ``radius`` (m from the centre) with no radial speed.
-
-    ``passes`` Newton passes from the guess ``a``, ``b`` (warm-start with the last
-    solution), the Jacobian by forward differences (DA, DB), each pass's change
-    limited to MAX_DA, MAX_DB; ``a`` is returned within TAN_PITCH_RANGE. A burn that
-    cannot reach the radius returns the law that comes closest along the Newton
-    path, not an error: the caller re-solves as the state evolves."""
-    for _ in range(passes):
-        f0r, f0v = _burn_miss(r, vr, vh, mass, thrust, flow, burn_time, radius, a, b, mu, step)
-        far, fav = _burn_miss(r, vr, vh, mass, thrust, flow, burn_time, radius, a + DA, b, mu, step)
-        fbr, fbv = _burn_miss(r, vr, vh, mass, thrust, flow, burn_time, radius, a, b + DB, mu, step)
-        j11, j21 = (far - f0r) / DA, (fav - f0v) / DA
-        j12, j22 = (fbr - f0r) / DB, (fbv - f0v) / DB
-        det = j11 * j22 - j12 * j21
-        if det == 0.0:
-            break
-        a += max(-MAX_DA, min(MAX_DA, (-f0r * j22 + f0v * j12) / det))
-        b += max(-MAX_DB, min(MAX_DB, (-j11 * f0v + j21 * f0r) / det))
-    return max(TAN_PITCH_RANGE[0], min(TAN_PITCH_RANGE[1], a)), b
 
 
 @njit
@@ -184,10 +105,8 @@ def descent_point(x, y, z, vx, vy, vz, ballistic, thrust_accel=0.0, step=2.0, de
 
 
 def warm_up() -> None:
-    """Load (or compile) the kernels now: a program calls this at load time, so the
-    first guidance update inside a step does not wait for them."""
-    solve_linear_tangent(EARTH_RADIUS_EQ + 1e5, 0.0, 7e3, 1e4, 1e5, 30.0, 100.0,
-                         EARTH_RADIUS_EQ + 2e5, 0.5, 0.0, EARTH_MU, 2.0, 1)
+    """Load (or compile) the kernel now: a program calls this at load time, so the
+    first guidance update inside a step does not wait for it."""
     descent_point(EARTH_RADIUS_EQ + 1e4, 0.0, 0.0, -100.0, 0.0, 0.0, 1800.0, 10.0, 2.0,
                   1.225, 7200.0, 8e3, 0.5, 0.5, EARTH_J2)
 

@@ -7,17 +7,53 @@ seeded stream), and a :class:`~rocketsim.flight.readings.StateView` of that
 state gives every derived reading, so the altitude, the orbit, the directions
 and the air data inherit them. Scalar readings measured by their own sensors
 (air data, radar, gauges) get their error once per step in :meth:`measured`.
+
+The estimate itself is one compiled call (:func:`estimate`), the same the
+compiled runs make where the autopilot steers on it and a compiled condition
+reads it (:mod:`rocketsim.stepping.runs`): each axis its measured value, the
+attitude the truth's turned by the measured small rotation.
 """
 
 from __future__ import annotations
 
+import math
 from typing import Callable
 
 import numpy as np
 
+from rocketsim.jit import njit
 from rocketsim.flight.craft import Craft
 from rocketsim.flight.readings import StateView
+from rocketsim.flight.sensors import E_ATTITUDE, E_POSITION, E_RATES, E_VELOCITY, measured
 from rocketsim.frames.quaternion import quat_from_axis_angle, quat_multiply
+from rocketsim.layout import Q, R, V, W
+
+
+@njit
+def estimate(y, errors, j):
+    """The navigation estimate ``(r, v, q, w)`` (position m, velocity m/s, ECI; attitude
+    quaternion body -> ECI; body rates rad/s) of the true state ``y`` with the errors of
+    row ``j`` of ``errors`` (:meth:`rocketsim.flight.sensors.Sensors.run_errors`): each
+    axis of the position, velocity and rates measured (:func:`~rocketsim.flight.sensors.measured`),
+    the attitude the truth's turned by the rotation vector of the three measured
+    attitude errors (a tilt of zero leaves it), its angle the norm of ``np.linalg.norm``
+    (the square root of the same BLAS dot product)."""
+    r, v, w, tilt = np.empty(3), np.empty(3), np.empty(3), np.empty(3)
+    for i in range(3):
+        r[i] = measured(y[R + i], errors, j, E_POSITION + i)
+        v[i] = measured(y[V + i], errors, j, E_VELOCITY + i)
+        tilt[i] = measured(0.0, errors, j, E_ATTITUDE + i)
+        w[i] = measured(y[W + i], errors, j, E_RATES + i)
+    angle = math.sqrt(tilt @ tilt)
+    if angle == 0.0:
+        return r, v, y[Q:Q + 4].copy(), w
+    return r, v, quat_multiply(y[Q:Q + 4], quat_from_axis_angle(tilt / angle, angle)), w
+
+
+def tanks(vehicle) -> tuple[str, ...]:
+    """The tanks whose propellant gauges a run's errors carry (:meth:`Sensors.run_errors`):
+    a staged vehicle's, in its order; none for a rigid body."""
+    return () if vehicle is None else tuple(vehicle.tank_names)
 
 
 class Navigation:
@@ -27,6 +63,7 @@ class Navigation:
     def __init__(self, craft: Craft):
         self.craft = craft
         self.current: StateView | None = None     # the latest step's estimate
+        self.source: StateView | None = None      # the truth's view it was made from
         self.readings: dict[str, object] = {}
 
     def view(self) -> StateView:
@@ -35,21 +72,16 @@ class Navigation:
         t = craft.t
         if self.current is not None and self.current.t == t:
             return self.current
-        truth = craft.truth()
+        truth = self.source = craft.truth()
         sensors = craft.sensors
         self.readings = {}
         if sensors is None or sensors.perfect:
             self.current = truth
             return truth
         k = craft.step_index
-        tilt = sensors.vector("attitude", (0.0, 0.0, 0.0), k)
-        angle = float(np.linalg.norm(tilt))
-        q = truth.attitude if angle == 0.0 else quat_multiply(
-            truth.attitude, quat_from_axis_angle(tilt / angle, angle))
-        self.current = StateView(t, sensors.vector("position", truth.position, k),
-                                 sensors.vector("velocity", truth.velocity, k), q,
-                                 sensors.vector("rates", truth.body_rates, k), truth._atmosphere, craft.mu,
-                                 craft.p)
+        errors, first = sensors.run_errors(k, tanks(craft.vehicle))
+        r, v, q, w = estimate(craft.y, errors, k - first)
+        self.current = StateView(t, r, v, q, w, truth._atmosphere, craft.mu, craft.p)
         return self.current
 
     def measured(self, name: str, value: Callable[[], float]) -> float:

@@ -19,6 +19,13 @@ The scheduling contract (decided here because it shapes the step loop):
   way: an endless loop cannot hang the simulator. Time numba spends
   compiling or loading kernels (a cold cache) does not count, nor does the
   simulator's own first import of a library a call needs (:func:`not_counted`).
+* So is a program that keeps control for more than its wall time in one
+  wake-up (default 10 s, ``program_time_limit``), blocked or busy
+  (:class:`~rocketsim.flight.leash.Leash`: in the main thread a sleep or a
+  lock is interrupted too; in another thread a Python loop is). The CPU
+  budget needs the main thread; the wall-time limit holds in any.
+* A program is a plain function: a generator function, a coroutine function,
+  a class or another callable object is refused when it is loaded.
 
 The program runs in a greenlet in the simulator's own thread, so switching
 is cheap (about a microsecond) and strictly alternating: the run is
@@ -28,6 +35,7 @@ deterministic.
 from __future__ import annotations
 
 import functools
+import inspect
 import signal
 from types import SimpleNamespace
 import threading
@@ -41,6 +49,7 @@ import numba.core.event as ev
 from rocketsim.errors import InputError, signal_behind
 from rocketsim.flight.arguments import truth
 from rocketsim.flight.conditions import Condition
+from rocketsim.flight.leash import Leash, Stop
 from rocketsim.limits import MAX_TEXT_BYTES, read_bounded
 
 # mission time tolerance for "the wake-up time has come" (s): steps are
@@ -49,6 +58,7 @@ WAKE_TOLERANCE = 1e-9
 
 
 DEFAULT_CPU_BUDGET = 1.0   # s of CPU time one step of a program may use
+DEFAULT_TIME_LIMIT = 10.0  # s of wall time one wake-up of a program may take
 
 
 class ProgramError(InputError):
@@ -60,6 +70,10 @@ class ProgramOverBudget(BaseException):
 
     A BaseException, so a program's ``except Exception`` cannot swallow it.
     """
+
+
+class ProgramOverTime(BaseException):
+    """Raised inside a program that kept control past its wall-time limit in one wake-up."""
 
 
 class CpuBudget:
@@ -153,10 +167,27 @@ def not_counted() -> _CompileTime:
 
 def load_program(path: Path, entry: str = "main") -> Callable:
     """Compile and run a program file's top level; return its ``main`` (or the
-    function named ``entry``)."""
+    function named ``entry``), a plain function (:func:`plain_program`)."""
     main = getattr(load_program_module(path), entry, None)
     if not callable(main):
         raise ProgramError(f"the program defines no {entry}(fc) function", file=Path(path))
+    return plain_program(main, path)
+
+
+def plain_program(main: Callable, path: Path) -> Callable:
+    """``main``, refused with a :class:`ProgramError` at its line unless it is a plain
+    function: a generator or coroutine function would run none of its body when called,
+    and a class or callable object is not a program the runner can locate."""
+    code = getattr(main, "__code__", None)
+    line = code.co_firstlineno if code is not None and Path(code.co_filename) == Path(path) else None
+    kind = ("a generator function" if inspect.isgeneratorfunction(main) or inspect.isasyncgenfunction(main)
+            else "a coroutine function (async def)" if inspect.iscoroutinefunction(main)
+            else None if inspect.isfunction(main) or inspect.ismethod(main)
+            else f"a {type(main).__name__} object")
+    if kind is not None:
+        raise ProgramError(f"the program's {getattr(main, '__name__', 'main')} is {kind}, not a plain "
+                           "function: write it as 'def main(fc):' handing control back with fc.step(), "
+                           "fc.sleep() or fc.wait_until()", file=Path(path), line=line)
     return main
 
 
@@ -189,8 +220,8 @@ def load_program_module(path: Path) -> SimpleNamespace:
 @functools.lru_cache(maxsize=64)
 def _compiled(source: str, filename: str):
     """The code object of a program's text (kept by text and file name: each flight of a
-    campaign or a notebook loads its programs again, and compiling the F9 mission's two
-    took 3.9 of its world's 5.2 ms to build; a code object is immutable, and each load
+    campaign or a notebook loads its programs again, and compiling them was most of the
+    cost of building a world; a code object is immutable, and each load
     runs it in a namespace of its own). A syntax error is raised again at every load."""
     return compile(source, filename, "exec")
 
@@ -202,9 +233,9 @@ def _raised_by_program(error: BaseException, path: Path) -> bool:
     raises while the program runs (SIGTERM's: they stop the flight as they would
     without a program)."""
     behind = signal_behind(error)       # raised inside a compiled kernel: a SystemError's cause
-    if isinstance(behind, KeyboardInterrupt):
+    if isinstance(behind, (KeyboardInterrupt, Stop)):
         return False
-    if isinstance(behind, (Exception, SystemExit, ProgramOverBudget)):
+    if isinstance(behind, (Exception, SystemExit, ProgramOverBudget, ProgramOverTime)):
         return True
     frames = traceback.extract_tb(error.__traceback__)
     return bool(frames) and Path(frames[-1].filename) == path
@@ -219,10 +250,15 @@ def _deepest_line(frames, path: Path, line: int | None = None) -> int | None:
 
 
 def _program_error(error: BaseException, path: Path, budget: float = 0.0,
-                   line: int | None = None) -> ProgramError:
+                   line: int | None = None, limit: float = 0.0) -> ProgramError:
     """A :class:`ProgramError` pointing at the deepest line of ``path`` in the traceback
     (else at ``line``)."""
     line = _deepest_line(traceback.extract_tb(error.__traceback__), path, line)
+    if isinstance(signal_behind(error), ProgramOverTime):
+        return ProgramError(f"the program kept control for {limit:g} s of wall time in one wake-up "
+                            "without handing it back (fc.step(), fc.sleep() or fc.wait_until()); is "
+                            "it blocked (a sleep, a lock, a read) or in an endless loop? (raise the "
+                            "limit with 'program_time_limit')", file=path, line=line)
     if isinstance(signal_behind(error), ProgramOverBudget):    # also when it ran out inside a kernel
         return ProgramError(f"the program ran {budget:g} s of CPU time in one step without handing "
                             "back control (fc.step(), fc.sleep() or fc.wait_until()); is it in an "
@@ -238,26 +274,50 @@ def _program_error(error: BaseException, path: Path, budget: float = 0.0,
 class ProgramRunner:
     """Runs one program's ``main(fc)`` step by step in a greenlet."""
 
-    def __init__(self, main: Callable, path: Path, cpu_budget: float = DEFAULT_CPU_BUDGET):
+    def __init__(self, main: Callable, path: Path, cpu_budget: float = DEFAULT_CPU_BUDGET,
+                 time_limit: float = DEFAULT_TIME_LIMIT):
         self.path = Path(path)
         self.cpu_budget = cpu_budget
+        self.time_limit = time_limit
         self._budget = CpuBudget(cpu_budget)
+        self._leash = Leash(time_limit, ProgramOverTime, paused=lambda: _COMPILING.depth > 0)
         self._main = main
         self._greenlet: greenlet.greenlet | None = None
         self._wake_time = 0.0
         self._predicate: Callable[[], bool] | None = None
         self._predicate_line: int | None = None     # the program's line that handed it over
+        self._checked: tuple | None = None          # (t, what due(t) gives: True, False or its error)
         self.finished = False
 
     # --- called by the simulator -------------------------------------------
     def due(self, t: float) -> bool:
-        """Whether the program is to run in the step starting at ``t``."""
+        """Whether the program is to run in the step starting at ``t`` (what :meth:`check`
+        found for ``t``, if it was asked)."""
+        checked, self._checked = self._checked, None
+        if checked is not None and checked[0] == t:
+            if isinstance(checked[1], ProgramError):
+                raise checked[1]
+            return checked[1]
+        return self._due(t)
+
+    def check(self, t: float) -> bool:
+        """:meth:`due` at ``t`` read now, its outcome (True, False or the program's error)
+        kept for the call of :meth:`due` at ``t`` (a condition read ahead of the world's
+        loop, once, as the loop reads it); True unless it is False."""
+        try:
+            outcome = self._due(t)
+        except ProgramError as error:
+            outcome = error
+        self._checked = (t, outcome)
+        return outcome is not False
+
+    def _due(self, t: float) -> bool:
         if self.finished or t + WAKE_TOLERANCE < self._wake_time:
             return False
         if self._predicate is None:
             return True
         try:
-            with self._budget:
+            with self._budget, self._leash:
                 ready = self._predicate()
             ready = truth(ready)
         except BaseException as error:  # noqa: BLE001
@@ -267,7 +327,7 @@ class ProgramRunner:
             code = getattr(self._predicate, "__code__", None)    # the condition's own line, else
             line = (code.co_firstlineno if code is not None and Path(code.co_filename) == self.path
                     else self._predicate_line)                    # that of fc.wait_until's call
-            raise _program_error(error, self.path, self.cpu_budget, line) from None
+            raise _program_error(error, self.path, self.cpu_budget, line, self.time_limit) from None
         if ready:
             self._predicate = None
         return ready
@@ -297,13 +357,13 @@ class ProgramRunner:
         else:
             args = ()
         try:
-            with self._budget:
+            with self._budget, self._leash:
                 self._greenlet.switch(*args)
         except BaseException as error:  # noqa: BLE001
             if not _raised_by_program(error, self.path):
                 raise
             self.finished = True
-            raise _program_error(error, self.path, self.cpu_budget) from None
+            raise _program_error(error, self.path, self.cpu_budget, limit=self.time_limit) from None
         if self._greenlet.dead:
             self.finished = True
 

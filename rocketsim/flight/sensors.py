@@ -47,6 +47,13 @@ BLOCK = 4096            # samples drawn at a time per stream
 
 LEVELS = {"truth": 0.0, "realistic": 1.0, "hard": 3.0}
 
+# the navigation estimate's quantities, three axes each (rocketsim.flight.navigation), and
+# the first column of each in a compiled run's errors (Sensors.run_errors); the tanks'
+# propellant gauges follow them
+ESTIMATE = ("position", "velocity", "attitude", "rates")
+E_POSITION, E_VELOCITY, E_ATTITUDE, E_RATES, E_GAUGES = 0, 3, 6, 9, 12
+NO_ERRORS = np.zeros((0, 0, 3))     # the errors of the truth: none
+
 
 @dataclass(frozen=True)
 class ErrorSpec:
@@ -110,7 +117,10 @@ class ErrorStream:
     """The bias and white noise of one quantity, sample by sample (one per step).
 
     The bias starts from its stationary distribution (``N(0, sigma_b^2)``),
-    so statistics hold from the first step. Levels scale every sigma.
+    so statistics hold from the first step. Levels scale every sigma. Sample
+    ``k`` is column ``k mod BLOCK`` of block ``k // BLOCK`` (:meth:`block`); the
+    two latest blocks drawn are kept, for the readings and for the compiled runs
+    (:meth:`Sensors.run_errors`) alike.
     """
 
     def __init__(self, seed: int, name: str, spec: ErrorSpec, dt: float, level: float):
@@ -122,48 +132,51 @@ class ErrorStream:
         self._drive = self._sigma * math.sqrt(1.0 - self._phi ** 2)
         self._white = spec.white * level
         self._floor = spec.floor * level
-        self._block = 0
-        self._last = 0.0
-        self._rows = np.empty((3, 0))
-        self._next = 0
+        self._drawn = 0             # blocks drawn
+        self._last = 0.0            # the last bias of the last block drawn
+        self._blocks: dict[int, np.ndarray] = {}
+        self.index = 0              # step index of the next sample
 
-    def _refill(self) -> None:
+    def _draw(self) -> None:
         """Draw the next block: biases, white noise, absolute white noise."""
-        sequence = np.random.SeedSequence(entropy=self._seed, spawn_key=(self._key, self._block))
+        b = self._drawn
+        sequence = np.random.SeedSequence(entropy=self._seed, spawn_key=(self._key, b))
         draws = np.random.Generator(np.random.PCG64(sequence)).standard_normal((3, BLOCK))
-        if self._block == 0:
+        if b == 0:
             initial = (self._sigma - self._drive) * draws[0, 0]     # b[0] = sigma_b n[0]
         else:
             initial = self._phi * self._last
         biases = _gauss_markov(self._phi, self._drive, draws[0], initial)
         self._last = biases[-1]
-        self._rows = np.vstack((biases, draws[1] * self._white, draws[2] * self._floor))
-        self._block += 1
-        self._next = 0
+        self._blocks[b] = np.vstack((biases, draws[1] * self._white, draws[2] * self._floor))
+        self._blocks.pop(b - 2, None)
+        self._drawn = b + 1
+
+    def block(self, b: int) -> np.ndarray:
+        """Rows (bias, white, absolute white) of the samples of steps ``b BLOCK`` to
+        ``(b + 1) BLOCK - 1``, shape (3, BLOCK); blocks are drawn in order and the two
+        latest kept (``ValueError`` for one passed over)."""
+        while self._drawn <= b:
+            self._draw()
+        rows = self._blocks.get(b)
+        if rows is None:
+            raise ValueError(f"sensor block {b} was passed over (the latest is {self._drawn - 1})")
+        return rows
 
     def sample(self) -> tuple[float, float, float]:
         """The next ``(bias, white, absolute white)``."""
-        if self._next >= self._rows.shape[1]:
-            self._refill()
-        k = self._next
-        self._next += 1
-        return float(self._rows[0, k]), float(self._rows[1, k]), float(self._rows[2, k])
-
-    @property
-    def index(self) -> int:
-        """Step index of the next sample."""
-        return (self._block - 1) * BLOCK + self._next if self._block else 0
+        return self.at(self.index)
 
     def at(self, k: int) -> tuple[float, float, float]:
         """The error of step ``k`` (steps are read in increasing order; the
-        samples of steps nobody read are drawn and passed over, so step k's
-        error is the same whoever reads when)."""
-        skip = k - self.index
-        if skip < 0:
+        samples of steps nobody read are passed over, so step k's error is the
+        same whoever reads when)."""
+        if k < self.index:
             raise ValueError(f"sensor step {k} was already read (next is {self.index})")
-        if skip:
-            self.series(skip)
-        return self.sample()
+        rows = self.block(k // BLOCK)
+        j = k % BLOCK
+        self.index = k + 1
+        return float(rows[0, j]), float(rows[1, j]), float(rows[2, j])
 
     def series(self, n: int) -> np.ndarray:
         """The next ``n`` samples as rows (bias, white, absolute white), shape (3, n).
@@ -173,11 +186,10 @@ class ErrorStream:
         """
         parts = []
         while n > 0:
-            if self._next >= self._rows.shape[1]:
-                self._refill()
-            take = min(n, self._rows.shape[1] - self._next)
-            parts.append(self._rows[:, self._next:self._next + take])
-            self._next += take
+            j = self.index % BLOCK
+            take = min(n, BLOCK - j)
+            parts.append(self.block(self.index // BLOCK)[:, j:j + take])
+            self.index += take
             n -= take
         return np.hstack(parts)
 
@@ -198,6 +210,7 @@ class Sensors:
         self.level = level
         self._seed, self._body, self._dt, self._scale = seed, body, dt, LEVELS[level]
         self.streams: dict[str, ErrorStream] = {}
+        self._run = None            # ((block, tanks), errors) of run_errors
 
     def stream(self, name: str) -> ErrorStream:
         """The stream of quantity ``name``; ``kind/detail`` names (``propellant/stage/tank``)
@@ -220,3 +233,37 @@ class Sensors:
     def scalar(self, name: str, truth: float, k: int | None = None) -> float:
         """One quantity measured at step ``k``."""
         return self.stream(name).measure(truth, k)
+
+    def run_errors(self, k: int, tanks: tuple[str, ...]) -> tuple[np.ndarray, int]:
+        """``(errors, first)``: the errors of the estimate's quantities and of the tanks'
+        propellant gauges (``propellant/<tank>`` of each name of ``tanks``) at the steps
+        ``first`` to ``first + 2 BLOCK - 1``, ``first`` the start of step ``k``'s block:
+        ``errors[k - first, c]`` is ``(bias, white, absolute white)`` of column ``c``
+        (:data:`E_POSITION`... the axes x, y, z of each of :data:`ESTIMATE`, then from
+        :data:`E_GAUGES` the tanks in order), the numbers :meth:`vector` and
+        :meth:`scalar` read, for compiled code (:func:`measured`, :func:`gauged`); kept
+        until the block or the tanks change. :data:`NO_ERRORS` for the truth."""
+        if self.perfect:
+            return NO_ERRORS, k
+        b = k // BLOCK
+        key = (b, tuple(tanks))
+        if self._run is None or self._run[0] != key:
+            names = [f"{quantity}.{axis}" for quantity in ESTIMATE for axis in "xyz"]
+            names += [f"propellant/{tank}" for tank in tanks]
+            columns = [np.hstack((self.stream(name).block(b), self.stream(name).block(b + 1))) for name in names]
+            self._run = (key, np.ascontiguousarray(np.stack(columns).transpose(2, 0, 1)))
+        return self._run[1], b * BLOCK
+
+
+@njit(inline="always")     # a few operations: typed in its callers, no kernel of its own
+def measured(truth, errors, j, c):
+    """``truth`` with the error of column ``c`` of row ``j`` of a run's errors
+    (:meth:`Sensors.run_errors`), as :meth:`ErrorStream.measure` adds an absolute one."""
+    return truth + errors[j, c, 0] + errors[j, c, 1] + errors[j, c, 2]
+
+
+@njit(inline="always")     # a few operations: typed in its callers, no kernel of its own
+def gauged(truth, errors, j, c):
+    """``truth`` with the relative error of column ``c`` of row ``j`` of a run's errors,
+    as :meth:`ErrorStream.measure` applies one (a propellant gauge's)."""
+    return truth * (1.0 + errors[j, c, 0] + errors[j, c, 1]) + errors[j, c, 2]

@@ -27,8 +27,9 @@ import numpy as np
 
 from rocketsim.jit import njit
 from rocketsim.dynamics.rails import nose_target
-from rocketsim.layout import P_POLAR_RADIUS, P_RADIUS, P_SPIN
+from rocketsim.layout import P_POLAR_RADIUS, P_RADIUS, P_SPIN, Q, R, V, W
 from rocketsim.flight.aero_feedforward import destabilising_moment
+from rocketsim.flight.navigation import estimate
 from rocketsim.flight.readings import air_here
 from rocketsim.frames.local import VERTICAL, where_and_how_fast
 from rocketsim.frames.quaternion import quat_from_matrix, quat_to_matrix
@@ -274,3 +275,23 @@ def steer_step(veh, y, p, t, t_nav, r, v, q, w, ambient_pressure, air_table, cod
         rest[:] = 0.0
     command_gimbals(eng, veh.cmd, firing, t, gy, gz, size)
     return x_cm, rest[0], rest[1], rest[2]
+
+
+@njit(inline="always")     # small: typed in its callers, no kernel of its own
+def steer_on_estimate(veh, y, p, t, errors, j, code, fins):
+    """The autopilot's step (:func:`steer_step`, no RCS) of the staged vehicle ``veh`` with
+    state ``y`` at mission time ``t`` (s), as the world's loop runs it before a step
+    (:meth:`rocketsim.flight.fc.FlightComputer.autopilot`), reading the navigation
+    estimate of row ``j`` of ``errors`` (:meth:`rocketsim.flight.sensors.Sensors.run_errors`;
+    none: the truth) in the vehicle's air (the day's): the truth itself, or
+    :func:`rocketsim.flight.navigation.estimate` with the engines' thrust at the truth's
+    ambient pressure (its air's, at the true height, as the readings' ``air``)."""
+    if errors.shape[0] == 0:
+        steer_step(veh, y, p, t, t, y[R:R + 3], y[V:V + 3], y[Q:Q + 4], y[W:W + 3], math.nan, veh.air, code, fins,
+                   False)
+        return
+    r, v, q, w = estimate(y, errors, j)
+    lat, lon, height, _, _ = where_and_how_fast(y[R:R + 3], y[V:V + 3], t, p[P_SPIN], p[P_RADIUS],
+                                                p[P_POLAR_RADIUS])
+    ambient = air_here(*veh.air, lat, lon, height, t, y[R:R + 3], y[V:V + 3], p[P_SPIN])[1]
+    steer_step(veh, y, p, t, t, r, v, q, w, ambient, veh.air, code, fins, False)

@@ -1,11 +1,18 @@
-"""Guidance a flight program imports: the building blocks of a booster's return and landing.
+"""Guidance a flight program imports: an upper stage's insertion into orbit, and the
+building blocks of a booster's return and landing.
 
 Pure functions and small classes over the numbers a flight computer reads
 (``fc``: the navigation estimate, never the truth, and the day's forecast
-``fc.forecast``); docs/guidance.md explains each algorithm, its parameters and
-when it cannot succeed, and ``scenarios/programs/booster_return.py`` flies them
-together.
+``fc.forecast``); docs/guidance-ascent.md and docs/guidance.md explain each
+algorithm, its parameters and when it cannot succeed;
+``scenarios/programs/orbit_ascent.py`` and ``scenarios/programs/booster_return.py``
+fly them.
 
+* :mod:`~rocketsim.guidance.ascent` -- Powered Explicit Guidance of an upper
+  stage to a target orbit (osculating or Kozai mean elements, node fixed or
+  free), the launch azimuth, and the insertion flown through ``fc``;
+* :mod:`~rocketsim.guidance.apsis` -- the velocity at an apsis of the orbit whose
+  other apsis is given (insertion and circularisation burns);
 * :mod:`~rocketsim.guidance.landing_point` -- where a falling stage comes down,
   through the day's air and wind with the body's own drag and lift, the entry
   and landing burns as planned (compiled);

@@ -163,7 +163,7 @@ def _rates(y, phase, h0, dh, density, pressure, temperature, sound, wind_e, wind
     w = EARTH_OMEGA
     gx, gy, gz = point_mass_j2(y[0], y[1], y[2], EARTH_MU, EARTH_RADIUS_EQ, EARTH_J2)
     out = np.empty(7)
-    out[0:3] = y[3:6]
+    out[0], out[1], out[2] = y[3], y[4], y[5]
     out[3] = gx + 2.0 * w * y[4] + w * w * y[0]
     out[4] = gy - 2.0 * w * y[3] + w * w * y[1]
     out[5] = gz

@@ -27,7 +27,9 @@ need beyond that reaches into numba's internals, here and nowhere else:
    ``typeof_pyval``, the entry point its ``compile`` returns, and the ``_numba_type_``
    attribute by which numba's ``typeof`` types a :class:`~rocketsim.jit.kernel.Kernel`
    as its dispatcher.
-9. **Intrinsics** (:func:`is_intrinsic`): ``numba.core.extending._Intrinsic``, the
+9. **Damaged files read as missing** (:func:`_healed`): wraps the dispatcher's
+   cache file's (``_cache._cache_file``) ``_load_index`` and ``load``.
+10. **Intrinsics** (:func:`is_intrinsic`): ``numba.core.extending._Intrinsic``, the
    class of machine code written with ``@intrinsic``, which has no Python form.
 
 :func:`check` finds each of these as :data:`TESTED` numba has them and raises
@@ -48,6 +50,14 @@ own code, whatever the order of loading; the machine code is otherwise the same,
 the results the same bits. It applies to every function numba compiles in the
 process once rocketsim has loaded numba (a notebook's own ``numba.njit``
 functions included), with the same effect on them.
+
+Why damaged files are read as missing: numba reads a kernel's index and data
+files with ``pickle`` and lets any error of a file cut short (a full disk, a
+killed process, a copy interrupted) or overwritten propagate, so every later
+flight failed with a traceback until the folder was deleted by hand. A file
+that cannot be read is taken as absent, with one line on stderr naming it: the
+kernel is compiled again and its files written anew (a damaged index loses the
+kernel's other signatures, compiled again when next needed).
 
 Why the optimisation level: numba optimises each kernel's module again with every
 kernel it calls linked in, so the big kernels' compiling is mostly LLVM's; at
@@ -130,6 +140,7 @@ def check() -> None:
     _method(caching.FunctionCache, "save_overload", ("self", "sig", "data"))
     _method(caching.FunctionCache, "_index_key", ("self", "sig", "codegen"))
     _method(caching.IndexDataCacheFile, "_load_index", ("self",))
+    _method(caching.IndexDataCacheFile, "load", ("self", "key"))
     for module, name in ((sigutils, "normalize_signature"), (compiler_lock, "global_compiler_lock"),
                          (types, "unliteral"), (errors, "TypingError"), (extending, "_Intrinsic")):
         if not hasattr(module, name):
@@ -184,7 +195,38 @@ def dispatcher(func, options: dict):
         if not hasattr(saved, "save_overload"):
             raise _changed("a caching dispatcher's _cache has no save_overload")
         saved.save_overload = functools.partial(_save_locked, saved.save_overload)
+        files = getattr(saved, "_cache_file", None)
+        if files is None or not hasattr(files, "_load_index") or not hasattr(files, "load"):
+            raise _changed("a caching dispatcher's _cache._cache_file has no _load_index or load")
+        files._load_index = functools.partial(_healed, files._load_index, files._index_path, {})
+        files.load = functools.partial(_healed_load, files.load, files)
     return made
+
+
+_DAMAGED: set[str] = set()      # the damaged cache files found (the first said on stderr)
+
+
+def _healed(read, path: str, missing, *args):
+    """``read(*args)`` of a kernel's cache file at ``path``, or ``missing`` (what numba reads
+    for an absent file) when the file cannot be read, said in one line on stderr."""
+    try:
+        return read(*args)
+    except Exception as error:          # noqa: BLE001 - any error of unpickling a damaged file
+        import sys
+        if not _DAMAGED:
+            print(f"rocketsim: the kernel cache file {path} is damaged ({type(error).__name__}: "
+                  f"{str(error)[:80]}); it and any other damaged one are compiled again",
+                  file=sys.stderr)
+        _DAMAGED.add(path)
+        return missing
+
+
+def _healed_load(load, files, key):
+    """numba's ``load`` of the data file of ``key`` in the cache file ``files``, None (not
+    cached: compiled again and saved over it) when that file cannot be read."""
+    name = files._load_index().get(key)
+    path = os.path.join(files._cache_path, name) if name else files._index_path
+    return _healed(load, path, None, key)
 
 
 def _call_template(dispatcher, args, kws):
@@ -252,9 +294,24 @@ def _save_locked(save, sig, data) -> None:
     then names the other signature's machine code, which every later process loads and
     runs (numba issues 4807, 10128). Under the lock the index read, the number and both
     writes are one step; numba writes each file to a temporary name and renames it, so a
-    process loading meanwhile reads an index and data that belong together."""
-    with cache.locked(_cache_folder()):
-        save(sig, data)
+    process loading meanwhile reads an index and data that belong together.
+
+    A cache folder that cannot be written (read-only, a full disk, no permission) is
+    said once on stderr and the kernel kept in memory, for this process: the flight
+    flies with the kernels it could load and those it compiled."""
+    try:
+        with cache.locked(_cache_folder()):
+            save(sig, data)
+    except OSError as error:
+        if not _UNWRITABLE:
+            import sys
+            print(f"rocketsim: the kernel cache folder {_cache_folder()} cannot be written "
+                  f"({error.strerror or error}); kernels not in it are compiled for this process "
+                  "only", file=sys.stderr)
+        _UNWRITABLE.append(error)
+
+
+_UNWRITABLE: list[OSError] = []     # the errors of saves into a cache folder that cannot be written
 
 
 def numba_types(kernel, args) -> tuple:
@@ -319,4 +376,5 @@ def applied(kernel=None) -> dict[str, bool]:
         found["plain call templates"] = wraps(made.get_call_template, _call_template)
         found["compiled once"] = wraps(made.compile, _compile_once)
         found["locked saves"] = wraps(made._cache.save_overload, _save_locked)
+        found["damaged files read as missing"] = wraps(made._cache._cache_file.load, _healed_load)
     return found

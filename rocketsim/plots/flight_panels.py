@@ -27,7 +27,7 @@ a line per body (one colour per body throughout, named in the figure's legend):
 * the events, numbered in time order on the height panel (events too close to
   be told apart share a label, ``3-5``) and every one of them listed below.
 
-A quantity no body has (throttle of a rigid body, q in vacuum) gets no panel (a run with no sample at all: one that says so). The
+A quantity no body has (throttle of a rigid body, q in vacuum) gets no panel. The
 labels are laid out so that none overlaps another (tests/test_run_plots.py checks
 every shipped scenario's picture). Reads a run's file only (nothing it carries is
 executed), or a run in memory.
@@ -42,6 +42,7 @@ import numpy as np
 
 from rocketsim.campaigns.landing import east_north
 from rocketsim.constants import G0
+from rocketsim.errors import InputError
 from rocketsim.plots.canvas import Picture, pyplot, save
 from rocketsim.telemetry.land import draw_coastline
 from rocketsim.telemetry.reader import read_run
@@ -129,7 +130,9 @@ def compose(run, tables: dict, title: str):
     start, end = min(float(np.nanmin(t)) for t in times), max(float(np.nanmax(t)) for t in times)
     clock = _Time(max(end - start, 1e-9))
     panels = [p for p in (_height, _speed, _air, _acceleration, _propulsion, _attitude, _orbit, _track)
-              if p(None, bodies, clock, landed)] or [_no_samples]
+              if p(None, bodies, clock, landed)]
+    if not panels:
+        raise InputError(f"{title}: nothing to plot (no body has a state sample)", field="--plot")
     events = run.events
     ncols = 3
     nrows = math.ceil(len(panels) / ncols)
@@ -146,7 +149,7 @@ def compose(run, tables: dict, title: str):
         ax = figure.add_subplot(grid[k // ncols, k % ncols])
         panel(ax, bodies, clock, landed, colours=colours)
         axes.append(ax)
-        if panel not in (_track, _no_samples):
+        if panel is not _track:
             ax.set_xlabel(f"mission time, {clock.unit}")
             ax.grid(True, lw=0.4)
             for event in events:
@@ -155,10 +158,9 @@ def compose(run, tables: dict, title: str):
         _event_labels(figure, axes[0], events, clock)
     if events:
         _event_list(figure.add_subplot(grid[nrows, :]), events, clock, run.problem)
-    if bodies:
-        handles = [plt.Line2D([], [], color=colours[name], lw=2) for name in bodies]
-        figure.legend(handles, list(bodies), loc="upper left", ncol=min(len(bodies), 6), fontsize=9,
-                      frameon=False, bbox_to_anchor=(0.06, 1 - 0.45 / height))
+    handles = [plt.Line2D([], [], color=colours[name], lw=2) for name in bodies]
+    figure.legend(handles, list(bodies), loc="upper left", ncol=min(len(bodies), 6), fontsize=9,
+                  frameon=False, bbox_to_anchor=(0.06, 1 - 0.45 / height))
     info = run.metadata.get("rocketsim", {})
     outcome = run.metadata.get("outcome", {}).get("status", "")
     figure.suptitle(f"{info.get('scenario', title)}  (epoch {info.get('epoch_utc', '?')}"
@@ -351,13 +353,6 @@ def _orbit(ax, bodies, clock, landed, colours=None):
         ax.set_yscale("log")
     ax.set_ylabel("periapsis (solid), apoapsis (dashed), km")
     ax.set_title("orbit, while above the ground", fontsize=9)
-    return True
-
-
-def _no_samples(ax, bodies, clock, landed, colours=None):
-    """A run with no sample to draw (a damaged file's): says so."""
-    ax.axis("off")
-    ax.text(0.5, 0.5, "no telemetry samples to draw", transform=ax.transAxes, ha="center", va="center")
     return True
 
 

@@ -85,6 +85,7 @@ SEA_LEVEL_DENSITY = USSA_P0 * USSA_M0 / (GAS_CONSTANT_USSA * USSA_T0)
 MIN_SITE_HEIGHT = -12_000.0     # m, the deepest ocean trench is 11 km below sea level
 MAX_SITE_HEIGHT = 100_000.0     # m, the Karman line: above it a flight starts from orbit
 MAX_PROGRAM_CPU = 3600.0        # s of CPU a program may be given for one step
+MAX_PROGRAM_WAIT = 3600.0       # s of wall time a program may be given for one wake-up
 RIGHT_ANGLE = math.pi / 2.0     # rad
 
 # why each bound is where it is, quoted in refusals and schema descriptions
@@ -130,6 +131,7 @@ BOUNDS = {
     "site height": "a site is on the ground: from 12 km below sea level (the deepest trench is "
                    "11 km) to 100 km up (above that a flight starts from orbit)",
     "cpu": "a program is given at most an hour of CPU for one step",
+    "wait": "a program is given at most an hour of wall time for one wake-up",
     "direction": "a direction's components are within 1e30, so that their squares stay finite",
     "elevation": "an elevation is from -90 deg (down) to 90 deg (up)",
     "latitude": "a latitude is from -90 deg to 90 deg",

@@ -242,10 +242,11 @@ def _resolve(scenario_path: Path, reference: str, source: YamlSource, loc: tuple
     try:
         ref = (scenario_path.parent / reference).resolve()
         found = ref.is_file()
-    except (OSError, ValueError) as error:     # a name too long for the system, a NUL in it
-        line, column = source.position(loc) or (None, None)
-        raise InputError(f"referenced file {quoted(reference)} cannot be a file name "
-                         f"({getattr(error, 'strerror', None) or error})",
+    except (OSError, ValueError, RuntimeError) as error:    # a name too long for the system, a NUL
+        line, column = source.position(loc) or (None, None)            # in it, a loop of symlinks
+        problem = "a loop of symbolic links" if isinstance(error, RuntimeError) else \
+            getattr(error, "strerror", None) or error
+        raise InputError(f"referenced file {quoted(reference)} cannot be a file name ({problem})",
                          file=scenario_path, line=line, column=column,
                          field=".".join(map(str, loc))) from None
     if not found:

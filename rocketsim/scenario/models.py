@@ -26,8 +26,8 @@ from rocketsim.constants import (EARTH_J2, EARTH_MU, EARTH_RADIUS_EQ, EARTH_RADI
                                  MAX_START_DISTANCE, MAX_START_SPEED, MIN_STEP, MOON_J2, MOON_MU,
                                  MOON_RADIUS, STEP)
 from rocketsim.limits import MAX_SEED, check_data
-from rocketsim.scenario.bounds import (BODY_MASS, BOUNDS, EXTENT, MAX_PROGRAM_CPU, MAX_SITE_HEIGHT,
-                                       MAX_SIZE, MIN_SITE_HEIGHT, MIN_SIZE, SIZE, within)
+from rocketsim.scenario.bounds import (BODY_MASS, BOUNDS, EXTENT, MAX_PROGRAM_CPU, MAX_PROGRAM_WAIT,
+                                       MAX_SITE_HEIGHT, MAX_SIZE, MIN_SITE_HEIGHT, MIN_SIZE, SIZE, within)
 from rocketsim.scenario.classic_range import CLASSIC, classic_site
 from rocketsim.scenario.weather import Weather
 from rocketsim.scenario.units import STRICT, Angle, Duration, Frequency, Inertia, Length, Mass, Speed
@@ -493,6 +493,9 @@ class Scenario(Strict):
     step: Annotated[Duration, Field(gt=0)] = Field(STEP, description="integration step, at most 0.1 s")
     program_cpu_budget: Annotated[Duration, within(0.0, MAX_PROGRAM_CPU, "cpu", "s", above=True)] = Field(
         1.0, description="CPU time the program may use in one step before it is stopped")
+    program_time_limit: Annotated[Duration, within(0.0, MAX_PROGRAM_WAIT, "wait", "s", above=True)] = Field(
+        10.0, description="wall time one wake-up of the program may take before it is stopped "
+        "(blocked or busy)")
     telemetry: TelemetrySpec = TelemetrySpec()
     seed: int = Field(0, ge=0, le=MAX_SEED, description="seed of every random stream of the run "
                       "(0 .. 2^64 - 1)")

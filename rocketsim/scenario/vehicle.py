@@ -29,6 +29,7 @@ propellant is unusable (:data:`rocketsim.constants.UNUSABLE_PROPELLANT`).
 from __future__ import annotations
 
 import math
+import os
 from typing import Annotated, Literal, Optional, Union
 
 from pathlib import Path
@@ -274,9 +275,10 @@ class MotorSpec(_Strict):
             raise ValueError(f"motor {self.name!r}: give exactly one of 'file' or 'thrust'")
         if self.file is not None:
             base = (info.context or {}).get("base_dir") if info is not None else None
-            path = (Path(base) if base is not None else Path()) / self.file
+            # realpath, not resolve: a loop of symlinks is then the file's read error, located
+            path = Path(os.path.realpath((Path(base) if base is not None else Path()) / self.file))
             try:
-                curve = read_thrust_curve(path.resolve())
+                curve = read_thrust_curve(path)
             except MotorFileError as error:
                 raise field_error(("file",), str(error), self.file) from None
             header = {"diameter": curve.diameter, "length": curve.length,
@@ -287,7 +289,7 @@ class MotorSpec(_Strict):
                                       "give it in one place", getattr(self, key))
                 if value is not None:
                     object.__setattr__(self, key, value)
-            object.__setattr__(self, "file", str(path.resolve()))
+            object.__setattr__(self, "file", str(path))
             object.__setattr__(self, "thrust", [tuple(p) for p in curve.points])
         else:
             points = list(self.thrust)

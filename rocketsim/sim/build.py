@@ -18,13 +18,14 @@ from rocketsim.dynamics.central import nbody_field
 from rocketsim.dynamics.soi import central_params
 from rocketsim.dynamics.third_bodies import with_field
 from rocketsim.errors import InputError
-from rocketsim.flight.program import load_program
+from rocketsim.flight.program import load_program, plain_program
 from rocketsim.flight.sensors import Sensors
 from rocketsim.frames.earth_fixed import ecef_to_eci_velocity
 from rocketsim.frames.geodetic import enu_basis, geodetic_to_ecef
 from rocketsim.layout import P_MU, R, V, W, make_params, make_state
 from rocketsim.scenario.load import LoadedScenario
 from rocketsim.scenario.models import check_duration, check_step
+from rocketsim.scenario.units import parse_quantity
 from rocketsim.sim.body import Body, Vehicle, channel_name
 from rocketsim.sim.coast_runs import compile_coasts_beside
 from rocketsim.sim.flight_events import FlightEvents
@@ -108,22 +109,25 @@ def build_world(loaded: LoadedScenario, step: float | None = None,
     world.target = mission.target
     world.pad_azimuth = scenario.site.pad_azimuth if scenario.site else math.nan
     world.program_cpu_budget = scenario.program_cpu_budget
+    world.program_time_limit = scenario.program_time_limit
     # on a cold cache a second process compiles the first runs' kernels from here on, while
     # this one compiles the programs' and the first sample's
     compile_runs_beside(world)
     compile_coasts_beside(world)
     programs = loaded.programs()
     for stage, path in loaded.stage_program_paths.items():
-        world.stage_programs[stage] = (programs[f"program/{stage}"][0] or load_program(path), path)
+        given = programs[f"program/{stage}"][0]
+        world.stage_programs[stage] = (plain_program(given, path) if given else load_program(path), path)
     if "program" in programs:
         main, path = programs["program"]
-        world.attach_program(body, main or load_program(path), path)
+        world.attach_program(body, plain_program(main, path) if main else load_program(path), path)
     return world
 
 
-def _checked(check, value: float, option: str) -> float:
-    """``check(value)`` (a step or duration, s), its ValueError an input error naming ``option``."""
+def _checked(check, value: float | str, option: str) -> float:
+    """``check`` of ``value`` (a step or duration: s, or a time as the files write it,
+    ``"10 s"``), its ValueError an input error naming ``option``."""
     try:
-        return check(value)
+        return check(parse_quantity(value, "time"))
     except ValueError as error:
         raise InputError(str(error), field=option) from None

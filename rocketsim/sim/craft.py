@@ -93,38 +93,47 @@ class BodyCraft:
     def flies_in_days_air(self) -> bool:
         return self._body.flies_in_days_air()
 
-    # --- commands -----------------------------------------------------------
+    # --- commands (each tells the world first: World.acting) -----------------------
     def hand_back(self, until: float, predicate: Callable[[], bool] | None = None) -> None:
         self._body.runner.hand_back(until, predicate)
 
     def allow_cruise(self, until: float) -> None:
+        self._world.acting()
         self._body.cruise_until = until
 
     def command_attitude(self, command) -> None:
+        self._world.acting()
         self._body.attitude_command = command
         if command is None:
             self.stop_rcs()
 
     def stop_rcs(self) -> None:
+        self._world.acting()
         if self._body.vehicle is not None:
             self._body.vehicle.arrays.aero.rcs_cmd[:] = 0.0
 
     def stage(self) -> str:
+        self._world.acting()
         return self._world.separate(self._body).name
 
     def jettison_fairing(self) -> tuple[str, str]:
+        self._world.acting()
         return tuple(half.name for half in self._world.jettison_fairing(self._body))
 
     def deploy_payload(self) -> str:
+        self._world.acting()
         return self._world.deploy_payload(self._body).name
 
     def deploy_parachute(self, index: int) -> bool:
+        self._world.acting()
         return self._body.watch.deploy(index, "program")
 
     def log(self, message: str) -> None:
+        self._world.acting()
         self._world.log(self._body, message)
 
     def event(self, name: str, figures: dict) -> None:
+        self._world.acting()
         self._world.event(self._body, name, figures)
 
     def body_state(self, name: str, at: float | None = None) -> tuple[np.ndarray, np.ndarray]:

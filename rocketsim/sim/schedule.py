@@ -101,23 +101,18 @@ class Schedule:
         """Steps before the world's loop must decide anything while it steps one step at
         a time: to the end, and while more than one body flies to the next multiple of
         :data:`WINDOW_SAMPLES` telemetry samples (where the world reports its progress
-        with every body at the same step); 1 while a body cruises or a program waits on a
-        condition read in Python. Within them the bodies are flown in compiled runs where
-        nothing needs Python, and the programs run at their wake-ups
-        (:mod:`rocketsim.sim.window`: a vehicle's runs compute its samples on the way)."""
+        with every body at the same step); 1 while a body cruises. Within them the bodies
+        are flown in compiled runs where nothing needs Python, and the programs run at
+        their wake-ups (:mod:`rocketsim.sim.window`: a vehicle's runs compute its samples
+        on the way; a program's condition read in Python is read at every step)."""
         world = self.world
         flying = [body for body in world.bodies if body.flying]
         n = world.n_steps - world.k
         if len(flying) > 1:
             span = WINDOW_SAMPLES * world.sample_every
             n = min(n, span - world.k % span)
-        for body in flying:
-            if self.cruising(body):
-                return 1
-            runner = body.runner
-            if runner is not None and not runner.finished and runner.waiting_on_predicate \
-                    and runner.condition is None:
-                return 1
+        if any(self.cruising(body) for body in flying):
+            return 1
         return n
 
     @staticmethod

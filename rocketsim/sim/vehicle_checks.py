@@ -48,6 +48,8 @@ from rocketsim.dynamics.third_bodies import FIELD_CENTER, field_of, nbody_flag
 from rocketsim.ephemeris.solar_system import BODIES
 from rocketsim.layout import P_RADIUS, Q, R, V
 from rocketsim.flight.conditions import NO_CONDITION
+from rocketsim.flight.navigation import tanks
+from rocketsim.flight.sensors import NO_ERRORS
 from rocketsim.flight.readings import StateView
 from rocketsim.frames.earth_fixed import eci_to_ecef
 from rocketsim.frames.quaternion import quat_rotate
@@ -73,7 +75,21 @@ def _advance_arguments(body, k0: int, h: float, n: int, steering: tuple | None) 
     """The arguments of :func:`advance_checked` for :meth:`VehicleChecks.advance`'s call."""
     steer = steering is not None
     code, fins = steering if steer else _NO_STEERING
-    return body.y, k0, h, n, body.p, body.vehicle.arrays, steer, code, fins, nbody_flag(body.p)
+    errors, j, _ = estimate_errors(body, k0) if steer else (NO_ERRORS, 0, 0)
+    return body.y, k0, h, n, body.p, body.vehicle.arrays, steer, code, fins, errors, j, nbody_flag(body.p)
+
+
+def estimate_errors(body, k: int) -> tuple[np.ndarray, int, int]:
+    """``(errors, j, gauges)``: what a compiled step or run reads of the navigation estimate
+    of the staged vehicle ``body`` from step ``k`` on: its sensors' errors
+    (:meth:`rocketsim.flight.sensors.Sensors.run_errors`, with the gauges of its tanks;
+    :data:`~rocketsim.flight.sensors.NO_ERRORS` for the truth), the row of step ``k`` and
+    the state slot of its first tank."""
+    sensors = body.sensors
+    if sensors is None or sensors.perfect:
+        return NO_ERRORS, 0, 0
+    errors, first = sensors.run_errors(k, tanks(body.vehicle))
+    return errors, k - first, body.vehicle.tanks.start
 
 
 class VehicleChecks:
@@ -127,7 +143,7 @@ class VehicleChecks:
         return y, taken
 
     def fly_run(self, body, k0: int, h: float, n: int, steering: tuple | None, events,
-                condition: np.ndarray, samples: tuple) -> tuple[np.ndarray, int, int, int]:
+                condition: np.ndarray, samples: tuple, between=None) -> tuple[np.ndarray, int, int, int]:
         """Fly ``body`` up to ``n`` steps of ``h`` seconds from step ``k0`` in one compiled
         call, returning after the first step the Python side may have something to do
         with (:func:`rocketsim.stepping.runs.fly_run`); returns ``(y, steps taken, reason,
@@ -139,17 +155,37 @@ class VehicleChecks:
         flight events ``events`` (:class:`~rocketsim.sim.flight_events.FlightEvents`)
         told of a new dynamic-pressure peak. ``steering`` as in :meth:`advance`, run
         before every step; ``condition``: the program's compiled condition
-        (:mod:`rocketsim.flight.conditions`; no rows: none)."""
-        arguments, carry = self._run_arguments(body, k0, h, n, steering, events, condition, samples)
-        y, before, taken, figures, reason, y_peak, filled = body.kernels.call(runs.fly_run, body.vehicle.arrays,
-                                                                              *arguments)
+        (:mod:`rocketsim.flight.conditions`; no rows: none).
+
+        ``between(k)``: asked after each step ``k`` but the last with nothing for the
+        Python side, the body's state, time and checks as after it (a program's condition
+        read in Python), whether the run ends there: then the reason is
+        :data:`~rocketsim.stepping.runs.QUIET` and the checks' state is as
+        :meth:`after_step` leaves it after that step."""
+        arguments, carry = self._run_arguments(body, k0, h, n, steering, events, condition, samples,
+                                               between is not None)
+        if between is None:
+            y, before, taken, figures, reason, y_peak, filled = body.kernels.call(
+                runs.fly_run, body.vehicle.arrays, *arguments)
+        else:
+            def question(y, k: int) -> bool:
+                body.y, body.t = y, k * h
+                self.temperature = float(carry[quiet.CARRY_TEMPERATURE])
+                return between(k)
+
+            with runs.asking(question):
+                y, before, taken, figures, reason, y_peak, filled = body.kernels.call(
+                    runs.fly_run, body.vehicle.arrays, *arguments)
         self.temperature = float(carry[quiet.CARRY_TEMPERATURE])
         self.touched_down = bool(carry[quiet.CARRY_TOUCHED] > 0.5)
-        if taken > 1:
-            self.previous = ((k0 + taken - 1) * h, before.copy())
+        if reason == runs.QUIET:
+            self.previous, self._figures = ((k0 + taken) * h, y.copy()), None
+        else:
+            if taken > 1:
+                self.previous = ((k0 + taken - 1) * h, before.copy())
+            self._figures = (y, figures)
         if carry[quiet.CARRY_PEAK_STEP] > 0.0:
             events.peak_at((k0 + int(carry[quiet.CARRY_PEAK_STEP])) * h, y_peak)
-        self._figures = (y, figures)
         return y, taken, reason, filled
 
     def compile_beside(self, body, h: float, samples: tuple | None) -> None:
@@ -163,7 +199,7 @@ class VehicleChecks:
         compile_beside(advance_checked, _advance_arguments(body, 0, h, 1, None))
 
     def _run_arguments(self, body, k0: int, h: float, n: int, steering: tuple | None, events,
-                       condition: np.ndarray, samples: tuple) -> tuple[tuple, np.ndarray]:
+                       condition: np.ndarray, samples: tuple, asks: bool = False) -> tuple[tuple, np.ndarray]:
         """``(arguments of runs.fly_run, its carry)`` for :meth:`fly_run`'s call."""
         arrays = body.vehicle.arrays
         self._bind(arrays)
@@ -187,8 +223,8 @@ class VehicleChecks:
             watch[quiet.WATCH_SOI] = WATCH_RADIUS[BODIES[int(fp[FIELD_CENTER])]]
         peak = events.run_watch(watch)
         carry = np.array((self.temperature, float(self.touched_down), peak, 0.0))
-        return (body.y, k0, h, n, body.p, arrays, self._in_flight, steer, code, fins, watch, carry, condition,
-                *samples, nbody_flag(body.p)), carry
+        return (body.y, k0, h, n, body.p, arrays, self._in_flight, steer, code, fins, *estimate_errors(body, k0),
+                watch, carry, condition, asks, *samples, nbody_flag(body.p)), carry
 
     def after_step(self, world, body, h: float) -> dict | None:
         """Run the checks on the body's new state (after a step of ``h`` seconds). Returns

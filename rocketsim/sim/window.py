@@ -28,9 +28,11 @@ At a step the Python side handles for some bodies, their programs that are due
 run there (:meth:`~rocketsim.sim.world.World.run_programs`, as the loop runs
 them), after that step's events and samples; the other bodies' runs go on past
 it. A program acts on its own body only, or makes new ones (a separated
-stage, a fairing's halves, a payload), which fly on from that step; a body
-whose program then waits on a condition read in Python, or cruises, is flown
-one step at a time, its condition read at every step as the loop reads it.
+stage, a fairing's halves, a payload), which fly on from that step; a
+vehicle whose program then waits on a condition read in Python (a lambda) is
+flown in compiled runs that read the condition between their steps, once a
+step as the loop reads it (:meth:`_Window._steps`; one such vehicle at a time),
+and a body that cruises one step at a time.
 Everything the Python side does that others can see (events, logs, telemetry)
 happens in the loop's order: by step, and within a step in the order of the
 bodies. The window ends early once no body needs one step at a time (the loop
@@ -69,7 +71,8 @@ from rocketsim.sim.schedule import rails_field
 from rocketsim.stepping import runs
 from rocketsim.stepping.sample_figures import N_SAMPLE_RIGID
 
-VEHICLE, PART, BATCH = "vehicle", "part", "batch"   # how a body flies a segment (see _plan)
+# how a body flies a segment (see _plan), and a vehicle's segment that ended on a quiet step
+VEHICLE, STEPS, PART, BATCH, QUIET = "vehicle", "steps", "part", "batch", "quiet"
 RUN_SAMPLES = 128       # telemetry samples a vehicle's compiled run computes at most
 
 
@@ -83,7 +86,7 @@ def fly_window(world, length: int) -> bool:
         return False
     k = world.k
     flying = [(i, body) for i, body in enumerate(world.bodies) if body.flying]
-    plans = {i: _plan(world, body, True, length * world.h) for i, body in flying}
+    plans = _one_of_steps({i: _plan(world, body, True, length * world.h) for i, body in flying})
     window = _Window(world, k + length)
     window.start(k, [i for i, _ in flying], plans)
     window.fly()
@@ -100,15 +103,21 @@ class _Window:
         # the samples computed in runs, not yet written: [first step, body index, rows, shape,
         # rows written] for each run, a row per sample step from the first
         self.samples: list[list] = []
+        # step -> the bodies whose sample there is written already, and the bodies a program's
+        # condition made there (their programs start at that step), by steps of one (_steps)
+        self.presampled: dict[int, set] = {}
+        self.made: dict[int, list] = {}
 
     def start(self, k: int, indices: list[int], plans: dict) -> None:
         """Start a segment of each body of ``indices`` at step ``k`` as ``plans[i]`` says
         (:func:`_plan`; None: one step), none past the step its program wakes at. A run's
-        end goes on the queue: ``(VEHICLE, its last state)``, ``(PART, its last state, its
-        first step and state)``, ``(BATCH, k)``; the samples computed in a run go on
-        :attr:`samples`."""
+        end goes on the queue: ``(VEHICLE, its last state)``, ``(QUIET, its last state)``
+        (steps of one, :meth:`_steps`, flown last, to the queue's first step at most),
+        ``(PART, its last state, its first step and state)``, ``(BATCH, k)``; the samples
+        computed in a run go on :attr:`samples`."""
         world = self.world
-        for i in indices:
+        steps = [i for i in indices if plans[i] is not None and plans[i][0] == STEPS]
+        for i in [i for i in indices if i not in steps] + steps:
             plan = plans[i]
             if plan is None:
                 heapq.heappush(self.queue, (k + 1, i, None))
@@ -122,6 +131,8 @@ class _Window:
                 body.steering = None
                 self._computed(k, i, rows[:filled], shape)
                 heapq.heappush(self.queue, (k + taken, i, (VEHICLE, y)))
+            elif plan[0] == STEPS:
+                self._steps(k, i, plan[1])
             elif plan[0] == PART:
                 samples, rows, shape = _samples(world, body)
                 y, taken, filled = self._part(body, k, body.y, top - k, samples)
@@ -130,6 +141,55 @@ class _Window:
             else:                           # BATCH: to the next sample at most, where the world samples
                 top = min(top, k + world.sample_every - k % world.sample_every)
                 heapq.heappush(self.queue, (top, i, (BATCH, k)))
+
+    def _steps(self, k: int, i: int, steering) -> None:
+        """Fly the vehicle ``i``, whose program waits on a condition read in Python, in a
+        compiled run from step ``k`` that reads the condition between its steps as the
+        world's loop reads it (:meth:`~rocketsim.sim.vehicle_checks.VehicleChecks.fly_run`'s
+        ``between``; :meth:`~rocketsim.flight.program.ProgramRunner.check`: once a step, its
+        outcome kept for the step's :meth:`~rocketsim.sim.world.World.run_programs`): to
+        the queue's first step (where another body's Python comes first) or the window's
+        end at most, ending at a step the Python side must handle or one where the
+        condition holds, raises or acts (a command, a log line, an event, a new body:
+        what comes before it in the loop's order, the samples computed up to that step,
+        is written first). The run's end goes on the queue, ``(QUIET, its state)`` where
+        it ended on a quiet step (its sample there computed in the run, or written
+        already, with those of the bodies the condition made: :attr:`presampled`), else
+        ``(VEHICLE, its state)``."""
+        world = self.world
+        body = world.bodies[i]
+        top = min(self.end, self.queue[0][0] if self.queue else self.end)
+        samples, rows, shape = _samples(world, body)
+        self._computed(k, i, rows, shape)           # all its rows: written as far as computed
+        entry = self.samples[-1] if len(rows) else None
+        runner, known, acted = body.runner, len(world.bodies), []
+
+        def act() -> None:                  # the condition acts at step world.k: what comes first
+            if not acted:
+                acted.append(world.k)
+                self._write_samples(world.k + 1)
+
+        def between(step: int) -> bool:
+            world.k = step
+            world.before_act = act
+            try:
+                return runner.check(step * world.h) or bool(acted)
+            finally:
+                world.before_act = None
+
+        y, taken, reason, filled = body.checks.fly_run(body, k, world.h, top - k, steering, body.watch,
+                                                       NO_CONDITION, samples, between)
+        world.k = k
+        body.steering = None
+        if entry is not None:
+            entry[2] = rows[:filled]
+            self._drop_written()
+        end = k + taken
+        if acted:
+            made = list(range(known, len(world.bodies)))
+            self.presampled.setdefault(end, set()).update([i] + made)
+            self.made.setdefault(end, []).extend(made)
+        heapq.heappush(self.queue, (end, i, (QUIET if reason == runs.QUIET else VEHICLE, y)))
 
     def _computed(self, k: int, i: int, rows: np.ndarray, shape) -> None:
         """The samples of body ``i`` a run from step ``k`` computed, one row per sample step
@@ -160,14 +220,14 @@ class _Window:
             last = world.k = s
             if s >= self.end:
                 continue
-            movers = [i for _, i, _ in due if world.bodies[i].flying]
+            movers = [i for _, i, _ in due if world.bodies[i].flying] + self.made.pop(s, [])
             if not self._one_step(movers):
                 self._close(s)              # nobody needs one step at a time: the loop batches from here
                 continue
             if s % world.sample_every == 0 and self.queue:
                 self._sample_with_runs(s)   # some bodies' runs go on past this step
             elif s % world.sample_every == 0:     # every body is at this step
-                world.reached()
+                world.reached(lambda: self._sample_with_runs(s))
                 reached = s
                 if world.n_steps < self.end:
                     self.end = max(world.n_steps, s)
@@ -175,14 +235,15 @@ class _Window:
                         self._close(s)
                         continue
             movers += world.run_programs(movers)
-            plans = {i: _plan(world, world.bodies[i], False, (self.end - s) * world.h) for i in movers}
+            plans = _one_of_steps({i: _plan(world, world.bodies[i], False, (self.end - s) * world.h)
+                                   for i in movers})
             for i in movers:
                 if plans[i] is None:
                     world.run_autopilot(world.bodies[i])
             self.start(s, movers, plans)
         world.k = last
         if reached != last:
-            world.reached()
+            world.reached(lambda: self._sample_with_runs(last))
 
     def _finish(self, i: int, s: int, run) -> None:
         """The step ``s`` of body ``i`` as the loop ends it (after a compiled run's last
@@ -195,6 +256,9 @@ class _Window:
         elif run[0] == BATCH:
             world.k = run[1]
             world.advance(body, s - run[1])
+        elif run[0] == QUIET:           # taken as a run's steps: the checks and events quiet, done
+            body.y, body.t = run[1], s * world.h
+            return
         else:
             body.y = run[1]
             world.after_advance(body, s)
@@ -221,15 +285,19 @@ class _Window:
 
     def _sample_with_runs(self, s: int) -> None:
         """The world's sample at step ``s`` (its finiteness test, then every flying body's
-        sample in order) while some bodies' runs go on past it: theirs computed in the run,
-        the others' from their state at ``s``; the samples before ``s`` written already."""
+        sample in order), the samples before ``s`` written already: from the row a run
+        computed at ``s`` (a run going on past it, steps of one that ended there), else
+        from the body's state; none again for a body whose sample there is written
+        (:attr:`presampled`)."""
         world = self.world
         world.check_finite()
-        running = {i for _, i, _ in self.queue}
+        every = world.sample_every
+        written = self.presampled.pop(s, ())
+        rows = {run[1]: run for run in self.samples if run[4] < len(run[2]) and run[0] + run[4] * every == s}
         for i, body in enumerate(world.bodies):
-            if body.flying and world.telemetry is not None:
-                if i in running:
-                    run = next(run for run in self.samples if run[1] == i)     # its row at s is its next
+            if body.flying and world.telemetry is not None and i not in written:
+                run = rows.get(i)
+                if run is not None:
                     world.record_rows(body, run[2][run[4]:run[4] + 1], run[3])
                     run[4] += 1
                 else:
@@ -244,7 +312,7 @@ class _Window:
         """Whether the loop would step the next step one step at a time: a vehicle's
         compiled run goes on (its checks run every step), or a body at this step needs it."""
         schedule = self.world.schedule
-        return any(run is not None and run[0] == VEHICLE for _, _, run in self.queue) or \
+        return any(run is not None and run[0] in (VEHICLE, QUIET) for _, _, run in self.queue) or \
             any(schedule.one_step(self.world.bodies[i]) for i in movers)
 
     def _close(self, s: int) -> None:
@@ -337,7 +405,9 @@ def _wake_step(world, body) -> float:
 
 def _plan(world, body, first: bool, seconds: float):
     """How ``body`` flies from the world's step (see the module): ``(VEHICLE, steering,
-    condition)``, a compiled run of a vehicle with aerodynamics; ``(PART,)``, a tumbling
+    condition)``, a compiled run of a vehicle with aerodynamics; ``(STEPS, steering)``, one
+    whose program waits on a condition read in Python, flown in steps of one between its
+    readings (:meth:`_Window._steps`); ``(PART,)``, a tumbling
     part's; ``(BATCH,)``, the loop's batch of a body none of whose steps has anything for
     Python; None: one step at a time (also while a second process compiles the run's
     kernel on a cold cache: the same bits, flown meanwhile). ``first``: the loop has run the
@@ -357,7 +427,7 @@ def _plan(world, body, first: bool, seconds: float):
     condition = NO_CONDITION
     if _waiting(body):
         condition = body.runner.condition
-        if condition is None or body.central != "earth" or not (body.sensors is None or body.sensors.perfect):
+        if body.central != "earth":
             return None
     steering = None
     if body.attitude_command is not None:
@@ -366,4 +436,12 @@ def _plan(world, body, first: bool, seconds: float):
             return None
     if not watch.max_q_done and (body.central != "earth" or not body.flies_in_days_air()):
         return None
-    return VEHICLE, steering, condition
+    return (STEPS, steering) if condition is None else (VEHICLE, steering, condition)
+
+
+def _one_of_steps(plans: dict) -> dict:
+    """``plans`` with steps of one (:meth:`_Window._steps`) for one body at most, the
+    first; the others' one step at a time (two bodies' conditions read ahead of the
+    window's queue would not be read in the loop's order)."""
+    steps = sorted(i for i, plan in plans.items() if plan is not None and plan[0] == STEPS)
+    return {i: None if i in steps[1:] else plan for i, plan in plans.items()}

@@ -86,11 +86,15 @@ class World:
         self.sensor_level = "truth"
         self.stage_programs: dict[str, object] = {}      # stage name -> (main, path)
         self.program_cpu_budget = 1.0
+        self.program_time_limit = 10.0      # s of wall time a program's wake-up may take
         self.target = None                  # the mission's target (TargetSpec)
         self.pad_azimuth = math.nan
         self.scenario_file = None           # Path of the scenario's file (None: given as a mapping)
         self.vehicle_file = None            # Path of the vehicle's file (None: written inline)
         self.step_line = None               # line of ``step`` in the scenario's file (None: not written)
+        # called before a program acts (a command, a log line, an event): set while a window
+        # reads a condition ahead of its queue, to write first what comes first (rocketsim.sim.window)
+        self.before_act: Callable[[], None] | None = None
 
     @property
     def atmosphere(self):
@@ -104,9 +108,14 @@ class World:
         """Mission time (s)."""
         return self.k * self.h
 
+    def acting(self) -> None:
+        """A program is about to act (see :attr:`before_act`)."""
+        if self.before_act is not None:
+            self.before_act()
+
     def attach_program(self, body: Body, main, path) -> None:
         """Fly ``body`` with the program ``main`` (loaded from ``path``)."""
-        body.runner = ProgramRunner(main, path, self.program_cpu_budget)
+        body.runner = ProgramRunner(main, path, self.program_cpu_budget, self.program_time_limit)
         body.fc = FlightComputer(BodyCraft(self, body))
 
     # --- staging (rocketsim.sim.staging) -------------------------------------
@@ -194,13 +203,17 @@ class World:
                     body.runner.close()
         return summary(self)
 
-    def reached(self) -> None:
+    def reached(self, sample: Callable[[], None] | None = None) -> None:
         """The loop has flown to step ``k``: at a sample step (every ``sample_every``-th,
-        the last, after a cruise step) the finiteness check and the telemetry sample,
-        then ``on_progress``, which may end the flight earlier (``n_steps``)."""
+        the last, after a cruise step) the finiteness check and the telemetry sample
+        (``sample``, when the caller has them to write, else every flying body's from its
+        state), then ``on_progress``, which may end the flight earlier (``n_steps``)."""
         if self.k % self.sample_every == 0 or self.k >= self.n_steps or self.schedule.cruise_batch:
-            self.check_finite()
-            self._sample_all()
+            if sample is None:
+                self.check_finite()
+                self._sample_all()
+            else:
+                sample()
         if self.on_progress is not None:
             self.on_progress(self.t)
 

@@ -19,9 +19,9 @@ from rocketsim.atmosphere.table import air_in
 from rocketsim.bodies.gravity import point_mass_j2
 from rocketsim.dynamics.derivative import derivative, radial_height
 from rocketsim.dynamics.rk4 import advance, near_ground
-from rocketsim.flight.steering import steer_step
+from rocketsim.flight.steering import steer_on_estimate
 from rocketsim.frames.local import body_air_velocity
-from rocketsim.layout import P_J2, P_MU, P_RADIUS, P_SPIN, Q, R, V, W
+from rocketsim.layout import P_J2, P_MU, P_RADIUS, P_SPIN, Q, R, V
 from rocketsim.vehicle.aero import A_GROUND, A_REACH
 from rocketsim.vehicle.contact import lowest_contact_height
 from rocketsim.vehicle.mass_properties import vehicle_mass_properties
@@ -79,15 +79,16 @@ def step_figures_into(dy, t, y, p, veh, contact, nbody=None):
 
 
 @njit
-def advance_checked(y, k0, h, n_steps, p, veh, steer, code, fins, nbody=None):
+def advance_checked(y, k0, h, n_steps, p, veh, steer, code, fins, errors, j, nbody=None):
     """:func:`~rocketsim.dynamics.rk4.advance` of a staged vehicle with aerodynamics
     (arrays ``veh``, ``nbody`` as its), then :func:`step_figures` at the new state, in one
     compiled call. Returns ``(y, steps taken, near, figures)``.
 
     With ``steer``, the autopilot's step comes first, as the world's loop runs it
-    before the advance: :func:`~rocketsim.flight.steering.steer_step` reading the
-    truth (the state ``y`` at the step's start time ``k0 h``) in the vehicle's air (the
-    day's) with the command ``code``, the grid fins when ``fins``, no RCS.
+    before the advance: :func:`~rocketsim.flight.steering.steer_on_estimate` reading the
+    navigation estimate of the state ``y`` at the step's start time ``k0 h`` (row ``j`` of
+    the sensors' ``errors``; none: the truth) in the vehicle's air (the day's) with the
+    command ``code``, the grid fins when ``fins``, no RCS.
 
     The figures' flight loads are the derivative's without the contact forces. Out of
     the contact points' reach of the ground the derivative adds none, so ``veh`` itself
@@ -96,9 +97,7 @@ def advance_checked(y, k0, h, n_steps, p, veh, steer, code, fins, nbody=None):
     with the contact points removed.
     """
     if steer:
-        t = k0 * h
-        steer_step(veh, y, p, t, t, y[R:R + 3], y[V:V + 3], y[Q:Q + 4], y[W:W + 3], math.nan, veh.air, code, fins,
-                   False)
+        steer_on_estimate(veh, y, p, k0 * h, errors, j, code, fins)
     y, taken = advance(y, k0, h, n_steps, p, veh, nbody)
     near = near_ground(y, p, veh.aero.ref[A_REACH] + veh.aero.ref[A_GROUND])
     return y, taken, near, step_figures((k0 + taken) * h, y, p, veh, veh.aero.contact, nbody)

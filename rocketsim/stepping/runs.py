@@ -12,7 +12,7 @@ exactly as the world's one-step path computes them, followed by the tests that
 decide whether the Python side would do anything at this step
 (:mod:`rocketsim.stepping.quiet`, the Python side's twins). The run returns
 after the first step where it might (or after ``n_max`` steps), or where the
-program's compiled condition (:mod:`rocketsim.flight.conditions`) is true
+program's compiled condition (:func:`rocketsim.flight.conditions.holds_on`) is true
 (reason :data:`CONDITION`: the program is due at the next step), and the world
 handles that step as it handles every step (:meth:`rocketsim.sim.world.World.advance`).
 The telemetry samples of the steps before it are computed in the run (the
@@ -33,16 +33,20 @@ A rigid body coasting with nothing for Python (a spacecraft in orbit,
 """
 
 import math
+import threading
+import warnings
+from contextlib import contextmanager
 
 import numpy as np
+from numba import objmode
+from numba.core.errors import NumbaWarning
 
 from rocketsim.jit import copy_into, njit
 from rocketsim.dynamics.derivative import radial_height
 from rocketsim.dynamics.free_body import free_step
 from rocketsim.dynamics.rk4 import N_WORK, advance, near_ground, step_into
-from rocketsim.flight.conditions import holds
-from rocketsim.flight.steering import steer_step
-from rocketsim.layout import Q, R, V, W
+from rocketsim.flight.conditions import holds_on
+from rocketsim.flight.steering import steer_on_estimate
 from rocketsim.stepping.checked_step import step_figures_into
 from rocketsim.stepping.quiet import (CARRY_PEAK_Q, CARRY_PEAK_STEP, CARRY_TEMPERATURE, CARRY_TOUCHED, MARGIN,
                                       WATCH_LIFTOFF, WATCH_MAX_Q, below_liftoff, checks_quiet, events_quiet,
@@ -52,8 +56,30 @@ from rocketsim.vehicle.aero import A_GROUND, A_REACH
 from rocketsim.vehicle.engines import S_DRY
 from rocketsim.vehicle.rail import RL_ON
 
-# why a run returned
-LIMIT, PYTHON, CONDITION = 0, 1, 2
+# why a run returned (QUIET: where the Python side asked, after a step with nothing for it)
+LIMIT, PYTHON, CONDITION, QUIET = 0, 1, 2, 3
+# numba says so of every kernel with an objmode block: fly_run's holds the GIL only for that
+warnings.filterwarnings("ignore", message="Code running in object mode won't allow parallel execution",
+                        category=NumbaWarning)
+_ASKING = threading.local()         # what fly_run asks between its steps in this thread (asking)
+
+
+def ask(y, k: int) -> bool:
+    """Called by :func:`fly_run` (asked to) after a step with nothing for the Python side,
+    its state ``y`` at step ``k``: whether the run ends there (see :func:`asking`)."""
+    return _ASKING.question(y, k)
+
+
+@contextmanager
+def asking(question):
+    """While inside, :func:`fly_run`'s question between its steps in this thread is
+    ``question(y, k)`` (True: the run ends after step ``k``, state ``y``): a program's
+    condition read in Python (:meth:`rocketsim.sim.vehicle_checks.VehicleChecks.fly_run`)."""
+    _ASKING.question = question
+    try:
+        yield
+    finally:
+        _ASKING.question = None
 
 
 @njit(nogil=True)
@@ -93,8 +119,19 @@ def fly_part(y, k0, h, n_max, p, fp, air, area_mass, length, floor, liftoff, orb
 
 
 @njit(nogil=True)
-def fly_run(y, k0, h, n_max, p, veh, in_flight, steer, code, fins, watch, carry, condition, every, rows, record,
-            sampler, nbody=None):
+def _asked(y, k):
+    """:func:`ask` from compiled code, holding the GIL for the call alone. A kernel of its
+    own: the object-mode block's dispatcher is handed to Python unpickled at every call,
+    so it is kept to this function's few lines (in :func:`fly_run` it would carry that
+    whole function's code)."""
+    with objmode(ends="boolean"):
+        ends = ask(y, k)
+    return ends
+
+
+@njit(nogil=True)
+def fly_run(y, k0, h, n_max, p, veh, in_flight, steer, code, fins, errors, j0, gauges, watch, carry, condition,
+            asks, every, rows, record, sampler, nbody=None):
     """Fly the staged vehicle with aerodynamics ``veh`` (its arrays; ``in_flight`` the same
     without contact points) from state ``y`` at step ``k0`` (of ``h`` s) for up to
     ``n_max`` steps, returning after the first step where the Python side may have
@@ -104,23 +141,34 @@ def fly_run(y, k0, h, n_max, p, veh, in_flight, steer, code, fins, watch, carry,
     step runs before each step, as
     :func:`~rocketsim.stepping.checked_step.advance_checked` runs it (the command
     ``code``, the grid fins when ``fins``); ``condition`` is the program's compiled
-    condition (no rows: none). ``carry`` is updated in place to its values before
-    the last step's checks. ``nbody`` as :func:`rocketsim.dynamics.rk4.step`'s.
+    condition (no rows: none). Both read the navigation estimate: the truth, or with
+    the sensors' ``errors`` (:meth:`rocketsim.flight.sensors.Sensors.run_errors`) those
+    of row ``j0 + i`` at step ``k0 + i`` (the run takes at most ``len(errors) - 1 - j0``
+    steps), the tanks' gauges from column ``gauges`` on (the state slot of the
+    vehicle's first tank). ``carry`` is updated in place to its values before the
+    last step's checks. ``nbody`` as :func:`rocketsim.dynamics.rk4.step`'s.
+
+    With ``asks`` the Python side is asked after every step but the last that it has
+    nothing to do at (:func:`ask`, a program's condition read in Python: its checks'
+    state, ``carry``, and sample as after that step) whether the run ends there: then
+    it returns with reason :data:`QUIET`.
 
     At each telemetry sample step (a multiple of ``every``) before the last step the
-    world's finiteness test is made (:func:`~rocketsim.stepping.quiet.surely_finite`) and, with ``record``, the
-    sample's figures (:func:`rocketsim.stepping.sample_figures.figures` of the state, its time,
-    the arguments ``sampler`` and the shield's temperature after the step) go to the
-    next row of ``rows``; the run returns at a sample step where the test may fail or
+    world's finiteness test is made (:func:`~rocketsim.stepping.quiet.surely_finite`) and,
+    with ``record``, the sample's figures (:func:`rocketsim.stepping.sample_figures.figures`
+    of the state, its time, the arguments ``sampler`` and the shield's temperature after
+    the step) go to the next row of ``rows``; the run returns at a sample step where the test may fail or
     (with ``record``) the rows are full, leaving that step and its sample to the world.
 
     Returns ``(y, y_before, steps taken, figures, reason, y_peak, rows filled)``: the
     state after the last step and before it, the checks' figures at the last state
     (:func:`~rocketsim.stepping.checked_step.step_figures`, the flight loads without
     contact forces), :data:`LIMIT`,
-    :data:`PYTHON` or :data:`CONDITION`, the state of the new dynamic-pressure peak
+    :data:`PYTHON`, :data:`CONDITION` or :data:`QUIET`, the state of the new dynamic-pressure peak
     (``carry[CARRY_PEAK_STEP]`` steps into the run; 0: none), and the samples in ``rows``.
     """
+    if errors.shape[0] > 0:
+        n_max = min(n_max, errors.shape[0] - 1 - j0)
     dry = veh.stage[:, S_DRY].copy()
     on_rail = veh.rail[RL_ON]
     reach = veh.aero.ref[A_REACH] + veh.aero.ref[A_GROUND]
@@ -136,8 +184,7 @@ def fly_run(y, k0, h, n_max, p, veh, in_flight, steer, code, fins, watch, carry,
         before = y
         t0 = (k0 + j - 1) * h
         if steer:
-            steer_step(veh, y, p, t0, t0, y[R:R + 3], y[V:V + 3], y[Q:Q + 4], y[W:W + 3], math.nan, veh.air,
-                       code, fins, False)
+            steer_on_estimate(veh, y, p, t0, errors, j0 + j - 1, code, fins)
         y = np.empty(n)
         step_into(y, k, work, before, t0, h, p, veh, nbody)
         t = (k0 + j) * h
@@ -145,7 +192,7 @@ def fly_run(y, k0, h, n_max, p, veh, in_flight, steer, code, fins, watch, carry,
         # derivative adds none, within it the arrays without them (as the checks compute them)
         figures = step_figures_into(dy, t, y, p, in_flight if near_ground(y, p, reach) else veh,
                                     veh.aero.contact, nbody)
-        if condition.shape[0] > 0 and holds(condition, t, y, p):
+        if condition.shape[0] > 0 and holds_on(condition, t, y, p, errors, j0 + j, gauges):
             return y, before, j, figures, CONDITION, y_peak, filled
         if j == n_max or radial_height(y, p) < ground:
             return y, before, j, figures, LIMIT if j == n_max else PYTHON, y_peak, filled
@@ -170,6 +217,8 @@ def fly_run(y, k0, h, n_max, p, veh, in_flight, steer, code, fins, watch, carry,
         if not math.isnan(peak):
             carry[CARRY_PEAK_Q], carry[CARRY_PEAK_STEP] = peak, j
             y_peak = y
+        if asks and _asked(y, k0 + j):
+            return y, before, j, figures, QUIET, y_peak, filled
 
 
 @njit(nogil=True)

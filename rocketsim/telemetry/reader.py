@@ -1,7 +1,13 @@
 """Read a run's MCAP file back, complete, truncated or corrupted, executing nothing.
 
 Reading is JSON only (never pickle, never ``exec``): the program a run carries
-is an attachment like any other. A complete file is summarised from its
+is an attachment like any other. Work is bounded by the file: before a chunk
+is decompressed its record is checked against the file's size and its
+declared uncompressed size against :data:`MAX_RATIO` times its compressed
+size (at most :data:`MAX_CHUNK` bytes; a zstd frame may not claim more than
+its chunk declares; only zstd and uncompressed chunks are read), so a small
+crafted file cannot demand gigabytes (:func:`chunk_problem`); a file with such
+a chunk is read up to it, as a damaged one. A complete file is summarised from its
 summary section, its metadata and the few event and log messages (a one-hour
 flight in well under a second); a truncated or corrupted file is read record
 by record up to the break, and :class:`RunFile` says what went wrong
@@ -23,6 +29,10 @@ from mcap.stream_reader import StreamReader
 from rocketsim.telemetry.names import FORMER_FIELDS
 
 STATE_SUFFIX = "/state"
+# a chunk's uncompressed size may be at most this many times its compressed size (the
+# telemetry packs 5-6 : 1; zstd can claim 30 000 : 1, a 17 KB file half a gigabyte) ...
+MAX_RATIO = 1000
+MAX_CHUNK = 1 << 28         # ... and at most 256 MiB (the writer's chunks are 256 KiB)
 TEXT_TOPICS = ("/events", "/log", "/events/log")
 
 
@@ -76,8 +86,61 @@ def read_run(path: str | Path) -> RunFile:
         return _read_streamed(path)
 
 
+def chunk_problem(content: bytes | memoryview, size: int) -> str | None:
+    """Why the chunk record whose content (after opcode and length) starts with
+    ``content`` (its fixed fields and the first bytes of its data, 64 will do) and is
+    ``size`` bytes long cannot be opened in bounded work; None when it can."""
+    import struct
+    try:
+        (uncompressed,) = struct.unpack_from("<Q", content, 16)
+        (name_length,) = struct.unpack_from("<I", content, 28)
+        compression = bytes(content[32:32 + name_length]).decode()
+        (compressed,) = struct.unpack_from("<Q", content, 32 + name_length)
+    except (struct.error, UnicodeDecodeError):
+        return "a chunk's header is cut or not text"
+    if compressed > size - 40 - name_length:
+        return f"a chunk claims {compressed} bytes of data in a record of {size}"
+    if compression not in ("zstd", ""):
+        return f"a chunk is compressed with {compression!r} (rocketsim reads zstd)"
+    if compression == "" and uncompressed != compressed:
+        return "an uncompressed chunk's sizes differ"
+    if uncompressed > min(MAX_RATIO * max(compressed, 1), MAX_CHUNK):
+        return (f"a chunk claims {uncompressed} bytes from {compressed} compressed (at most "
+                f"{MAX_RATIO} : 1 and {MAX_CHUNK >> 20} MiB are read)")
+    if compression == "zstd":
+        import zstandard
+        try:
+            framed = zstandard.frame_content_size(bytes(content[40 + name_length:40 + name_length + 18]))
+        except zstandard.ZstdError:
+            return "a chunk's data is not a zstd frame"
+        if framed > uncompressed:
+            return f"a chunk's zstd frame claims {framed} bytes where the chunk declares {uncompressed}"
+    return None
+
+
+def _check_chunks(path: Path) -> None:
+    """Raise ValueError at the first chunk of ``path`` that :func:`chunk_problem` refuses,
+    reading only the records' headers (a seek past each record)."""
+    import struct
+    size = path.stat().st_size
+    with open(path, "rb") as stream:
+        at = len(_MAGIC)
+        while at + 9 <= size:
+            stream.seek(at)
+            head = stream.read(9 + 64)
+            opcode, length = struct.unpack_from("<BQ", head)
+            if opcode == _FOOTER or at + 9 + length > size:
+                return
+            if opcode == _CHUNK:
+                problem = chunk_problem(head[9:], length)
+                if problem:
+                    raise ValueError(f"{problem}, at byte {at}")
+            at += 9 + length
+
+
 def _read_indexed(path: Path) -> RunFile:
     run = RunFile(path)
+    _check_chunks(path)         # before the reader decompresses anything
     with open(path, "rb") as stream:
         reader = make_reader(stream)
         summary = reader.get_summary()
@@ -104,6 +167,7 @@ class _Break(Exception):
 
 _MAGIC = b"\x89MCAP0\r\n"
 _CHUNK = 0x06
+_FOOTER = 0x02
 
 
 def records(path: str | Path) -> Iterator:
@@ -119,11 +183,15 @@ def records(path: str | Path) -> Iterator:
     data = Path(path).read_bytes()
     if not data.startswith(_MAGIC):
         raise _Break("it does not start as an MCAP file")
-    at, whole = len(_MAGIC), []
+    at, whole, refused = len(_MAGIC), [], None
     while at + 9 <= len(data):
         opcode, length = struct.unpack_from("<BQ", data, at)
         if at + 9 + length > len(data):
             break
+        if opcode == _CHUNK:
+            refused = chunk_problem(memoryview(data)[at + 9:at + 9 + min(length, 64)], length)
+            if refused:
+                break
         whole.append(data[at:at + 9 + length])
         at += 9 + length
     try:
@@ -132,6 +200,8 @@ def records(path: str | Path) -> Iterator:
         pass                    # the end of the complete records
     except Exception as error:
         raise _Break(f"a record is corrupt ({type(error).__name__}: {error})") from None
+    if refused:
+        raise _Break(f"{refused}, at byte {at}: not read")
     if at >= len(data) - len(_MAGIC) and data.endswith(_MAGIC):
         return
     if at + 9 <= len(data) and data[at] == _CHUNK:
@@ -140,17 +210,28 @@ def records(path: str | Path) -> Iterator:
 
 
 def _partial_chunk(body: bytes) -> Iterator:
-    """The complete records at the start of a chunk cut short (zstd or uncompressed)."""
+    """The complete records at the start of a chunk cut short (zstd or uncompressed),
+    decompressed no further than the chunk declares (:func:`chunk_problem`)."""
     import io
     import struct
 
+    if chunk_problem(body[:64], 1 << 62) is not None:     # its length is unknown: cut short
+        return
     try:
+        (uncompressed,) = struct.unpack_from("<Q", body, 16)
         (compression_length,) = struct.unpack_from("<I", body, 28)
         compression = body[32:32 + compression_length].decode()
         start = 32 + compression_length + 8
         if compression == "zstd":
             import zstandard
-            inner = zstandard.ZstdDecompressor().decompressobj().decompress(body[start:])
+            inner, pieces, made = zstandard.ZstdDecompressor().decompressobj(), [], 0
+            # fed in small pieces (a zstd block of 3 bytes can make 128 KiB), up to the chunk's size
+            for piece in range(start, len(body), 256):
+                pieces.append(inner.decompress(body[piece:piece + 256]))
+                made += len(pieces[-1])
+                if made >= uncompressed:
+                    break
+            inner = b"".join(pieces)[:uncompressed]
         elif compression == "":
             inner = body[start:]
         else:
@@ -236,6 +317,7 @@ def states(path: str | Path, body: str) -> Iterator[dict]:
     """The state messages of ``body`` in time order (stops quietly at a break)."""
     topic = f"/{body}{STATE_SUFFIX}"
     try:
+        _check_chunks(Path(path))
         with open(path, "rb") as stream:
             reader = make_reader(stream)
             if reader.get_summary() is not None:
@@ -275,7 +357,9 @@ def iter_raw_messages(path: str | Path) -> Iterator[tuple[str, int, bytes]]:
 
 
 def messages(path: str | Path, topics: list[str] | None = None) -> Iterator[tuple[str, int, dict]]:
-    """Yield ``(topic, log_time_ns, message)`` in log-time order."""
+    """Yield ``(topic, log_time_ns, message)`` in log-time order (ValueError: a chunk that
+    :func:`chunk_problem` refuses)."""
+    _check_chunks(Path(path))
     with open(path, "rb") as stream:
         reader = make_reader(stream)
         for _schema, channel, message in reader.iter_messages(topics=topics):

@@ -129,7 +129,8 @@ class Propulsion:
 
     def states(self, y: np.ndarray, t: float, p_a: float) -> list[dict]:
         """Each engine at time ``t`` and ambient pressure ``p_a`` (Pa): on, spool fraction,
-        throttle flown, gimbal (rad), thrust (N), mass flow (kg/s), ignitions left, separated."""
+        throttle flown and its range, gimbal (rad), thrust (N), mass flow (kg/s), ignitions
+        left, separated."""
         a, out = self.a, []
         rows = engines.engine_states(t, y, a.first_clock, a.eng, a.cmd, a.stage, p_a).tolist()
         for e, name in enumerate(self.model.engine_names):
@@ -139,6 +140,7 @@ class Propulsion:
                 "on": bool(a.cmd[e, engines.C_ON] > 0.5),
                 "spool": f,
                 "throttle": tau,
+                "throttle_range": (a.eng[e, engines.E_TAU_MIN], a.eng[e, engines.E_TAU_MAX]),
                 "gimbal_rad": (gy, gz),
                 "thrust_N": thrust,
                 "mass_flow_kg_s": f * tau * a.eng[e, engines.E_MDOT],

@@ -16,7 +16,8 @@ Earth parking orbit in the Moon's orbital plane, in a mission flown with
    periapsis): turn the velocity in its own plane, speed kept, so that the
    lunar hyperbola's angular momentum is that of a 100 km periapsis.
 5. At periapsis, burn to the circular velocity of the current radius along
-   the local horizontal: a ~100 km lunar orbit.
+   the local horizontal (:func:`rocketsim.guidance.apsis.apsis_velocity`):
+   a ~100 km lunar orbit.
 
 Flown from the launch pad (scenarios/moon-from-pad.yaml: the lunar orbiter stacked on a
 launcher as the scenario's ``spacecraft``), the program first flies the
@@ -34,6 +35,7 @@ import numpy as np
 from rocketsim.constants import EARTH_MU, MOON_MU, MOON_RADIUS
 from rocketsim.flight.maneuvers import burn, burn_time, time_to_periapsis, trim_periapsis, unit
 from rocketsim.flight.program import load_program_module
+from rocketsim.guidance.apsis import apsis_velocity
 from rocketsim.orbits import propagate
 from rocketsim.transfer.lambert import lambert
 
@@ -96,9 +98,7 @@ def main(fc):
     fc.cruise(max(time_to_periapsis(fc) - 0.5 * loi, 0.0))
 
     def circular():
-        r, v = fc.position, fc.velocity
-        along = unit(np.cross(np.cross(r, v), r))
-        return math.sqrt(MOON_MU / np.linalg.norm(r)) * along
+        return apsis_velocity(fc.position, fc.velocity, np.linalg.norm(fc.position), MOON_MU)
     burn(fc, circular, "loi", THRUST, ISP, rcs_turn=True)
     orbit = fc.orbit
     fc.event("lunar_orbit", periapsis_altitude_m=orbit.periapsis - MOON_RADIUS,

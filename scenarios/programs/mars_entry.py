@@ -5,7 +5,8 @@ For a capsule with a deorbit engine and a heat shield
 
 1. Deorbit: burn (:func:`rocketsim.flight.maneuvers.burn`) to the velocity,
    along the local horizontal, of an ellipse from here to a periapsis 40 km
-   below the surface (an entry flight-path angle near -3 deg at 125 km).
+   below the surface (:func:`rocketsim.guidance.apsis.apsis_velocity`; an
+   entry flight-path angle near -3 deg at 125 km).
 2. Point the heat shield (the nose) along the velocity while the engine
    still has thrust to steer with, then release: the capsule falls ballistic.
 3. Watch the descent: Mach from the Mars reference atmosphere
@@ -26,7 +27,8 @@ import numpy as np
 from rocketsim.atmosphere.mars import mars_atmosphere
 from rocketsim.bodies.orientation import spin_rate
 from rocketsim.constants import MARS_FLATTENING, MARS_MU, MARS_RADIUS_EQ
-from rocketsim.flight.maneuvers import burn, unit
+from rocketsim.flight.maneuvers import burn
+from rocketsim.guidance.apsis import apsis_velocity
 
 THRUST, ISP = 4.0e3, 220.0                # N, s: the deorbit engine of the capsule
 PERIAPSIS = MARS_RADIUS_EQ - 40e3         # m
@@ -49,10 +51,7 @@ def mach(fc) -> float:
 
 def main(fc):
     def deorbit():
-        r, v = fc.position, fc.velocity
-        rn = float(np.linalg.norm(r))
-        along = unit(np.cross(np.cross(r, v), r))
-        return math.sqrt(2.0 * MARS_MU * PERIAPSIS / (rn * (rn + PERIAPSIS))) * along
+        return apsis_velocity(fc.position, fc.velocity, PERIAPSIS, MARS_MU)
     burn(fc, deorbit, "deorbit", THRUST, ISP)
     fc.wait_until(lambda: height(fc.position) < 150e3)
     fc.event("entry_interface", inertial_speed_m_s=float(np.linalg.norm(fc.velocity)))

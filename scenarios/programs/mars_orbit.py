@@ -18,7 +18,8 @@ in a low Earth parking orbit at the departure epoch of the window that
    prediction (``fc.predict``) hits it.
 4. In Mars's sphere: trim the periapsis to 400 km twice (``fc.predict``
    through the full field), then at periapsis burn to the velocity of a
-   400 x 33 000 km orbit along the local horizontal.
+   400 x 33 000 km orbit along the local horizontal
+   (:func:`rocketsim.guidance.apsis.apsis_velocity`).
 
 Flown from the launch pad (scenarios/mars-from-pad.yaml: the Mars orbiter stacked on a
 launcher as the scenario's ``spacecraft``), the program first flies the
@@ -44,6 +45,7 @@ from rocketsim.constants import EARTH_MU, MARS_MU, MARS_RADIUS_EQ, SUN_MU
 from rocketsim.flight.maneuvers import (burn, burn_time, hyperbola_velocity, time_to_periapsis,
                                         trim_periapsis, unit)
 from rocketsim.flight.program import load_program_module
+from rocketsim.guidance.apsis import apsis_velocity
 from rocketsim.transfer.lambert import lambert
 
 ASCENT = load_program_module(Path(__file__).resolve().parent / "orbit_ascent.py")
@@ -142,10 +144,7 @@ def main(fc):
     trim_periapsis(fc, R_P, "approach_trim", THRUST, ISP, horizon=10 * DAY, rcs_turn=True)
 
     def captured():
-        r, v = fc.position, fc.velocity
-        rn = float(np.linalg.norm(r))
-        along = unit(np.cross(np.cross(r, v), r))
-        return math.sqrt(MARS_MU * (2.0 / rn - 2.0 / (rn + R_A))) * along
+        return apsis_velocity(fc.position, fc.velocity, R_A, MARS_MU)
     v_p = math.sqrt(float(fc.velocity @ fc.velocity) + 2 * MARS_MU / R_P
                     - 2 * MARS_MU / np.linalg.norm(fc.position))
     moi = burn_time(fc.mass, v_p - math.sqrt(MARS_MU * (2.0 / R_P - 2.0 / (R_P + R_A))), THRUST, ISP)

@@ -18,23 +18,20 @@ program flies any two-stage vehicle from any site:
    (``target.pad``) the first stage is cut off with RETURN_RESERVE of its
    propellant left for its return (its own program flies it back);
 4. staging, then direct insertion (dropping the fairing above 110 km):
-   closed-loop guidance (:class:`Insertion`) pitches the upper stage along a
-   linear-tangent law re-solved every second so that the burn ends at the
-   target radius with no radial speed, with a cross-track term that trims
-   the inclination, until the periapsis clears the target less 5 %;
+   Powered Explicit Guidance (:class:`rocketsim.guidance.ascent.Insertion`)
+   steers the upper stage along a linear-tangent law solved again every
+   second from the navigation state, and cuts the engine off in the step that
+   puts it on the target orbit (in the plane of the target inclination through
+   the vehicle at ignition);
 5. DEPLOY_DELAY later the payload is deployed (a body of its own).
 
 Guidance rate: the first stage's climb needs no program at all: the autopilot
 holds surface prograde, the engines' throttle law backs off through max-Q at
 every step and the program waits on its stage's propellant (compiled
 conditions: ``fc.below("propellant", ...)``), so it wakes in the step the
-reserve is reached. The upper stage's
-program, like a real flight computer's guidance, solves its steering law every
-GUIDANCE_PERIOD (1 s) and sleeps in between, while the autopilot follows the
-law every 20 ms step (``fc.steer_linear_tangent``); it wakes more often as the
-cut-off nears (:class:`~rocketsim.guidance.rate.Approach`: the insertion's
-periapsis), every step at the end, so the engine is cut in the step the limit is
-crossed. A program that wants the per-step loop calls ``fc.step()`` instead.
+reserve is reached. The upper stage's guidance, like a real flight
+computer's, solves its law every second and sleeps in between, waking more
+often as the cut-off nears, every step at the end.
 
 The return of the lower stage (boost-back, entry and landing burns) is flown
 by its own program (``programs:`` in the scenario, e.g. booster_return.py).
@@ -42,9 +39,7 @@ by its own program (``programs:`` in the scenario, e.g. booster_return.py).
 
 import math
 
-from rocketsim.constants import EARTH_MU, EARTH_OMEGA, EARTH_RADIUS_EQ as EARTH_RADIUS
-from rocketsim.flight.guidance import solve_linear_tangent, warm_up
-from rocketsim.guidance.rate import Approach
+from rocketsim.guidance.ascent import Insertion, launch_azimuth, mission_orbit
 
 KICK_PER_TW = math.radians(12.66)  # kick per unit of thrust-to-weight above 1
 KICK_HEIGHT = 300.0            # m above the pad
@@ -52,15 +47,9 @@ KICK_TIME = 10.0               # s held before the gravity turn
 Q_LIMIT = 33e3                 # Pa: throttle back above this dynamic pressure (zero at 1.5 times it)
 BURN_OUT_WATCH = 0.02          # share of the first stage's load left when burn-out is watched every step
 FAIRING_ALTITUDE = 110e3       # m: above this the air is thin enough to drop the fairing
-GUIDANCE_PERIOD = 1.0          # s between insertion guidance solutions
-GUIDANCE_STEP = 0.1            # s between guidance updates nearing a cut-off
-NEWTON_PASSES = 2              # Newton passes per solution (warm-started)
-PREDICTION_STEP = 2.0          # s, step of the guidance's burn prediction
 DEPLOY_DELAY = 10.0            # s from insertion to payload deploy
 SEPARATION_DELAY = 10.0        # s from insertion to a carried spacecraft's separation
 RETURN_RESERVE = 0.18          # share of the first stage's propellant kept for its return
-
-warm_up()       # the guidance's compiled kernels, loaded with the program, not inside a step
 
 
 def main(fc):
@@ -114,88 +103,20 @@ def ascend(fc):
     fc.sleep(2.0)
     fc.ignite(upper)
     fc.throttle(1.0)
+    guidance = Insertion(mission_orbit(target))
     fairing_on = True
-    guidance = Insertion(EARTH_RADIUS + target.altitude, target.inclination)
-    periapsis = Approach(0.95 * target.altitude, rising=True, periods=(GUIDANCE_PERIOD, GUIDANCE_STEP))
-    while periapsis.ahead(fc.periapsis, fc.time):
+    while not guidance.finished:
         if fairing_on and fc.altitude > FAIRING_ALTITUDE:
             fairing_on = False
             try:
                 fc.jettison_fairing()
             except ValueError:          # a vehicle without one
                 pass
-        fc.sleep(min(guidance.steer(fc), periapsis.next_update()))
-    fc.shutdown()
-    fc.release()
-    fc.log(f"insertion: {fc.periapsis / 1e3:.1f} x {fc.apoapsis / 1e3:.1f} km, "
+        fc.sleep(guidance.update(fc))
+    fc.log(f"insertion ({guidance.outcome}): {fc.periapsis / 1e3:.1f} x {fc.apoapsis / 1e3:.1f} km, "
            f"{math.degrees(fc.inclination):.3f} deg")
-
-
-def launch_azimuth(latitude, inclination, altitude, pad_azimuth):
-    """Azimuth (rad from north) that puts a launch from ``latitude`` into an orbit of
-    ``inclination``: the inertial azimuth ``sin(b) = cos(i) / cos(lat)``, corrected
-    for the ground's eastward speed ``omega R cos(lat)`` against the orbital speed."""
-    ratio = max(-1.0, min(1.0, math.cos(inclination) / math.cos(latitude)))
-    speed = math.sqrt(EARTH_MU / (EARTH_RADIUS + altitude))
-    ground = EARTH_OMEGA * EARTH_RADIUS * math.cos(latitude)
-    candidates = []
-    for inertial in (math.asin(ratio), math.pi - math.asin(ratio)):
-        candidates.append(math.atan2(speed * math.sin(inertial) - ground, speed * math.cos(inertial)))
-    return min(candidates, key=lambda a: abs(math.remainder(a - pad_azimuth, 2 * math.pi)))
 
 
 def stage_propellant(fc, stage):
     """Propellant (kg) left in the tanks of ``stage``."""
     return sum(mass for name, mass in fc.propellant.items() if name.startswith(stage + "/"))
-
-
-class Insertion:
-    """Closed-loop insertion guidance of the upper stage (step 4 of the module).
-
-    The pitch above the local horizontal follows a linear-tangent law
-    ``tan(pitch) = A + B tau`` (tau s since the last solution), which the
-    autopilot follows at every step (``fc.steer_linear_tangent``). Every
-    GUIDANCE_PERIOD seconds ``A, B`` are solved again by Newton's method on a
-    planar point-mass prediction of the rest of the burn (inverse-square
-    gravity, the thrust and mass flow read now, PREDICTION_STEP midpoint steps;
-    compiled: :func:`rocketsim.flight.guidance.solve_linear_tangent`)
-    so that the burn ends, at circular speed or when the propellant runs out,
-    at the target radius with no radial speed. Recomputed from the state each
-    time, it absorbs what the prediction leaves out (J2, the steering's
-    cross-track share, the engines' spool). The cross-track share, along the
-    orbit normal, trims the inclination: thrust along the normal turns it by
-    cos(u) of it (u the argument of latitude: the Gauss equation
-    di/dt = r cos(u) a_n / h).
-    """
-
-    def __init__(self, radius, inclination):
-        self.radius = radius            # m from the Earth's centre
-        self.inclination = inclination  # rad
-        self.a, self.b = 0.5, 0.0
-        self.solved_at = None
-
-    def steer(self, fc):
-        """Solve again and hand the law to the autopilot when GUIDANCE_PERIOD has passed
-        since the last solution (while none has been found, every GUIDANCE_STEP);
-        returns the seconds to the next solution."""
-        if self.solved_at is not None and fc.time - self.solved_at < GUIDANCE_PERIOD - 1e-6:
-            return self.solved_at + GUIDANCE_PERIOD - fc.time
-        self.solve(fc)
-        error = (fc.inclination - self.inclination) * math.cos(fc.orbit.arglat)
-        fc.steer_linear_tangent(self.a, self.b, -max(-0.3, min(0.3, 8.0 * error)))
-        return GUIDANCE_STEP if self.solved_at is None else GUIDANCE_PERIOD
-
-    def solve(self, fc):
-        flow = sum(e["mass_flow_kg_s"] for e in fc.engines)
-        thrust = fc.thrust
-        if flow <= 0.0 or thrust <= 0.0:
-            return                      # the engine is still spooling up
-        r = math.sqrt(fc.position @ fc.position)
-        v = fc.velocity
-        vr = float(v @ fc.position) / r
-        vh = math.sqrt(max(0.0, v @ v - vr * vr))
-        self.a, self.b = solve_linear_tangent(r, vr, vh, fc.mass, thrust, flow,
-                                              sum(fc.propellant.values()) / flow, self.radius,
-                                              self.a, self.b, EARTH_MU, PREDICTION_STEP, NEWTON_PASSES)
-        self.solved_at = fc.time
-

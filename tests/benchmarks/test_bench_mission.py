@@ -35,8 +35,8 @@ Printed (run with ``pytest -s``):
 The shipped programs hand what they can to compiled code: ``orbit_ascent.py``
 climbs from the pitch kick to MECO without waking (surface prograde held, the
 engines' q throttle law, a compiled wait on the stage's propellant) and flies
-its insertion on a linear-tangent law the autopilot follows, solved every
-second; ``booster_return.py`` predicts its boost-back's miss once a second
+its insertion with Powered Explicit Guidance solved every second, the nose
+pointed along its law in between; ``booster_return.py`` predicts its boost-back's miss once a second
 (waiting on the nose's angle to its aim while it turns), updates its descent
 every 0.5 s and its entry and landing burns every 0.1 s, every step only as a
 cut-off or the landing burn's ignition nears (``Approach``): 971 program

@@ -1,0 +1,154 @@
+"""Benchmark: flights with realistic sensors and with a program's condition read in Python.
+
+Targets, each a ratio of two flights measured in this run (alternating rounds,
+the best of each; a load that comes and goes slows all alike):
+
+1. ``scenarios/falcon9-leo.yaml`` to T+480 s (the span of the booster-landing
+   campaign, ``campaigns/falcon9-landing.yaml``) with ``sensors: realistic`` (seed 1)
+   over the same flight with the truth's readings (perfect sensors): at most 1.3.
+   In the suite the first ARC seconds (the ascent and staging, both programs
+   reading the estimate); with ``ROCKETSIM_BENCH_FULL=1`` the whole 480 s.
+2. The finned sounding rocket of ``tests/sounding_peer.py`` to past apogee
+   (110 s, 20 ms steps, 10 Hz MCAP) whose program waits for the descent with
+   ``fc.wait_until(lambda: fc.time > 5 and fc.vertical_speed < 0)`` (a condition
+   read in Python at every step) over the same flight waiting on its compiled
+   twin ``fc.wait_until(fc.above("time", 5) & fc.below("vertical_speed", 0))``:
+   at most 1.5. The program
+   that lights the engine and does nothing more is timed beside them (the floor).
+3. The lambda program's real-time factor over RocketPy's on the same rocket
+   (:func:`tests.sounding_peer.rocketpy_flight` to apogee at RocketPy's default
+   tolerance, ``rtol`` 1e-6; the peer test asks 1e-8 of it): at least 10.
+
+Times are CPU seconds of this process (``time.process_time``: on a shared
+machine the wall time counts the other processes' turns too; the flights'
+telemetry is written on a second thread, counted as well) and wall seconds,
+printed with the machine's load (``pytest -s``). Nothing here asserts a time;
+the checks are that the realistic flight reads other numbers than the perfect
+one and is the same flight at each repeat, and that the lambda and its compiled
+twin wake the program at the same step with the same final state.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from rocketsim.api.telemetry_flight import fly_to_file
+from rocketsim.scenario.load import load
+from tests.benchmarks.timing import load_text
+from tests.sounding_peer import on_the_pad, scenario
+
+ROOT = Path(__file__).resolve().parents[2]
+FALCON9 = ROOT / "scenarios" / "falcon9-leo.yaml"
+FULL = os.environ.get("ROCKETSIM_BENCH_FULL") == "1"
+SPAN = 480.0 if FULL else 160.0     # s of the Falcon 9 mission flown
+FLOWN = 110.0                       # s: the sounding rocket past its apogee (near 105 s)
+
+
+def _timed(function) -> tuple[float, float, object]:
+    """``(CPU s of this process, wall s, result)`` of ``function()``."""
+    cpu, wall = time.process_time(), time.perf_counter()
+    result = function()
+    return time.process_time() - cpu, time.perf_counter() - wall, result
+
+
+def _best_rounds(flights: dict, rounds: int) -> dict:
+    """Each flight of ``flights`` (name -> function) flown once to warm up, then in
+    ``rounds`` rounds of one of each: ``name -> (best CPU s, best wall s, results)``."""
+    for flight in flights.values():
+        flight()
+    best = {name: [math.inf, math.inf, []] for name in flights}
+    for _ in range(rounds):
+        for name, flight in flights.items():
+            cpu, wall, result = _timed(flight)
+            entry = best[name]
+            entry[0], entry[1] = min(entry[0], cpu), min(entry[1], wall)
+            entry[2].append(result)
+    return best
+
+
+def _final(summary: dict) -> dict:
+    """Each body's final position (m) from a flight's summary."""
+    return {name: body["final"]["position_m"] for name, body in summary["bodies"].items()}
+
+
+def test_realistic_sensors_against_perfect_ones(tmp_path):
+    out = tmp_path / "f9.mcap"
+    perfect = load(FALCON9)
+    realistic = load(FALCON9, {"sensors": "realistic", "seed": 1})
+    best = _best_rounds({"perfect": lambda: fly_to_file(perfect, out, duration=SPAN),
+                         "realistic": lambda: fly_to_file(realistic, out, duration=SPAN)},
+                        rounds=2 if FULL else 3)
+    (cpu_p, wall_p, perfect_runs), (cpu_r, wall_r, realistic_runs) = best["perfect"], best["realistic"]
+    print(f"\n[sensors] falcon9-leo to T+{SPAN:.0f} s: perfect sensors {cpu_p:.2f} s CPU ({wall_p:.2f} s wall), "
+          f"realistic {cpu_r:.2f} s CPU ({wall_r:.2f} s wall)")
+    print(f"[sensors] realistic / perfect: {cpu_r / cpu_p:.2f} CPU, {wall_r / wall_p:.2f} wall "
+          f"(target <= 1.3); {load_text()}")
+    finals = [_final(summary) for summary in realistic_runs]
+    assert all(final == finals[0] for final in finals)     # the same flight at each repeat
+    booster = next(name for name in finals[0] if name != next(iter(_final(perfect_runs[0]))))
+    assert not np.array_equal(finals[0][booster], _final(perfect_runs[0])[booster])  # the errors steer it
+
+
+def _programs(woken: dict) -> dict:
+    """The sounding rocket's programs, each noting in ``woken`` the time it woke at."""
+    def nothing(fc):
+        fc.ignite()
+
+    def compiled(fc):
+        fc.ignite()
+        fc.wait_until(fc.above("time", 5.0) & fc.below("vertical_speed", 0.0))
+        woken["compiled"] = fc.time
+
+    def in_python(fc):
+        fc.ignite()
+        fc.wait_until(lambda: fc.time > 5 and fc.vertical_speed < 0)
+        woken["lambda"] = fc.time
+
+    return {"ignition alone": nothing, "compiled condition": compiled, "lambda condition": in_python}
+
+
+def test_a_condition_in_python_against_its_compiled_twin(tmp_path):
+    out = tmp_path / "sounding.mcap"
+    woken: dict = {}
+    flights = {}
+    for name, program in _programs(woken).items():
+        loaded = load({**scenario(FLOWN), "program": program})
+        flights[name] = lambda loaded=loaded: fly_to_file(loaded, out)
+    rocketpy = _rocketpy()
+    if rocketpy is not None:
+        flights["RocketPy"] = lambda: rocketpy(on_the_pad()[0], rtol=1e-6)
+    best = _best_rounds(flights, rounds=5)
+    print(f"\n[conditions] sounding rocket, {FLOWN:.0f} s of flight at 20 ms, 10 Hz MCAP; best of 5; {load_text()}")
+    for name, (cpu, wall, _) in best.items():
+        print(f"[conditions]   {name}: {cpu * 1e3:.1f} ms CPU, {wall * 1e3:.1f} ms wall")
+    lam, twin = best["lambda condition"], best["compiled condition"]
+    print(f"[conditions] lambda / compiled condition: {lam[0] / twin[0]:.2f} CPU, {lam[1] / twin[1]:.2f} wall "
+          f"(target <= 1.5)")
+    if rocketpy is not None:
+        flight = best["RocketPy"][2][0]
+        peer = float(flight.t_final) / best["RocketPy"][1]
+        print(f"[conditions] real-time factor with the lambda program {FLOWN / lam[1]:,.0f}, RocketPy's {peer:,.0f}: "
+              f"{FLOWN / lam[1] / peer:.1f}x (target >= 10x, wall times); {load_text()}")
+    assert woken["lambda"] == woken["compiled"] > 90.0      # the descent, found at the same step
+    finals = [_final(summary) for name in _programs({}) for summary in best[name][2]]
+    assert all(final == finals[0] for final in finals)
+
+
+def _rocketpy():
+    """:func:`tests.sounding_peer.rocketpy_flight`, or None without RocketPy."""
+    try:
+        import rocketpy  # noqa: F401
+    except ImportError:
+        return None
+    from tests.sounding_peer import rocketpy_flight
+    return rocketpy_flight
+
+
+if __name__ == "__main__":      # pragma: no cover
+    pytest.main([__file__, "-s", "-q"])
