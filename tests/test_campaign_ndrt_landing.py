@@ -80,7 +80,7 @@ def test_the_landing_rows_match_the_days_drift(tmp_path):
         top = (row["ndrt-2020.apogee.latitude_deg"], row["ndrt-2020.apogee.longitude_deg"])
         down = (row["ndrt-2020.landing.latitude_deg"], row["ndrt-2020.landing.longitude_deg"])
         e, n, _ = pymap3d.geodetic2enu(*down, 0.0, *top, 0.0)
-        time, de, dn = estimate({**given.to_dict(), "apogee": row["ndrt-2020.apogee.altitude_m"]})
+        time, de, dn = estimate({**given.to_dict(), "apogee": row["ndrt-2020.apogee.height_agl_m"]})
         print(f"\n[ndrt-landing] run {int(row['run'])}: descent {row['ndrt-2020.touchdown.descent_time_s']:.1f} s "
               f"(estimate {time:.1f}), drift {e:.0f} m east {n:.0f} m north (estimate {de:.0f}, {dn:.0f})")
         assert row["ndrt-2020.touchdown.descent_time_s"] == pytest.approx(time, rel=0.05)

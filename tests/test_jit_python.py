@@ -122,7 +122,7 @@ def test_a_shipped_scenario_flies_with_its_kernels_as_python(tmp_path):
     rocketsim.fly(ROOT / "scenarios" / "hobby-rocket.yaml", tmp_path / "compiled.mcap", duration=1.0)
     python, compiled = (rocketsim.open_run(tmp_path / f"{how}.mcap").bodies["hobby-rocket"].table(units=False)
                         for how in ("python", "compiled"))
-    assert python.shape == compiled.shape == (11, 37)
+    assert python.shape == compiled.shape == (11, 42)
     numbers = python.select_dtypes("number").columns
     np.testing.assert_allclose(python[numbers].to_numpy(float), compiled[numbers].to_numpy(float),
                                rtol=1e-12, atol=1e-9)

@@ -75,7 +75,7 @@ def _rocketpy():
 def test_off_rail_apogee_and_landing_agree_with_rocketpy():
     ours = _ours()
     flight = _rocketpy()
-    off, apogee, touchdown = ours["off_rail"], ours["apogee"]["altitude_m"], ours["touchdown"]
+    off, apogee, touchdown = ours["off_rail"], ours["apogee"]["height_agl_m"], ours["touchdown"]
     peer_off = float(flight.out_of_rail_velocity)
     peer_apogee = float(flight.apogee - flight.env.elevation)
     drogue, main = (c.cd_s for c in shipped("hobby-rocket.yaml").stages[0].parachutes)
