@@ -149,7 +149,8 @@ def _rigid(head: tuple, p: np.ndarray, drag: tuple | None) -> tuple:
     """A rigid body's arguments of figures after ``head`` (:func:`_head`), but for the
     shield's temperature: ``drag`` is a tumbling part's ``(area over mass m^2/kg, length m)``
     (None: a body the air does not act on)."""
-    return head + (None, _NO_GROUPS, 0, 0.0, 0.0) + (drag or (0.0, 0.0)) + (nbody_flag(p),)
+    area_mass, length = (0.0, 0.0) if drag is None else drag
+    return head + (None, _NO_GROUPS, 0, 0.0, 0.0, float(area_mass), float(length), nbody_flag(p))
 
 
 def part_arguments(body, gmst0: float) -> tuple:
