@@ -42,7 +42,7 @@ from rocketsim.stepping.sample_figures import (N_SAMPLE_RIGID, SAMPLE_DYNAMIC_PR
                                                SAMPLE_HEIGHT, SAMPLE_HEIGHT_AGL, SAMPLE_LAT, SAMPLE_LON, SAMPLE_MACH,
                                                SAMPLE_SENSED, SAMPLE_SURFACE_SPEED)
 from rocketsim.telemetry.sink import TelemetrySink
-from rocketsim.telemetry.writer import interleaved_samples
+from rocketsim.telemetry.sample_plans import interleaved_samples
 
 COAST_Q = 1.0            # Pa: below it a body without engines running coasts
 LANDINGS = ("touchdown", "impact")
