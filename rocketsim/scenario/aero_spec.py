@@ -261,7 +261,7 @@ def check_axial_load(vehicle) -> None:
     if aero is None or not aero.aerodynamics or aero.limits.axial_load is not None:
         return
     from rocketsim.constants import STRUCTURE_AXIAL_LIMIT_G
-    from rocketsim.vehicle.review import stage_loads
+    from rocketsim.vehicle.stage_burns import stage_loads
     for i, stage in enumerate(vehicle.stages):
         loads = stage_loads(vehicle, i)
         if loads.least_peak_axial_load_g > STRUCTURE_AXIAL_LIMIT_G:
