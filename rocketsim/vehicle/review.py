@@ -114,7 +114,7 @@ class Review:
                      "no breakup checks")
         if self.rail is not None:
             lines.append(f"off a {self.rail.length_m:g} m rail at {self.rail.inclination_deg:g} deg: "
-                         f"{self.rail.speed_m_s:.1f} m/s at T+{self.rail.time_s:.2f} s (thrust alone, no drag)")
+                         f"{self.rail.surface_speed_m_s:.1f} m/s at T+{self.rail.time_s:.2f} s (thrust alone, no drag)")
         if self.aerodynamics:
             lines += ["", f"{'':24}{'mass kg':>12}{'CM m':>9}{'CP m':>9}{'margin cal':>12}"
                           f"{'CP m at 5 deg':>15}{'margin':>9}"]
