@@ -16,7 +16,8 @@ import click
 from rocketsim.errors import ArgumentError, InputError
 
 # a front door's argument -> the parameter of the command that gives it, where their names differ
-ALIASES = {"directory": "output", "telemetry": "output"}
+ALIASES = {"directory": "output", "telemetry": "output", "live.port": "port", "live.host": "host",
+           "live.warp": "warp"}
 
 
 def reports_input_errors(command):

@@ -22,6 +22,12 @@ def files(tmp_path):
 
 @pytest.mark.parametrize("call, argument", [
     (lambda c, s, d: api.fly(str(s), duration=-1.0), "duration"),
+    (lambda c, s, d: api.fly(str(s), live={"port": -5}), "live.port"),
+    (lambda c, s, d: api.fly(str(s), live={"port": "8765"}), "live.port"),
+    (lambda c, s, d: api.fly(str(s), live={"host": 127}), "live.host"),
+    (lambda c, s, d: api.fly(str(s), live={"paused": "no"}), "live.paused"),
+    (lambda c, s, d: api.fly(str(s), live={"speed": 2}), "live"),
+    (lambda c, s, d: api.fly(str(s), live="yes"), "live"),
     (lambda c, s, d: api.telemetry_size(api.load(str(s)), duration="x"), "duration"),
     (lambda c, s, d: api.campaign(c, runs=0, workers=1), "runs"),
     (lambda c, s, d: api.campaign(c, runs="3", workers=1), "runs"),
