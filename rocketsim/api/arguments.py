@@ -5,6 +5,7 @@ the command line shows its option), never a TypeError from deep inside."""
 from __future__ import annotations
 
 import numbers
+import os
 
 from rocketsim.errors import ArgumentError
 
@@ -42,3 +43,14 @@ def seconds(value, name: str, check) -> float:
         return check(parse_quantity(value, "time"))
     except ValueError as error:
         raise ArgumentError(str(error), name) from None
+
+
+def one_of(value, choices, name: str) -> None:
+    """Refuse ``value`` unless one of ``choices`` (names), naming the argument ``name``."""
+    if not isinstance(value, str) or value not in choices:
+        raise ArgumentError(f"expected one of {', '.join(choices)}, got {value!r:.60}", name)
+
+
+def file_path(value, name: str) -> None:
+    """Refuse ``value`` unless a file's path (a str or os.PathLike)."""
+    expect(value, (str, os.PathLike), name, "a file's path")
