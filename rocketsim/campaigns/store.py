@@ -24,9 +24,10 @@ the rows of the last :data:`CONSOLIDATE_S` seconds, which the parts hold until
 
 ``inputs.parquet`` too is whole or absent (renamed when its last block is
 written): a campaign of millions of runs starts flying within seconds and its
-inputs take the memory of one block, whatever the number of runs. A campaign
-stopped before its inputs were all written has none, and ``--resume`` writes
-them again (they derive from the campaign alone).
+inputs take the memory of one block, whatever the number of runs (a campaign of
+one block writes it before anything flies). A campaign stopped before its
+inputs were all written has none, and ``--resume`` writes them again (they
+derive from the campaign alone).
 """
 
 from __future__ import annotations
@@ -261,6 +262,8 @@ class Store:
             if self.inputs is not None:
                 self.inputs.cancel()
             self.inputs = InputsWriter(plan, self.dir / "inputs.parquet")
+            if campaign.spec.runs <= INPUTS_BLOCK:      # one block: written before anything flies
+                self.inputs_written()
         if "meta.json" in names:
             spec = campaign.spec
             meta = {"name": spec.name, "seed": spec.seed, "runs": spec.runs, "scenario": str(campaign.scenario),
