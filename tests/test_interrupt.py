@@ -16,9 +16,7 @@ from rocketsim.api.telemetry_flight import fly_into
 from rocketsim.telemetry import writer
 from rocketsim.telemetry.reader import metadata
 from rocketsim.telemetry.writer import TelemetryWriter
-from tests.test_mcap_stream import InterruptAt, records_agreeing
-
-ROOT = Path(__file__).resolve().parents[1]
+from tests.test_mcap_stream import InterruptAt, in_a_fresh_process, records_agreeing
 
 
 @pytest.mark.parametrize("signum, status", [(signal.SIGINT, 130), (signal.SIGTERM, 143)])
@@ -111,20 +109,13 @@ def test_a_ctrl_c_at_any_moment_of_the_writer_leaves_a_whole_file(scenario, tmp_
     every bytecode the telemetry package runs on the flight's thread (the only one a
     signal interrupts: the file is written on the writer's own thread): each file's
     summary agrees with its records, and its messages are those of the whole file up
-    to where it stopped, none twice, none skipped.
-
-    Run in a fresh Python process, bounded in time: CPython 3.11's opcode tracing was
-    seen to spin for ever on one line of the writer in a test worker that had run
-    hundreds of other tests before, never in a fresh process."""
+    to where it stopped, none twice, none skipped. (in a fresh
+    process: :func:`tests.test_mcap_stream.in_a_fresh_process`)."""
     program = """
     def main(fc):
         fc.sleep(12.0)
         fc.log("twelve seconds")
         fc.event("marker", altitude_m=fc.altitude)
     """
-    path = scenario(program, duration="30 s")
-    done = subprocess.run(
-        [sys.executable, "-c", "import sys; from tests.test_interrupt import interrupted_writes; "
-         "interrupted_writes(*sys.argv[1:])", str(path), str(tmp_path)],
-        cwd=ROOT, capture_output=True, text=True, timeout=300)
-    assert done.returncode == 0, done.stderr[-4000:]
+    in_a_fresh_process("tests.test_interrupt:interrupted_writes",
+                       str(scenario(program, duration="30 s")), str(tmp_path))
