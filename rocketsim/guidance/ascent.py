@@ -61,11 +61,10 @@ position to go, while ``lambda = unit(vgo)`` is): ``lambda_dot`` answers a
 position error with a gain growing as ``1 / tgo^3``, and there a metre of
 navigation noise would swing the law by degrees while a metre of radius is
 worth a metre of apsis. Kept, not zeroed, the turning rate leaves the law
-continuous: a law that stepped by its turn ``|lambda_dot| J / L`` (a degree)
-at the release left the nose settling onto it through the last seconds, and
-its lag (the autopilot's ``2 zeta / omega_n`` times the step, some 0.2 m/s of
-climb at the cut-off) put 0.1 to 0.4 km of eccentricity into every insertion.
-In the last ``freeze`` seconds the law is flown as it is.
+continuous: zeroed, the law would step by its turn ``|lambda_dot| J / L``
+(about a degree) at the release, and the nose's settling onto it would be left
+as climb at the cut-off (0.2 m/s in the shipped ascent; docs/guidance-ascent.md
+says what remains). In the last ``freeze`` seconds the law is flown as it is.
 
 **The target** (:class:`Orbit`): a periapsis and an apoapsis radius and an
 inclination, read as osculating two-body elements or as Kozai mean elements
