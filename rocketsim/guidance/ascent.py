@@ -55,11 +55,16 @@ has stepped. Two refinements for the end of the burn: the burn may be planned
 as two constant-thrust phases, its last ``final_speed`` at a lower throttle
 (:func:`burn_phases`, :func:`thrust_integrals`: the UPFG document sums the
 integrals of its stages the same way), so that the step down does not turn the
-law; and in the last seconds the position is released (``released``:
-``lambda_dot = 0``, the thrust along ``vgo``): ``lambda_dot`` answers a
+law; and in the last seconds the position is released (``released``: the
+turning rate ``lambda_dot`` is the last one's, no longer re-derived from the
+position to go, while ``lambda = unit(vgo)`` is): ``lambda_dot`` answers a
 position error with a gain growing as ``1 / tgo^3``, and there a metre of
 navigation noise would swing the law by degrees while a metre of radius is
-worth a metre of apsis. In the last ``freeze`` seconds the law is flown as it is.
+worth a metre of apsis. Kept, not zeroed, the turning rate leaves the law
+continuous: zeroed, the law would step by its turn ``|lambda_dot| J / L``
+(about a degree) at the release, and the nose's settling onto it would be left
+as climb at the cut-off (0.2 m/s in the shipped ascent; docs/guidance-ascent.md
+says what remains). In the last ``freeze`` seconds the law is flown as it is.
 
 **The target** (:class:`Orbit`): a periapsis and an apoapsis radius and an
 inclination, read as osculating two-body elements or as Kozai mean elements
@@ -105,8 +110,8 @@ from rocketsim.constants import (EARTH_J2, EARTH_MU, EARTH_OMEGA, EARTH_RADIUS_E
                                  G0)
 from rocketsim.guidance.rate import Approach
 from rocketsim.flight.steering import OMEGA_N, ZETA
-from rocketsim.frames.elements import Elements
-from rocketsim.frames.mean_elements import state_of_mean_elements
+from rocketsim.frames.elements import Elements, state_to_elements
+from rocketsim.frames.mean_elements import mean_elements_of_state, state_of_mean_elements
 from rocketsim.orbits import propagate
 
 START_PASSES = 40           # cycles at most on the state at ignition, to settle the first solution
@@ -228,6 +233,16 @@ class Orbit:
         node = plane_through(point, velocity, inclination) if self.raan is None else self.raan + offset
         radius, speed = math.sqrt(float(r @ r)), math.sqrt(float(v @ v))
         return Target(radius, speed, math.asin(float(r @ v) / (radius * speed)), plane_normal(inclination, node))
+
+    def reached(self, position, velocity) -> tuple[float, float, float]:
+        """The periapsis and apoapsis radii (m) and the inclination (rad) of the orbit of the
+        state ``position``, ``velocity`` (m, m/s), in this target's elements (Kozai mean or
+        osculating): the figures to compare with the target's. (A mean target read in
+        osculating elements is kilometres off: J2's short-period terms.)"""
+        elements = (mean_elements_of_state(position, velocity, self.mu, self.radius, self.j2) if self.mean
+                    else state_to_elements(np.asarray(position, dtype=float), np.asarray(velocity, dtype=float),
+                                           self.mu))
+        return elements.periapsis, elements.apoapsis, elements.i
 
     def _osculating(self, u: float):
         """The osculating state of the mean circle at node 0 and argument of latitude ``u``."""
@@ -352,8 +367,9 @@ def cycle(previous: Solution, t: float, r, v, acceleration: float, exhaust: floa
     ``v`` (m/s), the thrust acceleration now (m/s^2) and the exhaust velocity (m/s),
     aiming at ``orbit``. ``final``: the last ``final[0]`` m/s flown at ``final[1]`` of the
     thrust now (:func:`burn_phases`). ``released``: the cut-off position is no longer
-    aimed at, only the velocity (``lambda_dot = 0``: the thrust along the velocity to be
-    gained)."""
+    aimed at, only the velocity (``lambda_dot`` is the last solution's, not re-derived
+    from the position to go; with ``t_lambda = t + J / L`` the law still gains ``vgo``
+    to first order in the turn)."""
     mu = orbit.mu
     vgo = previous.vgo - thrust_gain(previous.t, previous.r, previous.v, t, r, v, mu)
     tau = exhaust / acceleration
@@ -364,8 +380,9 @@ def cycle(previous: Solution, t: float, r, v, acceleration: float, exhaust: floa
 
     lam = vgo / speed
     rgrav = (tgo / previous.tgo) ** 2 * previous.rgrav
-    if released:
-        lam_dot, vthrust, rthrust = np.zeros(3), L * lam, S * lam
+    if released:        # the last turning rate kept (square to the new lambda), no longer re-aimed
+        lam_dot = previous.lam_dot - float(previous.lam_dot @ lam) * lam
+        vthrust, rthrust = L * lam, S * lam
         vbias, rbias = np.zeros(3), np.zeros(3)
     else:
         rgo = previous.rd - (r + v * tgo + rgrav) + previous.rbias

@@ -7,7 +7,7 @@ Earth parking orbit in the Moon's orbital plane, in a mission flown with
 1. Plan the injection: over one parking revolution and transfer times of
    3 to 5 days, the Lambert arc (two-body, Earth) from the parking orbit to
    an aim point beside the Moon at arrival, offset by the impact parameter
-   of a 100 km periapsis, ``b = r_p sqrt(1 + 2 mu_M / (r_p v_inf^2))``;
+   of a 100 km periapsis (:func:`rocketsim.guidance.apsis.impact_parameter`);
    take the cheapest.
 2. Burn to that arc with Lambert guidance (the arc re-solved every step from
    where the vehicle is to the same aim point and arrival time).
@@ -15,8 +15,8 @@ Earth parking orbit in the Moon's orbital plane, in a mission flown with
 4. Trim the approach twice (at the handover and two hours before
    periapsis): turn the velocity in its own plane, speed kept, so that the
    lunar hyperbola's angular momentum is that of a 100 km periapsis.
-5. At periapsis, burn to the circular velocity of the current radius along
-   the local horizontal (:func:`rocketsim.guidance.apsis.apsis_velocity`):
+5. Centred on periapsis, burn to the circular velocity of the current radius
+   along the local horizontal (:func:`rocketsim.guidance.apsis.burn_at_periapsis`):
    a ~100 km lunar orbit.
 
 Flown from the launch pad (scenarios/moon-from-pad.yaml: the lunar orbiter stacked on a
@@ -35,7 +35,7 @@ import numpy as np
 from rocketsim.constants import EARTH_MU, MOON_MU, MOON_RADIUS
 from rocketsim.flight.maneuvers import burn, burn_time, time_to_periapsis, trim_periapsis, unit
 from rocketsim.flight.program import load_program_module
-from rocketsim.guidance.apsis import apsis_velocity
+from rocketsim.guidance.apsis import burn_at_periapsis, impact_parameter
 from rocketsim.orbits import propagate
 from rocketsim.transfer.lambert import lambert
 
@@ -70,10 +70,8 @@ def plan_injection(fc):
     moon, moon_v = fc.body_state("moon", t_arrive)
     _, w2 = lambert(EARTH_MU, r1, moon, t_arrive - t_burn)
     v_inf = w2 - moon_v
-    speed = np.linalg.norm(v_inf)
-    b = R_P * math.sqrt(1.0 + 2.0 * MOON_MU / (R_P * speed ** 2))
-    plane = unit(np.cross(moon, moon_v))
-    aim = moon + b * unit(np.cross(v_inf, plane))
+    b = impact_parameter(R_P, float(np.linalg.norm(v_inf)), MOON_MU)
+    aim = moon + b * unit(np.cross(v_inf, unit(np.cross(moon, moon_v))))
     return t_burn, t_arrive, aim, best[0]
 
 
@@ -91,15 +89,7 @@ def main(fc):
     trim_periapsis(fc, R_P, "approach_trim", THRUST, ISP, rcs_turn=True)
     fc.cruise(max(time_to_periapsis(fc) - 6 * 3600.0, 0.0))
     trim_periapsis(fc, R_P, "approach_trim", THRUST, ISP, rcs_turn=True)
-
-    speed = float(np.linalg.norm(fc.velocity))
-    v_p = math.sqrt(speed ** 2 + 2 * MOON_MU / R_P - 2 * MOON_MU / np.linalg.norm(fc.position))
-    loi = burn_time(fc.mass, v_p - math.sqrt(MOON_MU / R_P), THRUST, ISP)
-    fc.cruise(max(time_to_periapsis(fc) - 0.5 * loi, 0.0))
-
-    def circular():
-        return apsis_velocity(fc.position, fc.velocity, np.linalg.norm(fc.position), MOON_MU)
-    burn(fc, circular, "loi", THRUST, ISP, rcs_turn=True)
+    burn_at_periapsis(fc, None, MOON_MU, "loi", THRUST, ISP, rcs_turn=True)
     orbit = fc.orbit
     fc.event("lunar_orbit", periapsis_altitude_m=orbit.periapsis - MOON_RADIUS,
              apoapsis_altitude_m=orbit.apoapsis - MOON_RADIUS)

@@ -9,10 +9,9 @@ For a capsule with a deorbit engine and a heat shield
    entry flight-path angle near -3 deg at 125 km).
 2. Point the heat shield (the nose) along the velocity while the engine
    still has thrust to steer with, then release: the capsule falls ballistic.
-3. Watch the descent: Mach from the Mars reference atmosphere
-   (:func:`rocketsim.atmosphere.mars.mars_atmosphere`) at the height over
-   Mars's ellipsoid, with the air turning with Mars (``spin_rate``). The
-   parachute conditions: Mach below 2 more than 7 km up (the supersonic
+3. Watch the descent: ``fc.mach`` (about Mars, in the Mars reference
+   atmosphere turning with Mars) and ``fc.altitude`` (over Mars's ellipsoid).
+   The parachute conditions: Mach below 2 more than 7 km up (the supersonic
    disk-gap-band parachutes of Viking, Phoenix and the Mars Science
    Laboratory opened between Mach 1.1 and 2.1, 6 to 13 km up).
 4. Open the disk-gap-band there and descend on it; the flight ends (the
@@ -20,13 +19,9 @@ For a capsule with a deorbit engine and a heat shield
    parachute for the powered descent, which is not flown.
 """
 
-import math
-
 import numpy as np
 
-from rocketsim.atmosphere.mars import mars_atmosphere
-from rocketsim.bodies.orientation import spin_rate
-from rocketsim.constants import MARS_FLATTENING, MARS_MU, MARS_RADIUS_EQ
+from rocketsim.constants import MARS_MU, MARS_RADIUS_EQ
 from rocketsim.flight.maneuvers import burn
 from rocketsim.guidance.apsis import apsis_velocity
 
@@ -35,27 +30,13 @@ PERIAPSIS = MARS_RADIUS_EQ - 40e3         # m
 PARACHUTE_MACH, PARACHUTE_HEIGHT = 2.0, 7e3
 
 
-def height(r) -> float:
-    """Height (m) over Mars's ellipsoid along the radius."""
-    a, b = MARS_RADIUS_EQ, MARS_RADIUS_EQ * (1.0 - MARS_FLATTENING)
-    rn = float(np.linalg.norm(r))
-    s = r[2] / rn
-    return rn - a * b / math.sqrt(b * b * (1.0 - s * s) + a * a * s * s)
-
-
-def mach(fc) -> float:
-    r, v = fc.position, fc.velocity
-    air = v - np.cross((0.0, 0.0, spin_rate("mars")), r)
-    return float(np.linalg.norm(air)) / mars_atmosphere(height(r)).speed_of_sound
-
-
 def main(fc):
     def deorbit():
         return apsis_velocity(fc.position, fc.velocity, PERIAPSIS, MARS_MU)
     burn(fc, deorbit, "deorbit", THRUST, ISP)
-    fc.wait_until(lambda: height(fc.position) < 150e3)
+    fc.wait_until(fc.below("altitude", 150e3))
     fc.event("entry_interface", inertial_speed_m_s=float(np.linalg.norm(fc.velocity)))
-    fc.wait_until(lambda: mach(fc) < PARACHUTE_MACH or height(fc.position) < PARACHUTE_HEIGHT)
-    fc.event("parachute_conditions", mach=mach(fc), altitude_m=height(fc.position),
+    fc.wait_until(lambda: fc.mach < PARACHUTE_MACH or fc.altitude < PARACHUTE_HEIGHT)
+    fc.event("parachute_conditions", mach=fc.mach, altitude_m=fc.altitude,
              inertial_speed_m_s=float(np.linalg.norm(fc.velocity)))
     fc.deploy_parachute("disk-gap-band")

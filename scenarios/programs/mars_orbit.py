@@ -17,9 +17,9 @@ in a low Earth parking orbit at the departure epoch of the window that
    arrival: Lambert arcs (the Sun alone) re-aimed until the full field's
    prediction (``fc.predict``) hits it.
 4. In Mars's sphere: trim the periapsis to 400 km twice (``fc.predict``
-   through the full field), then at periapsis burn to the velocity of a
-   400 x 33 000 km orbit along the local horizontal
-   (:func:`rocketsim.guidance.apsis.apsis_velocity`).
+   through the full field), then, centred on periapsis, burn to the velocity
+   of a 400 x 33 000 km orbit along the local horizontal
+   (:func:`rocketsim.guidance.apsis.burn_at_periapsis`).
 
 Flown from the launch pad (scenarios/mars-from-pad.yaml: the Mars orbiter stacked on a
 launcher as the scenario's ``spacecraft``), the program first flies the
@@ -45,7 +45,7 @@ from rocketsim.constants import EARTH_MU, MARS_MU, MARS_RADIUS_EQ, SUN_MU
 from rocketsim.flight.maneuvers import (burn, burn_time, hyperbola_velocity, time_to_periapsis,
                                         trim_periapsis, unit)
 from rocketsim.flight.program import load_program_module
-from rocketsim.guidance.apsis import apsis_velocity
+from rocketsim.guidance.apsis import burn_at_periapsis, impact_parameter
 from rocketsim.transfer.lambert import lambert
 
 ASCENT = load_program_module(Path(__file__).resolve().parent / "orbit_ascent.py")
@@ -89,11 +89,11 @@ def injection(fc):
 def aim_point(fc):
     """Where to be (heliocentric, m) :data:`LEAD` before arrival: on the incoming
     asymptote of a hyperbola whose periapsis is 400 km above Mars (impact
-    parameter ``b = r_p sqrt(1 + 2 mu / (r_p v_inf^2))``), moving with Mars."""
+    parameter, :func:`~rocketsim.guidance.apsis.impact_parameter`), moving with Mars."""
     r_mars, v_mars = heliocentric(fc, "mars", TRANSFER)
     _, v2 = lambert(SUN_MU, fc.position, r_mars, TRANSFER - fc.time)
     v_inf = v2 - v_mars
-    b = R_P * math.sqrt(1.0 + 2.0 * MARS_MU / (R_P * float(v_inf @ v_inf)))
+    b = impact_parameter(R_P, float(np.linalg.norm(v_inf)), MARS_MU)
     offset = b * unit(np.cross(v_inf, np.cross(r_mars, v_mars)))
     r_then, _ = heliocentric(fc, "mars", TRANSFER - LEAD)
     return r_then + offset - v_inf * LEAD
@@ -142,14 +142,7 @@ def main(fc):
     trim_periapsis(fc, R_P, "approach_trim", THRUST, ISP, horizon=10 * DAY, rcs_turn=True)
     fc.cruise(max(time_to_periapsis(fc, 10 * DAY) - 12 * 3600.0, 0.0))
     trim_periapsis(fc, R_P, "approach_trim", THRUST, ISP, horizon=10 * DAY, rcs_turn=True)
-
-    def captured():
-        return apsis_velocity(fc.position, fc.velocity, R_A, MARS_MU)
-    v_p = math.sqrt(float(fc.velocity @ fc.velocity) + 2 * MARS_MU / R_P
-                    - 2 * MARS_MU / np.linalg.norm(fc.position))
-    moi = burn_time(fc.mass, v_p - math.sqrt(MARS_MU * (2.0 / R_P - 2.0 / (R_P + R_A))), THRUST, ISP)
-    fc.cruise(max(time_to_periapsis(fc, 10 * DAY) - 0.5 * moi, 0.0))
-    burn(fc, captured, "moi", THRUST, ISP)
+    burn_at_periapsis(fc, R_A, MARS_MU, "moi", THRUST, ISP, horizon=10 * DAY)
     orbit = fc.orbit
     fc.event("mars_orbit", periapsis_altitude_m=orbit.periapsis - MARS_RADIUS_EQ,
              apoapsis_altitude_m=orbit.apoapsis - MARS_RADIUS_EQ, period_s=orbit.period)

@@ -22,7 +22,10 @@ program flies any two-stage vehicle from any site:
    steers the upper stage along a linear-tangent law solved again every
    second from the navigation state, and cuts the engine off in the step that
    puts it on the target orbit (in the plane of the target inclination through
-   the vehicle at ignition);
+   the vehicle at ignition); once the engine's tail-off is over the orbit
+   reached is logged in the target's own elements (``Orbit.reached``: mean
+   elements for a mission's default target, whose osculating apsides J2 splits
+   by kilometres);
 5. DEPLOY_DELAY later the payload is deployed (a body of its own).
 
 Guidance rate: the first stage's climb needs no program at all: the autopilot
@@ -73,7 +76,8 @@ def carry_to_orbit(fc):
 
 def ascend(fc):
     """Steps 1-4 of the module: from the pad to engine cut-off in the target orbit,
-    the engines off and the attitude released (the upper stage still attached)."""
+    the engines off, their tail-off over and the attitude released (the upper stage
+    still attached)."""
     target = fc.target.orbit
     azimuth = launch_azimuth(fc.latitude, target.inclination, target.altitude, fc.pad_azimuth)
     first, upper = fc.stages[0], fc.stages[1]
@@ -103,7 +107,8 @@ def ascend(fc):
     fc.sleep(2.0)
     fc.ignite(upper)
     fc.throttle(1.0)
-    guidance = Insertion(mission_orbit(target))
+    orbit = mission_orbit(target)
+    guidance = Insertion(orbit)
     fairing_on = True
     while not guidance.finished:
         if fairing_on and fc.altitude > FAIRING_ALTITUDE:
@@ -113,8 +118,11 @@ def ascend(fc):
             except ValueError:          # a vehicle without one
                 pass
         fc.sleep(guidance.update(fc))
-    fc.log(f"insertion ({guidance.outcome}): {fc.periapsis / 1e3:.1f} x {fc.apoapsis / 1e3:.1f} km, "
-           f"{math.degrees(fc.inclination):.3f} deg")
+    fc.sleep(guidance.tail_off)         # the engine's thrust has died out
+    periapsis, apoapsis, inclination = orbit.reached(fc.position, fc.velocity)
+    fc.log(f"insertion ({guidance.outcome}): {(periapsis - orbit.radius) / 1e3:.1f} x "
+           f"{(apoapsis - orbit.radius) / 1e3:.1f} km, {math.degrees(inclination):.3f} deg "
+           f"({'mean' if orbit.mean else 'osculating'} elements)")
 
 
 def stage_propellant(fc, stage):
