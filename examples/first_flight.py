@@ -21,7 +21,7 @@ print(run)
 # a body's samples as a pandas DataFrame indexed by mission time (s)
 payload = run.bodies["sounding-payload"]
 table = payload.table()
-print(table[["altitude_m", "surface_speed_m_s", "dynamic_pressure_Pa"]].tail(3))
+print(table[["altitude_m", "height_agl_m", "surface_speed_m_s"]].tail(3))
 
 # the same scenario released 100 m/s slower upwards: an override by path (the release
 # velocity is east, north, up; [2] its third item), validated as the file is

@@ -123,9 +123,9 @@ def test_the_rail_exit_of_a_constant_thrust_rocket_is_the_closed_form():
     accel = 1000.0 / mass - G0 * math.sin(theta)
     travel = length - button
     found = rail_exit(rocket, length, theta, button, G0)
-    print(f"\n[rail] {found.speed_m_s:.5f} m/s at {found.time_s:.5f} s, closed form "
+    print(f"\n[rail] {found.surface_speed_m_s:.5f} m/s at {found.time_s:.5f} s, closed form "
           f"{math.sqrt(2 * travel * accel):.5f} m/s at {math.sqrt(2 * travel / accel):.5f} s")
-    assert found.speed_m_s == pytest.approx(math.sqrt(2 * travel * accel), rel=2e-4)
+    assert found.surface_speed_m_s == pytest.approx(math.sqrt(2 * travel * accel), rel=2e-4)
     assert found.time_s == pytest.approx(math.sqrt(2 * travel / accel), abs=1.5e-3)
 
 
@@ -137,9 +137,9 @@ def test_the_rail_exit_is_the_flights_off_rail():
     path = ROOT / "scenarios" / "hobby-rocket.yaml"
     found = rocketsim.review(path).rail
     flown = rocketsim.fly(path, duration=1.0).events.set_index("name").loc["off_rail"]
-    print(f"\n[rail] review {found.speed_m_s:.3f} m/s at {found.time_s:.4f} s, flight "
+    print(f"\n[rail] review {found.surface_speed_m_s:.3f} m/s at {found.time_s:.4f} s, flight "
           f"{flown['surface_speed_m_s']:.3f} m/s at {flown['at_s']:.4f} s")
-    assert found.speed_m_s == pytest.approx(flown["surface_speed_m_s"], rel=1e-3)
+    assert found.surface_speed_m_s == pytest.approx(flown["surface_speed_m_s"], rel=1e-3)
     assert found.time_s == pytest.approx(flown["at_s"], abs=1e-3)
 
 

@@ -26,11 +26,13 @@ from pathlib import Path
 
 import pytest
 from click.testing import CliRunner
+from mcap.opcode import Opcode
 from mcap.reader import make_reader
 
 from rocketsim.api.live import Live, fly_live, replay_live
 from rocketsim.errors import InputError
 from rocketsim.live.clock import MAX, PlaybackClock, parse_warp
+from rocketsim.live.cpu_share import CpuShare
 from rocketsim.live.growing import DamagedFile, GrowingMcap, chunk_messages
 from rocketsim.live.server import BACKLOG, LiveServer
 from rocketsim.scenario.load import load
@@ -177,6 +179,50 @@ def test_a_growing_file_gives_each_record_once_and_whole(coast, tmp_path):
     (tmp_path / "not.mcap").write_bytes(b"not an MCAP file at all")
     with pytest.raises(DamagedFile, match="not an MCAP file"):
         GrowingMcap(tmp_path / "not.mcap").next_record()
+
+
+def test_a_growing_file_passes_over_the_records_not_wanted(coast, tmp_path):
+    """Asked for chunks only, the reader gives the chunks of a reading of every record,
+    none other, and ends at the Data End record all the same."""
+    data = headless(coast("5 s"), tmp_path / "whole.mcap")
+    every, chunks = GrowingMcap(tmp_path / "whole.mcap"), GrowingMcap(tmp_path / "whole.mcap")
+    records = list(iter(every.next_record, None))
+    assert {r.opcode for r in records} > {Opcode.CHUNK} and len(data) > 0
+    assert list(iter(lambda: chunks.next_record({Opcode.CHUNK}), None)) == \
+        [r for r in records if r.opcode == Opcode.CHUNK]
+    assert every.ended and chunks.ended
+    every.close(), chunks.close()
+
+
+@pytest.mark.skipif(not Path("/proc/self/task").is_dir(), reason="threads' CPU read from Linux's /proc")
+def test_the_views_cpu_is_its_own_thread_and_the_flights_the_other_threads():
+    """The thread that made the count spins 0.05 s of CPU, another thread 0.1 s: the view
+    is counted the first (and little else), the flight the second (and little else)."""
+
+    def spin(seconds: float) -> None:
+        end = time.thread_time() + seconds
+        while time.thread_time() < end:
+            pass
+
+    spun, counted = threading.Event(), threading.Event()
+
+    def flight() -> None:
+        spin(0.1)
+        spun.set()
+        counted.wait(PATIENCE)          # alive while counted: an ended thread counts as the view's
+
+    share = CpuShare()
+    other = threading.Thread(target=flight)
+    try:
+        spin(0.05)
+        other.start()
+        assert spun.wait(PATIENCE)
+        view, flight_cpu = share.spent()
+    finally:
+        counted.set()
+        other.join()
+        share.close()
+    assert 0.05 <= view < 0.09 and 0.1 <= flight_cpu < 0.15
 
 
 # --- flights -----------------------------------------------------------------------

@@ -25,12 +25,12 @@ SCENARIOS = ROOT / "scenarios"
 
 
 # panels a flight must have and must not: a coast in orbit feels no load, meets no air and
-# burns nothing; a payload's free arc has no engine and feels no load; a booster coming back
-# burns and feels its burns
+# burns nothing; a payload's free arc (a rigid body: the air does not act on it) has no
+# engine, feels no load and meets no air; a booster coming back burns and feels its burns
 PANELS = {"iss-coast": ({"height", "speed", "orbit, while above the ground"},
                         {"load", "air: q and Mach", "propulsion: throttle and propellant"}),
           "spaceport-ballistic": ({"height", "speed", "ground track (^ start, x end)"},
-                                  {"load", "propulsion: thrust and propellant",
+                                  {"load", "air: q and Mach", "propulsion: thrust and propellant",
                                    "propulsion: throttle and propellant"}),
           "classic-booster-landing": ({"height", "speed", "air: q and Mach", "load",
                                        "propulsion: throttle and propellant", "attitude of the nose"}, set())}

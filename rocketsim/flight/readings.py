@@ -2,10 +2,11 @@
 
 A :class:`StateView` takes a state (position, velocity, attitude, rates in the
 ECI of the mission epoch, at mission time ``t``) and derives, lazily and once
-(each reading is computed at its first read and kept: a view is of one instant),
-everything a flight program or the telemetry reads: geodetic position,
-surface and orbital velocities, local directions, attitude angles, the air,
-gravity and the orbit. The same class serves the truth (telemetry) and the
+(at the first read, then kept: a view is of one instant), everything a flight
+program or the telemetry reads: the geodetic position, surface and orbital
+velocities, local directions, attitude angles and gravity together, in one
+compiled call into one buffer (:func:`step_readings`: a reading is then an
+element of it), the air and the orbit each at its own first read. The same class serves the truth (telemetry) and the
 navigation estimate (a program with realistic sensors), so every derived
 quantity inherits the estimate's errors.
 
@@ -33,7 +34,6 @@ from rocketsim.frames.elements import Elements, state_to_elements, time_to_apoap
 from rocketsim.frames.local import VERTICAL, air_velocity, turned, where_and_how_fast
 from rocketsim.frames.quaternion import quat_to_matrix
 
-_CALM = np.zeros(3)             # no wind: the air velocity is then the surface velocity
 # the central body of a view given no parameters: Earth (gravity and rotation)
 _EARTH_P = make_params(1.0, (1.0, 1.0, 1.0), EARTH_MU, EARTH_RADIUS_EQ, EARTH_J2, EARTH_RADIUS_POLAR)
 
@@ -72,6 +72,86 @@ def air_here(h0, dh, density, pressure, temperature, speed_of_sound, wind_east, 
     return rho, p, temperature_k, sound, wind, air_velocity(r, v, wind, spin)
 
 
+# slots of a state's readings (step_readings): scalars, then vectors and matrices (ECI axes,
+# row by row)
+LATITUDE, LONGITUDE, HEIGHT, CLIMB, GROUND_SPEED, PITCH, HEADING, ROLL, GRAVITY = range(9)
+ENU, SURFACE, RADIAL, PROGRADE, NORMAL, SURFACE_PROGRADE, AXES = 9, 18, 21, 24, 27, 30, 33
+N_READINGS = AXES + 9
+
+
+@njit
+def _unit(x, y, z):
+    """``(x, y, z)`` over its length, and the length (``sqrt(v @ v)``, as :func:`_norm`)."""
+    u = np.empty(3)
+    u[0], u[1], u[2] = x, y, z
+    length = math.sqrt(u @ u)
+    return u / length, length
+
+
+@njit
+def step_readings(t, r, v, q, p):
+    """The readings of a state in one compiled call: position ``r`` (m), velocity ``v``
+    (m/s), attitude ``q`` (body -> ECI) at mission time ``t`` (s) of a body with
+    parameters ``p`` (:mod:`rocketsim.layout`: the central body's ellipsoid, rotation
+    and gravity). Returns a float64 array of :data:`N_READINGS` slots: latitude,
+    longitude (rad), height (m) over the central body's ellipsoid
+    (:func:`~rocketsim.frames.local.where_and_how_fast`), the climb rate and the speed
+    over the ground (m/s), pitch, heading, roll (rad, the module's conventions), the
+    gravity's magnitude (m/s^2, point mass + J2), then the local east, north, up (rows),
+    the surface velocity (m/s), the radial, prograde, orbit-normal (``r x v``) and
+    surface-prograde unit vectors, and the body -> ECI matrix (its columns body x, y, z;
+    row by row). Each figure is computed with the operations, in the order, of numpy's
+    on these float64 values (a dot product is ``@``, a norm ``sqrt(v @ v)``, a cross
+    product that of ``np.cross``), so a reading has the bits it has when computed
+    figure by figure."""
+    out = np.empty(N_READINGS)
+    lat, lon, height, enu, surface = where_and_how_fast(r, v, t, p[P_SPIN], p[P_RADIUS], p[P_POLAR_RADIUS])
+    east, north, up = enu[0].copy(), enu[1].copy(), enu[2].copy()
+    climb = surface @ up
+    across = surface - climb * up
+    out[LATITUDE], out[LONGITUDE], out[HEIGHT] = lat, lon, height
+    out[CLIMB], out[GROUND_SPEED] = climb, math.sqrt(across @ across)
+    # the attitude's angles (pitch, heading, roll: see the module)
+    axes = quat_to_matrix(q)
+    nose, z_body = axes[:, 0].copy(), axes[:, 2].copy()
+    sin_pitch = nose @ up
+    if sin_pitch < -1.0:
+        sin_pitch = -1.0
+    elif sin_pitch > 1.0:
+        sin_pitch = 1.0
+    pitch = math.asin(sin_pitch)
+    if abs(sin_pitch) >= VERTICAL:
+        # the reference z is the heading itself (nose up) or its opposite
+        belly = math.copysign(1.0, sin_pitch) * z_body
+        heading, roll = math.atan2(belly @ east, belly @ north), 0.0
+    else:
+        horizontal = nose - sin_pitch * up
+        horizontal /= math.sqrt(horizontal @ horizontal)
+        heading = math.atan2(horizontal @ east, horizontal @ north)
+        z_ref = sin_pitch * horizontal - math.cos(pitch) * up
+        right = np.empty(3)         # z_ref x z_body, as np.cross
+        right[0] = z_ref[1] * z_body[2] - z_ref[2] * z_body[1]
+        right[1] = z_ref[2] * z_body[0] - z_ref[0] * z_body[2]
+        right[2] = z_ref[0] * z_body[1] - z_ref[1] * z_body[0]
+        roll = math.atan2(nose @ right, z_ref @ z_body)
+    out[PITCH], out[HEADING], out[ROLL] = pitch, heading % (2 * math.pi), roll
+    g = np.empty(3)
+    g[0], g[1], g[2] = point_mass_j2(r[0], r[1], r[2], p[P_MU], p[P_RADIUS], p[P_J2])
+    out[GRAVITY] = math.sqrt(g @ g)
+    # the directions
+    radial, _ = _unit(r[0], r[1], r[2])
+    prograde, _ = _unit(v[0], v[1], v[2])
+    normal, _ = _unit(r[1] * v[2] - r[2] * v[1], r[2] * v[0] - r[0] * v[2], r[0] * v[1] - r[1] * v[0])
+    speed = math.sqrt(surface @ surface)
+    along = surface / speed if speed > 0 else up
+    for i in range(3):
+        for k in range(3):
+            out[ENU + 3 * i + k], out[AXES + 3 * i + k] = enu[i, k], axes[i, k]
+        out[SURFACE + i], out[RADIAL + i], out[PROGRADE + i] = surface[i], radial[i], prograde[i]
+        out[NORMAL + i], out[SURFACE_PROGRADE + i] = normal[i], along[i]
+    return out
+
+
 def _norm(vector) -> float:
     """Euclidean length of a float64 vector: the bits of ``np.linalg.norm`` (the
     square root of ``v @ v``), at a fraction of its cost."""
@@ -107,82 +187,67 @@ class StateView:
         view._atmosphere, view.mu, view._p = atmosphere, mu, _EARTH_P if p is None else p
         return view
 
-    # --- where ------------------------------------------------------------
+    # --- the step's readings, one compiled call (step_readings) -------------------
     @_once
-    def _where(self) -> tuple:
-        return where_and_how_fast(self.position, self.velocity, self.t, self._p[P_SPIN],
-                                  self._p[P_RADIUS], self._p[P_POLAR_RADIUS])
+    def _buffer(self) -> np.ndarray:
+        return step_readings(self.t, self.position, self.velocity, self.attitude, self._p)
 
+    # --- where ------------------------------------------------------------
     @_once
     def geodetic(self) -> tuple[float, float, float]:
         """(latitude rad, longitude rad, height above WGS84 m)."""
-        lat, lon, h, _, _ = self._where
-        return lat, lon, h
+        return tuple(self._buffer[LATITUDE:HEIGHT + 1].tolist())
 
-    @_once
+    @property
+    def height(self) -> float:
+        """Height above the central body's ellipsoid (WGS84 about Earth), m."""
+        return float(self._buffer[HEIGHT])
+
+    @property
     def enu(self) -> np.ndarray:
         """Rows: local east, north, up unit vectors in ECI axes."""
-        return self._where[3]
+        return self._buffer[ENU:ENU + 9].reshape(3, 3)
 
     # --- motion -----------------------------------------------------------
-    @_once
+    @property
     def surface_velocity(self) -> np.ndarray:
         """Velocity relative to the central body's turning ground, ECI axes (m/s)."""
-        return self._where[4]
+        return self._buffer[SURFACE:SURFACE + 3]
 
-    @_once
+    @property
     def vertical_speed(self) -> float:
-        return float(self.surface_velocity @ self.enu[2])
+        return float(self._buffer[CLIMB])
 
-    @_once
+    @property
     def horizontal_speed(self) -> float:
-        v = self.surface_velocity
-        return _norm(v - (v @ self.enu[2]) * self.enu[2])
+        return float(self._buffer[GROUND_SPEED])
 
-    @_once
+    @property
     def radial(self) -> np.ndarray:
-        return self.position / _norm(self.position)
+        return self._buffer[RADIAL:RADIAL + 3]
 
-    @_once
+    @property
     def prograde(self) -> np.ndarray:
-        return self.velocity / _norm(self.velocity)
+        return self._buffer[PROGRADE:PROGRADE + 3]
 
-    @_once
+    @property
     def normal(self) -> np.ndarray:
-        (x, y, z), (u, v, w) = self.position.tolist(), self.velocity.tolist()
-        h = np.array((y * w - z * v, z * u - x * w, x * v - y * u))    # r x v, as np.cross
-        return h / _norm(h)
+        return self._buffer[NORMAL:NORMAL + 3]
 
-    @_once
+    @property
     def surface_prograde(self) -> np.ndarray:
-        v = self.surface_velocity
-        speed = _norm(v)
-        return v / speed if speed > 0 else self.enu[2].copy()
+        return self._buffer[SURFACE_PROGRADE:SURFACE_PROGRADE + 3]
 
     # --- attitude -----------------------------------------------------------
-    @_once
+    @property
     def axes(self) -> np.ndarray:
         """Body x (nose), y, z as the columns of the body -> ECI matrix."""
-        return quat_to_matrix(self.attitude)
+        return self._buffer[AXES:AXES + 9].reshape(3, 3)
 
     @_once
     def euler(self) -> tuple[float, float, float]:
         """(pitch, heading, roll) in radians (see the module's conventions)."""
-        east, north, up = self.enu
-        nose, z_body = self.axes[:, 0], self.axes[:, 2]
-        sin_pitch = float(np.clip(nose @ up, -1.0, 1.0))
-        pitch = math.asin(sin_pitch)
-        if abs(sin_pitch) >= VERTICAL:
-            # the reference z is the heading itself (nose up) or its opposite
-            belly = math.copysign(1.0, sin_pitch) * z_body
-            heading = math.atan2(belly @ east, belly @ north)
-            return pitch, heading % (2 * math.pi), 0.0
-        horizontal = nose - sin_pitch * up
-        horizontal /= np.linalg.norm(horizontal)
-        heading = math.atan2(horizontal @ east, horizontal @ north)
-        z_ref = sin_pitch * horizontal - math.cos(pitch) * up
-        roll = math.atan2(nose @ np.cross(z_ref, z_body), z_ref @ z_body)
-        return pitch, heading % (2 * math.pi), roll
+        return tuple(self._buffer[PITCH:ROLL + 1].tolist())
 
     # --- air --------------------------------------------------------------
     @_once
@@ -214,14 +279,11 @@ class StateView:
         return math.acos(float(np.clip(self.axes[:, 0] @ v_air / speed, -1.0, 1.0)))
 
     # --- gravity and orbit ------------------------------------------------
-    @_once
+    @property
     def gravity(self) -> float:
         """Magnitude of the local gravitational acceleration of the central body (point
         mass + J2), m/s^2."""
-        x, y, z = self.position.tolist()
-        p = self._p
-        g = np.array(point_mass_j2(x, y, z, p[P_MU], p[P_RADIUS], p[P_J2]))
-        return _norm(g)
+        return float(self._buffer[GRAVITY])
 
     @_once
     def effective_gravity(self) -> float:

@@ -21,6 +21,7 @@ import os
 import struct
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Container
 
 from mcap.data_stream import ReadDataStream
 from mcap.opcode import Opcode
@@ -31,6 +32,7 @@ MAGIC = b"\x89MCAP0\r\n"
 _RECORD = struct.Struct("<BQ")                      # opcode, content length
 _MESSAGE = struct.Struct("<HIQQ")                   # a message's channel, sequence, log and publish time
 _TIMES = struct.Struct("<QQ")                       # a chunk's first and last message log times
+READ = 4 << 20                                      # bytes read from the file at most at once
 
 
 class DamagedFile(ValueError):
@@ -54,17 +56,21 @@ _READERS = {Opcode.SCHEMA: Schema.read, Opcode.CHANNEL: Channel.read, Opcode.CHU
 
 class GrowingMcap:
     """The data section of the MCAP file ``path``, record by record, as it is written
-    (the file is opened once it exists)."""
+    (the file is opened once it exists). What the file holds beyond the records read is
+    read in one go (at most :data:`READ` bytes) and cut into records here."""
 
     def __init__(self, path: str | Path):
         self.path = Path(path)
         self._file = None
-        self._at = 0                    # where the next record starts (after the magic: 8)
+        self._read_to = 0               # bytes of the file read into the buffer
+        self._buffer = b""              # the bytes read, not yet returned as records
+        self._at = 0                    # where the next record starts in the buffer
         self.ended = False              # the Data End record was read
 
-    def next_record(self) -> Record | None:
+    def next_record(self, wanted: Container[int] | None = None) -> Record | None:
         """The next whole record on disk (None: not yet written, or the data section
-        has ended, :attr:`ended`); :class:`DamagedFile` if the file is not MCAP."""
+        has ended, :attr:`ended`), passing over those whose opcode is not ``wanted``
+        (None: every one is); :class:`DamagedFile` if the file is not MCAP."""
         if self.ended:
             return None
         if self._file is None:
@@ -72,31 +78,42 @@ class GrowingMcap:
                 self._file = open(self.path, "rb")
             except FileNotFoundError:
                 return None
-        size = os.fstat(self._file.fileno()).st_size
-        if self._at == 0:
-            if size < len(MAGIC):
+        if self._read_to == 0:
+            if not self._more(len(MAGIC)):
                 return None
-            if self._read(0, len(MAGIC)) != MAGIC:
+            if self._buffer[:len(MAGIC)] != MAGIC:
                 raise DamagedFile(f"{self.path} is not an MCAP file")
             self._at = len(MAGIC)
-        if size < self._at + _RECORD.size:
-            return None
-        opcode, length = _RECORD.unpack(self._read(self._at, _RECORD.size))
-        end = self._at + _RECORD.size + length
-        if size < end:
-            return None
-        content = self._read(self._at + _RECORD.size, length)
-        self._at = end
-        if opcode == Opcode.DATA_END:
-            self.ended = True
-        return Record(opcode, content)
+        header, size, data_end = _RECORD.unpack_from, _RECORD.size, Opcode.DATA_END
+        while self._more(size):
+            opcode, length = header(self._buffer, self._at)
+            if not self._more(size + length):
+                return None
+            start = self._at + size
+            self._at = start + length
+            self.ended = opcode == data_end
+            if wanted is None or opcode in wanted:
+                return Record(opcode, self._buffer[start:self._at])
+            if self.ended:
+                return None
+        return None
 
-    def _read(self, at: int, n: int) -> bytes:
-        self._file.seek(at)
-        data = self._file.read(n)
-        if len(data) != n:
+    def _more(self, n: int) -> bool:
+        """Whether ``n`` bytes from the next record's start are in the buffer, after
+        reading what the file holds beyond it if they were not."""
+        if len(self._buffer) - self._at >= n:
+            return True
+        size = os.fstat(self._file.fileno()).st_size
+        if size < self._read_to:
             raise DamagedFile(f"{self.path} shrank while it was read")
-        return data
+        missing = n - (len(self._buffer) - self._at)
+        if size - self._read_to < missing:
+            return False
+        data = os.pread(self._file.fileno(), max(missing, min(size - self._read_to, READ)), self._read_to)
+        self._read_to += len(data)
+        self._buffer = self._buffer[self._at:] + data
+        self._at = 0
+        return len(self._buffer) >= n
 
     def close(self) -> None:
         if self._file is not None:

@@ -20,8 +20,10 @@ and a flight at a finite warp, or paused, waits after a batch of steps while
 it leads the view by more than :meth:`LiveServer.longest_lead`
 (:meth:`LiveServer.keep_pace`): it waits, and never changes a step. At ``max``
 nothing waits for the player: it serves whole chunks, the newest first, and
-spends at most :data:`MAX_SHARE` of a core on them, leaving out of the live
-copy (never the file) the chunks it has no time for. A client that reads
+spends at most :data:`MAX_SHARE` of the flight's CPU time on them (its own
+thread's and the SDK's, :mod:`rocketsim.live.cpu_share`), leaving out of the
+live copy (never the file) the chunks it has no CPU for; the flight's last
+chunk is always served. A client that reads
 slower than it is served loses the oldest of its messages beyond the SDK's
 per-client backlog (:data:`BACKLOG` messages), the flight and the other
 clients going on: only the live copy is dropped, and the memory held for each
@@ -30,6 +32,7 @@ client is bounded.
 
 from __future__ import annotations
 
+import os
 import threading
 import time
 from collections import deque
@@ -40,6 +43,7 @@ from foxglove.websocket import (Capability, PlaybackCommand, PlaybackState, Play
                                 ServerListener)
 from mcap.opcode import Opcode
 
+from rocketsim.live.cpu_share import CpuShare
 from rocketsim.live.clock import MAX, PlaybackClock, parse_warp, warp_text
 from rocketsim.live.growing import GrowingMcap, Record, chunk_messages, chunk_times, message_of
 
@@ -57,7 +61,8 @@ WAIT = 0.1
 POLL = 0.02
 # how often the viewers are told the time shown (s of wall time)
 TIME_EVERY = 0.05
-# at max warp, the share of a core the player may spend serving chunks (its thread's CPU time)
+# at max warp, the CPU the view may spend (its player's thread and the SDK's) as a share of
+# the flight's (rocketsim.live.cpu_share)
 MAX_SHARE = 0.05
 # s the server stays up after the end for the last messages to reach the viewers (the SDK
 # sends them on threads of its own, and stopping drops what they have not sent)
@@ -69,6 +74,9 @@ STOP_WAIT = 2.0
 BACKLOG = 8192
 
 WARP, PAUSED = "warp", "paused"
+_CORES = os.cpu_count() or 1
+# the records the player reads (the file's indexes are passed over)
+_PLAYED = frozenset((Opcode.SCHEMA, Opcode.CHANNEL, Opcode.CHUNK, Opcode.MESSAGE))
 
 
 class LiveServer:
@@ -88,7 +96,6 @@ class LiveServer:
         self._file = GrowingMcap(path)
         self._context = foxglove.Context()
         self._schemas: dict[int, object] = {}           # MCAP schema id -> foxglove.Schema
-        self._channels: dict[int, object] = {}          # MCAP channel id -> foxglove.Channel
         self._ahead: deque = deque()                    # chunk records read ahead
         self._complete = threading.Event()              # the file will not grow
         self._done = threading.Event()                  # the player has ended
@@ -107,7 +114,8 @@ class LiveServer:
         self.first_played: tuple[float, int] | None = None     # (wall s, log time ns), served or not
         self.last_played: tuple[float, int] | None = None
         self._shown_at = 0.0
-        self._busy = 0.0                                # player's CPU on the chunk being played (s)
+        self._next_look = 0.0                           # at max: when to ask for CPU again (monotonic s)
+        self._log: dict[int, object] = {}               # MCAP channel id -> its foxglove channel's log
         self._server = foxglove.start_server(
             name=name, host=host, port=port, context=self._context,
             capabilities=[Capability.Parameters, Capability.Time],
@@ -242,8 +250,9 @@ class LiveServer:
 
     # --- the player ----------------------------------------------------------------
     def _play(self) -> None:
+        share = CpuShare()                  # at max: the view's CPU against the flight's
         try:
-            self._play_file()
+            self._play_file(share)
         except BaseException as error:      # the live copy ends; the flight and its file go on
             self.error = error
             try:
@@ -251,33 +260,34 @@ class LiveServer:
             except Exception:
                 pass
         finally:
+            share.close()
             self._done.set()
             with self._room:
                 self._room.notify_all()
 
-    def _play_file(self) -> None:
+    def _play_file(self, share: CpuShare) -> None:
         chunk, messages, at = None, [], 0   # the chunk being played, its messages, the next one
         last = None                         # log time of the last message played (served or not)
         waited = False                      # the player ran out of telemetry before the file's end
-        rest_until = 0.0                    # at max: no chunk taken before (perf_counter s)
         while not self._stopping:
             complete = self._complete.is_set()      # before reading: all of the file is read after
-            self._read_ahead()
             paused = self.clock.paused
             at_max = self.clock.warp is MAX and not paused
             self._between = at == len(messages)
+            if at_max and self._between and not complete and time.monotonic() < self._next_look:
+                self._complete.wait(POLL)           # resting until the flight has earned the view's CPU
+                continue
+            self._read_ahead()
             if self._between and not self._ahead:
                 with self._room:
                     self._room.notify_all()     # a flight waiting goes on, to write what is to play
             if at == len(messages):
-                if self._ahead and not paused and not (at_max and time.perf_counter() < rest_until):
-                    began = time.thread_time()
+                if self._ahead and not paused and not (at_max and not self._may_serve(share, complete)):
                     chunk, messages, at = *self._take(at_max), 0
                     if waited and last is not None:
                         self.clock.show(last)       # take up where the view stopped
                         self.stalls += 1
                     waited = False
-                    self._busy = time.thread_time() - began
                     continue
                 if complete and not self._ahead:
                     break
@@ -289,16 +299,15 @@ class LiveServer:
                 continue
             if not self.clock.started:
                 self.clock.show(messages[at][1])
-            began = time.thread_time()
             until = self.clock.until()
+            log = self._log
             while at < len(messages) and messages[at][1] <= until:
                 channel, log_time, data = messages[at]
                 if channel is not None:
-                    self._channels[channel].base.log(data, log_time, None)
+                    log[channel](data, log_time, None)
                     self.served += 1
                 last = log_time
                 at += 1
-            self._busy += time.thread_time() - began
             if last is not None:
                 self.last_played = (time.monotonic(), last)
                 self.first_played = self.first_played or self.last_played
@@ -309,11 +318,25 @@ class LiveServer:
                 self.clock.wait_for(messages[at][1], POLL)
             elif at_max:
                 self.clock.show(last)
-                rest_until = time.perf_counter() + self._busy * (1 / MAX_SHARE - 1)
         if last is not None:
             self._server.broadcast_time(last)
         if self._ranged:
             self._server.broadcast_playback_state(self.playback_state(ended=True))
+
+    def _may_serve(self, share: CpuShare, complete: bool) -> bool:
+        """At max: whether the view may play another chunk, having spent at most
+        :data:`MAX_SHARE` of the flight's CPU (:class:`~rocketsim.live.cpu_share.CpuShare`),
+        or the flight has ended (its last chunk is played, the view ending on it). If not,
+        the player rests until the flight can have earned the CPU it lacks, running on
+        every core (:attr:`_next_look`)."""
+        if complete:
+            return True
+        view, flight = share.spent()
+        lacking = view / MAX_SHARE - flight        # flight CPU (s) that earns the view's CPU
+        if lacking <= 0:
+            return True
+        self._next_look = time.monotonic() + max(POLL, lacking / _CORES)
+        return False
 
     def _read_ahead(self) -> None:
         """Read the file's new whole records: channels are advertised at once, chunks
@@ -324,7 +347,7 @@ class LiveServer:
 
     def _read_records(self) -> None:
         while len(self._ahead) < AHEAD or self.clock.warp is MAX and not self.clock.paused:
-            record = self._file.next_record()
+            record = self._file.next_record(_PLAYED)
             if record is None:
                 return
             if record.opcode in (Opcode.SCHEMA, Opcode.CHANNEL):
@@ -383,11 +406,12 @@ class LiveServer:
         if record.opcode == Opcode.SCHEMA:
             self._schemas[parsed.id] = foxglove.Schema(name=parsed.name, encoding=parsed.encoding,
                                                              data=parsed.data)
-        elif parsed.id not in self._channels:
-            self._channels[parsed.id] = foxglove.Channel(
+        elif parsed.id not in self._log:
+            channel = foxglove.Channel(
                 parsed.topic, schema=self._schemas.get(parsed.schema_id),
                 message_encoding=parsed.message_encoding, metadata=dict(parsed.metadata) or None,
                 context=self._context)
+            self._log[parsed.id] = channel.base.log
 
     def _tell_time(self, shown: int | None) -> None:
         now = time.monotonic()

@@ -457,7 +457,7 @@ class TelemetrySpec(Strict):
         10.0, description="samples per second (1e-6 Hz, one every 11.6 days, .. 50 Hz)")
     coast_rate: Optional[Annotated[Frequency, Field(ge=1e-6, le=50)]] = Field(
         None, description="samples per second of a body coasting (no engine running, dynamic "
-        "pressure under 1 Pa), at most the rate; default: the rate (rocketsim.sim.sample_watch)")
+        "pressure under 1 Pa or none), at most the rate; default: the rate (rocketsim.sim.sample_watch)")
 
     @model_validator(mode="after")
     def _coast_rate(self) -> "TelemetrySpec":

@@ -12,8 +12,10 @@ other call unchanged, to the telemetry.
 from its first sample to its first ``touchdown`` or ``impact`` (the landing's own
 sample and those after it left out: a touchdown's contact spike is not a load of the
 flight): the highest ``height_agl`` and its time, the largest ``surface_speed``, Mach
-(in air: where the dynamic pressure is above nought), dynamic pressure and sensed
-acceleration (in standard gravities), and where the body was at its first sample. They
+and dynamic pressure in the air (where the dynamic pressure is at least :data:`IN_AIR_Q`:
+none for a body that never met the air, or one the air does not act on, whose samples
+have no dynamic pressure) and sensed acceleration (in standard gravities), and where the
+body was at its first sample. They
 are the samples' figures, at the telemetry rate: a peak between two samples is missed by
 at most what the quantity changes in half a sample interval (the apogee, where the climb
 rate is nought, by millimetres). A body split from another (a stage, a fairing half, the
@@ -22,8 +24,8 @@ ascent with it, so a booster's largest q and load are those of the ascent it fle
 its drift is from the pad.
 
 **Coasts thinned** (the scenario's ``telemetry.coast_rate``): while a body coasts --
-no engine running (a rigid body has none) and a dynamic pressure under
-:data:`COAST_Q` -- its samples at the telemetry rate are written only at the multiples
+no engine running (a rigid body has none) and out of the air (a dynamic pressure
+under :data:`IN_AIR_Q`, or none) -- its samples at the telemetry rate are written only at the multiples
 of the coast interval (``round(1 / (coast_rate h))`` steps); its samples between the
 sample steps (at a handover, a staging, a landing) are all written, and so is its
 last sample of the flight. The rule reads the sample's own numbers and its step
@@ -44,7 +46,7 @@ from rocketsim.stepping.sample_figures import (N_SAMPLE_RIGID, SAMPLE_DYNAMIC_PR
 from rocketsim.telemetry.sink import TelemetrySink
 from rocketsim.telemetry.writer import interleaved_samples
 
-COAST_Q = 1.0            # Pa: below it a body without engines running coasts
+IN_AIR_Q = 1.0           # Pa: from it a body is in the air (below it one without engines running coasts)
 LANDINGS = ("touchdown", "impact")
 
 
@@ -67,7 +69,7 @@ class _Figures:
         if heights[top] > self.apogee[0]:
             self.apogee = (float(heights[top]), float(rows[top, -2]))
         figures = rows[:, [SAMPLE_SURFACE_SPEED, SAMPLE_MACH, SAMPLE_DYNAMIC_PRESSURE, SAMPLE_SENSED]]
-        figures[~(rows[:, SAMPLE_DYNAMIC_PRESSURE] > 0.0), 1] = np.nan       # Mach only in air
+        figures[~(rows[:, SAMPLE_DYNAMIC_PRESSURE] >= IN_AIR_Q), 1:3] = np.nan     # Mach and q in the air
         np.fmax(self.peaks, np.nanmax(figures, axis=0, initial=-math.inf), out=self.peaks)
 
     def summary(self) -> dict:
@@ -113,7 +115,7 @@ class SampleWatch(TelemetrySink):
     def _kept(self, rows: np.ndarray) -> np.ndarray:
         """Which of one body's samples ``rows`` the coast rule writes (see the module)."""
         steps = np.rint(rows[:, -2] / self.h).astype(np.int64)
-        coasting = rows[:, SAMPLE_DYNAMIC_PRESSURE] < COAST_Q
+        coasting = ~(rows[:, SAMPLE_DYNAMIC_PRESSURE] >= IN_AIR_Q)       # no air figures: out of the air
         if rows.shape[1] > N_SAMPLE_RIGID:
             coasting &= rows[:, SAMPLE_ENGINES_RUNNING] == 0.0
         return ~coasting | (steps % self.every != 0) | (steps % self.coast_every == 0)

@@ -123,13 +123,13 @@ def _plan(body, gmst0: float) -> tuple:
     frame = _frame_of(body, gmst0)
     head = _head(body, gmst0, table)
     if model is None:
-        fixed = _rigid(head, body.p)
+        fixed = _rigid(head, body.p, body.drag)
         shape, shield = _shape(frame, None, None, False), None
     else:
         group, groups, tanks = _layout(model)
         shield = body.checks.shield if body.checks is not None else None
         fixed = head + (model.arrays, group, len(groups), shield.nose_radius if shield is not None else 0.0,
-                        sutton_graves_constant(body.mu), nbody_flag(body.p))
+                        sutton_graves_constant(body.mu), 0.0, 0.0, nbody_flag(body.p))
         shape = _shape(frame, groups, tanks, shield is not None)
     plan = [key, None, fixed, shape, shield is not None, earth]     # figures' entry bound by values()
     for gone in [k for k, (ref, _) in _PLANS.items() if ref() is None]:
@@ -145,17 +145,21 @@ def _head(body, gmst0: float, table) -> tuple:
     return (body.mu, gmst0 if earth else 0.0, earth, *table.arrays())
 
 
-def _rigid(head: tuple, p: np.ndarray) -> tuple:
+def _rigid(head: tuple, p: np.ndarray, drag: tuple | None) -> tuple:
     """A rigid body's arguments of figures after ``head`` (:func:`_head`), but for the
-    shield's temperature."""
-    return head + (None, _NO_GROUPS, 0, 0.0, 0.0, nbody_flag(p))
+    shield's temperature: ``drag`` is a tumbling part's ``(area over mass m^2/kg, length m)``
+    (None: a body the air does not act on)."""
+    area_mass, length = (0.0, 0.0) if drag is None else drag
+    return head + (None, _NO_GROUPS, 0, 0.0, 0.0, float(area_mass), float(length), nbody_flag(p))
 
 
 def part_arguments(body, gmst0: float) -> tuple:
     """The arguments of figures (as :func:`arguments`) of a rigid body that separates
     from the vehicle ``body`` about Earth (a fairing's half: the same central body,
     air and epoch), for a compiled caller to be typed before the body exists."""
-    return _rigid(_head(body, gmst0, air_about(body.central, body.atmosphere())), body.p) + (math.nan,)
+    # a drag area and length of the types of a part's (its own are given at its samples)
+    return _rigid(_head(body, gmst0, air_about(body.central, body.atmosphere())), body.p, (1.0, 1.0)) \
+        + (math.nan,)
 
 
 def message(body, gmst0: float, where) -> dict:

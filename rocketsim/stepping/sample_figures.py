@@ -35,6 +35,17 @@ between the nose and the air-relative velocity (missing at zero airspeed), Mach
 and dynamic pressure (Pa) in the readings' air (the day's air about Earth, none
 elsewhere).
 
+The accelerations are those of the body's flight model: a staged vehicle's
+derivative (thrust, aerodynamics, contact); a tumbling part's gravity and
+point-mass drag, its ``C_D A/m`` (:mod:`rocketsim.dynamics.free_body`) times the
+dynamic pressure, against the air-relative velocity, in the readings' air; a
+rigid body's gravity alone (in free fall it senses nothing). The airspeed, angle
+of attack and Mach are the body's motion through the readings' air; the dynamic
+pressure is the air's on a body it acts on (a staged vehicle with aerodynamics, a
+tumbling part), missing for a body the flight model flies without air (a rigid
+body with no drag area, a vehicle with ``aerodynamics: false``), whatever air it
+passes through.
+
 Fields of a staged vehicle:
 
 * ``throttle``: the throttle actually flown (after the slew limit and the
@@ -70,13 +81,14 @@ from rocketsim.jit import njit
 from rocketsim.atmosphere.table import air_in
 from rocketsim.constants import DEG
 from rocketsim.dynamics.derivative import radial_height
+from rocketsim.dynamics.free_body import drag_factor
 from rocketsim.flight.readings import air_here
 from rocketsim.frames.elements import elements_tuple
 from rocketsim.frames.local import body_air_velocity, where_and_how_fast
 from rocketsim.frames.quaternion import rotate_components
 from rocketsim.layout import N_STATE, P_MASS, P_POLAR_RADIUS, P_RADIUS, P_SPIN, Q, R, V
 from rocketsim.stepping.checked_step import accelerations
-from rocketsim.vehicle.aero import A_GROUND
+from rocketsim.vehicle.aero import A_GROUND, A_ON
 from rocketsim.vehicle.engines import E_MDOT, E_STAGE, S_DRY, engine_state, thrusts
 from rocketsim.vehicle.heating import sutton_graves
 from rocketsim.vehicle.mass_properties import vehicle_mass_properties
@@ -185,7 +197,8 @@ def _vehicle_into(out, t, y, p, p_a, veh, group, n_groups, nose_radius, k_heat):
 
 @njit
 def figures(t, y, p, mu, node, geodetic, h0, dh, density, pressure, temperature, sound, wind_east,
-            wind_north, veh, group, n_groups, nose_radius, k_heat, nbody, shield_temperature):
+            wind_north, veh, group, n_groups, nose_radius, k_heat, area_mass, length, nbody,
+            shield_temperature):
     """Every number of the state message of a body in state ``y`` (parameters ``p``,
     central body's ``mu`` m^3/s^2) at mission time ``t`` (s), in the flat layout of this
     module (the state's ECI axes; the geodetic position is WGS84's).
@@ -198,6 +211,8 @@ def figures(t, y, p, mu, node, geodetic, h0, dh, density, pressure, temperature,
     arrays (None: a rigid body, whose figures end before ``SAMPLE_VEHICLE``), ``group`` the
     engine group of each engine (``n_groups`` groups), ``nose_radius`` the heat shield's
     (m, 0: none) and ``k_heat`` the Sutton-Graves constant of the central body's air;
+    ``area_mass`` (m^2/kg; 0: none) and ``length`` (m) a rigid body's tumbling drag
+    (:class:`rocketsim.sim.body.Part`; 0 for a staged vehicle: its aerodynamics are ``veh``'s);
     ``nbody`` True when ``p`` carries an n-body field, else None (the derivative's switch,
     :func:`~rocketsim.dynamics.third_bodies.nbody_flag`).
     The array ends with ``t`` and ``shield_temperature`` (K, nan: no shield): every
@@ -227,19 +242,29 @@ def figures(t, y, p, mu, node, geodetic, h0, dh, density, pressure, temperature,
                                              nx * enu[1, 0] + ny * enu[1, 1] + nz * enu[1, 2]) + _TWO_PI,
                                   _TWO_PI) / DEG
     orbit_into(out, SAMPLE_ORBIT, r, v, mu, p[P_RADIUS], node)
-    rho, p_a, _, a_sound, _, air = air_here(h0, dh, density, pressure, temperature, sound,
+    rho, p_a, _, a_sound, wind, air = air_here(h0, dh, density, pressure, temperature, sound,
                                             wind_east, wind_north, lat, lon,
                                             height if geodetic else radial_height(y, p), t, r, v,
                                             p[P_SPIN])
     ax, ay, az, sx, sy, sz = accelerations(t, y, p, veh, nbody)
+    if veh is None:
+        in_air = area_mass > 0.0
+    else:
+        in_air = veh.aero.ref[A_ON] > 0.5
+    airspeed = math.sqrt(air[0] * air[0] + air[1] * air[1] + air[2] * air[2])
+    q = 0.5 * rho * airspeed * airspeed if in_air else math.nan
+    if veh is None and q > 0.0:      # a tumbling part's drag, against the air-relative velocity
+        drag = -drag_factor(y, p, (h0, dh, density, pressure, temperature, sound, wind_east, wind_north), wind,
+                            area_mass, length) * q / airspeed
+        ax, ay, az = ax + drag * air[0], ay + drag * air[1], az + drag * air[2]
+        sx, sy, sz = sx + drag * air[0], sy + drag * air[1], sz + drag * air[2]
     out[SAMPLE_MASS + 1] = math.sqrt(ax * ax + ay * ay + az * az)
     out[SAMPLE_SENSED] = math.sqrt(sx * sx + sy * sy + sz * sz)
-    airspeed = math.sqrt(air[0] * air[0] + air[1] * air[1] + air[2] * air[2])
     out[SAMPLE_AIRSPEED] = airspeed
     along = (nx * air[0] + ny * air[1] + nz * air[2]) / airspeed if airspeed > 0.0 else math.nan
     out[SAMPLE_ALPHA] = math.acos(min(1.0, max(-1.0, along))) / DEG if airspeed > 0.0 else math.nan
     out[SAMPLE_MACH] = airspeed / a_sound
-    out[SAMPLE_DYNAMIC_PRESSURE] = 0.5 * rho * airspeed * airspeed
+    out[SAMPLE_DYNAMIC_PRESSURE] = q
     if veh is not None:
         _vehicle_into(out, t, y, p, p_a, veh, group, n_groups, nose_radius, k_heat)
     out[-2] = t

@@ -69,12 +69,14 @@ BODY_STATE = {
         "acceleration": {"type": "number", "description": "inertial acceleration |dv/dt|, m/s^2 "
                          "(absent where it is not defined)"},
         "sensed_acceleration": {"type": "number",
-                                "description": "|dv/dt - gravity| (what an accelerometer reads), m/s^2"},
+                                "description": "|dv/dt - gravity| (what an accelerometer reads: 0 in "
+                                "free fall), m/s^2"},
         "airspeed": {"type": "number", "description": "speed relative to the air, m/s"},
         "angle_of_attack_deg": {"type": "number", "description": "total angle of attack: between the "
                                 "nose and the air-relative velocity, deg (absent at zero airspeed)"},
         "mach": {"type": "number", "description": "airspeed over the local speed of sound"},
-        "dynamic_pressure": {"type": "number", "description": "q = rho v_air^2 / 2, Pa"},
+        "dynamic_pressure": {"type": "number", "description": "q = rho v_air^2 / 2, Pa (absent for a "
+                             "body the flight model flies without air)"},
         # a staged vehicle (rocketsim.sim.sampling)
         "throttle": {"type": "number", "description": "throttle flown (after slew and the "
                      "flow-separation floor, 0-1 of vacuum thrust), mean of the engines running; absent "

@@ -91,9 +91,12 @@ class StageLoads:
 
 @dataclass(frozen=True)
 class RailExit:
+    """Where the stack leaves its rail: the rail's length and inclination, the speed
+    along it (over the ground, the rail's frame) and the time from the start."""
+
     length_m: float
     inclination_deg: float
-    speed_m_s: float
+    surface_speed_m_s: float
     time_s: float
 
 
@@ -139,7 +142,7 @@ class Review:
                      "no breakup checks")
         if self.rail is not None:
             lines.append(f"off a {self.rail.length_m:g} m rail at {self.rail.inclination_deg:g} deg: "
-                         f"{self.rail.speed_m_s:.1f} m/s at T+{self.rail.time_s:.2f} s (thrust alone, no drag)")
+                         f"{self.rail.surface_speed_m_s:.1f} m/s at T+{self.rail.time_s:.2f} s (thrust alone, no drag)")
         if self.aerodynamics:
             lines += ["", f"{'':24}{'mass kg':>12}{'CM m':>9}{'CP m':>9}{'margin cal':>12}"
                           f"{'CP m at 5 deg':>15}{'margin':>9}"]
@@ -404,8 +407,8 @@ def steering(spec, stage) -> list[str]:
 
 
 def rail_exit(spec, length: float, inclination: float, last_button: float, gravity: float = G0) -> RailExit:
-    """The lowest stage's thrust carrying the stack up a rail (see the module): speed (m/s)
-    and time (s from the start) when the travel reaches ``length - last_button``. Liquid
+    """The lowest stage's thrust carrying the stack up a rail (see the module): speed over
+    the ground (m/s) and time (s from the start) when the travel reaches ``length - last_button``. Liquid
     engines lit at T+0 follow their dead time and linear spool-up; motors start at their
     file's ignition time (``program``: T+0)."""
     stage = spec.stages[0]

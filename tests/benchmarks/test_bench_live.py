@@ -28,16 +28,20 @@ Printed (run with ``pytest -s``):
 Every figure is printed with the machine's load; nothing asserts a time. The
 checks are that each live file is the headless flight's, byte for byte.
 
-Last figures (2 cores shared with other jobs, load 12-17: wall times swing by a
-factor of 2, so the wall ratios below 1 are noise): 60 s at 10x played over
-6.003 s by the view's clock (+0.06 %), received by the client at 10.096x
-(+0.96 %); 6 s at 1x over 6.003 s, received at 1.000x; 171 s at 100x over
-1.714 s, received at 101.3x. At max, CPU of the flight's process over headless:
-hobby rocket 0.94 without a client, 1.09 watched; falcon9 230 s 0.90 and 1.35;
-iss-coast 1 h 1.24 and 1.42 (wall ratios 0.80-0.98 without a client, 0.88-1.89
-watched, the client's own process competing for the two cores). Stalled client:
-147 605 messages (62 MB of JSON) served, 9 354 reached it, resident memory 272 MB
-before the flight and 279 MB after.
+Last figures, on 2 cores shared with other jobs (wall times swing by a factor
+of 2, so the wall ratios below 1 are noise). Pacing (load 11-17): 60 s at 10x
+played over 6.003 s by the view's clock (+0.06 %), received by the client at
+10.096x (+0.96 %); 6 s at 1x over 6.003 s, received at 1.000x; 171 s at 100x
+over 1.714 s, received at 101.3x. Cost at max (load 18-19), CPU of the flight's
+process over headless, without a client / watched: hobby rocket 1.12 / 1.03,
+falcon9 230 s 0.98 / 0.98, iss-coast 1 h 1.06 / 1.09; wall ratios watched 1.27,
+0.84, 1.35, of which 0.5 s is the linger for the last messages to reach the
+client (LiveServer.wait) on a 1.6 s iss-coast flight. With the view's share of
+a core counted in wall time instead (load 9-16): 0.99 / 1.02, 0.99 / 1.00,
+0.97 / 1.39 (a loaded machine stretched the flight's wall time and with it the
+view's CPU). Stalled client (load 11-17): 147 605 messages (62 MB of JSON)
+served, 9 354 reached it, resident memory 272 MB before the flight and 279 MB
+after.
 """
 
 from __future__ import annotations
