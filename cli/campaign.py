@@ -172,13 +172,8 @@ def report(directory: Path, plot_dir: Path | None) -> None:
     Example:
         rocketsim campaign report f9 --plot f9/plots
     """
-    try:
-        from rocketsim.api import campaign_report
-    except ImportError as error:
-        click.echo(f"error: the campaign report is not in this installation ({error})", err=True)
-        sys.exit(1)
+    from rocketsim.api import campaign_report
     found = campaign_report(directory, plot_dir)
     click.echo(found.text)
-    errored = found.errored if isinstance(found.errored, int) else len(found.errored)
-    if errored:
-        sys.exit(1)
+    if found.exit_status:
+        sys.exit(found.exit_status)

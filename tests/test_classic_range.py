@@ -21,7 +21,8 @@ from rocketsim.layout import P_CLASSIC, R, V, make_params
 from rocketsim.errors import InputError
 from rocketsim.scenario.classic_range import DRONE_SHIP_RANGE, LANDING_ZONE_RANGE, classic_site
 from rocketsim.scenario.load import load
-from rocketsim.scenario.models import Scenario, SiteSpec
+from rocketsim.scenario.models import Scenario
+from rocketsim.scenario.start_spec import SiteSpec
 from rocketsim.scenario.weather import ClassicWeather, build_atmosphere
 from rocketsim.scenario.yaml_source import read_yaml
 from rocketsim.scenario.models import VehicleSpec

@@ -6,8 +6,9 @@ inside functions and under ``TYPE_CHECKING`` alike (a name imported only for
 a type still ties the module to the layer it comes from). Every import also
 counts toward circles: two modules that import each other, whether at module
 level or inside a function, are one circle, named with the lines that close
-it. The checks parse the source (nothing is imported), so they also run on a
-planted tree.
+it. A package whose names load on first use (``rocketsim.exports.lazy``) imports each
+name's home when the name is read: those homes count as imports inside a function. The
+checks parse the source (nothing is imported), so they also run on a planted tree.
 """
 
 from __future__ import annotations
@@ -88,7 +89,73 @@ def _imports(name: str, is_package: bool, text: str) -> tuple[tuple[str, int, bo
         for target in targets:
             if target.split(".")[0] in PACKAGES.values():
                 found.append((target, node.lineno, id(node) in top_level))
+    found += [(home if attribute is None else f"{home}.{attribute}", line, False)
+              for _, home, attribute, line in _lazy_homes(tree)]
     return tuple(found)
+
+
+def _lazy_homes(tree: ast.Module) -> list[tuple[str, str, str, int]]:
+    """``(exported name, home module, its name there, line)`` of every name a module
+    exports through ``lazy(globals(), homes)`` (:mod:`rocketsim.exports`): ``homes`` a
+    dict (or dict comprehension) written in the call or assigned at module level, each
+    value a module's dotted name or a ``(module, name)`` pair."""
+    assigned = {target.id: node.value for node in tree.body if isinstance(node, ast.Assign)
+                for target in node.targets if isinstance(target, ast.Name)}
+    found = []
+    for call in ast.walk(tree):
+        if not (isinstance(call, ast.Call) and isinstance(call.func, ast.Name) and call.func.id == "lazy"
+                and len(call.args) == 2):
+            continue
+        homes = call.args[1]
+        if isinstance(homes, ast.Name):
+            homes = assigned.get(homes.id)
+        if isinstance(homes, ast.Dict):
+            pairs = [(key.value if isinstance(key, ast.Constant) else None, value)
+                     for key, value in zip(homes.keys, homes.values)]
+        elif isinstance(homes, ast.DictComp):
+            pairs = [(None, homes.value)]           # every name read from one home
+        else:
+            continue
+        for name, value in pairs:
+            if isinstance(value, ast.Constant) and isinstance(value.value, str):
+                home, attribute = value.value, name
+            elif (isinstance(value, ast.Tuple) and len(value.elts) == 2
+                  and all(isinstance(e, ast.Constant) and isinstance(e.value, str) for e in value.elts)):
+                home, attribute = value.elts[0].value, value.elts[1].value
+            else:
+                continue
+            if home.split(".")[0] in PACKAGES.values():
+                found.append((name, home, attribute, value.lineno))
+    return found
+
+
+def missing_lazy_homes(root: Path) -> list[str]:
+    """Every name exported through ``lazy`` whose home is not a module of the project or
+    does not define it (a def, a class, an assignment or an import at its module level),
+    as ``file:line: package.name -> home.name``."""
+    known, found = modules(root), []
+    for name, path in known.items():
+        for exported, home, attribute, line in _lazy_homes(ast.parse(path.read_text())):
+            if attribute is None:
+                continue
+            defined = home in known and attribute in _defined(known[home])
+            if not defined:
+                found.append(f"{path.relative_to(root)}:{line}: {name}.{exported} -> {home}.{attribute}")
+    return found
+
+
+def _defined(path: Path) -> set[str]:
+    """The names a module binds at its module level."""
+    names = set()
+    for node in ast.parse(path.read_text()).body:
+        if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef)):
+            names.add(node.name)
+        elif isinstance(node, (ast.Assign, ast.AnnAssign)):
+            for target in (node.targets if isinstance(node, ast.Assign) else [node.target]):
+                names |= {n.id for n in ast.walk(target) if isinstance(n, ast.Name)}
+        elif isinstance(node, (ast.Import, ast.ImportFrom)):
+            names |= {(alias.asname or alias.name).split(".")[0] for alias in node.names}
+    return names
 
 
 def upward_imports(root: Path) -> list[str]:
@@ -196,6 +263,12 @@ def test_no_import_circles():
     assert not found, "import circles:\n" + "\n".join(found)
 
 
+def test_every_lazily_exported_name_has_a_home():
+    # a name moved to another module with its lazy export left behind fails only when read
+    found = missing_lazy_homes(ROOT)
+    assert not found, "names exported through lazy() that their home does not define:\n" + "\n".join(found)
+
+
 def test_every_module_has_a_layer():
     unplaced = [name for name in modules(ROOT) if layer_of(name) is None]
     assert not unplaced
@@ -279,3 +352,24 @@ def test_the_checks_fail_on_a_planted_copy_of_the_library(tmp_path):
     assert ("rocketsim/frames/planted.py:2: rocketsim.frames.planted (layer 2) imports "
             "rocketsim.sim.world (layer 10)") in upward_imports(tmp_path)
     assert ["rocketsim.frames.quaternion", "rocketsim.timescales"] in import_cycles(tmp_path)
+
+
+def test_lazy_exports_count_as_imports(tmp_path):
+    # a package whose names load on first use imports their homes: a lower package exporting
+    # a name of a higher one runs up the layers, and a home that imports the package back
+    # closes a circle; a name its home does not define is named
+    root = _planted(tmp_path, {
+        "rocketsim/__init__.py": "",
+        "rocketsim/frames/__init__.py": (
+            "_HOMES = {\"World\": \"rocketsim.sim.world\", \"f\": (\"rocketsim.frames.geodetic\", \"g\")}\n"
+            "__getattr__, __dir__ = lazy(globals(), _HOMES)\n\n\n"
+            "def lazy(namespace, homes):\n    return None, None\n"),
+        "rocketsim/frames/geodetic.py": "from rocketsim import frames\n\n\ndef f():\n    pass\n",
+        "rocketsim/sim/__init__.py": "",
+        "rocketsim/sim/world.py": "class World:\n    pass\n",
+    })
+    assert upward_imports(root) == [
+        "rocketsim/frames/__init__.py:1: rocketsim.frames (layer 2) imports rocketsim.sim.world (layer 10)"]
+    assert import_cycles(root) == [["rocketsim.frames", "rocketsim.frames.geodetic"]]
+    assert missing_lazy_homes(root) == ["rocketsim/frames/__init__.py:1: rocketsim.frames.f -> "
+                                        "rocketsim.frames.geodetic.g"]

@@ -73,7 +73,7 @@ _HOMES = {
     "UntrustedProgram": "rocketsim.scenario.trust",
     "fly_live": "rocketsim.api.live", "replay_live": "rocketsim.api.live", "Live": "rocketsim.api.live",
     "parse_warp": "rocketsim.api.live", "LOOPBACK": "rocketsim.api.live", "PORT": "rocketsim.api.live",
-    "strict_json": "rocketsim.telemetry.writer",
+    "strict_json": "rocketsim.telemetry.encoding",
     "telemetry_size": ("rocketsim.api.file_size", "estimate"),
     "SizeEstimate": "rocketsim.api.file_size",
     "parse_quantity": "rocketsim.scenario.units", "UnitError": "rocketsim.scenario.units",

@@ -15,7 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from rocketsim.constants import AU
-from rocketsim.ephemeris.solar_system import BODIES, states
+from rocketsim.ephemeris.solar_system import states
 from rocketsim.timescales import Epoch
 
 # the origin of the vectors when none is named: the Sun for the planets, the Earth for
@@ -44,8 +44,9 @@ class BodyPositions:
 
 
 def ephemeris(body: str, utc: list[dt.datetime], center: str | None = None) -> BodyPositions:
-    """The :class:`BodyPositions` of ``body`` (one of :data:`BODIES`) from ``center``
-    (default :data:`DEFAULT_CENTER`'s) at the UTC instants ``utc`` (aware datetimes)."""
+    """The :class:`BodyPositions` of ``body`` (one of
+    :data:`rocketsim.ephemeris.solar_system.BODIES`) from ``center`` (default
+    :data:`DEFAULT_CENTER`'s) at the UTC instants ``utc`` (aware datetimes)."""
     center = center or DEFAULT_CENTER[body]
     jd_tt = np.array([Epoch.from_utc(moment).jd_tt() for moment in utc])
     field = states(jd_tt, center="earth")

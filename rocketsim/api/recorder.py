@@ -21,7 +21,8 @@ from rocketsim.api.samples import Samples
 from rocketsim.telemetry import foxglove
 from rocketsim.telemetry.reader import RunFile
 from rocketsim.telemetry.sink import TelemetrySink
-from rocketsim.telemetry.writer import encode, interleaved_samples
+from rocketsim.telemetry.encoding import encode
+from rocketsim.telemetry.sample_plans import interleaved_samples
 
 MEMORY = Path("<memory>")       # the path of a run that has no file
 

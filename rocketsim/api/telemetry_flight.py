@@ -17,7 +17,8 @@ from rocketsim.errors import signal_behind
 from rocketsim.version import __version__
 from rocketsim.scenario.load import LoadedScenario
 from rocketsim.sim.build import build_world
-from rocketsim.telemetry.writer import TelemetryWriter, strict_json
+from rocketsim.telemetry.encoding import strict_json
+from rocketsim.telemetry.writer import TelemetryWriter
 
 # media type of an attached file by its suffix (the rest are YAML: scenario, vehicle, ...)
 MEDIA_TYPES = {".py": "text/x-python", ".nc": "application/x-netcdf"}

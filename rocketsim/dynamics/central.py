@@ -44,12 +44,6 @@ def nbody_field(center: str, jd0_tt: float, gmst0: float, jd_tt_now: float | Non
     return make_field(center, jd0_tt, rotation=frame_rotation(center, jd, gmst0))
 
 
-def center_name(p) -> str:
-    """Name of the central body of a parameter vector (Earth without a field)."""
-    fp = field_of(p)
-    return "earth" if fp is None else BODIES[int(fp[FIELD_CENTER])]
-
-
 def next_center(y, p, t: float) -> str | None:
     """The body whose sphere of influence ``y`` (frame of ``p``'s field) has entered
     or fallen back into at mission time ``t`` (s), or None while it stays put.

@@ -34,7 +34,7 @@ from rocketsim.jit import njit
 from rocketsim.constants import (AU, EARTH_MU, MARS_MU, MOON_MU, NBODY_HOLD, SECONDS_PER_DAY,
                                  SOLAR_IRRADIANCE_1AU, SPEED_OF_LIGHT, SUN_MU)
 from rocketsim.layout import N_PARAMS, P_NBODY
-from rocketsim.ephemeris.solar_system import BODIES, _truncated_one
+from rocketsim.ephemeris.solar_system import _truncated_one
 
 # field slots
 FIELD_CENTER = 0     # index of the central body in BODIES
@@ -53,7 +53,6 @@ P_BUCKET = P_HELD + 12              # mission time (s) the held positions are fo
 N_FIELD_PARAMS = P_BUCKET + 1
 
 MU = {"sun": SUN_MU, "earth": EARTH_MU, "moon": MOON_MU, "mars": MARS_MU}
-EARTH_INDEX = BODIES.index("earth")
 SRP_1AU = SOLAR_IRRADIANCE_1AU / SPEED_OF_LIGHT     # N/m^2, radiation pressure at 1 AU
 
 

@@ -44,6 +44,7 @@ from rocketsim.campaigns.landing import east_north
 from rocketsim.constants import G0
 from rocketsim.errors import InputError
 from rocketsim.plots.canvas import Picture, pyplot, save
+from rocketsim.plots.event_marks import event_labels, event_lines, event_list, list_columns
 from rocketsim.telemetry.land import draw_coastline
 from rocketsim.telemetry.reader import read_run
 from rocketsim.telemetry.tables import table
@@ -55,7 +56,6 @@ LOAD = 0.05                  # g: a flight whose sensed acceleration stays under
 # m: low Earth orbit's upper bound (IADC Space Debris Mitigation Guidelines, 2007): above it the
 # speed over the turning ground is mostly the ground's turn (28 km/s at the Moon's distance)
 GROUND_SPEED_CEILING = 2000e3
-LIST_CHARACTERS = 210        # characters of the events' list (7.5 pt monospace) across the page
 _STYLE = {"surface": "-", "air": "--", "inertial": ":"}
 
 
@@ -136,8 +136,8 @@ def compose(run, tables: dict, title: str):
     events = run.events
     ncols = 3
     nrows = math.ceil(len(panels) / ncols)
-    lines = _event_lines(events, clock, run.problem)
-    list_height = 0.4 + 0.15 * math.ceil(len(lines) / _list_columns(lines)) if events else 0.0
+    lines = event_lines(events, clock, run.problem)
+    list_height = 0.4 + 0.15 * math.ceil(len(lines) / list_columns(lines)) if events else 0.0
     height = 3.4 * nrows + list_height + 1.3
     figure = plt.figure(figsize=(16, height), dpi=80)
     grid = figure.add_gridspec(nrows + (1 if events else 0), ncols,
@@ -155,9 +155,9 @@ def compose(run, tables: dict, title: str):
             for event in events:
                 ax.axvline(clock(event["t"]), color="0.6", lw=0.5, ls=":", zorder=0)
     if axes and panels[0] is _height:
-        _event_labels(figure, axes[0], events, clock)
+        event_labels(figure, axes[0], events, clock)
     if events:
-        _event_list(figure.add_subplot(grid[nrows, :]), events, clock, run.problem)
+        event_list(figure.add_subplot(grid[nrows, :]), events, clock, run.problem)
     handles = [plt.Line2D([], [], color=colours[name], lw=2) for name in bodies]
     figure.legend(handles, list(bodies), loc="upper left", ncol=min(len(bodies), 6), fontsize=9,
                   frameon=False, bbox_to_anchor=(0.06, 1 - 0.45 / height))
@@ -428,53 +428,3 @@ def _near_earth_mask(columns) -> np.ndarray:
 
 def _near_earth(columns) -> bool:
     return bool(_near_earth_mask(columns).all())
-
-
-# --- the events ------------------------------------------------------------------
-def _event_labels(figure, ax, events, clock) -> None:
-    """Number the events along the top of ``ax`` in time order; events whose numbers
-    would touch share a label (``3-5``), so that no two labels overlap."""
-    renderer = figure.canvas.get_renderer()
-    groups: list[list[int]] = []
-    placed = []                 # (label, its right edge in pixels)
-    for k, event in enumerate(events, 1):
-        x = clock(event["t"])
-        if groups:
-            label, right = placed[-1]
-            start = ax.get_xaxis_transform().transform((x, 1.0))[0]    # any y scale (log: no 0)
-            if start - right < 4.0:          # touches the label before: join its group
-                groups[-1].append(k)
-                label.set_text(_range(groups[-1]))
-                placed[-1] = (label, label.get_window_extent(renderer).x1)
-                continue
-        groups.append([k])
-        label = ax.annotate(str(k), (x, 1.0), xycoords=("data", "axes fraction"), xytext=(0, -2),
-                            textcoords="offset points", ha="left", va="top", fontsize=7, color="0.25",
-                            bbox={"boxstyle": "square,pad=0.1", "fc": "white", "ec": "none", "alpha": 0.85})
-        placed.append((label, label.get_window_extent(renderer).x1))
-
-
-def _range(numbers: list[int]) -> str:
-    return str(numbers[0]) if len(numbers) == 1 else f"{numbers[0]}-{numbers[-1]}"
-
-
-def _event_lines(events, clock, problem) -> list[str]:
-    lines = [f"{k:>3}  {clock.text(e['t'])}  {e['body']}: {e['name']}" for k, e in enumerate(events, 1)]
-    return lines + (["     file damaged: partial data"] if problem else [])
-
-
-def _list_columns(lines: list[str]) -> int:
-    """How many columns of the events' list fit the page's width (:data:`LIST_CHARACTERS`
-    characters of the list's monospace type across), at most four."""
-    return max(1, min(4, LIST_CHARACTERS // (max(map(len, lines), default=1) + 3)))
-
-
-def _event_list(ax, events, clock, problem) -> None:
-    """Every event, numbered as on the height panel, whole, in columns under the panels."""
-    ax.axis("off")
-    lines = _event_lines(events, clock, problem)
-    ncols = _list_columns(lines)
-    per_column = math.ceil(len(lines) / ncols)
-    for j in range(ncols):
-        ax.text(j / ncols, 1.0, "\n".join(lines[j * per_column:(j + 1) * per_column]), transform=ax.transAxes,
-                va="top", ha="left", family="monospace", fontsize=7.5)

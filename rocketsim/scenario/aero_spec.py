@@ -13,36 +13,30 @@ from __future__ import annotations
 
 from typing import Annotated, Literal, Optional
 
-from pydantic import BaseModel, Field, field_validator
+from pydantic import Field, field_validator
 
 from rocketsim.constants import (BODY_CONTACT_DAMPING, BODY_CONTACT_RATE, BODY_CONTACT_STIFFNESS,
                                  FRICTION_REGULARISATION)
-from rocketsim.scenario.bounds import (ANGLE, AREA, BODY_MASS, BOUNDS, COUNT, DIRECTION, EXTENT, ISP,
-                                       MAX_AXIAL_LOAD, MAX_COEFFICIENT, MAX_CONTACT_RATE,
-                                       MAX_DAMPING, MAX_FRICTION,
-                                       MAX_FRICTION_SPEED, MAX_MACH, MAX_Q_ALPHA,
-                                       MAX_SPECIFIC_HEAT, MAX_STIFFNESS, MAX_TEMPERATURE,
-                                       MIN_FRICTION_SPEED, MIN_SPECIFIC_HEAT, SIZE, SLEW, STATION,
-                                       THRUST, contact_rate, within)
-from rocketsim.scenario.units import (STRICT, Acceleration, Angle, AngularRate, Area, Force, Length,
-                                      Mass, Speed, SpecificImpulse, Temperature)
+from rocketsim.scenario.bounds import (ANGLE, AREA, BODY_MASS, BOUNDS, COUNT, DIRECTION, ISP, MAX_AXIAL_LOAD,
+                                       MAX_COEFFICIENT, MAX_CONTACT_RATE, MAX_DAMPING, MAX_FRICTION,
+                                       MAX_FRICTION_SPEED, MAX_MACH, MAX_Q_ALPHA, MAX_SPECIFIC_HEAT,
+                                       MAX_STIFFNESS, MAX_TEMPERATURE, MIN_FRICTION_SPEED, MIN_SPECIFIC_HEAT,
+                                       SLEW, STATION, THRUST, contact_rate, within)
+from rocketsim.scenario.strict import REQUIRED, NonNegativeLength, PositiveLength, Strict, field_error
+from rocketsim.scenario.units import (Acceleration, Angle, AngularRate, Area, Force, Length, Mass, Speed,
+                                      SpecificImpulse, Temperature)
+from rocketsim.scenario.vehicle import lightest_body
 
 # a vehicle's figures, within the physical bounds of rocketsim.scenario.bounds
-PositiveLength = Annotated[Length, SIZE]
 STIFFNESS = within(0.0, MAX_STIFFNESS, "stiffness", "N/m", above=True)
 DAMPING = within(0.0, MAX_DAMPING, "damping", "N s/m")
-NonNegativeLength = Annotated[Length, EXTENT]
 Station = Annotated[Length, STATION]
 # a (Mach, C_A) row of an axial-force table
 AxialRow = tuple[Annotated[float, within(0.0, MAX_MACH, "mach")],
                  Annotated[float, within(0.0, MAX_COEFFICIENT, "coefficient")]]
 
 
-class _Strict(BaseModel):
-    model_config = STRICT
-
-
-class NoseSpec(_Strict):
+class NoseSpec(Strict):
     """The nose: the top ``length`` of the part it caps (the fairing, else the payload, else
     the top stage), a cone or a tangent ogive (or blunt: no nose lift). That part's
     ``length`` includes it: a stage that caps the stack reaches to the nose's tip, and a
@@ -55,7 +49,7 @@ class NoseSpec(_Strict):
                                                      "or blunt (no nose lift)")
 
 
-class BoattailSpec(_Strict):
+class BoattailSpec(Strict):
     """A conical boattail: the bottom ``length`` of the vehicle's lowest stage narrows from
     the stage's diameter to ``diameter`` at its base (part of the stage's length, as the
     nose is part of the part it caps). Its slender-body lift acts against the nose's
@@ -68,7 +62,7 @@ class BoattailSpec(_Strict):
                                      "stage's, e.g. '155 mm'")
 
 
-class FinSetSpec(_Strict):
+class FinSetSpec(Strict):
     """A set of 3 or 4 flat trapezoidal fins (Barrowman's normal-force slope and centre of pressure)."""
 
     stage: str = Field(description="name of the stage the fins are on")
@@ -81,7 +75,7 @@ class FinSetSpec(_Strict):
     sweep: NonNegativeLength = Field(0.0, description="axial distance from the root's to the tip's leading edge")
 
 
-class GridFinSpec(_Strict):
+class GridFinSpec(Strict):
     """Grid fins on arms round the stage (``count`` evenly spaced from body +y)."""
 
     stage: str
@@ -94,7 +88,7 @@ class GridFinSpec(_Strict):
     stall: Annotated[Angle, Field(gt=0), ANGLE] = Field(0.436, description="stall angle of the lattice (default 25 deg)")
 
 
-class LegSpec(_Strict):
+class LegSpec(Strict):
     """Landing legs: ``count`` feet on a ring, each a stiff spring with damping and friction."""
 
     stage: str
@@ -111,7 +105,7 @@ class LegSpec(_Strict):
         "(a damper of mu N / speed; keep mu N r^2 / (speed I_roll) under ~400 /s)")
 
 
-class ThrusterSpec(_Strict):
+class ThrusterSpec(Strict):
     """One reaction-control thruster, drawing from one of its stage's tanks."""
 
     stage: str
@@ -133,7 +127,7 @@ class ThrusterSpec(_Strict):
         return value
 
 
-class HeatShieldSpec(_Strict):
+class HeatShieldSpec(Strict):
     """A heat shield as one lumped thermal mass at the stagnation point."""
 
     nose_radius: PositiveLength = Field(description="effective nose radius for Sutton-Graves")
@@ -146,7 +140,7 @@ class HeatShieldSpec(_Strict):
                                                        above=True)] = 290.0
 
 
-class LimitsSpec(_Strict):
+class LimitsSpec(Strict):
     """A vehicle's own structural limits (docs/physics.md#structural-limits), in place of
     the launcher's assumed without them (250 kPa deg, 15 g): a small hobby rocket takes
     far higher loads, and one whose motor alone passes 15 g must give its own."""
@@ -161,7 +155,7 @@ class LimitsSpec(_Strict):
         "launcher's, assumed), required when a stage's motor alone passes it")
 
 
-class AeroSpec(_Strict):
+class AeroSpec(Strict):
     """Aerodynamics and ground contact of a staged vehicle."""
 
     aerodynamics: bool = Field(
@@ -221,7 +215,6 @@ def check_aero(aero: AeroSpec | None, stages, payload=None, fairing=None) -> Non
     (relative to the vehicle)."""
     if aero is None or stages is None:
         return
-    from rocketsim.scenario.vehicle import field_error
     stack = sum(st.length for st in stages) + (payload.length if payload is not None else 0.0)
     if fairing is not None:
         part, length = f"the fairing ({fairing.length:g} m)", fairing.length
@@ -245,7 +238,6 @@ def check_aero(aero: AeroSpec | None, stages, payload=None, fairing=None) -> Non
                                   f"{part.tank!r}", part.tank)
     if not aero.aerodynamics:           # no ground contact
         return
-    from rocketsim.scenario.vehicle import lightest_body
     held = {st.name: lightest_body(stages, s, payload) for s, st in enumerate(stages)}
     for i, leg in enumerate(aero.legs):
         # all the feet on the ground together, holding the lightest body of the leg's stage
@@ -269,8 +261,7 @@ def check_axial_load(vehicle) -> None:
     if aero is None or not aero.aerodynamics or aero.limits.axial_load is not None:
         return
     from rocketsim.constants import STRUCTURE_AXIAL_LIMIT_G
-    from rocketsim.scenario.vehicle import REQUIRED, field_error
-    from rocketsim.vehicle.review import stage_loads
+    from rocketsim.vehicle.stage_burns import stage_loads
     for i, stage in enumerate(vehicle.stages):
         loads = stage_loads(vehicle, i)
         if loads.least_peak_axial_load_g > STRUCTURE_AXIAL_LIMIT_G:
@@ -289,7 +280,6 @@ def _check_boattail(aero: AeroSpec, stages, stack: float) -> None:
     """A boattail narrows the base of the lowest stage, within that stage and below the
     nose of the ``stack`` (m, the stages and the payload; a located ValidationError
     otherwise)."""
-    from rocketsim.scenario.vehicle import field_error
     tail = aero.boattail
     if tail is None:
         return
@@ -314,7 +304,6 @@ def _check_contact(loc: tuple, what: str, mass: float, stiffness: float, damping
     whose fastest mode on ``mass`` (kg) is beyond
     :data:`~rocketsim.scenario.bounds.MAX_CONTACT_RATE`: the damper's field when the
     mode is overdamped (c^2 > 4 m k), else the spring's."""
-    from rocketsim.scenario.vehicle import field_error
     rate = contact_rate(mass, stiffness, damping)
     if rate <= MAX_CONTACT_RATE:
         return

@@ -4,7 +4,7 @@
 from the scenario's ``seed``: a procedural equatorial range launching due
 east, kept so that programs written for the original planar simulator still
 fly as they did (docs/physics.md#classic-range). It is an ordinary
-:class:`~rocketsim.scenario.models.SiteSpec`, the shape of a real site's file,
+:class:`~rocketsim.scenario.start_spec.SiteSpec`, the shape of a real site's file,
 with ``model: classic`` (the original model flies from it: see
 :func:`rocketsim.dynamics.derivative.held_derivative` and
 :func:`rocketsim.atmosphere.day.profile_table`) and two pads downrange that a
@@ -49,7 +49,7 @@ def _wrapped(lon: float) -> float:
 
 def classic_site(seed: int) -> dict:
     """The classic range of ``seed``: a site mapping in SI units (angles in radians,
-    as :class:`~rocketsim.scenario.models.SiteSpec` stores them), ready to validate."""
+    as :class:`~rocketsim.scenario.start_spec.SiteSpec` stores them), ready to validate."""
     seed = int(seed)
     lon = _uniform(seed, "pad longitude", -math.pi, math.pi)
     zone = _uniform(seed, "landing zone range", *LANDING_ZONE_RANGE)

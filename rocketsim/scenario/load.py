@@ -20,7 +20,8 @@ from typing import Any, Callable
 
 from rocketsim.errors import InputError
 from rocketsim.scenario.classic_range import CLASSIC
-from rocketsim.scenario.models import MissionSpec, Scenario, SiteSpec, VehicleSpec
+from rocketsim.scenario.models import MissionSpec, Scenario, VehicleSpec
+from rocketsim.scenario.start_spec import SiteSpec
 from rocketsim.scenario.overrides import Overrides
 from rocketsim.scenario.paths import PathError
 from rocketsim.scenario.validation import quoted, validate

@@ -21,7 +21,7 @@ from pydantic import BaseModel, ValidationError
 
 from rocketsim.errors import InputError
 from rocketsim.scenario.overrides import Edited
-from rocketsim.scenario.vehicle import REQUIRED
+from rocketsim.scenario.strict import REQUIRED
 from rocketsim.scenario.yaml_source import YamlSource
 
 # a value quoted in a message: a 60 000-character string is shown by its ends

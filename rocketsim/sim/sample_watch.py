@@ -44,7 +44,7 @@ from rocketsim.stepping.sample_figures import (N_SAMPLE_RIGID, SAMPLE_DYNAMIC_PR
                                                SAMPLE_HEIGHT, SAMPLE_HEIGHT_AGL, SAMPLE_LAT, SAMPLE_LON, SAMPLE_MACH,
                                                SAMPLE_SENSED, SAMPLE_SURFACE_SPEED)
 from rocketsim.telemetry.sink import TelemetrySink
-from rocketsim.telemetry.writer import interleaved_samples
+from rocketsim.telemetry.sample_plans import interleaved_samples
 
 IN_AIR_Q = 1.0           # Pa: from it a body is in the air (below it one without engines running coasts)
 LANDINGS = ("touchdown", "impact")

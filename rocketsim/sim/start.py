@@ -28,7 +28,8 @@ from rocketsim.frames.elements import Elements, elements_to_state
 from rocketsim.frames.mean_elements import mean_to_osculating
 from rocketsim.frames.geodetic import enu_basis, geodetic_to_ecef
 from rocketsim.frames.quaternion import quat_from_matrix, quat_rotate
-from rocketsim.scenario.models import MissionSpec, SiteSpec
+from rocketsim.scenario.models import MissionSpec
+from rocketsim.scenario.start_spec import SiteSpec
 from rocketsim.vehicle.rail import RL_ON, RL_TRAVEL, RL_U, RL_X0, no_rail
 
 
@@ -93,7 +94,7 @@ def prograde_attitude(r, v) -> np.ndarray:
 
 def on_rail(site: SiteSpec, rail, q0, x_cm: float):
     """``(r, w, rail array)`` of a vehicle standing on its base at the foot of ``rail``
-    (a :class:`~rocketsim.scenario.models.RailSpec`) on ``site``, nose along it (``q0``,
+    (a :class:`~rocketsim.scenario.start_spec.RailSpec`) on ``site``, nose along it (``q0``,
     body -> ECI at t = 0, from :func:`start_state`): its centre of mass ``x_cm`` (m
     above its base) up the rail from the pad, its body rates the ground's turn (so it
     keeps its attitude on the turning Earth), the rail's arrays

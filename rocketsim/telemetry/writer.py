@@ -29,7 +29,6 @@ or lost, and the summary indexes what is on disk.
 
 from __future__ import annotations
 
-import math
 import os
 import stat
 from collections import deque
@@ -41,9 +40,12 @@ import orjson
 from rocketsim.version import __version__
 from rocketsim.jit import compile_beside, entry_point
 from rocketsim.telemetry import foxglove, splice
+from rocketsim.telemetry.encoding import encode
 from rocketsim.telemetry.held_signals import holding
 from rocketsim.telemetry.frames import MISSION_FRAME, CentralFrame, FrameTree, central_frame
 from rocketsim.telemetry.mcap_stream import McapStream
+from rocketsim.telemetry.sample_plans import (interleaved_rows, interleaved_samples, joined, mission_transform,
+                                              present, segment_rows, shape_of, without)
 from rocketsim.telemetry.schemas import BODY_STATE, EVENT, schema_bytes
 from rocketsim.telemetry.sink import TelemetrySink
 from rocketsim.telemetry.writing_thread import WritingThread
@@ -59,21 +61,6 @@ LIBRARY = f"rocketsim {__version__}"
 # (telemetry on / off, F9 mission: whole 1.22 with 128, 1.18-1.20 with 512; its first 40 s
 # 1.14-1.16 with 128, 1.24 with 256, 1.29 with 512)
 PENDING = 128
-
-
-def encode(message: dict) -> bytes:
-    """JSON bytes of a message: compact, keys in insertion order, floats in
-    their shortest round-trip form (orjson, several times faster than the
-    standard library's json on a state message). NaN and infinities become null, as
-    JSON has no spelling for them; numpy scalars and arrays are written as numbers."""
-    return orjson.dumps(message, default=_plain, option=orjson.OPT_SERIALIZE_NUMPY)
-
-
-def strict_json(value, indent: bool = False) -> str:
-    """``value`` as strict JSON (RFC 8259, what every JSON reader takes): as :func:`encode`,
-    NaN and infinities as null; indented by two spaces with ``indent``."""
-    return orjson.dumps(value, default=_plain,
-                        option=orjson.OPT_SERIALIZE_NUMPY | (orjson.OPT_INDENT_2 if indent else 0)).decode()
 
 
 def _records():
@@ -101,83 +88,6 @@ RECORDS_PRIORITY = 1
 
 
 _EARTH = central_frame("earth", np.eye(3), float("nan"))
-
-
-_REQUIRED = frozenset(BODY_STATE["required"])
-
-
-def _members(message, required=_REQUIRED):
-    """The slots of ``message`` that may be left out: values of object members (not vector
-    items), but for the state's ``required`` fields."""
-    for key, value in message.items():
-        if isinstance(value, dict):
-            yield from _members(value, ())
-        elif isinstance(value, splice.Slot) and value.kind == "f" and key not in required:
-            yield value
-
-
-def _without(message: dict, missing: set) -> dict:
-    """``message`` without the members whose slots' values are ``missing`` (indices)."""
-    return {key: _without(value, missing) if isinstance(value, dict) else value
-            for key, value in message.items()
-            if not (isinstance(value, splice.Slot) and value.kind == "f" and value.index in missing)}
-
-
-def _joined(arrays: list[np.ndarray], dtype) -> tuple[np.ndarray, np.ndarray]:
-    """``(arrays one after the other, where each begins and the last ends)``."""
-    first = np.zeros(len(arrays) + 1, dtype=np.int64)
-    np.cumsum([len(a) for a in arrays], out=first[1:])
-    return np.concatenate(arrays).astype(dtype, copy=False), first
-
-
-def _present(message: dict, required=_REQUIRED) -> dict:
-    """``message`` without the members that are None or not finite (vectors as they are),
-    but for the state's ``required`` fields."""
-    return {key: _present(value, ()) if isinstance(value, dict) else value
-            for key, value in message.items()
-            if key in required or not (value is None or isinstance(value, float) and not math.isfinite(value))}
-
-
-def _mission(time: dict, root: str, position) -> dict:
-    """The mission frame at ``position`` (m) in the root frame, with its axes."""
-    return foxglove.frame_transform(time, root, MISSION_FRAME, position, (1.0, 0.0, 0.0, 0.0))
-
-
-def _chosen(plans) -> tuple[list, np.ndarray]:
-    """``(templates, kinds)``: the distinct templates among ``plans`` (by identity, in the
-    order first met) and the index among them of each plan."""
-    templates: dict[int, int] = {}      # id of a template -> its index
-    chosen, kinds = [], []
-    for plan in plans:
-        kind = templates.get(id(plan))
-        if kind is None:
-            kind = templates[id(plan)] = len(chosen)
-            chosen.append(plan)
-        kinds.append(kind)
-    return chosen, np.array(kinds, dtype=np.int64)
-
-
-def _interleaving(blocks: list[tuple]) -> tuple[np.ndarray, np.ndarray]:
-    """``(block, row)`` of each sample of interleaved ``blocks`` in the order they are
-    written (see :meth:`TelemetryWriter.sample_interleaved`): by step, then rank."""
-    counts = np.array([len(rows) for _, rows, *_ in blocks], dtype=np.int64)
-    block = np.repeat(np.arange(len(blocks)), counts)
-    row = np.arange(len(block)) - np.repeat(np.cumsum(counts) - counts, counts)
-    first, every, rank = (np.array(column, dtype=np.int64)[block] for column in zip(*(b[3:] for b in blocks)))
-    order = np.lexsort((rank, first + every * row))
-    return block[order], row[order]
-
-
-def interleaved_samples(blocks: list[tuple]) -> list[tuple]:
-    """The samples ``(body, numbers, fields)`` of interleaved ``blocks`` in the order they are
-    written (see :meth:`TelemetryWriter.sample_interleaved`)."""
-    return [(blocks[b][0], blocks[b][1][r], blocks[b][2]) for b, r in zip(*(a.tolist() for a in _interleaving(blocks)))]
-
-
-def _plain(value):
-    if hasattr(value, "item"):          # numpy scalars orjson does not take natively
-        return value.item()
-    raise TypeError(f"cannot write {type(value).__name__} to telemetry")
 
 
 def _create(path: Path):
@@ -279,7 +189,7 @@ class TelemetryWriter(TelemetrySink):
         """A body's state message, and the Foxglove messages drawn from it; ``frame``:
         the inertial frame it is in (default: Earth's, without an ephemeris). Values
         that are None or not finite are left out (see :data:`rocketsim.telemetry.schemas.BODY_STATE`)."""
-        self._hand_over(self._state, body, _present(message), _EARTH if frame is None else frame)
+        self._hand_over(self._state, body, present(message), _EARTH if frame is None else frame)
 
     def _state(self, body: str, message: dict, frame: CentralFrame) -> None:
         t = message["t"]
@@ -334,7 +244,7 @@ class TelemetryWriter(TelemetrySink):
     def _write_samples(self, samples: list[tuple]) -> None:
         """Write ``samples`` (blocks of samples, see :meth:`_add_pending`) in order, each with
         the template of its body, message shape and set of missing values (:meth:`_plan`),
-        in one compiled call (:meth:`_write_segment`) but where a template is made anew:
+        in one compiled call (:meth:`_write_rows`) but where a template is made anew:
         making one may add a frame, so the samples before it are written first. A body's
         blocks that follow one another are looked at as one. Interleaved blocks
         (:meth:`sample_interleaved`) are written in one compiled call of their own where
@@ -347,13 +257,13 @@ class TelemetryWriter(TelemetrySink):
                 blocks = list(values)
                 while pending and pending[0][0] is None:
                     blocks += pending.popleft()[1]
-                rows = self._interleaved(blocks)
+                rows = interleaved_rows(blocks, self._plans)
                 if rows is None:
                     pending.extendleft(reversed([(name, numbers.reshape(1, -1), shape, False)
                                                  for name, numbers, shape in interleaved_samples(blocks)]))
                     continue
                 if segment:
-                    self._write_segment(segment)
+                    self._write_rows(*segment_rows(segment))
                     segment = []
                 self._write_rows(*rows)
                 continue
@@ -364,10 +274,7 @@ class TelemetryWriter(TelemetrySink):
                 run.append(pending.popleft()[1])
             if len(run) > 1:
                 values = np.concatenate(run)
-            shape = self._plans.get(body)
-            if shape is None or shape[0] is not fields or shape[1] != size:
-                shape = self._plans[body] = self._shape(body, size, fields)
-            _, _, optional, plans = shape
+            _, _, optional, plans = shape_of(self._plans, body, fields, size)
             missing = ~np.isfinite(values[:, optional])
             # where the set of missing values changes: a template for each stretch
             cuts = [] if len(missing) == 1 or (missing == missing[0]).all() else \
@@ -378,63 +285,13 @@ class TelemetryWriter(TelemetrySink):
                 plan = plans.get(key)
                 if plan is None:
                     if segment:
-                        self._write_segment(segment)
+                        self._write_rows(*segment_rows(segment))
                         segment = []
                     plan = plans[key] = self._plan(body, size, fields, set(optional[pattern].tolist()),
                                                    not leaving)
                 segment.append((values[start:end], plan))
         if segment:
-            self._write_segment(segment)
-
-    def _write_segment(self, segment: list[tuple]) -> None:
-        """The records of the samples of ``segment`` (``(block of samples, a row each, their
-        template)`` pairs, in order): :meth:`_write_rows`."""
-        chosen, kinds = _chosen(plan for _, plan in segment)
-        sizes = np.array([block.shape[1] for block, _ in segment], dtype=np.int64)
-        counts = np.array([block.shape[0] for block, _ in segment], dtype=np.int64)
-        kind = np.repeat(kinds, counts)
-        row_first = np.zeros(len(kind) + 1, dtype=np.int64)
-        np.cumsum(np.repeat(sizes, counts), out=row_first[1:])
-        self._write_rows(np.concatenate([block.ravel() for block, _ in segment]), row_first, kind, chosen)
-
-    def _interleaved(self, blocks: list[tuple]) -> tuple | None:
-        """The arguments of :meth:`_write_rows` for the samples of interleaved ``blocks`` (see
-        :meth:`sample_interleaved`); None where a sample needs a template not yet made, or
-        a body's blocks differ in shape (see :meth:`_write_samples`)."""
-        block, row = _interleaving(blocks)
-        counts = np.array([len(rows) for _, rows, *_ in blocks], dtype=np.int64)
-        widths = np.array([rows.shape[1] for _, rows, *_ in blocks], dtype=np.int64)
-        width = widths[block]
-        row_first = np.zeros(len(block) + 1, dtype=np.int64)
-        np.cumsum(width, out=row_first[1:])
-        begin = (np.cumsum(counts * widths) - counts * widths)[block] + row * width
-        values = np.concatenate([rows.ravel() for _, rows, *_ in blocks])
-        values = values[np.repeat(begin - row_first[:-1], width) + np.arange(row_first[-1])]
-        stretch_of = np.empty(len(block), dtype=np.int64)     # each sample's stretch of one template
-        stretches: list = []                                    # their templates, in order
-        names = [name for name, *_ in blocks]
-        for body in dict.fromkeys(names):
-            members = [b for b, name in enumerate(names) if name == body]
-            fields, size = blocks[members[0]][2], widths[members[0]]
-            if any(blocks[b][2] is not fields or widths[b] != size for b in members):
-                return None
-            shape = self._plans.get(body)
-            if shape is None or shape[0] is not fields or shape[1] != size:
-                shape = self._plans[body] = self._shape(body, int(size), fields)
-            _, _, optional, plans = shape
-            mine = np.zeros(len(blocks), dtype=bool)
-            mine[members] = True
-            at = np.flatnonzero(mine[block])                    # the body's samples, in order
-            missing = ~np.isfinite(values[row_first[at][:, None] + optional])
-            starts = [0] + (np.flatnonzero((missing[1:] != missing[:-1]).any(axis=1)) + 1).tolist()
-            stretch = [plans.get((missing[start].tobytes(), False)) for start in starts]
-            if None in stretch:
-                return None
-            stretch_of[at] = np.repeat(np.arange(len(stretches), len(stretches) + len(stretch)),
-                                       np.diff(starts + [len(at)]))
-            stretches += stretch
-        chosen, kinds = _chosen(stretches)
-        return values, row_first, kinds[stretch_of], chosen
+            self._write_rows(*segment_rows(segment))
 
     def _write_rows(self, values: np.ndarray, row_first: np.ndarray, kind: np.ndarray, chosen: list) -> None:
         """The records of samples whose numbers are ``values`` (float64, the samples' one
@@ -465,8 +322,8 @@ class TelemetryWriter(TelemetrySink):
                 channels.append(channel)
             added[k + 1] = len(more)
         extra = b"".join(extras)
-        texts, text_first = _joined([plan[0] for plan in chosen], np.uint8)
-        cuts, cut_first = _joined([plan[1] for plan in chosen], np.int64)
+        texts, text_first = joined([plan[0] for plan in chosen], np.uint8)
+        cuts, cut_first = joined([plan[1] for plan in chosen], np.int64)
         most = np.array([plan[3] for plan in chosen], dtype=np.int64)[kind].sum()
         messages = np.array([plan[1][0] for plan in chosen], dtype=np.int64)[kind].sum()
         chunk, at, index, n = self._writer.reserve(int(most) + len(extra) + splice.HEADER * len(channels),
@@ -478,20 +335,12 @@ class TelemetryWriter(TelemetrySink):
         self._writer.added(at, records)
         self._sequence += records - n
 
-    def _shape(self, body: str, n: int, fields) -> tuple:
-        """``(fields, n, optional, templates)``: the value indices of a body's state message
-        that are left out when not finite (:func:`_members`), and a dictionary for its
-        templates by the values missing."""
-        message = fields(splice.slots(n), splice.Slot.integer)
-        optional = sorted({slot.index for slot in _members(message)})
-        return fields, n, np.array(optional, dtype=np.int64), {}
-
     def _plan(self, body: str, n: int, fields, missing: set, drawn: bool) -> tuple:
         """``(text, plan, index of t, most bytes of its records, body, frame, indices of the
         position)``: the template of a body's messages (:func:`rocketsim.telemetry.splice.template`) without the object
         members whose values are ``missing`` (indices), the Foxglove ones only if ``drawn``."""
         message = fields(splice.slots(n), splice.Slot.integer)
-        messages = self._messages(body, splice.time_slots(), _without(message, missing), fields.frame,
+        messages = self._messages(body, splice.time_slots(), without(message, missing), fields.frame,
                                   drawn)
         text, cuts = splice.template(messages)
         position = [slot.index for slot in message["position"]]
@@ -514,7 +363,7 @@ class TelemetryWriter(TelemetrySink):
             out.append((location, foxglove.location_fix(time, body, message["latitude_deg"],
                                                         message["longitude_deg"], message["altitude"])))
         if body == self._lead and self._frames.is_root(frame):
-            out.append((self._mission, _mission(time, parent, message["position"])))
+            out.append((self._mission, mission_transform(time, parent, message["position"])))
         return out
 
     def _mission_off_root(self, body: str, frame: CentralFrame, position, t: float,
@@ -524,7 +373,7 @@ class TelemetryWriter(TelemetrySink):
         if body != self._lead or self._frames.is_root(frame):
             return []
         place = self._frames.in_root(frame, position, t)
-        return [(self._mission, _mission(time, self._frames.root, place.tolist()))]
+        return [(self._mission, mission_transform(time, self._frames.root, place.tolist()))]
 
     def _frame_transforms(self, t: float, stamp: int) -> list[tuple[int, dict]]:
         """``(channel, FrameTransform)`` of the central bodies' frames due after a state

@@ -78,7 +78,8 @@ from rocketsim.api.telemetry_flight import fly_to_file as fly
 from rocketsim.sim.build import build_world
 from rocketsim.telemetry.mcap_stream import ZSTD_LEVEL
 from rocketsim.telemetry.reader import read_run
-from rocketsim.telemetry.writer import TelemetryWriter, interleaved_samples
+from rocketsim.telemetry.sample_plans import interleaved_samples
+from rocketsim.telemetry.writer import TelemetryWriter
 from tests.benchmarks.timing import best_of
 
 ROOT = Path(__file__).resolve().parents[2]
