@@ -13,7 +13,11 @@ from pathlib import Path
 
 import click
 
-from rocketsim.errors import InputError
+from rocketsim.errors import ArgumentError, InputError
+
+# a front door's argument -> the parameter of the command that gives it, where their names differ
+ALIASES = {"directory": "output", "telemetry": "output", "live.port": "port", "live.host": "host",
+           "live.warp": "warp"}
 
 
 def reports_input_errors(command):
@@ -26,6 +30,8 @@ def reports_input_errors(command):
         try:
             return command(*args, **kwargs)
         except InputError as error:
+            if isinstance(error, ArgumentError):
+                error.field = option_of(error.field)
             click.echo(f"error: {error}", err=True)
             sys.exit(2)
         except OSError as error:
@@ -33,6 +39,21 @@ def reports_input_errors(command):
             sys.exit(2)
 
     return wrapper
+
+
+def option_of(argument: str) -> str:
+    """The running command's option (``--scheduler-file``) or argument (``DIR``) that gives
+    the front door's ``argument`` (``scheduler_file``); ``argument`` if none does."""
+    context = click.get_current_context(silent=True)
+    if context is None:
+        return argument
+    params = {param.name: param for param in context.command.params}
+    param = params.get(argument) or params.get(ALIASES.get(argument, ""))
+    if param is None:
+        return argument
+    if isinstance(param, click.Argument):
+        return param.human_readable_name
+    return max(param.opts, key=len)
 
 
 def system_error(error: OSError) -> str:

@@ -38,6 +38,15 @@ class InputError(Exception):
         return f"{where}{field}{self.message}"
 
 
+class ArgumentError(InputError):
+    """A bad argument of a call of the front door (:mod:`rocketsim.api`, :mod:`rocketsim.campaigns`):
+    ``field`` is the argument's Python name (``duration``, ``scheduler_file``); the command
+    line shows the option that gives it (``--duration``, ``--scheduler-file``) in its place."""
+
+    def __init__(self, message: str, argument: str):
+        super().__init__(message, field=argument)
+
+
 def signal_behind(error: BaseException) -> BaseException:
     """The Ctrl-C, or other exception that is not an :class:`Exception` (a signal
     handler's, a program's CPU budget running out), behind ``error``, else ``error``.

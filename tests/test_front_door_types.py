@@ -17,9 +17,9 @@ from rocketsim.errors import InputError
     ({"programs": ["main.py"]}, "programs", "expected a mapping of stage names to programs, got list"),
     ({"telemetry": 3}, "telemetry", "expected a file's path or None, got int 3"),
     ({"progress": "yes"}, "progress", "expected True, False or a callable progress(t, phase)"),
-    ({"duration": "ten"}, "--duration", "expected '<number> <unit>' for a time, got 'ten'"),
-    ({"duration": [10]}, "--duration", "expected a time as a number or a string with a unit"),
-    ({"step": float("nan")}, "--step", "expected a finite time"),
+    ({"duration": "ten"}, "duration", "expected '<number> <unit>' for a time, got 'ten'"),
+    ({"duration": [10]}, "duration", "expected a time as a number or a string with a unit"),
+    ({"step": float("nan")}, "step", "expected a finite time"),
 ])
 def test_a_wrong_type_is_an_input_error_naming_the_argument(arguments, field, expected, scenario):
     with pytest.raises(InputError) as raised:

@@ -8,9 +8,9 @@ imported to find them), independently of the map they are checked against
   its name the string it is given, or the strings assigned to the name it is
   given in the same function; a name given by the caller (a parameter) counts
   as a decision of that function;
-* every stop with no event of its own: a ``raise InputError(...)``, and a
-  ``<body>.flying = False`` that no recorded event precedes in its block or the
-  blocks around it.
+* every stop with no event of its own: a ``raise InputError(...)`` (or of its
+  subclass ``ArgumentError``), and a ``<body>.flying = False`` that no recorded
+  event precedes in its block or the blocks around it.
 
 A decision missing from the map, one in the map whose function no longer makes
 it, a twin whose docstring does not name the Python function it mirrors, a test
@@ -33,6 +33,7 @@ from rocketsim.stepping.twins import TWINS, Twin
 ROOT = Path(__file__).resolve().parent.parent
 SIM = ROOT / "rocketsim" / "sim"
 RUNS = Twin._fields[1:]
+INPUT_ERRORS = ("InputError", "ArgumentError")     # raising one stops the flight on bad input
 
 
 def _functions(tree: ast.AST, prefix: str = ""):
@@ -97,11 +98,11 @@ def _ends_flight(node: ast.AST) -> bool:
 
 
 def _raises_input_error(node: ast.AST) -> bool:
-    """``raise InputError(...)``: the flight stops with the error of bad input."""
+    """``raise InputError(...)`` or ``ArgumentError(...)``: the flight stops with the error of bad input."""
     if not (isinstance(node, ast.Raise) and isinstance(node.exc, ast.Call)):
         return False
     called = node.exc.func
-    return (called.id if isinstance(called, ast.Name) else getattr(called, "attr", None)) == "InputError"
+    return (called.id if isinstance(called, ast.Name) else getattr(called, "attr", None)) in INPUT_ERRORS
 
 
 def _silent_ends(body: list[ast.stmt], recorded: bool = False):

@@ -14,8 +14,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from rocketsim.api.arguments import expect, one_of
 from rocketsim.constants import AU
-from rocketsim.ephemeris.solar_system import states
+from rocketsim.ephemeris.solar_system import BODIES, states
 from rocketsim.timescales import Epoch
 
 # the origin of the vectors when none is named: the Sun for the planets, the Earth for
@@ -47,7 +48,12 @@ def ephemeris(body: str, utc: list[dt.datetime], center: str | None = None) -> B
     """The :class:`BodyPositions` of ``body`` (one of
     :data:`rocketsim.ephemeris.solar_system.BODIES`) from ``center`` (default
     :data:`DEFAULT_CENTER`'s) at the UTC instants ``utc`` (aware datetimes)."""
+    one_of(body, BODIES, "body")
     center = center or DEFAULT_CENTER[body]
+    one_of(center, BODIES, "center")
+    expect(utc, (list, tuple, np.ndarray), "utc", "a list of UTC instants (aware datetimes)")
+    for moment in utc:
+        expect(moment, (dt.datetime,), "utc", "a list of UTC instants (aware datetimes)")
     jd_tt = np.array([Epoch.from_utc(moment).jd_tt() for moment in utc])
     field = states(jd_tt, center="earth")
     r = field[body][0] - field[center][0]

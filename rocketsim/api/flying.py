@@ -16,7 +16,7 @@ from dataclasses import replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Callable, Mapping
 
-from rocketsim.errors import InputError
+from rocketsim.api.arguments import expect
 from rocketsim.scenario.load import LoadedScenario, load as load_scenario, program_file, unknown_stage
 
 if TYPE_CHECKING:
@@ -60,10 +60,10 @@ def fly(scenario: str | Path | Mapping | LoadedScenario, telemetry: str | Path |
     A flight that ends in an error (a program's exception, a state no longer finite,
     Ctrl-C) raises it; kept in memory, the run up to the error is the exception's
     ``run`` (written to a file, the file holds it)."""
-    _expect(telemetry, (str, os.PathLike, type(None)), "telemetry", "a file's path or None")
-    _expect(programs, (Mapping, type(None)), "programs", "a mapping of stage names to programs")
+    expect(telemetry, (str, os.PathLike, type(None)), "telemetry", "a file's path or None")
+    expect(programs, (Mapping, type(None)), "programs", "a mapping of stage names to programs")
     if not (isinstance(progress, bool) or callable(progress)):
-        _expect(progress, (), "progress", "True, False or a callable progress(t, phase)")
+        expect(progress, (), "progress", "True, False or a callable progress(t, phase)")
     loaded = with_programs(load(scenario), program, programs or {})
     on_progress = _progress_line() if progress is True else progress or None
     # the flight's modules (numba's kernels) and the run's reader load with the first
@@ -108,7 +108,7 @@ def with_programs(loaded: LoadedScenario, program, programs: Mapping) -> LoadedS
     for role, given in ([("program", program)] if program is not None else []) + \
             [(f"program/{stage}", given) for stage, given in programs.items()]:
         if not callable(given):
-            _expect(given, (str, os.PathLike), role, "a function main(fc) or a program file's path")
+            expect(given, (str, os.PathLike), role, "a function main(fc) or a program file's path")
         files.pop(role, None)
         callables.pop(role, None)
         if callable(given):
@@ -122,12 +122,6 @@ def with_programs(loaded: LoadedScenario, program, programs: Mapping) -> LoadedS
         if stage not in [s.name for s in loaded.scenario.vehicle.stages or []]:
             raise unknown_stage(stage, loaded.scenario.vehicle)
     return replace(loaded, files=files, callables=callables)
-
-
-def _expect(value, types: tuple, name: str, expected: str) -> None:
-    """Refuse ``value`` unless an instance of ``types``, with an input error naming ``name``."""
-    if not isinstance(value, types):
-        raise InputError(f"expected {expected}, got {type(value).__name__} {value!r:.60}", field=name)
 
 
 def _progress_line() -> Callable[[float, str], None]:

@@ -16,13 +16,15 @@ needs the ``live`` extra (Foxglove's SDK): ``pip install "rocketsim[live]"``.
 
 from __future__ import annotations
 
+import dataclasses
 import sys
 import tempfile
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable, Mapping
 
-from rocketsim.errors import InputError
+from rocketsim.api.arguments import expect, switch, whole
+from rocketsim.errors import ArgumentError, InputError
 from rocketsim.live.clock import parse_warp, warp_text
 
 LOOPBACK = "127.0.0.1"
@@ -47,15 +49,29 @@ class Live:
     def of(cls, given: "bool | Live | Mapping") -> "Live":
         """``given`` as the ``live`` argument of :func:`rocketsim.fly` takes it: True (the
         defaults), a :class:`Live`, or a mapping of its fields (``warp`` as a number or
-        ``"max"``); InputError for a warp that is none."""
+        ``"max"``); an :class:`~rocketsim.errors.ArgumentError` naming ``live.<field>`` for a
+        field it has not or a value of the wrong type."""
         if isinstance(given, Live):
             return given
+        expect(given, (bool, Mapping), "live", "True, False, a Live or a mapping of its fields")
         fields = {} if given is True else dict(given)
+        unknown = sorted(set(map(str, fields)) - {f.name for f in dataclasses.fields(cls)})
+        if unknown:
+            raise ArgumentError(f"no such field {unknown[0]!r}: a live view has warp, port, host, paused, "
+                                "on_ready", "live")
         if "warp" in fields:
             try:
                 fields["warp"] = parse_warp(fields["warp"])
             except ValueError as error:
-                raise InputError(str(error), field="live.warp") from None
+                raise ArgumentError(str(error), "live.warp") from None
+        if "port" in fields:
+            fields["port"] = whole(fields["port"], "live.port", low=0, optional=False)
+            if fields["port"] > 65535:
+                raise ArgumentError(f"expected a port 0 .. 65535, got {fields['port']}", "live.port")
+        expect(fields.get("host", LOOPBACK), (str,), "live.host", "a host name or address")
+        fields["paused"] = switch(fields.get("paused", False), "live.paused")
+        if fields.get("on_ready") is not None and not callable(fields["on_ready"]):
+            expect(fields["on_ready"], (), "live.on_ready", "a callable on_ready(server) or None")
         return cls(**fields)
 
 
@@ -82,8 +98,8 @@ def _serve(path: Path, live: Live, name: str, time_range: tuple[int, int] | None
         server = LiveServer(path, warp=live.warp, paused=live.paused, host=live.host, port=live.port,
                             name=name, time_range=time_range)
     except RuntimeError as error:       # the SDK's: the port is taken, the host not this machine's
-        raise InputError(f"cannot serve the live view on {live.host}:{live.port}: "
-                         f"{str(error).removeprefix('FoxgloveError: ')}", field="--port/--host") from None
+        raise ArgumentError(f"cannot serve the live view on {live.host}:{live.port}: "
+                            f"{str(error).removeprefix('FoxgloveError: ')}", "live.port") from None
     (live.on_ready or _announce)(server)
     return server
 

@@ -23,6 +23,7 @@ import tempfile
 from dataclasses import dataclass
 from pathlib import Path, PurePosixPath
 
+from rocketsim.api.arguments import file_path, switch
 from rocketsim.api.flying import with_programs
 from rocketsim.errors import InputError
 from rocketsim.flight.program import load_program
@@ -81,6 +82,8 @@ def verify(path: str | Path, trust: bool = False, announce=None) -> Verdict:
     :class:`UntrustedProgram` naming them, before anything is executed. With it,
     ``announce(programs)`` (if given) is called with their names before the flight.
     """
+    file_path(path, "path")
+    trust = switch(trust, "trust")
     run = read_run(path)
     info = run.metadata.get("rocketsim", {})
     with tempfile.TemporaryDirectory(prefix="rocketsim-verify-") as folder:

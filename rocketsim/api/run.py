@@ -24,6 +24,7 @@ from pathlib import Path
 
 import numpy as np
 
+from rocketsim.api.arguments import file_path
 from rocketsim.api.samples import Samples
 from rocketsim.telemetry.names import column_name, mission_time
 from rocketsim.telemetry.reader import RunFile, read_run, states
@@ -175,6 +176,7 @@ def same_table(a, b) -> bool:
 def open_run(path: str | Path) -> Run:
     """The run in the MCAP file ``path``, read without executing anything (a file cut
     short gives what precedes the break: ``run.file.problem`` says why)."""
+    file_path(path, "path")
     file = read_run(path)
     samples = {}
     for body in file.bodies:

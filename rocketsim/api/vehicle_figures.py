@@ -15,6 +15,7 @@ from dataclasses import dataclass
 from functools import cached_property
 from pathlib import Path
 
+from rocketsim.api.arguments import file_path
 from rocketsim.scenario.models import VehicleSpec
 from rocketsim.scenario.preflight import review
 from rocketsim.vehicle.review import Review
@@ -45,6 +46,7 @@ def vehicle_report(path: str | Path) -> VehicleReport:
     file, or a scenario: its vehicle, with the rail it starts on); an
     :class:`~rocketsim.errors.InputError` for a missing or invalid file, or a rigid
     body (which has no stack)."""
+    file_path(path, "path")
     path = Path(path)
     design = review(path)
     return VehicleReport(path, design.spec, design.summary, design)

@@ -107,7 +107,10 @@ class Plan:
 
     def inputs(self, k: int) -> dict[str, Any]:
         """Run ``k``'s value of every dispersion (SI; see the module)."""
-        draws = self.sampler.draw(k)
+        return self._inputs(self.sampler, k)
+
+    def _inputs(self, sampler: Sampler, k: int) -> dict[str, Any]:
+        draws = sampler.draw(k)
         return {name: self._values(name, draws[name])[0] for name in self.places}
 
     def overrides(self, k: int) -> dict[str, Any]:
@@ -143,12 +146,16 @@ class Plan:
                                                       for place, value in zip(self.places[name], values)}))
         return found
 
-    def inputs_table(self):
-        """Every run's inputs as a DataFrame: ``run``, then a column per dispersion
-        (float64; int64 for seeds; str for a choice of strings or of mappings)."""
+    def inputs_table(self, first: int = 0, stop: int | None = None):
+        """Runs ``first`` .. ``stop - 1``'s inputs (default: every run's) as a DataFrame:
+        ``run``, then a column per dispersion (float64; int64 for seeds; str for a choice
+        of strings or of mappings). Drawn with a sampler of its own (:meth:`Sampler.fresh`),
+        so a thread writing the table leaves the runs' sampler alone."""
         import pandas as pd
-        rows = [self.inputs(k) for k in range(self.campaign.spec.runs)]
-        table = {"run": np.arange(len(rows), dtype=np.int64)}
+        stop = self.campaign.spec.runs if stop is None else stop
+        sampler = self.sampler.fresh()
+        rows = [self._inputs(sampler, k) for k in range(first, stop)]
+        table = {"run": np.arange(first, stop, dtype=np.int64)}
         for name, given in self.campaign.spec.dispersions.items():
             column = [row[name] for row in rows]
             if isinstance(given, Seed):

@@ -34,20 +34,23 @@ it, the run's MCAP file. So run ``k`` flies bit for bit the same alone
 from __future__ import annotations
 
 import hashlib
+import itertools
 import math
+import os
 import tempfile
 import threading
 import time
 from pathlib import Path
 from typing import Callable, Mapping
 
+from rocketsim.api.arguments import expect, switch, whole
 from rocketsim.jit import beside
 from rocketsim.campaigns.cases import Plan
 from rocketsim.campaigns.insertion import insertion_columns
 from rocketsim.campaigns.outputs import run_columns
 from rocketsim.campaigns.spec import read_campaign
 from rocketsim.campaigns.store import Store, frame, read_results
-from rocketsim.errors import InputError
+from rocketsim.errors import ArgumentError, InputError
 from rocketsim.extras import needs
 from rocketsim.flight.leash import Leash, Stop
 from rocketsim.scenario.trust import approve
@@ -258,6 +261,11 @@ def run(campaign, directory: str | Path, *, workers: int | None = None, schedule
     :class:`Interrupted` on Ctrl-C (everything finished saved). A campaign file that is
     the directory's own ``campaign.yaml`` (resuming a folder as it came) flies the
     programs it names only with ``trust`` (:func:`rocketsim.scenario.trust.approve`)."""
+    workers = whole(workers, "workers", low=1)
+    expect(scheduler, (str, type(None)), "scheduler", "a scheduler's address (tcp://host:8786) or None")
+    expect(scheduler_file, (str, os.PathLike, type(None)), "scheduler_file", "a file's path or None")
+    expect(directory, (str, os.PathLike), "directory", "a folder's path")
+    resume, trust = switch(resume, "resume"), switch(trust, "trust")
     in_process = workers == 1 and scheduler is None and scheduler_file is None
     needs("campaign", "a campaign", "pyarrow", *(() if in_process else ("distributed",)))
     import yaml
@@ -275,33 +283,36 @@ def run(campaign, directory: str | Path, *, workers: int | None = None, schedule
     done = store.open(found, plan, resume)
     for line in store.set_aside:
         log(line)
-    todo = [k for k in range(found.spec.runs) if k not in done]
-    if todo:
-        counts = [0, 0]
+    total = found.spec.runs - sum(1 for k in done if k < found.spec.runs)
+    todo = (k for k in range(found.spec.runs) if k not in done)      # drawn as runs are handed out
+    counts = [0, 0]
 
-        def finished(row: dict, telemetry: bytes | None) -> None:
-            store.add(row, telemetry)
-            counts[0] += 1
-            counts[1] += row["status"] != "ok"
-            if progress is not None:
-                progress(counts[0], counts[1], len(todo))
+    def finished(row: dict, telemetry: bytes | None) -> None:
+        store.add(row, telemetry)
+        counts[0] += 1
+        counts[1] += row["status"] != "ok"
+        if progress is not None:
+            progress(counts[0], counts[1], total)
 
-        def started() -> None:
-            if progress is not None:
-                progress(0, 0, len(todo))
+    def started() -> None:
+        if progress is not None:
+            progress(0, 0, total)
 
-        try:
-            if in_process:
-                _in_process(text, todo, found.spec, finished, log, started)
-            else:
-                _on_dask(text, todo, found.spec, finished, log, started, workers, scheduler, scheduler_file)
-        except KeyboardInterrupt:
-            store.consolidate()
-            raise Interrupted(store.dir, len(done) + counts[0], found.spec.runs) from None
-        finally:
-            store.consolidate()
-    else:
+    try:
+        if total and in_process:
+            _in_process(text, todo, found.spec, finished, log, started)
+        elif total:
+            _on_dask(text, todo, found.spec, finished, log, started, workers, scheduler, scheduler_file)
+    except KeyboardInterrupt:
+        store.inputs_written(complete=False)
         store.consolidate()
+        raise Interrupted(store.dir, len(done) + counts[0], found.spec.runs) from None
+    except BaseException:
+        store.inputs_written(complete=False)
+        raise
+    finally:
+        store.consolidate()
+    store.inputs_written()
     return read_results(store.dir)
 
 
@@ -346,6 +357,7 @@ def _on_dask(text, todo, spec, finished, log, started, workers, scheduler, sched
 # was lost) before it stops, saying so every WORKER_NOTICE_S
 NO_WORKER_S = 120.0
 WORKER_NOTICE_S = 10.0
+IN_FLIGHT_PER_WORKER = 4    # runs handed to the scheduler per worker (more as they finish)
 
 
 def _workers(client, log) -> list[str]:
@@ -356,8 +368,8 @@ def _workers(client, log) -> list[str]:
         if addresses:
             return addresses
         if waited >= NO_WORKER_S:
-            raise InputError(f"the Dask scheduler has no worker: none joined in {NO_WORKER_S:g} s; "
-                             "nothing was flown", field="--scheduler")
+            raise ArgumentError(f"the Dask scheduler has no worker: none joined in {NO_WORKER_S:g} s; "
+                                "nothing was flown", "scheduler")
         log(f"waiting for a Dask worker to join the scheduler ({waited:.0f} of {NO_WORKER_S:g} s)")
         time.sleep(WORKER_NOTICE_S)
         waited += WORKER_NOTICE_S
@@ -369,7 +381,9 @@ def _fly_all(client, text, token, todo, spec, finished, log) -> None:
     times, whatever the scheduler's own allowance (its ``allowed-failures``, which
     also counts a task merely queued on a lost worker: a task past it comes back as
     KilledWorker and is submitted again, counting only its starts); the campaign stops
-    (every finished run saved) after :data:`NO_WORKER_S` without a worker."""
+    (every finished run saved) after :data:`NO_WORKER_S` without a worker. Runs are
+    handed to the scheduler :data:`IN_FLIGHT_PER_WORKER` per worker at a time, more as
+    they finish: the client's and the scheduler's memory do not grow with the runs."""
     from distributed import wait
     from distributed.scheduler import KilledWorker
 
@@ -377,7 +391,14 @@ def _fly_all(client, text, token, todo, spec, finished, log) -> None:
         return client.submit(fly_case, text, k, _keep(spec.telemetry, k), spec.timeout, spec.retries, lost,
                              key=f"rocketsim-run-{token}-{k}-{lost}", priority=-k, pure=False)
 
-    pending = {submit(k, 0): (k, 0) for k in todo}
+    pending: dict = {}
+
+    def refill() -> None:
+        window = IN_FLIGHT_PER_WORKER * max(len(client.scheduler_info()["workers"]), 1)
+        for k in itertools.islice(todo, max(window - len(pending), 0)):
+            pending[submit(k, 0)] = (k, 0)
+
+    refill()
     idle = 0.0
     try:
         while pending:
@@ -388,8 +409,8 @@ def _fly_all(client, text, token, todo, spec, finished, log) -> None:
             if not done:
                 idle = idle + WORKER_NOTICE_S if not client.scheduler_info()["workers"] else 0.0
                 if idle >= NO_WORKER_S:
-                    raise InputError(f"the Dask cluster has had no worker for {NO_WORKER_S:g} s; every "
-                                     "finished run is saved: --resume flies the rest", field="--scheduler")
+                    raise ArgumentError(f"the Dask cluster has had no worker for {NO_WORKER_S:g} s; every "
+                                        "finished run is saved: resuming flies the rest", "scheduler")
                 if idle:
                     log(f"no Dask worker in the cluster for {idle:.0f} s: waiting up to {NO_WORKER_S:g} s")
                 continue
@@ -408,6 +429,7 @@ def _fly_all(client, text, token, todo, spec, finished, log) -> None:
                     row, telemetry = _lost(k, lost, spec.retries, error), None
                 finished(row, telemetry)
                 future.release()
+            refill()
     finally:
         client.cancel(list(pending), force=True)
         client.run_on_scheduler(_forget, f"rocketsim-run-{token}-")
@@ -422,8 +444,8 @@ def connect(scheduler: str | None, scheduler_file: str | Path | None):
         return Client(scheduler, scheduler_file=None if scheduler_file is None else str(scheduler_file),
                       timeout="10s")
     except Exception as error:      # noqa: BLE001 - unreachable, a bad address, a file that is no scheduler's
-        raise InputError(f"cannot reach the Dask scheduler at {given}: {type(error).__name__}: {error}",
-                         field="--scheduler" if scheduler is not None else "--scheduler-file") from None
+        raise ArgumentError(f"cannot reach the Dask scheduler at {given}: {type(error).__name__}: {error}",
+                            "scheduler" if scheduler is not None else "scheduler_file") from None
 
 
 def _local_cluster(workers: int | None):
@@ -433,7 +455,6 @@ def _local_cluster(workers: int | None):
     process, not each worker, stops the campaign and shuts them down. The workers run
     with :data:`QUIET_WORKERS` (their nanny hands them this process's Dask settings)."""
     import logging
-    import os
     import signal
     import threading
     import dask
@@ -464,13 +485,16 @@ def rerun(directory: str | Path, k: int, telemetry: str | Path, trust: bool = Fa
     (:func:`rocketsim.scenario.trust.approve` raises
     :class:`~rocketsim.scenario.trust.UntrustedProgram` naming them)."""
     needs("campaign", "a campaign's rerun", "pyarrow")
+    expect(directory, (str, os.PathLike), "directory", "a campaign folder's path")
+    expect(telemetry, (str, os.PathLike), "telemetry", "a file's path")
+    k, trust = whole(k, "k", optional=False), switch(trust, "trust")
     directory = Path(directory)
     if not (directory / "campaign.yaml").is_file():
-        raise InputError(f"{directory} holds no campaign (no campaign.yaml)", field="DIR")
+        raise ArgumentError(f"{directory} holds no campaign (no campaign.yaml)", "directory")
     plan = Plan(read_campaign(directory / "campaign.yaml"))
     runs = plan.campaign.spec.runs
     if not 0 <= k < runs:
-        raise InputError(f"the campaign has runs 0 .. {runs - 1}, not {k}", field="K")
+        raise ArgumentError(f"the campaign has runs 0 .. {runs - 1}, not {k}", "k")
     approve(plan.scenario(k), trust, f"the campaign folder {directory}")
     row = _fly(plan, k, Path(telemetry), plan.campaign.spec.timeout)
     results = read_results(directory)

@@ -18,9 +18,12 @@ Where each ``u`` comes from (``sampling``):
   dispersions (adding one changes no other's draws);
 * ``sobol``: row ``k`` of the scrambled Sobol sequence (:class:`scipy.stats.qmc.Sobol`,
   one dimension per dispersion in the file's order, seeded by
-  ``SeedSequence(seed, spawn_key=(DESIGN,))``): the same row for any number of runs;
+  ``SeedSequence(seed, spawn_key=(DESIGN,))``): the same row for any number of runs.
+  Rows are generated in blocks of :data:`BLOCK` (an engine fast-forwarded to the
+  block's first row), so memory does not grow with the runs;
 * ``lhs``: row ``k`` of the Latin hypercube of ``runs`` rows
-  (:class:`scipy.stats.qmc.LatinHypercube`, the same seeding): it depends on ``runs``.
+  (:class:`scipy.stats.qmc.LatinHypercube`, the same seeding): it depends on ``runs``,
+  and is drawn whole (8 bytes per run and dimension), hence at most :data:`rocketsim.campaigns.spec.MAX_LHS` runs.
 
 Seeds are never a design dimension: they draw from the run's own stream in
 every sampling. So run ``k``'s inputs are the same flown alone, serially, in a
@@ -36,6 +39,7 @@ import numpy as np
 from scipy.special import ndtr, ndtri
 
 DESIGN = 2 ** 32 - 1       # spawn key of a Sobol / LHS design's stream (no run has this number)
+BLOCK = 4096               # rows of a Sobol design generated at a time (a power of 2)
 # u is kept inside (0, 1) so that Φ⁻¹(u) is finite: a draw of exactly 0 (probability
 # 2^-53 per draw, 2^-30 for a Sobol point) becomes half the smallest step
 _LOW, _HIGH = 2.0 ** -54, 1.0 - 2.0 ** -53
@@ -73,29 +77,48 @@ class Sampler:
         self.laws = laws
         self.groups = list(groups)
         self.dims = [name for name, law in laws.items() if law.kind != "seed"]
-        self._design = None
+        self._lhs = None
+        self._block: tuple[int, np.ndarray] | None = None      # (first row, rows) of a Sobol design
+        self._engine = None         # the Sobol engine positioned after that block
 
-    def design(self) -> np.ndarray | None:
-        """The Sobol or LHS design (rows: runs, columns: :attr:`dims`), None for random."""
-        if self.sampling == "random" or not self.dims:
-            return None
-        if self._design is None:
+    def fresh(self) -> "Sampler":
+        """The same sampler with caches of its own (the Latin hypercube, once drawn, shared):
+        for another thread."""
+        other = Sampler(self.seed, self.runs, self.sampling, self.laws, self.groups)
+        other._lhs = self._lhs
+        return other
+
+    def _design_rng(self) -> np.random.Generator:
+        return np.random.Generator(np.random.PCG64(np.random.SeedSequence(self.seed, spawn_key=(DESIGN,))))
+
+    def _sobol_row(self, k: int) -> np.ndarray:
+        """Row ``k`` of the Sobol design, from the block of :data:`BLOCK` rows holding it
+        (the next block continues the engine; another one starts a fresh engine, the same
+        scramble, fast-forwarded to it)."""
+        first = k - k % BLOCK
+        if self._block is None or self._block[0] != first:
             from scipy.stats import qmc
-            rng = np.random.Generator(np.random.PCG64(np.random.SeedSequence(self.seed, spawn_key=(DESIGN,))))
-            if self.sampling == "sobol":
-                m = max(int(np.ceil(np.log2(self.runs))), 0)
-                self._design = qmc.Sobol(len(self.dims), scramble=True, rng=rng).random_base2(m)
-            else:
-                self._design = qmc.LatinHypercube(len(self.dims), rng=rng).random(self.runs)
-        return self._design
+            following = self._block is not None and self._block[0] + BLOCK == first
+            if not following:
+                self._engine = qmc.Sobol(len(self.dims), scramble=True, rng=self._design_rng())
+                if first:
+                    self._engine.fast_forward(first)
+            self._block = (first, self._engine.random(BLOCK))
+        return self._block[1][k - first]
+
+    def _lhs_row(self, k: int) -> np.ndarray:
+        if self._lhs is None:
+            from scipy.stats import qmc
+            self._lhs = qmc.LatinHypercube(len(self.dims), rng=self._design_rng()).random(self.runs)
+        return self._lhs[k]
 
     def uniforms(self, k: int) -> dict[str, float]:
         """Run ``k``'s ``u`` of every design dimension."""
-        table = self.design()
-        if table is None:
+        if self.sampling == "random" or not self.dims:
             found = {name: float(stream(self.seed, k, name).random()) for name in self.dims}
         else:
-            found = {name: float(u) for name, u in zip(self.dims, table[k])}
+            row = self._sobol_row(k) if self.sampling == "sobol" else self._lhs_row(k)
+            found = {name: float(u) for name, u in zip(self.dims, row)}
         return {name: min(max(u, _LOW), _HIGH) for name, u in found.items()}
 
     def draw(self, k: int) -> dict[str, float | int]:

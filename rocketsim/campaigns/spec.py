@@ -50,7 +50,8 @@ from typing import Annotated, Any, Literal, Mapping, Optional, Union
 from pydantic import BaseModel, Field, field_validator, model_validator
 
 from rocketsim.campaigns.insertion import InsertionTolerance
-from rocketsim.errors import InputError
+from rocketsim.api.arguments import whole
+from rocketsim.errors import ArgumentError, InputError
 from rocketsim.scenario.validation import validate
 from rocketsim.scenario.units import STRICT, Duration
 from rocketsim.scenario.yaml_source import YamlSource, read_yaml
@@ -58,6 +59,7 @@ from rocketsim.scenario.yaml_source import YamlSource, read_yaml
 # a value of a quantity: a number (SI) or a string with a unit ("150 kg", "1 %")
 Value = Union[float, str]
 MAX_RUNS = 10_000_000
+MAX_LHS = 1_000_000     # runs of a Latin hypercube: it is drawn whole, 8 bytes per run and dimension
 SEED_HIGH = 2 ** 31 - 1
 LEADING = ("run",)          # column names a dispersion cannot take
 
@@ -225,8 +227,12 @@ class Campaign:
         the command line's ``--runs`` asks: run k is the same flight either way (its inputs
         derive from the seed and k alone; a Latin hypercube is drawn for the runs asked)."""
         if runs is not None:
+            runs = whole(runs, "runs")
             if not 0 < runs <= MAX_RUNS:
-                raise InputError(f"{runs} runs: a campaign flies 1 .. {MAX_RUNS:,}", field="--runs")
+                raise ArgumentError(f"{runs} runs: a campaign flies 1 .. {MAX_RUNS:,}", "runs")
+            if self.spec.sampling == "lhs" and runs > MAX_LHS:
+                raise ArgumentError(f"{runs:,} runs: a Latin hypercube (sampling: lhs) takes at most "
+                                    f"{MAX_LHS:,}", "runs")
             self.spec = self.spec.model_copy(update={"runs": runs})
         return self
 
@@ -290,6 +296,9 @@ def read_campaign(campaign: str | Path | Mapping, base_dir: str | Path | None = 
         spec = validate(source, CampaignSpec)
         folder = path.parent
     found = Campaign(spec, path, source, folder)
+    if spec.sampling == "lhs" and spec.runs > MAX_LHS:
+        raise found.error(f"{spec.runs:,} runs: a Latin hypercube (sampling: lhs) is drawn whole, in memory, "
+                          f"and takes at most {MAX_LHS:,} runs; sampling sobol or random takes more", "runs")
     if not found.scenario.is_file():
         raise found.error(f"scenario file {spec.scenario!r} not found (looked for {found.scenario})",
                           "scenario")

@@ -5,7 +5,9 @@
     DIR/campaign.yaml      the campaign, its scenario an absolute path
     DIR/meta.json          name, seed, runs, scenario, dispersions, target, outputs, version,
                            insertion (tolerances)
-    DIR/inputs.parquet     every run's inputs, written before anything flies
+    DIR/inputs.parquet     every run's inputs, drawn and written in blocks of
+                           :data:`INPUTS_BLOCK` runs by a thread of its own
+                           (:class:`InputsWriter`) while the first runs fly
     DIR/results.parquet    a row per finished run (ok, error or timeout), sorted by run
     DIR/results/part-*.parquet   rows not yet consolidated into results.parquet
     DIR/runs/run-000042.mcap     telemetry kept by the campaign's retention
@@ -19,6 +21,13 @@ Ctrl-C and when a campaign is resumed. A crash of the client loses the runs in
 flight and the rows of the last second; ``results.parquet`` then lacks at most
 the rows of the last :data:`CONSOLIDATE_S` seconds, which the parts hold until
 ``--resume`` consolidates them (:func:`read_results` reads both).
+
+``inputs.parquet`` too is whole or absent (renamed when its last block is
+written): a campaign of millions of runs starts flying within seconds and its
+inputs take the memory of one block, whatever the number of runs (a campaign of
+one block writes it before anything flies). A campaign stopped before its
+inputs were all written has none, and ``--resume`` writes them again (they
+derive from the campaign alone).
 """
 
 from __future__ import annotations
@@ -26,18 +35,20 @@ from __future__ import annotations
 import json
 import math
 import os
+import threading
 import time
 from pathlib import Path
 
 import numpy as np
 
-from rocketsim.errors import InputError
+from rocketsim.errors import ArgumentError, InputError
 from rocketsim.scenario.yaml_source import read_yaml
 
 FLUSH_S = 1.0           # s between part files (rows waiting)
 CONSOLIDATE_S = 10.0    # s between rewrites of results.parquet
 LEADING = ["run", "status", "error", "wall_time_s", "outcome"]
 STRINGS = {"status", "error", "outcome"}
+INPUTS_BLOCK = 4096     # runs of inputs drawn and written at a time
 
 
 def frame(tables):
@@ -123,6 +134,61 @@ def set_aside_damaged(directory: Path) -> list[str]:
     return said
 
 
+class InputsWriter:
+    """Writes every run's inputs (:meth:`rocketsim.campaigns.cases.Plan.inputs_table`) to
+    ``path`` in a thread of its own, a Parquet row group per :data:`INPUTS_BLOCK` runs, to
+    a temporary name renamed when the last block is written."""
+
+    def __init__(self, plan, path: Path):
+        self.plan, self.path = plan, path
+        self._partial = path.with_name(f".{path.name}.partial")
+        self._stop = threading.Event()
+        self._error: BaseException | None = None
+        self._thread = threading.Thread(target=self._write, name="rocketsim-inputs", daemon=True)
+        self._thread.start()
+
+    def _write(self) -> None:
+        import pyarrow as pa
+        import pyarrow.parquet as pq
+        runs = self.plan.campaign.spec.runs
+        try:
+            writer = None
+            try:
+                for first in range(0, runs, INPUTS_BLOCK):
+                    if self._stop.is_set():
+                        return
+                    table = pa.Table.from_pandas(self.plan.inputs_table(first, min(first + INPUTS_BLOCK, runs)),
+                                                 preserve_index=False)
+                    if writer is None:
+                        writer = pq.ParquetWriter(self._partial, table.schema)
+                    writer.write_table(table.cast(writer.schema))
+            finally:
+                if writer is not None:
+                    writer.close()
+            os.replace(self._partial, self.path)
+        except BaseException as error:      # noqa: BLE001 - handed to the thread that waits for it
+            self._error = error
+        finally:
+            if self._partial.exists():
+                self._partial.unlink()
+
+    def finish(self) -> None:
+        """Wait for the last block; raise what stopped the writing."""
+        self._thread.join()
+        if self._error is not None:
+            error = self._error
+            self._error = None
+            if isinstance(error, OSError):
+                raise InputError(f"cannot write the campaign's inputs: {error.strerror or error}",
+                                 file=self.path) from None
+            raise error
+
+    def cancel(self) -> None:
+        """Stop after the block being written; the inputs file is then absent."""
+        self._stop.set()
+        self._thread.join()
+
+
 class Store:
     """A campaign directory being written (see the module)."""
 
@@ -134,6 +200,7 @@ class Store:
         self._flushed = self._consolidated = time.monotonic()
         self._count = 0
         self.set_aside: list[str] = []      # the damaged results files a resume set aside
+        self.inputs: InputsWriter | None = None     # writing inputs.parquet, if it is being written
 
     # --- starting ----------------------------------------------------------------
 
@@ -145,8 +212,8 @@ class Store:
         held = self.dir / "campaign.yaml"
         if held.is_file():
             if not resume:
-                raise InputError(f"{self.dir} already holds a campaign: add --resume to fly its missing "
-                                 "runs, or write to another directory", field="--output")
+                raise ArgumentError(f"{self.dir} already holds a campaign: resume it to fly its missing "
+                                    "runs, or write to another directory", "resume")
             before = read_yaml(held).data
             now = json.loads(json.dumps(resolved))
             changed = (sorted(k for k in set(before) | set(now) if before.get(k) != now.get(k))
@@ -157,20 +224,20 @@ class Store:
                 why = (f"it has {before['runs']} runs; --runs may only add to a campaign sampled at random "
                        "or on a Sobol design" if changed == ["runs"] else
                        "resume it with its own file, " + str(held))
-                raise InputError(f"{self.dir} holds another campaign (its campaign.yaml differs in "
-                                 f"{', '.join(changed)}): {why}", field="--resume")
+                raise ArgumentError(f"{self.dir} holds another campaign (its campaign.yaml differs in "
+                                    f"{', '.join(changed)}): {why}", "resume")
             self.set_aside = set_aside_damaged(self.dir) + self._rewrite_damaged_plan(campaign, plan)
             self.consolidate()
             return set(read_results(self.dir)["run"].tolist())
         if resume:
-            raise InputError(f"{self.dir} holds no campaign to resume", field="--resume")
+            raise ArgumentError(f"{self.dir} holds no campaign to resume", "resume")
         if self.dir.exists() and not self.dir.is_dir():
-            raise InputError(f"{self.dir} is a file, not a directory", field="--output")
+            raise ArgumentError(f"{self.dir} is a file, not a directory", "directory")
         try:
             self.dir.mkdir(parents=True, exist_ok=True)
             self.parts.mkdir(exist_ok=True)
         except OSError as error:
-            raise InputError(f"cannot create {self.dir}: {error.strerror or error}", field="--output") from None
+            raise ArgumentError(f"cannot create {self.dir}: {error.strerror or error}", "directory") from None
         self._write_plan(campaign, plan, ("inputs.parquet", "meta.json"))
         # the campaign file last: a directory holding it holds the rest
         (self.dir / ".campaign.yaml.partial").write_text(yaml.safe_dump(json.loads(json.dumps(resolved)),
@@ -192,7 +259,11 @@ class Store:
         its plan determine."""
         from rocketsim.version import __version__
         if "inputs.parquet" in names:
-            _write(plan.inputs_table(), self.dir / "inputs.parquet")
+            if self.inputs is not None:
+                self.inputs.cancel()
+            self.inputs = InputsWriter(plan, self.dir / "inputs.parquet")
+            if campaign.spec.runs <= INPUTS_BLOCK:      # one block: written before anything flies
+                self.inputs_written()
         if "meta.json" in names:
             spec = campaign.spec
             meta = {"name": spec.name, "seed": spec.seed, "runs": spec.runs, "scenario": str(campaign.scenario),
@@ -207,13 +278,22 @@ class Store:
     def _rewrite_damaged_plan(self, campaign, plan) -> list[str]:
         """On resume: ``inputs.parquet`` or ``meta.json`` missing or unreadable (the campaign
         determines both) set aside as ``<name>.damaged`` and written again; a line each."""
-        import pandas as pd
+        import pyarrow.parquet as pq
         said = []
-        for name, read in (("inputs.parquet", pd.read_parquet), ("meta.json", lambda p: json.loads(p.read_text()))):
+        runs = campaign.spec.runs
+
+        def rows(path: Path) -> int:
+            return pq.ParquetFile(path).metadata.num_rows
+
+        for name, read, whole in (("inputs.parquet", rows, lambda found: found == runs),
+                                  ("meta.json", lambda p: json.loads(p.read_text()),
+                                   lambda found: isinstance(found, dict))):
             path = self.dir / name
+            if name == "inputs.parquet" and self.inputs is not None:
+                continue        # being written for a grown campaign
             try:
-                if not isinstance(read(path), (pd.DataFrame, dict)):
-                    raise ValueError("not a table or a mapping")
+                if not whole(read(path)):
+                    raise ValueError("not the campaign's table or mapping")
                 continue
             except FileNotFoundError:
                 said.append(f"{path}: missing, written again from the campaign")
@@ -223,6 +303,13 @@ class Store:
                             "and written again from the campaign")
             self._write_plan(campaign, plan, (name,))
         return said
+
+    def inputs_written(self, complete: bool = True) -> None:
+        """Wait until ``inputs.parquet`` is written (``complete``) or stop writing it; raise
+        what stopped the writing."""
+        writer, self.inputs = self.inputs, None
+        if writer is not None:
+            writer.finish() if complete else writer.cancel()
 
     # --- rows -------------------------------------------------------------------
 

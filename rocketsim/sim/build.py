@@ -17,7 +17,7 @@ from rocketsim.constants import EARTH_J2, EARTH_MU, EARTH_RADIUS_EQ, EARTH_RADIU
 from rocketsim.dynamics.central import nbody_field
 from rocketsim.dynamics.soi import central_params
 from rocketsim.dynamics.third_bodies import with_field
-from rocketsim.errors import InputError
+from rocketsim.errors import ArgumentError
 from rocketsim.flight.program import load_program, plain_program
 from rocketsim.flight.sensors import Sensors
 from rocketsim.frames.earth_fixed import ecef_to_eci_velocity
@@ -44,7 +44,7 @@ def build_world(loaded: LoadedScenario, step: float | None = None,
     """The world of ``loaded``, ready to :meth:`~rocketsim.sim.world.World.run`;
     ``step`` and ``duration`` (s) override the scenario's."""
     scenario = loaded.scenario
-    h = scenario.step if step is None else _checked(check_step, step, "--step")
+    h = scenario.step if step is None else _checked(check_step, step, "step")
     mission = scenario.mission
     epoch = Epoch.from_utc(mission.epoch, mission.dut1)
     r, v, q = start_state(mission, scenario.site, epoch.gmst())
@@ -57,7 +57,7 @@ def build_world(loaded: LoadedScenario, step: float | None = None,
                       # the classic range's original model (held for the step); stages inherit p
                       classic=scenario.site is not None and scenario.site.model == "classic"),
     )
-    flown = mission.duration if duration is None else _checked(check_duration, duration, "--duration")
+    flown = mission.duration if duration is None else _checked(check_duration, duration, "duration")
     world = World(epoch, h, flown, [body], atmosphere=loaded.atmosphere)
     world.scenario_file, world.vehicle_file = loaded.files.get("scenario"), loaded.files.get("vehicle")
     world.step_line = loaded.step_line if step is None else None
@@ -124,10 +124,10 @@ def build_world(loaded: LoadedScenario, step: float | None = None,
     return world
 
 
-def _checked(check, value: float | str, option: str) -> float:
+def _checked(check, value: float | str, argument: str) -> float:
     """``check`` of ``value`` (a step or duration: s, or a time as the files write it,
-    ``"10 s"``), its ValueError an input error naming ``option``."""
+    ``"10 s"``), its ValueError an input error naming ``argument``."""
     try:
         return check(parse_quantity(value, "time"))
     except ValueError as error:
-        raise InputError(str(error), field=option) from None
+        raise ArgumentError(str(error), argument) from None

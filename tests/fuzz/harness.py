@@ -2,10 +2,15 @@
 
 Each input runs in this process (click's CliRunner, no subprocess per input)
 inside :func:`bounded`, which fails it as a hang after :data:`HANG_SECONDS` of
-wall time (a watchdog, far above the milliseconds an input takes: not a
-timing assertion) and when the process's peak resident memory during the
-input rose more than :data:`MEMORY_BOUND` above what it held before (Linux's
-VmHWM, reset before each input through /proc/self/clear_refs).
+the process's CPU time (user and system: a busy loop), or after
+:data:`BLOCKED_SECONDS` of wall time (an input blocked, using no CPU), and when
+the process's peak resident memory during the input rose more than
+:data:`MEMORY_BOUND` above what it held before (Linux's VmHWM, reset before
+each input through /proc/self/clear_refs). Both watchdogs are far above the
+milliseconds an input takes: not timing assertions. The busy one counts CPU
+time, not wall time, so a machine loaded by other processes (seven on two
+cores stretch wall time tenfold) cannot turn a slow input into a "hang": the
+verdict on an input does not depend on the load.
 """
 
 from __future__ import annotations
@@ -19,7 +24,8 @@ import traceback
 from click.testing import CliRunner
 from hypothesis import settings
 
-HANG_SECONDS = 60.0
+HANG_SECONDS = 60.0          # s of this process's CPU time
+BLOCKED_SECONDS = 600.0      # s of wall time
 MEMORY_BOUND = 1 << 30          # bytes: 1 GiB more than before the input
 
 COUNTS: collections.Counter = collections.Counter()     # inputs run, by kind
@@ -64,15 +70,19 @@ def bounded(kind: str):
     COUNTS[kind] += 1
     measured = _reset_peak()
     before = _status("VmRSS")
-    previous = signal.signal(signal.SIGALRM, _on_alarm)
-    signal.setitimer(signal.ITIMER_REAL, HANG_SECONDS)
+    previous = {number: signal.signal(number, _on_alarm) for number in (signal.SIGPROF, signal.SIGALRM)}
+    signal.setitimer(signal.ITIMER_PROF, HANG_SECONDS)
+    signal.setitimer(signal.ITIMER_REAL, BLOCKED_SECONDS)
     try:
         yield
     except Hang:
-        raise AssertionError(f"hang: the input ran more than {HANG_SECONDS:g} s") from None
+        raise AssertionError(f"hang: the input ran more than {HANG_SECONDS:g} s of CPU time or "
+                             f"{BLOCKED_SECONDS:g} s of wall time") from None
     finally:
+        signal.setitimer(signal.ITIMER_PROF, 0.0)
         signal.setitimer(signal.ITIMER_REAL, 0.0)
-        signal.signal(signal.SIGALRM, previous)
+        for number, handler in previous.items():
+            signal.signal(number, handler)
     if measured and before is not None:
         rise = _status("VmHWM") - before
         PEAKS[kind] = max(PEAKS.get(kind, 0), rise)

@@ -2,8 +2,9 @@
 
 Hypothesis starts from three sets of files that fly (the conftest probe in
 orbit with an inline sounding; an Electron from Mahia with a site file, a
-weather file and a payload; the Falcon 9 stack in orbit, with its grid fins,
-legs and RCS) and changes one to four things in them: drops a field or an
+weather file (a random day) and a payload; the Falcon 9 stack in orbit, with its grid fins,
+legs and RCS; the Electron's mission names a target orbit, a landing pad and its
+gravity model) and changes one to four things in them: drops a field or an
 item, replaces a value by one from a hostile alphabet (nan, inf, -0, 1e308,
 10**400, empty, long and unicode strings, numbers with units and without,
 bools, None, lists, mappings nested 60 deep), renames or duplicates a field,
@@ -48,7 +49,10 @@ CASES = {
                                       "diameter": "0.6 m"},
                           "mission": {"epoch": "2026-11-26T15:00:00Z", "start": {"site": {}},
                                       "duration": "460 s",
-                                      "target": {"orbit": {"altitude": "500 km", "inclination": "sso"}}}},
+                                      "target": {"orbit": {"altitude": "500 km", "inclination": "sso"},
+                                                 "pad": {"name": "barge", "latitude": "-39.4 deg",
+                                                         "longitude": "178.5 deg"}},
+                                      "gravity": "earth"}},
         "electron.yaml": _load(ROOT / "vehicles" / "electron.yaml"),
         "site.yaml": _load(ROOT / "scenarios" / "sites" / "mahia-lc1.yaml"),
         "weather.yaml": {"kind": "random", "seed": 7},
@@ -109,7 +113,12 @@ def _parent(tree, loc):
 def mutated(draw) -> tuple[str, dict[str, str]]:
     """A case's name and its files' texts, one to four things changed."""
     case = draw(st.sampled_from(["probe", "probe", "electron", "falcon9"]))   # the probe is quickest
-    files = copy.deepcopy(CASES[case])
+    return case, mutate(draw, CASES[case])
+
+
+def mutate(draw, files: dict) -> dict[str, str]:
+    """The texts of ``files`` (name -> YAML data), one to four things changed in them."""
+    files = copy.deepcopy(files)
     texts: dict[str, str] = {}
     for _ in range(draw(st.sampled_from([1, 1, 1, 2, 2, 3, 4]))):
         name = draw(st.sampled_from(sorted(files)))
@@ -135,9 +144,8 @@ def mutated(draw) -> tuple[str, dict[str, str]]:
         else:
             parent.insert(key, copy.deepcopy(parent[key]))
         texts.pop(name, None)
-    out = {name: texts.get(name) or yaml.safe_dump(data, allow_unicode=True, sort_keys=False, width=4096)
-           for name, data in files.items()}
-    return case, out
+    return {name: texts.get(name) or yaml.safe_dump(data, allow_unicode=True, sort_keys=False, width=4096)
+            for name, data in files.items()}
 
 
 _QUANTITY = re.compile(r"^\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*(.*?)\s*$")
