@@ -59,3 +59,7 @@ autodoc_preserve_defaults = True
 
 html_theme = "furo"
 html_title = f"rocketsim {release}"
+
+# what a tutorial's code prints, set apart from the code ({output} blocks)
+html_static_path = ["_static"]
+html_css_files = ["output.css"]

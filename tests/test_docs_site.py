@@ -165,3 +165,14 @@ def test_the_readme_is_a_front_page_holding_the_command_ci_runs():
     assert ci.startswith("python -m pytest")
     assert f'pip install -e ".[test]" && {ci}' in readme.splitlines()[readme.splitlines().index(
         "Install the test extras and run the whole test suite:") + 2]
+
+
+def test_the_version_is_the_one_pyproject_states_and_the_changelog_releases():
+    import re
+    import tomllib
+
+    from rocketsim.version import __version__
+    assert tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]["version"] == __version__
+    releases = re.findall(r"^## (\d+\.\d+\.\d+) - \d{4}-\d{2}-\d{2}$",
+                          (ROOT / "CHANGELOG.md").read_text(), re.M)
+    assert releases and releases[0] == __version__

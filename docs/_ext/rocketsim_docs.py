@@ -13,6 +13,9 @@
   pydantic models that validate them (their types, defaults, units and bounds), written
   into the source folder when the build starts, so a new field is documented without
   editing a page.
+* :class:`Output`: the ``{output}`` block of a page a reader runs, what the code block
+  before it prints, shown as plain text under it (tests/test_docs_pages.py runs the code
+  and compares what it prints now with the block).
 """
 
 from __future__ import annotations
@@ -20,7 +23,9 @@ from __future__ import annotations
 import re
 from pathlib import Path
 
+from docutils import nodes
 from sphinx.ext.autodoc import FunctionDocumenter
+from sphinx.util.docutils import SphinxDirective
 
 FILES = "reference/files"
 
@@ -349,8 +354,23 @@ def write_generated_pages(app) -> None:
             path.write_text(text)
 
 
+class Output(SphinxDirective):
+    """What the code block before it prints: a literal block of plain text (no highlighting),
+    styled apart from the code (``output`` class, docs/_static/output.css)."""
+
+    has_content = True
+
+    def run(self):
+        text = "\n".join(self.content)
+        block = nodes.literal_block(text, text, classes=["output"])
+        block["language"] = "none"
+        self.set_source_info(block)
+        return [block]
+
+
 def setup(app):
     app.add_autodocumenter(KernelDocumenter)
+    app.add_directive("output", Output)
     app.connect("builder-inited", write_generated_pages)
     app.connect("missing-reference", code_reference)
     for part in ("description", "options", "arguments", "epilog"):
