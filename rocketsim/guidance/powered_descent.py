@@ -84,6 +84,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from rocketsim.jit import njit
+
 
 @dataclass(frozen=True)
 class Plan:
@@ -117,6 +119,7 @@ def gate_speed(height: float, fall: float, plan: Plan) -> float:
     return math.sqrt(plan.touch_speed ** 2 + 2.0 * max(slowing, 0.0) * plan.gate_height)
 
 
+@njit(inline="always")     # a line of arithmetic: typed in its compiled callers (the landing point's)
 def throttle_for(force: float, thrust: float, loss: float = 0.0) -> float:
     """The throttle that gives ``force`` (N) from an engine of full ``thrust`` (N) here, the
     ambient pressure taking ``loss`` (N, ``p A_e``) off at any throttle (see the module)."""

@@ -161,13 +161,12 @@ class Return:
 
     def burns(self, lit_entry=False, lean=(0.0, 0.0), unbounded=False):
         """The entry burn (three engines, lit now when ``lit_entry``) and the landing burn (one
-        engine at the ground's pressure) as the predictor models them; ``unbounded``, as if
+        engine, its thrust less the air's push on its nozzle) as the predictor models them; ``unbounded``, as if
         the tanks held whatever they need (to compare plans by what they leave)."""
         entry = entry_burn(math.inf if lit_entry else ENTRY_ALTITUDE, ENTRY_SPEED, 3.0 * self.engine_thrust,
                            3.0 * self.engine_flow, 0.0 if unbounded else self.floor(), lean)
-        landing = landing_burn(self.engine_thrust - self.ground_pressure * EXIT_AREA, self.engine_flow,
-                               LANDING.plan, LANDING.touch_speed, 0.0 if unbounded else self.dry + UNUSABLE,
-                               LANDING.ceiling)
+        landing = landing_burn(self.engine_thrust, self.engine_flow, LANDING.plan, LANDING.touch_speed,
+                               0.0 if unbounded else self.dry + UNUSABLE, LANDING.ceiling, EXIT_AREA)
         return entry, landing
 
     # --- 1. boost-back ----------------------------------------------------------
@@ -289,7 +288,8 @@ class Return:
     def descend(self):
         fc, pad = self.fc, self.pad
         _, landing = self.burns()
-        full = landing[0]
+        loss = self.ground_pressure * EXIT_AREA        # the air's push on the nozzle's exit
+        full = self.engine_thrust - loss
         rule = Approach(0.0, rising=True, periods=(CYCLE, BURN_CYCLE))
         lean = np.zeros(2)
         trim = descent.LeanTrim(TRIM_TIME, TRIM_LIMIT)
@@ -311,7 +311,7 @@ class Return:
             fc.point_at(descent.lean_attitude(back, pad.local_to_eci((-asked[0], -asked[1], 0.0), fc.time),
                                               float(np.linalg.norm(asked))))
             due = powered_descent.ignition_due(fc.clearance, -fc.vertical_speed, mass, full, fc.gravity, drag,
-                                               LEAD, LANDING, self.ground_pressure * EXIT_AREA)
+                                               LEAD, LANDING, loss)
             if not rule.ahead(due, fc.time):
                 break
             fc.sleep(rule.next_update())
