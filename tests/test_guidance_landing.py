@@ -70,6 +70,34 @@ def test_the_vertical_profile_re_solved_every_step_touches_down_at_the_touch_spe
     assert abs(fall - 1.0) < 0.05                                     # m/s at the ground
 
 
+def test_below_the_gate_the_drift_falls_linearly_to_nothing_at_the_contact():
+    """Below the gate the wanted push is ``-v / t_go``, ``t_go`` the vertical profile's time
+    to the contact: flown exactly (a point mass in still airless space, no autopilot lag)
+    ``v / t_go`` is a constant, so the drift falls linearly with the time left, like the
+    fall, down to the last ``terminal_time`` ``tau``, over which ``-v / tau`` takes it
+    down by ``1/e``: ``v0 (tau / t_go0) / e`` is left at the contact (a time constant alone,
+    ``-v / 2.5 s``, would leave ``v0 exp(-t_go0 / 2.5 s)``: 0.7 m/s of 2 m/s here)."""
+    plan = powered_descent.Plan(lag=0.0)
+    g, mass, thrust, dt = 9.81, 26e3, 845e3, 1e-3
+    h = plan.gate_height - 0.01
+    fall = powered_descent.gate_speed(200.0, 60.0, plan)       # on a profile lit at 200 m, 60 m/s
+    v = np.array((2.0, -0.5))
+    slowing = (fall ** 2 - plan.touch_speed ** 2) / (2.0 * h)
+    start = powered_descent.contact_time(h, fall, slowing, plan)
+    t = 0.0
+    while h > 0.0:
+        direction, throttle = powered_descent.command(np.zeros(2), (*v, -fall), h, mass, thrust, g, 0.0,
+                                                      (*v, -fall), plan)
+        a = throttle * thrust / mass * direction
+        if t + 0.5 < start and int(t / dt) % 500 == 0:          # linear in the time left
+            assert np.allclose(v, np.array((2.0, -0.5)) * (1.0 - t / start), atol=0.02)
+        v, fall, h, t = v + a[:2] * dt, fall - (a[2] - g) * dt, h - fall * dt, t + dt
+    print(f"\ndrift at the contact {np.linalg.norm(v):.3f} m/s of 2.06 m/s at the gate, "
+          f"{t:.2f} s from it (profile: {start:.2f} s)")
+    left = math.hypot(2.0, -0.5) * plan.terminal_time / start / math.e
+    assert math.isclose(np.linalg.norm(v), left, rel_tol=0.1) and abs(fall - plan.touch_speed) < 0.05
+
+
 def test_the_command_in_still_thin_air_leans_the_thrust_along_the_wanted_push():
     """Out of the air the thrust alone pushes sideways: the lean's tangent is the wanted
     horizontal acceleration over the vertical one (from the command's own law)."""
