@@ -29,7 +29,7 @@ from rocketsim.constants import (DEG, EARTH_J2, EARTH_MU, EARTH_OMEGA, EARTH_RAD
 from rocketsim.frames.geodetic import enu_basis, geodetic_to_ecef
 from rocketsim.guidance import boostback, descent, powered_descent
 from rocketsim.guidance.drag import DragArea
-from rocketsim.guidance.landing_point import LandingPoint, landing_burn
+from rocketsim.guidance.landing_point import LandingPoint, entry_burn, landing_burn
 from rocketsim.vehicle.contact import point_height
 
 LAT, LON = 28.5 * DEG, -80.5 * DEG
@@ -267,6 +267,35 @@ def test_the_predicted_landing_burn_burns_what_the_rocket_equation_says_with_the
     print(f"\nlanding burn: predicted {predicted:.1f} kg, rocket equation {burnt:.1f} kg")
     assert down.ignition_mass == m0
     assert math.isclose(predicted, burnt, rel_tol=3e-3)
+
+
+def test_the_entry_burn_ends_where_the_landing_keeps_its_margin_and_the_point_moves_smoothly():
+    """The entry burn's end airspeed, solved (descent.entry_end_speed), is the aim when
+    the propellant allows it, else the speed at which the touchdown keeps exactly the
+    margin; across the propellant at which one turns into the other the predicted
+    landing point moves without a step (what the lean's Newton steps need)."""
+    table = windy_day()
+    r, v = starting_state(55e3, 1100.0, -70.0, 250.0)
+    aero = (np.array((0.0, 1.0, 2.0, 10.0)), np.array((15.0, 23.0, 21.0, 21.0)), np.zeros(4))
+    predictor = LandingPoint(table, *aero, 1.0, 0.0)
+    dry, margin, aim = 22e3, 800.0, 650.0
+    landing = landing_burn(914e3, 300.0, 0.8, 1.0, dry, 8e3, 0.68)
+
+    def solved(propellant):
+        def kept(speed):
+            entry = entry_burn(math.inf, speed, 3 * 914e3, 900.0, dry)
+            return predictor(r, v, dry + propellant, entry=entry, landing=landing).mass - dry - margin
+        speed = descent.entry_end_speed(kept, aim, 1100.0)
+        return speed, kept(speed), predictor(r, v, dry + propellant, entry=entry_burn(
+            math.inf, speed, 3 * 914e3, 900.0, dry), landing=landing).point
+
+    plenty, short = solved(20e3), solved(6e3)
+    assert plenty[0] == aim and plenty[1] > 0.0
+    assert short[0] > aim + 20.0 and abs(short[1]) < 5.0         # kg of the margin at the root
+    points = np.array([solved(p)[2] for p in np.arange(5.5e3, 8.5e3, 250.0)])
+    steps = np.linalg.norm(np.diff(points, axis=0), axis=1)
+    print(f"\nend speed {short[0]:.1f} m/s with 6 t; the point's steps per 250 kg: {np.round(steps, 1)}")
+    assert steps.max() < 3.0 * np.median(steps) + 1.0
 
 
 def test_the_learnt_drag_area_converges_on_the_readings_scale():
