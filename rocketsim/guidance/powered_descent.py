@@ -63,7 +63,9 @@ vertical descent) the horizontal channel only kills the drift, at the constant
 deceleration that brings it to nothing at the contact: ``-v / t_go``, ``t_go`` the
 time the vertical profile takes to the ground (the horizontal twin of the vertical
 channel, re-solved every cycle: flown exactly, ``v / t_go`` stays constant, the
-drift falling linearly to zero), at least ``terminal_time`` (the command stays finite
+drift falling linearly to zero); like the law above the gate it leads the autopilot's
+``lag``: ``v`` is the drift predicted that far on and ``t_go`` the time left from
+there, at least ``terminal_time`` (the command stays finite
 at the contact: over that last time the drift decays by ``1/e``, the engine's tail-off
 being about as long), leaning at most ``terminal_tilt``:
 the stage touches down upright and still, a metre or two off rather than sliding.
@@ -197,7 +199,7 @@ def command(offset, velocity, height: float, mass: float, thrust: float, gravity
         wanted = quadratic_acceleration(horizontal, drift, max(time_to_go, plan.min_time_to_go))
         tilt = plan.max_tilt
     else:
-        wanted = -drift / max(contact_time(height, fall, up - gravity, plan), plan.terminal_time)
+        wanted = -drift / max(contact_time(height, fall, up - gravity, plan) - plan.lag, plan.terminal_time)
         tilt = plan.terminal_tilt
     # the nose's sideways part ``n`` that gives it: the thrust along the nose less the body's
     # normal force at its angle of attack ``n - b`` (``b`` the airflow's reverse), which pushes
