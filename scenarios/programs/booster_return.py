@@ -60,7 +60,7 @@ CAPTURED = math.radians(3.0)   # rad/s: the entry burn goes to full thrust and l
                                 # have stopped the swing within ENTRY_ALIGNMENT,
 CAPTURE_TIME = 4.0          # s: or this long after their ignition
 LANDING_MARGIN = 800.0      # kg of usable propellant predicted at touchdown, at least
-MAX_ENTRY_LEAN = 0.7        # horizontal share of the entry burn's thrust at most (35 deg: q under 250 Pa there),
+MAX_ENTRY_LEAN = 0.35       # horizontal share of the entry burn's thrust at most (19 deg),
 UNTILT = 1.5                # s: none over the burn's last this long
 Q_ALPHA = math.radians(60e3)           # Pa rad: the bending load commanded at most (the limit is 250 kPa deg)
 MAX_ALPHA = math.radians(5.0)    # and the angle of attack commanded at most,
