@@ -258,7 +258,11 @@ class Return:
         fc, pad = self.fc, self.pad
         fc.ignite(engines)
         fc.throttle(0.0)                        # the least thrust until the gimbals have caught the swing
-        fc.event("entry burn start", altitude_m=fc.altitude, airspeed_m_s=fc.airspeed)
+        r, v = pad.state(fc)
+        entry, landing = self.burns(lit_entry=True)          # the miss as lit: what the lean must steer
+        aimed = self.predict(r, v, fc.mass, entry=entry, landing=landing).point
+        fc.event("entry burn start", altitude_m=fc.altitude, airspeed_m_s=fc.airspeed,
+                 miss_m=float(np.linalg.norm(pad.offset(aimed))))
         airspeed = Approach(self.entry_speed, periods=(BURN_CYCLE,))
         lean = np.zeros(2)
         captured, lit = False, fc.time
