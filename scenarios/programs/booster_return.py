@@ -260,9 +260,9 @@ class Return:
         fc.throttle(0.0)                        # the least thrust until the gimbals have caught the swing
         r, v = pad.state(fc)
         entry, landing = self.burns(lit_entry=True)          # the miss as lit: what the lean must steer
-        aimed = self.predict(r, v, fc.mass, entry=entry, landing=landing).point
+        off = pad.offset(self.predict(r, v, fc.mass, entry=entry, landing=landing).point)
         fc.event("entry burn start", altitude_m=fc.altitude, airspeed_m_s=fc.airspeed,
-                 miss_m=float(np.linalg.norm(pad.offset(aimed))))
+                 miss_m=float(np.linalg.norm(off)))
         airspeed = Approach(self.entry_speed, periods=(BURN_CYCLE,))
         lean = np.zeros(2)
         captured, lit = False, fc.time
