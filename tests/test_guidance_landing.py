@@ -29,7 +29,7 @@ from rocketsim.constants import (DEG, EARTH_J2, EARTH_MU, EARTH_OMEGA, EARTH_RAD
 from rocketsim.frames.geodetic import enu_basis, geodetic_to_ecef
 from rocketsim.guidance import boostback, descent, powered_descent
 from rocketsim.guidance.drag import DragArea
-from rocketsim.guidance.landing_point import LandingPoint, landing_burn
+from rocketsim.guidance.landing_point import LandingPoint, entry_burn, landing_burn
 from rocketsim.vehicle.contact import point_height
 
 LAT, LON = 28.5 * DEG, -80.5 * DEG
@@ -68,6 +68,34 @@ def test_the_vertical_profile_re_solved_every_step_touches_down_at_the_touch_spe
         fall -= (a - g) * dt
         h -= fall * dt
     assert abs(fall - 1.0) < 0.05                                     # m/s at the ground
+
+
+def test_below_the_gate_the_drift_falls_linearly_to_nothing_at_the_contact():
+    """Below the gate the wanted push is ``-v / t_go``, ``t_go`` the vertical profile's time
+    to the contact: flown exactly (a point mass in still airless space, no autopilot lag)
+    ``v / t_go`` is a constant, so the drift falls linearly with the time left, like the
+    fall, down to the last ``terminal_time`` ``tau``, over which ``-v / tau`` takes it
+    down by ``1/e``: ``v0 (tau / t_go0) / e`` is left at the contact (a time constant alone,
+    ``-v / 2.5 s``, would leave ``v0 exp(-t_go0 / 2.5 s)``: 0.7 m/s of 2 m/s here)."""
+    plan = powered_descent.Plan(lag=0.0)
+    g, mass, thrust, dt = 9.81, 26e3, 845e3, 1e-3
+    h = plan.gate_height - 0.01
+    fall = powered_descent.gate_speed(200.0, 60.0, plan)       # on a profile lit at 200 m, 60 m/s
+    v = np.array((2.0, -0.5))
+    slowing = (fall ** 2 - plan.touch_speed ** 2) / (2.0 * h)
+    start = powered_descent.contact_time(h, fall, slowing, plan)
+    t = 0.0
+    while h > 0.0:
+        direction, throttle = powered_descent.command(np.zeros(2), (*v, -fall), h, mass, thrust, g, 0.0,
+                                                      (*v, -fall), plan)
+        a = throttle * thrust / mass * direction
+        if t + 0.5 < start and int(t / dt) % 500 == 0:          # linear in the time left
+            assert np.allclose(v, np.array((2.0, -0.5)) * (1.0 - t / start), atol=0.02)
+        v, fall, h, t = v + a[:2] * dt, fall - (a[2] - g) * dt, h - fall * dt, t + dt
+    print(f"\ndrift at the contact {np.linalg.norm(v):.3f} m/s of 2.06 m/s at the gate, "
+          f"{t:.2f} s from it (profile: {start:.2f} s)")
+    left = math.hypot(2.0, -0.5) * plan.terminal_time / start / math.e
+    assert math.isclose(np.linalg.norm(v), left, rel_tol=0.1) and abs(fall - plan.touch_speed) < 0.05
 
 
 def test_the_command_in_still_thin_air_leans_the_thrust_along_the_wanted_push():
@@ -199,13 +227,75 @@ def test_the_predicted_landing_burn_stops_the_fall_at_the_ground():
     mass, thrust, flow = 30e3, 845e3, 300.0
     mach = np.array((0.0, 10.0))
     predictor = LandingPoint(table, mach, np.full(2, 15.0), np.zeros(2), 1.0, 0.0)
-    down = predictor(r, v, mass, landing=landing_burn(thrust, flow, 0.8, 1.0, 22e3, 8e3))
+    down = predictor(r, v, mass, landing=landing_burn(thrust, flow, 0.8, 1.0, 22e3, 8e3, 0.0))
     height = point_height(*down.point, EARTH_RADIUS_EQ, EARTH_RADIUS_POLAR)
     assert 0.0 <= height < 3.0                          # m: slowed to 1 m/s just above the ground
     assert down.ignition_mass > down.mass > 22e3        # lit, and the tanks held out
     # what it burnt is what the throttle it flew at draws: at least the hover's share
     burnt = down.ignition_mass - down.mass
     assert burnt > flow * (mass * 9.81 / thrust) * 10.0
+
+
+def test_the_predicted_landing_burn_burns_what_the_rocket_equation_says_with_the_airs_push():
+    """A vertical fall through airless ground with a constant pressure ``p`` (no drag):
+    the landing burn lit at the throttle ``plan`` and flown at a constant deceleration
+    ``a`` holds ``T / m = k = a + g``; an engine of vacuum thrust ``T_vac``, exit ``A_e``
+    and full flow ``q`` draws ``u q`` at the throttle ``u = (m k + p A_e) / T_vac``
+    (docs/physics.md#propulsion), so ``dm/dt = -(m k + L) / c`` (``c = T_vac / q``,
+    ``L = p A_e``) and ``m + L / k`` decays as ``exp(-k t / c)``: burnt over the burn's
+    ``t_b = (V - v_td) / a`` is ``(m0 + L / k) (1 - exp(-k t_b / c))``. Lit where
+    ``m0 k + L = plan T_vac``, at the height ``H = (v0^2 + 2 g h0 - v_td^2) / 2k`` of the
+    free fall from ``h0`` at ``v0``. Leaving out the pressure's push (a flow of
+    ``F / (T_vac - L)`` of the full) gives 155 kg (3 %) less here."""
+    h = np.arange(0.0, 20e3 + 1.0, 50.0)
+    pressure = 101325.0
+    table = make_table(0.0, 50.0, np.zeros(h.size), np.full(h.size, pressure), np.full(h.size, 288.0),
+                       np.full(h.size, 340.0), np.full(h.size, 1.8e-5))
+    h0, v0, m0 = 6e3, 250.0, 30e3
+    vacuum, flow, area, plan, touch = 914e3, 300.0, 0.68, 0.8, 1.0
+    r, v = starting_state(h0, v0, -90.0, 0.0)
+    predictor = LandingPoint(table, np.array((0.0, 10.0)), np.zeros(2), np.zeros(2), 1.0, 0.0)
+    down = predictor(r, v, m0, landing=landing_burn(vacuum, flow, plan, touch, 0.0, 8e3, area))
+    g = EARTH_MU / float(np.linalg.norm(r)) ** 2
+    loss = pressure * area
+    k = (plan * vacuum - loss) / m0
+    lit = (v0 ** 2 + 2.0 * g * h0 - touch ** 2) / (2.0 * k)
+    speed = math.sqrt(v0 ** 2 + 2.0 * g * (h0 - lit))
+    burn_time = (speed - touch) / (k - g)
+    burnt = (m0 + loss / k) * (1.0 - math.exp(-k * burn_time / (vacuum / flow)))
+    predicted = down.ignition_mass - down.mass
+    print(f"\nlanding burn: predicted {predicted:.1f} kg, rocket equation {burnt:.1f} kg")
+    assert down.ignition_mass == m0
+    assert math.isclose(predicted, burnt, rel_tol=3e-3)
+
+
+def test_the_entry_burn_ends_where_the_landing_keeps_its_margin_and_the_point_moves_smoothly():
+    """The entry burn's end airspeed, solved (descent.entry_end_speed), is the aim when
+    the propellant allows it, else the speed at which the touchdown keeps exactly the
+    margin; across the propellant at which one turns into the other the predicted
+    landing point moves without a step (what the lean's Newton steps need)."""
+    table = windy_day()
+    r, v = starting_state(55e3, 1100.0, -70.0, 250.0)
+    aero = (np.array((0.0, 1.0, 2.0, 10.0)), np.array((15.0, 23.0, 21.0, 21.0)), np.zeros(4))
+    predictor = LandingPoint(table, *aero, 1.0, 0.0)
+    dry, margin, aim = 22e3, 800.0, 650.0
+    landing = landing_burn(914e3, 300.0, 0.8, 1.0, dry, 8e3, 0.68)
+
+    def solved(propellant):
+        def kept(speed):
+            entry = entry_burn(math.inf, speed, 3 * 914e3, 900.0, dry)
+            return predictor(r, v, dry + propellant, entry=entry, landing=landing).mass - dry - margin
+        speed = descent.entry_end_speed(kept, aim, 1100.0)
+        return speed, kept(speed), predictor(r, v, dry + propellant, entry=entry_burn(
+            math.inf, speed, 3 * 914e3, 900.0, dry), landing=landing).point
+
+    plenty, short = solved(20e3), solved(6e3)
+    assert plenty[0] == aim and plenty[1] > 0.0
+    assert short[0] > aim + 20.0 and abs(short[1]) < 5.0         # kg of the margin at the root
+    points = np.array([solved(p)[2] for p in np.arange(5.5e3, 8.5e3, 250.0)])
+    steps = np.linalg.norm(np.diff(points, axis=0), axis=1)
+    print(f"\nend speed {short[0]:.1f} m/s with 6 t; the point's steps per 250 kg: {np.round(steps, 1)}")
+    assert steps.max() < 3.0 * np.median(steps) + 1.0
 
 
 def test_the_learnt_drag_area_converges_on_the_readings_scale():

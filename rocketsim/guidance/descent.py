@@ -30,6 +30,21 @@ Turning a lean into an attitude (ECI unit vectors, what ``fc.point_at`` takes):
   from ``d``; ``alpha`` is the share's length times the largest lean allowed, the
   least of ``q_alpha / q`` (the bending load the structure takes, with a margin:
   docs/physics.md#structural-limits) and an angle.
+
+**The entry burn's end: one condition, solved for.** The entry burn ends at an
+airspeed, and the prediction ends it at the same one. The lowest airspeed the
+burn is flown down to (a heating and loads choice) is the aim, but a stage short of
+propellant must stop it earlier, to keep what the landing burn needs.
+:func:`entry_end_speed` finds the lowest airspeed, at or above that aim, at which
+the propellant predicted at touchdown (``kept(speed)``: the entry burn ended there,
+the landing burn flown as planned, less a stated margin) is not short: the root of
+``kept`` by Brent's method (R. P. Brent, *Algorithms for Minimization without
+Derivatives*, Prentice-Hall 1973, ch. 4; :func:`scipy.optimize.brentq`). ``kept``
+rises with the speed (a burn ended earlier burns less; the air brakes the faster
+fall before the landing burn), and the root moves smoothly with the state, so a
+prediction made with it moves smoothly too; ending the burn on whichever of an
+airspeed or a propellant floor comes first would make the predicted point jump
+where the two cross (a kink no Newton step on the lean follows).
 """
 
 from __future__ import annotations
@@ -38,6 +53,7 @@ import math
 from typing import Callable
 
 import numpy as np
+from scipy.optimize import brentq
 
 LEAN_STEP = 0.01            # the finite-difference step of the lean (a share: thrust or L/D)
 
@@ -111,3 +127,24 @@ class LeanTrim:
                 self.bias *= self.limit / size
         self._last = time
         return wanted + self.bias
+
+
+SPEED_TOLERANCE = 0.05      # m/s: the entry burn's end speed is solved to this
+
+
+def entry_end_speed(kept: Callable[[float], float], lowest: float, highest: float,
+                    guess: float | None = None, width: float = 10.0) -> float:
+    """The entry burn's end airspeed (m/s): ``lowest`` when the propellant ``kept(lowest)``
+    (kg beyond the margin, at touchdown) is not short, else the root of ``kept`` up to
+    ``highest`` (``highest`` itself when even ending there leaves it short: the landing
+    cannot keep its margin). ``guess`` (the last cycle's answer) tries the bracket
+    ``guess -+ width`` first (see the module)."""
+    if kept(lowest) >= 0.0:
+        return lowest
+    if guess is not None:
+        low, high = max(lowest, guess - width), min(highest, guess + width)
+        if low < high and kept(low) < 0.0 <= kept(high):
+            return float(brentq(kept, low, high, xtol=SPEED_TOLERANCE))
+    if kept(highest) < 0.0:
+        return highest
+    return float(brentq(kept, lowest, highest, xtol=SPEED_TOLERANCE))

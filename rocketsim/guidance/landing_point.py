@@ -32,15 +32,21 @@ ground) and its mass ``m``::
     ``entry[ENTRY_FLOW]`` (kg/s), until the airspeed is down to
     ``entry[ENTRY_SPEED]`` or the mass to ``entry[ENTRY_FLOOR]`` (what the landing
     burn keeps);
-  - the **landing burn**, lit once stopping the fall at a constant deceleration
-    needs the throttle ``landing[LANDING_PLAN]`` of the full thrust
-    ``landing[LANDING_THRUST]`` (the margin the burn keeps), below
-    ``landing[LANDING_CEILING]`` (m), and the drag alone would not stop it (its
-    deceleration less gravity short of ``v^2 / 2h``: the rule of
+  - the **landing burn**, of one engine of vacuum thrust ``landing[LANDING_THRUST]``
+    (N) and nozzle exit area ``landing[LANDING_EXIT_AREA]`` (m^2), whose full thrust in
+    the air is ``T = T_vac - p(h) A_e`` (docs/physics.md#propulsion: the ambient pressure
+    ``p`` pushes on the exit whatever the throttle), lit once stopping the fall at a
+    constant deceleration needs the throttle ``landing[LANDING_PLAN]`` (the margin the
+    burn keeps), below ``landing[LANDING_CEILING]`` (m), and the drag alone would not
+    stop it (its deceleration less gravity short of ``v^2 / 2h``: the rule of
     :func:`rocketsim.guidance.powered_descent.ignition_due`), then braking
     along the airflow's reverse (no angle of attack: no normal force) with the
-    thrust whose vertical part stops the fall at the ground (at most full), the mass falling at the throttle's share of
-    ``landing[LANDING_FLOW]``, until the fall has slowed to ``landing[LANDING_TOUCH]``
+    thrust ``F`` whose vertical part stops the fall at the ground (at most ``T``); the
+    throttle that gives it is ``u = (F + p A_e) / T_vac``
+    (:func:`rocketsim.guidance.powered_descent.throttle_for`) and the mass falls at
+    ``u landing[LANDING_FLOW]`` (the mass flow is the throttle's share of the full flow,
+    whatever the air: a throttled engine at sea level draws more per newton than its
+    thrust's share of ``T`` says), until the fall has slowed to ``landing[LANDING_TOUCH]``
     (m/s: the point returned) or the mass is down to ``landing[LANDING_EMPTY]``
     (the engines stop: the stage falls on).
 
@@ -71,6 +77,7 @@ import numpy as np
 from rocketsim.jit import njit
 from rocketsim.atmosphere.table import air_at
 from rocketsim.bodies.gravity import point_mass_j2
+from rocketsim.guidance.powered_descent import throttle_for
 from rocketsim.constants import (EARTH_J2, EARTH_MU, EARTH_OMEGA, EARTH_RADIUS_EQ,
                                  EARTH_RADIUS_POLAR)
 from rocketsim.vehicle.aero import interp
@@ -87,8 +94,8 @@ MAX_STEPS = 20000
 ENTRY_ALTITUDE, ENTRY_SPEED, ENTRY_THRUST, ENTRY_FLOW, ENTRY_FLOOR, ENTRY_LEAN_E, ENTRY_LEAN_N = range(7)
 N_ENTRY = 7
 # the landing burn's numbers (an array of N_LANDING floats; thrust 0: no landing burn)
-LANDING_THRUST, LANDING_FLOW, LANDING_PLAN, LANDING_TOUCH, LANDING_EMPTY, LANDING_CEILING = range(6)
-N_LANDING = 6
+LANDING_THRUST, LANDING_FLOW, LANDING_PLAN, LANDING_TOUCH, LANDING_EMPTY, LANDING_CEILING, LANDING_EXIT_AREA = range(7)
+N_LANDING = 7
 
 NO_ENTRY = np.zeros(N_ENTRY)
 NO_LANDING = np.zeros(N_LANDING)
@@ -112,54 +119,58 @@ def entry_burn(altitude: float, speed: float, thrust: float, flow: float, floor:
 
 
 def landing_burn(thrust: float, flow: float, plan: float, touch_speed: float, empty: float,
-                 ceiling: float) -> np.ndarray:
-    """The landing burn's numbers for :func:`fall`: ``thrust`` (N) and mass ``flow`` (kg/s)
-    at full throttle, lit below ``ceiling`` (m) at the throttle ``plan``, ending at
-    ``touch_speed`` (m/s) down, its engines stopping at the mass ``empty`` (kg)."""
-    return np.array((thrust, flow, plan, touch_speed, empty, ceiling), dtype=float)
+                 ceiling: float, exit_area: float = 0.0) -> np.ndarray:
+    """The landing burn's numbers for :func:`fall`: vacuum ``thrust`` (N) and mass ``flow``
+    (kg/s) at full throttle of an engine of nozzle ``exit_area`` (m^2), lit below
+    ``ceiling`` (m) at the throttle ``plan``, ending at ``touch_speed`` (m/s) down, its
+    engines stopping at the mass ``empty`` (kg)."""
+    return np.array((thrust, flow, plan, touch_speed, empty, ceiling, exit_area), dtype=float)
 
 
 @njit
 def _frame(y, h0, dh, density, pressure, temperature, sound, wind_e, wind_n):
-    """``(h, fall, g, rho, c, east (3), north (3), air-relative velocity (3), airspeed)`` at
+    """``(h, fall, g, rho, c, east (3), north (3), air-relative velocity (3), airspeed, p)`` at
     the state ``y``: the height along the radius (m), the speed down the geocentric
-    radius (m/s), the point-mass gravity (m/s^2), the air's density and speed of sound,
+    radius (m/s), the point-mass gravity (m/s^2), the air's density, speed of sound and
+    pressure (Pa, last),
     the local east and north (``east = z x up`` normalised, ``north = up x east``)."""
     x, yy, z = y[0], y[1], y[2]
     rr = math.sqrt(x * x + yy * yy + z * z)
     ux, uy, uz = x / rr, yy / rr, z / rr
     h = point_height(x, yy, z, EARTH_RADIUS_EQ, EARTH_RADIUS_POLAR)
-    rho, _, _, c, ue, un = air_at(h0, dh, density, pressure, temperature, sound, wind_e, wind_n, h)
+    rho, p, _, c, ue, un = air_at(h0, dh, density, pressure, temperature, sound, wind_e, wind_n, h)
     s = math.sqrt(ux * ux + uy * uy)
     east = np.array((-uy / s, ux / s, 0.0))
     north = np.array((-uz * east[1], uz * east[0], ux * east[1] - uy * east[0]))
     air = y[3:6] - ue * east - un * north
     return (h, -(y[3] * ux + y[4] * uy + y[5] * uz), EARTH_MU / (rr * rr), rho, c, east, north, air,
-            math.sqrt(air[0] * air[0] + air[1] * air[1] + air[2] * air[2]))
+            math.sqrt(air[0] * air[0] + air[1] * air[1] + air[2] * air[2]), p)
 
 
 @njit
 def _dynamic_pressure(y, h0, dh, density, pressure, temperature, sound, wind_e, wind_n):
     """``rho |v_a|^2 / 2`` (Pa) at the state ``y``."""
-    _, _, _, rho, _, _, _, _, airspeed = _frame(y, h0, dh, density, pressure, temperature, sound, wind_e, wind_n)
+    _, _, _, rho, _, _, _, _, airspeed, _ = _frame(y, h0, dh, density, pressure, temperature, sound, wind_e, wind_n)
     return 0.5 * rho * airspeed * airspeed
 
 
 @njit
-def _landing_throttle(h, fall, g, mass, landing):
-    """The throttle (0 to 1) of the landing burn's thrust that stops ``fall`` at the ground
-    ``h`` below at a constant deceleration (1 when it cannot)."""
+def _landing_throttle(h, fall, g, mass, p, landing):
+    """The throttle (0 to 1) of the landing burn's engine at the ambient pressure ``p`` (Pa)
+    that stops ``fall`` at the ground ``h`` below at a constant deceleration (1 when it
+    cannot)."""
     if h <= 0.0 or fall <= 0.0:
         return 1.0
-    return min(1.0, (fall * fall / (2.0 * h) + g) * mass / landing[LANDING_THRUST])
+    loss = p * landing[LANDING_EXIT_AREA]
+    return min(1.0, throttle_for((fall * fall / (2.0 * h) + g) * mass, landing[LANDING_THRUST] - loss, loss))
 
 
 @njit
 def _rates(y, phase, h0, dh, density, pressure, temperature, sound, wind_e, wind_n, aero, lean,
            entry, landing):
     """The state's rates (velocity, acceleration, -flow) in ``phase`` (see the module)."""
-    h, fall, g, rho, c, east, north, air, airspeed = _frame(y, h0, dh, density, pressure, temperature,
-                                                            sound, wind_e, wind_n)
+    h, fall, g, rho, c, east, north, air, airspeed, p = _frame(y, h0, dh, density, pressure, temperature,
+                                                               sound, wind_e, wind_n)
     w = EARTH_OMEGA
     gx, gy, gz = point_mass_j2(y[0], y[1], y[2], EARTH_MU, EARTH_RADIUS_EQ, EARTH_J2)
     out = np.empty(7)
@@ -175,8 +186,9 @@ def _rates(y, phase, h0, dh, density, pressure, temperature, sound, wind_e, wind
         out[6] = -entry[ENTRY_FLOW]
     elif phase == LANDING:
         # the vertical part the profile needs, along the airflow's reverse (no angle of attack)
-        full = landing[LANDING_THRUST] / mass
-        up = _landing_throttle(h, fall, g, mass, landing) * full
+        loss = p * landing[LANDING_EXIT_AREA]
+        full = (landing[LANDING_THRUST] - loss) / mass
+        up = _landing_throttle(h, fall, g, mass, p, landing) * landing[LANDING_THRUST] / mass - loss / mass
         r = math.sqrt(y[0] * y[0] + y[1] * y[1] + y[2] * y[2])
         fall_air = -(air[0] * y[0] + air[1] * y[1] + air[2] * y[2]) / r
         push = -up / max(fall_air, 1e-3) * air
@@ -185,7 +197,7 @@ def _rates(y, phase, h0, dh, density, pressure, temperature, sound, wind_e, wind
             push *= full / size
             size = full
         out[3:6] += push
-        out[6] = -size / full * landing[LANDING_FLOW]
+        out[6] = -throttle_for(size * mass, full * mass, loss) * landing[LANDING_FLOW]
     else:
         drag = _drag(rho, c, airspeed, mass, aero)
         if drag > 0.0:
@@ -212,15 +224,15 @@ def _events(y, phase, entering, h0, dh, density, pressure, temperature, sound, w
     """The phase's event quantities, each positive before its event: (the ground, the
     entry burn lit / ended, the landing burn lit / its touch speed, the landing burn's
     engines empty); inf where an event cannot happen in this phase."""
-    h, fall, g, rho, c, _, _, _, airspeed = _frame(y, h0, dh, density, pressure, temperature, sound,
-                                                   wind_e, wind_n)
+    h, fall, g, rho, c, _, _, _, airspeed, p = _frame(y, h0, dh, density, pressure, temperature, sound,
+                                                      wind_e, wind_n)
     out = np.full(4, np.inf)
     out[0] = h
     if phase == COAST:
         if entering and fall > 0.0:
             out[1] = h - entry[ENTRY_ALTITUDE]
         if landing[LANDING_THRUST] > 0.0 and fall > 0.0 and h > 0.0:
-            out[2] = max(landing[LANDING_PLAN] - _landing_throttle(h, fall, g, y[6], landing),
+            out[2] = max(landing[LANDING_PLAN] - _landing_throttle(h, fall, g, y[6], p, landing),
                          _drag(rho, c, airspeed, y[6], aero) - g - fall * fall / (2.0 * h),
                          (h - landing[LANDING_CEILING]) / landing[LANDING_CEILING])
     elif phase == ENTRY:

@@ -59,9 +59,16 @@ of about ``sqrt(12) / T`` rad/s) stop growing, so that the loop stays several
 times slower than the autopilot that turns the thrust (1 rad/s), whose lag
 (``lag`` s) the law also leads: it is re-solved from the state predicted that far
 on at the sideways push the engines give now. Below the gate (Apollo's P66, the
-vertical descent) the horizontal channel only kills the drift
-(``-v / terminal_time``), leaning at most ``terminal_tilt``: the stage touches
-down upright and still, a metre or two off rather than sliding.
+vertical descent) the horizontal channel only kills the drift, at the constant
+deceleration that brings it to nothing at the contact: ``-v / t_go``, ``t_go`` the
+time the vertical profile takes to the ground (the horizontal twin of the vertical
+channel, re-solved every cycle: flown exactly, ``v / t_go`` stays constant, the
+drift falling linearly to zero); like the law above the gate it leads the autopilot's
+``lag``: ``v`` is the drift predicted that far on and ``t_go`` the time left from
+there, at least ``terminal_time`` (the command stays finite
+at the contact: over that last time the drift decays by ``1/e``, the engine's tail-off
+being about as long), leaning at most ``terminal_tilt``:
+the stage touches down upright and still, a metre or two off rather than sliding.
 
 The thrust direction is the sum of both channels, its lean from the vertical
 held within the phase's limit by shortening the horizontal part.
@@ -84,6 +91,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from rocketsim.jit import njit
+
 
 @dataclass(frozen=True)
 class Plan:
@@ -96,7 +105,7 @@ class Plan:
     lag: float = 1.0                    # s: the autopilot's lag, the state is predicted this far on
     max_tilt: float = math.radians(15.0)        # the divert's lean at most
     terminal_tilt: float = math.radians(5.0)    # below the gate
-    terminal_time: float = 2.5          # s: the drift's time constant below the gate
+    terminal_time: float = 0.25         # s: the drift's shortest time to go below the gate
     cutoff_height: float = 0.2          # m of clearance
     ceiling: float = 8e3                # m: the burn is lit below this height only
     normal_area: float = 65.0           # m^2 per rad: the body's normal force under thrust over q
@@ -117,6 +126,16 @@ def gate_speed(height: float, fall: float, plan: Plan) -> float:
     return math.sqrt(plan.touch_speed ** 2 + 2.0 * max(slowing, 0.0) * plan.gate_height)
 
 
+def contact_time(height: float, fall: float, slowing: float, plan: Plan) -> float:
+    """The time (s) the vertical profile takes from ``height`` (m) and ``fall`` (m/s, down) to
+    the contact at ``plan.touch_speed``, slowing at ``slowing`` (m/s^2; none or less: at the
+    present rate of fall)."""
+    if slowing > 0.0 and fall > plan.touch_speed:
+        return (fall - plan.touch_speed) / slowing
+    return height / max(fall, plan.touch_speed)
+
+
+@njit(inline="always")     # a line of arithmetic: typed in its compiled callers (the landing point's)
 def throttle_for(force: float, thrust: float, loss: float = 0.0) -> float:
     """The throttle that gives ``force`` (N) from an engine of full ``thrust`` (N) here, the
     ambient pressure taking ``loss`` (N, ``p A_e``) off at any throttle (see the module)."""
@@ -180,7 +199,7 @@ def command(offset, velocity, height: float, mass: float, thrust: float, gravity
         wanted = quadratic_acceleration(horizontal, drift, max(time_to_go, plan.min_time_to_go))
         tilt = plan.max_tilt
     else:
-        wanted = -drift / plan.terminal_time
+        wanted = -drift / max(contact_time(height, fall, up - gravity, plan) - plan.lag, plan.terminal_time)
         tilt = plan.terminal_tilt
     # the nose's sideways part ``n`` that gives it: the thrust along the nose less the body's
     # normal force at its angle of attack ``n - b`` (``b`` the airflow's reverse), which pushes

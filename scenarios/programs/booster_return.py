@@ -10,9 +10,11 @@ docs/guidance.md explains each algorithm; the phases:
    and landing burns as planned) AIM_OFF short of the pad
    (:func:`rocketsim.guidance.boostback.velocity_to_gain`);
 2. **coast**, the grid fins handed to the autopilot, tail first into the air;
-3. **entry burn** (three engines) below ENTRY_ALTITUDE down to ENTRY_SPEED of
-   airspeed, or to what the landing burn needs, leaned so that the predicted
-   landing point is on the pad (:func:`rocketsim.guidance.descent.solve_lean`);
+3. **entry burn** (three engines) below ENTRY_ALTITUDE down to an airspeed of
+   ENTRY_SPEED, or higher when the propellant predicted at touchdown would be short
+   of LANDING_MARGIN (:func:`rocketsim.guidance.descent.entry_end_speed`: one end
+   condition, which the predictions share), leaned so that the predicted landing
+   point is on the pad (:func:`rocketsim.guidance.descent.solve_lean`);
 4. **aerodynamic descent** on the grid fins: the lean of a body falling tail
    first that flies the predicted point onto the pad, within the bending load
    Q_ALPHA; the body's drag learnt on the way (:class:`~rocketsim.guidance.drag.DragArea`);
@@ -50,14 +52,14 @@ AIM_OFF = 0.0               # m: the boost-back aims this far short of the pad (
 DIPS = tuple(math.radians(d) for d in (0.0, 3.0, 6.0, 9.0, 12.0))   # the boost-back's dips tried
 ENTRY_ALTITUDE = 60e3       # m: the entry burn starts here, falling (as planned and predicted),
 ENTRY_WINDOW = 3e3          # m: or up to this much higher, as the air swings the nose through
-ENTRY_SPEED = 650.0         # m/s of airspeed at the entry burn's end
+ENTRY_SPEED = 650.0         # m/s of airspeed at the entry burn's end, at least
+FASTEST_ENTRY = 2000.0      # m/s: the boost-back's bracket of the entry burn's end speed
 ENTRY_ALIGNMENT = math.radians(10.0)   # the nose this near the airflow's reverse before lighting it,
 ENTRY_LOWEST = 40e3         # m: or lit anyway this low
 CAPTURED = math.radians(3.0)   # rad/s: the entry burn goes to full thrust and leans once the engines
                                 # have stopped the swing within ENTRY_ALIGNMENT,
 CAPTURE_TIME = 4.0          # s: or this long after their ignition
-LANDING_NEED = 5500.0       # kg: the landing burn's propellant until predicted
-LANDING_MARGIN = 800.0      # kg of usable propellant the entry burn leaves beyond the landing burn's
+LANDING_MARGIN = 800.0      # kg of usable propellant predicted at touchdown, at least
 MAX_ENTRY_LEAN = 0.35       # horizontal share of the entry burn's thrust at most (19 deg),
 UNTILT = 1.5                # s: none over the burn's last this long
 Q_ALPHA = math.radians(60e3)           # Pa rad: the bending load commanded at most (the limit is 250 kPa deg)
@@ -102,7 +104,7 @@ class Return:
         self.drag = DragArea(mach, area)
         self.ground_pressure = float(fc.forecast.at(0.0)[1][0])
         self.engine_thrust, self.engine_flow = 914e3, 300.0      # N, kg/s: until measured
-        self.landing_need = LANDING_NEED           # kg, until predicted
+        self.entry_speed = ENTRY_SPEED              # m/s: the entry burn's end, until solved
 
     # --- the readings --------------------------------------------------------
     def nose(self):
@@ -148,26 +150,30 @@ class Return:
             self.engine_thrust = float(np.mean([e["thrust_N"] for e in full])) + pressure * EXIT_AREA
             self.engine_flow = float(np.mean([e["mass_flow_kg_s"] for e in full]))
 
-    def learn_landing_need(self, lit_mass, touchdown_mass):
-        """The propellant (kg) the landing burn needs, from the last prediction that lit it
-        (the mass when it is lit and at touchdown, kg)."""
-        if lit_mass == lit_mass:
-            self.landing_need = lit_mass - touchdown_mass
+    def solve_entry_speed(self, predict, highest, lit_entry=False, lean=(0.0, 0.0)):
+        """Solve the entry burn's end airspeed (m/s, kept in ``entry_speed``) for the
+        prediction ``predict(entry, landing)`` of the burns (lit now when ``lit_entry``,
+        leaned by ``lean``), at most ``highest``; the usable propellant (kg) predicted at
+        touchdown with it (less than LANDING_MARGIN: the return is short)."""
+        def kept(speed):
+            entry, landing = self.burns(lit_entry, lean, speed=speed)
+            return predict(entry, landing).mass - self.dry - UNUSABLE - LANDING_MARGIN
 
-    def floor(self):
-        """The mass (kg) at which the entry burn must end: the dry stage, what its engines
-        cannot draw, what the landing burn was last predicted to need and LANDING_MARGIN."""
-        return self.dry + UNUSABLE + self.landing_need + LANDING_MARGIN
+        self.entry_speed = descent.entry_end_speed(kept, ENTRY_SPEED, max(highest, ENTRY_SPEED),
+                                                   guess=self.entry_speed)
+        return kept(self.entry_speed) + LANDING_MARGIN
 
-    def burns(self, lit_entry=False, lean=(0.0, 0.0), unbounded=False):
-        """The entry burn (three engines, lit now when ``lit_entry``) and the landing burn (one
-        engine at the ground's pressure) as the predictor models them; ``unbounded``, as if
-        the tanks held whatever they need (to compare plans by what they leave)."""
-        entry = entry_burn(math.inf if lit_entry else ENTRY_ALTITUDE, ENTRY_SPEED, 3.0 * self.engine_thrust,
-                           3.0 * self.engine_flow, 0.0 if unbounded else self.floor(), lean)
-        landing = landing_burn(self.engine_thrust - self.ground_pressure * EXIT_AREA, self.engine_flow,
-                               LANDING.plan, LANDING.touch_speed, 0.0 if unbounded else self.dry + UNUSABLE,
-                               LANDING.ceiling)
+    def burns(self, lit_entry=False, lean=(0.0, 0.0), unbounded=False, speed=None):
+        """The entry burn (three engines, lit now when ``lit_entry``, ended at ``speed`` or
+        the solved ``entry_speed``) and the landing burn (one engine, its thrust less the
+        air's push on its nozzle) as the predictor models them; ``unbounded``, as if the
+        tanks held whatever they need, the entry burn flown to ENTRY_SPEED (to compare
+        plans by what they leave)."""
+        speed = ENTRY_SPEED if unbounded else self.entry_speed if speed is None else speed
+        entry = entry_burn(math.inf if lit_entry else ENTRY_ALTITUDE, speed, 3.0 * self.engine_thrust,
+                           3.0 * self.engine_flow, 0.0 if unbounded else self.dry + UNUSABLE, lean)
+        landing = landing_burn(self.engine_thrust, self.engine_flow, LANDING.plan, LANDING.touch_speed,
+                               0.0 if unbounded else self.dry + UNUSABLE, LANDING.ceiling, EXIT_AREA)
         return entry, landing
 
     # --- 1. boost-back ----------------------------------------------------------
@@ -199,8 +205,8 @@ class Return:
             now = [*pad.state(fc), fc.mass]
             plane = boostback.burn_plane(now[0], to_gain, dip)
             to_gain = boostback.velocity_to_gain(miss, now[1], plane, guess=to_gain, passes=2)
-            down = self.after_boost_back(*now, to_gain, entry, landing)
-            self.learn_landing_need(down.ignition_mass, down.mass)
+            self.solve_entry_speed(lambda e, la: self.after_boost_back(*now, to_gain, e, la), FASTEST_ENTRY)
+            entry, landing = self.burns()
             size = float(np.linalg.norm(to_gain))
             acceleration = fc.thrust / fc.mass
             step, checked = fc.time - checked, fc.time       # the update period now
@@ -221,7 +227,8 @@ class Return:
             left = (size - acceleration * 0.5 * (step + TAIL_OFF)) / max(acceleration, 1.0)
             fc.sleep(1.0 if lit and left > 3.0 else BURN_CYCLE if left > 2.0 * BURN_CYCLE else 0.0)
         fc.shutdown(three)
-        fc.event("boost-back end", to_gain_m_s=size, usable_propellant_kg=self.usable())
+        fc.event("boost-back end", to_gain_m_s=size, usable_propellant_kg=self.usable(),
+                 entry_end_airspeed_m_s=self.entry_speed)
         fc.sleep(1.0)                       # hold the attitude through the tail-off
 
     # --- 3. entry burn ----------------------------------------------------------
@@ -251,14 +258,22 @@ class Return:
         fc, pad = self.fc, self.pad
         fc.ignite(engines)
         fc.throttle(0.0)                        # the least thrust until the gimbals have caught the swing
-        fc.event("entry burn start", altitude_m=fc.altitude, airspeed_m_s=fc.airspeed)
-        airspeed = Approach(ENTRY_SPEED, periods=(BURN_CYCLE,))
-        reserve = Approach(0.0, periods=(BURN_CYCLE,))
+        r, v = pad.state(fc)
+        entry, landing = self.burns(lit_entry=True)          # the miss as lit: what the lean must steer
+        off = pad.offset(self.predict(r, v, fc.mass, entry=entry, landing=landing).point)
+        fc.event("entry burn start", altitude_m=fc.altitude, airspeed_m_s=fc.airspeed,
+                 miss_m=float(np.linalg.norm(off)))
+        airspeed = Approach(self.entry_speed, periods=(BURN_CYCLE,))
         lean = np.zeros(2)
         captured, lit = False, fc.time
-        while airspeed.ahead(fc.airspeed, fc.time) & reserve.ahead(fc.mass - self.floor(), fc.time):
+        while True:
             r, v = pad.state(fc)
             mass = fc.mass
+            kept = self.solve_entry_speed(lambda e, la: self.predict(r, v, mass, entry=e, landing=la),
+                                            fc.airspeed, lit_entry=True, lean=lean)
+            airspeed.limit = self.entry_speed
+            if not airspeed.ahead(fc.airspeed, fc.time):
+                break
 
             def miss(trial):
                 entry, landing = self.burns(lit_entry=True, lean=trial)
@@ -269,27 +284,25 @@ class Return:
                 captured = True
                 fc.throttle(1.0)
             # the lean flown until UNTILT before the end, as the prediction's lean held to the end
-            left = min((fc.airspeed - ENTRY_SPEED) * mass / max(fc.thrust, 1.0),
-                       (mass - self.floor()) / (3.0 * self.engine_flow))
+            left = (fc.airspeed - self.entry_speed) * mass / max(fc.thrust, 1.0)
             share = max(left - UNTILT, 0.0) / max(left, 1e-3)
             lean, off = descent.solve_lean(miss, lean, MAX_ENTRY_LEAN * share if captured else 0.0)
-            entry_, landing_ = self.burns(lit_entry=True, lean=lean)
-            _, _, mf, lit_mass, _ = self.predict(r, v, mass, entry=entry_, landing=landing_)
-            self.learn_landing_need(lit_mass, mf)
             back = -fc.air_velocity / fc.airspeed
             flown = lean / share if share > 0.0 else np.zeros(2)    # upright into the coast: no swing after
             fc.point_at(descent.thrust_direction(back, pad.local_to_eci((flown[0], flown[1], 0.0), fc.time)))
             self.measure_engines()
-            fc.sleep(min(airspeed.next_update(), reserve.next_update()))
+            fc.sleep(airspeed.next_update())
         fc.shutdown(engines)
         fc.event("entry burn end", airspeed_m_s=fc.airspeed, altitude_m=fc.altitude,
-                 usable_propellant_kg=self.usable(), miss_m=float(np.linalg.norm(off)))
+                 usable_propellant_kg=self.usable(), miss_m=float(np.linalg.norm(off)),
+                 touchdown_propellant_kg=kept)
 
     # --- 4. aerodynamic descent ---------------------------------------------------
     def descend(self):
         fc, pad = self.fc, self.pad
         _, landing = self.burns()
-        full = landing[0]
+        loss = self.ground_pressure * EXIT_AREA        # the air's push on the nozzle's exit
+        full = self.engine_thrust - loss
         rule = Approach(0.0, rising=True, periods=(CYCLE, BURN_CYCLE))
         lean = np.zeros(2)
         trim = descent.LeanTrim(TRIM_TIME, TRIM_LIMIT)
@@ -311,7 +324,7 @@ class Return:
             fc.point_at(descent.lean_attitude(back, pad.local_to_eci((-asked[0], -asked[1], 0.0), fc.time),
                                               float(np.linalg.norm(asked))))
             due = powered_descent.ignition_due(fc.clearance, -fc.vertical_speed, mass, full, fc.gravity, drag,
-                                               LEAD, LANDING, self.ground_pressure * EXIT_AREA)
+                                               LEAD, LANDING, loss)
             if not rule.ahead(due, fc.time):
                 break
             fc.sleep(rule.next_update())

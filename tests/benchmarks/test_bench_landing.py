@@ -18,7 +18,11 @@ share upright within 10 m is asserted against the target. Nothing asserts a time
 
 Printed (``pytest -s``), with the machine's load: the report's landing lines (the
 outcomes with their exact Clopper-Pearson intervals, the miss, the touchdown speeds,
-the propellant kept), the runs' wall times.
+the propellant kept: mean and 1st percentile), the runs' wall times.
+
+``ROCKETSIM_BENCH_LANDING_DIR`` names the campaign's folder (else a temporary one):
+it survives the run, ``rocketsim campaign report`` reads it, and a benchmark started
+again on it flies only the runs missing (a campaign resumed).
 """
 
 from __future__ import annotations
@@ -49,8 +53,10 @@ def campaign(tmp_path_factory):
     campaign = yaml.safe_load(CAMPAIGN.read_text())
     if not FULL:
         campaign["runs"] = SUITE_RUNS
-    directory = tmp_path_factory.mktemp("landing") / "campaign"
-    results = run(campaign, directory, workers=2 if FULL else 1, base_dir=CAMPAIGN.parent)
+    named = os.environ.get("ROCKETSIM_BENCH_LANDING_DIR")
+    directory = Path(named) if named else tmp_path_factory.mktemp("landing") / "campaign"
+    resume = (directory / "campaign.yaml").exists()
+    results = run(campaign, directory, workers=2 if FULL else 1, base_dir=CAMPAIGN.parent, resume=resume)
     print(f"\nlanding campaign ({load_text()}): {len(results)} runs, "
           f"{int((results['status'] == 'ok').sum())} ok; run wall time median "
           f"{np.median(results['wall_time_s']):.1f} s (min {results['wall_time_s'].min():.1f}, "
@@ -67,8 +73,8 @@ def test_every_run_flies_and_the_booster_comes_down_with_a_named_outcome(campaig
 
 
 @pytest.mark.xfail(not FULL, strict=True, reason=(
-    "run 0 of the shipped campaign tips over (19.9 m/s sideways, 172 m off): its entry burn ends on the "
-    "landing burn's propellant at 749 m/s, 825 m off, more than the fins steer (docs/guidance.md, "
+    "run 0 of the shipped campaign tips over (18 m/s sideways, 89 m off): short of propellant, its entry "
+    "burn ends at 757 m/s, 668 m from its aim, more than the fins steer (docs/guidance.md, "
     "'Where it falls short')"))
 def test_the_booster_lands_upright_on_the_pad(campaign):
     outcome = campaign[f"{BOOSTER}.landing.outcome"].to_numpy(object)
