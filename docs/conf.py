@@ -3,7 +3,7 @@ reference generated from the code (the command line by sphinx-click, the Python 
 autodoc, the file formats by docs/_ext/rocketsim_docs.py).
 
 Build: ``python -m sphinx -W --keep-going -n -b html docs docs/_build/html``
-(warnings are errors, every cross-reference must resolve; tests/test_docs_site.py
+(warnings are errors, every cross-reference must resolve; tests/docs/test_docs_site.py
 builds it so on every run of the suite).
 """
 

@@ -21,7 +21,7 @@ import importlib
 
 from rocketsim.errors import InputError
 
-# extra -> the modules it installs (tests/test_extras.py checks them against pyproject.toml)
+# extra -> the modules it installs (tests/house/test_extras.py checks them against pyproject.toml)
 EXTRAS = {
     "campaign": ("distributed", "pyarrow"),
     "weather": ("xarray", "netCDF4"),

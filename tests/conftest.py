@@ -16,7 +16,7 @@ ROOT = Path(__file__).resolve().parents[1]
 
 # no test queues kernels for a second compiling process: with one test worker per core every
 # core compiles already, and tests wrap kernels in plain functions (timing, counting) that
-# cannot be queued; tests/test_jit_beside.py tests the queue where it switches it on
+# cannot be queued; tests/unit/jit/test_jit_beside.py tests the queue where it switches it on
 beside.COMPILE_BESIDE = False
 
 # Hypothesis profiles of tests/fuzz: "ci" (the default) replays the same examples every

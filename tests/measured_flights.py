@@ -6,7 +6,7 @@ tests (tests/acceptance/test_ndrt_2020_rocket.py and test_bella_lui_rocket.py
 in that repository, MIT licence), flown here with RocketPy's default
 settings (its weather dictionary named ``ECMWF_v0``, the one RocketPy falls
 back to, with a warning, when its tests' ``ECMWF`` does not match these
-files' old ERA5 names). Used by tests/test_measured_flights.py and by
+files' old ERA5 names). Used by tests/peers/test_measured_flights.py and by
 tests/fixtures/measured/plot_comparison.py (the table and plot of docs/validation.md).
 
 Every figure is taken the same way from a log and from a simulation:

@@ -1,6 +1,6 @@
 """The finned sounding rocket flown here and in RocketPy (a peer library used only in tests).
 
-Used by tests/test_rocketpy_peer.py (the apogees compared) and
+Used by tests/peers/test_rocketpy_peer.py (the apogees compared) and
 tests/benchmarks/test_bench_rocketpy.py (the two flights timed). The rocket:
 6 m x 0.3 m, 80 kg of structure, a 30 kg payload, 120 kg of propellant in one
 tank, one 9 kN engine (Isp 230 s, 0.3 s dead time, 0.5 s linear spool-up),
@@ -9,7 +9,7 @@ its drag curve against Mach; standing on its base on a pad at a desert range
 (Spaceport America's latitude and longitude), vertical, no wind, the standard
 atmosphere. RocketPy flies the same masses, thrust curve and drag curve off a
 5 m rail (:func:`rocketpy_flight`; what is matched and what is not is said in
-tests/test_rocketpy_peer.py).
+tests/peers/test_rocketpy_peer.py).
 """
 
 import math

@@ -14,7 +14,7 @@
   into the source folder when the build starts, so a new field is documented without
   editing a page.
 * :class:`Output`: the ``{output}`` block of a page a reader runs, what the code block
-  before it prints, shown as plain text under it (tests/test_docs_pages.py runs the code
+  before it prints, shown as plain text under it (tests/docs/test_docs_pages.py runs the code
   and compares what it prints now with the block).
 """
 

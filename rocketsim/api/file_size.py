@@ -18,7 +18,7 @@ coasts the whole flight (it has no engine, and the air above 200 km holds no 1 P
 dynamic pressure) and is priced at the coast rate. Bodies a flight makes (a separated
 stage, a fairing's halves) add samples of their own, and a flight that ends early
 (a landing) writes fewer: the estimate is the size to expect within a factor of two
-(tests/test_fly_size.py), not a bound.
+(tests/unit/api/test_fly_size.py), not a bound.
 """
 
 from __future__ import annotations

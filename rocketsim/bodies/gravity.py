@@ -7,7 +7,7 @@ docs/physics.md#j2, with ``r = |r|``::
     a = -mu r / r^3 - (3/2) J2 mu R^2 / r^5 [x(1 - 5z^2/r^2), y(1 - 5z^2/r^2), z(3 - 5z^2/r^2)]
 
 which is ``-grad U`` of ``U = -mu/r [1 - J2 (R/r)^2 (3 sin^2(phi_c) - 1)/2]``
-(tests/test_gravity.py checks it against the gradient).
+(tests/unit/bodies/test_gravity.py checks it against the gradient).
 """
 
 from __future__ import annotations

@@ -26,7 +26,7 @@ or below a bound:
   can move ``L``, ``B`` or ``R`` by at most that much over the span. The
   actual error is smaller because the dropped terms do not all peak
   together: at most 265 km for the Earth and 252 km for Mars over 1950-2100
-  (sampled every 10 days; ``tests/test_ephemeris_vsop87.py`` checks < 300 km).
+  (sampled every 10 days; ``tests/unit/ephemeris/test_ephemeris_vsop87.py`` checks < 300 km).
 * ELP2000-82B: the amplitudes are constants (the eccentricity factor ``E`` is
   within 0.04 % of 1 over the span), so a term weighs ``|A|``. Bounds:
   ``ELP_BOUND_ARCSEC`` = 0.5 arcsec in longitude and latitude and

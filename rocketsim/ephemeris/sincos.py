@@ -13,7 +13,7 @@ arithmetic the compiler can inline and vectorise:
 3. the quadrant ``k mod 4`` swaps and negates the pair.
 
 Agreement with the C library is within a few units in the last place for
-``|x| < 1e5`` (checked in ``tests/test_ephemeris_sincos.py``).
+``|x| < 1e5`` (checked in ``tests/unit/ephemeris/test_ephemeris_sincos.py``).
 """
 
 from __future__ import annotations

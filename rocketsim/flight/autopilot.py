@@ -60,7 +60,7 @@ modelled aerodynamic moment (:mod:`rocketsim.flight.aero_feedforward`), so an
 unfinned launcher through max-Q keeps the same second-order response as in
 vacuum. With neither thrust nor deployed fins in the air the autopilot commands
 nothing. A booster falling tail first is statically unstable bare and stable
-with its grid fins (tests/test_aero.py); the fins' restoring moment at zero
+with its grid fins (tests/unit/vehicle/test_aero.py); the fins' restoring moment at zero
 deflection is left to help, not cancelled.
 
 The step is computed in one compiled call

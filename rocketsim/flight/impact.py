@@ -17,7 +17,7 @@ over that time (``theta = omega_E t``, :mod:`rocketsim.frames.earth_fixed`).
 
 What it leaves out: the drag of the air below ~100 km (a falling stage lands
 short of it, by kilometres from high up) and J2 (about 1 km over a
-ten-minute arc; tests/test_impact.py measures both against the flown
+ten-minute arc; tests/unit/flight/test_impact.py measures both against the flown
 trajectory). Frames: ECI of the mission epoch in, geodetic latitude and
 longitude (rad) out. Units SI.
 """

@@ -29,7 +29,7 @@ The options say how it is compiled:
   every array of every argument a kernel binds, an atomic increment and decrement each,
   which were a third of an RK4 step's time for a staged vehicle's some 35 arrays. numba
   refuses to compile such a kernel if it makes an array; one that returned an array would
-  hand its caller a reference it never counted, and tests/test_jit_borrows.py checks every
+  hand its caller a reference it never counted, and tests/unit/jit/test_jit_borrows.py checks every
   borrowing kernel's compiled return types. Every other kernel counts its references (not
   inherited from a borrowing caller), so which callees count does not depend on the order
   of compiling; ``forceinline=True`` asks LLVM to inline it as well;
@@ -67,7 +67,7 @@ Five ways arrays are passed
    ``out`` (or a row of it), with scratch arrays the caller made once (``step_into``'s
    stages ``k`` and parts ``work``); an array goes into a slice through
    :func:`copy_into`, never ``a[i:j] = b`` (whose shape check's error message is long to
-   compile; tests/test_jit_kernel.py scans for it).
+   compile; tests/unit/jit/test_jit_kernel.py scans for it).
 4. **Rows of a run**: a compiled run fills the rows of its caller's buffer (a sample
    each) and returns how many it filled (``coast_run``, ``fly_run``).
 5. **Updated in place**: the few arrays that are state carried from call to call: a

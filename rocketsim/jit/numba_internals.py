@@ -36,7 +36,7 @@ need beyond that reaches into numba's internals, here and nowhere else:
 :class:`NumbaChanged`, naming the numba installed and what it lacks, when one is
 missing or changed: a numba release that moved an internal fails the first
 compile loudly instead of compiling slower kernels in silence. Each patch's
-effect is tested (tests/test_jit_numba_internals.py), and pyproject.toml pins
+effect is tested (tests/unit/jit/test_jit_numba_internals.py), and pyproject.toml pins
 numba to the :data:`TESTED` releases; a numba outside them warns once
 (:class:`UntestedNumba`).
 

@@ -20,7 +20,7 @@ instead: there f r0 + g v0 would be the small difference of two large terms
 (a transfer that swings close past the centre kept only 8 digits that way).
 
 Accuracy: about 1e-12 of the distance on ellipses, parabolas and hyperbolas
-alike (tests/test_kepler.py against DOP853; tests/test_lambert_random.py).
+alike (tests/unit/orbits/test_kepler.py against DOP853; tests/unit/transfer/test_lambert_random.py).
 
 Units: SI (m, s, m/s, m^3/s^2), any inertial frame.
 """

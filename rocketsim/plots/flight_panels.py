@@ -28,7 +28,7 @@ a line per body (one colour per body throughout, named in the figure's legend):
   be told apart share a label, ``3-5``) and every one of them listed below.
 
 A quantity no body has (throttle of a rigid body, q in vacuum) gets no panel. The
-labels are laid out so that none overlaps another (tests/test_run_plots.py checks
+labels are laid out so that none overlaps another (tests/unit/plots/test_run_plots.py checks
 every shipped scenario's picture). Reads a run's file only (nothing it carries is
 executed), or a run in memory.
 """

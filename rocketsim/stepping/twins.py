@@ -12,7 +12,7 @@ for each compiled run, the kernel that hands such a step back to Python (a test
 of :mod:`rocketsim.stepping.quiet`, or the run's own) or, as a sentence, why
 that run needs none.
 
-``tests/test_twins.py`` reads the events and stops of :mod:`rocketsim.sim` from
+``tests/house/test_twins.py`` reads the events and stops of :mod:`rocketsim.sim` from
 its source and fails on any that is missing here, or here but gone from there,
 on a twin whose docstring does not name the Python function it mirrors, on a
 test of :mod:`rocketsim.stepping.quiet` that is nobody's twin and on a compiled

@@ -5,7 +5,7 @@ flight around it (:func:`rocketsim.api.telemetry_flight.fly_into`) write a run t
 these calls alone, so a run can go to an MCAP file
 (:class:`rocketsim.telemetry.writer.TelemetryWriter`) or stay in memory
 (:class:`rocketsim.api.recorder.Recorder`) with the same flight. Both declare the
-protocol as a base; ``tests/test_telemetry_sink.py`` checks that each defines
+protocol as a base; ``tests/unit/telemetry/test_telemetry_sink.py`` checks that each defines
 every call with the protocol's parameters, and that the world calls nothing else.
 
 Times ``t`` are mission times (s); figures are SI. A sample is the numbers of a

@@ -7,7 +7,7 @@ Target: the first run of a campaign of a million runs starts within seconds,
 and the peak memory does not grow with the runs.
 
 Printed (``pytest -s``), with the machine's load, for the sampling tests'
-nine-dispersion campaign of the vacuum arc (:mod:`tests.test_campaign_sampling`),
+nine-dispersion campaign of the vacuum arc (:mod:`tests.unit.campaigns.test_campaign_sampling`),
 sampled at random and on a Sobol design, each in a fresh process:
 
 * the campaign flown in that process (``workers=1``) and stopped after its
@@ -42,7 +42,7 @@ _SETUP = """
 import resource, sys, time
 from pathlib import Path
 from tests.campaign_files import write_arc
-from tests.test_campaign_sampling import CAMPAIGN
+from tests.unit.campaigns.test_campaign_sampling import CAMPAIGN
 folder = Path(sys.argv[1]); runs = int(sys.argv[2]); sampling = sys.argv[3]
 path = write_arc(folder, CAMPAIGN.format(runs=runs, sampling=sampling))
 def peak():

@@ -29,7 +29,7 @@ from rocketsim.scenario.yaml_source import read_yaml
 from rocketsim.vehicle.build import build
 from tests.benchmarks.timing import best_of
 from tests.nbody_reference import reference_orbit
-from tests.test_cruise import JD0, SUN_P, mars_transfer
+from tests.unit.dynamics.test_cruise import JD0, SUN_P, mars_transfer
 
 ROOT = Path(__file__).resolve().parents[2]
 H = 0.02

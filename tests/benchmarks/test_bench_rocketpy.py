@@ -8,7 +8,7 @@ load that comes and goes slows all alike), each from the rocket's description
 to its flown flight (each side's set-up in its own time):
 
 1. rocketsim flying the rocket of tests/sounding_peer.py (the one
-   tests/test_rocketpy_peer.py compares with RocketPy) from ignition, standing
+   tests/peers/test_rocketpy_peer.py compares with RocketPy) from ignition, standing
    on its base on the pad, to past apogee: 110 s of flight (apogee near
    105 s) in 20 ms steps with 10 Hz MCAP telemetry (``load`` of the scenario
    mapping and ``fly``: the world built, flown, the file written);
