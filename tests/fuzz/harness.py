@@ -28,6 +28,9 @@ HANG_SECONDS = 60.0          # s of this process's CPU time
 BLOCKED_SECONDS = 600.0      # s of wall time
 MEMORY_BOUND = 1 << 30          # bytes: 1 GiB more than before the input
 
+# an error names the file and line: "<folder>/vehicle.yaml:12:3: ..."
+AT_LINE = re.compile(r"error: \S+\.(yaml|csv|txt|py):\d+")
+
 COUNTS: collections.Counter = collections.Counter()     # inputs run, by kind
 PEAKS: dict[str, int] = {}                               # largest rise of resident memory, by kind
 
@@ -99,3 +102,9 @@ def invoke(*args) -> tuple[int, str]:
                              + "".join(traceback.format_exception(*result.exc_info)) + result.output)
     assert "Traceback" not in result.output, result.output
     return result.exit_code, result.output
+
+
+def write_files(folder, files: dict[str, str]) -> None:
+    """Write each of ``files`` (name: text) into ``folder``."""
+    for name, text in files.items():
+        (folder / name).write_text(text)

@@ -23,8 +23,8 @@ import yaml
 from hypothesis import given, settings, strategies as st
 
 from tests.campaign_files import SCENARIO
-from tests.fuzz.harness import bounded, examples, invoke
-from tests.fuzz.test_fuzz_files import _AT_LINE, mutate
+from tests.fuzz.harness import AT_LINE, bounded, examples, invoke, write_files
+from tests.fuzz.test_fuzz_files import mutate
 
 CAMPAIGN = {
     "name": "fuzz", "scenario": "arc.yaml", "runs": 4, "seed": 7, "sampling": "sobol",
@@ -52,8 +52,7 @@ FILES = {"campaign.yaml": CAMPAIGN, "arc.yaml": yaml.safe_load(SCENARIO)}
 
 
 def _run(files: dict[str, str], folder: Path) -> tuple[int, str]:
-    for name, text in files.items():
-        (folder / name).write_text(text)
+    write_files(folder, files)
     return invoke("campaign", "run", folder / "campaign.yaml", "-o", folder / "out", "--runs", "2",
                   "--workers", "1")
 
@@ -77,4 +76,4 @@ def test_a_mutated_campaign_flies_or_is_refused_at_its_line(warm, files):
     with tempfile.TemporaryDirectory() as folder:
         with bounded("campaigns"):
             code, output = _run(files, Path(folder))
-    assert code in (0, 1) or (code == 2 and _AT_LINE.search(output)), output
+    assert code in (0, 1) or (code == 2 and AT_LINE.search(output)), output

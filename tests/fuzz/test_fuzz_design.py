@@ -20,8 +20,8 @@ import yaml
 from hypothesis import given, settings, strategies as st
 
 from tests.conftest import ROOT
-from tests.fuzz.harness import bounded, examples, invoke
-from tests.fuzz.test_fuzz_files import _AT_LINE, mutate
+from tests.fuzz.harness import AT_LINE, bounded, examples, invoke, write_files
+from tests.fuzz.test_fuzz_files import mutate
 
 _SCENARIO = yaml.safe_load((ROOT / "scenarios" / "hobby-rocket.yaml").read_text())
 _VEHICLE = yaml.safe_load((ROOT / "vehicles" / "hobby-rocket.yaml").read_text())
@@ -47,8 +47,7 @@ def test_the_unmutated_design_is_reviewed(tmp_path):
 def test_a_mutated_design_is_reviewed_or_refused_at_its_line(files):
     with tempfile.TemporaryDirectory() as folder:
         folder = Path(folder)
-        for name, text in files.items():
-            (folder / name).write_text(text)
+        write_files(folder, files)
         with bounded("designs"):
             code, output = invoke("vehicle", folder / "scenario.yaml")
-    assert code == 0 or (code == 2 and _AT_LINE.search(output)), output
+    assert code == 0 or (code == 2 and AT_LINE.search(output)), output

@@ -26,7 +26,7 @@ import yaml
 from hypothesis import given, settings, strategies as st
 
 from tests.conftest import MISSION, ROOT, VEHICLE
-from tests.fuzz.harness import bounded, examples, invoke
+from tests.fuzz.harness import AT_LINE, bounded, examples, invoke, write_files
 
 
 def _load(path: Path):
@@ -199,27 +199,22 @@ def _edit_text(draw, text: str) -> str:
     return "".join(lines)
 
 
-# an error names the file and line: "<folder>/vehicle.yaml:12:3: ..."
-_AT_LINE = re.compile(r"error: \S+\.(yaml|csv|txt|py):\d+")
-
-
 @settings(max_examples=examples(8))
 @given(mutated())
 def test_a_mutated_file_flies_or_is_refused_at_its_line(case_files):
     case, files = case_files
     with tempfile.TemporaryDirectory() as folder:
         folder = Path(folder)
-        for name, text in files.items():
-            (folder / name).write_text(text)
+        write_files(folder, files)
         with bounded("files"):
             code, output = invoke("validate", folder / "scenario.yaml")
             assert code in (0, 2), output
             if code == 2:
-                assert _AT_LINE.search(output), output
+                assert AT_LINE.search(output), output
                 return
             code, output = invoke("fly", folder / "scenario.yaml", "-o", folder / "run.mcap",
                                   "--duration", "0.1")
-        assert code == 0 or (code == 2 and _AT_LINE.search(output)), output
+        assert code == 0 or (code == 2 and AT_LINE.search(output)), output
 
 
 def test_a_careless_edit_scales_an_integer_beyond_a_float_exactly():
