@@ -24,7 +24,7 @@ import tempfile
 from pathlib import Path
 from typing import Callable, Mapping
 
-from rocketsim.api.arguments import expect, switch, whole
+from rocketsim.argument_checks import expect, switch, whole
 from rocketsim.campaigns.cases import Plan
 from rocketsim.campaigns.cluster import connect, on_dask
 from rocketsim.campaigns.run_task import fly_case, fly_row, kept, plan_of, warm
