@@ -14,6 +14,10 @@ pause and speed buttons through its playback control):
 * ``warp``: the warp, a string (``"10"``, ``"10x"``, ``"max"``) or a number;
 * ``paused``: true or false.
 
+Once the player has ended, :meth:`LiveServer.wait` waits for the viewers'
+connections to have the last messages (:mod:`rocketsim.live.delivery`), which
+stopping the server would drop.
+
 Memory and the flight's lead are bounded: the player holds at most
 :data:`AHEAD` chunks read ahead of the one it plays (the rest waits on disk),
 and a flight at a finite warp, or paused, waits after a batch of steps while
@@ -45,6 +49,7 @@ from mcap.opcode import Opcode
 
 from rocketsim.live.cpu_share import CpuShare
 from rocketsim.live.clock import MAX, PlaybackClock, parse_warp, warp_text
+from rocketsim.live.delivery import wait_delivered
 from rocketsim.live.growing import GrowingMcap, Record, chunk_messages, chunk_times, message_of
 
 # chunks read ahead of the one being played, at most (the rest waits on disk): 256 KiB of
@@ -64,9 +69,9 @@ TIME_EVERY = 0.05
 # at max warp, the CPU the view may spend (its player's thread and the SDK's) as a share of
 # the flight's (rocketsim.live.cpu_share)
 MAX_SHARE = 0.05
-# s the server stays up after the end for the last messages to reach the viewers (the SDK
-# sends them on threads of its own, and stopping drops what they have not sent)
-LINGER = 0.5
+# s the server waits at most after the end for the last messages to reach the viewers
+# (rocketsim.live.delivery): a viewer that has not taken them by then is not reading
+DELIVERY_WAIT = 1.0
 # s a stop waits for the clients' connections to close
 STOP_WAIT = 2.0
 # messages queued for a client that reads slower than it is served (the SDK drops the oldest):
@@ -111,6 +116,7 @@ class LiveServer:
         self.served = 0                                 # messages served
         self.dropped_chunks = 0                         # chunks left out of the live copy at max
         self.stalls = 0                                 # times the player ran out of telemetry
+        self.delivered: bool | None = None              # the last messages reached the viewers
         self.first_played: tuple[float, int] | None = None     # (wall s, log time ns), served or not
         self.last_played: tuple[float, int] | None = None
         self._shown_at = 0.0
@@ -180,15 +186,14 @@ class LiveServer:
         self.clock.changed()
 
     def wait(self, longest: float | None = None) -> bool:
-        """Wait for the player to end and, if a viewer is subscribed, :data:`LINGER` seconds
-        more for the last messages to reach it (True), or ``longest`` seconds (False);
-        Ctrl-C reaches the caller meanwhile."""
-        deadline = None if longest is None else time.monotonic() + longest
-        while self._player.is_alive() and not self._done.wait(0.1):
-            if deadline is not None and time.monotonic() >= deadline:
-                return False
+        """Wait for the player to end and, if a viewer is subscribed, for the last messages
+        to reach it (:func:`~rocketsim.live.delivery.wait_delivered`, at most
+        :data:`DELIVERY_WAIT` s) (True), or ``longest`` seconds (False); Ctrl-C reaches
+        the caller meanwhile."""
+        if self._player.is_alive() and not self._done.wait(longest):
+            return False
         if self._listened():
-            time.sleep(LINGER)
+            self.delivered = wait_delivered(self.port, DELIVERY_WAIT)
         return True
 
     def stop(self) -> None:

@@ -1,0 +1,102 @@
+"""Whether the SDK has delivered its messages: a server stopped once it has loses none.
+
+A Foxglove SDK server on an ephemeral loopback port serves one channel to a
+real client (tests/live_client.py) that subscribes with 64 KiB of socket
+buffer and does not read. Some 8 MB of messages fill the sockets' buffers and
+the rest waits in the SDK's queue for that client (its backlog holds them
+all: none is dropped for being late). Stopped at once, the server drops what
+it has not sent: reading at last, the client lacks messages, so the check
+of the delivered case can fail. Waited for while the client does not read,
+:func:`~rocketsim.live.delivery.wait_delivered` ends at its bound, unsuccessful;
+once the client reads, it ends successful, and the server stopped then has
+given the client every message. Every server is stopped, every wait bounded.
+"""
+
+from __future__ import annotations
+
+import sys
+import threading
+
+import pytest
+
+from rocketsim.live.delivery import unacknowledged, wait_delivered
+from tests.live_client import FoxgloveClient
+
+foxglove = pytest.importorskip("foxglove")
+pytestmark = pytest.mark.skipif(not sys.platform.startswith("linux"),
+                                reason="delivery is seen in Linux's /proc and socket queues")
+
+COUNT = 2000                    # messages of 4 KiB: 8 MB, more than loopback sockets buffer
+PATIENCE = 30.0                 # s: the longest wait for the server or the client
+
+
+class _Subscribed(foxglove.ServerListener):
+    def __init__(self):
+        self.done = threading.Event()
+
+    def on_subscribe(self, client, channel) -> None:
+        self.done.set()
+
+
+def serve_to_a_client_not_reading():
+    """``(server, client)``: COUNT messages logged to a client subscribed that has read none."""
+    context, listener = foxglove.Context(), _Subscribed()
+    server = foxglove.start_server(host="127.0.0.1", port=0, context=context, server_listener=listener,
+                                   message_backlog_size=COUNT + 100)
+    try:
+        channel = foxglove.Channel("/bulk", message_encoding="json", context=context)
+        client = FoxgloveClient(f"ws://127.0.0.1:{server.port}", reading=False, receive_buffer=64 * 1024,
+                                timeout=PATIENCE)
+        assert client.read_until(lambda c: listener.done.is_set()), "the client did not subscribe"
+        for number in range(COUNT):
+            channel.log(b'{"n": %d, "pad": "%s"}' % (number, b"x" * 4000), log_time=number)
+    except BaseException:
+        server.stop()
+        raise
+    return server, client
+
+
+def stop_and_read(server, client, reading: threading.Thread | None = None) -> list[int]:
+    """Stop ``server`` (on a thread: the SDK's stop waits for the client to take its
+    closing frame), read what reaches ``client`` until the connection closes (after
+    ``reading``, a thread reading it, if any, has ended); the log times received."""
+    stopping = threading.Thread(target=server.stop, daemon=True)
+    stopping.start()
+    try:
+        if reading is not None:
+            reading.join(PATIENCE)
+        client.read_all(PATIENCE)
+    finally:
+        stopping.join(PATIENCE)
+        client.close()
+    return [log_time for _, log_time, _, _ in client.messages]
+
+
+def test_a_server_stopped_at_once_drops_what_it_has_not_sent():
+    server, client = serve_to_a_client_not_reading()
+    assert unacknowledged(server.port) > 0          # the client's buffers are full
+    got = stop_and_read(server, client)
+    assert 0 < len(got) < COUNT and got == list(range(len(got)))
+
+
+def test_stopped_once_delivered_the_server_has_given_the_client_every_message():
+    server, client = serve_to_a_client_not_reading()
+    reading = threading.Thread(target=client.read_until, args=(lambda c: len(c.messages) == COUNT, PATIENCE),
+                               daemon=True)
+    try:
+        assert wait_delivered(server.port, 0.2) is False        # the client does not read
+        reading.start()
+        assert wait_delivered(server.port, PATIENCE) is True
+    except BaseException:
+        server.stop()
+        raise
+    assert stop_and_read(server, client, reading) == list(range(COUNT))
+
+
+def test_nothing_is_unacknowledged_on_a_port_without_connections():
+    server = foxglove.start_server(host="127.0.0.1", port=0, context=foxglove.Context())
+    try:
+        assert unacknowledged(server.port) == 0
+        assert wait_delivered(server.port, PATIENCE) is True
+    finally:
+        server.stop()
