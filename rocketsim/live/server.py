@@ -110,6 +110,7 @@ class LiveServer:
         self.error: BaseException | None = None         # what ended the player early
         self.served = 0                                 # messages served
         self.dropped_chunks = 0                         # chunks left out of the live copy at max
+        self.cpu: tuple[float, float] | None = None     # at max: CPU s of the view and the flight, last counted
         self.stalls = 0                                 # times the player ran out of telemetry
         self.delivered: bool | None = None              # the last messages reached the viewers
         self.first_played: tuple[float, int] | None = None     # (wall s, log time ns), served or not
@@ -321,7 +322,7 @@ class LiveServer:
         every core (:attr:`_next_look`)."""
         if complete:
             return True
-        view, flight = share.spent()
+        view, flight = self.cpu = share.spent()
         lacking = view / MAX_SHARE - flight        # flight CPU (s) that earns the view's CPU
         if lacking <= 0:
             return True
