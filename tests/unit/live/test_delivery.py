@@ -2,9 +2,10 @@
 
 A Foxglove SDK server on an ephemeral loopback port serves one channel to a
 real client (tests/live_client.py) that subscribes with 64 KiB of socket
-buffer and does not read. Some 8 MB of messages fill the sockets' buffers and
-the rest waits in the SDK's queue for that client (its backlog holds them
-all: none is dropped for being late). Stopped at once, the server drops what
+buffer and does not read. Messages of 4 KiB, twice what the sockets may
+buffer (8 MB with Linux's defaults), fill the sockets' buffers, and the rest
+waits in the SDK's queue for that client (its backlog holds them all: none is
+dropped for being late). Stopped at once, the server drops what
 it has not sent: reading at last, the client lacks messages, so the check
 of the delivered case can fail. Waited for while the client does not read,
 :func:`~rocketsim.live.delivery.wait_delivered` ends at its bound, unsuccessful;
@@ -26,8 +27,15 @@ foxglove = pytest.importorskip("foxglove")
 pytestmark = pytest.mark.skipif(not sys.platform.startswith("linux"),
                                 reason="delivery is seen in Linux's /proc and socket queues")
 
-COUNT = 2000                    # messages of 4 KiB: 8 MB, more than loopback sockets buffer
 PATIENCE = 30.0                 # s: the longest wait for the server or the client
+SIZE = 4096                     # bytes of a message
+
+
+def _count() -> int:
+    """Messages enough to fill a loopback connection's buffers twice over: the most the
+    server's socket may buffer (Linux's tcp_wmem, 4 MiB by default) over SIZE, times 2."""
+    with open("/proc/sys/net/ipv4/tcp_wmem") as wmem:
+        return max(2000, 2 * int(wmem.read().split()[2]) // SIZE)
 
 
 class _Subscribed(foxglove.ServerListener):
@@ -38,22 +46,28 @@ class _Subscribed(foxglove.ServerListener):
         self.done.set()
 
 
-def serve_to_a_client_not_reading():
-    """``(server, client)``: COUNT messages logged to a client subscribed that has read none."""
+@pytest.fixture
+def not_reading():
+    """``(server, client, count)``: ``count`` messages logged to a client subscribed on the
+    loopback address that has read none; the client closed and the server stopped after."""
+    count = _count()
     context, listener = foxglove.Context(), _Subscribed()
     server = foxglove.start_server(host="127.0.0.1", port=0, context=context, server_listener=listener,
-                                   message_backlog_size=COUNT + 100)
+                                   message_backlog_size=count + 100)
+    client = None
     try:
         channel = foxglove.Channel("/bulk", message_encoding="json", context=context)
         client = FoxgloveClient(f"ws://127.0.0.1:{server.port}", reading=False, receive_buffer=64 * 1024,
                                 timeout=PATIENCE)
         assert client.read_until(lambda c: listener.done.is_set()), "the client did not subscribe"
-        for number in range(COUNT):
-            channel.log(b'{"n": %d, "pad": "%s"}' % (number, b"x" * 4000), log_time=number)
-    except BaseException:
+        pad = b"x" * (SIZE - 32)
+        for number in range(count):
+            channel.log(b'{"n": %d, "pad": "%s"}' % (number, pad), log_time=number)
+        yield server, client, count
+    finally:
+        if client is not None:
+            client.close()          # first: the server's stop waits for the connection to close
         server.stop()
-        raise
-    return server, client
 
 
 def stop_and_read(server, client, reading: threading.Thread | None = None) -> list[int]:
@@ -72,25 +86,21 @@ def stop_and_read(server, client, reading: threading.Thread | None = None) -> li
     return [log_time for _, log_time, _, _ in client.messages]
 
 
-def test_a_server_stopped_at_once_drops_what_it_has_not_sent():
-    server, client = serve_to_a_client_not_reading()
+def test_a_server_stopped_at_once_drops_what_it_has_not_sent(not_reading):
+    server, client, count = not_reading
     assert unacknowledged(server.port) > 0          # the client's buffers are full
     got = stop_and_read(server, client)
-    assert 0 < len(got) < COUNT and got == list(range(len(got)))
+    assert 0 < len(got) < count and got == list(range(len(got)))
 
 
-def test_stopped_once_delivered_the_server_has_given_the_client_every_message():
-    server, client = serve_to_a_client_not_reading()
-    reading = threading.Thread(target=client.read_until, args=(lambda c: len(c.messages) == COUNT, PATIENCE),
+def test_stopped_once_delivered_the_server_has_given_the_client_every_message(not_reading):
+    server, client, count = not_reading
+    reading = threading.Thread(target=client.read_until, args=(lambda c: len(c.messages) == count, PATIENCE),
                                daemon=True)
-    try:
-        assert wait_delivered(server.port, 0.2) is False        # the client does not read
-        reading.start()
-        assert wait_delivered(server.port, PATIENCE) is True
-    except BaseException:
-        server.stop()
-        raise
-    assert stop_and_read(server, client, reading) == list(range(COUNT))
+    assert wait_delivered(server.port, 0.2) is False        # the client does not read
+    reading.start()
+    assert wait_delivered(server.port, PATIENCE) is True
+    assert stop_and_read(server, client, reading) == list(range(count))
 
 
 def test_nothing_is_unacknowledged_on_a_port_without_connections():
