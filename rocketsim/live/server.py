@@ -112,7 +112,7 @@ class LiveServer:
         self.dropped_chunks = 0                         # chunks left out of the live copy at max
         self.cpu: tuple[float, float] | None = None     # at max: CPU s of the view and the flight, last counted
         self.stalls = 0                                 # times the player ran out of telemetry
-        self.delivered: bool | None = None              # the last messages reached the viewers
+        self.delivered: bool | None = None              # the viewers had the end (None: none to wait for)
         self.first_played: tuple[float, int] | None = None     # (wall s, log time ns), served or not
         self.last_played: tuple[float, int] | None = None
         self._shown_at = 0.0
