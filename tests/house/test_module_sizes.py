@@ -18,7 +18,6 @@ FOLDERS = ("rocketsim", "cli")
 FACADE = {"rocketsim/flight/fc.py": "the fc façade: every call a flight program makes, one page"}
 PENDING = {
     "rocketsim/guidance/ascent.py": "ascent insertion guidance, being split by its owner",
-    "rocketsim/live/server.py": "the live view's server, being split by its owner",
 }
 
 
