@@ -11,10 +11,11 @@ program flies any two-stage vehicle from any site:
    above 1 at the kick: 6 deg for a Falcon 9 at 1.47, about 10.8 deg for an
    Electron at about 1.85, whose sprightlier climb would otherwise stay too
    steep (an empirical rule tuned on the two);
-3. a gravity turn (holding surface prograde) to first-stage burn-out,
-   throttling back linearly through max-Q above Q_LIMIT (``fc.limit_q``: the
-   bending load q * alpha stays inside the structure's limit; the engines clip
-   the throttle to their range); when the mission names a landing pad
+3. a gravity turn (:func:`gravity_turn`: the nose between the velocity over
+   the ground and through the air, so that a wind does not bend the climb) to
+   first-stage burn-out, throttling back linearly through max-Q above Q_LIMIT
+   (``fc.limit_q``: the bending load q * alpha stays inside the structure's
+   limit; the engines clip the throttle to their range); when the mission names a landing pad
    (``target.pad``) the first stage is cut off with RETURN_RESERVE of its
    propellant left for its return (its own program flies it back);
 4. staging, then direct insertion (dropping the fairing above 110 km):
@@ -28,11 +29,12 @@ program flies any two-stage vehicle from any site:
    by kilometres);
 5. DEPLOY_DELAY later the payload is deployed (a body of its own).
 
-Guidance rate: the first stage's climb needs no program at all: the autopilot
-holds surface prograde, the engines' throttle law backs off through max-Q at
-every step and the program waits on its stage's propellant (compiled
-conditions: ``fc.below("propellant", ...)``), so it wakes in the step the
-reserve is reached. The upper stage's guidance, like a real flight
+Guidance rate: the first stage's climb needs little of the program: it aims
+the nose every half second in the air (then the autopilot holds surface
+prograde), the engines' throttle law backs off through max-Q at every step and
+the program waits on its stage's propellant (compiled conditions:
+``fc.below("propellant", ...)``), so it wakes in the step the reserve is
+reached. The upper stage's guidance, like a real flight
 computer's, solves its law every second and sleeps in between, waking more
 often as the cut-off nears, every step at the end.
 
