@@ -34,6 +34,7 @@ deterministic.
 
 from __future__ import annotations
 
+import contextlib
 import functools
 import inspect
 import signal
@@ -85,16 +86,48 @@ class CpuBudget:
     the main thread can take signals: elsewhere no budget is enforced. A
     runner keeps one and enters it at every resume (a class, not a generator:
     entering costs two timer calls and little else).
+
+    Over a stretch of many short calls (a program's condition read after every step
+    of a compiled run) the budget is armed once (:meth:`watch`) and each call marked
+    by a number in :attr:`call` (0 between calls): the timer then ticks every
+    quarter of ``seconds`` and the budget is spent when five ticks fall in one call
+    (between ``seconds`` and 1.25 ``seconds`` of CPU time in it).
     """
 
-    __slots__ = ("seconds", "_armed", "_installed")
+    __slots__ = ("seconds", "_armed", "_installed", "call", "_ticking", "_seen", "_ticks")
 
     def __init__(self, seconds: float):
         self.seconds = seconds
         self._armed = False
         self._installed = False
+        self.call = 0               # the call under way while watched (0: none)
+        self._ticking = False       # watched: the timer ticks (see the class)
+        self._seen = 0              # the call the last tick fell in
+        self._ticks = 0             # the ticks that fell in it
 
     def __enter__(self):
+        if self._arm():
+            signal.setitimer(signal.ITIMER_VIRTUAL, self.seconds)
+        return self
+
+    def __exit__(self, *exc) -> bool:
+        self._disarm()
+        return False
+
+    def watch(self) -> None:
+        """Arm the budget over a stretch of calls, each marked in :attr:`call` (see the
+        class), until :meth:`unwatch`."""
+        if self._arm():
+            self.call, self._seen, self._ticks, self._ticking = 0, 0, 0, True
+            tick = self.seconds / TICKS
+            signal.setitimer(signal.ITIMER_VIRTUAL, tick, tick)
+
+    def unwatch(self) -> None:
+        """End the stretch :meth:`watch` began."""
+        self._disarm()
+        self.call, self._ticking = 0, False
+
+    def _arm(self) -> bool:
         self._armed = self.seconds > 0 and threading.current_thread() is threading.main_thread()
         if self._armed:
             if not self._installed:
@@ -104,21 +137,47 @@ class CpuBudget:
                     signal.signal(signal.SIGVTALRM, _expire)
                 self._installed = True
             _COMPILING.active = self
-            signal.setitimer(signal.ITIMER_VIRTUAL, self.seconds)
-        return self
+        return self._armed
 
-    def __exit__(self, *exc) -> bool:
+    def _disarm(self) -> None:
         if self._armed:
             signal.setitimer(signal.ITIMER_VIRTUAL, 0.0)
             _COMPILING.active = None
-        return False
+            self._armed = False
+
+    def afresh(self) -> None:
+        """The running program gets its whole budget again (numba's compiling has ended)."""
+        if self._ticking:
+            self._ticks = 0
+        else:
+            signal.setitimer(signal.ITIMER_VIRTUAL, self.seconds)
+
+    def tick(self) -> bool:
+        """The timer has fired: whether the budget is spent (see the class)."""
+        if not self._ticking:
+            return True
+        call = self.call
+        if not call:
+            self._ticks = 0
+        elif call != self._seen:
+            self._seen, self._ticks = call, 1
+        else:
+            self._ticks += 1
+        return self._ticks > TICKS
+
+
+TICKS = 4       # a watched budget's ticks per budget (CpuBudget.watch)
 
 
 def _expire(signum, frame):
-    if _COMPILING.depth > 0:          # numba is compiling: not the program's time
-        signal.setitimer(signal.ITIMER_VIRTUAL, _COMPILING.active.seconds)
+    budget = _COMPILING.active
+    if budget is None:                # a late signal, the budget left
         return
-    raise ProgramOverBudget
+    if _COMPILING.depth > 0:          # numba is compiling: not the program's time
+        budget.afresh()
+        return
+    if budget.tick():
+        raise ProgramOverBudget
 
 
 class _CompileTime(ev.Listener):
@@ -142,7 +201,7 @@ class _CompileTime(ev.Listener):
     def on_end(self, event) -> None:
         self.depth -= 1
         if self.depth == 0 and self.active is not None:
-            signal.setitimer(signal.ITIMER_VIRTUAL, self.active.seconds)
+            self.active.afresh()
 
     def __enter__(self):
         self.on_start(None)
@@ -287,6 +346,8 @@ class ProgramRunner:
         self._predicate: Callable[[], bool] | None = None
         self._predicate_line: int | None = None     # the program's line that handed it over
         self._checked: tuple | None = None          # (t, what due(t) gives: True, False or its error)
+        self._watched = False                       # inside watched(): the condition's calls marked
+        self._calls = 0                             # the condition's calls marked so far
         self.finished = False
 
     # --- called by the simulator -------------------------------------------
@@ -314,23 +375,57 @@ class ProgramRunner:
     def _due(self, t: float) -> bool:
         if self.finished or t + WAKE_TOLERANCE < self._wake_time:
             return False
-        if self._predicate is None:
+        predicate = self._predicate
+        if predicate is None:
             return True
+        budget, leash = self._budget, self._leash
         try:
-            with self._budget, self._leash:
-                ready = self._predicate()
-            ready = truth(ready)
+            if self._watched:           # armed once for the stretch: the call marked
+                self._calls = call = self._calls + 1
+                budget.call = leash.call = call
+                ready = predicate()
+                budget.call = leash.call = 0
+            else:
+                with budget, leash:
+                    ready = predicate()
+            if ready is not True and ready is not False:
+                ready = truth(ready)
         except BaseException as error:  # noqa: BLE001
+            budget.call = leash.call = 0
             if not _raised_by_program(error, self.path):
                 raise
-            self.finished = True
-            code = getattr(self._predicate, "__code__", None)    # the condition's own line, else
-            line = (code.co_firstlineno if code is not None and Path(code.co_filename) == self.path
-                    else self._predicate_line)                    # that of fc.wait_until's call
-            raise _program_error(error, self.path, self.cpu_budget, line, self.time_limit) from None
+            raise self._failed(error) from None
         if ready:
             self._predicate = None
         return ready
+
+    def _failed(self, error: BaseException) -> ProgramError:
+        """The program's error for ``error``, raised by its condition (at the condition's
+        own line, else at that of fc.wait_until's call); the program is finished."""
+        self.finished = True
+        code = getattr(self._predicate, "__code__", None)
+        line = (code.co_firstlineno if code is not None and Path(code.co_filename) == self.path
+                else self._predicate_line)
+        return _program_error(error, self.path, self.cpu_budget, line, self.time_limit)
+
+    @contextlib.contextmanager
+    def watched(self):
+        """Context manager: the CPU budget and the wall-time limit armed once around many
+        readings of the condition (:meth:`check` after every step of a compiled run), each
+        reading timed on its own all the same (:meth:`CpuBudget.watch`,
+        :meth:`~rocketsim.flight.leash.Leash.watch`). Either's exception landing just
+        outside a reading (as it ended) is the program's error too."""
+        self._budget.watch()
+        self._leash.watch()
+        self._watched = True
+        try:
+            yield
+        except (ProgramOverBudget, ProgramOverTime) as error:
+            raise self._failed(error) from None
+        finally:
+            self._watched = False
+            self._leash.unwatch()
+            self._budget.unwatch()
 
     def wake_time(self) -> float:
         """Earliest mission time the program may run again (inf when finished)."""

@@ -87,6 +87,10 @@ class BodyCraft:
     def truth(self) -> StateView:
         return self._body.view()
 
+    def handed(self) -> np.ndarray | None:
+        body = self._body
+        return body.handed_with(body.y)
+
     def is_truth(self, view: StateView | None) -> bool:
         return view is self._body._view
 

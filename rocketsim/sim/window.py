@@ -171,14 +171,16 @@ class _Window:
 
         def between(step: int) -> bool:
             world.k = step
-            world.before_act = act
-            try:
-                return runner.check(step * world.h) or bool(acted)
-            finally:
-                world.before_act = None
+            return runner.check(step * h) or bool(acted)
 
-        y, taken, reason, filled = body.checks.fly_run(body, k, world.h, top - k, steering, body.watch,
-                                                       NO_CONDITION, samples, between)
+        h = world.h
+        world.before_act = act
+        try:
+            with runner.watched():
+                y, taken, reason, filled = body.checks.fly_run(body, k, h, top - k, steering, body.watch,
+                                                               NO_CONDITION, samples, between)
+        finally:
+            world.before_act = None
         world.k = k
         body.steering = None
         if entry is not None:
