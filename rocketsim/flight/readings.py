@@ -187,15 +187,17 @@ def step_readings(t, r, v, q, p):
     return out
 
 
-_BOUND: dict = {}       # kernel -> its entry for a view's own state (StateView._own)
+_BOUND: dict = {}       # kernel -> its entry for a view's own state (_bound)
 
 
-def _bound(kernel, args: tuple):
-    """``kernel``'s compiled entry for the types of ``args`` (StateView._own's), bound at
-    the first call."""
+def _bound(kernel, t: float, state: np.ndarray, p: np.ndarray):
+    """``kernel``'s compiled entry for the types of a view's ``kernel(t, state, p)``, bound
+    at the first call, not typed by numba's dispatcher at every call: a view of_state
+    holds its state in a C-contiguous float64 copy of its own, and is read so only with
+    C-contiguous parameters (a body's)."""
     entry = _BOUND.get(kernel)
     if entry is None:
-        entry = _BOUND[kernel] = entry_point(kernel, *args)
+        entry = _BOUND[kernel] = entry_point(kernel, t, state, p)
     return entry
 
 
@@ -254,27 +256,19 @@ class StateView:
     def _place(self) -> np.ndarray:
         """The readings of the place (:func:`place_readings`), or all of them if read already."""
         found = self.__dict__.get("_buffer")
-        if found is None:
-            found = self._own(place_readings)
-        return self._buffer if found is None else found
+        if found is not None:
+            return found
+        state = self.__dict__.get("_state")
+        if state is None or not self._p.flags.c_contiguous:
+            return self._buffer
+        return _bound(place_readings, self.t, state, self._p)(self.t, state, self._p)
 
     @_once
     def _buffer(self) -> np.ndarray:
-        found = self._own(state_readings)
-        if found is None:
-            found = step_readings(self.t, self.position, self.velocity, self.attitude, self._p)
-        return found
-
-    def _own(self, kernel) -> np.ndarray | None:
-        """``kernel(t, state, p)`` for a view of_state, None for another: its state a
-        C-contiguous copy of its own and a body's parameters C-contiguous float64, the
-        kernel's entry bound once for those types serves (:func:`_bound`), not typed by
-        numba's dispatcher at every call."""
         state = self.__dict__.get("_state")
         if state is None or not self._p.flags.c_contiguous:
-            return None
-        args = (self.t, state, self._p)
-        return _bound(kernel, args)(*args)
+            return step_readings(self.t, self.position, self.velocity, self.attitude, self._p)
+        return _bound(state_readings, self.t, state, self._p)(self.t, state, self._p)
 
     # --- where ------------------------------------------------------------
     @_once

@@ -32,7 +32,8 @@ class BodyCraft:
     # --- readings -----------------------------------------------------------
     @property
     def time(self) -> float:
-        return self._world.t
+        world = self._world
+        return world.k * world.h        # World.t without its call: a condition reads it every step
 
     @property
     def step_index(self) -> int:

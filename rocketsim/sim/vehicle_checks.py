@@ -171,11 +171,13 @@ class VehicleChecks:
                 runs.fly_run, body.vehicle.arrays, *arguments)
         else:
             handed = hand_over_buffer(len(body.y))
+            state, shielded = handed[STATE:], self.shield is not None
 
             def question(k: int) -> None:
-                body.y = y = handed[STATE:].copy()
+                body.y = y = state.copy()
                 body.handed, body.t = (y, handed), k * h
-                self.temperature = float(carry[quiet.CARRY_TEMPERATURE])
+                if shielded:
+                    self.temperature = float(carry[quiet.CARRY_TEMPERATURE])
                 handed[ANSWER] = 1.0 if between(k) else 0.0
 
             with runs.asking(question) as asking:
