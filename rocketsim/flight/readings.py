@@ -112,27 +112,34 @@ def place_readings_into(out, t, r, v, p):
 
 
 @njit
-def place_readings(t, s, p):
-    """:func:`place_readings_into` a new array (its other slots nan) for the position and
-    velocity of ``s`` (a state's first :data:`~rocketsim.layout.N_STATE` numbers)."""
-    out = np.full(N_READINGS, math.nan)
+def place_readings(out, t, s, p):
+    """:func:`place_readings_into` ``out`` (its other slots left as they are) for the
+    position and velocity of ``s`` (a state's first :data:`~rocketsim.layout.N_STATE`
+    numbers); returns nothing (a call from Python boxes no array)."""
     place_readings_into(out, t, s[R:R + 3], s[V:V + 3], p)
-    return out
 
 
 @njit
-def state_readings(t, s, p):
-    """:func:`step_readings` of the position, velocity and attitude of ``s`` (as
-    :func:`place_readings`)."""
-    return step_readings(t, s[R:R + 3], s[V:V + 3], s[Q:Q + 4], p)
+def state_readings(out, t, s, p):
+    """:func:`step_readings_into` ``out`` for the position, velocity and attitude of ``s``
+    (as :func:`place_readings`)."""
+    step_readings_into(out, t, s[R:R + 3], s[V:V + 3], s[Q:Q + 4], p)
 
 
 @njit
 def step_readings(t, r, v, q, p):
+    """:func:`step_readings_into` a new array."""
+    out = np.empty(N_READINGS)
+    step_readings_into(out, t, r, v, q, p)
+    return out
+
+
+@njit
+def step_readings_into(out, t, r, v, q, p):
     """The readings of a state in one compiled call: position ``r`` (m), velocity ``v``
     (m/s), attitude ``q`` (body -> ECI) at mission time ``t`` (s) of a body with
     parameters ``p`` (:mod:`rocketsim.layout`: the central body's ellipsoid, rotation
-    and gravity). Returns a float64 array of :data:`N_READINGS` slots: latitude,
+    and gravity), into ``out``, a float64 array of :data:`N_READINGS` slots: latitude,
     longitude (rad), height (m) over the central body's ellipsoid
     (:func:`~rocketsim.frames.local.where_and_how_fast`), the climb rate and the speed
     over the ground (m/s), pitch, heading, roll (rad, the module's conventions), the
@@ -143,7 +150,6 @@ def step_readings(t, r, v, q, p):
     on these float64 values (a dot product is ``@``, a norm ``sqrt(v @ v)``, a cross
     product that of ``np.cross``), so a reading has the bits it has when computed
     figure by figure; those of the place are :func:`place_readings_into`'s."""
-    out = np.empty(N_READINGS)
     enu, surface = place_readings_into(out, t, r, v, p)
     east, north, up = enu[0].copy(), enu[1].copy(), enu[2].copy()
     # the attitude's angles (pitch, heading, roll: see the module)
@@ -184,20 +190,19 @@ def step_readings(t, r, v, q, p):
             out[AXES + 3 * i + k] = axes[i, k]
         out[RADIAL + i], out[PROGRADE + i] = radial[i], prograde[i]
         out[NORMAL + i], out[SURFACE_PROGRADE + i] = normal[i], along[i]
-    return out
 
 
 _BOUND: dict = {}       # kernel -> its entry for a view's own state (_bound)
 
 
-def _bound(kernel, t: float, state: np.ndarray, p: np.ndarray):
-    """``kernel``'s compiled entry for the types of a view's ``kernel(t, state, p)``, bound
-    at the first call, not typed by numba's dispatcher at every call: a view of_state
+def _bound(kernel, out: np.ndarray, t: float, state: np.ndarray, p: np.ndarray):
+    """``kernel``'s compiled entry for the types of a view's ``kernel(out, t, state, p)``,
+    bound at the first call, not typed by numba's dispatcher at every call: a view of_state
     holds its state in a C-contiguous float64 copy of its own, and is read so only with
-    C-contiguous parameters (a body's)."""
+    C-contiguous parameters (a body's) into a new float64 array."""
     entry = _BOUND.get(kernel)
     if entry is None:
-        entry = _BOUND[kernel] = entry_point(kernel, t, state, p)
+        entry = _BOUND[kernel] = entry_point(kernel, out, t, state, p)
     return entry
 
 
@@ -254,21 +259,26 @@ class StateView:
     # --- the step's readings: the place's, or all, in one compiled call -----------
     @_once
     def _place(self) -> np.ndarray:
-        """The readings of the place (:func:`place_readings`), or all of them if read already."""
+        """The readings of the place (:func:`place_readings`: its slots alone set), or all of
+        them if read already."""
         found = self.__dict__.get("_buffer")
         if found is not None:
             return found
         state = self.__dict__.get("_state")
         if state is None or not self._p.flags.c_contiguous:
             return self._buffer
-        return _bound(place_readings, self.t, state, self._p)(self.t, state, self._p)
+        out = np.empty(N_READINGS)
+        _bound(place_readings, out, self.t, state, self._p)(out, self.t, state, self._p)
+        return out
 
     @_once
     def _buffer(self) -> np.ndarray:
         state = self.__dict__.get("_state")
         if state is None or not self._p.flags.c_contiguous:
             return step_readings(self.t, self.position, self.velocity, self.attitude, self._p)
-        return _bound(state_readings, self.t, state, self._p)(self.t, state, self._p)
+        out = np.empty(N_READINGS)
+        _bound(state_readings, out, self.t, state, self._p)(out, self.t, state, self._p)
+        return out
 
     # --- where ------------------------------------------------------------
     @_once
