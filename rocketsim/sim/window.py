@@ -147,9 +147,8 @@ class _Window:
         compiled run from step ``k`` that reads the condition between its steps as the
         world's loop reads it (:meth:`~rocketsim.sim.vehicle_checks.VehicleChecks.fly_run`'s
         ``between``; :meth:`~rocketsim.flight.program.ProgramRunner.check`: once a step, its
-        outcome kept for the step's :meth:`~rocketsim.sim.world.World.run_programs`; the
-        program's CPU budget and time limit armed once for the run,
-        :meth:`~rocketsim.flight.program.ProgramRunner.watched`): to
+        outcome kept for the step's :meth:`~rocketsim.sim.world.World.run_programs`; its
+        budget and time limit armed once, :meth:`~rocketsim.flight.program.ProgramRunner.watched`): to
         the queue's first step (where another body's Python comes first) or the window's
         end at most, ending at a step the Python side must handle or one where the
         condition holds, raises or acts (a command, a log line, an event, a new body:
