@@ -81,6 +81,10 @@ class Craft(Protocol):
     def truth(self) -> StateView:
         """The true state's readings at the body's time (one view per step)."""
 
+    def handed(self) -> np.ndarray | None:
+        """The buffer a compiled run handed the body's state over with (with its navigation
+        estimate at this step: :func:`rocketsim.flight.navigation.hand_into`), or None."""
+
     def is_truth(self, view: StateView | None) -> bool:
         """True when ``view`` is the truth's current view itself."""
 

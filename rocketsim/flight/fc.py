@@ -766,7 +766,7 @@ class FlightComputer:
         delta_v = None if delta_v is None else arguments.velocity("fc.predict", "delta_v", delta_v)
         periapsis = arguments.flag("fc.predict", "periapsis", periapsis)
         if "scipy.integrate" not in sys.modules:    # its first import, ~0.15 s, is not the program's time
-            from rocketsim.flight.program import not_counted
+            from rocketsim.flight.cpu_budget import not_counted
             with not_counted():     # (which gives the step its whole budget again: only then)
                 import scipy.integrate  # noqa: F401
         return self._craft.predict(seconds, delta_v, periapsis)

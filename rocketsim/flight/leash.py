@@ -15,7 +15,15 @@ gets the leash's exception raised in it by one watchdog thread per process:
 
 The watchdog looks at the leashes entered every quarter of the shortest one's
 bound (and sleeps while none is), so a leash of ``seconds`` fires between
-``seconds`` and 1.25 ``seconds`` after it was entered. ``paused()``, if given, holds the clock while it is true (a
+``seconds`` and 1.25 ``seconds`` after it was entered.
+
+A stretch of many short calls (a program's condition read after every step of a
+compiled run) holds the leash over the whole stretch (:meth:`Leash.watch`) and
+marks each call by a number in ``Leash.call`` (0 between calls): the watchdog,
+looking every eighth of the bound, times the call it first saw at a look, and
+fires once that one call has gone on for ``seconds`` (between ``seconds`` and
+1.25 ``seconds`` after it began). A call costs two attribute stores, no clock
+read and no lock. ``paused()``, if given, holds the clock while it is true (a
 program's CPU-time exemption for numba compiling: the bound starts again when
 it ends). Nothing is raised, and nothing the leashed code computes changes,
 unless the bound is passed: a leash left in time leaves no trace (a signal or
@@ -45,7 +53,8 @@ class Leash:
     """Context manager: raise ``exception`` (a class) in the thread inside it after
     ``seconds`` of wall time (0 or None: no bound)."""
 
-    __slots__ = ("seconds", "exception", "paused", "thread", "deadline", "fired", "inside")
+    __slots__ = ("seconds", "exception", "paused", "thread", "deadline", "fired", "inside", "call", "calls",
+                 "seen")
 
     def __init__(self, seconds: float | None, exception: type[BaseException],
                  paused: Callable[[], bool] | None = None):
@@ -54,12 +63,16 @@ class Leash:
         self.paused = paused
         self.thread = None
         self.deadline = 0.0
-        self.fired = False
+        self.fired = 0          # the call it fired in (0: none)
         self.inside = False
+        self.call = 0           # the call under way: ENTERED inside the context, a number while watched
+        self.calls = False      # watched (:meth:`watch`): timed by the call
+        self.seen = 0           # the call the watchdog is timing, from self.deadline - seconds
 
     def __enter__(self):
         if self.seconds:
-            _WATCHDOG.arm(self)
+            self.call = ENTERED
+            _WATCHDOG.arm(self, False)
         return self
 
     def __exit__(self, *exc) -> bool:
@@ -67,12 +80,28 @@ class Leash:
             _WATCHDOG.disarm(self)
         return False
 
+    def watch(self) -> None:
+        """Hold the leash over a stretch of calls, each marked in :attr:`call` (see the
+        module), until :meth:`unwatch`."""
+        if self.seconds:
+            self.call = 0
+            _WATCHDOG.arm(self, True)
+
+    def unwatch(self) -> None:
+        """End the stretch :meth:`watch` began."""
+        self.call = 0
+        if self.inside:
+            _WATCHDOG.disarm(self)
+
+
+ENTERED = -1        # Leash.call inside the context manager
+
 
 def _on_signal(signum, frame):
     """The main thread's handler: raise the exception of the main thread's leash that
     fired, if it is still entered (a late signal is ignored)."""
     leash = _WATCHDOG.fired_in_main
-    if leash is not None and leash.inside and leash.fired:
+    if leash is not None and leash.inside and leash.fired and leash.fired == leash.call:
         _WATCHDOG.fired_in_main = None
         raise leash.exception
 
@@ -98,19 +127,22 @@ class _Watchdog:
         self.thread: threading.Thread | None = None
         self.installed = False
 
-    def arm(self, leash: Leash) -> None:
+    def arm(self, leash: Leash, calls: bool) -> None:
+        """Watch ``leash`` from now: entered (``calls`` False) or over a stretch of calls."""
         thread = threading.get_ident()
         if thread == _MAIN and not self.installed:
             signal.signal(SIGNAL, _on_signal)
             self.installed = True
         with self.lock:
             leash.thread, leash.deadline, leash.fired, leash.inside = (
-                thread, time.monotonic() + leash.seconds, False, True)
+                thread, time.monotonic() + leash.seconds, 0, True)
+            leash.calls, leash.seen = calls, 0
             self.armed.add(leash)
-            if self.shortest is None or leash.seconds < self.shortest:
-                self.shortest = leash.seconds
-            if self.period is None or leash.seconds / 4 < self.period:
-                self.period = max(leash.seconds / 4, 0.01)
+            every = _every(leash)
+            if self.shortest is None or every < self.shortest:
+                self.shortest = every
+            if self.period is None or every < self.period:
+                self.period = max(every, 0.01)
                 self.wake.set()
             if self.thread is None:
                 self.thread = threading.Thread(target=self._watch, name="rocketsim-leash", daemon=True)
@@ -130,12 +162,20 @@ class _Watchdog:
             now = time.monotonic()
             with self.lock:
                 for leash in list(self.armed):
-                    if leash.fired or now < leash.deadline:
+                    call = leash.call
+                    if leash.fired and leash.fired == call:
+                        continue
+                    if leash.fired and leash.thread != _MAIN:
+                        _async_raise(leash.thread, None)    # the call it fired in ended: withdrawn
+                    leash.fired = 0
+                    if leash.calls and call != leash.seen:      # between calls, or a new one
+                        leash.seen, leash.deadline = call, now + leash.seconds
+                    if not call or now < leash.deadline:
                         continue
                     if leash.paused is not None and leash.paused():
                         leash.deadline = now + leash.seconds
                         continue
-                    leash.fired = True
+                    leash.fired = call
                     if leash.thread == _MAIN and signal.getsignal(SIGNAL) is _on_signal:
                         self.fired_in_main = leash
                         signal.pthread_kill(leash.thread, SIGNAL)
@@ -143,9 +183,15 @@ class _Watchdog:
                         _async_raise(leash.thread, leash.exception)
                 # idle only after a whole look without a leash entered (a program entering
                 # one at every step must not wake this thread at every step)
-                bounds = [leash.seconds for leash in self.armed] + [self.shortest or math.inf]
-                self.period = max(min(bounds) / 4, 0.01) if min(bounds) < math.inf else None
+                bounds = [_every(leash) for leash in self.armed] + [self.shortest or math.inf]
+                self.period = max(min(bounds), 0.01) if min(bounds) < math.inf else None
                 self.shortest = None
+
+
+def _every(leash: Leash) -> float:
+    """How often the watchdog looks at ``leash`` (s): a quarter of its bound, an eighth over
+    a stretch of calls (a call is timed from the first look that sees it)."""
+    return leash.seconds / (8 if leash.calls else 4)
 
 
 _WATCHDOG = _Watchdog()

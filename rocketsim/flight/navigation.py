@@ -12,6 +12,15 @@ The estimate itself is one compiled call (:func:`estimate`), the same the
 compiled runs make where the autopilot steers on it and a compiled condition
 reads it (:mod:`rocketsim.stepping.runs`): each axis its measured value, the
 attitude the truth's turned by the measured small rotation.
+
+A compiled run that asks a program's condition read in Python after each step
+(``fc.wait_until(lambda: ...)``, :func:`rocketsim.stepping.runs.fly_run`) hands it
+the step in one float64 buffer (:func:`hand_into`): the true state and the
+estimate, which :meth:`Navigation.view` then takes as it is (the same kernel on the
+same numbers: the same bits) rather than drawing it again. Its slots:
+:data:`ANSWER` (the Python side's answer), the estimate's 13 numbers (position,
+velocity, attitude quaternion, rates) from :data:`ESTIMATE`, the state from
+:data:`STATE`.
 """
 
 from __future__ import annotations
@@ -21,12 +30,18 @@ from typing import Callable
 
 import numpy as np
 
-from rocketsim.jit import njit
+from rocketsim.jit import copy_into, njit
 from rocketsim.flight.craft import Craft
 from rocketsim.flight.readings import StateView
 from rocketsim.flight.sensors import E_ATTITUDE, E_POSITION, E_RATES, E_VELOCITY, measured
 from rocketsim.frames.quaternion import quat_from_axis_angle, quat_multiply
-from rocketsim.layout import Q, R, V, W
+from rocketsim.layout import N_STATE, Q, R, V, W
+
+# the slots of a run's hand-over buffer (hand_into)
+ANSWER = 0                              # NO_ANSWER while asking; 0.0: go on, 1.0: the run ends there
+NO_ANSWER = 2.0
+ESTIMATE = 1
+STATE = ESTIMATE + N_STATE
 
 
 @njit
@@ -48,6 +63,29 @@ def estimate(y, errors, j):
     if angle == 0.0:
         return r, v, y[Q:Q + 4].copy(), w
     return r, v, quat_multiply(y[Q:Q + 4], quat_from_axis_angle(tilt / angle, angle)), w
+
+
+def hand_over_buffer(n: int) -> np.ndarray:
+    """A hand-over buffer (:func:`hand_into`) for a state of ``n`` numbers."""
+    return np.zeros(STATE + n)
+
+
+@njit
+def hand_into(out, y, errors, j):
+    """Fill the hand-over buffer ``out`` with the true state ``y`` and its navigation
+    estimate (with the sensors' ``errors`` of row ``j``; none: the truth), its answer slot
+    :data:`NO_ANSWER`."""
+    if errors.shape[0] > 0:
+        r, v, q, w = estimate(y, errors, j)
+        copy_into(out, ESTIMATE + R, r)
+        copy_into(out, ESTIMATE + V, v)
+        copy_into(out, ESTIMATE + Q, q)
+        copy_into(out, ESTIMATE + W, w)
+    else:
+        for i in range(N_STATE):
+            out[ESTIMATE + i] = y[i]
+    copy_into(out, STATE, y)
+    out[ANSWER] = NO_ANSWER
 
 
 def tanks(vehicle) -> tuple[str, ...]:
@@ -78,6 +116,10 @@ class Navigation:
         if sensors is None or sensors.perfect:
             self.current = truth
             return truth
+        given = craft.handed()
+        if given is not None:           # the estimate, from the compiled run
+            self.current = StateView.of_state(t, given[ESTIMATE:STATE], truth._atmosphere, craft.mu, craft.p)
+            return self.current
         k = craft.step_index
         errors, first = sensors.run_errors(k, tanks(craft.vehicle))
         r, v, q, w = estimate(craft.y, errors, k - first)

@@ -34,21 +34,20 @@ deterministic.
 
 from __future__ import annotations
 
+import contextlib
 import functools
 import inspect
-import signal
 from types import SimpleNamespace
-import threading
 import traceback
 from pathlib import Path
 from typing import Callable
 
 import greenlet
-import numba.core.event as ev
 
 from rocketsim.errors import InputError, signal_behind
 from rocketsim.flight.arguments import truth
 from rocketsim.flight.conditions import Condition
+from rocketsim.flight.cpu_budget import COMPILING, CpuBudget, ProgramOverBudget
 from rocketsim.flight.leash import Leash, Stop
 from rocketsim.limits import MAX_TEXT_BYTES, read_bounded
 
@@ -65,104 +64,8 @@ class ProgramError(InputError):
     """The flight program raised: names its file, line and the exception."""
 
 
-class ProgramOverBudget(BaseException):
-    """Raised inside a program that used up its CPU budget for one step.
-
-    A BaseException, so a program's ``except Exception`` cannot swallow it.
-    """
-
-
 class ProgramOverTime(BaseException):
     """Raised inside a program that kept control past its wall-time limit in one wake-up."""
-
-
-class CpuBudget:
-    """Context manager: raise :class:`ProgramOverBudget` in this thread after ``seconds``
-    of CPU time spent inside it.
-
-    Uses the process's virtual (user CPU) interval timer, so a program that
-    never hands back control is stopped however busy the machine is. Only
-    the main thread can take signals: elsewhere no budget is enforced. A
-    runner keeps one and enters it at every resume (a class, not a generator:
-    entering costs two timer calls and little else).
-    """
-
-    __slots__ = ("seconds", "_armed", "_installed")
-
-    def __init__(self, seconds: float):
-        self.seconds = seconds
-        self._armed = False
-        self._installed = False
-
-    def __enter__(self):
-        self._armed = self.seconds > 0 and threading.current_thread() is threading.main_thread()
-        if self._armed:
-            if not self._installed:
-                # once per budget: the handler only acts while the timer is armed (looking
-                # it up with signal.getsignal at every step costs more than the step's timer)
-                if signal.getsignal(signal.SIGVTALRM) is not _expire:
-                    signal.signal(signal.SIGVTALRM, _expire)
-                self._installed = True
-            _COMPILING.active = self
-            signal.setitimer(signal.ITIMER_VIRTUAL, self.seconds)
-        return self
-
-    def __exit__(self, *exc) -> bool:
-        if self._armed:
-            signal.setitimer(signal.ITIMER_VIRTUAL, 0.0)
-            _COMPILING.active = None
-        return False
-
-
-def _expire(signum, frame):
-    if _COMPILING.depth > 0:          # numba is compiling: not the program's time
-        signal.setitimer(signal.ITIMER_VIRTUAL, _COMPILING.active.seconds)
-        return
-    raise ProgramOverBudget
-
-
-class _CompileTime(ev.Listener):
-    """Keeps numba's compiling, and what :func:`not_counted` wraps, out of a program's
-    CPU budget.
-
-    On a cold cache a program's first call of a reading compiles (or loads)
-    a kernel, which can take longer than a budget. numba holds its compiler
-    lock while it compiles or loads; while it does, the budget's timer is
-    re-armed instead of stopping the program, and when the lock is let go
-    the step gets its whole budget again.
-    """
-
-    def __init__(self):
-        self.depth = 0
-        self.active: CpuBudget | None = None      # the budget armed now, if any
-
-    def on_start(self, event) -> None:
-        self.depth += 1
-
-    def on_end(self, event) -> None:
-        self.depth -= 1
-        if self.depth == 0 and self.active is not None:
-            signal.setitimer(signal.ITIMER_VIRTUAL, self.active.seconds)
-
-    def __enter__(self):
-        self.on_start(None)
-        return self
-
-    def __exit__(self, *exc) -> bool:
-        self.on_end(None)
-        return False
-
-
-_COMPILING = _CompileTime()
-ev.register("numba:compiler_lock", _COMPILING)
-
-
-def not_counted() -> _CompileTime:
-    """Context manager: the CPU time spent inside it is not the running program's (the
-    simulator's first import of a library a call of ``fc`` needs, e.g. scipy's
-    integrator for ``fc.predict``, a few tenths of a second); the step gets its whole
-    budget again after it."""
-    return _COMPILING
 
 
 def load_program(path: Path, entry: str = "main") -> Callable:
@@ -280,13 +183,15 @@ class ProgramRunner:
         self.cpu_budget = cpu_budget
         self.time_limit = time_limit
         self._budget = CpuBudget(cpu_budget)
-        self._leash = Leash(time_limit, ProgramOverTime, paused=lambda: _COMPILING.depth > 0)
+        self._leash = Leash(time_limit, ProgramOverTime, paused=lambda: COMPILING.depth > 0)
         self._main = main
         self._greenlet: greenlet.greenlet | None = None
         self._wake_time = 0.0
         self._predicate: Callable[[], bool] | None = None
         self._predicate_line: int | None = None     # the program's line that handed it over
         self._checked: tuple | None = None          # (t, what due(t) gives: True, False or its error)
+        self._watched = False                       # inside watched(): the condition's calls marked
+        self._calls = 0                             # the condition's calls marked so far
         self.finished = False
 
     # --- called by the simulator -------------------------------------------
@@ -314,23 +219,57 @@ class ProgramRunner:
     def _due(self, t: float) -> bool:
         if self.finished or t + WAKE_TOLERANCE < self._wake_time:
             return False
-        if self._predicate is None:
+        predicate = self._predicate
+        if predicate is None:
             return True
+        budget, leash = self._budget, self._leash
         try:
-            with self._budget, self._leash:
-                ready = self._predicate()
-            ready = truth(ready)
+            if self._watched:           # armed once for the stretch: the call marked
+                self._calls = call = self._calls + 1
+                budget.call = leash.call = call
+                ready = predicate()
+                budget.call = leash.call = 0
+            else:
+                with budget, leash:
+                    ready = predicate()
+            if ready is not True and ready is not False:
+                ready = truth(ready)
         except BaseException as error:  # noqa: BLE001
+            budget.call = leash.call = 0
             if not _raised_by_program(error, self.path):
                 raise
-            self.finished = True
-            code = getattr(self._predicate, "__code__", None)    # the condition's own line, else
-            line = (code.co_firstlineno if code is not None and Path(code.co_filename) == self.path
-                    else self._predicate_line)                    # that of fc.wait_until's call
-            raise _program_error(error, self.path, self.cpu_budget, line, self.time_limit) from None
+            raise self._failed(error) from None
         if ready:
             self._predicate = None
         return ready
+
+    def _failed(self, error: BaseException) -> ProgramError:
+        """The program's error for ``error``, raised by its condition (at the condition's
+        own line, else at that of fc.wait_until's call); the program is finished."""
+        self.finished = True
+        code = getattr(self._predicate, "__code__", None)
+        line = (code.co_firstlineno if code is not None and Path(code.co_filename) == self.path
+                else self._predicate_line)
+        return _program_error(error, self.path, self.cpu_budget, line, self.time_limit)
+
+    @contextlib.contextmanager
+    def watched(self):
+        """Context manager: the CPU budget and the wall-time limit armed once around many
+        readings of the condition (:meth:`check` after every step of a compiled run), each
+        reading timed on its own all the same (:meth:`CpuBudget.watch`,
+        :meth:`~rocketsim.flight.leash.Leash.watch`). Either's exception landing just
+        outside a reading (as it ended) is the program's error too."""
+        self._budget.watch()
+        self._leash.watch()
+        self._watched = True
+        try:
+            yield
+        except (ProgramOverBudget, ProgramOverTime) as error:
+            raise self._failed(error) from None
+        finally:
+            self._watched = False
+            self._leash.unwatch()
+            self._budget.unwatch()
 
     def wake_time(self) -> float:
         """Earliest mission time the program may run again (inf when finished)."""

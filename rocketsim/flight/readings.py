@@ -6,9 +6,12 @@ ECI of the mission epoch, at mission time ``t``) and derives, lazily and once
 program or the telemetry reads: the geodetic position, surface and orbital
 velocities, local directions, attitude angles and gravity together, in one
 compiled call into one buffer (:func:`step_readings`: a reading is then an
-element of it), the air and the orbit each at its own first read. The same class serves the truth (telemetry) and the
-navigation estimate (a program with realistic sensors), so every derived
-quantity inherits the estimate's errors.
+element of it; where the place's readings, the height, the climb rate, the
+ground speed, the local axes, are read first, those alone:
+:func:`place_readings`), the air and the orbit each at its own first read.
+The same class serves the truth (telemetry) and the navigation estimate (a
+program with realistic sensors), so every derived quantity inherits the
+estimate's errors.
 
 Conventions: body ``x`` is the nose. ``pitch`` is the nose's elevation above
 the local horizon, ``heading`` its azimuth from north towards east, ``roll``
@@ -25,11 +28,11 @@ import math
 
 import numpy as np
 
-from rocketsim.jit import njit
+from rocketsim.jit import entry_point, njit
 from rocketsim.atmosphere.table import air_at, wind_earth_fixed
 from rocketsim.bodies.gravity import point_mass_j2
 from rocketsim.constants import EARTH_J2, EARTH_MU, EARTH_OMEGA, EARTH_RADIUS_EQ, EARTH_RADIUS_POLAR
-from rocketsim.layout import P_J2, P_MU, P_POLAR_RADIUS, P_RADIUS, P_SPIN, make_params
+from rocketsim.layout import N_STATE, P_J2, P_MU, P_POLAR_RADIUS, P_RADIUS, P_SPIN, Q, R, V, W, make_params
 from rocketsim.frames.elements import Elements, state_to_elements, time_to_apoapsis
 from rocketsim.frames.local import VERTICAL, air_velocity, turned, where_and_how_fast
 from rocketsim.frames.quaternion import quat_to_matrix
@@ -89,11 +92,54 @@ def _unit(x, y, z):
 
 
 @njit
+def place_readings_into(out, t, r, v, p):
+    """The readings of the place of a state into the slots of ``out`` (:data:`N_READINGS`)
+    that :func:`step_readings` gives them, ``r``, ``v``, ``t`` and ``p`` as its: latitude,
+    longitude, height, the climb rate, the speed over the ground, the local east, north,
+    up and the surface velocity, as :func:`step_readings` computes them. Returns ``(enu,
+    surface velocity)``."""
+    lat, lon, height, enu, surface = where_and_how_fast(r, v, t, p[P_SPIN], p[P_RADIUS], p[P_POLAR_RADIUS])
+    up = enu[2].copy()
+    climb = surface @ up
+    across = surface - climb * up
+    out[LATITUDE], out[LONGITUDE], out[HEIGHT] = lat, lon, height
+    out[CLIMB], out[GROUND_SPEED] = climb, math.sqrt(across @ across)
+    for i in range(3):
+        for k in range(3):
+            out[ENU + 3 * i + k] = enu[i, k]
+        out[SURFACE + i] = surface[i]
+    return enu, surface
+
+
+@njit
+def place_readings(out, t, s, p):
+    """:func:`place_readings_into` ``out`` (its other slots left as they are) for the
+    position and velocity of ``s`` (a state's first :data:`~rocketsim.layout.N_STATE`
+    numbers); returns nothing (a call from Python boxes no array)."""
+    place_readings_into(out, t, s[R:R + 3], s[V:V + 3], p)
+
+
+@njit
+def state_readings(out, t, s, p):
+    """:func:`step_readings_into` ``out`` for the position, velocity and attitude of ``s``
+    (as :func:`place_readings`)."""
+    step_readings_into(out, t, s[R:R + 3], s[V:V + 3], s[Q:Q + 4], p)
+
+
+@njit
 def step_readings(t, r, v, q, p):
+    """:func:`step_readings_into` a new array."""
+    out = np.empty(N_READINGS)
+    step_readings_into(out, t, r, v, q, p)
+    return out
+
+
+@njit
+def step_readings_into(out, t, r, v, q, p):
     """The readings of a state in one compiled call: position ``r`` (m), velocity ``v``
     (m/s), attitude ``q`` (body -> ECI) at mission time ``t`` (s) of a body with
     parameters ``p`` (:mod:`rocketsim.layout`: the central body's ellipsoid, rotation
-    and gravity). Returns a float64 array of :data:`N_READINGS` slots: latitude,
+    and gravity), into ``out``, a float64 array of :data:`N_READINGS` slots: latitude,
     longitude (rad), height (m) over the central body's ellipsoid
     (:func:`~rocketsim.frames.local.where_and_how_fast`), the climb rate and the speed
     over the ground (m/s), pitch, heading, roll (rad, the module's conventions), the
@@ -103,14 +149,9 @@ def step_readings(t, r, v, q, p):
     row by row). Each figure is computed with the operations, in the order, of numpy's
     on these float64 values (a dot product is ``@``, a norm ``sqrt(v @ v)``, a cross
     product that of ``np.cross``), so a reading has the bits it has when computed
-    figure by figure."""
-    out = np.empty(N_READINGS)
-    lat, lon, height, enu, surface = where_and_how_fast(r, v, t, p[P_SPIN], p[P_RADIUS], p[P_POLAR_RADIUS])
+    figure by figure; those of the place are :func:`place_readings_into`'s."""
+    enu, surface = place_readings_into(out, t, r, v, p)
     east, north, up = enu[0].copy(), enu[1].copy(), enu[2].copy()
-    climb = surface @ up
-    across = surface - climb * up
-    out[LATITUDE], out[LONGITUDE], out[HEIGHT] = lat, lon, height
-    out[CLIMB], out[GROUND_SPEED] = climb, math.sqrt(across @ across)
     # the attitude's angles (pitch, heading, roll: see the module)
     axes = quat_to_matrix(q)
     nose, z_body = axes[:, 0].copy(), axes[:, 2].copy()
@@ -146,10 +187,23 @@ def step_readings(t, r, v, q, p):
     along = surface / speed if speed > 0 else up
     for i in range(3):
         for k in range(3):
-            out[ENU + 3 * i + k], out[AXES + 3 * i + k] = enu[i, k], axes[i, k]
-        out[SURFACE + i], out[RADIAL + i], out[PROGRADE + i] = surface[i], radial[i], prograde[i]
+            out[AXES + 3 * i + k] = axes[i, k]
+        out[RADIAL + i], out[PROGRADE + i] = radial[i], prograde[i]
         out[NORMAL + i], out[SURFACE_PROGRADE + i] = normal[i], along[i]
-    return out
+
+
+_BOUND: dict = {}       # kernel -> its entry for a view's own state (_bound)
+
+
+def _bound(kernel, out: np.ndarray, t: float, state: np.ndarray, p: np.ndarray):
+    """``kernel``'s compiled entry for the types of a view's ``kernel(out, t, state, p)``,
+    bound at the first call, not typed by numba's dispatcher at every call: a view of_state
+    holds its state in a C-contiguous float64 copy of its own, and is read so only with
+    C-contiguous parameters (a body's) into a new float64 array."""
+    entry = _BOUND.get(kernel)
+    if entry is None:
+        entry = _BOUND[kernel] = entry_point(kernel, out, t, state, p)
+    return entry
 
 
 def _norm(vector) -> float:
@@ -181,46 +235,80 @@ class StateView:
         :mod:`rocketsim.layout`), copied so later steps do not change it;
         ``p`` as for the constructor."""
         view = cls.__new__(cls)
-        s = y[:13].copy()
-        view.t, view.position, view.velocity, view.attitude, view.body_rates = (
-            t, s[0:3], s[3:6], s[6:10], s[10:13])
+        view.t, view._state = float(t), y[:N_STATE].copy()
         view._atmosphere, view.mu, view._p = atmosphere, mu, _EARTH_P if p is None else p
         return view
 
-    # --- the step's readings, one compiled call (step_readings) -------------------
+    # --- the state, sliced at the first read (a view of_state) ---------------------
+    @_once
+    def position(self) -> np.ndarray:
+        return self._state[R:R + 3]
+
+    @_once
+    def velocity(self) -> np.ndarray:
+        return self._state[V:V + 3]
+
+    @_once
+    def attitude(self) -> np.ndarray:
+        return self._state[Q:Q + 4]
+
+    @_once
+    def body_rates(self) -> np.ndarray:
+        return self._state[W:W + 3]
+
+    # --- the step's readings: the place's, or all, in one compiled call -----------
+    @_once
+    def _place(self) -> np.ndarray:
+        """The readings of the place (:func:`place_readings`: its slots alone set), or all of
+        them if read already."""
+        found = self.__dict__.get("_buffer")
+        if found is not None:
+            return found
+        state = self.__dict__.get("_state")
+        if state is None or not self._p.flags.c_contiguous:
+            return self._buffer
+        out = np.empty(N_READINGS)
+        _bound(place_readings, out, self.t, state, self._p)(out, self.t, state, self._p)
+        return out
+
     @_once
     def _buffer(self) -> np.ndarray:
-        return step_readings(self.t, self.position, self.velocity, self.attitude, self._p)
+        state = self.__dict__.get("_state")
+        if state is None or not self._p.flags.c_contiguous:
+            return step_readings(self.t, self.position, self.velocity, self.attitude, self._p)
+        out = np.empty(N_READINGS)
+        _bound(state_readings, out, self.t, state, self._p)(out, self.t, state, self._p)
+        return out
 
     # --- where ------------------------------------------------------------
     @_once
     def geodetic(self) -> tuple[float, float, float]:
         """(latitude rad, longitude rad, height above WGS84 m)."""
-        return tuple(self._buffer[LATITUDE:HEIGHT + 1].tolist())
+        return tuple(self._place[LATITUDE:HEIGHT + 1].tolist())
 
     @property
     def height(self) -> float:
         """Height above the central body's ellipsoid (WGS84 about Earth), m."""
-        return float(self._buffer[HEIGHT])
+        return float(self._place[HEIGHT])
 
     @property
     def enu(self) -> np.ndarray:
         """Rows: local east, north, up unit vectors in ECI axes."""
-        return self._buffer[ENU:ENU + 9].reshape(3, 3)
+        return self._place[ENU:ENU + 9].reshape(3, 3)
 
     # --- motion -----------------------------------------------------------
     @property
     def surface_velocity(self) -> np.ndarray:
         """Velocity relative to the central body's turning ground, ECI axes (m/s)."""
-        return self._buffer[SURFACE:SURFACE + 3]
+        return self._place[SURFACE:SURFACE + 3]
 
     @property
     def vertical_speed(self) -> float:
-        return float(self._buffer[CLIMB])
+        return float(self._place[CLIMB])
 
     @property
     def horizontal_speed(self) -> float:
-        return float(self._buffer[GROUND_SPEED])
+        return float(self._place[GROUND_SPEED])
 
     @property
     def radial(self) -> np.ndarray:

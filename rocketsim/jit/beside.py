@@ -135,8 +135,6 @@ class CompiledBeside:
     def add(self, kernel, args, priority: int = 0) -> bool:
         """Queue ``kernel`` for the numba types of ``args`` (lower ``priority`` first) unless
         it is cached, compiled here or queued; whether it was queued."""
-        import pickle
-
         kinds = _kinds(args)
         if kinds is not None and (kernel, kinds) in self._settled:
             return False            # found cached by an earlier flight of this process
@@ -157,7 +155,7 @@ class CompiledBeside:
         self._count += 1
         part = os.path.join(self._folder, "part-" + name)     # written whole, then named
         with open(part, "wb") as stream:
-            pickle.dump((kernel.__module__, kernel.__qualname__, signature), stream)
+            stream.write(numba_internals.serialized((kernel.__module__, kernel.__qualname__, signature)))
         os.replace(part, os.path.join(self._folder, name))
         self._queued[kernel, signature] = name
         self.kernels.add(kernel)

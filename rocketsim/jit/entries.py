@@ -10,6 +10,8 @@ run as plain Python (``ROCKETSIM_JIT=python``) an entry is the Python function.
 
 from __future__ import annotations
 
+from ctypes import _CFuncPtr
+
 import numpy as np
 
 from rocketsim.jit import numba_internals
@@ -41,8 +43,8 @@ def _kinds(values) -> tuple | None:
     library passes: an array's dtype, dimensions, layout, writeability and alignment;
     a (named) tuple's class and its items' kinds; a numpy scalar's dtype (a
     datetime's unit is in it); a number's, bytes', text's or None's class (an
-    integer's, and whether it fits int64). None where a value is of another sort,
-    to be typed by numba."""
+    integer's, and whether it fits int64); a ctypes function's class (its prototype).
+    None where a value is of another sort, to be typed by numba."""
     kinds = []
     for value in values:
         cls = type(value)
@@ -61,6 +63,8 @@ def _kinds(values) -> tuple | None:
             if items is None:
                 return None
             kinds.append((cls, items))
+        elif isinstance(value, _CFuncPtr):      # a C function pointer: typed by its prototype
+            kinds.append(cls)
         else:
             return None
     return tuple(kinds)

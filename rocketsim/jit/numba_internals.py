@@ -31,6 +31,9 @@ need beyond that reaches into numba's internals, here and nowhere else:
    cache file's (``_cache._cache_file``) ``_load_index`` and ``load``.
 10. **Intrinsics** (:func:`is_intrinsic`): ``numba.core.extending._Intrinsic``, the
    class of machine code written with ``@intrinsic``, which has no Python form.
+11. **Signatures pickled** (:func:`serialized`): ``numba.core.serialize.dumps``, numba's
+   own pickler (its cache's), which pickles a type holding a class made at run time
+   (a C function pointer's typing template) by value; ``pickle`` reads it back.
 
 :func:`check` finds each of these as :data:`TESTED` numba has them and raises
 :class:`NumbaChanged`, naming the numba installed and what it lacks, when one is
@@ -126,7 +129,8 @@ def check() -> None:
     """Raise :class:`NumbaChanged` if an internal this module uses is missing or changed
     (see the module); warn (:class:`UntestedNumba`) if numba is not a tested release."""
     from llvmlite import binding
-    from numba.core import caching, codegen, compiler_lock, config, errors, extending, registry, sigutils, types
+    from numba.core import (caching, codegen, compiler_lock, config, errors, extending, registry, serialize,
+                            sigutils, types)
 
     _method(codegen.CPUCodeLibrary, "_optimize_final_module", ("self",))
     _method(codegen.CPUCodegen, "magic_tuple", ("self",))
@@ -142,7 +146,8 @@ def check() -> None:
     _method(caching.IndexDataCacheFile, "_load_index", ("self",))
     _method(caching.IndexDataCacheFile, "load", ("self", "key"))
     for module, name in ((sigutils, "normalize_signature"), (compiler_lock, "global_compiler_lock"),
-                         (types, "unliteral"), (errors, "TypingError"), (extending, "_Intrinsic")):
+                         (types, "unliteral"), (errors, "TypingError"), (extending, "_Intrinsic"),
+                         (serialize, "dumps")):
         if not hasattr(module, name):
             raise _changed(f"{module.__name__}.{name} is missing")
     if not tested(_numba_version()):
@@ -344,6 +349,13 @@ def cached_signatures(kernel) -> list[tuple]:
     saved = getattr(kernel.dispatcher, "_cache", None)
     index = getattr(saved, "_cache_file", None)
     return [key[0] for key in index._load_index()] if index is not None else []
+
+
+def serialized(value) -> bytes:
+    """``value`` pickled by numba's own pickler (numba types included; ``pickle.loads``
+    reads it)."""
+    from numba.core import serialize
+    return serialize.dumps(value)
 
 
 def is_intrinsic(value) -> bool:

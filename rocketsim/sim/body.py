@@ -63,6 +63,9 @@ class Body:
     cruise_until: float = -math.inf         # mission time fc.cruise allows cruise rails until
     central: str = "earth"                  # the body whose frame and gravity it flies in
     kernels: Entries = field(default_factory=Entries)   # compiled entries bound to its arrays
+    # (state, buffer): the buffer a compiled run handed the state y over with, with the step's
+    # navigation estimate (rocketsim.flight.navigation.hand_into); read while y is that state
+    handed: tuple | None = None
 
     vehicle: ClassVar[VehicleModel | None] = None
     stack: ClassVar[VehicleSpec | None] = None
@@ -102,6 +105,11 @@ class Body:
         # the central body's air: the day's about Earth, Mars's about Mars, none elsewhere
         air = self.atmosphere if self.central == "earth" else partial(air_about, self.central, None)
         return StateView.of_state(t, y, air, self.mu, self.p)
+
+    def handed_with(self, y: np.ndarray) -> np.ndarray | None:
+        """The buffer a compiled run handed the state ``y`` over with (:attr:`handed`), or None."""
+        handed = self.handed
+        return handed[1] if handed is not None and handed[0] is y else None
 
     def flies_in_days_air(self) -> bool:
         """A staged vehicle whose arrays hold the day's air (its readings' air)."""

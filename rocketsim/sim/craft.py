@@ -32,7 +32,8 @@ class BodyCraft:
     # --- readings -----------------------------------------------------------
     @property
     def time(self) -> float:
-        return self._world.t
+        world = self._world
+        return world.k * world.h        # World.t without its call: a condition reads it every step
 
     @property
     def step_index(self) -> int:
@@ -86,6 +87,10 @@ class BodyCraft:
 
     def truth(self) -> StateView:
         return self._body.view()
+
+    def handed(self) -> np.ndarray | None:
+        body = self._body
+        return body.handed_with(body.y)
 
     def is_truth(self, view: StateView | None) -> bool:
         return view is self._body._view

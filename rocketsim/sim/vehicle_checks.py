@@ -48,7 +48,7 @@ from rocketsim.dynamics.third_bodies import FIELD_CENTER, field_of, nbody_flag
 from rocketsim.ephemeris.solar_system import BODIES
 from rocketsim.layout import P_RADIUS, Q, R, V
 from rocketsim.flight.conditions import NO_CONDITION
-from rocketsim.flight.navigation import tanks
+from rocketsim.flight.navigation import ANSWER, STATE, hand_over_buffer, tanks
 from rocketsim.flight.sensors import NO_ERRORS
 from rocketsim.flight.readings import StateView
 from rocketsim.frames.earth_fixed import eci_to_ecef
@@ -69,6 +69,8 @@ CRASH_SPEED = 10.0
 TIP_MARGIN = 0.5 * DEG       # rad: the compiled runs hand a landed body to Python this far short of tipping
 # what advance_checked reads when the autopilot does not steer in its call (unused)
 _NO_STEERING = (np.full(6, math.nan), False)
+# what a compiled run that asks nothing is given to ask with (unused)
+_ASKS_NOBODY = (runs.NOBODY, hand_over_buffer(0))
 
 
 def _advance_arguments(body, k0: int, h: float, n: int, steering: tuple | None) -> tuple:
@@ -159,21 +161,28 @@ class VehicleChecks:
 
         ``between(k)``: asked after each step ``k`` but the last with nothing for the
         Python side, the body's state, time and checks as after it (a program's condition
-        read in Python), whether the run ends there: then the reason is
-        :data:`~rocketsim.stepping.runs.QUIET` and the checks' state is as
-        :meth:`after_step` leaves it after that step."""
-        arguments, carry = self._run_arguments(body, k0, h, n, steering, events, condition, samples,
-                                               between is not None)
+        read in Python; the state handed over with the step's navigation estimate,
+        :attr:`rocketsim.sim.body.Body.handed`), whether the run ends there:
+        then the reason is :data:`~rocketsim.stepping.runs.QUIET` and the checks' state
+        is as :meth:`after_step` leaves it after that step."""
         if between is None:
+            arguments, carry = self._run_arguments(body, k0, h, n, steering, events, condition, samples)
             y, before, taken, figures, reason, y_peak, filled = body.kernels.call(
                 runs.fly_run, body.vehicle.arrays, *arguments)
         else:
-            def question(y, k: int) -> bool:
-                body.y, body.t = y, k * h
-                self.temperature = float(carry[quiet.CARRY_TEMPERATURE])
-                return between(k)
+            handed = hand_over_buffer(len(body.y))
+            state, shielded = handed[STATE:], self.shield is not None
 
-            with runs.asking(question):
+            def question(k: int) -> None:
+                body.y = y = state.copy()
+                body.handed, body.t = (y, handed), k * h
+                if shielded:
+                    self.temperature = float(carry[quiet.CARRY_TEMPERATURE])
+                handed[ANSWER] = 1.0 if between(k) else 0.0
+
+            with runs.asking(question) as asking:
+                arguments, carry = self._run_arguments(body, k0, h, n, steering, events, condition, samples,
+                                                       (asking.ask, handed))
                 y, before, taken, figures, reason, y_peak, filled = body.kernels.call(
                     runs.fly_run, body.vehicle.arrays, *arguments)
         self.temperature = float(carry[quiet.CARRY_TEMPERATURE])
@@ -199,8 +208,10 @@ class VehicleChecks:
         compile_beside(advance_checked, _advance_arguments(body, 0, h, 1, None))
 
     def _run_arguments(self, body, k0: int, h: float, n: int, steering: tuple | None, events,
-                       condition: np.ndarray, samples: tuple, asks: bool = False) -> tuple[tuple, np.ndarray]:
-        """``(arguments of runs.fly_run, its carry)`` for :meth:`fly_run`'s call."""
+                       condition: np.ndarray, samples: tuple, asks: tuple | None = None) -> tuple[tuple, np.ndarray]:
+        """``(arguments of runs.fly_run, its carry)`` for :meth:`fly_run`'s call; ``asks``:
+        ``(ask, buffer)``, what the run calls after each step and the buffer it hands the
+        step over in (None: it asks nothing)."""
         arrays = body.vehicle.arrays
         self._bind(arrays)
         steer = steering is not None
@@ -224,7 +235,7 @@ class VehicleChecks:
         peak = events.run_watch(watch)
         carry = np.array((self.temperature, float(self.touched_down), peak, 0.0))
         return (body.y, k0, h, n, body.p, arrays, self._in_flight, steer, code, fins, *estimate_errors(body, k0),
-                watch, carry, condition, asks, *samples, nbody_flag(body.p)), carry
+                watch, carry, condition, asks is not None, *(asks or _ASKS_NOBODY), *samples, nbody_flag(body.p)), carry
 
     def after_step(self, world, body, h: float) -> dict | None:
         """Run the checks on the body's new state (after a step of ``h`` seconds). Returns

@@ -147,7 +147,8 @@ class _Window:
         compiled run from step ``k`` that reads the condition between its steps as the
         world's loop reads it (:meth:`~rocketsim.sim.vehicle_checks.VehicleChecks.fly_run`'s
         ``between``; :meth:`~rocketsim.flight.program.ProgramRunner.check`: once a step, its
-        outcome kept for the step's :meth:`~rocketsim.sim.world.World.run_programs`): to
+        outcome kept for the step's :meth:`~rocketsim.sim.world.World.run_programs`; its
+        budget and time limit armed once, :meth:`~rocketsim.flight.program.ProgramRunner.watched`): to
         the queue's first step (where another body's Python comes first) or the window's
         end at most, ending at a step the Python side must handle or one where the
         condition holds, raises or acts (a command, a log line, an event, a new body:
@@ -171,14 +172,16 @@ class _Window:
 
         def between(step: int) -> bool:
             world.k = step
-            world.before_act = act
-            try:
-                return runner.check(step * world.h) or bool(acted)
-            finally:
-                world.before_act = None
+            return runner.check(step * h) or bool(acted)
 
-        y, taken, reason, filled = body.checks.fly_run(body, k, world.h, top - k, steering, body.watch,
-                                                       NO_CONDITION, samples, between)
+        h = world.h
+        world.before_act = act
+        try:
+            with runner.watched():
+                y, taken, reason, filled = body.checks.fly_run(body, k, h, top - k, steering, body.watch,
+                                                               NO_CONDITION, samples, between)
+        finally:
+            world.before_act = None
         world.k = k
         body.steering = None
         if entry is not None:

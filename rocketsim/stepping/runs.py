@@ -32,20 +32,18 @@ A rigid body coasting with nothing for Python (a spacecraft in orbit,
 :func:`coast_run`, each interval's sample figures computed on the way.
 """
 
+import ctypes
 import math
-import threading
-import warnings
-from contextlib import contextmanager
+import sys
 
 import numpy as np
-from numba import objmode
-from numba.core.errors import NumbaWarning
 
 from rocketsim.jit import copy_into, njit
 from rocketsim.dynamics.derivative import radial_height
 from rocketsim.dynamics.free_body import free_step
 from rocketsim.dynamics.rk4 import N_WORK, advance, near_ground, step_into
 from rocketsim.flight.conditions import holds_on
+from rocketsim.flight.navigation import ANSWER, hand_into
 from rocketsim.flight.steering import steer_on_estimate
 from rocketsim.stepping.checked_step import step_figures_into
 from rocketsim.stepping.quiet import (CARRY_PEAK_Q, CARRY_PEAK_STEP, CARRY_TEMPERATURE, CARRY_TOUCHED, MARGIN,
@@ -58,28 +56,51 @@ from rocketsim.vehicle.rail import RL_ON
 
 # why a run returned (QUIET: where the Python side asked, after a step with nothing for it)
 LIMIT, PYTHON, CONDITION, QUIET = 0, 1, 2, 3
-# numba says so of every kernel with an objmode block: fly_run's holds the GIL only for that
-warnings.filterwarnings("ignore", message="Code running in object mode won't allow parallel execution",
-                        category=NumbaWarning)
-_ASKING = threading.local()         # what fly_run asks between its steps in this thread (asking)
+# what fly_run calls to ask the Python side after a step, ask(k): a C function pointer to a
+# Python function (ctypes: the GIL taken for the call alone, no object handed over but the
+# step's number; what it reads is in the run's hand-over buffer, rocketsim.flight.navigation.hand_into)
+ASK = ctypes.CFUNCTYPE(None, ctypes.c_int64)
 
 
-def ask(y, k: int) -> bool:
-    """Called by :func:`fly_run` (asked to) after a step with nothing for the Python side,
-    its state ``y`` at step ``k``: whether the run ends there (see :func:`asking`)."""
-    return _ASKING.question(y, k)
+def _nobody(k: int) -> None:
+    """What a run that asks nobody is given to call (it never calls it)."""
 
 
-@contextmanager
-def asking(question):
-    """While inside, :func:`fly_run`'s question between its steps in this thread is
-    ``question(y, k)`` (True: the run ends after step ``k``, state ``y``): a program's
-    condition read in Python (:meth:`rocketsim.sim.vehicle_checks.VehicleChecks.fly_run`)."""
-    _ASKING.question = question
-    try:
-        yield
-    finally:
-        _ASKING.question = None
+NOBODY = ASK(_nobody)
+
+
+class asking:
+    """Context manager: ``ask``, the :data:`ASK` a :func:`fly_run` calls ``question(k)``
+    through after step ``k`` (a program's condition read in Python). An exception ``question``
+    raises there (the program's budget, Ctrl-C) cannot cross the compiled code: ctypes
+    hands it to ``sys.unraisablehook`` and the run, finding no answer, ends at that step;
+    the hook set while inside keeps it, and it is raised on leaving, where the run has
+    returned. Exceptions of other sources go to the hook set before."""
+
+    def __init__(self, question):
+        self.question = question
+        self.ask = ASK(question)
+        self.failed: BaseException | None = None
+        self._previous = None
+        self._hook = self._kept         # one bound method: the hook set is this object
+
+    def __enter__(self):
+        self._previous = sys.unraisablehook
+        sys.unraisablehook = self._hook
+        return self
+
+    def _kept(self, unraisable) -> None:
+        if unraisable.object is self.question and self.failed is None:
+            self.failed = unraisable.exc_value
+        else:
+            self._previous(unraisable)
+
+    def __exit__(self, kind, error, traceback) -> bool:
+        if sys.unraisablehook is self._hook:       # another thread's run may have set its own since
+            sys.unraisablehook = self._previous
+        if self.failed is not None and error is None:
+            raise self.failed
+        return False
 
 
 @njit(nogil=True)
@@ -119,19 +140,8 @@ def fly_part(y, k0, h, n_max, p, fp, air, area_mass, length, floor, liftoff, orb
 
 
 @njit(nogil=True)
-def _asked(y, k):
-    """:func:`ask` from compiled code, holding the GIL for the call alone. A kernel of its
-    own: the object-mode block's dispatcher is handed to Python unpickled at every call,
-    so it is kept to this function's few lines (in :func:`fly_run` it would carry that
-    whole function's code)."""
-    with objmode(ends="boolean"):
-        ends = ask(y, k)
-    return ends
-
-
-@njit(nogil=True)
 def fly_run(y, k0, h, n_max, p, veh, in_flight, steer, code, fins, errors, j0, gauges, watch, carry, condition,
-            asks, every, rows, record, sampler, nbody=None):
+            asks, ask, handed, every, rows, record, sampler, nbody=None):
     """Fly the staged vehicle with aerodynamics ``veh`` (its arrays; ``in_flight`` the same
     without contact points) from state ``y`` at step ``k0`` (of ``h`` s) for up to
     ``n_max`` steps, returning after the first step where the Python side may have
@@ -148,10 +158,13 @@ def fly_run(y, k0, h, n_max, p, veh, in_flight, steer, code, fins, errors, j0, g
     vehicle's first tank). ``carry`` is updated in place to its values before the
     last step's checks. ``nbody`` as :func:`rocketsim.dynamics.rk4.step`'s.
 
-    With ``asks`` the Python side is asked after every step but the last that it has
-    nothing to do at (:func:`ask`, a program's condition read in Python: its checks'
-    state, ``carry``, and sample as after that step) whether the run ends there: then
-    it returns with reason :data:`QUIET`.
+    With ``asks`` the Python side is asked after every step ``k`` but the last that it
+    has nothing to do at (a program's condition read in Python: its checks' state,
+    ``carry``, and sample as after that step) whether the run ends there: the step's
+    state goes to the buffer ``handed`` with its navigation estimate
+    (:func:`rocketsim.flight.navigation.hand_into`), then ``ask(k)`` (an :data:`ASK`)
+    is called, which answers in the buffer's answer slot; anything but 0 (no answer:
+    the call failed) ends the run there, with reason :data:`QUIET`.
 
     At each telemetry sample step (a multiple of ``every``) before the last step the
     world's finiteness test is made (:func:`~rocketsim.stepping.quiet.surely_finite`) and,
@@ -217,8 +230,11 @@ def fly_run(y, k0, h, n_max, p, veh, in_flight, steer, code, fins, errors, j0, g
         if not math.isnan(peak):
             carry[CARRY_PEAK_Q], carry[CARRY_PEAK_STEP] = peak, j
             y_peak = y
-        if asks and _asked(y, k0 + j):
-            return y, before, j, figures, QUIET, y_peak, filled
+        if asks:
+            hand_into(handed, y, errors, j0 + j)
+            ask(k0 + j)
+            if handed[ANSWER] != 0.0:
+                return y, before, j, figures, QUIET, y_peak, filled
 
 
 @njit(nogil=True)

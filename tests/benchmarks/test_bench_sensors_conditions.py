@@ -16,9 +16,10 @@ the best of each; a load that comes and goes slows all alike):
    at most 1.5. Timed beside them: the program that lights the engine and does
    nothing more (the floor), and one waiting on ``lambda: fc.time > 111`` (never
    true in the flight): the cost of reading a condition in Python at every step
-   (handing the run's state to Python, the program's CPU budget and time limit
-   armed around the call) with the cheapest reading, so that the lambda's
-   distance from it is what its readings cost.
+   (the compiled run's call into Python with the step's state, the reading marked
+   for the program's CPU budget and time limit, armed once per run) with the
+   cheapest reading, so that the lambda's distance from it is what its readings
+   cost (a view of the step's state, its place's readings in one compiled call).
 3. The lambda program's real-time factor over RocketPy's on the same rocket
    (:func:`tests.sounding_peer.rocketpy_flight` to apogee at RocketPy's default
    tolerance, ``rtol`` 1e-6; the peer test asks 1e-8 of it): at least 10, in

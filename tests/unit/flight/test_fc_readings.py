@@ -196,3 +196,32 @@ def test_radar_altitude_over_the_moon_is_the_height_over_the_moon(probe_about, t
     assert r["body"] == "moon"
     assert r["radar"] == r["altitude"] == r["clearance"]
     assert r["radar"] == pytest.approx(100e3, abs=10.0)
+
+
+def test_a_views_place_readings_alone_are_those_of_all_its_readings():
+    """A view reads the place's readings (height, climb rate, ground speed, local axes,
+    surface velocity) alone where they are read first: the same bits as the same slots of
+    all its readings, and as a view made of the same numbers by its constructor (numba's
+    dispatcher, not the entries bound for views of a state), about Earth and a Moon-like
+    body, on random states from the pad to far out."""
+    import numpy as np
+
+    from rocketsim.flight.readings import CLIMB, ENU, GROUND_SPEED, HEIGHT, LATITUDE, SURFACE, StateView
+    from rocketsim.layout import make_params
+
+    place = list(range(LATITUDE, GROUND_SPEED + 1)) + list(range(ENU, SURFACE + 3))
+    rng = np.random.default_rng(7)
+    moon = make_params(1.0, (1.0, 1.0, 1.0), 4.9028e12, 1737400.0, 2.03e-4, 1737400.0)
+    for p in (None, moon):
+        for _ in range(500):
+            y = np.zeros(20)
+            y[0:3] = rng.normal(size=3) * rng.uniform(6.0e6, 5.0e7)
+            y[3:6] = rng.normal(size=3) * rng.uniform(0.0, 1.1e4)
+            q = rng.normal(size=4)
+            y[6:10] = q / np.linalg.norm(q)
+            t = float(rng.uniform(0.0, 1e5))
+            alone, whole = StateView.of_state(t, y, p=p), StateView.of_state(t, y, p=p)
+            made = StateView(t, y[0:3], y[3:6], y[6:10], y[10:13], p=p)
+            assert alone.vertical_speed == whole._buffer[CLIMB] and alone.height == whole._buffer[HEIGHT]
+            np.testing.assert_array_equal(alone._place[place], whole._buffer[place])
+            np.testing.assert_array_equal(whole._buffer, made._buffer)

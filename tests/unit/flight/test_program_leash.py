@@ -7,20 +7,24 @@ main thread (where ``rocketsim fly`` flies) a sleep, a lock acquired twice, a
 busy loop under an hour's CPU budget, a read of a pipe nobody writes; in another
 thread (a Dask worker's) a busy loop. A flight whose program always hands back
 in time flies the same bytes under a limit of 0.05 s as under the default: the
-watchdog changes nothing unless it fires.
+watchdog changes nothing unless it fires. A condition read after every step of a
+vehicle's compiled runs, under a budget and a limit armed once per run, is held to
+both all the same.
 """
 
 from __future__ import annotations
 
 import re
 import threading
+import time
 
 import pytest
 
 from rocketsim.api.telemetry_flight import fly_to_file
-from rocketsim.flight.program import ProgramError
+from rocketsim.flight.program import ProgramError, ProgramRunner
 from rocketsim.scenario.load import load
 from rocketsim.telemetry.reader import messages, metadata, read_run
+from tests.sounding_peer import scenario as sounding_scenario
 
 BLOCKING = {
     "sleep": "import time\n\n\ndef main(fc):\n    fc.sleep(0.2)\n    time.sleep(10_000)\n",
@@ -92,3 +96,44 @@ def test_a_program_that_is_not_a_plain_function_is_refused_at_load(program, kind
     assert result.exit_code == 2 and "Traceback" not in result.output, result.output
     assert kind in result.output and "not a plain function" in result.output
     assert (f"program.py:{line}:" if line else "program.py: ") in result.output
+
+
+def _keeps_control(kind: str) -> bool:
+    """Never returns: a busy loop, or a sleep of hours."""
+    while kind == "busy loop":
+        pass
+    time.sleep(10_000)
+    return True
+
+
+@pytest.mark.parametrize("kind, limits, said", [
+    ("busy loop", {"program_cpu_budget": "0.3 s"}, "ran 0.3 s of CPU time in one step"),
+    ("sleep", {"program_time_limit": "0.5 s", "program_cpu_budget": "3600 s"},
+     "kept control for 0.5 s of wall time"),
+])
+def test_a_condition_read_between_compiled_steps_is_held_to_the_budget_and_the_limit(kind, limits, said,
+                                                                                     tmp_path, monkeypatch):
+    # a lambda condition of a vehicle in the air is read after every step of compiled runs,
+    # the budget and the limit armed once around each run: a reading that keeps control
+    # is stopped all the same, at the line it keeps control at
+    def main(fc):
+        fc.ignite()
+        fc.wait_until(lambda: fc.time > 3.0 and _keeps_control(kind))
+
+    watched, entered = ProgramRunner.watched, []
+
+    def counted(runner):
+        entered.append(runner)
+        return watched(runner)
+
+    monkeypatch.setattr(ProgramRunner, "watched", counted)
+    out = tmp_path / "run.mcap"
+    with pytest.raises(ProgramError) as raised:
+        fly_to_file(load({**sounding_scenario(10.0), "program": main, **limits}), out)
+    assert entered                      # read inside compiled runs
+    assert said in str(raised.value)
+    first = _keeps_control.__code__.co_firstlineno
+    lines = (first + 2, first + 3) if kind == "busy loop" else (first + 4,)      # the loop, or the sleep
+    assert re.search(rf"test_program_leash\.py:({'|'.join(map(str, lines))}): ", str(raised.value))
+    assert read_run(out).problem is None
+    assert list(messages(out, ["/peer_sounding_rocket/state"]))[-1][2]["t"] == pytest.approx(3.0)

@@ -196,3 +196,18 @@ def test_the_cache_index_names_the_signatures_saved(tmp_path):
     assert first == [False, True, ["(float64,)"], False]
     second = json.loads(on_a_cold_cache(tmp_path, _INDEXED, CALL="0"))
     assert second == [True, True, ["(float64,)"], True]     # named by the index, nothing loaded
+
+
+def test_a_signature_with_a_c_function_pointer_is_pickled_and_read_back():
+    """A compiled run's signature holds a C function pointer's type, whose typing template
+    is a class made at run time: the standard pickler refuses it, numba's own (the queue of
+    kernels compiled beside) writes it so that ``pickle`` reads back an equal signature."""
+    import ctypes
+    import pickle
+
+    prototype = ctypes.CFUNCTYPE(None, ctypes.c_int64)
+    function = prototype(lambda k: None)
+    signature = (numba.typeof(np.zeros(3)), numba.typeof(function))
+    with pytest.raises(pickle.PicklingError):
+        pickle.dumps(signature)
+    assert pickle.loads(numba_internals.serialized(("module", "kernel", signature))) == ("module", "kernel", signature)
