@@ -45,6 +45,8 @@ from typing import Callable
 
 import numpy as np
 
+from rocketsim.frames.vectors import cross
+
 DV_STEP = 1.0             # m/s: the finite-difference step of the Jacobian
 MAX_PASS_STEP = 500.0     # m/s: the longest correction of one pass
 HALVINGS = 3              # halvings of a pass's step that does not shrink the miss
@@ -91,7 +93,7 @@ def burn_plane(r, along, dip: float) -> np.ndarray:
     h = np.asarray(along, dtype=float)
     h = h - (h @ up) * up
     h /= float(np.linalg.norm(h))
-    return np.array((np.cross(up, h), math.cos(dip) * h - math.sin(dip) * up))
+    return np.array((cross(up, h), math.cos(dip) * h - math.sin(dip) * up))
 
 
 def after_burn(r, v, dv, acceleration: float, mu: float):
