@@ -68,8 +68,7 @@ def _short_period(x: np.ndarray, mu: float, radius: float, j2: float) -> np.ndar
     at the mean anomaly of the mean elements ``x``."""
     a, i, _, xi, zeta, lam = (float(v) for v in x)
     argp, terms = _periodic_terms(a, i, xi, zeta, mu, radius, j2)
-    here = np.exp(1j * _HARMONICS * (lam - argp))
-    return np.array([float(np.real(np.sum(c * here))) for c in terms])
+    return np.real((terms * np.exp(1j * _HARMONICS * (lam - argp))).sum(axis=1))
 
 
 _HARMONICS = np.fft.fftfreq(SAMPLES, 1.0 / SAMPLES)
@@ -79,11 +78,11 @@ _HARMONICS.flags.writeable = False
 
 @functools.lru_cache(maxsize=16)
 def _periodic_terms(a: float, i: float, xi: float, zeta: float, mu: float, radius: float,
-                    j2: float) -> tuple[float, tuple[np.ndarray, ...]]:
+                    j2: float) -> tuple[float, np.ndarray]:
     """``(argp, terms)``: the argument of periapsis of the mean ellipse ``a, i, e cos w,
-    e sin w`` and the Fourier coefficients over ``M + w - argp`` (by harmonic, numpy's FFT
-    order) of the short-period terms of the regular elements ``a, i, raan, e cos w,
-    e sin w, M + w``. The shape of the ellipse alone sets them: kept for the last few
+    e sin w`` and the Fourier coefficients over ``M + w - argp`` (a row for each of the
+    regular elements ``a, i, raan, e cos w, e sin w, M + w``, a column for each harmonic,
+    numpy's FFT order) of their short-period terms. The shape of the ellipse alone sets them: kept for the last few
     ellipses (a guidance evaluates one target ellipse at many points of its orbit)."""
     e = math.hypot(xi, zeta)
     argp = math.atan2(zeta, xi) if e > 0.0 else 0.0
@@ -115,12 +114,13 @@ def _periodic_terms(a: float, i: float, xi: float, zeta: float, mu: float, radiu
     def periodic(rate):
         coeff = np.fft.fft(rate) / SAMPLES / (1j * _HARMONICS * n)
         coeff[0] = 0.0
-        coeff.flags.writeable = False
         return coeff
 
     a_coeff = periodic(da)
     dlam = dlam - 1.5 * n / a * np.real(np.fft.ifft(a_coeff * SAMPLES))   # mean motion of the ripple
-    return argp, tuple([a_coeff] + [periodic(rate) for rate in (di, draan, dxi, dzeta, dlam)])
+    terms = np.array([a_coeff] + [periodic(rate) for rate in (di, draan, dxi, dzeta, dlam)])
+    terms.flags.writeable = False
+    return argp, terms
 
 
 def mean_to_osculating(mean: Elements, radius: float = EARTH_RADIUS_EQ, j2: float = EARTH_J2) -> Elements:
