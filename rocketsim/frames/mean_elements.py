@@ -34,8 +34,8 @@ Units: m, rad; ``mu`` (m^3/s^2), ``radius`` (m, the J2 reference radius) and
 
 from __future__ import annotations
 
-import functools
 import math
+import struct
 
 import numpy as np
 
@@ -72,18 +72,34 @@ def _short_period(x: np.ndarray, mu: float, radius: float, j2: float) -> np.ndar
 
 
 _HARMONICS = np.fft.fftfreq(SAMPLES, 1.0 / SAMPLES)
-_HARMONICS[0] = 1.0                                     # (the mean, removed by _periodic_terms)
+_HARMONICS[0] = 1.0                                     # (the mean, removed by _series)
 _HARMONICS.flags.writeable = False
 
 
-@functools.lru_cache(maxsize=16)
+_KEPT = 16              # ellipses whose series are kept (a guidance evaluates one at many points)
+_SERIES: dict[bytes, tuple[float, np.ndarray]] = {}     # by the bits of the ellipse's figures
+
+
 def _periodic_terms(a: float, i: float, xi: float, zeta: float, mu: float, radius: float,
                     j2: float) -> tuple[float, np.ndarray]:
+    """:func:`_series` of the ellipse, kept for the last _KEPT ellipses (by the bits of
+    their figures: a zero's sign can turn the argument of periapsis by 2 pi)."""
+    key = struct.pack("7d", a, i, xi, zeta, mu, radius, j2)
+    found = _SERIES.get(key)
+    if found is None:
+        if len(_SERIES) >= _KEPT:
+            _SERIES.pop(next(iter(_SERIES)), None)
+        found = _SERIES[key] = _series(a, i, xi, zeta, mu, radius, j2)
+    return found
+
+
+def _series(a: float, i: float, xi: float, zeta: float, mu: float, radius: float,
+            j2: float) -> tuple[float, np.ndarray]:
     """``(argp, terms)``: the argument of periapsis of the mean ellipse ``a, i, e cos w,
     e sin w`` and the Fourier coefficients over ``M + w - argp`` (a row for each of the
     regular elements ``a, i, raan, e cos w, e sin w, M + w``, a column for each harmonic,
-    numpy's FFT order) of their short-period terms. The shape of the ellipse alone sets them: kept for the last few
-    ellipses (a guidance evaluates one target ellipse at many points of its orbit)."""
+    numpy's FFT order) of their short-period terms: the shape of the ellipse alone sets
+    them."""
     e = math.hypot(xi, zeta)
     argp = math.atan2(zeta, xi) if e > 0.0 else 0.0
     m = _TWO_PI * np.arange(SAMPLES) / SAMPLES
