@@ -14,7 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from rocketsim.api.arguments import expect, one_of
+from rocketsim.argument_checks import expect, one_of
 from rocketsim.constants import AU
 from rocketsim.ephemeris.solar_system import BODIES, states
 from rocketsim.timescales import Epoch

@@ -25,8 +25,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from rocketsim.api.arguments import seconds
-from rocketsim.scenario.models import check_duration
+from rocketsim.scenario.models import check_duration, time_argument
 from rocketsim.scenario.load import LoadedScenario
 
 RIGID_SAMPLE = 410.0        # bytes per sample of a rigid body (see the module)
@@ -60,7 +59,7 @@ def estimate(loaded: LoadedScenario, duration: float | None = None) -> SizeEstim
     """The telemetry file's size :func:`rocketsim.api.fly_to_file` will write for ``loaded``
     flown ``duration`` seconds (default: the mission's); see the module."""
     scenario = loaded.scenario
-    duration = scenario.mission.duration if duration is None else seconds(duration, "duration", check_duration)
+    duration = scenario.mission.duration if duration is None else time_argument(duration, "duration", check_duration)
     telemetry, vehicle = scenario.telemetry, scenario.vehicle
     rate = telemetry.rate
     if vehicle.stages:

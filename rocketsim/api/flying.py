@@ -16,7 +16,7 @@ from dataclasses import replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Callable, Mapping
 
-from rocketsim.api.arguments import expect
+from rocketsim.argument_checks import expect
 from rocketsim.scenario.load import LoadedScenario, load as load_scenario, program_file, unknown_stage
 
 if TYPE_CHECKING:

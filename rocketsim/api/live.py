@@ -23,7 +23,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable, Mapping
 
-from rocketsim.api.arguments import expect, switch, whole
+from rocketsim.argument_checks import expect, switch, whole
 from rocketsim.errors import ArgumentError, InputError
 from rocketsim.live.clock import parse_warp, warp_text
 

@@ -23,8 +23,8 @@ import tempfile
 from dataclasses import dataclass
 from pathlib import Path, PurePosixPath
 
-from rocketsim.api.arguments import file_path, switch
 from rocketsim.api.flying import with_programs
+from rocketsim.argument_checks import file_path, switch
 from rocketsim.errors import InputError
 from rocketsim.flight.program import load_program
 from rocketsim.scenario.load import load

@@ -24,8 +24,8 @@ from pathlib import Path
 
 import numpy as np
 
-from rocketsim.api.arguments import file_path
 from rocketsim.api.samples import Samples
+from rocketsim.argument_checks import file_path
 from rocketsim.telemetry.names import column_name, mission_time
 from rocketsim.telemetry.reader import RunFile, read_run, states
 from rocketsim.telemetry.tables import event_rows

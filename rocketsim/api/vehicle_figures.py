@@ -15,7 +15,7 @@ from dataclasses import dataclass
 from functools import cached_property
 from pathlib import Path
 
-from rocketsim.api.arguments import file_path
+from rocketsim.argument_checks import file_path
 from rocketsim.scenario.models import VehicleSpec
 from rocketsim.scenario.preflight import review
 from rocketsim.vehicle.review import Review

@@ -22,12 +22,12 @@ import numpy as np
 from rocketsim.constants import SECONDS_PER_DAY
 from rocketsim.scenario.units import parse_quantity
 from rocketsim.timescales import Epoch
-from rocketsim.transfer import windows as transfer_windows
+from rocketsim.transfer import arcs as transfer_arcs, windows as transfer_windows
 
 
 def window_targets() -> list[str]:
     """Where a window search can go: ``mars``, ``moon``."""
-    return sorted(transfer_windows.TARGETS)
+    return sorted(transfer_arcs.TARGETS)
 
 
 def days(value) -> float:
@@ -74,7 +74,7 @@ def window_grid(target: str, first: dt.datetime, last: dt.datetime, step: float,
     """The :class:`WindowGrid` to ``target`` of departures from the UTC instant ``first`` to
     ``last``, ``step`` seconds apart, with times of flight ``tof_days`` (min, max; default
     the target's range)."""
-    lo, hi = tof_days or transfer_windows.target(target).tof_days
+    lo, hi = tof_days or transfer_arcs.target(target).tof_days
     clock = UtcClock(first)
     step_days = step / SECONDS_PER_DAY
     jd_first, jd_last = clock.jd_tt(first), clock.jd_tt(last)
@@ -92,7 +92,7 @@ class LaunchWindows:
 
     grid: WindowGrid
     search: transfer_windows.Search
-    orbits: transfer_windows.Orbits
+    orbits: transfer_arcs.Orbits
 
     @property
     def windows(self) -> list[transfer_windows.Window]:
@@ -177,7 +177,7 @@ def launch_windows(grid: WindowGrid, *, objective: str = "dv", parking_altitude:
     orbit of periapsis and apoapsis altitudes (m; no apoapsis: circular), within
     ``max_c3`` (m²/s²) and ``max_vinf_arrival`` (m/s) and the grid's times of flight;
     ``progress(rows done, rows)`` as the grid's rows are finished."""
-    orbits = transfer_windows.Orbits(parking_altitude=parking_altitude,
+    orbits = transfer_arcs.Orbits(parking_altitude=parking_altitude,
                                      capture_periapsis_altitude=capture_periapsis_altitude,
                                      capture_apoapsis_altitude=capture_apoapsis_altitude)
     found = transfer_windows.search(grid.departure_jd, grid.arrival_jd, target_name=grid.target,

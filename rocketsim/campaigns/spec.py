@@ -49,8 +49,8 @@ from typing import Annotated, Any, Literal, Mapping, Optional, Union
 
 from pydantic import BaseModel, Field, field_validator, model_validator
 
+from rocketsim.argument_checks import whole
 from rocketsim.campaigns.insertion import InsertionTolerance
-from rocketsim.api.arguments import whole
 from rocketsim.errors import ArgumentError, InputError
 from rocketsim.scenario.validation import validate
 from rocketsim.scenario.units import STRICT, Duration

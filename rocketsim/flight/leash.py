@@ -11,7 +11,7 @@ gets the leash's exception raised in it by one watchdog thread per process:
 * in any other thread, through ``PyThreadState_SetAsyncExc``: raised at the
   next bytecode the thread runs, so a Python loop stops but a call blocked in
   C (a sleep, a lock) returns first. A caller that must not wait for that
-  bounds the thread from outside (:func:`rocketsim.campaigns.execute`'s runs).
+  bounds the thread from outside (:func:`rocketsim.campaigns.run_task.bounded`).
 
 The watchdog looks at the leashes entered every quarter of the shortest one's
 bound (and sleeps while none is), so a leash of ``seconds`` fires between

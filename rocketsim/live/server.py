@@ -8,11 +8,11 @@ served with its log time, in the file's order. A player thread follows the file
 message when the clock (:class:`rocketsim.live.clock.PlaybackClock`) reaches
 its log time, telling the viewers the time shown (the protocol's ``time``).
 
-Control from the viewer (the protocol's parameters, and Foxglove's own play,
-pause and speed buttons through its playback control):
-
-* ``warp``: the warp, a string (``"10"``, ``"10x"``, ``"max"``) or a number;
-* ``paused``: true or false.
+The viewers pause, resume and change the warp (the protocol's parameters
+``warp`` and ``paused``, and Foxglove's playback control:
+:mod:`rocketsim.live.viewers`). Once the player has ended, :meth:`LiveServer.wait`
+waits for the viewers' connections to have the last messages
+(:mod:`rocketsim.live.delivery`), which stopping the server would drop.
 
 Memory and the flight's lead are bounded: the player holds at most
 :data:`AHEAD` chunks read ahead of the one it plays (the rest waits on disk),
@@ -39,13 +39,14 @@ from collections import deque
 from pathlib import Path
 
 import foxglove
-from foxglove.websocket import (Capability, PlaybackCommand, PlaybackState, PlaybackStatus,
-                                ServerListener)
+from foxglove.websocket import Capability
 from mcap.opcode import Opcode
 
 from rocketsim.live.cpu_share import CpuShare
-from rocketsim.live.clock import MAX, PlaybackClock, parse_warp, warp_text
+from rocketsim.live.clock import MAX, PlaybackClock
+from rocketsim.live.delivery import wait_delivered
 from rocketsim.live.growing import GrowingMcap, Record, chunk_messages, chunk_times, message_of
+from rocketsim.live.viewers import ViewerRequests, parameters, playback_state
 
 # chunks read ahead of the one being played, at most (the rest waits on disk): 256 KiB of
 # records each, uncompressed, some 12 s of a 10 Hz single body
@@ -64,16 +65,15 @@ TIME_EVERY = 0.05
 # at max warp, the CPU the view may spend (its player's thread and the SDK's) as a share of
 # the flight's (rocketsim.live.cpu_share)
 MAX_SHARE = 0.05
-# s the server stays up after the end for the last messages to reach the viewers (the SDK
-# sends them on threads of its own, and stopping drops what they have not sent)
-LINGER = 0.5
+# s the server waits at most after the end for the last messages to reach the viewers
+# (rocketsim.live.delivery): a viewer that has not taken them by then is not reading
+DELIVERY_WAIT = 1.0
 # s a stop waits for the clients' connections to close
 STOP_WAIT = 2.0
 # messages queued for a client that reads slower than it is served (the SDK drops the oldest):
 # some 4 MB of JSON, 200 s of a single body's 10 Hz telemetry (four messages a sample)
 BACKLOG = 8192
 
-WARP, PAUSED = "warp", "paused"
 _CORES = os.cpu_count() or 1
 # the records the player reads (the file's indexes are passed over)
 _PLAYED = frozenset((Opcode.SCHEMA, Opcode.CHANNEL, Opcode.CHUNK, Opcode.MESSAGE))
@@ -110,7 +110,9 @@ class LiveServer:
         self.error: BaseException | None = None         # what ended the player early
         self.served = 0                                 # messages served
         self.dropped_chunks = 0                         # chunks left out of the live copy at max
+        self.cpu: tuple[float, float] | None = None     # at max: CPU s of the view and the flight, last counted
         self.stalls = 0                                 # times the player ran out of telemetry
+        self.delivered: bool | None = None              # the viewers had the end (None: none to wait for)
         self.first_played: tuple[float, int] | None = None     # (wall s, log time ns), served or not
         self.last_played: tuple[float, int] | None = None
         self._shown_at = 0.0
@@ -119,7 +121,7 @@ class LiveServer:
         self._server = foxglove.start_server(
             name=name, host=host, port=port, context=self._context,
             capabilities=[Capability.Parameters, Capability.Time],
-            server_listener=_Listener(self), playback_time_range=time_range,
+            server_listener=ViewerRequests(self), playback_time_range=time_range,
             message_backlog_size=BACKLOG)
         self._ranged = time_range is not None           # Foxglove's playback control is on
         self.port = self._server.port
@@ -180,15 +182,14 @@ class LiveServer:
         self.clock.changed()
 
     def wait(self, longest: float | None = None) -> bool:
-        """Wait for the player to end and, if a viewer is subscribed, :data:`LINGER` seconds
-        more for the last messages to reach it (True), or ``longest`` seconds (False);
-        Ctrl-C reaches the caller meanwhile."""
-        deadline = None if longest is None else time.monotonic() + longest
-        while self._player.is_alive() and not self._done.wait(0.1):
-            if deadline is not None and time.monotonic() >= deadline:
-                return False
+        """Wait for the player to end and, if a viewer is subscribed, for the last messages
+        to reach it (:func:`~rocketsim.live.delivery.wait_delivered`, at most
+        :data:`DELIVERY_WAIT` s) (True), or ``longest`` seconds (False); Ctrl-C reaches
+        the caller meanwhile."""
+        if self._player.is_alive() and not self._done.wait(longest):
+            return False
         if self._listened():
-            time.sleep(LINGER)
+            self.delivered = wait_delivered(self.port, DELIVERY_WAIT)
         return True
 
     def stop(self) -> None:
@@ -214,10 +215,6 @@ class LiveServer:
         self.stop()
 
     # --- the controls ------------------------------------------------------------
-    def parameters(self) -> list:
-        Parameter = foxglove.Parameter
-        return [Parameter(WARP, value=warp_text(self.clock.warp)), Parameter(PAUSED, value=self.clock.paused)]
-
     def set_warp(self, warp: float | None) -> None:
         self.clock.set_warp(warp)
         self._announce()
@@ -230,21 +227,15 @@ class LiveServer:
         self.clock.resume()
         self._announce()
 
-    def playback_state(self, request_id: str | None = None, ended: bool = False) -> PlaybackState:
-        """The state of the playing for Foxglove's playback control (its speed: the warp,
-        infinite at max)."""
-        status = PlaybackStatus.Ended if ended else \
-            PlaybackStatus.Paused if self.clock.paused else PlaybackStatus.Playing
-        warp = self.clock.warp
-        return PlaybackState(status=status, current_time=self.clock.now() or 0,
-                             playback_speed=float("inf") if warp is MAX else warp, did_seek=False,
-                             request_id=request_id)
+    def tell(self, message: str, level) -> None:
+        """Show the viewers a status ``message`` (a ``foxglove.StatusLevel``)."""
+        self._server.publish_status(message, level)
 
     def _announce(self) -> None:
         """Tell the viewers the controls' values, and wake a flight waiting for room."""
-        self._server.publish_parameter_values(self.parameters())
+        self._server.publish_parameter_values(parameters(self.clock))
         if self._ranged:
-            self._server.broadcast_playback_state(self.playback_state())
+            self._server.broadcast_playback_state(playback_state(self.clock))
         with self._room:
             self._room.notify_all()
 
@@ -256,7 +247,7 @@ class LiveServer:
         except BaseException as error:      # the live copy ends; the flight and its file go on
             self.error = error
             try:
-                self._server.publish_status(f"the live view stopped: {error}", foxglove.StatusLevel.Error)
+                self.tell(f"the live view stopped: {error}", foxglove.StatusLevel.Error)
             except Exception:
                 pass
         finally:
@@ -321,7 +312,7 @@ class LiveServer:
         if last is not None:
             self._server.broadcast_time(last)
         if self._ranged:
-            self._server.broadcast_playback_state(self.playback_state(ended=True))
+            self._server.broadcast_playback_state(playback_state(self.clock, ended=True))
 
     def _may_serve(self, share: CpuShare, complete: bool) -> bool:
         """At max: whether the view may play another chunk, having spent at most
@@ -331,7 +322,7 @@ class LiveServer:
         every core (:attr:`_next_look`)."""
         if complete:
             return True
-        view, flight = share.spent()
+        view, flight = self.cpu = share.spent()
         lacking = view / MAX_SHARE - flight        # flight CPU (s) that earns the view's CPU
         if lacking <= 0:
             return True
@@ -418,43 +409,3 @@ class LiveServer:
         if shown is not None and now - self._shown_at >= TIME_EVERY:
             self._server.broadcast_time(shown)
             self._shown_at = now
-
-
-class _Listener(ServerListener):
-    """The server's callbacks: the viewers' subscriptions and controls."""
-
-    def __init__(self, live: LiveServer):
-        self._live = live
-
-    def on_subscribe(self, client, channel) -> None:
-        self._live.subscriptions += 1
-
-    def on_unsubscribe(self, client, channel) -> None:
-        self._live.subscriptions -= 1
-
-    def on_get_parameters(self, client, param_names, request_id=None):
-        return [p for p in self._live.parameters() if not param_names or p.name in param_names]
-
-    def on_set_parameters(self, client, parameters, request_id=None):
-        for parameter in parameters:
-            value = parameter.get_value()
-            if parameter.name == WARP:
-                try:
-                    self._live.set_warp(parse_warp(value if isinstance(value, str) else float(value)))
-                except (TypeError, ValueError) as error:
-                    self._live._server.publish_status(str(error), foxglove.StatusLevel.Warning)
-            elif parameter.name == PAUSED:
-                self._live.pause() if value else self._live.resume()
-        return self._live.parameters()
-
-    def on_playback_control_request(self, request):
-        """Foxglove's play, pause and speed buttons (a seek is not done: a flight can only go
-        on, and a replay plays on from where it is)."""
-        live = self._live
-        if 0 < request.playback_speed < float("inf") and request.playback_speed != live.clock.warp:
-            live.set_warp(float(request.playback_speed))
-        if request.playback_command == PlaybackCommand.Pause:
-            live.pause()
-        elif request.playback_command == PlaybackCommand.Play:
-            live.resume()
-        return live.playback_state(request.request_id)

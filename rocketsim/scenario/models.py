@@ -27,12 +27,13 @@ from pydantic import Field, field_validator, model_validator
 
 from rocketsim.constants import (EARTH_RADIUS_EQ, MAX_DURATION, MAX_HEADLESS_STEP, MAX_START_DISTANCE,
                                  MIN_STEP, STEP)
+from rocketsim.errors import ArgumentError
 from rocketsim.limits import MAX_SEED, check_data
 from rocketsim.scenario.bounds import (BOUNDS, MAX_PROGRAM_CPU, MAX_PROGRAM_WAIT, MAX_SIZE, MIN_SIZE, SIZE,
                                        within)
 from rocketsim.scenario.classic_range import CLASSIC, classic_site
 from rocketsim.scenario.weather import Weather
-from rocketsim.scenario.units import Angle, Duration, Frequency, Inertia, Length
+from rocketsim.scenario.units import Angle, Duration, Frequency, Inertia, Length, parse_quantity
 from rocketsim.scenario.aero_spec import AeroSpec, check_aero, check_axial_load
 from rocketsim.scenario.start_spec import ELEMENTS_DESCRIPTION, ElementsKind, Rate, SiteSpec, StartSpec, TargetPad
 from rocketsim.scenario.strict import PositiveMass, Strict, field_error
@@ -334,3 +335,13 @@ def check_duration(value: float) -> float:
         raise ValueError(f"a duration of {value:g} s is not at least 0 s and at most "
                          f"{MAX_DURATION:g} s (a century)")
     return value
+
+
+def time_argument(value, name: str, check) -> float:
+    """``value`` (s, or a time as the files write it, ``"10 s"``), an argument of a call, in
+    s and passed by ``check`` (:func:`check_duration`, :func:`check_step`); otherwise an
+    :class:`~rocketsim.errors.ArgumentError` naming the argument ``name``."""
+    try:
+        return check(parse_quantity(value, "time"))
+    except ValueError as error:
+        raise ArgumentError(str(error), name) from None

@@ -15,8 +15,9 @@ import os
 from collections.abc import Mapping
 from pathlib import Path
 
+from rocketsim.argument_checks import expect
 from rocketsim.constants import G0
-from rocketsim.errors import ArgumentError, InputError
+from rocketsim.errors import InputError
 from rocketsim.scenario.load import LoadedScenario, load, validate
 from rocketsim.scenario.models import VehicleSpec
 from rocketsim.scenario.yaml_source import YamlSource, read_yaml
@@ -28,9 +29,8 @@ def review(source: str | Path | Mapping | LoadedScenario, *, base_dir: str | Pat
     scenario has ``mission``), a mapping of either (file references relative to
     ``base_dir``), or a loaded scenario. :class:`InputError` for bad input and for a
     ``rigid_body`` vehicle (no stack to review)."""
-    if not isinstance(source, (str, os.PathLike, Mapping, LoadedScenario)):
-        raise ArgumentError("expected a file's path, a mapping or a loaded scenario, got "
-                            f"{type(source).__name__} {source!r:.60}", "source")
+    expect(source, (str, os.PathLike, Mapping, LoadedScenario), "source",
+           "a file's path, a mapping or a loaded scenario")
     spec, file, rail, latitude, pad = _vehicle(source, base_dir)
     gravity = G0
     if rail is not None:                  # the pad's normal gravity for its rail exit

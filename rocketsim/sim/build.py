@@ -17,15 +17,13 @@ from rocketsim.constants import EARTH_J2, EARTH_MU, EARTH_RADIUS_EQ, EARTH_RADIU
 from rocketsim.dynamics.central import nbody_field
 from rocketsim.dynamics.soi import central_params
 from rocketsim.dynamics.third_bodies import with_field
-from rocketsim.errors import ArgumentError
 from rocketsim.flight.program import load_program, plain_program
 from rocketsim.flight.sensors import Sensors
 from rocketsim.frames.earth_fixed import ecef_to_eci_velocity
 from rocketsim.frames.geodetic import enu_basis, geodetic_to_ecef
 from rocketsim.layout import P_MU, R, V, W, make_params, make_state
 from rocketsim.scenario.load import LoadedScenario
-from rocketsim.scenario.models import check_duration, check_step
-from rocketsim.scenario.units import parse_quantity
+from rocketsim.scenario.models import check_duration, check_step, time_argument
 from rocketsim.sim.body import Body, Vehicle, channel_name
 from rocketsim.sim.coast_runs import compile_coasts_beside
 from rocketsim.sim.flight_events import FlightEvents
@@ -44,7 +42,7 @@ def build_world(loaded: LoadedScenario, step: float | None = None,
     """The world of ``loaded``, ready to :meth:`~rocketsim.sim.world.World.run`;
     ``step`` and ``duration`` (s) override the scenario's."""
     scenario = loaded.scenario
-    h = scenario.step if step is None else _checked(check_step, step, "step")
+    h = scenario.step if step is None else time_argument(step, "step", check_step)
     mission = scenario.mission
     epoch = Epoch.from_utc(mission.epoch, mission.dut1)
     r, v, q = start_state(mission, scenario.site, epoch.gmst())
@@ -57,7 +55,7 @@ def build_world(loaded: LoadedScenario, step: float | None = None,
                       # the classic range's original model (held for the step); stages inherit p
                       classic=scenario.site is not None and scenario.site.model == "classic"),
     )
-    flown = mission.duration if duration is None else _checked(check_duration, duration, "duration")
+    flown = mission.duration if duration is None else time_argument(duration, "duration", check_duration)
     world = World(epoch, h, flown, [body], atmosphere=loaded.atmosphere)
     world.scenario_file, world.vehicle_file = loaded.files.get("scenario"), loaded.files.get("vehicle")
     world.step_line = loaded.step_line if step is None else None
@@ -122,12 +120,3 @@ def build_world(loaded: LoadedScenario, step: float | None = None,
         main, path = programs["program"]
         world.attach_program(body, plain_program(main, path) if main else load_program(path), path)
     return world
-
-
-def _checked(check, value: float | str, argument: str) -> float:
-    """``check`` of ``value`` (a step or duration: s, or a time as the files write it,
-    ``"10 s"``), its ValueError an input error naming ``argument``."""
-    try:
-        return check(parse_quantity(value, "time"))
-    except ValueError as error:
-        raise ArgumentError(str(error), argument) from None

@@ -45,7 +45,6 @@ COASTS_ALONE = ("it flies only bodies that coast alone (rocketsim.sim.schedule.S
 COMMANDED = ("a program's command: a program runs only in Python, and every run returns at the step its "
              "program wakes or its compiled condition holds")
 CRUISING = "cruise rails are flown by the world's loop (rocketsim.sim.world.World._cruise), never in a run"
-BUILDING = "the world's building, before the first step"
 
 _EVENTS = "rocketsim.sim.flight_events.FlightEvents."
 _CHECKS = "rocketsim.sim.vehicle_checks.VehicleChecks."
@@ -81,7 +80,6 @@ TWINS = {
     "cruise_end": _python_only("rocketsim.sim.world.World._cruise", CRUISING),
     "world.World.check_finite": Twin("rocketsim.sim.world.World.check_finite", quiet.surely_finite,
                                      quiet.surely_finite, runs.coast_run),
-    "build._checked": _python_only("rocketsim.sim.build._checked", BUILDING),
     # commanded: by a program, through the flight computer (rocketsim.sim.staging, rocketsim.sim.craft)
     "fairing jettison": _python_only("rocketsim.sim.staging.jettison_fairing", COMMANDED),
     "payload deploy": _python_only("rocketsim.sim.staging.deploy_payload", COMMANDED),

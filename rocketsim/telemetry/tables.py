@@ -14,10 +14,9 @@ component, ``delta_v_m_s[0]``), empty where an event has no such figure.
 
 from __future__ import annotations
 
-import os
 from pathlib import Path
 
-from rocketsim.errors import ArgumentError
+from rocketsim.argument_checks import file_path, one_of
 from rocketsim.extras import needs
 from rocketsim.telemetry.names import FORMER_FIELDS, column_name, mission_time
 from rocketsim.telemetry.reader import read_run, states
@@ -90,11 +89,9 @@ def event_rows(events: list[dict]) -> dict[str, list]:
 def export(path: str | Path, out_dir: str | Path, kind: str = "csv") -> list[Path]:
     """Write one table per body (``<body>.csv`` or ``.parquet``) and ``events.csv``
     into ``out_dir``; return the files written (see the module)."""
-    for value, name in ((path, "path"), (out_dir, "out_dir")):
-        if not isinstance(value, (str, os.PathLike)):
-            raise ArgumentError(f"expected a file's path, got {type(value).__name__} {value!r:.60}", name)
-    if kind not in ("csv", "parquet"):
-        raise ArgumentError(f"expected one of csv, parquet, got {kind!r:.60}", "kind")
+    file_path(path, "path")
+    file_path(out_dir, "out_dir")
+    one_of(kind, ("csv", "parquet"), "kind")
     out_dir = Path(out_dir)
     if kind == "parquet":
         needs("parquet", "the Parquet export", "pyarrow")

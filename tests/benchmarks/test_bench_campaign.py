@@ -69,7 +69,9 @@ from pathlib import Path
 
 from rocketsim.api.flying import fly
 from rocketsim.campaigns.cases import Plan
-from rocketsim.campaigns.execute import WORKER_WARM_S, _local_cluster, fly_case, run, warm
+from rocketsim.campaigns.cluster import WORKER_WARM_S, local_cluster
+from rocketsim.campaigns.execute import run
+from rocketsim.campaigns.run_task import fly_case, warm
 from rocketsim.campaigns.outputs import run_columns
 from rocketsim.campaigns.spec import read_campaign
 from tests.benchmarks.timing import best_of, load_text
@@ -151,7 +153,7 @@ def test_campaign_throughput_and_per_run_overhead(tmp_path):
     first_rate, serial, lines = throughput(campaign, tmp_path / "serial", workers=1)
     for line in lines:
         print(f"  serial {line}")
-    with _local_cluster(2) as cluster, Client(cluster) as client:
+    with local_cluster(2) as cluster, Client(cluster) as client:
         cluster_rate, parallel, lines = throughput(campaign, tmp_path / "cluster",
                                                    scheduler=cluster.scheduler_address)
         scheduling = scheduling_cost(client)

@@ -52,13 +52,13 @@ def test_vectorised_izzo_against_lamberthub():
 
 
 def test_porkchop_365_by_365_days_of_the_2026_mars_window():
-    from rocketsim.transfer import windows
+    from rocketsim.transfer import arcs
 
     jd0 = 2461192.5                                           # 2026-06-01 TT
     departure = jd0 + np.arange(365.0)
     arrival = jd0 + 90.0 + np.arange(365.0)
-    windows.arcs(departure[:2, None], arrival[None, :2])     # compile / load caches
-    seconds, grid = best_of(3, lambda: windows.arcs(departure[:, None], arrival[None, :]))
+    arcs.arcs(departure[:2, None], arrival[None, :2])        # compile / load caches
+    seconds, grid = best_of(3, lambda: arcs.arcs(departure[:, None], arrival[None, :]))
     solves = int(grid.valid.sum())
 
     r1, r2, tof = _problems(2000, seed=5)

@@ -22,8 +22,8 @@ ROOT = Path(__file__).resolve().parents[2]
 
 # bottom to top; a module belongs to the longest prefix that names it
 LAYERS = [
-    ("rocketsim.constants", "rocketsim.errors", "rocketsim.jit", "rocketsim.version",
-     "rocketsim.limits", "rocketsim.extras"),
+    ("rocketsim.constants", "rocketsim.errors", "rocketsim.argument_checks", "rocketsim.jit",
+     "rocketsim.version", "rocketsim.limits", "rocketsim.extras"),
     ("rocketsim.timescales", "rocketsim.frames", "rocketsim.layout"),
     ("rocketsim.bodies", "rocketsim.ephemeris", "rocketsim.atmosphere"),
     ("rocketsim.orbits",),

@@ -29,7 +29,7 @@ import pytest
 
 import rocketsim
 from rocketsim.api import run_campaign
-from rocketsim.campaigns import execute
+from rocketsim.campaigns import cluster as cluster_module
 from rocketsim.errors import InputError
 from tests.campaign_files import write_arc
 
@@ -103,8 +103,8 @@ def cluster(tmp_path_factory):
 
 def test_with_no_worker_the_campaign_says_so_and_stops(cluster, tmp_path, monkeypatch):
     file, _ = cluster
-    monkeypatch.setattr(execute, "NO_WORKER_S", 2.0)
-    monkeypatch.setattr(execute, "WORKER_NOTICE_S", 1.0)
+    monkeypatch.setattr(cluster_module, "NO_WORKER_S", 2.0)
+    monkeypatch.setattr(cluster_module, "WORKER_NOTICE_S", 1.0)
     said = []
     campaign = write_arc(tmp_path, CAMPAIGN.format(retries=0))
     with pytest.raises(InputError, match="no worker"):

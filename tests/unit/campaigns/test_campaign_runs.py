@@ -17,7 +17,8 @@ import pytest
 from click.testing import CliRunner
 
 import rocketsim
-from rocketsim.campaigns.execute import QUIET_WORKERS, Interrupted, _local_cluster, run
+from rocketsim.campaigns.cluster import QUIET_WORKERS, local_cluster
+from rocketsim.campaigns.execute import Interrupted, run
 from rocketsim_cli.main import main
 from tests.campaign_files import MIXED, write_arc
 
@@ -82,7 +83,7 @@ def test_the_embedded_clusters_workers_keep_the_gil_to_the_flight():
         return ({name: dask.config.get(name) for name in QUIET_WORKERS},
                 "profile-cycle" in callbacks, callbacks["tick"].callback_time)
 
-    with _local_cluster(1) as cluster, Client(cluster) as client:
+    with local_cluster(1) as cluster, Client(cluster) as client:
         (seen,) = client.run(settings).values()
     assert seen == (QUIET_WORKERS, False, 1000.0)
 

@@ -6,8 +6,9 @@ ephemeral port, subscribes, receives the channels and messages, pauses and
 resumes, changes the warp; the checks are that the MCAP file is byte for byte
 the headless flight's at every warp with and without a client, that the client
 receives every message of the file (channels with their schemas, messages with
-their log times and bytes), that nothing is served while paused and the flight
-stands still, and that a client which stops reading loses only its own copy.
+their log times and bytes, the last one before the server stops), that nothing is
+served while paused and the flight stands still, and that a client which stops
+reading loses only its own copy.
 The flights are a small probe coasting in orbit with 50 Hz telemetry (a
 chunk of the file is about 3 s of it, so a 20 s flight is 7 chunks and the
 flight waits for the view between them) and a few seconds of the hobby
@@ -105,7 +106,8 @@ def watched(loaded, out: Path, warp, *, topics: set[str], script=None, on_progre
         stop.set()
         if "thread" in found:
             found["thread"].join(WATCHDOG)
-        if "client" in found:
+        if "client" in found:       # what reached it before the server stopped, read to the close
+            found["client"].wait_until(lambda c: c.closed)
             found["client"].close()
     if "error" in found:
         raise found["error"]
@@ -234,16 +236,20 @@ def test_the_file_is_the_headless_flights_at_every_warp_with_and_without_a_clien
     duration = "3 s" if warp == 1.0 else "20 s"
     loaded = coast(duration)
     expected = headless(loaded, tmp_path / "headless.mcap")
-    fly_live(loaded, tmp_path / "alone.mcap", Live(warp=warp, port=0, on_ready=quiet))
+    alone = []
+    fly_live(loaded, tmp_path / "alone.mcap", Live(warp=warp, port=0, on_ready=alone.append))
     assert (tmp_path / "alone.mcap").read_bytes() == expected
+    assert alone[0].delivered is None           # nobody to deliver to: the end is not waited for
     topics = set(channels_of(tmp_path / "headless.mcap"))
     client, server = watched(loaded, tmp_path / "watched.mcap", warp, topics=topics)
     assert (tmp_path / "watched.mcap").read_bytes() == expected
     assert advertised(client) == channels_of(tmp_path / "headless.mcap")
+    assert server.delivered is True             # the server stopped once the client had the end
     file_messages = raw_messages(tmp_path / "watched.mcap")
-    if warp is MAX:         # whole chunks as the player's share of a core allows, in order
+    if warp is MAX:         # whole chunks as the player's share of a core allows, in order, the last
         got = iter(file_messages)
         assert client.messages and all(message in got for message in received(client))
+        assert received(client)[-1] == file_messages[-1]
     else:
         assert received(client) == file_messages
         assert server.served == len(file_messages) and server.dropped_chunks == 0

@@ -20,6 +20,7 @@ from click.testing import CliRunner
 
 from rocketsim.api import fly, load, validate_file
 from rocketsim.ephemeris.solar_system import state
+from rocketsim.errors import InputError
 from rocketsim.transfer import windows
 from rocketsim_cli.main import main
 from tests.conftest import ROOT
@@ -83,7 +84,7 @@ def test_the_mars_parking_plane_holds_the_asymptote_as_the_shipped_mission_works
     i, raan = windows.parking_plane(window, "mars")                 # the least inclination: |d|
     assert math.degrees(i) == pytest.approx(29.46)
     assert math.degrees(raan) == pytest.approx(133.28 - 90.0)
-    with pytest.raises(windows.InputError, match="cannot hold the departure asymptote"):
+    with pytest.raises(InputError, match="cannot hold the departure asymptote"):
         windows.parking_plane(window, "mars", 20.0 * DEG)
 
 

@@ -34,7 +34,7 @@ import pytest
 from rocketsim.constants import AU, EARTH_MU, EARTH_RADIUS_EQ, MARS_MU, MARS_RADIUS_EQ, SUN_MU
 from rocketsim.errors import InputError
 from rocketsim.timescales import Epoch
-from rocketsim.transfer import windows
+from rocketsim.transfer import arcs, windows
 from rocketsim.transfer.burns import capture_dv, escape_dv
 
 R_EARTH_ORBIT = 1.0 * AU
@@ -89,7 +89,7 @@ def test_minimum_c3_is_the_hohmann_transfer():
 
 
 def test_minimum_total_dv_is_the_hohmann_transfer():
-    orbits = windows.Orbits(parking_altitude=300e3, capture_periapsis_altitude=400e3,
+    orbits = arcs.Orbits(parking_altitude=300e3, capture_periapsis_altitude=400e3,
                             capture_apoapsis_altitude=33_000e3)
     found = synthetic_search(objective="dv", orbits=orbits, count=2)
     best = found.windows[0]
@@ -110,7 +110,7 @@ def test_a_time_of_flight_limit_gives_the_optimum_along_it():
     best = found.windows[0]
     assert best.tof_days == pytest.approx(200.0, abs=1e-6)
     sweep = JD0 + np.arange(60.0, 140.0, 0.01)
-    along = windows.arcs(sweep, sweep + 200.0, ephemeris=circular_ephemeris)
+    along = arcs.arcs(sweep, sweep + 200.0, ephemeris=circular_ephemeris)
     assert best.c3 == pytest.approx(np.nanmin(along.c3), rel=1e-7)
     assert best.c3 > 1.05 * VINF_EARTH ** 2
 

@@ -1,6 +1,9 @@
-"""The front door's checks of its arguments' types: a wrong type is an
-:class:`~rocketsim.errors.ArgumentError` naming the argument (as the call wrote it;
-the command line shows its option), never a TypeError from deep inside."""
+"""The checks of a call's arguments at the library's doors: a wrong type or value is an
+:class:`~rocketsim.errors.ArgumentError` naming the argument (as the call wrote it; the
+command line shows its option), never a TypeError from deep inside. The front door
+(:mod:`rocketsim.api`, :mod:`rocketsim.campaigns`) and the calls it hands its arguments
+to (a design review, a table export) check with these. A time given as the files write
+it (``"10 s"``) is read by :func:`rocketsim.scenario.models.time_argument`."""
 
 from __future__ import annotations
 
@@ -33,16 +36,6 @@ def switch(value, name: str) -> bool:
     if not isinstance(value, bool) and type(value).__name__ != "bool_":
         raise ArgumentError(f"expected True or False, got {type(value).__name__} {value!r:.60}", name)
     return bool(value)
-
-
-def seconds(value, name: str, check) -> float:
-    """``value`` (s, or a time as the files write it, ``"10 s"``) in s, passed by ``check``
-    (:func:`rocketsim.scenario.models.check_duration`, ``check_step``)."""
-    from rocketsim.scenario.units import parse_quantity
-    try:
-        return check(parse_quantity(value, "time"))
-    except ValueError as error:
-        raise ArgumentError(str(error), name) from None
 
 
 def one_of(value, choices, name: str) -> None:
