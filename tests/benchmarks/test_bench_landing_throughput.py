@@ -29,11 +29,14 @@ and FULL_CLUSTER_RUNS on the cluster. Nothing asserts a time: the checks are tha
 every run flew, its booster came down with a named outcome, and the guidance was
 timed in each run.
 
-Last figures (2-core machine shared with the other engineers' work, load 8.6-8.9; runs 0
-and 1, in the suite): 2.41 s of CPU a run (20 min for 1 000 runs on two ideal workers),
-the guidance library 0.59 s of it (25 %); the same file run on the code before the
-landing-point predictor and the mean elements were made cheap, minutes earlier: 6.33 s
-a run (53 min), the guidance 4.17 s (66 %).
+Last figures (2-core machine shared with the other engineers' work, runs 0 and 1, in
+the suite; this file run alternately on this code and on the code before the
+landing-point predictor, the mean elements and the boost-back's state were made
+cheap, two rounds at load 4.0-4.1): 1.66 and 2.47 s of CPU a run (13.8 and 20.6 min
+for 1 000 runs on two ideal workers), the guidance 0.39 and 0.57 s of it (24 %);
+before, 4.43 and 5.32 s a run (36.9 and 44.3 min), the guidance 3.06 and 3.66 s (69 %).
+The runs' other CPU is the simulator's: its compiled runs, the samples and the
+sensors' readings.
 """
 
 from __future__ import annotations
