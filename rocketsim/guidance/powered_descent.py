@@ -66,8 +66,9 @@ channel, re-solved every cycle: flown exactly, ``v / t_go`` stays constant, the
 drift falling linearly to zero); like the law above the gate it leads the autopilot's
 ``lag``: ``v`` is the drift predicted that far on and ``t_go`` the time left from
 there, at least ``terminal_time`` (the command stays finite
-at the contact: over that last time the drift decays by ``1/e``, the engine's tail-off
-being about as long), leaning at most ``terminal_tilt``:
+at the contact: over that last time the drift decays by ``1/e``; as long as the
+autopilot's lag, so that the command does not outrun the nose and reverse the
+drift), leaning at most ``terminal_tilt``:
 the stage touches down upright and still, a metre or two off rather than sliding.
 
 The thrust direction is the sum of both channels, its lean from the vertical
@@ -105,7 +106,7 @@ class Plan:
     lag: float = 1.0                    # s: the autopilot's lag, the state is predicted this far on
     max_tilt: float = math.radians(15.0)        # the divert's lean at most
     terminal_tilt: float = math.radians(5.0)    # below the gate
-    terminal_time: float = 0.25         # s: the drift's shortest time to go below the gate
+    terminal_time: float = 1.0          # s: the drift's shortest time to go below the gate
     cutoff_height: float = 0.2          # m of clearance
     ceiling: float = 8e3                # m: the burn is lit below this height only
     normal_area: float = 65.0           # m^2 per rad: the body's normal force under thrust over q

@@ -61,7 +61,7 @@ CAPTURED = math.radians(3.0)   # rad/s: the entry burn goes to full thrust and l
 CAPTURE_TIME = 4.0          # s: or this long after their ignition
 LANDING_MARGIN = 800.0      # kg of usable propellant predicted at touchdown, at least
 MAX_ENTRY_LEAN = 0.35       # horizontal share of the entry burn's thrust at most (19 deg),
-UNTILT = 1.5                # s: none over the burn's last this long
+HOLD = 0.5                  # s: held, not solved again, over the burn's last this long
 Q_ALPHA = math.radians(60e3)           # Pa rad: the bending load commanded at most (the limit is 250 kPa deg)
 MAX_ALPHA = math.radians(5.0)    # and the angle of attack commanded at most,
 TRIM_TIME = 2.0             # s: the lean's integral trim (the autopilot holds only part of a lean)
@@ -283,13 +283,15 @@ class Return:
                     float(np.linalg.norm(fc.body_rates)) < CAPTURED and self.tail_angle() < ENTRY_ALIGNMENT)):
                 captured = True
                 fc.throttle(1.0)
-            # the lean flown until UNTILT before the end, as the prediction's lean held to the end
+            # the lean solved until HOLD before the burn's end, then held: the nose follows a
+            # lean with a lag, and one solved over the last moments asks more than it can follow
             left = (fc.airspeed - self.entry_speed) * mass / max(fc.thrust, 1.0)
-            share = max(left - UNTILT, 0.0) / max(left, 1e-3)
-            lean, off = descent.solve_lean(miss, lean, MAX_ENTRY_LEAN * share if captured else 0.0)
+            if left > HOLD or not captured:
+                lean, off = descent.solve_lean(miss, lean, MAX_ENTRY_LEAN if captured else 0.0)
+            else:
+                off = miss(lean)
             back = -fc.air_velocity / fc.airspeed
-            flown = lean / share if share > 0.0 else np.zeros(2)    # upright into the coast: no swing after
-            fc.point_at(descent.thrust_direction(back, pad.local_to_eci((flown[0], flown[1], 0.0), fc.time)))
+            fc.point_at(descent.thrust_direction(back, pad.local_to_eci((lean[0], lean[1], 0.0), fc.time)))
             self.measure_engines()
             fc.sleep(airspeed.next_update())
         fc.shutdown(engines)
