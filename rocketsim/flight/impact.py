@@ -33,6 +33,7 @@ from rocketsim.jit import njit
 from rocketsim.constants import EARTH_RADIUS_EQ, EARTH_RADIUS_POLAR
 from rocketsim.frames.earth_fixed import eci_to_ecef
 from rocketsim.frames.geodetic import ecef_to_geodetic
+from rocketsim.frames.vectors import cross
 
 STEPS = 720                 # scan of the arc to periapsis for the ground crossing
 
@@ -59,12 +60,12 @@ def predict_impact(r, v, t: float, mu: float, radius_eq: float = EARTH_RADIUS_EQ
     v = np.asarray(v, dtype=float)
     if _outside(r[0], r[1], r[2], radius_eq, radius_polar) <= 0.0:
         return None                                   # on or under the ground already
-    h = _cross(r, v)
+    h = cross(r, v)
     h2 = float(h @ h)
     if h2 == 0.0:
         return None                                   # a purely radial path: not handled
     rn = math.sqrt(r @ r)
-    e_vec = _cross(v, h) / mu - r / rn
+    e_vec = cross(v, h) / mu - r / rn
     e = math.sqrt(e_vec @ e_vec)
     p = h2 / mu
     if p / (1.0 + e) > radius_eq:
@@ -75,7 +76,7 @@ def predict_impact(r, v, t: float, mu: float, radius_eq: float = EARTH_RADIUS_EQ
         pa = e_vec / e
     else:
         pa = r / rn
-    qa = _cross(w, pa)
+    qa = cross(w, pa)
     nu0 = math.atan2(r @ qa, r @ pa)
 
     # a ground crossing lies between now and the next periapsis (nu = 2 pi, or 0 if
@@ -95,12 +96,6 @@ def predict_impact(r, v, t: float, mu: float, radius_eq: float = EARTH_RADIUS_EQ
     lat, lon, _ = ecef_to_geodetic(eci_to_ecef(position, t + dt))
     speed = math.sqrt(mu * (2.0 / math.sqrt(position @ position) - (1.0 - e * e) / p))
     return Impact(dt, lat, lon, position, speed)
-
-
-def _cross(a, b) -> np.ndarray:
-    """``a x b`` of two 3-vectors: the products of ``np.cross``, without its overhead."""
-    (ax, ay, az), (bx, by, bz) = a.tolist(), b.tolist()
-    return np.array((ay * bz - az * by, az * bx - ax * bz, ax * by - ay * bx))
 
 
 @njit

@@ -234,8 +234,12 @@ def mean_anomaly(nu: float, e: float) -> float:
 
 def true_anomaly(mean_anom, e):
     """True anomaly (rad) of the mean anomaly ``mean_anom`` (rad; scalar or array) of an
-    ellipse of eccentricity ``e``: Kepler's equation solved by Newton's method."""
+    ellipse of eccentricity ``e``: Kepler's equation solved by Newton's method (30 passes at
+    most; once a pass leaves every anomaly as it was, bit for bit, so would the rest)."""
     ecc = np.array(mean_anom, dtype=float) + e * np.sin(mean_anom)
     for _ in range(30):
-        ecc = ecc - (ecc - e * np.sin(ecc) - mean_anom) / (1.0 - e * np.cos(ecc))
+        passed = ecc - (ecc - e * np.sin(ecc) - mean_anom) / (1.0 - e * np.cos(ecc))
+        if passed.tobytes() == ecc.tobytes():
+            break
+        ecc = passed
     return 2.0 * np.arctan2(np.sqrt(1.0 + e) * np.sin(0.5 * ecc), np.sqrt(1.0 - e) * np.cos(0.5 * ecc))

@@ -35,6 +35,7 @@ Units: m, rad; ``mu`` (m^3/s^2), ``radius`` (m, the J2 reference radius) and
 from __future__ import annotations
 
 import math
+import struct
 
 import numpy as np
 
@@ -66,6 +67,39 @@ def _short_period(x: np.ndarray, mu: float, radius: float, j2: float) -> np.ndar
     """Short-period J2 terms (zero mean over the mean anomaly) of the regular elements,
     at the mean anomaly of the mean elements ``x``."""
     a, i, _, xi, zeta, lam = (float(v) for v in x)
+    argp, terms = _periodic_terms(a, i, xi, zeta, mu, radius, j2)
+    return np.real((terms * np.exp(1j * _HARMONICS * (lam - argp))).sum(axis=1))
+
+
+_HARMONICS = np.fft.fftfreq(SAMPLES, 1.0 / SAMPLES)
+_HARMONICS[0] = 1.0                                     # (the mean, removed by _series)
+_HARMONICS.flags.writeable = False
+
+
+_KEPT = 16              # ellipses whose series are kept (a guidance evaluates one at many points)
+_SERIES: dict[bytes, tuple[float, np.ndarray]] = {}     # by the bits of the ellipse's figures
+
+
+def _periodic_terms(a: float, i: float, xi: float, zeta: float, mu: float, radius: float,
+                    j2: float) -> tuple[float, np.ndarray]:
+    """:func:`_series` of the ellipse, kept for the last _KEPT ellipses (by the bits of
+    their figures: a zero's sign can turn the argument of periapsis by 2 pi)."""
+    key = struct.pack("7d", a, i, xi, zeta, mu, radius, j2)
+    found = _SERIES.get(key)
+    if found is None:
+        if len(_SERIES) >= _KEPT:
+            _SERIES.pop(next(iter(_SERIES)), None)
+        found = _SERIES[key] = _series(a, i, xi, zeta, mu, radius, j2)
+    return found
+
+
+def _series(a: float, i: float, xi: float, zeta: float, mu: float, radius: float,
+            j2: float) -> tuple[float, np.ndarray]:
+    """``(argp, terms)``: the argument of periapsis of the mean ellipse ``a, i, e cos w,
+    e sin w`` and the Fourier coefficients over ``M + w - argp`` (a row for each of the
+    regular elements ``a, i, raan, e cos w, e sin w, M + w``, a column for each harmonic,
+    numpy's FFT order) of their short-period terms: the shape of the ellipse alone sets
+    them."""
     e = math.hypot(xi, zeta)
     argp = math.atan2(zeta, xi) if e > 0.0 else 0.0
     m = _TWO_PI * np.arange(SAMPLES) / SAMPLES
@@ -92,19 +126,17 @@ def _short_period(x: np.ndarray, mu: float, radius: float, j2: float) -> np.ndar
     dzeta = de * sw + e_dw * cw
     dlam = (-2.0 * eta * r * acc_r - e / (1.0 + eta) * (p * cf * acc_r - (p + r) * sf * acc_s)) / h \
         - ci * draan
-    harmonics = np.fft.fftfreq(SAMPLES, 1.0 / SAMPLES)
-    harmonics[0] = 1.0                                   # (the mean, removed below)
-    here = np.exp(1j * harmonics * (lam - argp))
 
     def periodic(rate):
-        coeff = np.fft.fft(rate) / SAMPLES / (1j * harmonics * n)
+        coeff = np.fft.fft(rate) / SAMPLES / (1j * _HARMONICS * n)
         coeff[0] = 0.0
         return coeff
 
     a_coeff = periodic(da)
     dlam = dlam - 1.5 * n / a * np.real(np.fft.ifft(a_coeff * SAMPLES))   # mean motion of the ripple
-    terms = [a_coeff] + [periodic(rate) for rate in (di, draan, dxi, dzeta, dlam)]
-    return np.array([float(np.real(np.sum(c * here))) for c in terms])
+    terms = np.array([a_coeff] + [periodic(rate) for rate in (di, draan, dxi, dzeta, dlam)])
+    terms.flags.writeable = False
+    return argp, terms
 
 
 def mean_to_osculating(mean: Elements, radius: float = EARTH_RADIUS_EQ, j2: float = EARTH_J2) -> Elements:

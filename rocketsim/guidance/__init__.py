@@ -8,9 +8,12 @@ algorithm, its parameters and when it cannot succeed;
 ``scenarios/programs/orbit_ascent.py`` and ``scenarios/programs/booster_return.py``
 fly them.
 
-* :mod:`~rocketsim.guidance.ascent` -- Powered Explicit Guidance of an upper
-  stage to a target orbit (osculating or Kozai mean elements, node fixed or
-  free), the launch azimuth, and the insertion flown through ``fc``;
+* :mod:`~rocketsim.guidance.ascent` -- an upper stage's insertion into its target
+  orbit flown through ``fc``, a mission's target orbit and the launch azimuth;
+* :mod:`~rocketsim.guidance.peg` -- Powered Explicit Guidance: one cycle of the
+  linear-tangent law to the cut-off state, re-solved from the navigation state;
+* :mod:`~rocketsim.guidance.target_orbit` -- the target orbit (osculating or Kozai
+  mean elements, node fixed or free) and the cut-off state it asks for;
 * :mod:`~rocketsim.guidance.apsis` -- the velocity at an apsis of the orbit whose
   other apsis is given (insertion and circularisation burns);
 * :mod:`~rocketsim.guidance.landing_point` -- where a falling stage comes down,

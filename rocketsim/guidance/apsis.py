@@ -40,6 +40,7 @@ import numpy as np
 
 from rocketsim.constants import SECONDS_PER_DAY
 from rocketsim.flight.maneuvers import burn, burn_time
+from rocketsim.frames.vectors import cross
 
 
 def apsis_velocity(position, velocity, other_apsis: float, mu: float) -> np.ndarray:
@@ -49,7 +50,7 @@ def apsis_velocity(position, velocity, other_apsis: float, mu: float) -> np.ndar
     r = np.asarray(position, dtype=float)
     v = np.asarray(velocity, dtype=float)
     distance = float(np.linalg.norm(r))
-    along = np.cross(np.cross(r, v), r)
+    along = cross(cross(r, v), r)
     return math.sqrt(mu * (2.0 / distance - 2.0 / (distance + other_apsis))) * along / np.linalg.norm(along)
 
 

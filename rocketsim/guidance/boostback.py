@@ -45,6 +45,8 @@ from typing import Callable
 
 import numpy as np
 
+from rocketsim.frames.vectors import cross
+
 DV_STEP = 1.0             # m/s: the finite-difference step of the Jacobian
 MAX_PASS_STEP = 500.0     # m/s: the longest correction of one pass
 HALVINGS = 3              # halvings of a pass's step that does not shrink the miss
@@ -91,7 +93,7 @@ def burn_plane(r, along, dip: float) -> np.ndarray:
     h = np.asarray(along, dtype=float)
     h = h - (h @ up) * up
     h /= float(np.linalg.norm(h))
-    return np.array((np.cross(up, h), math.cos(dip) * h - math.sin(dip) * up))
+    return np.array((cross(up, h), math.cos(dip) * h - math.sin(dip) * up))
 
 
 def after_burn(r, v, dv, acceleration: float, mu: float):
@@ -100,11 +102,15 @@ def after_burn(r, v, dv, acceleration: float, mu: float):
     ``acceleration`` (m/s^2) along it, under the point-mass gravity ``mu`` (m^3/s^2) at
     ``r`` (see the module)."""
     r = np.asarray(r, dtype=float)
-    v = np.asarray(v, dtype=float)
     dv = np.asarray(dv, dtype=float)
     t = float(np.linalg.norm(dv)) / acceleration
-    g = -mu * r / float(r @ r) ** 1.5
-    return r + (v + 0.5 * dv) * t + 0.5 * g * t * t, v + dv + g * t, t
+    cube = float(r @ r) ** 1.5
+    # component by component: numpy's operations in numpy's order, without three-element arrays
+    (rx, ry, rz), (vx, vy, vz), (dx, dy, dz) = r.tolist(), np.asarray(v, dtype=float).tolist(), dv.tolist()
+    gx, gy, gz = -mu * rx / cube, -mu * ry / cube, -mu * rz / cube
+    return (np.array((rx + (vx + 0.5 * dx) * t + 0.5 * gx * t * t, ry + (vy + 0.5 * dy) * t + 0.5 * gy * t * t,
+                      rz + (vz + 0.5 * dz) * t + 0.5 * gz * t * t)),
+            np.array((vx + dx + gx * t, vy + dy + gy * t, vz + dz + gz * t)), t)
 
 
 def cutoff_due(to_gain, thrust_direction, acceleration: float, step: float, tail_off: float) -> bool:

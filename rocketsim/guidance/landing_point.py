@@ -127,34 +127,38 @@ def landing_burn(thrust: float, flow: float, plan: float, touch_speed: float, em
     return np.array((thrust, flow, plan, touch_speed, empty, ceiling, exit_area), dtype=float)
 
 
-@njit
-def _frame(y, h0, dh, density, pressure, temperature, sound, wind_e, wind_n):
-    """``(h, fall, g, rho, c, east (3), north (3), air-relative velocity (3), airspeed, p)`` at
-    the state ``y``: the height along the radius (m), the speed down the geocentric
+# the figures of the state a step reads (:func:`_frame`), by position in its tuple
+F_HEIGHT, F_FALL, F_GRAVITY, F_DENSITY, F_SOUND, F_PRESSURE = range(6)
+F_EAST = 6                  # east x, y (its z is 0), then north x, y, z
+F_NORTH = 8
+F_AIR = 11                  # the air-relative velocity x, y, z, then the airspeed
+F_AIRSPEED = 14
+
+
+@njit(borrows=True)
+def _frame(s, air):
+    """The figures at the state ``s`` (x, y, z, vx, vy, vz, mass) in the air table ``air``
+    (:meth:`~rocketsim.atmosphere.table.AtmosphereTable.arrays`), in the order of the
+    ``F_*`` positions: the height along the radius (m), the speed down the geocentric
     radius (m/s), the point-mass gravity (m/s^2), the air's density, speed of sound and
-    pressure (Pa, last),
-    the local east and north (``east = z x up`` normalised, ``north = up x east``)."""
-    x, yy, z = y[0], y[1], y[2]
-    rr = math.sqrt(x * x + yy * yy + z * z)
-    ux, uy, uz = x / rr, yy / rr, z / rr
-    h = point_height(x, yy, z, EARTH_RADIUS_EQ, EARTH_RADIUS_POLAR)
-    rho, p, _, c, ue, un = air_at(h0, dh, density, pressure, temperature, sound, wind_e, wind_n, h)
-    s = math.sqrt(ux * ux + uy * uy)
-    east = np.array((-uy / s, ux / s, 0.0))
-    north = np.array((-uz * east[1], uz * east[0], ux * east[1] - uy * east[0]))
-    air = y[3:6] - ue * east - un * north
-    return (h, -(y[3] * ux + y[4] * uy + y[5] * uz), EARTH_MU / (rr * rr), rho, c, east, north, air,
-            math.sqrt(air[0] * air[0] + air[1] * air[1] + air[2] * air[2]), p)
+    pressure (Pa), the local east (x, y; ``east = z x up`` normalised, its z 0) and north
+    (``north = up x east``), the air-relative velocity (m/s) and the airspeed."""
+    x, y, z = s[0], s[1], s[2]
+    rr = math.sqrt(x * x + y * y + z * z)
+    ux, uy, uz = x / rr, y / rr, z / rr
+    h = point_height(x, y, z, EARTH_RADIUS_EQ, EARTH_RADIUS_POLAR)
+    rho, p, _, c, ue, un = air_at(air[0], air[1], air[2], air[3], air[4], air[5], air[6], air[7], h)
+    across = math.sqrt(ux * ux + uy * uy)
+    ex, ey = -uy / across, ux / across
+    nx, ny, nz = -uz * ey, uz * ex, ux * ey - uy * ex
+    ax = s[3] - ue * ex - un * nx
+    ay = s[4] - ue * ey - un * ny
+    az = s[5] - ue * 0.0 - un * nz
+    return (h, -(s[3] * ux + s[4] * uy + s[5] * uz), EARTH_MU / (rr * rr), rho, c, p, ex, ey, nx, ny, nz,
+            ax, ay, az, math.sqrt(ax * ax + ay * ay + az * az))
 
 
-@njit
-def _dynamic_pressure(y, h0, dh, density, pressure, temperature, sound, wind_e, wind_n):
-    """``rho |v_a|^2 / 2`` (Pa) at the state ``y``."""
-    _, _, _, rho, _, _, _, _, airspeed, _ = _frame(y, h0, dh, density, pressure, temperature, sound, wind_e, wind_n)
-    return 0.5 * rho * airspeed * airspeed
-
-
-@njit
+@njit(borrows=True)
 def _landing_throttle(h, fall, g, mass, p, landing):
     """The throttle (0 to 1) of the landing burn's engine at the ambient pressure ``p`` (Pa)
     that stops ``fall`` at the ground ``h`` below at a constant deceleration (1 when it
@@ -165,52 +169,7 @@ def _landing_throttle(h, fall, g, mass, p, landing):
     return min(1.0, throttle_for((fall * fall / (2.0 * h) + g) * mass, landing[LANDING_THRUST] - loss, loss))
 
 
-@njit
-def _rates(y, phase, h0, dh, density, pressure, temperature, sound, wind_e, wind_n, aero, lean,
-           entry, landing):
-    """The state's rates (velocity, acceleration, -flow) in ``phase`` (see the module)."""
-    h, fall, g, rho, c, east, north, air, airspeed, p = _frame(y, h0, dh, density, pressure, temperature,
-                                                               sound, wind_e, wind_n)
-    w = EARTH_OMEGA
-    gx, gy, gz = point_mass_j2(y[0], y[1], y[2], EARTH_MU, EARTH_RADIUS_EQ, EARTH_J2)
-    out = np.empty(7)
-    out[0], out[1], out[2] = y[3], y[4], y[5]
-    out[3] = gx + 2.0 * w * y[4] + w * w * y[0]
-    out[4] = gy - 2.0 * w * y[3] + w * w * y[1]
-    out[5] = gz
-    out[6] = 0.0
-    mass = y[6]
-    if phase == ENTRY:
-        d = -air / airspeed + entry[ENTRY_LEAN_E] * east + entry[ENTRY_LEAN_N] * north
-        out[3:6] += entry[ENTRY_THRUST] / mass / math.sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) * d
-        out[6] = -entry[ENTRY_FLOW]
-    elif phase == LANDING:
-        # the vertical part the profile needs, along the airflow's reverse (no angle of attack)
-        loss = p * landing[LANDING_EXIT_AREA]
-        full = (landing[LANDING_THRUST] - loss) / mass
-        up = _landing_throttle(h, fall, g, mass, p, landing) * landing[LANDING_THRUST] / mass - loss / mass
-        r = math.sqrt(y[0] * y[0] + y[1] * y[1] + y[2] * y[2])
-        fall_air = -(air[0] * y[0] + air[1] * y[1] + air[2] * y[2]) / r
-        push = -up / max(fall_air, 1e-3) * air
-        size = math.sqrt(push[0] * push[0] + push[1] * push[1] + push[2] * push[2])
-        if size > full:
-            push *= full / size
-            size = full
-        out[3:6] += push
-        out[6] = -throttle_for(size * mass, full * mass, loss) * landing[LANDING_FLOW]
-    else:
-        drag = _drag(rho, c, airspeed, mass, aero)
-        if drag > 0.0:
-            out[3:6] -= drag / airspeed * air
-            if lean[LEAN_E] != 0.0 or lean[LEAN_N] != 0.0:
-                q = 0.5 * rho * airspeed * airspeed
-                ratio = interp(aero[:, AERO_MACH], aero[:, AERO_LIFT_SLOPE], airspeed / c) * min(
-                    lean[LEAN_MAX_ALPHA], lean[LEAN_Q_ALPHA] / q)
-                out[3:6] += drag * ratio * (lean[LEAN_E] * east + lean[LEAN_N] * north)
-    return out
-
-
-@njit
+@njit(borrows=True)
 def _drag(rho, c, airspeed, mass, aero):
     """The drag's deceleration (m/s^2) at the air's density ``rho`` and speed of sound ``c``."""
     if rho <= 0.0 or airspeed <= 0.0:
@@ -218,40 +177,94 @@ def _drag(rho, c, airspeed, mass, aero):
     return rho * airspeed * airspeed * interp(aero[:, AERO_MACH], aero[:, AERO_AREA], airspeed / c) / (2.0 * mass)
 
 
-@njit
-def _events(y, phase, entering, h0, dh, density, pressure, temperature, sound, wind_e, wind_n,
-            aero, entry, landing):
-    """The phase's event quantities, each positive before its event: (the ground, the
-    entry burn lit / ended, the landing burn lit / its touch speed, the landing burn's
-    engines empty); inf where an event cannot happen in this phase."""
-    h, fall, g, rho, c, _, _, _, airspeed, p = _frame(y, h0, dh, density, pressure, temperature, sound,
-                                                      wind_e, wind_n)
-    out = np.full(4, np.inf)
-    out[0] = h
+@njit(borrows=True)
+def _rates(s, f, phase, aero, lean, entry, landing):
+    """The rates of the state ``s`` (velocity, acceleration, -flow) in ``phase`` (see the
+    module), ``f`` its :func:`_frame`."""
+    h, fall, g, rho, c, p = f[F_HEIGHT], f[F_FALL], f[F_GRAVITY], f[F_DENSITY], f[F_SOUND], f[F_PRESSURE]
+    ex, ey, nx, ny, nz = f[F_EAST], f[F_EAST + 1], f[F_NORTH], f[F_NORTH + 1], f[F_NORTH + 2]
+    ax, ay, az, airspeed = f[F_AIR], f[F_AIR + 1], f[F_AIR + 2], f[F_AIRSPEED]
+    w = EARTH_OMEGA
+    gx, gy, gz = point_mass_j2(s[0], s[1], s[2], EARTH_MU, EARTH_RADIUS_EQ, EARTH_J2)
+    dvx = gx + 2.0 * w * s[4] + w * w * s[0]
+    dvy = gy - 2.0 * w * s[3] + w * w * s[1]
+    dvz = gz
+    flow = 0.0
+    mass = s[6]
+    if phase == ENTRY:
+        dx = -ax / airspeed + entry[ENTRY_LEAN_E] * ex + entry[ENTRY_LEAN_N] * nx
+        dy = -ay / airspeed + entry[ENTRY_LEAN_E] * ey + entry[ENTRY_LEAN_N] * ny
+        dz = -az / airspeed + entry[ENTRY_LEAN_E] * 0.0 + entry[ENTRY_LEAN_N] * nz
+        k = entry[ENTRY_THRUST] / mass / math.sqrt(dx * dx + dy * dy + dz * dz)
+        dvx, dvy, dvz = dvx + k * dx, dvy + k * dy, dvz + k * dz
+        flow = -entry[ENTRY_FLOW]
+    elif phase == LANDING:
+        # the vertical part the profile needs, along the airflow's reverse (no angle of attack)
+        loss = p * landing[LANDING_EXIT_AREA]
+        full = (landing[LANDING_THRUST] - loss) / mass
+        up = _landing_throttle(h, fall, g, mass, p, landing) * landing[LANDING_THRUST] / mass - loss / mass
+        r = math.sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2])
+        fall_air = -(ax * s[0] + ay * s[1] + az * s[2]) / r
+        k = -up / max(fall_air, 1e-3)
+        px, py, pz = k * ax, k * ay, k * az
+        size = math.sqrt(px * px + py * py + pz * pz)
+        if size > full:
+            k = full / size
+            px, py, pz = px * k, py * k, pz * k
+            size = full
+        dvx, dvy, dvz = dvx + px, dvy + py, dvz + pz
+        flow = -throttle_for(size * mass, full * mass, loss) * landing[LANDING_FLOW]
+    else:
+        drag = _drag(rho, c, airspeed, mass, aero)
+        if drag > 0.0:
+            k = drag / airspeed
+            dvx, dvy, dvz = dvx - k * ax, dvy - k * ay, dvz - k * az
+            if lean[LEAN_E] != 0.0 or lean[LEAN_N] != 0.0:
+                q = 0.5 * rho * airspeed * airspeed
+                ratio = interp(aero[:, AERO_MACH], aero[:, AERO_LIFT_SLOPE], airspeed / c) * min(
+                    lean[LEAN_MAX_ALPHA], lean[LEAN_Q_ALPHA] / q)
+                k = drag * ratio
+                dvx = dvx + k * (lean[LEAN_E] * ex + lean[LEAN_N] * nx)
+                dvy = dvy + k * (lean[LEAN_E] * ey + lean[LEAN_N] * ny)
+                dvz = dvz + k * (lean[LEAN_E] * 0.0 + lean[LEAN_N] * nz)
+    return s[3], s[4], s[5], dvx, dvy, dvz, flow
+
+
+@njit(borrows=True)
+def _events(s, f, phase, entering, aero, entry, landing):
+    """The phase's event quantities at the state ``s`` (``f`` its :func:`_frame`), each
+    positive before its event: (the ground, the entry burn lit / ended, the landing burn
+    lit / its touch speed, the landing burn's engines empty); inf where an event cannot
+    happen in this phase."""
+    h, fall, g, airspeed = f[F_HEIGHT], f[F_FALL], f[F_GRAVITY], f[F_AIRSPEED]
+    entry_event = landing_event = empty = np.inf
     if phase == COAST:
         if entering and fall > 0.0:
-            out[1] = h - entry[ENTRY_ALTITUDE]
+            entry_event = h - entry[ENTRY_ALTITUDE]
         if landing[LANDING_THRUST] > 0.0 and fall > 0.0 and h > 0.0:
-            out[2] = max(landing[LANDING_PLAN] - _landing_throttle(h, fall, g, y[6], p, landing),
-                         _drag(rho, c, airspeed, y[6], aero) - g - fall * fall / (2.0 * h),
-                         (h - landing[LANDING_CEILING]) / landing[LANDING_CEILING])
+            landing_event = max(landing[LANDING_PLAN] - _landing_throttle(h, fall, g, s[6], f[F_PRESSURE], landing),
+                                _drag(f[F_DENSITY], f[F_SOUND], airspeed, s[6], aero) - g - fall * fall / (2.0 * h),
+                                (h - landing[LANDING_CEILING]) / landing[LANDING_CEILING])
     elif phase == ENTRY:
-        out[1] = min(airspeed - entry[ENTRY_SPEED], y[6] - entry[ENTRY_FLOOR])
+        entry_event = min(airspeed - entry[ENTRY_SPEED], s[6] - entry[ENTRY_FLOOR])
     elif phase == LANDING:
-        out[2] = fall - landing[LANDING_TOUCH]
-        out[3] = y[6] - landing[LANDING_EMPTY]
-    return out
+        landing_event = fall - landing[LANDING_TOUCH]
+        empty = s[6] - landing[LANDING_EMPTY]
+    return h, entry_event, landing_event, empty
 
 
-@njit
-def _step(y, dt, phase, h0, dh, density, pressure, temperature, sound, wind_e, wind_n, aero, lean,
-          entry, landing):
-    """The state ``dt`` s on (the midpoint rule) in ``phase``."""
-    k1 = _rates(y, phase, h0, dh, density, pressure, temperature, sound, wind_e, wind_n, aero, lean,
-                entry, landing)
-    k2 = _rates(y + 0.5 * dt * k1, phase, h0, dh, density, pressure, temperature, sound, wind_e, wind_n,
-                aero, lean, entry, landing)
-    return y + dt * k2
+@njit(inline="always")
+def _ahead(s, dt, rates):
+    """The state ``s`` moved on by ``dt`` times ``rates``."""
+    return (s[0] + dt * rates[0], s[1] + dt * rates[1], s[2] + dt * rates[2], s[3] + dt * rates[3],
+            s[4] + dt * rates[4], s[5] + dt * rates[5], s[6] + dt * rates[6])
+
+
+@njit(borrows=True)
+def _midpoint(s, dt, start, phase, air, aero, lean, entry, landing):
+    """The state ``s`` ``dt`` s on by the midpoint rule in ``phase``, ``start`` its rates."""
+    half = _ahead(s, 0.5 * dt, start)
+    return _ahead(s, dt, _rates(half, _frame(half, air), phase, aero, lean, entry, landing))
 
 
 @njit
@@ -270,8 +283,12 @@ def fall(x, y, z, vx, vy, vz, mass, h0, dh, density, pressure, temperature, soun
 
     Returns ``(x, y, z, t, mass, lit, peak_q)``: the Earth-fixed point (m), the time (s)
     from now and the mass (kg) there, the mass when the landing burn was lit (nan if it
-    was not) and the highest dynamic pressure (Pa) met off the engines."""
-    state = np.array((x, y, z, vx, vy, vz, mass))
+    was not) and the highest dynamic pressure (Pa) met off the engines.
+
+    Each step reads the air at its middle and its end (:func:`_frame`); the figures at its
+    end serve the next step's start, its events and its dynamic pressure."""
+    air = (h0, dh, density, pressure, temperature, sound, wind_e, wind_n)
+    state = (float(x), float(y), float(z), float(vx), float(vy), float(vz), float(mass))
     entering = entry[ENTRY_THRUST] > 0.0
     phase = COAST
     if entering and entry[ENTRY_ALTITUDE] == np.inf:
@@ -279,24 +296,24 @@ def fall(x, y, z, vx, vy, vz, mass, h0, dh, density, pressure, temperature, soun
     t = 0.0
     lit = np.nan
     peak = 0.0
+    here = _frame(state, air)
+    events = _events(state, here, phase, entering, aero, entry, landing)
     for _ in range(MAX_STEPS):
         if phase == COAST or phase == DOWN:
-            peak = max(peak, _dynamic_pressure(state, h0, dh, density, pressure, temperature, sound, wind_e,
-                                               wind_n))
-        events = _events(state, phase, entering, h0, dh, density, pressure, temperature, sound, wind_e,
-                         wind_n, aero, entry, landing)
+            peak = max(peak, 0.5 * here[F_DENSITY] * here[F_AIRSPEED] * here[F_AIRSPEED])
         if phase == COAST and events[2] <= 0.0:
             phase, lit = LANDING, state[6]  # lit at the start (the margin already used up)
+            events = _events(state, here, phase, entering, aero, entry, landing)
             continue
         h, fall_speed = events[0], -(state[3] * state[0] + state[4] * state[1] + state[5] * state[2]) \
             / math.sqrt(state[0] * state[0] + state[1] * state[1] + state[2] * state[2])
         dt = MAX_STEP if phase == COAST else MAX_BURN_STEP
         if fall_speed > 0.0:
             dt = min(dt, max(MIN_STEP, STEP_SHARE * max(h, 0.0) / fall_speed))
-        after = _step(state, dt, phase, h0, dh, density, pressure, temperature, sound, wind_e, wind_n,
-                      aero, lean, entry, landing)
-        later = _events(after, phase, entering, h0, dh, density, pressure, temperature, sound, wind_e,
-                        wind_n, aero, entry, landing)
+        start = _rates(state, here, phase, aero, lean, entry, landing)
+        after = _midpoint(state, dt, start, phase, air, aero, lean, entry, landing)
+        there = _frame(after, air)
+        later = _events(after, there, phase, entering, aero, entry, landing)
         first, share = -1, 1.0
         for k in range(4):
             if later[k] <= 0.0:
@@ -309,13 +326,13 @@ def fall(x, y, z, vx, vy, vz, mass, h0, dh, density, pressure, temperature, soun
                 if f < share or first < 0:
                     first, share = k, f
         if first < 0:
-            state, t = after, t + dt
+            state, here, events, t = after, there, later, t + dt
             continue
         if first == 0:                      # the ground, within the step: interpolated
-            point = state + share * (after - state)
-            return point[0], point[1], point[2], t + share * dt, point[6], lit, peak
-        state = _step(state, share * dt, phase, h0, dh, density, pressure, temperature, sound, wind_e,
-                      wind_n, aero, lean, entry, landing)
+            return (state[0] + share * (after[0] - state[0]), state[1] + share * (after[1] - state[1]),
+                    state[2] + share * (after[2] - state[2]), t + share * dt,
+                    state[6] + share * (after[6] - state[6]), lit, peak)
+        state = _midpoint(state, share * dt, start, phase, air, aero, lean, entry, landing)
         t += share * dt
         if phase == COAST and first == 1:
             phase = ENTRY
@@ -327,6 +344,8 @@ def fall(x, y, z, vx, vy, vz, mass, h0, dh, density, pressure, temperature, soun
             return state[0], state[1], state[2], t, state[6], lit, peak
         else:                               # the landing burn's engines empty: the stage falls
             phase = DOWN
+        here = _frame(state, air)
+        events = _events(state, here, phase, entering, aero, entry, landing)
     return state[0], state[1], state[2], t, state[6], lit, peak
 
 

@@ -1,4 +1,4 @@
-"""Ascent insertion guidance (rocketsim.guidance.ascent) against independent references.
+"""Ascent insertion guidance (ascent, peg, target_orbit) against independent references.
 
 * The thrust integrals L, J, S, Q, P, H against their definitions, the moments of the
   thrust acceleration ``a(t) = ve / (tau - t)`` of one constant-thrust phase or of two
@@ -40,8 +40,9 @@ from rocketsim import fly
 from rocketsim.api.flying import load as load_scenario
 from rocketsim.constants import DEG, EARTH_MU, EARTH_OMEGA, EARTH_RADIUS_EQ, G0
 from rocketsim.frames.mean_elements import mean_elements_of_state
-from rocketsim.guidance.ascent import (Orbit, burn_phases, cycle, launch_azimuth, plane_normal, plane_through,
-                                       settle, start, thrust_integrals, unit)
+from rocketsim.guidance.ascent import launch_azimuth
+from rocketsim.guidance.peg import burn_phases, cycle, settle, start, thrust_integrals, unit
+from rocketsim.guidance.target_orbit import Orbit, plane_normal, plane_through
 from tests.conftest import ROOT
 
 # a Falcon 9-class second stage just after staging (vehicles/falcon9-block5.yaml, 10 t payload)
