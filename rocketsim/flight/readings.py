@@ -34,7 +34,7 @@ from rocketsim.bodies.gravity import point_mass_j2
 from rocketsim.constants import EARTH_J2, EARTH_MU, EARTH_OMEGA, EARTH_RADIUS_EQ, EARTH_RADIUS_POLAR
 from rocketsim.layout import N_STATE, P_J2, P_MU, P_POLAR_RADIUS, P_RADIUS, P_SPIN, Q, R, V, W, make_params
 from rocketsim.frames.elements import Elements, state_to_elements, time_to_apoapsis
-from rocketsim.frames.local import VERTICAL, air_velocity, turned, where_and_how_fast
+from rocketsim.frames.local import VERTICAL, air_velocity, turned, where_into
 from rocketsim.frames.quaternion import quat_to_matrix
 
 # the central body of a view given no parameters: Earth (gravity and rotation)
@@ -79,7 +79,8 @@ def air_here(h0, dh, density, pressure, temperature, speed_of_sound, wind_east, 
 # row by row)
 LATITUDE, LONGITUDE, HEIGHT, CLIMB, GROUND_SPEED, PITCH, HEADING, ROLL, GRAVITY = range(9)
 ENU, SURFACE, RADIAL, PROGRADE, NORMAL, SURFACE_PROGRADE, AXES = 9, 18, 21, 24, 27, 30, 33
-N_READINGS = AXES + 9
+ACROSS = AXES + 9           # 3 slots where the readings are computed, no reading
+N_READINGS = ACROSS + 3
 
 
 @njit
@@ -96,19 +97,19 @@ def place_readings_into(out, t, r, v, p):
     """The readings of the place of a state into the slots of ``out`` (:data:`N_READINGS`)
     that :func:`step_readings` gives them, ``r``, ``v``, ``t`` and ``p`` as its: latitude,
     longitude, height, the climb rate, the speed over the ground, the local east, north,
-    up and the surface velocity, as :func:`step_readings` computes them. Returns ``(enu,
-    surface velocity)``."""
-    lat, lon, height, enu, surface = where_and_how_fast(r, v, t, p[P_SPIN], p[P_RADIUS], p[P_POLAR_RADIUS])
-    up = enu[2].copy()
+    up and the surface velocity (:func:`~rocketsim.frames.local.where_into`), as
+    :func:`step_readings` computes them (the horizontal part of the surface velocity
+    goes through the slots :data:`ACROSS`). Returns ``(enu, surface velocity)``, views
+    of ``out``."""
+    lat, lon, height = where_into(out, ENU, r, v, t, p[P_SPIN], p[P_RADIUS], p[P_POLAR_RADIUS])
+    up, surface = out[ENU + 6:ENU + 9], out[SURFACE:SURFACE + 3]
     climb = surface @ up
-    across = surface - climb * up
+    across = out[ACROSS:ACROSS + 3]
+    for i in range(3):
+        across[i] = surface[i] - climb * up[i]
     out[LATITUDE], out[LONGITUDE], out[HEIGHT] = lat, lon, height
     out[CLIMB], out[GROUND_SPEED] = climb, math.sqrt(across @ across)
-    for i in range(3):
-        for k in range(3):
-            out[ENU + 3 * i + k] = enu[i, k]
-        out[SURFACE + i] = surface[i]
-    return enu, surface
+    return out[ENU:ENU + 9].reshape((3, 3)), surface
 
 
 @njit
