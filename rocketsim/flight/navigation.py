@@ -17,7 +17,9 @@ A compiled run that asks a program's condition read in Python after each step
 (``fc.wait_until(lambda: ...)``, :func:`rocketsim.stepping.runs.fly_run`) hands it
 the step in one float64 buffer (:func:`hand_into`): the true state and the
 estimate, which :meth:`Navigation.view` then takes as it is (the same kernel on the
-same numbers: the same bits) rather than drawing it again. Its slots:
+same numbers: the same bits) rather than drawing it again, in one view for the run
+that follows the buffer from step to step
+(:meth:`~rocketsim.flight.readings.StateView.following`). Its slots:
 :data:`ANSWER` (the Python side's answer), the estimate's 13 numbers (position,
 velocity, attitude quaternion, rates) from :data:`ESTIMATE`, the state from
 :data:`STATE`.
@@ -95,31 +97,37 @@ def tanks(vehicle) -> tuple[str, ...]:
 
 
 class Navigation:
-    """The estimate of one body, kept for its step: :meth:`view` and the scalar
-    readings of the step (``readings``, cleared when the step changes)."""
+    """The estimate of one body, kept for its step (mission time :attr:`t`): :meth:`view`
+    and the scalar readings of the step (``readings``, cleared when the step changes)."""
 
     def __init__(self, craft: Craft):
         self.craft = craft
+        self.t = math.nan                         # the step of current and readings (mission time s)
         self.current: StateView | None = None     # the latest step's estimate
         self.source: StateView | None = None      # the truth's view it was made from
         self.readings: dict[str, object] = {}
+        self._following: tuple | None = None      # (hand-over buffer, the estimate's view following it)
 
     def view(self) -> StateView:
         """The estimate at the body's time (computed once per step)."""
         craft = self.craft
         t = craft.t
-        if self.current is not None and self.current.t == t:
+        if t == self.t:
             return self.current
+        self.t, self.readings = t, {}
         truth = self.source = craft.truth()
         sensors = craft.sensors
-        self.readings = {}
         if sensors is None or sensors.perfect:
             self.current = truth
             return truth
         given = craft.handed()
-        if given is not None:           # the estimate, from the compiled run
-            self.current = StateView.of_state(t, given[ESTIMATE:STATE], truth._atmosphere, craft.mu, craft.p)
-            return self.current
+        if given is not None:           # the estimate, from the compiled run: one view a run
+            following = self._following
+            if following is None or following[0] is not given:
+                following = self._following = (given, truth.following(given[ESTIMATE:STATE]))
+            view = self.current = following[1]
+            view.at(t)
+            return view
         k = craft.step_index
         errors, first = sensors.run_errors(k, tanks(craft.vehicle))
         r, v, q, w = estimate(craft.y, errors, k - first)

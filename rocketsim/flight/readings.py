@@ -11,7 +11,10 @@ ground speed, the local axes, are read first, those alone:
 :func:`place_readings`), the air and the orbit each at its own first read.
 The same class serves the truth (telemetry) and the navigation estimate (a
 program with realistic sensors), so every derived quantity inherits the
-estimate's errors.
+estimate's errors. A view :meth:`~StateView.following` a state its owner
+rewrites at each step (a compiled run's hand-over buffer) is one object for
+the whole run, moved to each step with :meth:`~StateView.at`, its readings
+written again into one array of its own.
 
 Conventions: body ``x`` is the nose. ``pitch`` is the nose's elevation above
 the local horizon, ``heading`` its azimuth from north towards east, ``roll``
@@ -199,8 +202,9 @@ _BOUND: dict = {}       # kernel -> its entry for a view's own state (_bound)
 def _bound(kernel, out: np.ndarray, t: float, state: np.ndarray, p: np.ndarray):
     """``kernel``'s compiled entry for the types of a view's ``kernel(out, t, state, p)``,
     bound at the first call, not typed by numba's dispatcher at every call: a view of_state
-    holds its state in a C-contiguous float64 copy of its own, and is read so only with
-    C-contiguous parameters (a body's) into a new float64 array."""
+    holds its state in a C-contiguous float64 copy of its own (one :meth:`~StateView.following`
+    a state, in that C-contiguous float64 state), and is read so only with C-contiguous
+    parameters (a body's) into a float64 array of its own."""
     entry = _BOUND.get(kernel)
     if entry is None:
         entry = _BOUND[kernel] = entry_point(kernel, out, t, state, p)
@@ -240,6 +244,32 @@ class StateView:
         view._atmosphere, view.mu, view._p = atmosphere, mu, _EARTH_P if p is None else p
         return view
 
+    def following(self, state: np.ndarray) -> "StateView":
+        """A view of the same body as this one (its air, ``mu`` and parameters) over
+        ``state`` itself (position, velocity, attitude, rates: a C-contiguous float64
+        array of :data:`~rocketsim.layout.N_STATE` numbers), not a copy: for a state
+        its owner rewrites in place from step to step, the view then moved to the
+        step's time with :meth:`at`. Its readings go to one array of its own, written
+        again at each instant: what it returns of them (and of the state) is read
+        within the instant, or copied."""
+        view = StateView.__new__(StateView)
+        fixed = view.__dict__
+        fixed.update(t=self.t, _state=state, _atmosphere=self._atmosphere, mu=self.mu, _p=self._p,
+                     position=state[R:R + 3], velocity=state[V:V + 3], attitude=state[Q:Q + 4],
+                     body_rates=state[W:W + 3], _out=np.empty(N_READINGS))
+        fixed["_fixed"] = fixed = dict(fixed)
+        fixed["_fixed"] = fixed         # what at() keeps
+        return view
+
+    def at(self, t: float) -> None:
+        """A view :meth:`following` a state, moved to mission time ``t`` (s), its state
+        rewritten by its owner: everything derived is read again."""
+        d = self.__dict__
+        fixed = d["_fixed"]
+        d.clear()
+        d.update(fixed)
+        d["t"] = t
+
     # --- the state, sliced at the first read (a view of_state) ---------------------
     @_once
     def position(self) -> np.ndarray:
@@ -265,21 +295,28 @@ class StateView:
         found = self.__dict__.get("_buffer")
         if found is not None:
             return found
-        state = self.__dict__.get("_state")
-        if state is None or not self._p.flags.c_contiguous:
+        out = self._out
+        if out is None:
             return self._buffer
-        out = np.empty(N_READINGS)
-        _bound(place_readings, out, self.t, state, self._p)(out, self.t, state, self._p)
+        _bound(place_readings, out, self.t, self._state, self._p)(out, self.t, self._state, self._p)
         return out
 
     @_once
     def _buffer(self) -> np.ndarray:
-        state = self.__dict__.get("_state")
-        if state is None or not self._p.flags.c_contiguous:
+        out = self._out
+        if out is None:
             return step_readings(self.t, self.position, self.velocity, self.attitude, self._p)
-        out = np.empty(N_READINGS)
-        _bound(state_readings, out, self.t, state, self._p)(out, self.t, state, self._p)
+        _bound(state_readings, out, self.t, self._state, self._p)(out, self.t, self._state, self._p)
         return out
+
+    @_once
+    def _out(self) -> np.ndarray | None:
+        """The array the readings go to through the bound kernels (:func:`_bound`), or None
+        for a view they cannot be bound for (given its vectors, or parameters not
+        C-contiguous): :func:`step_readings` then."""
+        if "_state" not in self.__dict__ or not self._p.flags.c_contiguous:
+            return None
+        return np.empty(N_READINGS)
 
     # --- where ------------------------------------------------------------
     @_once

@@ -4,7 +4,10 @@
 world and one of its bodies: the readings are the body's true state, and each
 command is carried out by the world (the program runner hands control back,
 the schedule reads the cruise allowance and the attitude command, staging
-splits the body).
+splits the body). While a compiled run hands the body's state over after each
+step (a condition read in Python), the truth's view is one for the run,
+following the hand-over buffer (:meth:`~rocketsim.flight.readings.StateView.following`),
+and is the body's view at that step.
 """
 
 from __future__ import annotations
@@ -14,7 +17,9 @@ from typing import Callable
 
 import numpy as np
 
+from rocketsim.flight.navigation import STATE
 from rocketsim.flight.readings import StateView
+from rocketsim.layout import N_STATE
 from rocketsim.sim.body import Body
 
 class BodyCraft:
@@ -28,6 +33,7 @@ class BodyCraft:
         self.epoch = world.epoch
         self.target = world.target
         self.pad_azimuth = world.pad_azimuth
+        self._following: tuple | None = None    # (hand-over buffer, the truth's view following it)
 
     # --- readings -----------------------------------------------------------
     @property
@@ -86,7 +92,20 @@ class BodyCraft:
         return math.nan if checks is None or checks.shield is None else float(checks.temperature)
 
     def truth(self) -> StateView:
-        return self._body.view()
+        body = self._body
+        view = body._view
+        if view is not None and view.t == body.t:
+            return view
+        handed = body.handed
+        if handed is None or handed[0] is not body.y:
+            return body.view()
+        following = self._following     # the state handed over by a compiled run: one view a run
+        if following is None or following[0] is not handed[1]:
+            state = handed[1][STATE:STATE + N_STATE]
+            following = self._following = (handed[1], body.view_of(body.t, state).following(state))
+        view = body._view = following[1]
+        view.at(body.t)
+        return view
 
     def handed(self) -> np.ndarray | None:
         body = self._body
