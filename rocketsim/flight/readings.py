@@ -264,11 +264,8 @@ class StateView:
     def at(self, t: float) -> None:
         """A view :meth:`following` a state, moved to mission time ``t`` (s), its state
         rewritten by its owner: everything derived is read again."""
-        d = self.__dict__
-        fixed = d["_fixed"]
-        d.clear()
-        d.update(fixed)
-        d["t"] = t
+        self.__dict__ = self._fixed.copy()
+        self.t = t
 
     # --- the state, sliced at the first read (a view of_state) ---------------------
     @_once
@@ -327,7 +324,7 @@ class StateView:
     @property
     def height(self) -> float:
         """Height above the central body's ellipsoid (WGS84 about Earth), m."""
-        return float(self._place[HEIGHT])
+        return self._place.item(HEIGHT)
 
     @property
     def enu(self) -> np.ndarray:
@@ -342,11 +339,11 @@ class StateView:
 
     @property
     def vertical_speed(self) -> float:
-        return float(self._place[CLIMB])
+        return self._place.item(CLIMB)
 
     @property
     def horizontal_speed(self) -> float:
-        return float(self._place[GROUND_SPEED])
+        return self._place.item(GROUND_SPEED)
 
     @property
     def radial(self) -> np.ndarray:
@@ -409,7 +406,7 @@ class StateView:
     def gravity(self) -> float:
         """Magnitude of the local gravitational acceleration of the central body (point
         mass + J2), m/s^2."""
-        return float(self._buffer[GRAVITY])
+        return self._buffer.item(GRAVITY)
 
     @_once
     def effective_gravity(self) -> float:

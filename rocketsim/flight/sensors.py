@@ -208,6 +208,7 @@ class Sensors:
         if level not in LEVELS:
             raise ValueError(f"unknown sensor level {level!r}; use one of {', '.join(LEVELS)}")
         self.level = level
+        self.perfect = level == "truth"     # the truth's readings: no errors
         self._seed, self._body, self._dt, self._scale = seed, body, dt, LEVELS[level]
         self.streams: dict[str, ErrorStream] = {}
         self._run = None            # ((block, tanks), errors) of run_errors
@@ -220,10 +221,6 @@ class Sensors:
             self.streams[name] = ErrorStream(self._seed, f"{self._body}/{name}", spec, self._dt,
                                              self._scale)
         return self.streams[name]
-
-    @property
-    def perfect(self) -> bool:
-        return self.level == "truth"
 
     def vector(self, name: str, truth, k: int | None = None) -> np.ndarray:
         """A 3-vector measured axis by axis (``name.x``, ``.y``, ``.z``) at step ``k``."""
