@@ -253,19 +253,24 @@ class StateView:
         again at each instant: what it returns of them (and of the state) is read
         within the instant, or copied."""
         view = StateView.__new__(StateView)
-        fixed = view.__dict__
-        fixed.update(t=self.t, _state=state, _atmosphere=self._atmosphere, mu=self.mu, _p=self._p,
+        fixed, out, p = view.__dict__, np.empty(N_READINGS), self._p
+        fixed.update(t=self.t, _state=state, _atmosphere=self._atmosphere, mu=self.mu, _p=p,
                      position=state[R:R + 3], velocity=state[V:V + 3], attitude=state[Q:Q + 4],
-                     body_rates=state[W:W + 3], _out=np.empty(N_READINGS))
+                     body_rates=state[W:W + 3], _out=out)
         fixed["_fixed"] = fixed = dict(fixed)
         fixed["_fixed"] = fixed         # what at() keeps
+        fixed["_places"] = _bound(place_readings, out, self.t, state, p)
         return view
 
     def at(self, t: float) -> None:
         """A view :meth:`following` a state, moved to mission time ``t`` (s), its state
-        rewritten by its owner: everything derived is read again."""
-        self.__dict__ = self._fixed.copy()
-        self.t = t
+        rewritten by its owner: everything derived is read again, the place's readings
+        at once (a view is moved to a step to be read there)."""
+        fixed = self._fixed
+        self.__dict__ = now = fixed.copy()
+        now["t"] = t
+        out = now["_place"] = fixed["_out"]
+        fixed["_places"](out, t, fixed["_state"], fixed["_p"])
 
     # --- the state, sliced at the first read (a view of_state) ---------------------
     @_once
