@@ -107,6 +107,7 @@ class Navigation:
         self.source: StateView | None = None      # the truth's view it was made from
         self.readings: dict[str, object] = {}
         self._following: tuple | None = None      # (hand-over buffer, the estimate's view following it)
+        self._perfect: bool | None = None         # the body's sensors are the truth's (known at the first view)
 
     def view(self) -> StateView:
         """The estimate at the body's time (computed once per step)."""
@@ -114,10 +115,15 @@ class Navigation:
         t = craft.t
         if t == self.t:
             return self.current
-        self.t, self.readings = t, {}
+        self.t = t
+        if self.readings:
+            self.readings = {}
         truth = self.source = craft.truth()
-        sensors = craft.sensors
-        if sensors is None or sensors.perfect:
+        perfect = self._perfect
+        if perfect is None:
+            sensors = craft.sensors
+            perfect = self._perfect = sensors is None or sensors.perfect
+        if perfect:
             self.current = truth
             return truth
         given = craft.handed()
@@ -129,7 +135,7 @@ class Navigation:
             view.at(t)
             return view
         k = craft.step_index
-        errors, first = sensors.run_errors(k, tanks(craft.vehicle))
+        errors, first = craft.sensors.run_errors(k, tanks(craft.vehicle))
         r, v, q, w = estimate(craft.y, errors, k - first)
         self.current = StateView(t, r, v, q, w, truth._atmosphere, craft.mu, craft.p)
         return self.current
