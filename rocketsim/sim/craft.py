@@ -96,13 +96,13 @@ class BodyCraft:
         view = body._view
         if view is not None and view.t == body.t:
             return view
-        handed = body.handed
-        if handed is None or handed[0] is not body.y:
+        given = body.handed_with(body.y)
+        if given is None:
             return body.view()
         following = self._following     # the state handed over by a compiled run: one view a run
-        if following is None or following[0] is not handed[1]:
-            state = handed[1][STATE:STATE + N_STATE]
-            following = self._following = (handed[1], body.view_of(body.t, state).following(state))
+        if following is None or following[0] is not given:
+            state = given[STATE:STATE + N_STATE]
+            following = self._following = (given, body.view_of(body.t, state).following(state))
         view = body._view = following[1]
         view.at(body.t)
         return view
