@@ -267,10 +267,12 @@ class StateView:
         rewritten by its owner: everything derived is read again, the place's readings
         at once (a view is moved to a step to be read there)."""
         fixed = self._fixed
-        self.__dict__ = now = fixed.copy()
+        now = self.__dict__
+        if len(now) != len(fixed) + 1:      # more read than the place: forgotten
+            self.__dict__ = now = fixed.copy()
+            now["_place"] = fixed["_out"]
         now["t"] = t
-        out = now["_place"] = fixed["_out"]
-        fixed["_places"](out, t, fixed["_state"], fixed["_p"])
+        fixed["_places"](fixed["_out"], t, fixed["_state"], fixed["_p"])
 
     # --- the state, sliced at the first read (a view of_state) ---------------------
     @_once
