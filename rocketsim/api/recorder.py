@@ -50,13 +50,14 @@ class Recorder(TelemetrySink):
         self.sample_rows(body, values.reshape(1, -1), fields)
 
     def sample_rows(self, body: str, rows, fields) -> None:
-        """:meth:`sample` of each row of ``rows``, in order."""
-        if not len(rows):
+        """:meth:`sample` of each row of ``rows``, in order (of time)."""
+        n = len(rows)
+        if not n:
             return
         self.samples[body].add_rows(rows, fields)
-        self.run.counts[f"/{body}/state"] += len(rows)
-        times = rows[:, -2]         # the state's t (rocketsim.stepping.sample_figures)
-        first, last = self._stamp(times.min().item()), self._stamp(times.max().item())
+        self.run.counts[f"/{body}/state"] += n
+        # the state's t (rocketsim.stepping.sample_figures), rising from row to row
+        first, last = self._stamp(rows.item(0, -2)), self._stamp(rows.item(n - 1, -2))
         self.run.start_ns = first if self.run.start_ns is None else min(self.run.start_ns, first)
         self.run.end_ns = last if self.run.end_ns is None else max(self.run.end_ns, last)
         self._finals[body] = (rows[-1], fields)
