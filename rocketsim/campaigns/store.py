@@ -65,21 +65,22 @@ def frame(tables):
                              for name in LEADING})
     strings = set(STRINGS)
     for table in tables:
-        strings |= {name for name in table.columns
-                    if table[name].dtype == object or pd.api.types.is_string_dtype(table[name].dtype)}
-    combined = pd.concat(tables, ignore_index=True, sort=False)
+        strings |= {name for name, dtype in table.dtypes.items()
+                    if dtype == object or pd.api.types.is_string_dtype(dtype)}
+    combined = pd.concat(tables, ignore_index=True, sort=False) if len(tables) > 1 else tables[0]
     combined = combined.drop_duplicates("run", keep="last").sort_values("run", kind="stable")
-    names = [n for n in LEADING if n in combined.columns] + sorted(set(combined.columns) - set(LEADING))
+    found = dict(combined.items())
+    names = [n for n in LEADING if n in found] + sorted(set(found) - set(LEADING))
     columns = {}
     for name in names:
-        values = combined[name]
+        values = found[name]
         if name == "run":
-            columns[name] = values.astype(np.int64).to_numpy()
+            columns[name] = values.to_numpy(dtype=np.int64)
         elif name in strings:
             columns[name] = pd.array([None if v is None or (isinstance(v, float) and math.isnan(v))
                                       else str(v) for v in values], dtype=object)
         else:
-            columns[name] = values.astype(np.float64).to_numpy()
+            columns[name] = values.to_numpy(dtype=np.float64)
     return pd.DataFrame(columns)
 
 
