@@ -166,26 +166,24 @@ class SampleWatch(TelemetrySink):
             found = self._figures[body] = _Figures(rows[0])
         found.add(rows)
 
-    def _kept(self, rows: np.ndarray) -> np.ndarray:
-        """Which of one body's samples ``rows`` the coast rule writes (see the module)."""
-        steps = np.rint(rows[:, -2] / self.h).astype(np.int64)
-        coasting = ~(rows[:, SAMPLE_DYNAMIC_PRESSURE] >= IN_AIR_Q)       # no air figures: out of the air
-        if rows.shape[1] > N_SAMPLE_RIGID:
-            coasting &= rows[:, SAMPLE_ENGINES_RUNNING] == 0.0
-        return ~coasting | (steps % self.every != 0) | (steps % self.coast_every == 0)
-
-    def _kept_one(self, values: np.ndarray) -> bool:
-        """:meth:`_kept` of one sample, in Python's arithmetic (the same rounding, half to even)."""
-        step = round(values.item(-2) / self.h)
-        coasting = not values.item(SAMPLE_DYNAMIC_PRESSURE) >= IN_AIR_Q
-        if values.shape[0] > N_SAMPLE_RIGID:
-            coasting = coasting and values.item(SAMPLE_ENGINES_RUNNING) == 0.0
-        return not coasting or step % self.every != 0 or step % self.coast_every == 0
+    def _kept(self, rows: np.ndarray) -> list[bool]:
+        """Which of one body's samples ``rows`` the coast rule writes (see the module): in
+        Python's arithmetic, a row at a time (blocks are a few samples long; the step is
+        rounded half to even, as numpy's ``rint``)."""
+        h, every, coast_every = self.h, self.every, self.coast_every
+        air = rows[:, SAMPLE_DYNAMIC_PRESSURE].tolist()
+        engines = rows[:, SAMPLE_ENGINES_RUNNING].tolist() if rows.shape[1] > N_SAMPLE_RIGID else [0.0] * len(air)
+        kept = []
+        for t, q, running in zip(rows[:, -2].tolist(), air, engines):
+            step = round(t / h)
+            coasting = not q >= IN_AIR_Q and running == 0.0      # no air figures: out of the air
+            kept.append(not coasting or step % every != 0 or step % coast_every == 0)
+        return kept
 
     def sample(self, body: str, values: np.ndarray, fields, leaving: bool = False) -> None:
         self._watch(body, values.reshape(1, -1))
         if self.coast_every is not None:
-            if not self._kept_one(values):
+            if not self._kept(values.reshape(1, -1))[0]:
                 self._held[body] = (values.copy(), fields, leaving)
                 return
             self._held.pop(body, None)
@@ -203,8 +201,10 @@ class SampleWatch(TelemetrySink):
             self._held[body] = (rows[-1].copy(), fields, False)
         elif body in self._held:
             del self._held[body]
-        if kept.any():
-            self.telemetry.sample_rows(body, rows[kept], fields)
+        if all(kept):
+            self.telemetry.sample_rows(body, rows, fields)
+        elif any(kept):
+            self.telemetry.sample_rows(body, rows[np.array(kept)], fields)
 
     def sample_interleaved(self, blocks: list[tuple]) -> None:
         """The samples of interleaved ``blocks`` the coast rule keeps, handed on as
@@ -224,13 +224,14 @@ class SampleWatch(TelemetrySink):
             kept = self._kept(rows)
             end = first + every * (len(rows) - 1)
             if body not in last or end > last[body][0]:
-                last[body] = (end, rows[-1], fields, bool(kept[-1]))
-            if kept.all():
-                written.append((body, rows, fields, first, every, rank))
-                continue
-            edges = np.flatnonzero(np.diff(kept, prepend=False, append=False)).tolist()
-            for start, stop in zip(edges[::2], edges[1::2]):
-                written.append((body, rows[start:stop], fields, first + every * start, every, rank))
+                last[body] = (end, rows[-1], fields, kept[-1])
+            start = None            # the first kept sample of a stretch
+            for j, keep in enumerate(kept + [False]):
+                if keep and start is None:
+                    start = j
+                elif not keep and start is not None:
+                    written.append((body, rows[start:j], fields, first + every * start, every, rank))
+                    start = None
         for body, (_, values, fields, kept) in last.items():
             if kept:
                 self._held.pop(body, None)
