@@ -198,6 +198,7 @@ class Store:
         self.parts = self.dir / "results"
         self.runs = self.dir / "runs"
         self._waiting: list[dict] = []
+        self._written: dict[Path, object] = {}     # the part files written, not yet consolidated: their tables
         self._flushed = self._consolidated = time.monotonic()
         self._count = 0
         self.set_aside: list[str] = []      # the damaged results files a resume set aside
@@ -337,16 +338,24 @@ class Store:
         self.parts.mkdir(exist_ok=True)
         existing = [int(p.stem.split("-")[1]) for p in self.parts.glob("part-*.parquet")]
         self._count = max([self._count] + existing) + 1
-        _write(frame([self._waiting]), self.parts / f"part-{self._count:06d}.parquet")
+        path, table = self.parts / f"part-{self._count:06d}.parquet", frame([self._waiting])
+        _write(table, path)
+        self._written[path] = table
         self._waiting = []
 
     def consolidate(self) -> None:
-        """Fold the part files (and the rows waiting) into ``results.parquet``."""
+        """Fold the part files (and the rows waiting) into ``results.parquet``: those this
+        store wrote from the table it wrote them from (the same numbers and text), the
+        others read."""
         self.flush()
         self._consolidated = time.monotonic()
         parts = sorted(self.parts.glob("part-*.parquet"))
-        if not parts and (self.dir / "results.parquet").is_file():
+        whole = self.dir / "results.parquet"
+        if not parts and whole.is_file():
             return
-        _write(read_results(self.dir), self.dir / "results.parquet")
+        tables = [_rows(whole)] if whole.exists() else []
+        tables += [self._written[part] if part in self._written else _rows(part) for part in parts]
+        _write(frame(tables), whole)
         for part in parts:
             part.unlink()
+        self._written.clear()

@@ -48,3 +48,37 @@ def test_no_rows_make_the_leading_columns_alone():
     table = frame([[], pd.DataFrame()])
     assert list(table.columns) == LEADING and len(table) == 0
     assert table["run"].dtype == np.int64 and table["wall_time_s"].dtype == np.float64
+
+
+def test_a_store_consolidates_the_parts_it_wrote_as_they_read_back(tmp_path, monkeypatch):
+    from rocketsim.campaigns import store as store_module
+    rows = [{"run": 2, "status": "ok", "error": None, "wall_time_s": 1.25, "outcome": "landed",
+             "b.miss_m": 0.1 + 0.2, "c.note": None, "d.label": "x"},
+            {"run": 1, "status": "error", "error": "boom", "wall_time_s": 0.5, "outcome": "boom"},
+            {"run": 0, "status": "ok", "error": None, "wall_time_s": 2.0, "outcome": "tipped",
+             "b.miss_m": -0.0, "c.note": None, "d.label": 7.5, "e.extra": math.inf},
+            {"run": 1, "status": "ok", "error": None, "wall_time_s": 3.0, "outcome": "landed again",
+             "b.miss_m": 1e-300, "c.note": None, "d.label": "z"}]
+    monkeypatch.setattr(store_module, "FLUSH_S", 0.0)          # a part file per row
+    store = store_module.Store(tmp_path / "campaign")
+    store.parts.mkdir(parents=True)
+    (tmp_path / "campaign" / "results").mkdir(exist_ok=True)
+    store.add(rows[0])
+    store.consolidate()                                       # results.parquet, then parts on top of it
+    for row in rows[1:]:
+        store.add(row)
+    parts = sorted(store.parts.glob("part-*.parquet"))
+    assert len(parts) == 3
+    expected = frame([pd.read_parquet(tmp_path / "campaign" / "results.parquet")]
+                     + [pd.read_parquet(part) for part in parts])
+    store.consolidate()
+    assert not list(store.parts.glob("part-*.parquet"))
+    found = pd.read_parquet(tmp_path / "campaign" / "results.parquet")
+    assert list(found.columns) == list(expected.columns) and found["run"].tolist() == [0, 1, 2]
+    assert found["outcome"].tolist() == ["tipped", "landed again", "landed"]
+    for name in found.columns:
+        a, b = found[name].to_numpy(), expected[name].to_numpy()
+        if a.dtype.kind == "f":
+            assert a.dtype == b.dtype and a.tobytes() == b.tobytes(), name
+        else:
+            assert [None if pd.isna(v) else v for v in a] == [None if pd.isna(v) else v for v in b], name
