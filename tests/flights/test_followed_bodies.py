@@ -17,21 +17,13 @@ import yaml
 
 import rocketsim
 from rocketsim.errors import InputError
+from tests.flights.test_solid_staging import K1000T, LIGHT, PROGRAM
 
-ROOT = Path(__file__).resolve().parents[2]
-K1000T = str(ROOT / "motors" / "AeroTech_K1000T.eng")
-PROGRAM = """
-def main(fc):
-    fc.wait_until(lambda: fc.time >= 2.6)
-    fc.stage()
-    fc.wait_until(lambda: fc.time >= 3.0)
-    fc.ignite("sustainer")
-"""
 SEPARATION = 2.6
 
 
 def scenario(tmp_path: Path, follow=None) -> dict:
-    (tmp_path / "program.py").write_text(PROGRAM)
+    (tmp_path / "program.py").write_text(PROGRAM + LIGHT)
     stage = {"length": "1 m", "diameter": "0.1 m", "motors": [{"name": "K1000T", "file": K1000T}]}
     vehicle = {"name": "two-stage", "stages": [
         {**stage, "name": "booster", "structure_mass": "2 kg"},
