@@ -17,12 +17,15 @@ thread's, best of REPEATS), the blocks' ratio to the one-at-a-time baseline, and
 replay's share of the run's own CPU (the flight's, measured once in the same run). Nothing
 asserts a time; the checks are that both ways keep the same samples and figures.
 
-Last figures (2-core machine shared with other work, load 6.6-6.9, two runs): 1 906 calls,
-13 536 samples in 4 481 blocks, the run 1.75-1.79 s of CPU; every sample kept: blocks 24 ms a
-run, one at a time 65 ms (ratio 0.37-0.38, 1.3-1.4 % of the run); coasts at 1 Hz: blocks
-38-41 ms, one at a time 83-85 ms (ratio 0.45-0.49, 2.1-2.3 %). The same calls replayed on
-the code before the sample watch took whole blocks (its figures block by block, the
-recorder a sample at a time): 127 ms, at the same load.
+Last figures (2-core machine shared with other work, load 3.0, two runs; the campaign follows
+the booster alone past its separation): 1 177 calls, 4 703 samples in 1 149 blocks, the run
+0.94-1.32 s of CPU; every sample kept: blocks 5.8-9.1 ms a run, one at a time 21-32 ms (ratio
+0.28-0.29, 0.6-0.7 % of the run); coasts at 1 Hz: blocks 9.4-12.7 ms, one at a time 29-36 ms
+(ratio 0.33-0.35, 1.0 %). The same calls replayed on the code before the sample watch took
+whole blocks (its figures block by block, the recorder a sample at a time): 41 ms, at the same
+load. Flying every body to the end (the upper stage and the fairing's halves too: 13 536
+samples in 4 481 blocks, load 6.6-6.9): blocks 24 ms against 65 ms one at a time, and 127 ms
+before.
 """
 
 from __future__ import annotations
