@@ -61,14 +61,14 @@ def read_yaml(path: Path) -> YamlSource:
     found = _PARSED.get(raw)
     if found is None:
         found = _parse(raw, path)
-        if len(_PARSED) >= PARSED_FILES:
+        if len(raw) + sum(map(len, _PARSED)) > PARSED_BYTES:
             _PARSED.clear()
         _PARSED[raw] = found
     data, positions = found
     return YamlSource(path, _fresh(data), dict(positions))
 
 
-PARSED_FILES = 64       # the distinct files' contents kept parsed at most
+PARSED_BYTES = 1024 * 1024      # the files' bytes kept parsed at most (a scenario's files: a few kB each)
 _PARSED: dict[bytes, tuple[Any, dict[tuple, Position]]] = {}     # a file's bytes -> (data, positions)
 
 

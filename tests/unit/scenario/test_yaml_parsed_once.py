@@ -62,3 +62,13 @@ def test_a_scenario_loaded_twice_with_overrides_is_the_same_as_loaded_once():
     assert load(scenario, override).scenario == changed
     assert plain != changed
     assert load(scenario).scenario == plain
+
+
+def test_the_parsed_files_kept_are_bounded_in_bytes(tmp_path, monkeypatch):
+    monkeypatch.setattr(yaml_source, "PARSED_BYTES", 100)
+    monkeypatch.setattr(yaml_source, "_PARSED", {})
+    for k in range(6):
+        path = tmp_path / f"f{k}.yaml"
+        path.write_text(f"name: file number {k}\nvalue: {k}\n" + "# padding\n" * 3)
+        assert read_yaml(path).data == {"name": f"file number {k}", "value": k}
+        assert 0 < sum(map(len, yaml_source._PARSED)) <= 100
