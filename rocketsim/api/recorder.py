@@ -22,7 +22,6 @@ from rocketsim.telemetry import foxglove
 from rocketsim.telemetry.reader import RunFile
 from rocketsim.telemetry.sink import TelemetrySink
 from rocketsim.telemetry.encoding import encode
-from rocketsim.telemetry.sample_plans import interleaved_samples
 
 MEMORY = Path("<memory>")       # the path of a run that has no file
 
@@ -48,22 +47,27 @@ class Recorder(TelemetrySink):
     def sample(self, body: str, values, fields, leaving: bool = False) -> None:
         """A body's sample: the numbers of its state message (see the writer's;
         ``leaving`` only decides the file's frames, which a run in memory has not)."""
-        self.samples[body].add_values(values, fields)
-        self.run.counts[f"/{body}/state"] += 1
-        stamp = self._stamp(values.item(-2))       # the state's t (rocketsim.stepping.sample_figures)
-        self.run.start_ns = stamp if self.run.start_ns is None else min(self.run.start_ns, stamp)
-        self.run.end_ns = stamp if self.run.end_ns is None else max(self.run.end_ns, stamp)
-        self._finals[body] = (values, fields)
+        self.sample_rows(body, values.reshape(1, -1), fields)
 
     def sample_rows(self, body: str, rows, fields) -> None:
-        """:meth:`sample` of each row of ``rows``, in order."""
-        for values in rows:
-            self.sample(body, values, fields)
+        """:meth:`sample` of each row of ``rows``, in order (of time)."""
+        n = len(rows)
+        if not n:
+            return
+        self.samples[body].add_rows(rows, fields)
+        self.run.counts[f"/{body}/state"] += n
+        # the state's t (rocketsim.stepping.sample_figures), rising from row to row
+        first, last = self._stamp(rows.item(0, -2)), self._stamp(rows.item(n - 1, -2))
+        self.run.start_ns = first if self.run.start_ns is None else min(self.run.start_ns, first)
+        self.run.end_ns = last if self.run.end_ns is None else max(self.run.end_ns, last)
+        self._finals[body] = (rows[-1], fields)
 
     def sample_interleaved(self, blocks: list[tuple]) -> None:
-        """:meth:`sample` of each sample of interleaved blocks, in order (see the writer's)."""
-        for body, values, fields in interleaved_samples(blocks):
-            self.sample(body, values, fields)
+        """:meth:`sample` of each sample of interleaved blocks, in order (see the writer's):
+        each body's blocks by step (what a body keeps is in its own order; the run's first
+        and last stamps are in no order)."""
+        for body, rows, fields, *_ in sorted(blocks, key=lambda block: block[3]):
+            self.sample_rows(body, rows, fields)
 
     def event(self, t: float, body: str, name: str, figures: dict) -> None:
         self.run.events.append(_as_read({"t": t, "body": body, "name": name, "figures": figures}))

@@ -45,6 +45,23 @@ class _Segment:
         self.blocks[-1][at] = numbers
         self.rows += 1
 
+    def add_rows(self, rows: np.ndarray) -> None:
+        """:meth:`add` of each row of ``rows``, in order."""
+        at, n = self.rows % BLOCK, len(rows)
+        if at and at + n <= BLOCK:          # within the last block
+            self.blocks[-1][at:at + n] = rows
+            self.rows += n
+            return
+        done = 0
+        while done < len(rows):
+            at = self.rows % BLOCK
+            if at == 0:
+                self.blocks.append(np.empty((BLOCK, self.width)))
+            n = min(BLOCK - at, len(rows) - done)
+            self.blocks[-1][at:at + n] = rows[done:done + n]
+            self.rows += n
+            done += n
+
     def array(self) -> np.ndarray:
         if not self.blocks:
             return np.empty((0, self.width))
@@ -70,13 +87,13 @@ class Samples:
         """Bytes the blocks of numbers take."""
         return sum(s.nbytes for s in self.segments)
 
-    def add_values(self, values: np.ndarray, fields) -> None:
-        """A sample of the flight: ``fields(values, integer)`` is its state message
-        (:func:`rocketsim.sim.sampling.values`)."""
+    def add_rows(self, rows: np.ndarray, fields) -> None:
+        """Samples of the flight, a row each, in order: ``fields(row, integer)`` is a row's
+        state message (:func:`rocketsim.sim.sampling.values`)."""
         segment = self.segments[-1] if self.segments else None
-        if segment is None or segment.key[0] is not fields or segment.key[1] != values.shape[0]:
-            segment = self._segment_of(fields, values.shape[0])
-        segment.add(values)
+        if segment is None or segment.key[0] is not fields or segment.key[1] != rows.shape[1]:
+            segment = self._segment_of(fields, rows.shape[1])
+        segment.add_rows(rows)
 
     def _segment_of(self, fields, n: int) -> _Segment:
         from rocketsim.telemetry import splice     # with the flight: it compiles kernels

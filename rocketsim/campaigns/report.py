@@ -20,7 +20,8 @@ and which dispersed input drove each output.
   The text leads with the *landing body* (the one that lit an engine and came down
   softly most often): its upright-on-target share, the miss and touchdown speeds of its
   upright landings and the propellant they kept (``final.usable_propellant_kg``: mean and
-  1st percentile, with bootstrap intervals);
+  1st percentile, with bootstrap intervals), then, for a campaign with insertion
+  tolerances, the share of runs inserted within them (:mod:`rocketsim.campaigns.insertion`);
 - ``landing``: per body that came down on Earth: the mean offset, standard deviations and
   correlation of the east/north scatter, the 50/90/99 % covariance ellipses (chi-square
   with 2 degrees of freedom) and the R50/R90/R99 circles about the target and about the
@@ -169,8 +170,8 @@ def report(directory, plot_dir=None) -> Report:
     tables = {"statistics": stats_table, "probabilities": probabilities, "outcomes": outcomes,
               "landing": landing_table, "sensitivities": sensitivities}
     text = report_text.plain_text(meta, counts, results, status, stats_table, probabilities, dispersions,
-                                  elsewhere, target, sensitivities, main, ranked, unranked, headline)
-    text += "\n".join(["", *insertion.report_lines(meta.get("insertion"), results, ok)])
+                                  elsewhere, target, sensitivities, main, ranked, unranked, headline,
+                                  insertion.report_lines(meta.get("insertion"), results, ok))
     parts = len(list((directory / "results").glob("part-*.parquet")))
     if parts:       # rows the engine has not yet gathered into results.parquet
         text += (f"\nnote: {parts} part files in {directory / 'results'} are not yet in results.parquet; "

@@ -59,8 +59,10 @@ def _headline_text(headline, target) -> list[str]:
 
 
 def plain_text(meta, counts, results, status, stats_table, probabilities, dispersions, elsewhere,
-               target, sensitivities, main, ranked, unranked, headline=None) -> str:
-    """The plain-text report (see :class:`Report`)."""
+               target, sensitivities, main, ranked, unranked, headline=None, insertion=()) -> str:
+    """The plain-text report (see :class:`Report`): its lines on the landing body
+    (``headline``) and on the insertion (``insertion``), the campaign's answers, lead;
+    the tables follow."""
     import pandas as pd
     lines = [f"campaign {meta.get('name') or '?'}: seed {meta.get('seed')}, "
              f"scenario {meta.get('scenario') or '?'}",
@@ -82,6 +84,7 @@ def plain_text(meta, counts, results, status, stats_table, probabilities, disper
     lines.append("")
     if headline is not None:
         lines += _headline_text(headline, target)
+    lines += insertion
 
     confidence = f"{100 * statistics.CONFIDENCE:g} %"
     lines.append(f"outputs over the {counts['ok']} ok runs (mean and std with {confidence} bootstrap "

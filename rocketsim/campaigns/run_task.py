@@ -23,6 +23,7 @@ cluster, first time or resumed.
 from __future__ import annotations
 
 import math
+import sys
 import tempfile
 import threading
 import time
@@ -151,7 +152,10 @@ def fly_case(text: str, k: int, keep: str, timeout: float | None, retries: int =
 def _times_lost() -> int:
     """How many times the Dask task running now started before (each start that never
     returned was lost with its worker: a task queued on a lost worker but never started
-    is not counted), counting this start; 0 outside a Dask worker."""
+    is not counted), counting this start; 0 outside a Dask worker (a process that has not
+    imported Dask's distributed is none: it is not imported for the question)."""
+    if "distributed" not in sys.modules:
+        return 0
     try:
         from distributed import get_client, get_worker
         key = get_worker().get_current_task()

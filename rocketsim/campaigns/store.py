@@ -65,21 +65,22 @@ def frame(tables):
                              for name in LEADING})
     strings = set(STRINGS)
     for table in tables:
-        strings |= {name for name in table.columns
-                    if table[name].dtype == object or pd.api.types.is_string_dtype(table[name].dtype)}
-    combined = pd.concat(tables, ignore_index=True, sort=False)
+        strings |= {name for name, dtype in table.dtypes.items()
+                    if dtype == object or pd.api.types.is_string_dtype(dtype)}
+    combined = pd.concat(tables, ignore_index=True, sort=False) if len(tables) > 1 else tables[0]
     combined = combined.drop_duplicates("run", keep="last").sort_values("run", kind="stable")
-    names = [n for n in LEADING if n in combined.columns] + sorted(set(combined.columns) - set(LEADING))
+    found = dict(combined.items())
+    names = [n for n in LEADING if n in found] + sorted(set(found) - set(LEADING))
     columns = {}
     for name in names:
-        values = combined[name]
+        values = found[name]
         if name == "run":
-            columns[name] = values.astype(np.int64).to_numpy()
+            columns[name] = values.to_numpy(dtype=np.int64)
         elif name in strings:
             columns[name] = pd.array([None if v is None or (isinstance(v, float) and math.isnan(v))
                                       else str(v) for v in values], dtype=object)
         else:
-            columns[name] = values.astype(np.float64).to_numpy()
+            columns[name] = values.to_numpy(dtype=np.float64)
     return pd.DataFrame(columns)
 
 
@@ -197,6 +198,7 @@ class Store:
         self.parts = self.dir / "results"
         self.runs = self.dir / "runs"
         self._waiting: list[dict] = []
+        self._written: dict[Path, object] = {}     # the part files written, not yet consolidated: their tables
         self._flushed = self._consolidated = time.monotonic()
         self._count = 0
         self.set_aside: list[str] = []      # the damaged results files a resume set aside
@@ -336,16 +338,24 @@ class Store:
         self.parts.mkdir(exist_ok=True)
         existing = [int(p.stem.split("-")[1]) for p in self.parts.glob("part-*.parquet")]
         self._count = max([self._count] + existing) + 1
-        _write(frame([self._waiting]), self.parts / f"part-{self._count:06d}.parquet")
+        path, table = self.parts / f"part-{self._count:06d}.parquet", frame([self._waiting])
+        _write(table, path)
+        self._written[path] = table
         self._waiting = []
 
     def consolidate(self) -> None:
-        """Fold the part files (and the rows waiting) into ``results.parquet``."""
+        """Fold the part files (and the rows waiting) into ``results.parquet``: those this
+        store wrote from the table it wrote them from (the same numbers and text), the
+        others read."""
         self.flush()
         self._consolidated = time.monotonic()
         parts = sorted(self.parts.glob("part-*.parquet"))
-        if not parts and (self.dir / "results.parquet").is_file():
+        whole = self.dir / "results.parquet"
+        if not parts and whole.is_file():
             return
-        _write(read_results(self.dir), self.dir / "results.parquet")
+        tables = [_rows(whole)] if whole.exists() else []
+        tables += [self._written[part] if part in self._written else _rows(part) for part in parts]
+        _write(frame(tables), whole)
         for part in parts:
             part.unlink()
+        self._written.clear()

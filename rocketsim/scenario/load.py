@@ -180,6 +180,7 @@ def load(scenario: str | Path | Mapping, overrides: Mapping[str, Any] | None = N
         if stage not in [s.name for s in scenario.vehicle.stages or []]:
             line, column = source.position(("programs", stage)) or (None, None)
             raise unknown_stage(stage, scenario.vehicle, file=source.path, line=line, column=column)
+    _check_followed(scenario, source)
     sounding = getattr(scenario.weather, "file", None)
     if sounding is not None:
         # a sounding (or reanalysis) file is relative to the file that names it
@@ -198,6 +199,22 @@ def unknown_stage(stage: str, vehicle: VehicleSpec, **where) -> InputError:
     return InputError(f"no stage named {stage!r} in vehicle {vehicle.name!r}"
                       + (f" (stages: {', '.join(stages)})" if stages else ""),
                       field=f"programs.{stage}", **where)
+
+
+def _check_followed(scenario: Scenario, source) -> None:
+    """An error for a name in ``follow`` that no body of the flight can have (it would
+    never fly, and every other body would then be flown to the end): the bodies are the
+    vehicle (the stack, and what is left of it), each stage that separates (all but the
+    top one), the fairing's halves and the payload."""
+    vehicle = scenario.vehicle
+    names = [vehicle.name] + [stage.name for stage in (vehicle.stages or [])[:-1]]
+    names += ["fairing_1", "fairing_2"] if vehicle.fairing is not None else []
+    names += ["payload"] if vehicle.payload is not None else []
+    for i, name in enumerate(scenario.follow or []):
+        if name not in names:
+            line, column = source.position(("follow", i)) or source.position(("follow",)) or (None, None)
+            raise InputError(f"no body named {name!r} flies in this flight (its bodies: {', '.join(names)})",
+                             field=f"follow[{i}]", file=source.path, line=line, column=column)
 
 
 def _callables(data: dict) -> dict[str, Callable]:

@@ -237,6 +237,12 @@ class Scenario(Strict):
     propellant: dict[str, PositiveMass] = Field(
         default_factory=dict, description="tank loads in place of the vehicle file's: "
         "'stage/tank' -> mass (a hop flies light enough to hover)")
+    follow: Optional[list[str]] = Field(
+        None, description="the bodies the flight is about, by name: a stage's (it flies as a body of "
+        "that name once separated), the vehicle's (the stack, and what is left of it), fairing_1, "
+        "fairing_2 or payload; once each of them flies, the others are no longer flown: each ends "
+        "where it is with the event 'not followed' (a booster's landing campaign: [booster]); "
+        "default: every body, to the end")
 
     @model_validator(mode="before")
     @classmethod

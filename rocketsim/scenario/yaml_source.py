@@ -51,11 +51,31 @@ class YamlSource:
 
 def read_yaml(path: Path) -> YamlSource:
     """Read ``path`` as YAML with positions; :class:`InputError` if unreadable or
-    beyond the limits of :mod:`rocketsim.limits` (size, nesting, alias expansion)."""
+    beyond the limits of :mod:`rocketsim.limits` (size, nesting, alias expansion).
+
+    The file is read every time; what its bytes hold is parsed once per process
+    (:data:`_PARSED`, by the bytes themselves: a file changed, whatever its name and
+    times, is parsed again) and each caller gets data of its own to change."""
     path = Path(path)
-    data = read_bounded(path, MAX_YAML_BYTES, "YAML file")
+    raw = read_bounded(path, MAX_YAML_BYTES, "YAML file")
+    found = _PARSED.get(raw)
+    if found is None:
+        found = _parse(raw, path)
+        if len(raw) + sum(map(len, _PARSED)) > PARSED_BYTES:
+            _PARSED.clear()
+        _PARSED[raw] = found
+    data, positions = found
+    return YamlSource(path, _fresh(data), dict(positions))
+
+
+PARSED_BYTES = 1024 * 1024      # the files' bytes kept parsed at most (a scenario's files: a few kB each)
+_PARSED: dict[bytes, tuple[Any, dict[tuple, Position]]] = {}     # a file's bytes -> (data, positions)
+
+
+def _parse(raw: bytes, path: Path) -> tuple[Any, dict[tuple, Position]]:
+    """``(data, positions)`` of the YAML bytes ``raw`` read from ``path`` (see :func:`read_yaml`)."""
     try:
-        text = data.decode("utf-8")
+        text = raw.decode("utf-8")
     except UnicodeDecodeError as error:
         raise InputError(f"cannot read the file ({error})", file=path) from None
     node = compose_yaml(text, path)
@@ -66,7 +86,17 @@ def read_yaml(path: Path) -> YamlSource:
         data = builder.build(node, ())
     finally:
         builder.loader.dispose()
-    return YamlSource(path, data, builder.positions)
+    return data, builder.positions
+
+
+def _fresh(data: Any) -> Any:
+    """A copy of YAML ``data`` sharing nothing that can be changed (its mappings and lists
+    anew; its scalars, which cannot be changed, as they are)."""
+    if type(data) is dict:
+        return {key: _fresh(value) for key, value in data.items()}
+    if type(data) is list:
+        return [_fresh(value) for value in data]
+    return data
 
 
 class _Builder:

@@ -104,6 +104,8 @@ def build_world(loaded: LoadedScenario, step: float | None = None,
     if coast is not None:           # a multiple of the sample interval (rocketsim.sim.sample_watch)
         world.coast_every = world.sample_every * max(1, round(1.0 / (coast * h * world.sample_every)))
     world.seed, world.sensor_level = scenario.seed, scenario.sensors
+    if scenario.follow is not None:
+        world.follow = frozenset(channel_name(name) for name in scenario.follow)
     world.target = mission.target
     world.pad_azimuth = scenario.site.pad_azimuth if scenario.site else math.nan
     world.program_cpu_budget = scenario.program_cpu_budget

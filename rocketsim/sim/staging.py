@@ -5,6 +5,11 @@ The split itself (mass properties, centre of mass and momentum conserved) is
 world with its own channels, its central body and field, its sensors and,
 for a separated stage the scenario names in ``programs:``, its own program.
 Each function takes the :class:`~rocketsim.sim.world.World` first.
+
+A scenario that names the bodies to follow (``follow``) flies the others no
+further once each followed body flies (:func:`leave_unfollowed`, after every split):
+they end where they are, with the event ``not followed``. The followed bodies'
+flights are the same, bit for bit: no body acts on another once split.
 """
 
 from __future__ import annotations
@@ -38,6 +43,7 @@ def jettison_fairing(world, body: Vehicle) -> tuple[Part, Part]:
                        stack.model_copy(update={"fairing": None}))
     world.event(body, "fairing jettison", {"fairing_mass_kg": stack.fairing.mass,
                                            "fairing_bodies": [half.name for half in new]})
+    leave_unfollowed(world)
     return new
 
 
@@ -57,6 +63,7 @@ def deploy_payload(world, body: Vehicle) -> Part:
     figures = {"payload_mass_kg": new.mass, "upper_mass_kg": body.mass}
     world.event(body, "payload deploy", {**figures, "payload_body": new.name})
     world.event(new, "payload deploy", {**figures, "from_body": body.name})
+    leave_unfollowed(world)
     return new
 
 
@@ -88,7 +95,22 @@ def separate(world, body: Vehicle) -> Vehicle:
     if stage in world.stage_programs:
         world.attach_program(new, *world.stage_programs[stage])
         new.fc.warm_up()
+    leave_unfollowed(world)
     return new
+
+
+def leave_unfollowed(world) -> None:
+    """Once every body in ``world.follow`` flies, end each other body still flying: the
+    event ``not followed`` and its last sample, where it is."""
+    follow = world.follow
+    if follow is None or not follow <= {b.name for b in world.bodies}:
+        return
+    for body in world.bodies:
+        if body.flying and body.name not in follow:
+            world.event(body, "not followed", {})
+            body.flying = False
+            if world.telemetry is not None:
+                world.record(body)
 
 
 def _split_rigid(world, body: Vehicle, kept, parts, names, stack: VehicleSpec) -> tuple[Part, ...]:

@@ -238,6 +238,7 @@ class _Window:
                         self._close(s)
                         continue
             movers += world.run_programs(movers)
+            movers = [i for i in movers if world.bodies[i].flying]     # a split may end the unfollowed
             plans = _one_of_steps({i: _plan(world, world.bodies[i], False, (self.end - s) * world.h)
                                    for i in movers})
             for i in movers:

@@ -85,6 +85,7 @@ class World:
         self.seed = 0
         self.sensor_level = "truth"
         self.stage_programs: dict[str, object] = {}      # stage name -> (main, path)
+        self.follow: frozenset[str] | None = None       # the bodies flown to the end (None: all)
         self.program_cpu_budget = 1.0
         self.program_time_limit = 10.0      # s of wall time a program's wake-up may take
         self.target = None                  # the mission's target (TargetSpec)

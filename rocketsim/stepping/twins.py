@@ -44,6 +44,7 @@ COASTS_ALONE = ("it flies only bodies that coast alone (rocketsim.sim.schedule.S
                 "event left to watch, no n-body field, no program running, the ground out of reach")
 COMMANDED = ("a program's command: a program runs only in Python, and every run returns at the step its "
              "program wakes or its compiled condition holds")
+SPLIT = "made at a split, a program's command (" + COMMANDED + ")"
 CRUISING = "cruise rails are flown by the world's loop (rocketsim.sim.world.World._cruise), never in a run"
 
 _EVENTS = "rocketsim.sim.flight_events.FlightEvents."
@@ -84,5 +85,6 @@ TWINS = {
     "fairing jettison": _python_only("rocketsim.sim.staging.jettison_fairing", COMMANDED),
     "payload deploy": _python_only("rocketsim.sim.staging.deploy_payload", COMMANDED),
     "separation": _python_only("rocketsim.sim.staging.separate", COMMANDED),
+    "not followed": _python_only("rocketsim.sim.staging.leave_unfollowed", SPLIT),
     "craft.BodyCraft.event": _python_only("rocketsim.sim.craft.BodyCraft.event", COMMANDED),
 }

@@ -74,6 +74,8 @@ FINE_GAIN = 30.0            # m/s: the boost-back ends at its engines' least thr
 STEADY = 1.5                # s: and holds its attitude over its last this long
 CYCLE = 0.5                 # s between guidance updates in the air
 BURN_CYCLE = 0.1            # s between the burns' updates
+FLIP_CYCLE = 1.0            # s between the boost-back's plans while the stage flips to it (its
+                            # ignition still checked every BURN_CYCLE)
 
 
 def main(fc):
@@ -200,13 +202,15 @@ class Return:
         fc.event("boost-back start", miss_m=float(np.linalg.norm(first)), to_gain_m_s=float(np.linalg.norm(to_gain)),
                  dip_deg=math.degrees(dip))
         lit = False
-        checked = fc.time
+        checked = planned = fc.time
         while True:
-            now = [*pad.state(fc), fc.mass]
-            plane = boostback.burn_plane(now[0], to_gain, dip)
-            to_gain = boostback.velocity_to_gain(miss, now[1], plane, guess=to_gain, passes=2)
-            self.solve_entry_speed(lambda e, la: self.after_boost_back(*now, to_gain, e, la), FASTEST_ENTRY)
-            entry, landing = self.burns()
+            if lit or fc.time - planned >= FLIP_CYCLE - 1e-9:   # the plan moves slowly through the flip
+                now = [*pad.state(fc), fc.mass]
+                plane = boostback.burn_plane(now[0], to_gain, dip)
+                to_gain = boostback.velocity_to_gain(miss, now[1], plane, guess=to_gain, passes=2)
+                self.solve_entry_speed(lambda e, la: self.after_boost_back(*now, to_gain, e, la), FASTEST_ENTRY)
+                entry, landing = self.burns()
+                planned = fc.time
             size = float(np.linalg.norm(to_gain))
             acceleration = fc.thrust / fc.mass
             step, checked = fc.time - checked, fc.time       # the update period now

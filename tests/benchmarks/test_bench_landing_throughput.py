@@ -1,10 +1,10 @@
 """Benchmark: the realistic-sensor landing campaign's throughput, and its guidance's share.
 
 The campaign is the shipped ``campaigns/falcon9-landing.yaml`` as users fly it: the
-mission of ``scenarios/falcon9-leo.yaml`` until the booster is down, ``sensors:
-realistic`` (both flight programs read the navigation estimate), a random day per
-run. Target (issue of campaign speed): 1 000 runs in at most 10 minutes on two
-workers of this 2-core machine, 1.2 s a run.
+mission of ``scenarios/falcon9-leo.yaml`` until the booster is down, the upper stage
+no further than its separation (``follow: [booster]``), ``sensors: realistic`` (both
+flight programs read the navigation estimate), a random day per run. Target: 1 000
+runs in at most 10 minutes on two workers of this 2-core machine, 1.2 s a run.
 
 Printed (``pytest -s``), with the machine's load:
 
@@ -17,8 +17,12 @@ Printed (``pytest -s``), with the machine's load:
   the landing-point predictions (``LandingPoint``), the boost-back's targeting
   (``boostback``), the descent's lean and entry-burn end (``descent``), the powered
   descent's command (``powered_descent.command``) and the ascent's PEG cycles
-  (:mod:`rocketsim.guidance.peg`, as ``ascent.Insertion`` calls them) -- counting only the outermost call where one calls another; the
-  baseline is the runs' own CPU, measured in the same runs;
+  (:mod:`rocketsim.guidance.peg`, as ``ascent.Insertion`` calls them) -- counting only
+  the outermost call where one calls another; the baseline is the runs' own CPU,
+  measured in the same runs;
+* the baseline, the same runs without ``follow`` (the upper stage flown on to the
+  mission's end, as the campaign flew before it followed the booster): CPU a run, and the
+  shipped campaign's share of it; the booster's results must be the same in both;
 * with ``ROCKETSIM_BENCH_FULL=1``, the campaign's throughput on a two-worker
   LocalCluster (from the first run's start to the last row, warm-up excluded)
   and the minutes 1 000 runs take at that rate.
@@ -26,8 +30,8 @@ Printed (``pytest -s``), with the machine's load:
 In the suite SUITE_RUNS runs (a landing run is a long flight: two keep the suite
 inside its budget); with ``ROCKETSIM_BENCH_FULL=1`` FULL_SERIAL_RUNS in this process
 and FULL_CLUSTER_RUNS on the cluster. Nothing asserts a time: the checks are that
-every run flew, its booster came down with a named outcome, and the guidance was
-timed in each run.
+every run flew, its booster came down with a named outcome, the guidance was timed in
+each run, and the booster's results are the same with the upper stage flown on.
 
 Last figures (2-core machine shared with the other engineers' work, runs 0 and 1, in
 the suite; this file run alternately on this code and on the code before the
@@ -91,8 +95,12 @@ class GuidanceClock:
         return timed
 
 
-def campaign_of(runs: int) -> dict:
+def campaign_of(runs: int, every_body: bool = False) -> dict:
+    """The shipped campaign, ``runs`` runs, no telemetry; ``every_body``: without its
+    ``follow`` (the upper stage flown on past its separation, as before it had one)."""
     data = yaml.safe_load(CAMPAIGN.read_text())
+    if every_body:
+        data["overrides"] = {key: value for key, value in data["overrides"].items() if key != "follow"}
     return {**data, "runs": runs, "scenario": str((CAMPAIGN.parent / data["scenario"]).resolve()),
             "telemetry": "none"}
 
@@ -135,6 +143,13 @@ def test_landing_campaign_throughput_and_the_guidance_share(tmp_path, monkeypatc
           f"(target <= {TARGET_MINUTES:.0f} min)")
     print(f"  the guidance library: {clock.seconds / runs:.2f} s of CPU a run in {clock.calls // runs} calls, "
           f"{share:.0%} of the run's CPU ({load_text()})")
+    monkeypatch.undo()
+    every, _, every_cpu = flown(campaign_of(runs, every_body=True), tmp_path / "every body", workers=1)
+    check(every)
+    differ = [c for c in results.columns if c.startswith(f"{BOOSTER}.") and not results[c].equals(every[c])]
+    assert not differ, differ              # the booster's flight is the same with the upper stage flown on
+    print(f"  the same runs flying the upper stage on past its separation (no follow): CPU {every_cpu:.2f} s "
+          f"a run; following the booster alone takes {cpu / every_cpu:.2f} of it ({load_text()})")
     if FULL:
         results, rate, _ = flown(campaign_of(FULL_CLUSTER_RUNS), tmp_path / "cluster", workers=2)
         check(results)

@@ -342,6 +342,26 @@ def test_many_outcome_strings_are_counted_and_the_text_lists_the_commonest(tmp_p
     assert "... and 5 rarer outcome strings" in rep.text
 
 
+def test_an_insertion_campaign_leads_with_its_share_within_tolerance(tmp_path):
+    """The insertion's share (of the 8 ok runs, 4 within: the exact Clopper-Pearson
+    interval of 4 in 8 is [15.7 %, 84.3 %]) comes before the tables, where a reader looks
+    first."""
+    directory, _ = synthetic(tmp_path / "insertion", n=10, errors=(0,), timeouts=(1,))
+    results = pd.read_parquet(directory / "results.parquet")
+    within = np.array([0.0, 0.0, 1.0, 1.0, 0.0, 1.0, 1.0, 0.0, np.nan, np.nan])
+    results["stage2.insertion.within_tolerance"] = within
+    for error in ("periapsis_error_m", "apoapsis_error_m", "inclination_error_deg"):
+        results[f"stage2.insertion.{error}"] = 0.5
+    results.to_parquet(directory / "results.parquet")
+    meta = json.loads((directory / "meta.json").read_text())
+    meta["insertion"] = {"periapsis_m": 2e3, "apoapsis_m": 2e3, "inclination_deg": 0.02}
+    (directory / "meta.json").write_text(json.dumps(meta))
+    lines = report(directory).text.splitlines()
+    share = lines.index("  stage2: 4 of 8 ok runs, 50 % [15.7 %, 84.3 %]")
+    assert lines[share - 1].startswith("insertion within tolerance")
+    assert share < next(i for i, line in enumerate(lines) if line.startswith("outputs over"))
+
+
 def test_no_target_position_and_landings_elsewhere(tmp_path):
     """A scenario without a pad or a site has a target of NaN degrees (what the engine
     writes): no dispersion, no GeoJSON, the rest of the report as ever. A body whose final
