@@ -244,22 +244,24 @@ class StateView:
         view._atmosphere, view.mu, view._p = atmosphere, mu, _EARTH_P if p is None else p
         return view
 
-    def following(self, state: np.ndarray) -> "StateView":
+    def following(self, state: np.ndarray, readings: np.ndarray | None = None) -> "StateView":
         """A view of the same body as this one (its air, ``mu`` and parameters) over
         ``state`` itself (position, velocity, attitude, rates: a C-contiguous float64
         array of :data:`~rocketsim.layout.N_STATE` numbers), not a copy: for a state
         its owner rewrites in place from step to step, the view then moved to the
         step's time with :meth:`at`. Its readings go to one array of its own, written
         again at each instant: what it returns of them (and of the state) is read
-        within the instant, or copied."""
+        within the instant, or copied. ``readings``: that array, where the owner writes
+        the place's readings with the state (:func:`place_readings_into`: a compiled
+        run's), else a new one, where :meth:`at` computes them."""
         view = StateView.__new__(StateView)
-        fixed, out, p = view.__dict__, np.empty(N_READINGS), self._p
+        fixed, out, p = view.__dict__, np.empty(N_READINGS) if readings is None else readings, self._p
         fixed.update(t=self.t, _state=state, _atmosphere=self._atmosphere, mu=self.mu, _p=p,
                      position=state[R:R + 3], velocity=state[V:V + 3], attitude=state[Q:Q + 4],
                      body_rates=state[W:W + 3], _out=out)
         fixed["_fixed"] = fixed = dict(fixed)
         fixed["_fixed"] = fixed         # what at() keeps
-        fixed["_places"] = _bound(place_readings, out, self.t, state, p)
+        fixed["_places"] = None if readings is not None else _bound(place_readings, out, self.t, state, p)
         return view
 
     def at(self, t: float) -> None:
@@ -272,7 +274,8 @@ class StateView:
             self.__dict__ = now = fixed.copy()
             now["_place"] = fixed["_out"]
         now["t"] = t
-        fixed["_places"](fixed["_out"], t, fixed["_state"], fixed["_p"])
+        if fixed["_places"] is not None:
+            fixed["_places"](fixed["_out"], t, fixed["_state"], fixed["_p"])
 
     # --- the state, sliced at the first read (a view of_state) ---------------------
     @_once

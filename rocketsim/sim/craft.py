@@ -17,7 +17,7 @@ from typing import Callable
 
 import numpy as np
 
-from rocketsim.flight.navigation import STATE
+from rocketsim.flight.navigation import STATE, handed_estimate
 from rocketsim.flight.readings import StateView
 from rocketsim.layout import N_STATE
 from rocketsim.sim.body import Body
@@ -101,8 +101,12 @@ class BodyCraft:
             return body.view()
         following = self._following     # the state handed over by a compiled run: one view a run
         if following is None or following[0] is not given:
-            state = given[STATE:STATE + N_STATE]
-            following = self._following = (given, body.view_of(body.t, state).following(state))
+            # the truth's own numbers, or with perfect sensors the estimate's, the same, and
+            # the place's readings the run computed with them
+            sensors = body.sensors
+            state, readings = handed_estimate(given) if sensors is None or sensors.perfect else \
+                (given[STATE:STATE + N_STATE], None)
+            following = self._following = (given, body.view_of(body.t, state).following(state, readings))
         view = body._view = following[1]
         view.at(body.t)
         return view
