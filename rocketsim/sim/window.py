@@ -208,7 +208,7 @@ class _Window:
         flight that ``on_progress`` has shortened ends there), and the samples alone
         (:meth:`_sample_with_runs`) at one where some bodies' runs go on past it; then
         the programs due there (:meth:`~rocketsim.sim.world.World.run_programs`) and the
-        next segments of the bodies at that step."""
+        next segments of the bodies at that step still flying (a split may end some)."""
         world = self.world
         last = world.k
         reached = None                      # the step the world's sample and progress were last made at
@@ -237,8 +237,7 @@ class _Window:
                     if s >= self.end:
                         self._close(s)
                         continue
-            movers += world.run_programs(movers)
-            movers = [i for i in movers if world.bodies[i].flying]     # a split may end the unfollowed
+            movers = [i for i in movers + world.run_programs(movers) if world.bodies[i].flying]
             plans = _one_of_steps({i: _plan(world, world.bodies[i], False, (self.end - s) * world.h)
                                    for i in movers})
             for i in movers:
