@@ -79,7 +79,8 @@ class Craft(Protocol):
         """The lumped heat shield's temperature, K (nan without a shield)."""
 
     def truth(self) -> StateView:
-        """The true state's readings at the body's time (one view per step)."""
+        """The true state's readings at the body's time (one view a step; while a compiled
+        run hands the state over, one for the run, moved to each step)."""
 
     def handed(self) -> np.ndarray | None:
         """The buffer a compiled run handed the body's state over with (with its navigation

@@ -448,9 +448,9 @@ class FlightComputer:
         body = self._craft
         if command is None or body.vehicle is None:
             return None
-        nav = self._nav.current     # None, an earlier step's, or this step's
+        nav = self._nav             # its estimate: none yet, an earlier step's, or this step's
         if not self._rcs and body.central == "earth" \
-                and (nav is None or nav.t != body.t or body.is_truth(self._nav.source)) and body.flies_in_days_air():
+                and (nav.t != body.t or body.is_truth(nav.source)) and body.flies_in_days_air():
             return command.code, self._fins
         return None
 

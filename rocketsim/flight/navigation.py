@@ -17,9 +17,12 @@ A compiled run that asks a program's condition read in Python after each step
 (``fc.wait_until(lambda: ...)``, :func:`rocketsim.stepping.runs.fly_run`) hands it
 the step in one float64 buffer (:func:`hand_into`): the true state and the
 estimate, which :meth:`Navigation.view` then takes as it is (the same kernel on the
-same numbers: the same bits) rather than drawing it again. Its slots:
-:data:`ANSWER` (the Python side's answer), the estimate's 13 numbers (position,
-velocity, attitude quaternion, rates) from :data:`ESTIMATE`, the state from
+same numbers: the same bits) rather than drawing it again, in one view for the run
+that follows the buffer from step to step
+(:meth:`~rocketsim.flight.readings.StateView.following`), its place's readings (the
+height, the climb rate...) computed in the run. Its slots: :data:`ANSWER` (the Python
+side's answer), the estimate's place readings from :data:`READINGS`, its 13 numbers
+(position, velocity, attitude quaternion, rates) from :data:`ESTIMATE`, the state from
 :data:`STATE`.
 """
 
@@ -32,7 +35,7 @@ import numpy as np
 
 from rocketsim.jit import copy_into, njit
 from rocketsim.flight.craft import Craft
-from rocketsim.flight.readings import StateView
+from rocketsim.flight.readings import N_READINGS, StateView, place_readings_into
 from rocketsim.flight.sensors import E_ATTITUDE, E_POSITION, E_RATES, E_VELOCITY, measured
 from rocketsim.frames.quaternion import quat_from_axis_angle, quat_multiply
 from rocketsim.layout import N_STATE, Q, R, V, W
@@ -40,7 +43,8 @@ from rocketsim.layout import N_STATE, Q, R, V, W
 # the slots of a run's hand-over buffer (hand_into)
 ANSWER = 0                              # NO_ANSWER while asking; 0.0: go on, 1.0: the run ends there
 NO_ANSWER = 2.0
-ESTIMATE = 1
+READINGS = 1                            # the estimate's place readings (place_readings_into)
+ESTIMATE = READINGS + N_READINGS
 STATE = ESTIMATE + N_STATE
 
 
@@ -71,10 +75,12 @@ def hand_over_buffer(n: int) -> np.ndarray:
 
 
 @njit
-def hand_into(out, y, errors, j):
+def hand_into(out, y, errors, j, t, p):
     """Fill the hand-over buffer ``out`` with the true state ``y`` and its navigation
-    estimate (with the sensors' ``errors`` of row ``j``; none: the truth), its answer slot
-    :data:`NO_ANSWER`."""
+    estimate (with the sensors' ``errors`` of row ``j``; none: the truth), the estimate's
+    place readings at mission time ``t`` (s) with the body's parameters ``p``
+    (:func:`~rocketsim.flight.readings.place_readings_into`: what a condition reads
+    first, there without a call from Python), its answer slot :data:`NO_ANSWER`."""
     if errors.shape[0] > 0:
         r, v, q, w = estimate(y, errors, j)
         copy_into(out, ESTIMATE + R, r)
@@ -85,7 +91,15 @@ def hand_into(out, y, errors, j):
         for i in range(N_STATE):
             out[ESTIMATE + i] = y[i]
     copy_into(out, STATE, y)
+    place_readings_into(out[READINGS:ESTIMATE], t, out[ESTIMATE + R:ESTIMATE + R + 3],
+                        out[ESTIMATE + V:ESTIMATE + V + 3], p)
     out[ANSWER] = NO_ANSWER
+
+
+def handed_estimate(buffer: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The estimate in a hand-over buffer (:func:`hand_into`) and its place's readings, views
+    of the buffer (for :meth:`~rocketsim.flight.readings.StateView.following`)."""
+    return buffer[ESTIMATE:STATE], buffer[READINGS:ESTIMATE]
 
 
 def tanks(vehicle) -> tuple[str, ...]:
@@ -95,33 +109,45 @@ def tanks(vehicle) -> tuple[str, ...]:
 
 
 class Navigation:
-    """The estimate of one body, kept for its step: :meth:`view` and the scalar
-    readings of the step (``readings``, cleared when the step changes)."""
+    """The estimate of one body, kept for its step (mission time :attr:`t`): :meth:`view`
+    and the scalar readings of the step (``readings``, cleared when the step changes)."""
 
     def __init__(self, craft: Craft):
         self.craft = craft
+        self.t = math.nan                         # the step of current and readings (mission time s)
         self.current: StateView | None = None     # the latest step's estimate
         self.source: StateView | None = None      # the truth's view it was made from
         self.readings: dict[str, object] = {}
+        self._following: tuple | None = None      # (hand-over buffer, the estimate's view following it)
+        self._perfect: bool | None = None         # the body's sensors are the truth's (known at the first view)
 
     def view(self) -> StateView:
         """The estimate at the body's time (computed once per step)."""
         craft = self.craft
         t = craft.t
-        if self.current is not None and self.current.t == t:
+        if t == self.t:
             return self.current
+        self.t = t
+        if self.readings:
+            self.readings = {}
         truth = self.source = craft.truth()
-        sensors = craft.sensors
-        self.readings = {}
-        if sensors is None or sensors.perfect:
+        perfect = self._perfect
+        if perfect is None:
+            sensors = craft.sensors
+            perfect = self._perfect = sensors is None or sensors.perfect
+        if perfect:
             self.current = truth
             return truth
         given = craft.handed()
-        if given is not None:           # the estimate, from the compiled run
-            self.current = StateView.of_state(t, given[ESTIMATE:STATE], truth._atmosphere, craft.mu, craft.p)
-            return self.current
+        if given is not None:           # the estimate, from the compiled run: one view a run
+            following = self._following
+            if following is None or following[0] is not given:
+                following = self._following = (given, truth.following(*handed_estimate(given)))
+            view = self.current = following[1]
+            view.at(t)
+            return view
         k = craft.step_index
-        errors, first = sensors.run_errors(k, tanks(craft.vehicle))
+        errors, first = craft.sensors.run_errors(k, tanks(craft.vehicle))
         r, v, q, w = estimate(craft.y, errors, k - first)
         self.current = StateView(t, r, v, q, w, truth._atmosphere, craft.mu, craft.p)
         return self.current

@@ -11,7 +11,10 @@ ground speed, the local axes, are read first, those alone:
 :func:`place_readings`), the air and the orbit each at its own first read.
 The same class serves the truth (telemetry) and the navigation estimate (a
 program with realistic sensors), so every derived quantity inherits the
-estimate's errors.
+estimate's errors. A view :meth:`~StateView.following` a state its owner
+rewrites at each step (a compiled run's hand-over buffer) is one object for
+the whole run, moved to each step with :meth:`~StateView.at`, its readings
+written again into one array of its own.
 
 Conventions: body ``x`` is the nose. ``pitch`` is the nose's elevation above
 the local horizon, ``heading`` its azimuth from north towards east, ``roll``
@@ -34,7 +37,7 @@ from rocketsim.bodies.gravity import point_mass_j2
 from rocketsim.constants import EARTH_J2, EARTH_MU, EARTH_OMEGA, EARTH_RADIUS_EQ, EARTH_RADIUS_POLAR
 from rocketsim.layout import N_STATE, P_J2, P_MU, P_POLAR_RADIUS, P_RADIUS, P_SPIN, Q, R, V, W, make_params
 from rocketsim.frames.elements import Elements, state_to_elements, time_to_apoapsis
-from rocketsim.frames.local import VERTICAL, air_velocity, turned, where_and_how_fast
+from rocketsim.frames.local import VERTICAL, air_velocity, turned, where_into
 from rocketsim.frames.quaternion import quat_to_matrix
 
 # the central body of a view given no parameters: Earth (gravity and rotation)
@@ -79,7 +82,8 @@ def air_here(h0, dh, density, pressure, temperature, speed_of_sound, wind_east, 
 # row by row)
 LATITUDE, LONGITUDE, HEIGHT, CLIMB, GROUND_SPEED, PITCH, HEADING, ROLL, GRAVITY = range(9)
 ENU, SURFACE, RADIAL, PROGRADE, NORMAL, SURFACE_PROGRADE, AXES = 9, 18, 21, 24, 27, 30, 33
-N_READINGS = AXES + 9
+ACROSS = AXES + 9           # 3 slots where the readings are computed, no reading
+N_READINGS = ACROSS + 3
 
 
 @njit
@@ -96,19 +100,19 @@ def place_readings_into(out, t, r, v, p):
     """The readings of the place of a state into the slots of ``out`` (:data:`N_READINGS`)
     that :func:`step_readings` gives them, ``r``, ``v``, ``t`` and ``p`` as its: latitude,
     longitude, height, the climb rate, the speed over the ground, the local east, north,
-    up and the surface velocity, as :func:`step_readings` computes them. Returns ``(enu,
-    surface velocity)``."""
-    lat, lon, height, enu, surface = where_and_how_fast(r, v, t, p[P_SPIN], p[P_RADIUS], p[P_POLAR_RADIUS])
-    up = enu[2].copy()
+    up and the surface velocity (:func:`~rocketsim.frames.local.where_into`), as
+    :func:`step_readings` computes them (the horizontal part of the surface velocity
+    goes through the slots :data:`ACROSS`). Returns ``(enu, surface velocity)``, views
+    of ``out``."""
+    lat, lon, height = where_into(out, ENU, r, v, t, p[P_SPIN], p[P_RADIUS], p[P_POLAR_RADIUS])
+    up, surface = out[ENU + 6:ENU + 9], out[SURFACE:SURFACE + 3]
     climb = surface @ up
-    across = surface - climb * up
+    across = out[ACROSS:ACROSS + 3]
+    for i in range(3):
+        across[i] = surface[i] - climb * up[i]
     out[LATITUDE], out[LONGITUDE], out[HEIGHT] = lat, lon, height
     out[CLIMB], out[GROUND_SPEED] = climb, math.sqrt(across @ across)
-    for i in range(3):
-        for k in range(3):
-            out[ENU + 3 * i + k] = enu[i, k]
-        out[SURFACE + i] = surface[i]
-    return enu, surface
+    return out[ENU:ENU + 9].reshape((3, 3)), surface
 
 
 @njit
@@ -198,8 +202,9 @@ _BOUND: dict = {}       # kernel -> its entry for a view's own state (_bound)
 def _bound(kernel, out: np.ndarray, t: float, state: np.ndarray, p: np.ndarray):
     """``kernel``'s compiled entry for the types of a view's ``kernel(out, t, state, p)``,
     bound at the first call, not typed by numba's dispatcher at every call: a view of_state
-    holds its state in a C-contiguous float64 copy of its own, and is read so only with
-    C-contiguous parameters (a body's) into a new float64 array."""
+    holds its state in a C-contiguous float64 copy of its own (one :meth:`~StateView.following`
+    a state, in that C-contiguous float64 state), and is read so only with C-contiguous
+    parameters (a body's) into a float64 array of its own."""
     entry = _BOUND.get(kernel)
     if entry is None:
         entry = _BOUND[kernel] = entry_point(kernel, out, t, state, p)
@@ -239,6 +244,39 @@ class StateView:
         view._atmosphere, view.mu, view._p = atmosphere, mu, _EARTH_P if p is None else p
         return view
 
+    def following(self, state: np.ndarray, readings: np.ndarray | None = None) -> "StateView":
+        """A view of the same body as this one (its air, ``mu`` and parameters) over
+        ``state`` itself (position, velocity, attitude, rates: a C-contiguous float64
+        array of :data:`~rocketsim.layout.N_STATE` numbers), not a copy: for a state
+        its owner rewrites in place from step to step, the view then moved to the
+        step's time with :meth:`at`. Its readings go to one array of its own, written
+        again at each instant: what it returns of them (and of the state) is read
+        within the instant, or copied. ``readings``: that array, where the owner writes
+        the place's readings with the state (:func:`place_readings_into`: a compiled
+        run's), else a new one, where :meth:`at` computes them."""
+        view = StateView.__new__(StateView)
+        fixed, out, p = view.__dict__, np.empty(N_READINGS) if readings is None else readings, self._p
+        fixed.update(t=self.t, _state=state, _atmosphere=self._atmosphere, mu=self.mu, _p=p,
+                     position=state[R:R + 3], velocity=state[V:V + 3], attitude=state[Q:Q + 4],
+                     body_rates=state[W:W + 3], _out=out)
+        fixed["_fixed"] = fixed = dict(fixed)
+        fixed["_fixed"] = fixed         # what at() keeps
+        fixed["_places"] = None if readings is not None else _bound(place_readings, out, self.t, state, p)
+        return view
+
+    def at(self, t: float) -> None:
+        """A view :meth:`following` a state, moved to mission time ``t`` (s), its state
+        rewritten by its owner: everything derived is read again, the place's readings
+        at once (a view is moved to a step to be read there)."""
+        fixed = self._fixed
+        now = self.__dict__
+        if len(now) != len(fixed) + 1:      # more read than the place: forgotten
+            self.__dict__ = now = fixed.copy()
+            now["_place"] = fixed["_out"]
+        now["t"] = t
+        if fixed["_places"] is not None:
+            fixed["_places"](fixed["_out"], t, fixed["_state"], fixed["_p"])
+
     # --- the state, sliced at the first read (a view of_state) ---------------------
     @_once
     def position(self) -> np.ndarray:
@@ -264,21 +302,28 @@ class StateView:
         found = self.__dict__.get("_buffer")
         if found is not None:
             return found
-        state = self.__dict__.get("_state")
-        if state is None or not self._p.flags.c_contiguous:
+        out = self._out
+        if out is None:
             return self._buffer
-        out = np.empty(N_READINGS)
-        _bound(place_readings, out, self.t, state, self._p)(out, self.t, state, self._p)
+        _bound(place_readings, out, self.t, self._state, self._p)(out, self.t, self._state, self._p)
         return out
 
     @_once
     def _buffer(self) -> np.ndarray:
-        state = self.__dict__.get("_state")
-        if state is None or not self._p.flags.c_contiguous:
+        out = self._out
+        if out is None:
             return step_readings(self.t, self.position, self.velocity, self.attitude, self._p)
-        out = np.empty(N_READINGS)
-        _bound(state_readings, out, self.t, state, self._p)(out, self.t, state, self._p)
+        _bound(state_readings, out, self.t, self._state, self._p)(out, self.t, self._state, self._p)
         return out
+
+    @_once
+    def _out(self) -> np.ndarray | None:
+        """The array the readings go to through the bound kernels (:func:`_bound`), or None
+        for a view they cannot be bound for (given its vectors, or parameters not
+        C-contiguous): :func:`step_readings` then."""
+        if "_state" not in self.__dict__ or not self._p.flags.c_contiguous:
+            return None
+        return np.empty(N_READINGS)
 
     # --- where ------------------------------------------------------------
     @_once
@@ -289,7 +334,7 @@ class StateView:
     @property
     def height(self) -> float:
         """Height above the central body's ellipsoid (WGS84 about Earth), m."""
-        return float(self._place[HEIGHT])
+        return self._place.item(HEIGHT)
 
     @property
     def enu(self) -> np.ndarray:
@@ -304,11 +349,11 @@ class StateView:
 
     @property
     def vertical_speed(self) -> float:
-        return float(self._place[CLIMB])
+        return self._place.item(CLIMB)
 
     @property
     def horizontal_speed(self) -> float:
-        return float(self._place[GROUND_SPEED])
+        return self._place.item(GROUND_SPEED)
 
     @property
     def radial(self) -> np.ndarray:
@@ -371,7 +416,7 @@ class StateView:
     def gravity(self) -> float:
         """Magnitude of the local gravitational acceleration of the central body (point
         mass + J2), m/s^2."""
-        return float(self._buffer[GRAVITY])
+        return self._buffer.item(GRAVITY)
 
     @_once
     def effective_gravity(self) -> float:

@@ -101,16 +101,15 @@ def stream_key(name: str) -> int:
 
 
 @njit
-def _gauss_markov(phi, drive, normals, initial):
+def _gauss_markov(series, phi, drive, initial):
     """The bias recursion ``b[k] = phi b[k-1] + drive n[k]`` over a block, with
-    ``phi b[-1]`` given as ``initial`` (the first-order Gauss-Markov process)."""
-    out = np.empty(normals.shape[0])
+    ``phi b[-1]`` given as ``initial`` (the first-order Gauss-Markov process): the
+    normals ``n`` of ``series`` replaced by the biases, in place."""
     previous = initial
-    for k in range(normals.shape[0]):
-        previous = drive * normals[k] + previous
-        out[k] = previous
+    for k in range(series.shape[0]):
+        previous = drive * series[k] + previous
+        series[k] = previous
         previous = phi * previous
-    return out
 
 
 class ErrorStream:
@@ -141,14 +140,16 @@ class ErrorStream:
         """Draw the next block: biases, white noise, absolute white noise."""
         b = self._drawn
         sequence = np.random.SeedSequence(entropy=self._seed, spawn_key=(self._key, b))
-        draws = np.random.Generator(np.random.PCG64(sequence)).standard_normal((3, BLOCK))
+        rows = np.random.Generator(np.random.PCG64(sequence)).standard_normal((3, BLOCK))
         if b == 0:
-            initial = (self._sigma - self._drive) * draws[0, 0]     # b[0] = sigma_b n[0]
+            initial = (self._sigma - self._drive) * rows[0, 0]      # b[0] = sigma_b n[0]
         else:
             initial = self._phi * self._last
-        biases = _gauss_markov(self._phi, self._drive, draws[0], initial)
-        self._last = biases[-1]
-        self._blocks[b] = np.vstack((biases, draws[1] * self._white, draws[2] * self._floor))
+        _gauss_markov(rows[0], self._phi, self._drive, initial)     # the draws, scaled in place
+        rows[1] *= self._white
+        rows[2] *= self._floor
+        self._last = float(rows[0, -1])
+        self._blocks[b] = rows
         self._blocks.pop(b - 2, None)
         self._drawn = b + 1
 
@@ -208,6 +209,7 @@ class Sensors:
         if level not in LEVELS:
             raise ValueError(f"unknown sensor level {level!r}; use one of {', '.join(LEVELS)}")
         self.level = level
+        self.perfect = level == "truth"     # the truth's readings: no errors
         self._seed, self._body, self._dt, self._scale = seed, body, dt, LEVELS[level]
         self.streams: dict[str, ErrorStream] = {}
         self._run = None            # ((block, tanks), errors) of run_errors
@@ -220,10 +222,6 @@ class Sensors:
             self.streams[name] = ErrorStream(self._seed, f"{self._body}/{name}", spec, self._dt,
                                              self._scale)
         return self.streams[name]
-
-    @property
-    def perfect(self) -> bool:
-        return self.level == "truth"
 
     def vector(self, name: str, truth, k: int | None = None) -> np.ndarray:
         """A 3-vector measured axis by axis (``name.x``, ``.y``, ``.z``) at step ``k``."""
@@ -247,11 +245,18 @@ class Sensors:
             return NO_ERRORS, k
         b = k // BLOCK
         key = (b, tuple(tanks))
-        if self._run is None or self._run[0] != key:
+        last = self._run
+        if last is None or last[0] != key:
             names = [f"{quantity}.{axis}" for quantity in ESTIMATE for axis in "xyz"]
             names += [f"propellant/{tank}" for tank in tanks]
-            columns = [np.hstack((self.stream(name).block(b), self.stream(name).block(b + 1))) for name in names]
-            self._run = (key, np.ascontiguousarray(np.stack(columns).transpose(2, 0, 1)))
+            streams = [self.stream(name) for name in names]
+            errors = np.empty((2 * BLOCK, len(names), 3))
+            if last is not None and last[0] == (b - 1, key[1]):
+                errors[:BLOCK] = last[1][BLOCK:]        # the block before's second half
+            else:
+                np.copyto(errors[:BLOCK], np.stack([stream.block(b) for stream in streams]).transpose(2, 0, 1))
+            np.copyto(errors[BLOCK:], np.stack([stream.block(b + 1) for stream in streams]).transpose(2, 0, 1))
+            self._run = (key, errors)
         return self._run[1], b * BLOCK
 
 

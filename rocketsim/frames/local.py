@@ -21,6 +21,8 @@ from rocketsim.frames.quaternion import rotate_components
 from rocketsim.layout import Q, R, V
 from rocketsim.frames.geodetic import ecef_to_geodetic_njit, enu_basis, geodetic_on
 
+_STILL = (0.0, 0.0, 0.0)     # no wind (m/s): a tuple, typed as a constant in the kernels
+
 # sin(pitch) above which the nose counts as vertical (within 0.01 deg): heading
 # and roll are then read from body z instead
 VERTICAL = math.cos(0.01 * DEG)
@@ -77,13 +79,24 @@ def where_and_how_fast(r, v, t, spin=EARTH_OMEGA, a=EARTH_RADIUS_EQ, b=EARTH_RAD
     ``p[P_POLAR_RADIUS]``; WGS84 by default) turning at ``spin`` (rad/s about the frame's
     z, the body's pole: ``p[P_SPIN]``; Earth's by default). ``enu`` (3, 3) has the local
     east, north and up (the ellipsoid's normal) unit vectors in the frame's axes as rows;
-    the surface velocity (m/s, same axes) is relative to the turning ground. About Earth,
-    geodetic over WGS84 with the same operations, in the same order, as
-    :func:`~rocketsim.frames.earth_fixed.eci_to_ecef`,
-    :func:`~rocketsim.frames.geodetic.ecef_to_geodetic`, ``ecef_to_eci`` and
-    :func:`air_velocity`; elsewhere the longitude is
-    counted from the frame's x turned by ``spin t``, not from the IAU prime meridian (the
-    local axes and the surface velocity do not depend on it;
+    the surface velocity (m/s, same axes) is relative to the turning ground. Both are
+    views of one array (:func:`where_into`)."""
+    both = np.empty(12)
+    lat, lon, h = where_into(both, 0, r, v, t, spin, a, b)
+    return lat, lon, h, both[:9].reshape((3, 3)), both[9:]
+
+
+@njit(inline="always")     # typed in its callers: its numbers go to their array, none made
+def where_into(out, at, r, v, t, spin, a, b):
+    """:func:`where_and_how_fast` into the float64 array ``out``: the rows of ``enu`` in
+    ``out[at:at + 9]``, the surface velocity in ``out[at + 9:at + 12]``; returns ``(lat rad,
+    lon rad, height m)``. About Earth, geodetic over WGS84 with the same operations, in
+    the same order, as :func:`~rocketsim.frames.earth_fixed.eci_to_ecef`,
+    :func:`~rocketsim.frames.geodetic.ecef_to_geodetic`,
+    :func:`~rocketsim.frames.geodetic.enu_basis` turned back (``ecef_to_eci``) and
+    :func:`air_velocity` with no wind; elsewhere the longitude is counted from the
+    frame's x turned by ``spin t``, not from the IAU prime meridian (the local axes and
+    the surface velocity do not depend on it;
     :func:`rocketsim.dynamics.central.planetocentric` gives the body's own latitude and
     longitude)."""
     theta = 0.0 + spin * t
@@ -93,10 +106,9 @@ def where_and_how_fast(r, v, t, spin=EARTH_OMEGA, a=EARTH_RADIUS_EQ, b=EARTH_RAD
     else:
         lat, lon, h = geodetic_on(x, y, r[2], a, b)
     basis = enu_basis(lat, lon)
-    enu = np.empty((3, 3))
     for k in range(3):
-        enu[k, 0], enu[k, 1] = turned(basis[k, 0], basis[k, 1], -theta)
-        enu[k, 2] = basis[k, 2]
-    # no wind: the air velocity is then the surface velocity (a fresh array, not a
-    # module constant, which numba would type read-only: a second signature of air_velocity)
-    return lat, lon, h, enu, air_velocity(r, v, np.zeros(3), spin)
+        out[at + 3 * k], out[at + 3 * k + 1] = turned(basis[k, 0], basis[k, 1], -theta)
+        out[at + 3 * k + 2] = basis[k, 2]
+    # the air velocity with no wind: the surface velocity
+    out[at + 9], out[at + 10], out[at + 11] = _air_velocity(r[0], r[1], v[0], v[1], v[2], _STILL, spin)
+    return lat, lon, h

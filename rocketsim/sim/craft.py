@@ -4,7 +4,10 @@
 world and one of its bodies: the readings are the body's true state, and each
 command is carried out by the world (the program runner hands control back,
 the schedule reads the cruise allowance and the attitude command, staging
-splits the body).
+splits the body). While a compiled run hands the body's state over after each
+step (a condition read in Python), the truth's view is one for the run,
+following the hand-over buffer (:meth:`~rocketsim.flight.readings.StateView.following`),
+and is the body's view at that step.
 """
 
 from __future__ import annotations
@@ -14,7 +17,9 @@ from typing import Callable
 
 import numpy as np
 
+from rocketsim.flight.navigation import STATE, handed_estimate
 from rocketsim.flight.readings import StateView
+from rocketsim.layout import N_STATE
 from rocketsim.sim.body import Body
 
 class BodyCraft:
@@ -28,6 +33,7 @@ class BodyCraft:
         self.epoch = world.epoch
         self.target = world.target
         self.pad_azimuth = world.pad_azimuth
+        self._following: tuple | None = None    # (hand-over buffer, the truth's view following it)
 
     # --- readings -----------------------------------------------------------
     @property
@@ -86,7 +92,24 @@ class BodyCraft:
         return math.nan if checks is None or checks.shield is None else float(checks.temperature)
 
     def truth(self) -> StateView:
-        return self._body.view()
+        body = self._body
+        view = body._view
+        if view is not None and view.t == body.t:
+            return view
+        given = body.handed_with(body.y)
+        if given is None:
+            return body.view()
+        following = self._following     # the state handed over by a compiled run: one view a run
+        if following is None or following[0] is not given:
+            # the truth's own numbers, or with perfect sensors the estimate's, the same, and
+            # the place's readings the run computed with them
+            sensors = body.sensors
+            state, readings = handed_estimate(given) if sensors is None or sensors.perfect else \
+                (given[STATE:STATE + N_STATE], None)
+            following = self._following = (given, body.view_of(body.t, state).following(state, readings))
+        view = body._view = following[1]
+        view.at(body.t)
+        return view
 
     def handed(self) -> np.ndarray | None:
         body = self._body

@@ -231,7 +231,7 @@ def fly_run(y, k0, h, n_max, p, veh, in_flight, steer, code, fins, errors, j0, g
             carry[CARRY_PEAK_Q], carry[CARRY_PEAK_STEP] = peak, j
             y_peak = y
         if asks:
-            hand_into(handed, y, errors, j0 + j)
+            hand_into(handed, y, errors, j0 + j, t, p)
             ask(k0 + j)
             if handed[ANSWER] != 0.0:
                 return y, before, j, figures, QUIET, y_peak, filled

@@ -19,12 +19,24 @@ the best of each; a load that comes and goes slows all alike):
    (the compiled run's call into Python with the step's state, the reading marked
    for the program's CPU budget and time limit, armed once per run) with the
    cheapest reading, so that the lambda's distance from it is what its readings
-   cost (a view of the step's state, its place's readings in one compiled call).
+   cost (the truth's view, one for the run, following the state the run hands
+   over, with the place's readings the run computed beside it).
 3. The lambda program's real-time factor over RocketPy's on the same rocket
    (:func:`tests.sounding_peer.rocketpy_flight` to apogee at RocketPy's default
    tolerance, ``rtol`` 1e-6; the peer test asks 1e-8 of it): at least 10, in
    wall time and in CPU time (steadier on a loaded machine), with the compiled
    condition's beside it (the flight with no Python between its steps).
+
+Last figures (2-core machine shared with other engineers' work), targets 2 and 3,
+three runs at load 2.0-2.4: lambda / compiled condition 1.31-1.38 CPU (1.33-1.38
+wall); the lambda's Python 2.8-3.2 us a step over the ignition alone, of which
+2.1-2.2 us the lambda reading the time alone (the run's call into Python, the
+state handed over, the program's runner) and 0.7-1.1 us the vertical speed; real-
+time factor 12.1-12.7x RocketPy's in CPU time and in wall time (the compiled
+condition's 16-17x). The tree before, beside (load 0.4-0.6): 1.67-1.75 CPU, the
+vertical speed 3.5-4.0 us a step, 8.6-9.5x in CPU time. Six alternating pairs
+of the four sounding flights (load 0.9-1.0): 1.32-1.47 against 1.69-1.97.
+Target 1 at load 0.1: 1.15 CPU.
 
 Times are CPU seconds of this process (``time.process_time``: on a shared
 machine the wall time counts the other processes' turns too; the flights'

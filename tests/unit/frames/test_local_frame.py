@@ -76,3 +76,25 @@ def test_surface_retrograde_about_mars_points_against_the_air_of_mars():
     nose = quat_rotate(q, np.array([1.0, 0.0, 0.0]))
     want = -over_ground / np.linalg.norm(over_ground)
     assert math.degrees(math.acos(min(1.0, float(nose @ want)))) < 1e-6
+
+
+def test_where_and_how_fast_about_earth_is_the_frames_functions_to_the_bit():
+    """The one compiled call for a place about Earth gives the bits of the functions it
+    stands for, applied one after the other: the ECI position turned Earth-fixed
+    (``eci_to_ecef``), its WGS84 geodetic coordinates (``ecef_to_geodetic``), the local
+    east, north, up there (``enu_basis``) turned back to ECI (``ecef_to_eci``), and the
+    velocity over the turning ground (``air_velocity`` with no wind), on random states
+    from the pad to far out."""
+    from rocketsim.frames.earth_fixed import ecef_to_eci, eci_to_ecef
+    from rocketsim.frames.geodetic import ecef_to_geodetic, enu_basis
+    from rocketsim.frames.local import air_velocity, where_and_how_fast
+
+    rng = np.random.default_rng(3)
+    for _ in range(300):
+        r = rng.normal(size=3) * rng.uniform(6.3e6, 5.0e7)
+        v = rng.normal(size=3) * rng.uniform(0.0, 1.1e4)
+        t = float(rng.uniform(0.0, 1e5))
+        lat, lon, h, enu, surface = where_and_how_fast(r, v, t)
+        assert (lat, lon, h) == ecef_to_geodetic(eci_to_ecef(r, t))
+        np.testing.assert_array_equal(enu, [ecef_to_eci(row, t) for row in enu_basis(lat, lon)])
+        np.testing.assert_array_equal(surface, air_velocity(r, v, np.zeros(3)))
