@@ -33,14 +33,16 @@ and FULL_CLUSTER_RUNS on the cluster. Nothing asserts a time: the checks are tha
 every run flew, its booster came down with a named outcome, the guidance was timed in
 each run, and the booster's results are the same with the upper stage flown on.
 
-Last figures (2-core machine shared with the other engineers' work, runs 0 and 1, in
-the suite; this file run alternately on this code and on the code before the
-landing-point predictor, the mean elements and the boost-back's state were made
-cheap, two rounds at load 4.0-4.1): 1.66 and 2.47 s of CPU a run (13.8 and 20.6 min
-for 1 000 runs on two ideal workers), the guidance 0.39 and 0.57 s of it (24 %);
-before, 4.43 and 5.32 s a run (36.9 and 44.3 min), the guidance 3.06 and 3.66 s (69 %).
-The runs' other CPU is the simulator's: its compiled runs, the samples and the
-sensors' readings.
+Last figures (this 2-core machine, nothing else running, ``ROCKETSIM_BENCH_FULL=1``,
+load 0.8-1.0): 1.07 s of CPU a run in one process (9.0 min for 1 000 runs on two ideal
+workers), the guidance 0.18 s of it (17 %); the same runs with every body flown 1.44 s
+(following the booster alone takes 0.75 of it); 2 workers 1.98 runs/s, 1 000 runs in
+8.4 min. The whole campaign flown with ``--runs 1000 --workers 2`` on the same code took
+9 min 07 s from the command to the last row (kernels compiled in its warm-up, load
+about 2: its own two workers), 999 of 1 000 upright within 10 m. Before this round
+(every body flown, the flip's plan ten times a second, the sample path and store as
+they were): 1.96 s a run, 16.3 min. The runs' other CPU is the simulator's: its
+compiled runs, the programs' readings and the sensors.
 """
 
 from __future__ import annotations

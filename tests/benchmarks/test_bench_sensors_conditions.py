@@ -36,7 +36,12 @@ time factor 12.1-12.7x RocketPy's in CPU time and in wall time (the compiled
 condition's 16-17x). The tree before, beside (load 0.4-0.6): 1.67-1.75 CPU, the
 vertical speed 3.5-4.0 us a step, 8.6-9.5x in CPU time. Six alternating pairs
 of the four sounding flights (load 0.9-1.0): 1.32-1.47 against 1.69-1.97.
-Target 1 at load 0.1: 1.15 CPU.
+Target 1 at load 0.1: 1.15 CPU. On the merged tree with nothing else running (load
+0.8-0.9, five runs): target 1 in the suite's span 0.77-1.28 CPU; target 2 1.34-1.53
+CPU (median 1.36) but 1.72-1.90 in wall time: the telemetry's second thread writes
+beside the flight on a free core, and the compiled flight's main thread is then 25 ms
+against the lambda's 48 ms; target 3 10.7-13.4x in wall time, 8.8-11.5x in CPU time
+(median 10.8x).
 
 Times are CPU seconds of this process (``time.process_time``: on a shared
 machine the wall time counts the other processes' turns too; the flights'
