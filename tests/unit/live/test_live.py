@@ -269,7 +269,9 @@ def test_pause_stands_the_view_and_the_flight_still_then_nothing_is_lost(coast, 
         assert client.wait_until(lambda c: c.messages[-1][1] >= start + 5_000_000_000)
         client.set_parameters(paused=True)
         assert client.wait_until(lambda c: c.parameters.get("paused") is True)
-        assert client.wait_until(lambda c: server.holding), "the flight does not wait while paused"
+        assert client.wait_until(lambda c: server.holding), \
+            f"the flight does not wait while paused (flown to T+{progress[-1] if progress else 0:g} s of 60; " \
+            f"the player's error: {server.error!r}; served {server.served}, stalls {server.stalls})"
         time.sleep(0.2)                 # what was on its way has arrived; the flight's batch ended
         seen["paused"] = (len(client.messages), client.messages[-1][1], client.times[-1][1], progress[-1])
         time.sleep(2.0)
