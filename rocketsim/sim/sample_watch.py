@@ -80,14 +80,6 @@ class _Figures:
             return
         counts = np.array([len(rows) for rows in blocks], dtype=np.int64)
         rows = np.concatenate([_figure_columns(run) for run in _same_width(blocks)])
-        flying = rows[:, 0] < math.inf         # before the landing (taken in before it was known)
-        if not flying.all():
-            block = np.repeat(np.arange(len(blocks)), counts)[flying]
-            rows = rows[flying]
-            counts = np.bincount(block, minlength=len(blocks))
-            counts = counts[counts > 0]
-            if not len(rows):
-                return
         heights = rows[:, 1]
         first = np.cumsum(counts) - counts
         tops = np.maximum.reduceat(heights, first)          # NaN for a block holding one
