@@ -47,11 +47,6 @@ class _Segment:
 
     def add_rows(self, rows: np.ndarray) -> None:
         """:meth:`add` of each row of ``rows``, in order."""
-        at, n = self.rows % BLOCK, len(rows)
-        if at and at + n <= BLOCK:          # within the last block
-            self.blocks[-1][at:at + n] = rows
-            self.rows += n
-            return
         done = 0
         while done < len(rows):
             at = self.rows % BLOCK
