@@ -254,14 +254,14 @@ class StateView:
         within the instant, or copied. ``readings``: that array, where the owner writes
         the place's readings with the state (:func:`place_readings_into`: a compiled
         run's), else a new one, where :meth:`at` computes them."""
-        view = StateView.__new__(StateView)
-        fixed, out, p = view.__dict__, np.empty(N_READINGS) if readings is None else readings, self._p
-        fixed.update(t=self.t, _state=state, _atmosphere=self._atmosphere, mu=self.mu, _p=p,
+        out, p = np.empty(N_READINGS) if readings is None else readings, self._p
+        fixed = dict(t=self.t, _state=state, _atmosphere=self._atmosphere, mu=self.mu, _p=p,
                      position=state[R:R + 3], velocity=state[V:V + 3], attitude=state[Q:Q + 4],
-                     body_rates=state[W:W + 3], _out=out)
-        fixed["_fixed"] = fixed = dict(fixed)
-        fixed["_fixed"] = fixed         # what at() keeps
-        fixed["_places"] = None if readings is not None else _bound(place_readings, out, self.t, state, p)
+                     body_rates=state[W:W + 3], _out=out,
+                     _places=None if readings is not None else _bound(place_readings, out, self.t, state, p))
+        fixed["_fixed"] = fixed         # what at() keeps; the view's own dict a copy of it
+        view = StateView.__new__(StateView)
+        view.__dict__ = fixed.copy()
         return view
 
     def at(self, t: float) -> None:
