@@ -243,14 +243,18 @@ def test_a_planted_event_without_a_twin_is_named(tmp_path):
     assert all("has no compiled twin" in line for line in found)
 
 
+def _with_check(tmp_path: Path, method: str) -> list[str]:
+    """:func:`problems` of a copy of ``rocketsim/sim`` with the method ``method`` (its
+    source) planted in :class:`~rocketsim.sim.vehicle_checks.VehicleChecks`."""
+    anchor = "    def _tip_over_angle(self, body) -> float:\n"
+    return problems(python_decisions(_planted(tmp_path, "vehicle_checks.py", anchor, method + "\n" + anchor)), TWINS)
+
+
 def test_a_planted_stop_without_a_twin_is_named(tmp_path):
     # a check that ends the flight with no event: a new stop of its function
-    sim = _planted(tmp_path, "vehicle_checks.py", "    def _tip_over_angle(self, body) -> float:\n",
-                   "    def _overheated(self, body) -> None:\n"
-                   "        if self.temperature > 3000.0:\n"
-                   "            body.flying = False\n\n"
-                   "    def _tip_over_angle(self, body) -> float:\n")
-    found = problems(python_decisions(sim), TWINS)
+    found = _with_check(tmp_path, "    def _overheated(self, body) -> None:\n"
+                                  "        if self.temperature > 3000.0:\n"
+                                  "            body.flying = False\n")
     assert len(found) == 1 and found[0].startswith("'vehicle_checks.VehicleChecks._overheated', made in "
                                                    "vehicle_checks.VehicleChecks._overheated (vehicle_checks.py:")
 
@@ -268,11 +272,8 @@ def test_an_event_recorded_elsewhere_or_gone_is_named(tmp_path):
 
 def test_an_event_that_ends_a_flight_is_read_where_it_is_named(tmp_path):
     # a check ending the flight through the world's end_flight: its event is the check's
-    sim = _planted(tmp_path, "vehicle_checks.py", "    def _tip_over_angle(self, body) -> float:\n",
-                   "    def _overheated(self, world, body) -> None:\n"
-                   "        world.end_flight(body, \"overheated\", {})\n\n"
-                   "    def _tip_over_angle(self, body) -> float:\n")
-    found = problems(python_decisions(sim), TWINS)
+    found = _with_check(tmp_path, "    def _overheated(self, world, body) -> None:\n"
+                                  "        world.end_flight(body, \"overheated\", {})\n")
     assert len(found) == 1 and found[0].startswith("'overheated', made in vehicle_checks.VehicleChecks._overheated "
                                                    "(vehicle_checks.py:")
     # end_flight ending the flight with no event: a stop of its own
