@@ -31,20 +31,21 @@ the best of each; a load that comes and goes slows all alike):
    wall time and in CPU time (steadier on a loaded machine), with the compiled
    condition's beside it (the flight with no Python between its steps).
 
-Last figures, target 2, on a quiet machine (load 0.3-0.8): lambda / compiled
-condition 1.28-1.40 CPU, 1.63-1.73 wall into a file, 1.43-1.50 in memory (wall and
-CPU alike). Per step over the ignition alone, in memory: 1.0 us for the lambda
-reading the time, 1.8 us for the one reading the vertical speed too. The floor of
-the wall ratio into a file, measured once with the run calling the lambda
-straight from its step (no runner, budget or time limit, nothing kept: a
-throw-away patch): 1.64-1.67, and 1.37-1.40 in memory. The compiled twin's file
-is written on the second core while it flies, in nogil kernels; the lambda's
-Python needs the GIL between every two steps, which the writing thread's own
-Python (the samples' numbers formatted by orjson, the frames' transforms) holds
-for some 5 ms a flight. What would bring the file's wall ratio to 1.5 is that
-Python made GIL-free, not less Python around the condition: the runner's whole
-share is 0.7 ms a flight (the lambda with a bare runner, the same flights).
-Target 3: 13.5-14.1x RocketPy's in wall time, 11.9-13.5x in CPU time.
+Last figures on a quiet machine (load 0.3-1.3, six runs). Target 1: 1.16-1.17
+CPU. Target 2: lambda / compiled condition 1.28-1.45 CPU, 1.63-1.77 wall into a
+file, 1.43-1.52 wall in memory. Per step over the ignition alone, in memory:
+1.0-1.4 us for the lambda reading the time, 1.8-2.6 us for the one reading the
+vertical speed too. The floor of the wall ratio, measured once with the run
+calling the lambda straight from its step (no runner, budget or time limit,
+nothing kept: a throw-away patch): 1.64-1.67 into a file, 1.37-1.40 in memory;
+the runner's whole share is 0.7-1.0 ms a flight (the lambda with a bare runner).
+Into a file the compiled twin's telemetry is written on the second core while it
+flies, in nogil kernels; the lambda's Python needs the GIL between every two
+steps, and the writing thread's own Python (the samples' numbers formatted by
+orjson, the frames' transforms, the chunks' indexes: about 6 ms of its 14 ms a
+flight) holds it. What would bring the file's wall ratio to 1.5 is that Python
+made GIL-free, not less Python around the condition. Target 3: 13.4-14.3x
+RocketPy's in wall time, 11.0-13.5x in CPU time.
 
 Times are CPU seconds of this process (``time.process_time``: on a shared
 machine the wall time counts the other processes' turns too; the flights'
