@@ -197,51 +197,51 @@ class ProgramRunner:
     # --- called by the simulator -------------------------------------------
     def due(self, t: float) -> bool:
         """Whether the program is to run in the step starting at ``t`` (what :meth:`check`
-        found for ``t``, if it was asked)."""
-        checked, self._checked = self._checked, None
-        if checked is not None and checked[0] == t:
-            if isinstance(checked[1], ProgramError):
-                raise checked[1]
-            return checked[1]
-        return self._due(t)
+        found for ``t``, if it was asked); raises the program's error its condition raised."""
+        checked = self._checked
+        if checked is None or checked[0] != t:
+            self.check(t)
+            checked = self._checked
+        self._checked = None
+        if isinstance(checked[1], ProgramError):
+            raise checked[1]
+        return checked[1]
 
     def check(self, t: float) -> bool:
-        """:meth:`due` at ``t`` read now, its outcome (True, False or the program's error)
+        """Read now whether the program is to run in the step starting at ``t`` (woken at
+        its time, or its condition true), the outcome (True, False or the program's error)
         kept for the call of :meth:`due` at ``t`` (a condition read ahead of the world's
-        loop, once, as the loop reads it); True unless it is False."""
-        try:
-            outcome = self._due(t)
-        except ProgramError as error:
-            outcome = error
+        loop, once, as the loop reads it); True unless it is False. Inside
+        :meth:`watched` each reading of the condition is marked for the budget and the
+        time limit (armed once for the stretch), else they are armed around it."""
+        predicate = self._predicate
+        if self.finished or t + WAKE_TOLERANCE < self._wake_time:
+            outcome = False
+        elif predicate is None:
+            outcome = True
+        else:
+            budget, leash = self._budget, self._leash
+            try:
+                if self._watched:
+                    self._calls = call = self._calls + 1
+                    budget.call = leash.call = call
+                    outcome = predicate()
+                    budget.call = leash.call = 0
+                else:
+                    with budget, leash:
+                        outcome = predicate()
+                if outcome is not True and outcome is not False:
+                    outcome = truth(outcome)
+            except BaseException as error:  # noqa: BLE001
+                budget.call = leash.call = 0
+                if not _raised_by_program(error, self.path):
+                    raise
+                outcome = self._failed(error)
+            else:
+                if outcome:
+                    self._predicate = None
         self._checked = (t, outcome)
         return outcome is not False
-
-    def _due(self, t: float) -> bool:
-        if self.finished or t + WAKE_TOLERANCE < self._wake_time:
-            return False
-        predicate = self._predicate
-        if predicate is None:
-            return True
-        budget, leash = self._budget, self._leash
-        try:
-            if self._watched:           # armed once for the stretch: the call marked
-                self._calls = call = self._calls + 1
-                budget.call = leash.call = call
-                ready = predicate()
-                budget.call = leash.call = 0
-            else:
-                with budget, leash:
-                    ready = predicate()
-            if ready is not True and ready is not False:
-                ready = truth(ready)
-        except BaseException as error:  # noqa: BLE001
-            budget.call = leash.call = 0
-            if not _raised_by_program(error, self.path):
-                raise
-            raise self._failed(error) from None
-        if ready:
-            self._predicate = None
-        return ready
 
     def _failed(self, error: BaseException) -> ProgramError:
         """The program's error for ``error``, raised by its condition (at the condition's

@@ -161,10 +161,12 @@ class VehicleChecks:
 
         ``between(k)``: asked after each step ``k`` but the last with nothing for the
         Python side, the body's state, time and checks as after it (a program's condition
-        read in Python; the state handed over with the step's navigation estimate,
-        :attr:`rocketsim.sim.body.Body.handed`), whether the run ends there:
-        then the reason is :data:`~rocketsim.stepping.runs.QUIET` and the checks' state
-        is as :meth:`after_step` leaves it after that step."""
+        read in Python; the body's state is the one the run handed over, in its buffer with
+        the step's navigation estimate, :attr:`rocketsim.sim.body.Body.handed`), whether
+        the run ends there: then the reason is :data:`~rocketsim.stepping.runs.QUIET`, the
+        state returned is the body's as the condition left it (a command it gave, an
+        engine lit, changes it) and the checks' state is as :meth:`after_step` leaves it
+        after that step."""
         if between is None:
             arguments, carry = self._run_arguments(body, k0, h, n, steering, events, condition, samples)
             y, before, taken, figures, reason, y_peak, filled = body.kernels.call(
@@ -172,19 +174,21 @@ class VehicleChecks:
         else:
             handed = hand_over_buffer(len(body.y))
             state, shielded = handed[STATE:], self.shield is not None
+            given = (state, handed)
 
             def question(k: int) -> None:
-                body.y = y = state.copy()
-                body.handed, body.t = (y, handed), k * h
+                body.y, body.handed, body.t = state, given, k * h
                 if shielded:
                     self.temperature = float(carry[quiet.CARRY_TEMPERATURE])
-                handed[ANSWER] = 1.0 if between(k) else 0.0
+                handed[ANSWER] = between(k)
 
             with runs.asking(question) as asking:
                 arguments, carry = self._run_arguments(body, k0, h, n, steering, events, condition, samples,
                                                        (asking.ask, handed))
                 y, before, taken, figures, reason, y_peak, filled = body.kernels.call(
                     runs.fly_run, body.vehicle.arrays, *arguments)
+            if reason == runs.QUIET:        # the state as the condition left it (a command may change it)
+                y = state.copy()
         self.temperature = float(carry[quiet.CARRY_TEMPERATURE])
         self.touched_down = bool(carry[quiet.CARRY_TOUCHED] > 0.5)
         if reason == runs.QUIET:

@@ -163,7 +163,7 @@ class _Window:
         samples, rows, shape = _samples(world, body)
         self._computed(k, i, rows, shape)           # all its rows: written as far as computed
         entry = self.samples[-1] if len(rows) else None
-        runner, known, acted = body.runner, len(world.bodies), []
+        check, known, acted = body.runner.check, len(world.bodies), []
 
         def act() -> None:                  # the condition acts at step world.k: what comes first
             if not acted:
@@ -172,12 +172,12 @@ class _Window:
 
         def between(step: int) -> bool:
             world.k = step
-            return runner.check(step * h) or bool(acted)
+            return check(step * h) or bool(acted)
 
         h = world.h
         world.before_act = act
         try:
-            with runner.watched():
+            with body.runner.watched():
                 y, taken, reason, filled = body.checks.fly_run(body, k, h, top - k, steering, body.watch,
                                                                NO_CONDITION, samples, between)
         finally:

@@ -349,3 +349,38 @@ def test_a_state_gone_non_finite_inside_a_run_ends_the_flight_at_the_next_sample
     states = [orjson.loads(data) for topic, _, data in iter_raw_messages(out) if topic.endswith("/state")]
     assert states[-1]["t"] == pytest.approx(changed[0] * world.h)
     assert all(math.isfinite(x) for state in states for x in state["position"] + state["velocity"])
+
+
+def _ignites_in_its_condition(fc):
+    fc.wait_until(lambda: fc.time > 2.0 and fc.ignite() is not None)
+
+
+def _ignites_on_waking(fc):
+    fc.wait_until(lambda: fc.time > 2.0)
+    fc.ignite()
+
+
+def test_a_command_inside_a_condition_read_in_python_acts_on_the_flight(tmp_path, monkeypatch):
+    """A condition read in Python between a compiled run's steps that commands (the sounding
+    rocket's engine lit inside ``fc.wait_until(lambda: ...)`` at T+2.02 s) acts on the state
+    the flight goes on from: the file is, message for message and bit for bit, that of the
+    world's loop one step at a time (which reads the condition on the body's own state),
+    and the flight is the one of a program lighting the engine as it wakes at that step
+    (liftoff after the engine's 0.3 s dead time and its spool-up)."""
+    from tests.sounding_peer import scenario
+
+    def flown(name, program, windows=True):
+        if not windows:
+            monkeypatch.setattr(world_module, "fly_window", lambda world, length: False)
+        out = tmp_path / f"{name}.mcap"
+        summary = fly(load({**scenario(10.0), "program": program}), out)
+        monkeypatch.undo()
+        return summary["bodies"], list(iter_raw_messages(out))
+
+    inside, messages = flown("inside", _ignites_in_its_condition)
+    inside_steps, messages_steps = flown("inside-steps", _ignites_in_its_condition, windows=False)
+    waking, _ = flown("waking", _ignites_on_waking)
+    assert messages == messages_steps and inside == inside_steps
+    assert inside == waking
+    events = {e["name"]: e["time_s"] for e in inside["peer_sounding_rocket"]["events"]}
+    assert events["ignition"] == pytest.approx(2.02) and events["liftoff"] > 2.02 + 0.3
