@@ -39,6 +39,7 @@ from rocketsim.frames.local import VERTICAL, where_and_how_fast
 from rocketsim.frames.quaternion import (hamilton_product, quat_conjugate, quat_from_axis_angle,
                                          quat_from_matrix, quat_multiply, quat_normalize, quat_rotate,
                                          rotate_components)
+from rocketsim.frames.vectors import compiled_cross
 
 FREE = 0      # torque-free rotation
 HELD = 1      # attitude held fixed in an inertial command frame
@@ -219,11 +220,6 @@ def _dot(a, b):
 
 
 @njit
-def _cross(a, b):
-    return np.array((a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]))
-
-
-@njit
 def target_attitude(nose, up, roll):
     """``(found, q)``: the attitude (quaternion body -> ECI, ``w >= 0``) with the nose along
     ``nose`` (unit, ECI) turned ``roll`` rad about it from the belly-to-the-ground
@@ -236,10 +232,10 @@ def target_attitude(nose, up, roll):
     horizontal = nose - sin_pitch * up
     horizontal = horizontal / math.sqrt(_dot(horizontal, horizontal))
     z_ref = sin_pitch * horizontal - math.sqrt(1.0 - sin_pitch * sin_pitch) * up
-    z_body = math.cos(roll) * z_ref + math.sin(roll) * _cross(nose, z_ref)
+    z_body = math.cos(roll) * z_ref + math.sin(roll) * compiled_cross(nose, z_ref)
     axes = np.empty((3, 3))
     copy_into(axes[:, 0], 0, nose)
-    copy_into(axes[:, 1], 0, _cross(z_body, nose))
+    copy_into(axes[:, 1], 0, compiled_cross(z_body, nose))
     copy_into(axes[:, 2], 0, z_body)
     return True, quat_from_matrix(axes)
 
@@ -267,7 +263,7 @@ def command_attitude(code, y, t, q, p):
                 target = -target
             return target
     now = quat_rotate(q, np.array((1.0, 0.0, 0.0)))
-    axis = _cross(now, nose)
+    axis = compiled_cross(now, nose)
     size = math.sqrt(_dot(axis, axis))
     if size == 0.0:
         return q.copy()

@@ -33,6 +33,7 @@ from rocketsim.flight.navigation import estimate
 from rocketsim.flight.readings import air_here
 from rocketsim.frames.local import VERTICAL, where_and_how_fast
 from rocketsim.frames.quaternion import quat_from_matrix, quat_to_matrix
+from rocketsim.frames.vectors import compiled_cross
 from rocketsim.vehicle.engines import E_GIMBAL_RANGE, E_X, command_gimbals, thrusts
 from rocketsim.vehicle.grid_fins import G_MAX, command, grid_fin_forces
 from rocketsim.vehicle.mass_properties import vehicle_mass_properties
@@ -49,16 +50,6 @@ def _in_body(axes, vector):
     out = np.empty(3)
     for k in range(3):
         out[k] = axes[0, k] * vector[0] + axes[1, k] * vector[1] + axes[2, k] * vector[2]
-    return out
-
-
-@njit
-def _cross(a, b):
-    """``a x b`` (the operations of ``np.cross``)."""
-    out = np.empty(3)
-    out[0] = a[1] * b[2] - a[2] * b[1]
-    out[1] = a[2] * b[0] - a[0] * b[2]
-    out[2] = a[0] * b[1] - a[1] * b[0]
     return out
 
 
@@ -101,11 +92,11 @@ def target_axes(nose, enu, roll):
     z_ref = np.empty(3)
     for i in range(3):
         z_ref[i] = sin_pitch * (horizontal[i] / size) - cos_pitch * up[i]
-    side = _cross(nose, z_ref)
+    side = compiled_cross(nose, z_ref)
     z_body = np.empty(3)
     for i in range(3):
         z_body[i] = math.cos(roll) * z_ref[i] + math.sin(roll) * side[i]
-    y_body = _cross(z_body, nose)
+    y_body = compiled_cross(z_body, nose)
     for i in range(3):
         out[i, 0] = nose[i]
         out[i, 1] = y_body[i]

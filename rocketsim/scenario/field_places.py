@@ -11,14 +11,13 @@ the nearest valid path (each misspelt field or item name replaced by the nearest
 
 from __future__ import annotations
 
-import types
 import typing
 from dataclasses import dataclass
 from typing import Any, Callable
 
 from pydantic import BaseModel, BeforeValidator
 
-from rocketsim.scenario.paths import (PathError, Step, field_names, field_type, is_mapping,
+from rocketsim.scenario.paths import (PathError, Step, field_names, field_type, first_held, is_mapping,
                                       item_type, nearest, unknown_field, unknown_name)
 from rocketsim.scenario.units import UnitError
 
@@ -63,17 +62,16 @@ def _annotation(info):
 def _unit_reader(annotation) -> Callable[[Any], float] | None:
     """The quantity reader (value -> SI float) of a field's annotation, its bounds left
     out (a sigma of a positive field may be read at 0), None for a plain number."""
-    origin = typing.get_origin(annotation)
-    if origin is typing.Annotated:
-        base, *meta = typing.get_args(annotation)
-        readers = [m.func for m in meta if isinstance(m, BeforeValidator)]
-        return readers[0] if readers else _unit_reader(base)
-    if origin in (typing.Union, types.UnionType):
-        for arg in typing.get_args(annotation):
-            found = _unit_reader(arg)
-            if found is not None:
-                return found
-    return None
+    return first_held(annotation, _own_reader)
+
+
+def _own_reader(annotation) -> Callable[[Any], float] | None:
+    """The first ``BeforeValidator``'s function in the metadata of an ``Annotated``
+    annotation itself (None: none, or not an ``Annotated``)."""
+    if typing.get_origin(annotation) is not typing.Annotated:
+        return None
+    readers = [m.func for m in typing.get_args(annotation)[1:] if isinstance(m, BeforeValidator)]
+    return readers[0] if readers else None
 
 
 def _step_into(node, annotation, step: Step, where: str, repair: bool):

@@ -27,6 +27,7 @@ import re
 import types
 import typing
 from dataclasses import dataclass
+from typing import Callable
 
 from pydantic import BaseModel, RootModel
 
@@ -120,31 +121,39 @@ def models_in(annotation) -> list[type[BaseModel]]:
     return []
 
 
-def item_type(annotation):
-    """The type of the items of a list, tuple or dict annotation (None: not a container)."""
+def first_held(annotation, answer: Callable[[typing.Any], typing.Any]):
+    """The first ``answer(a)`` that is not None over the annotations ``a`` that
+    ``annotation`` holds, outside in: an ``Annotated[base, ...]`` itself (its metadata),
+    then its base; a union's members in order; any other annotation itself. None if none."""
     origin = typing.get_origin(annotation)
     if origin is typing.Annotated:
-        return item_type(typing.get_args(annotation)[0])
+        found = answer(annotation)
+        return found if found is not None else first_held(typing.get_args(annotation)[0], answer)
     if origin in (typing.Union, types.UnionType):
         for arg in typing.get_args(annotation):
-            found = item_type(arg)
+            found = first_held(arg, answer)
             if found is not None:
                 return found
         return None
-    if origin in (list, tuple, dict):
+    return answer(annotation)
+
+
+def _items(annotation):
+    """The type of the items of a list, tuple or dict annotation itself (None: another)."""
+    if typing.get_origin(annotation) in (list, tuple, dict):
         args = [a for a in typing.get_args(annotation) if a is not Ellipsis]
         return args[-1] if args else typing.Any
     return None
 
 
+def item_type(annotation):
+    """The type of the items of a list, tuple or dict annotation (None: not a container)."""
+    return first_held(annotation, _items)
+
+
 def is_mapping(annotation) -> bool:
     """Whether the annotation is (or may be) a ``dict`` of free keys."""
-    origin = typing.get_origin(annotation)
-    if origin is typing.Annotated:
-        return is_mapping(typing.get_args(annotation)[0])
-    if origin in (typing.Union, types.UnionType):
-        return any(is_mapping(a) for a in typing.get_args(annotation))
-    return origin is dict
+    return first_held(annotation, lambda a: True if typing.get_origin(a) is dict else None) is not None
 
 
 def field_names(annotation) -> list[str]:

@@ -107,10 +107,7 @@ def leave_unfollowed(world) -> None:
         return
     for body in world.bodies:
         if body.flying and body.name not in follow:
-            world.event(body, "not followed", {})
-            body.flying = False
-            if world.telemetry is not None:
-                world.record(body)
+            world.end_flight(body, "not followed", {})
 
 
 def _split_rigid(world, body: Vehicle, kept, parts, names, stack: VehicleSpec) -> tuple[Part, ...]:

@@ -265,10 +265,7 @@ class VehicleChecks:
         elif self.landed and body.flying and self._tilted(body):
             figures = self.touchdown_figures(body)
             if figures["tilt_deg"] * DEG > self._tip_over_angle(body):
-                world.event(body, "tip-over", figures)      # its centre of mass past its feet
-                body.flying = False
-                if world.telemetry is not None:
-                    world.record(body)
+                world.end_flight(body, "tip-over", figures)     # its centre of mass past its feet
                 return None
         elif body.flying and not self.touched_down and self.previous is not None and (
                 lowest <= 0.0 or self._reached_ground(body, h)):

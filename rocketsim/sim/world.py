@@ -148,6 +148,14 @@ class World:
         if self.telemetry is not None:
             self.telemetry.event(body.t, body.name, name, figures)
 
+    def end_flight(self, body: Body, name: str, figures: dict) -> None:
+        """End ``body``'s flight where it is: the event ``name`` (as :meth:`event`) and,
+        with telemetry, its last sample."""
+        self.event(body, name, figures)
+        body.flying = False
+        if self.telemetry is not None:
+            self.record(body)
+
     def sample(self, body: Body) -> dict:
         """The telemetry state message of ``body`` at its time (:mod:`rocketsim.sim.sampling`)."""
         return sampling.message(body, self.gmst0, self.where)
@@ -391,10 +399,7 @@ class World:
             if crash is not None:
                 figures.update(crash, surface_speed_m_s=math.hypot(crash["vertical_speed_m_s"],
                                                            crash["horizontal_speed_m_s"]))
-            self.event(body, "impact", figures)
-            body.flying = False
-            if self.telemetry is not None:
-                self.record(body)
+            self.end_flight(body, "impact", figures)
 
     def check_finite(self) -> None:
         """Stop the flight with an input error when a body's state is no longer finite

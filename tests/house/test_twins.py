@@ -4,10 +4,12 @@ The decisions are read from the source of ``rocketsim/sim/`` (nothing is
 imported to find them), independently of the map they are checked against
 (:data:`rocketsim.stepping.twins.TWINS`):
 
-* every event the world records: each call ``<x>.event(body, name, figures)``,
-  its name the string it is given, or the strings assigned to the name it is
-  given in the same function; a name given by the caller (a parameter) counts
-  as a decision of that function;
+* every event the world records: each call ``<x>.event(body, name, figures)``
+  or ``<x>.end_flight(body, name, figures)`` (the world's: the event, then the
+  body's flight ends), its name the string it is given, or the strings assigned
+  to the name it is given in the same function; a name given by the caller (a
+  parameter) counts as a decision of that function, except in ``end_flight``,
+  which passes its caller's on (the decision is read at each call);
 * every stop with no event of its own: a ``raise InputError(...)`` (or of its
   subclass ``ArgumentError``), and a ``<body>.flying = False`` that no recorded
   event precedes in its block or the blocks around it.
@@ -34,6 +36,9 @@ ROOT = Path(__file__).resolve().parents[2]
 SIM = ROOT / "rocketsim" / "sim"
 RUNS = Twin._fields[1:]
 INPUT_ERRORS = ("InputError", "ArgumentError")     # raising one stops the flight on bad input
+RECORDS = ("event", "end_flight")       # a call of either records the event it names
+# the functions that record the event their caller names, read at each call (not a decision of their own)
+RELAYS = ("world.World.end_flight",)
 
 
 def _functions(tree: ast.AST, prefix: str = ""):
@@ -57,8 +62,9 @@ def _own(node: ast.AST):
 
 
 def _records(node: ast.AST) -> bool:
-    """Whether ``node`` is a call that records an event: ``<x>.event(body, name, figures)``."""
-    return (isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute) and node.func.attr == "event"
+    """Whether ``node`` is a call that records an event: ``<x>.event(body, name, figures)``
+    or ``<x>.end_flight(body, name, figures)``."""
+    return (isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute) and node.func.attr in RECORDS
             and len(node.args) == 3 and not node.keywords
             and not any(isinstance(a, ast.Starred) for a in node.args))
 
@@ -89,6 +95,12 @@ def _event_names(name: ast.expr, nodes: list[ast.AST]) -> list[str]:
     return [s for node in nodes if isinstance(node, ast.Assign)
             and any(isinstance(t, ast.Name) and t.id == name.id for t in node.targets)
             for s in _strings(node.value)]
+
+
+def _relayed(site: str, function: ast.AST, name: ast.expr) -> bool:
+    """Whether the event's ``name`` in the function ``site`` is one of :data:`RELAYS` passing
+    on its parameter: the decision is its caller's, read at the call."""
+    return site in RELAYS and isinstance(name, ast.Name) and name.id in {a.arg for a in function.args.args}
 
 
 def _ends_flight(node: ast.AST) -> bool:
@@ -134,7 +146,7 @@ def python_decisions(sim: Path) -> dict[str, dict[str, str]]:
             site = f"{path.stem}.{qualified}"
             nodes = list(_own(function))
             for node in nodes:
-                if _records(node):
+                if _records(node) and not _relayed(site, function, node.args[1]):
                     for name in _event_names(node.args[1], nodes) or [site]:
                         found.setdefault(name, {}).setdefault(site, f"{path.name}:{node.lineno}")
                 elif _raises_input_error(node):
@@ -231,14 +243,18 @@ def test_a_planted_event_without_a_twin_is_named(tmp_path):
     assert all("has no compiled twin" in line for line in found)
 
 
+def _with_check(tmp_path: Path, method: str) -> list[str]:
+    """:func:`problems` of a copy of ``rocketsim/sim`` with the method ``method`` (its
+    source) planted in :class:`~rocketsim.sim.vehicle_checks.VehicleChecks`."""
+    anchor = "    def _tip_over_angle(self, body) -> float:\n"
+    return problems(python_decisions(_planted(tmp_path, "vehicle_checks.py", anchor, method + "\n" + anchor)), TWINS)
+
+
 def test_a_planted_stop_without_a_twin_is_named(tmp_path):
     # a check that ends the flight with no event: a new stop of its function
-    sim = _planted(tmp_path, "vehicle_checks.py", "    def _tip_over_angle(self, body) -> float:\n",
-                   "    def _overheated(self, body) -> None:\n"
-                   "        if self.temperature > 3000.0:\n"
-                   "            body.flying = False\n\n"
-                   "    def _tip_over_angle(self, body) -> float:\n")
-    found = problems(python_decisions(sim), TWINS)
+    found = _with_check(tmp_path, "    def _overheated(self, body) -> None:\n"
+                                  "        if self.temperature > 3000.0:\n"
+                                  "            body.flying = False\n")
     assert len(found) == 1 and found[0].startswith("'vehicle_checks.VehicleChecks._overheated', made in "
                                                    "vehicle_checks.VehicleChecks._overheated (vehicle_checks.py:")
 
@@ -252,3 +268,16 @@ def test_an_event_recorded_elsewhere_or_gone_is_named(tmp_path):
     moved = dict(TWINS, orbit=TWINS["orbit"]._replace(python="rocketsim.sim.world.World.after_advance"))
     found = problems(python_decisions(SIM), moved)
     assert len(found) == 1 and found[0].startswith("'orbit' is made in flight_events.FlightEvents._orbit")
+
+
+def test_an_event_that_ends_a_flight_is_read_where_it_is_named(tmp_path):
+    # a check ending the flight through the world's end_flight: its event is the check's
+    found = _with_check(tmp_path, "    def _overheated(self, world, body) -> None:\n"
+                                  "        world.end_flight(body, \"overheated\", {})\n")
+    assert len(found) == 1 and found[0].startswith("'overheated', made in vehicle_checks.VehicleChecks._overheated "
+                                                   "(vehicle_checks.py:")
+    # end_flight ending the flight with no event: a stop of its own
+    sim = _planted(tmp_path / "silent", "world.py", "        self.event(body, name, figures)\n        body.flying",
+                   "        body.flying")
+    found = problems(python_decisions(sim), TWINS)
+    assert len(found) == 1 and found[0].startswith("'world.World.end_flight', made in world.World.end_flight")

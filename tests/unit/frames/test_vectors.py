@@ -1,13 +1,14 @@
-"""The cross product for Python callers (rocketsim.frames.vectors) against numpy's.
+"""The cross products of rocketsim.frames.vectors against numpy's.
 
-``cross`` must be ``np.cross`` bit for bit (the guidance that calls it is checked for
-identical flights), on vectors spanning many decades and of either sign, and take
-any sequence of three numbers.
+``cross`` (for Python callers) and ``compiled_cross`` (for kernels) must be
+``np.cross`` bit for bit (the guidance, the steering and the rails that call them are
+checked for identical flights), on vectors spanning many decades and of either sign;
+``cross`` takes any sequence of three numbers.
 """
 
 import numpy as np
 
-from rocketsim.frames.vectors import cross
+from rocketsim.frames.vectors import compiled_cross, cross
 
 
 def test_the_cross_product_is_numpys_bit_for_bit():
@@ -16,6 +17,7 @@ def test_the_cross_product_is_numpys_bit_for_bit():
         a = rng.normal(size=3) * 10.0 ** rng.uniform(-6, 8, size=3)
         b = rng.normal(size=3) * 10.0 ** rng.uniform(-6, 8, size=3)
         assert cross(a, b).tobytes() == np.cross(a, b).tobytes()
+        assert compiled_cross(a, b).tobytes() == np.cross(a, b).tobytes()
 
 
 def test_the_axes_follow_the_right_hand_rule_from_any_sequence():

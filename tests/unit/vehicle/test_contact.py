@@ -21,6 +21,7 @@ from rocketsim.dynamics.rk4 import rk4_step, step
 from rocketsim.frames.geodetic import enu_basis, geodetic_to_ecef
 from rocketsim.frames.quaternion import quat_from_matrix
 from rocketsim.sim.vehicle_checks import VehicleChecks
+from rocketsim.sim.world import World
 from rocketsim.vehicle.contact import contact_heights, footprint, tip_over_angle
 from rocketsim.vehicle.build import build
 from tests.aero_vehicles import corotating, earth_params, shipped
@@ -103,6 +104,7 @@ def test_the_same_drop_at_20_ms_without_sub_steps_is_unstable(lander):
 
 class _World:
     telemetry = None
+    end_flight = World.end_flight       # the event, then the body's flight ends
 
     def __init__(self):
         self.events = []
