@@ -193,6 +193,18 @@ def moment_about_cm(d, ry, rz, gx, gy, gz):
     return ry * gz - rz * gy, rz * gx - d * gz, d * gy - ry * gx
 
 
+NO_LOAD = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)     # (fx, fy, fz, mx, my, mz) with no force yet
+
+
+@njit(inline="always")     # a few operations: typed in its callers' loops
+def with_force(load, d, ry, rz, gx, gy, gz):
+    """``load``, a force and moment ``(fx, fy, fz, mx, my, mz)`` (N, N m about the centre
+    of mass, body axes), with the force ``(gx, gy, gz)`` (N) applied at ``(d, ry, rz)`` (m
+    from the centre of mass) and its moment (:func:`moment_about_cm`) added."""
+    m = moment_about_cm(d, ry, rz, gx, gy, gz)
+    return load[0] + gx, load[1] + gy, load[2] + gz, load[3] + m[0], load[4] + m[1], load[5] + m[2]
+
+
 @njit
 def _lift(d, k, v, w, wy, wz):
     """Lateral force ``-k (v + wz d, w - wy d)`` at ``d`` (m) from the centre of mass,

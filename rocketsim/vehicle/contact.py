@@ -37,7 +37,7 @@ import numpy as np
 from rocketsim.jit import njit
 from rocketsim.frames.quaternion import body_x_components, rotate_components
 from rocketsim.layout import P_POLAR_RADIUS, P_RADIUS, Q, R
-from rocketsim.vehicle.aero import A_GROUND, moment_about_cm
+from rocketsim.vehicle.aero import A_GROUND, NO_LOAD, with_force
 
 # columns of AeroArrays.contact
 K_X, K_Y, K_Z, K_STIFF, K_DAMP, K_MU, K_EPS = 0, 1, 2, 3, 4, 5, 6
@@ -131,7 +131,7 @@ def contact_forces(y, x_cm, a, b, spin, contact, ground=0.0):
     ground's rotation rate about inertial z (rad/s), ``ground`` the height (m) of a flat
     ground above the ellipsoid (0: the ellipsoid itself; its normal is the ellipsoid's).
     """
-    fx = fy = fz = mx = my = mz = 0.0
+    load = NO_LOAD
     qw, ux, uy, uz = y[6], y[7], y[8], y[9]
     wx, wy, wz = y[10], y[11], y[12]
     for i in range(contact.shape[0]):
@@ -179,11 +179,5 @@ def contact_forces(y, x_cm, a, b, spin, contact, ground=0.0):
         gz = normal * nz + k * sz
         # back to body axes: q* g
         ex, ey, ez = rotate_components(qw, -ux, -uy, -uz, gx, gy, gz)
-        fx += ex
-        fy += ey
-        fz += ez
-        m = moment_about_cm(bx, by, bz, ex, ey, ez)
-        mx += m[0]
-        my += m[1]
-        mz += m[2]
-    return fx, fy, fz, mx, my, mz
+        load = with_force(load, bx, by, bz, ex, ey, ez)
+    return load

@@ -39,7 +39,7 @@ import math
 import numpy as np
 
 from rocketsim.jit import njit
-from rocketsim.vehicle.aero import interp, moment_about_cm
+from rocketsim.vehicle.aero import NO_LOAD, interp, with_force
 
 GRID_MACH = np.array([0.0, 0.6, 0.8, 0.95, 1.05, 1.2, 1.5, 2.0, 3.0, 5.0])
 GRID_CN_ALPHA = np.array([2.9, 3.0, 3.1, 2.2, 1.8, 2.3, 2.4, 2.0, 1.4, 0.9])   # per rad
@@ -74,7 +74,7 @@ def grid_fin_forces(t, u, v, w, wx, wy, wz, rho, sound, x_cm, grid, grid_cmd):
     ``(u, v, w)`` the centre of mass's air-relative velocity in body axes
     (m/s), ``(wx, wy, wz)`` body rates (rad/s).
     """
-    fx = fy = fz = mx = my = mz = 0.0
+    load = NO_LOAD
     for i in range(grid.shape[0]):
         row = grid[i]
         d = row[G_X] - x_cm
@@ -112,14 +112,8 @@ def grid_fin_forces(t, u, v, w, wx, wy, wz, rho, sound, x_cm, grid, grid_cmd):
         gx = normal * nx + drag * vx
         gy = normal * ny + drag * vy
         gz = normal * nz + drag * vz
-        fx += gx
-        fy += gy
-        fz += gz
-        m = moment_about_cm(d, ry, rz, gx, gy, gz)
-        mx += m[0]
-        my += m[1]
-        mz += m[2]
-    return fx, fy, fz, mx, my, mz
+        load = with_force(load, d, ry, rz, gx, gy, gz)
+    return load
 
 
 @njit

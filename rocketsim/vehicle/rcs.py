@@ -14,7 +14,7 @@ nothing.
 from __future__ import annotations
 
 from rocketsim.jit import njit
-from rocketsim.vehicle.aero import moment_about_cm
+from rocketsim.vehicle.aero import NO_LOAD, with_force
 
 # columns of AeroArrays.rcs
 R_X, R_Y, R_Z, R_DX, R_DY, R_DZ, R_THRUST, R_MDOT, R_TANK = 0, 1, 2, 3, 4, 5, 6, 7, 8
@@ -25,7 +25,7 @@ N_RCS = 9
 def rcs_forces(y, dy, x_cm, rcs, rcs_cmd):
     """Force (N, body) and moment (N m about the centre of mass) of the firing
     thrusters; subtracts their propellant flow from ``dy`` (kg/s)."""
-    fx = fy = fz = mx = my = mz = 0.0
+    load = NO_LOAD
     for i in range(rcs.shape[0]):
         f = rcs_cmd[i]
         if f <= 0.0:
@@ -40,12 +40,6 @@ def rcs_forces(y, dy, x_cm, rcs, rcs_cmd):
         d = rcs[i, R_X] - x_cm
         ry = rcs[i, R_Y]
         rz = rcs[i, R_Z]
-        fx += gx
-        fy += gy
-        fz += gz
-        m = moment_about_cm(d, ry, rz, gx, gy, gz)
-        mx += m[0]
-        my += m[1]
-        mz += m[2]
+        load = with_force(load, d, ry, rz, gx, gy, gz)
         dy[tank] -= f * rcs[i, R_MDOT]
-    return fx, fy, fz, mx, my, mz
+    return load
