@@ -220,20 +220,11 @@ class ProgramRunner:
         elif predicate is None:
             outcome = True
         else:
-            budget, leash = self._budget, self._leash
             try:
-                if self._watched:
-                    self._calls = call = self._calls + 1
-                    budget.call = leash.call = call
-                    outcome = predicate()
-                    budget.call = leash.call = 0
-                else:
-                    with budget, leash:
-                        outcome = predicate()
+                outcome = self._timed(predicate)
                 if outcome is not True and outcome is not False:
                     outcome = truth(outcome)
             except BaseException as error:  # noqa: BLE001
-                budget.call = leash.call = 0
                 if not _raised_by_program(error, self.path):
                     raise
                 outcome = self._failed(error)
@@ -242,6 +233,42 @@ class ProgramRunner:
                     self._predicate = None
         self._checked = (t, outcome)
         return outcome is not False
+
+    def resume_due(self, fc, t: float, next_t: float) -> bool:
+        """Inside a compiled run that reads the program after each of its steps, where
+        :meth:`check` has found it due at ``t`` (its wake time reached, its condition true,
+        or its condition's error kept): resume it now, ahead of the world's loop;
+        :meth:`due` at ``t`` then says False (it has run) or raises the program's error.
+        Returns whether the run must end at this step: the program's error, or, handed
+        back, it waits on what such a run does not read at ``next_t`` (a compiled
+        condition, a wake time after it) or has finished."""
+        if self._checked[1] is not True:        # the error its condition raised
+            return True
+        try:
+            self.resume(fc)
+        except ProgramError as error:
+            self._checked = (t, error)
+            return True
+        self._checked = (t, False)
+        predicate = self._predicate
+        if self.finished or isinstance(predicate, Condition):
+            return True
+        return predicate is None and next_t + WAKE_TOLERANCE < self._wake_time
+
+    def _timed(self, function: Callable, *args):
+        """``function(*args)``, the program's Python, under its CPU budget and time limit:
+        inside :meth:`watched` the call is marked (both armed once for the stretch), else
+        both are armed around it."""
+        budget, leash = self._budget, self._leash
+        if not self._watched:
+            with budget, leash:
+                return function(*args)
+        self._calls = call = self._calls + 1
+        budget.call = leash.call = call
+        try:
+            return function(*args)
+        finally:
+            budget.call = leash.call = 0
 
     def _failed(self, error: BaseException) -> ProgramError:
         """The program's error for ``error``, raised by its condition (at the condition's
@@ -296,8 +323,7 @@ class ProgramRunner:
         else:
             args = ()
         try:
-            with self._budget, self._leash:
-                self._greenlet.switch(*args)
+            self._timed(self._greenlet.switch, *args)
         except BaseException as error:  # noqa: BLE001
             if not _raised_by_program(error, self.path):
                 raise

@@ -29,10 +29,12 @@ run there (:meth:`~rocketsim.sim.world.World.run_programs`, as the loop runs
 them), after that step's events and samples; the other bodies' runs go on past
 it. A program acts on its own body only, or makes new ones (a separated
 stage, a fairing's halves, a payload), which fly on from that step; a
-vehicle whose program then waits on a condition read in Python (a lambda) is
-flown in compiled runs that read the condition between their steps, once a
-step as the loop reads it (:meth:`_Window._steps`; one such vehicle at a time),
-and a body that cruises one step at a time.
+vehicle whose program then waits on a condition read in Python (a lambda) or
+wakes at every step (``fc.step()``) is flown in compiled runs that read the
+program between their steps, once a step as the loop reads it, and resume it
+there when it is due, the run going on while it only reads
+(:meth:`_Window._steps`; one such vehicle at a time), and a body that cruises
+one step at a time.
 Everything the Python side does that others can see (events, logs, telemetry)
 happens in the loop's order: by step, and within a step in the order of the
 bodies. The window ends early once no body needs one step at a time (the loop
@@ -60,19 +62,18 @@ import math
 
 import numpy as np
 
-from rocketsim.jit import compile_beside, compiling_elsewhere
-from rocketsim.dynamics.derivative import radial_height
+from rocketsim.jit import compile_beside
 from rocketsim.dynamics.third_bodies import field_of, nbody_flag
 from rocketsim.flight.conditions import NO_CONDITION
 from rocketsim.layout import N_STATE
 from rocketsim.sim import sampling
 from rocketsim.sim.flight_events import ORBIT_PERIAPSIS_BOUND
 from rocketsim.sim.schedule import rails_field
+from rocketsim.sim.window_plans import BATCH, PART, STEPS, VEHICLE, one_of_steps, plan, wake_step
 from rocketsim.stepping import runs
 from rocketsim.stepping.sample_figures import N_SAMPLE_RIGID
 
-# how a body flies a segment (see _plan), and a vehicle's segment that ended on a quiet step
-VEHICLE, STEPS, PART, BATCH, QUIET = "vehicle", "steps", "part", "batch", "quiet"
+QUIET = "quiet"         # a vehicle's segment that ended on a quiet step
 RUN_SAMPLES = 128       # telemetry samples a vehicle's compiled run computes at most
 
 
@@ -86,7 +87,7 @@ def fly_window(world, length: int) -> bool:
         return False
     k = world.k
     flying = [(i, body) for i, body in enumerate(world.bodies) if body.flying]
-    plans = _one_of_steps({i: _plan(world, body, True, length * world.h) for i, body in flying})
+    plans = one_of_steps({i: plan(world, body, True, length * world.h) for i, body in flying})
     window = _Window(world, k + length)
     window.start(k, [i for i, _ in flying], plans)
     window.fly()
@@ -110,7 +111,7 @@ class _Window:
 
     def start(self, k: int, indices: list[int], plans: dict) -> None:
         """Start a segment of each body of ``indices`` at step ``k`` as ``plans[i]`` says
-        (:func:`_plan`; None: one step), none past the step its program wakes at. A run's
+        (:func:`~rocketsim.sim.window_plans.plan`; None: one step), none past the step its program wakes at. A run's
         end goes on the queue: ``(VEHICLE, its last state)``, ``(QUIET, its last state)``
         (steps of one, :meth:`_steps`, flown last, to the queue's first step at most),
         ``(PART, its last state, its first step and state)``, ``(BATCH, k)``; the samples
@@ -123,7 +124,7 @@ class _Window:
                 heapq.heappush(self.queue, (k + 1, i, None))
                 continue
             body = world.bodies[i]
-            top = min(self.end, _wake_step(world, body))
+            top = min(self.end, wake_step(world, body))
             if plan[0] == VEHICLE:
                 samples, rows, shape = _samples(world, body)
                 y, taken, _, filled = body.checks.fly_run(body, k, world.h, top - k, plan[1], body.watch,
@@ -143,19 +144,22 @@ class _Window:
                 heapq.heappush(self.queue, (top, i, (BATCH, k)))
 
     def _steps(self, k: int, i: int, steering) -> None:
-        """Fly the vehicle ``i``, whose program waits on a condition read in Python, in a
-        compiled run from step ``k`` that reads the condition between its steps as the
-        world's loop reads it (:meth:`~rocketsim.sim.vehicle_checks.VehicleChecks.fly_run`'s
-        ``between``; :meth:`~rocketsim.flight.program.ProgramRunner.check`: once a step, its
-        outcome kept for the step's :meth:`~rocketsim.sim.world.World.run_programs`; its
-        budget and time limit armed once, :meth:`~rocketsim.flight.program.ProgramRunner.watched`): to
-        the queue's first step (where another body's Python comes first) or the window's
-        end at most, ending at a step the Python side must handle or one where the
-        condition holds, raises or acts (a command, a log line, an event, a new body:
-        what comes before it in the loop's order, the samples computed up to that step,
-        is written first). The run's end goes on the queue, ``(QUIET, its state)`` where
-        it ended on a quiet step (its sample there computed in the run, or written
-        already, with those of the bodies the condition made: :attr:`presampled`), else
+        """Fly the vehicle ``i``, whose program waits on a condition read in Python or wakes
+        at every step, in a compiled run from step ``k`` that reads the program between its
+        steps as the world's loop reads it
+        (:meth:`~rocketsim.sim.vehicle_checks.VehicleChecks.fly_run`'s ``between``;
+        :meth:`~rocketsim.flight.program.ProgramRunner.check`: its condition or wake time
+        once a step and, where it is due, the program resumed there (``resume_due``), ahead of the step's
+        :meth:`~rocketsim.sim.world.World.run_programs`; its budget and time limit armed
+        once, :meth:`~rocketsim.flight.program.ProgramRunner.watched`): to the queue's first
+        step (where another body's Python comes first) or the window's end at most, ending
+        at a step the Python side must handle, or one where the program raises, acts (a
+        command, a log line, an event, a new body: what comes before it in the loop's order,
+        the samples computed up to that step, is written first) or, resumed, waits on what
+        the run does not read (a compiled condition, a later wake time). The run's end goes
+        on the queue, ``(QUIET, its state)`` where it ended on a quiet step (its sample there
+        computed in the run, or written already, with those of the other bodies' runs going
+        on past it and of the bodies the program made: :attr:`presampled`), else
         ``(VEHICLE, its state)``."""
         world = self.world
         body = world.bodies[i]
@@ -163,21 +167,26 @@ class _Window:
         samples, rows, shape = _samples(world, body)
         self._computed(k, i, rows, shape)           # all its rows: written as far as computed
         entry = self.samples[-1] if len(rows) else None
-        check, known, acted = body.runner.check, len(world.bodies), []
+        runner, fc, known, acted, sampled = body.runner, body.fc, len(world.bodies), [], {i}
+        check, resume_due = runner.check, runner.resume_due
 
-        def act() -> None:                  # the condition acts at step world.k: what comes first
+        def act() -> None:                  # the program acts at step world.k: what comes first
             if not acted:
                 acted.append(world.k)
+                # the samples there, this body's and those of other bodies' runs going on past it
+                sampled.update(run[1] for run in self.samples if _rows_before(run, world.k + 1, every)
+                               > _rows_before(run, world.k, every))
                 self._write_samples(world.k + 1)
 
         def between(step: int) -> bool:
             world.k = step
-            return check(step * h) or bool(acted)
+            t = step * h
+            return check(t) and resume_due(fc, t, (step + 1) * h) or bool(acted)
 
-        h = world.h
+        h, every = world.h, world.sample_every
         world.before_act = act
         try:
-            with body.runner.watched():
+            with runner.watched():
                 y, taken, reason, filled = body.checks.fly_run(body, k, h, top - k, steering, body.watch,
                                                                NO_CONDITION, samples, between)
         finally:
@@ -190,7 +199,7 @@ class _Window:
         end = k + taken
         if acted:
             made = list(range(known, len(world.bodies)))
-            self.presampled.setdefault(end, set()).update([i] + made)
+            self.presampled.setdefault(end, set()).update(sampled, made)
             self.made.setdefault(end, []).extend(made)
         heapq.heappush(self.queue, (end, i, (QUIET if reason == runs.QUIET else VEHICLE, y)))
 
@@ -238,7 +247,7 @@ class _Window:
                         self._close(s)
                         continue
             movers = [i for i in movers + world.run_programs(movers) if world.bodies[i].flying]
-            plans = _one_of_steps({i: _plan(world, world.bodies[i], False, (self.end - s) * world.h)
+            plans = one_of_steps({i: plan(world, world.bodies[i], False, (self.end - s) * world.h)
                                    for i in movers})
             for i in movers:
                 if plans[i] is None:
@@ -390,61 +399,3 @@ def compile_runs_beside(world) -> None:
                                                ORBIT_PERIAPSIS_BOUND, body.mu, math.inf, world.sample_every,
                                                np.empty((0, N_SAMPLE_RIGID)), True,
                                                sampling.part_arguments(body, world.gmst0), nbody_flag(body.p)))
-
-
-def _waiting(body) -> bool:
-    runner = body.runner
-    return runner is not None and not runner.finished and runner.waiting_on_predicate
-
-
-def _wake_step(world, body) -> float:
-    """The step at which ``body``'s program wakes from its sleep (inf: it has none, has
-    finished, or waits on a condition, which its compiled run tests)."""
-    runner = body.runner
-    if runner is None or runner.finished or runner.waiting_on_predicate:
-        return math.inf
-    return world.k + max(1, world.schedule.wake_steps(runner))
-
-
-def _plan(world, body, first: bool, seconds: float):
-    """How ``body`` flies from the world's step (see the module): ``(VEHICLE, steering,
-    condition)``, a compiled run of a vehicle with aerodynamics; ``(STEPS, steering)``, one
-    whose program waits on a condition read in Python, flown in steps of one between its
-    readings (:meth:`_Window._steps`); ``(PART,)``, a tumbling
-    part's; ``(BATCH,)``, the loop's batch of a body none of whose steps has anything for
-    Python; None: one step at a time (also while a second process compiles the run's
-    kernel on a cold cache: the same bits, flown meanwhile). ``first``: the loop has run the
-    autopilots of this step (a folded one left its step in ``body.steering``); ``seconds``:
-    to the window's end."""
-    checks, watch = body.checks, body.watch
-    if body.vehicle is None:
-        if (body.runner is not None and not body.runner.finished) or field_of(body.p) is not None:
-            return None
-        if body.drag is not None and radial_height(body.y, body.p) <= world.schedule.rails_floor(body):
-            return None if compiling_elsewhere(runs.fly_part) else (PART,)
-        return (BATCH,) if world.schedule.coasts_alone(body, seconds) else None
-    if watch is None or checks is None or body.vehicle.parachutes or compiling_elsewhere(runs.fly_run):
-        return None
-    if not checks.every_step(body) or world.schedule.cruising(body):
-        return None
-    condition = NO_CONDITION
-    if _waiting(body):
-        condition = body.runner.condition
-        if body.central != "earth":
-            return None
-    steering = None
-    if body.attitude_command is not None:
-        steering = body.steering if first else body.fc.folded()
-        if steering is None:
-            return None
-    if not watch.max_q_done and (body.central != "earth" or not body.flies_in_days_air()):
-        return None
-    return (STEPS, steering) if condition is None else (VEHICLE, steering, condition)
-
-
-def _one_of_steps(plans: dict) -> dict:
-    """``plans`` with steps of one (:meth:`_Window._steps`) for one body at most, the
-    first; the others' one step at a time (two bodies' conditions read ahead of the
-    window's queue would not be read in the loop's order)."""
-    steps = sorted(i for i, plan in plans.items() if plan is not None and plan[0] == STEPS)
-    return {i: None if i in steps[1:] else plan for i, plan in plans.items()}

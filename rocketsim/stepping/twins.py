@@ -37,8 +37,8 @@ class Twin(NamedTuple):
 # why a run needs no twin of a decision
 RIGID = ("it flies a rigid body: the flight events watch a staged vehicle's engines, air and parachutes, "
          "its checks its loads and contacts")
-PARACHUTES = "a vehicle with parachutes is flown one step at a time (rocketsim.sim.window._plan)"
-NO_FIELD = ("a part with an n-body field is flown one step at a time (rocketsim.sim.window._plan); "
+PARACHUTES = "a vehicle with parachutes is flown one step at a time (rocketsim.sim.window_plans.plan)"
+NO_FIELD = ("a part with an n-body field is flown one step at a time (rocketsim.sim.window_plans.plan); "
             "without one, nothing is handed over")
 COASTS_ALONE = ("it flies only bodies that coast alone (rocketsim.sim.schedule.Schedule.coasts_alone): no "
                 "event left to watch, no n-body field, no program running, the ground out of reach")

@@ -15,7 +15,7 @@ from rocketsim.flight.program import ProgramError, ProgramRunner
 from rocketsim.layout import V
 from rocketsim.errors import InputError
 from rocketsim.scenario.load import load
-from rocketsim.sim import window, world as world_module
+from rocketsim.sim import window, window_plans, world as world_module
 from rocketsim.sim.build import build_world
 from rocketsim.api.telemetry_flight import fly_to_file as fly
 from rocketsim.sim.vehicle_checks import VehicleChecks
@@ -44,8 +44,9 @@ def _flight(tmp_path, name, monkeypatch, windows: bool, counts: dict, overrides=
     if windows:
         vehicle_run, part_run = VehicleChecks.fly_run, runs.fly_part
 
-        def counted(checks, body, k0, h, n, steering, events, condition, samples):
-            y, taken, reason, filled = vehicle_run(checks, body, k0, h, n, steering, events, condition, samples)
+        def counted(checks, body, k0, h, n, steering, events, condition, samples, between=None):
+            y, taken, reason, filled = vehicle_run(checks, body, k0, h, n, steering, events, condition, samples,
+                                                   between)
             counts["vehicle steps"] += taken
             counts["conditions"] += reason == runs.CONDITION
             counts["waiting"] += condition.shape[0] > 0
@@ -189,6 +190,21 @@ def _sounding(tmp_path, name, monkeypatch, how: str, duration: float = 110.0, cu
     return list(iter_raw_messages(out)), computed, world.k
 
 
+def _one_way(monkeypatch, windows: bool, seen) -> None:
+    """Fly the next flight in windows, each resume of a program first shown to ``seen(world)``
+    (the world's loop, or a run reading the program at every step), or one step at a time."""
+    if not windows:
+        monkeypatch.setattr(world_module, "fly_window", lambda world, length: False)
+        return
+    resume = ProgramRunner.resume
+
+    def resume_seen(runner, fc):
+        seen(fc._craft._world)
+        resume(runner, fc)
+
+    monkeypatch.setattr(ProgramRunner, "resume", resume_seen)
+
+
 # booster programs that wake inside a window while the upper stage's runs go on past their
 # steps: one that then waits on a condition read in Python (flown one step at a time inside
 # the window, read at every step), one that raises there (the flight ends at that step)
@@ -224,26 +240,10 @@ def test_a_program_woken_inside_a_window_flies_as_one_step_at_a_time(tmp_path, m
     scenario = tmp_path / "mission.yaml"
     scenario.write_text(text)
 
-    resumes, beside = [0], []   # resumes; the steps where a program ran beside another body's run
-    resume, run_programs = ProgramRunner.resume, world_module.World.run_programs
-
-    def resume_counted(runner, fc):
-        resumes[0] += 1
-        resume(runner, fc)
-
-    def programs_counted(world, indices):
-        before = resumes[0]
-        made = run_programs(world, indices)
-        if resumes[0] > before and _runs_go_on(world):
-            beside.append(world.k)
-        return made
+    beside = []                 # the steps where a program ran beside another body's run
 
     def flown(name, windows):
-        if windows:
-            monkeypatch.setattr(ProgramRunner, "resume", resume_counted)
-            monkeypatch.setattr(world_module.World, "run_programs", programs_counted)
-        else:
-            monkeypatch.setattr(world_module, "fly_window", lambda world, length: False)
+        _one_way(monkeypatch, windows, lambda world: _runs_go_on(world) and beside.append(world.k))
         out = tmp_path / f"{name}.mcap"
         try:
             result = fly(load(scenario), out, duration=150.0)
@@ -298,7 +298,7 @@ def test_a_run_still_compiling_elsewhere_is_flown_one_step_at_a_time_meanwhile(t
         first_run.append(k0)
         return vehicle_run(checks, body, k0, *rest)
 
-    monkeypatch.setattr(window, "compiling_elsewhere", compiling_elsewhere)
+    monkeypatch.setattr(window_plans, "compiling_elsewhere", compiling_elsewhere)
     monkeypatch.setattr(VehicleChecks, "fly_run", counted)
     meanwhile, _, _ = _sounding(tmp_path, "meanwhile", monkeypatch, "runs", duration=30.0)
     assert first_run and first_run[0] >= 400
@@ -384,3 +384,43 @@ def test_a_command_inside_a_condition_read_in_python_acts_on_the_flight(tmp_path
     assert inside == waking
     events = {e["name"]: e["time_s"] for e in inside["peer_sounding_rocket"]["events"]}
     assert events["ignition"] == pytest.approx(2.02) and events["liftoff"] > 2.02 + 0.3
+
+
+def _polls_every_step(fc):
+    """A flight computer's loop: the engine lit, then read at every step; the throttle
+    taken down once, lines logged now and then, the descent's step noted."""
+    fc.ignite()
+    steps = 0
+    while not (fc.time > 5.0 and fc.vertical_speed < 0.0):
+        steps += 1
+        if steps == 900:
+            fc.throttle(0.6)
+        if steps % 700 == 0:
+            fc.log(f"climbing at {fc.vertical_speed:.1f} m/s")
+        fc.step()
+    fc.event("descending", altitude_m=fc.altitude)
+
+
+def test_a_program_read_at_every_step_flies_inside_the_runs_as_one_step_at_a_time(tmp_path, monkeypatch):
+    """The sounding rocket's program as a flight computer's loop (``fc.step()`` at every step,
+    a throttle command, log lines, an event): resumed from inside the compiled runs, between
+    their steps, the runs ending only where it acts; the file is, message for message and
+    bit for bit, the loop's one step at a time, and most of the program's wakes were inside
+    the runs."""
+    from tests.sounding_peer import scenario
+
+    inside = []                 # the wakes inside a run reading the program (its acting hook set)
+
+    def flown(name, windows):
+        _one_way(monkeypatch, windows, lambda world: world.before_act is not None and inside.append(world.k))
+        out = tmp_path / f"{name}.mcap"
+        summary = fly(load({**scenario(110.0), "program": _polls_every_step}), out)
+        monkeypatch.undo()
+        return summary["bodies"], list(iter_raw_messages(out))
+
+    runs_summary, messages = flown("runs", True)
+    steps_summary, messages_steps = flown("steps", False)
+    assert messages == messages_steps and runs_summary == steps_summary
+    names = [e["name"] for e in runs_summary["peer_sounding_rocket"]["events"]]
+    assert "descending" in names
+    assert len(inside) > 4_000      # of some 5 000 wakes
