@@ -221,7 +221,16 @@ class ProgramRunner:
             outcome = True
         else:
             try:
-                outcome = self._timed(predicate)
+                if self._watched:       # _timed's mark, here without its call: read at every step
+                    budget, leash = self._budget, self._leash
+                    self._calls = call = self._calls + 1
+                    budget.call = leash.call = call
+                    try:
+                        outcome = predicate()
+                    finally:
+                        budget.call = leash.call = 0
+                else:
+                    outcome = self._timed(predicate)
                 if outcome is not True and outcome is not False:
                     outcome = truth(outcome)
             except BaseException as error:  # noqa: BLE001
