@@ -34,8 +34,8 @@ the best of each; a load that comes and goes slows all alike):
    condition's beside it (the flight with no Python between its steps).
 
 Last figures on a quiet machine (load 0.3-1.3, six runs). Target 1: 1.16-1.17
-CPU. Target 2: lambda / compiled condition 1.28-1.45 CPU, 1.63-1.77 wall into a
-file, 1.43-1.52 wall in memory. Per step over the ignition alone, in memory:
+CPU. Target 2: lambda / compiled condition 1.28-1.47 CPU, 1.63-1.86 wall into a
+file, 1.43-1.55 wall in memory; the fc.step() loop 2.2-2.7 in memory. Per step over the ignition alone, in memory:
 1.0-1.4 us for the lambda reading the time, 1.8-2.6 us for the one reading the
 vertical speed too. The floor of the wall ratio, measured once with the run
 calling the lambda straight from its step (no runner, budget or time limit,
