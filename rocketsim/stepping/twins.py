@@ -43,7 +43,7 @@ NO_FIELD = ("a part with an n-body field is flown one step at a time (rocketsim.
 COASTS_ALONE = ("it flies only bodies that coast alone (rocketsim.sim.schedule.Schedule.coasts_alone): no "
                 "event left to watch, no n-body field, no program running, the ground out of reach")
 COMMANDED = ("a program's command: a program runs only in Python, and every run returns at the step its "
-             "program wakes or its compiled condition holds")
+             "program wakes, its compiled condition holds or, resumed between the run's steps, it acts")
 SPLIT = "made at a split, a program's command (" + COMMANDED + ")"
 CRUISING = "cruise rails are flown by the world's loop (rocketsim.sim.world.World._cruise), never in a run"
 
